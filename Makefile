@@ -1,0 +1,77 @@
+# sinew — top-level build.  `make` builds the runtime library (and, later, the
+# compiler); `make test` and `make demo` install missing Debian packages first
+# (scripts/deps.sh) and then re-enter make so pkg-config sees them.
+#
+# Layout of build outputs (never committed):
+#   build/libsinewrt.a          optimised runtime (-O2)
+#   build/asan/libsinewrt.a     runtime under AddressSanitizer + UBSan
+#   build/tests/test_*          optimised test binaries (cmocka, TAP output)
+#   build/asan/tests/test_*     sanitizer test binaries
+CC      ?= cc
+PKGS     = hdf5 gsl
+PKG_CFLAGS = $(shell pkg-config --cflags $(PKGS) 2>/dev/null)
+PKG_LIBS   = $(shell pkg-config --libs $(PKGS) 2>/dev/null)
+WARN     = -Wall -Wextra -Wshadow -Wstrict-prototypes -Wmissing-prototypes
+STD      = -std=c11 -D_POSIX_C_SOURCE=200809L
+OPT      = -O2 -fno-math-errno -ftree-vectorize -g
+CFLAGS  ?= $(OPT)
+SAN      = -O1 -g -fno-omit-frame-pointer -fsanitize=address,undefined -fno-sanitize-recover=all
+ALL_CFLAGS = $(STD) $(WARN) $(CFLAGS) -Iruntime $(PKG_CFLAGS)
+SAN_CFLAGS = $(STD) $(WARN) $(SAN) -Iruntime $(PKG_CFLAGS)
+LIBS     = $(PKG_LIBS) -lm
+
+RT_SRC   = $(wildcard runtime/*.c)
+RT_HDR   = $(wildcard runtime/*.h)
+RT_OBJ   = $(RT_SRC:runtime/%.c=build/rt/%.o)
+RT_SOBJ  = $(RT_SRC:runtime/%.c=build/asan/rt/%.o)
+
+TEST_SRC = $(wildcard tests/runtime/test_*.c)
+TEST_BIN = $(TEST_SRC:tests/runtime/%.c=build/tests/%)
+# Tests cheap enough to run again under the sanitizers (the long validation
+# runs are exercised there with reduced sizes via SW_SANITIZED=1).
+TEST_SBIN = $(TEST_SRC:tests/runtime/%.c=build/asan/tests/%)
+
+.PHONY: all deps test check demo bench clean install
+all: build/libsinewrt.a
+
+deps:
+	@sh scripts/deps.sh
+
+build/rt/%.o: runtime/%.c $(RT_HDR) | build/rt
+	$(CC) $(ALL_CFLAGS) -c $< -o $@
+build/asan/rt/%.o: runtime/%.c $(RT_HDR) | build/asan/rt
+	$(CC) $(SAN_CFLAGS) -c $< -o $@
+build/libsinewrt.a: $(RT_OBJ)
+	ar rcs $@ $^
+build/asan/libsinewrt.a: $(RT_SOBJ)
+	ar rcs $@ $^
+
+build/tests/%: tests/runtime/%.c tests/runtime/testutil.h build/libsinewrt.a | build/tests
+	$(CC) $(ALL_CFLAGS) -Itests/runtime $< -o $@ build/libsinewrt.a $(LIBS) -lcmocka
+build/asan/tests/%: tests/runtime/%.c tests/runtime/testutil.h build/asan/libsinewrt.a | build/asan/tests
+	$(CC) $(SAN_CFLAGS) -Itests/runtime $< -o $@ build/asan/libsinewrt.a $(LIBS) -lcmocka
+
+build/rt build/asan/rt build/tests build/asan/tests build/bench:
+	@mkdir -p $@
+
+# `make test`: install what is missing, then build and run everything under
+# prove (TAP); prove's summary is the last line.
+test: deps
+	@$(MAKE) --no-print-directory check
+
+check: $(TEST_BIN) $(TEST_SBIN)
+	@CMOCKA_MESSAGE_OUTPUT=TAP prove -j2 --exec '' $(TEST_BIN) $(TEST_SBIN)
+
+BENCH_BIN = build/bench/bench_rod
+build/bench/bench_rod: bench/bench_rod.c build/libsinewrt.a | build/bench
+	$(CC) $(ALL_CFLAGS) $< -o $@ build/libsinewrt.a $(LIBS)
+bench: deps
+	@$(MAKE) --no-print-directory $(BENCH_BIN)
+	@./$(BENCH_BIN) docs/benchmarks.md
+
+demo: deps
+	@$(MAKE) --no-print-directory all
+	@echo "make demo: the language (issue 3) is not built yet; see README.md"
+
+clean:
+	rm -rf build

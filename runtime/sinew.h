@@ -1,0 +1,241 @@
+/* sinew.h — the public interface of libsinewrt, the Cosserat rod runtime.
+ *
+ * Design.  A scene is described by a mutable swSpec (rods, loads, boundary
+ * conditions, options), compiled once by sw_compile() into an immutable swModel
+ * (flat arrays sized once, every derived constant precomputed), and simulated
+ * in a mutable swData (positions, directors, velocities, time, scratch).  Every
+ * kernel has the shape  f(const swModel *m, swData *d)  and nothing allocates
+ * inside a step.  Rods are stored back to back in flat arrays: rod r owns nodes
+ * [node_adr[r], node_adr[r]+nelem[r]], elements [elem_adr[r], +nelem[r]) and
+ * Voronoi domains [vor_adr[r], +nelem[r]-1).  Vectors are double[3], director
+ * frames are row-major 3x3 matrices Q whose rows are d1, d2, d3 in the lab frame
+ * (Gazzola et al. 2018, sec. 2), so Q maps lab components to material ones.
+ *
+ * This header is all that the compiler's generated C may include.
+ */
+#ifndef SINEW_H
+#define SINEW_H
+
+#include <stddef.h>
+#include <stdio.h>
+
+#define SW_VERSION "0.1.0"
+
+/* Status codes; they double as the process exit codes of SPEC.md. */
+enum {
+  SW_OK = 0,
+  SW_EMODEL = 1,    /* the scene is invalid (bad sizes, materials, indices) */
+  SW_EUSAGE = 2,    /* bad call or command-line argument */
+  SW_EUNSTABLE = 3, /* the simulation became unstable */
+  SW_EIO = 4,       /* file could not be written */
+  SW_EINTERRUPT = 130 /* stopped by SIGINT; output is valid up to the last frame */
+};
+
+typedef enum { SW_VERLET = 0, SW_PEFRL = 1 } swIntegrator;
+typedef enum { SW_DAMP_NONE = 0, SW_DAMP_LINEAR = 1, SW_DAMP_ANALYTIC = 2 } swDampingKind;
+
+/* ---- time signals: scalar functions of time that scale loads and BCs ---- */
+typedef enum {
+  SW_SIG_CONST = 0, /* value = a                                              */
+  SW_SIG_RAMP,      /* a -> b linearly over [t0, t0+T], constant outside       */
+  SW_SIG_SINE,      /* a + b sin(2 pi f (t - t0) + phase)                      */
+  SW_SIG_STEP,      /* a before t0, b from t0 on                               */
+  SW_SIG_TABLE      /* piecewise linear through (times[k], values[k]), clamped */
+} swSignalKind;
+
+#define SW_SIGNAL_MAXPTS 64
+typedef struct {
+  swSignalKind kind;
+  double a, b, t0, T, freq, phase;
+  int npts;                          /* SW_SIG_TABLE only                 */
+  double times[SW_SIGNAL_MAXPTS];    /* strictly increasing               */
+  double values[SW_SIGNAL_MAXPTS];
+} swSignal;
+
+swSignal sw_signal_const(double value);
+swSignal sw_signal_ramp(double from, double to, double t0, double duration);
+swSignal sw_signal_sine(double mean, double amplitude, double freq_hz, double phase, double t0);
+swSignal sw_signal_step(double before, double after, double t0);
+double sw_signal_eval(const swSignal *s, double t);
+
+/* ---- scene description ---- */
+typedef struct {
+  const char *name;           /* used in output and error messages        */
+  int nelem;                  /* number of elements n (nodes n+1)         */
+  double start[3];            /* position of node 0, m                    */
+  double direction[3];        /* tangent d3 of the straight rest shape    */
+  double normal[3];           /* d1; made orthogonal to direction         */
+  double length;              /* rest length, m                           */
+  double radius_start;        /* radius at element 0 and element n-1, m;  */
+  double radius_end;          /* linear taper in between                  */
+  double density;             /* kg/m^3                                   */
+  double youngs;              /* E, Pa                                    */
+  double shear_modulus;       /* G, Pa; 0 means E / (2 (1 + poisson))     */
+  double poisson;             /* used only when shear_modulus == 0        */
+  double shear_hardening;     /* multiplies G in S11, S22; 0 means 1      */
+  double twist_hardening;     /* multiplies G in B33; 0 means 1           */
+  double rest_kappa[3];       /* uniform rest curvature/twist, 1/m        */
+  double rest_sigma[3];       /* uniform rest shear/stretch strain        */
+  swDampingKind damping;
+  double gamma;               /* force dissipation, kg m^-1 s^-1 (Zhang 2019) */
+} swRodDesc;
+
+typedef enum { SW_LOAD_FORCE = 0, SW_LOAD_TORQUE = 1 } swLoadKind;
+typedef struct {
+  swLoadKind kind;
+  int rod;
+  int index;         /* node for forces, element for torques; -1 = last  */
+  double vec[3];     /* N or N m, lab frame, multiplied by the signal     */
+  swSignal signal;
+} swLoadDesc;
+
+typedef enum {
+  SW_BC_CLAMP = 0,     /* end node and end element held in place           */
+  SW_BC_VELOCITY = 1,  /* end node velocity = vec * signal(t), lab frame   */
+  SW_BC_OMEGA = 2      /* end element angular velocity = vec*signal, lab  */
+} swBCKind;
+typedef struct {
+  swBCKind kind;
+  int rod;
+  int end;           /* 0 = start (node 0, element 0), 1 = end             */
+  double vec[3];
+  swSignal signal;
+} swBCDesc;
+
+typedef struct swSpec swSpec;
+swSpec *sw_spec_new(void);
+void sw_spec_free(swSpec *s);
+void sw_rod_desc_init(swRodDesc *r);        /* fills defaults */
+int sw_spec_add_rod(swSpec *s, const swRodDesc *r);      /* returns rod id */
+int sw_spec_add_load(swSpec *s, const swLoadDesc *l);
+int sw_spec_add_bc(swSpec *s, const swBCDesc *b);
+void sw_spec_set_gravity(swSpec *s, const double g[3]);
+void sw_spec_set_integrator(swSpec *s, swIntegrator integ);
+void sw_spec_set_dt(swSpec *s, double dt);
+/* Rest shape override for rod r: node positions (n+1)x3 and element directors
+ * n x 9 (rows d1 d2 d3).  Optional; default is the straight rod. */
+int sw_spec_set_rest_shape(swSpec *s, int rod, const double *x, const double *Q);
+
+/* ---- the compiled model (immutable) ---- */
+typedef struct {
+  /* sizes */
+  int nrod, nnode, nelem, nvor, nload, nbc;
+  /* options */
+  double dt;                 /* time step, s                                 */
+  swIntegrator integrator;
+  double gravity[3];         /* m/s^2                                        */
+  /* per rod (nrod) */
+  char **rod_name;
+  int *rod_nelem;            /* n of each rod                                */
+  int *node_adr;             /* first node                                   */
+  int *elem_adr;             /* first element                                */
+  int *vor_adr;              /* first Voronoi domain                         */
+  double *rod_wave_dt;       /* stable dt estimate of each rod, s            */
+  swDampingKind *rod_damping;
+  /* per node (nnode) */
+  double *mass;              /* (nnode)    lumped node mass, kg              */
+  double *inv_mass;          /* (nnode)                                      */
+  double *node_gamma;        /* (nnode)    gamma * Voronoi rest length, kg/s */
+  double *x0;                /* (nnode*3)  initial positions                 */
+  /* per element (nelem) */
+  double *rest_len;          /* (nelem)    l^, m                             */
+  double *radius;            /* (nelem)    m                                 */
+  double *shear_stiff;       /* (nelem*3)  S^ = diag(4GA/3, 4GA/3, EA), N    */
+  double *inertia;           /* (nelem*3)  J^ = rho l^ diag(I1, I2, I3)      */
+  double *inv_inertia;       /* (nelem*3)                                    */
+  double *rest_sigma;        /* (nelem*3)  rest shear/stretch strain         */
+  double *elem_gamma;        /* (nelem*3)  rotational dissipation, kg m^2/s  */
+  double *Q0;                /* (nelem*9)  initial directors                 */
+  /* per Voronoi domain (nvor) */
+  double *rest_vor_len;      /* (nvor)     D^, m                             */
+  double *bend_stiff;        /* (nvor*3)   B^ = diag(EI1, EI2, GJ), N m^2    */
+  double *rest_kappa;        /* (nvor*3)   1/m                               */
+  /* loads and boundary conditions */
+  swLoadDesc *load;          /* (nload)                                      */
+  swBCDesc *bc;              /* (nbc)                                        */
+  int has_gravity;
+  int has_damping;
+} swModel;
+
+/* ---- the state (mutable) ---- */
+typedef struct {
+  double time;
+  long step;
+  double work;               /* work done on the rods by loads, boundaries
+                                and dissipation since t = 0, J            */
+  /* state (nnode*3, nelem*9, nelem*3) */
+  double *x, *v, *Q, *omega;
+  /* derived per element (computed each force evaluation) */
+  double *tangent;           /* (nelem*3) unit tangent t                    */
+  double *length;            /* (nelem)   current length l                   */
+  double *dilatation;        /* (nelem)   e = l / l^                          */
+  double *dilatation_rate;   /* (nelem)   de/dt                              */
+  double *sigma;             /* (nelem*3) shear/stretch strain, material     */
+  double *stress;            /* (nelem*3) internal force n = S^ (s-s0) / e   */
+  /* derived per Voronoi domain */
+  double *vor_dilatation;    /* (nvor)                                       */
+  double *kappa;             /* (nvor*3)  curvature/twist, material frame    */
+  double *couple;            /* (nvor*3)  B^ (k - k0) / eps^3                */
+  /* accumulated loads */
+  double *force;             /* (nnode*3) total force on nodes, lab          */
+  double *torque;            /* (nelem*3) total couple, material frame       */
+  double *ext_force;         /* (nnode*3) external force, lab                */
+  double *ext_torque;        /* (nelem*3) external couple, material frame    */
+  /* instability report, filled when sw_step returns SW_EUNSTABLE */
+  char error[512];
+} swData;
+
+swModel *sw_compile(const swSpec *s, char *err, size_t errlen);
+void sw_model_free(swModel *m);
+swData *sw_data_new(const swModel *m);
+void sw_data_free(swData *d);
+void sw_reset(const swModel *m, swData *d);
+
+/* Kernels. */
+void sw_strains(const swModel *m, swData *d);          /* rod.c         */
+void sw_internal_loads(const swModel *m, swData *d);   /* rod.c         */
+void sw_external_loads(const swModel *m, swData *d);   /* loads.c       */
+int sw_step(const swModel *m, swData *d);              /* integrate.c   */
+int sw_check_finite(const swModel *m, swData *d);      /* stability.c   */
+
+/* Energies (J): kinetic (translational + rotational), elastic
+ * (bend/twist + shear/stretch), and the work done on the system. */
+void sw_energy(const swModel *m, swData *d, double out[3]);
+double sw_gravity_potential(const swModel *m, const swData *d);
+
+/* Stable time step estimates, s (stability.c). */
+double sw_stable_dt(const swModel *m);
+double sw_stable_dt_rod(const swModel *m, int rod);
+
+/* ---- output (output.c, the only file that touches HDF5) ---- */
+typedef struct swOutput swOutput;
+typedef struct {
+  const char *model_source;   /* full text, imports inlined (may be NULL)   */
+  const char *model_sha256;   /* hex digest (may be NULL)                   */
+  const char *params;         /* "name=value;..." (may be NULL)             */
+  double duration;            /* s                                           */
+  int velocity;               /* also write /rods/NAME/velocity             */
+  int directors;              /* also write /rods/NAME/directors            */
+} swOutputOptions;
+
+swOutput *sw_output_open(const char *path, const swModel *m, const swOutputOptions *o,
+                         char *err, size_t errlen);
+int sw_output_frame(swOutput *o, const swModel *m, swData *d);
+int sw_output_close(swOutput *o, const char *status);
+long sw_output_frames(const swOutput *o);
+
+/* ---- the run loop (run.c): steps, frames, SIGINT, progress ---- */
+typedef struct {
+  double duration;       /* s */
+  double every;          /* s between frames; 0 = every step            */
+  int quiet;             /* no progress line                             */
+  FILE *log;             /* messages (stderr when NULL)                  */
+} swRunOptions;
+
+int sw_run(const swModel *m, swData *d, swOutput *out, const swRunOptions *ro);
+
+/* Parse a duration with optional unit ("50ns", "0.5 s", "2ms", "1e-3").
+ * Returns 0 on success. */
+int sw_parse_time(const char *text, double *seconds);
+
+#endif

@@ -1,0 +1,27 @@
+#!/bin/sh
+# deps.sh — install the Debian packages sinew needs, only those that are missing.
+# Called by `make test`, `make demo` and `make bench` so that each works on a
+# fresh Debian machine.  docs/dependencies.md says why each package is here.
+set -e
+# package:probe-file pairs; a package is missing when its probe file is absent.
+PKGS="
+flex:/usr/bin/flex
+bison:/usr/bin/bison
+libhdf5-dev:/usr/include/hdf5/serial/hdf5.h
+hdf5-tools:/usr/bin/h5dump
+libgsl-dev:/usr/include/gsl/gsl_math.h
+pkg-config:/usr/bin/pkg-config
+libcmocka-dev:/usr/include/cmocka.h
+"
+missing=""
+for pair in $PKGS; do
+  pkg=${pair%%:*}; probe=${pair#*:}
+  [ -e "$probe" ] || missing="$missing $pkg"
+done
+[ -z "$missing" ] && exit 0
+echo "deps: installing$missing" >&2
+SUDO=""
+[ "$(id -u)" = 0 ] || SUDO=sudo
+export DEBIAN_FRONTEND=noninteractive
+$SUDO apt-get update -qq >/dev/null
+$SUDO apt-get install -y -qq --no-install-recommends $missing >/dev/null
