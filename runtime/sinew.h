@@ -131,11 +131,13 @@ typedef struct {
   int *elem_adr;             /* first element                                */
   int *vor_adr;              /* first Voronoi domain                         */
   double *rod_wave_dt;       /* stable dt estimate of each rod, s            */
+  double *rod_wave_speed;    /* sqrt(E / rho), m/s (runaway detection)       */
   swDampingKind *rod_damping;
   /* per node (nnode) */
   double *mass;              /* (nnode)    lumped node mass, kg              */
   double *inv_mass;          /* (nnode)                                      */
   double *node_gamma;        /* (nnode)    gamma * Voronoi rest length, kg/s */
+  double *node_decay;        /* (nnode)    analytic damping exp(-c dt/2)     */
   double *x0;                /* (nnode*3)  initial positions                 */
   /* per element (nelem) */
   double *rest_len;          /* (nelem)    l^, m                             */
@@ -145,6 +147,7 @@ typedef struct {
   double *inv_inertia;       /* (nelem*3)                                    */
   double *rest_sigma;        /* (nelem*3)  rest shear/stretch strain         */
   double *elem_gamma;        /* (nelem*3)  rotational dissipation, kg m^2/s  */
+  double *elem_decay;        /* (nelem*3)  analytic damping exp(-c dt/2)     */
   double *Q0;                /* (nelem*9)  initial directors                 */
   /* per Voronoi domain (nvor) */
   double *rest_vor_len;      /* (nvor)     D^, m                             */
@@ -195,6 +198,7 @@ void sw_reset(const swModel *m, swData *d);
 void sw_strains(const swModel *m, swData *d);          /* rod.c         */
 void sw_internal_loads(const swModel *m, swData *d);   /* rod.c         */
 void sw_external_loads(const swModel *m, swData *d);   /* loads.c       */
+void sw_apply_bc_velocity(const swModel *m, swData *d, double t); /* boundary.c */
 int sw_step(const swModel *m, swData *d);              /* integrate.c   */
 int sw_check_finite(const swModel *m, swData *d);      /* stability.c   */
 
@@ -223,6 +227,10 @@ swOutput *sw_output_open(const char *path, const swModel *m, const swOutputOptio
 int sw_output_frame(swOutput *o, const swModel *m, swData *d);
 int sw_output_close(swOutput *o, const char *status);
 long sw_output_frames(const swOutput *o);
+/* Message of the most recent failed sw_output_* call in this thread (names the
+ * file and the object; "" if none failed).  Added because sw_output_frame()
+ * and sw_output_close() have no err argument. */
+const char *sw_output_error(void);
 
 /* ---- the run loop (run.c): steps, frames, SIGINT, progress ---- */
 typedef struct {

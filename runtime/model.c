@@ -1,0 +1,434 @@
+/* model.c — scene specification, compilation into the immutable swModel, and
+ * allocation of the mutable swData.
+ *
+ * Design.  swSpec is a growable list of rod, load and boundary descriptions
+ * filled by the caller (the generated simulator or a test).  sw_compile()
+ * validates it, sizes every flat array once, and precomputes everything that
+ * does not change during a run: lumped node masses, element stiffness
+ * diagonals S^ and inertias J^, Voronoi bending stiffness B^ (rest-length
+ * weighted average of the two neighbouring elements, as in PyElastica), rest
+ * lengths, rest strains and the per-rod stable time step.  All memory of a
+ * model and of its data is allocated here and nowhere else.
+ *
+ * Constitutive constants (Gazzola et al. 2018, sec. 2; Zhang et al. 2019,
+ * Suppl. Note on snake settings):  A = pi r^2, I1 = I2 = pi r^4 / 4,
+ * I3 = 2 I1;  S^ = diag(alpha_c G A, alpha_c G A, E A) with alpha_c = 4/3,
+ * B^ = diag(E I1, E I2, G I3);  J^ = rho l^ diag(I1, I2, I3).  Shear and
+ * twist hardening multiply G in S^11, S^22 and in B^33 respectively.
+ */
+#include <stdlib.h>
+#include <string.h>
+#include <stdarg.h>
+#include <math.h>
+#include "sinew.h"
+#include "vec.h"
+
+struct swSpec {
+  int nrod, nload, nbc;
+  int caprod, capload, capbc;
+  swRodDesc *rod;
+  char **rod_name;
+  double **rest_x, **rest_Q;     /* optional rest shapes, per rod */
+  swLoadDesc *load;
+  swBCDesc *bc;
+  double gravity[3];
+  double dt;
+  swIntegrator integrator;
+};
+
+static const double SW_ALPHA_SHEAR = 4.0 / 3.0; /* circular section */
+
+swSpec *sw_spec_new(void) {
+  swSpec *s = calloc(1, sizeof *s);
+  if (s) s->dt = 1e-5;
+  return s;
+}
+
+void sw_spec_free(swSpec *s) {
+  if (!s) return;
+  for (int r = 0; r < s->nrod; r++) {
+    free(s->rod_name[r]);
+    free(s->rest_x[r]);
+    free(s->rest_Q[r]);
+  }
+  free(s->rod); free(s->rod_name); free(s->rest_x); free(s->rest_Q);
+  free(s->load); free(s->bc);
+  free(s);
+}
+
+void sw_rod_desc_init(swRodDesc *r) {
+  memset(r, 0, sizeof *r);
+  r->name = "rod";
+  r->nelem = 50;
+  r->direction[2] = 1.0;
+  r->normal[0] = 1.0;
+  r->length = 1.0;
+  r->radius_start = r->radius_end = 0.01;
+  r->density = 1000.0;
+  r->youngs = 1e6;
+  r->poisson = 0.5;
+  r->shear_hardening = 1.0;
+  r->twist_hardening = 1.0;
+}
+
+/* Grow an array to hold at least n+1 items. */
+static int grow(void **p, int *cap, int n, size_t item) {
+  if (n < *cap) return 1;
+  int nc = *cap ? 2 * *cap : 8;
+  void *q = realloc(*p, (size_t)nc * item);
+  if (!q) return 0;
+  *p = q;
+  *cap = nc;
+  return 1;
+}
+
+int sw_spec_add_rod(swSpec *s, const swRodDesc *r) {
+  int cap = s->caprod;
+  if (!grow((void **)&s->rod, &cap, s->nrod, sizeof *s->rod)) return -1;
+  cap = s->caprod;
+  if (!grow((void **)&s->rod_name, &cap, s->nrod, sizeof *s->rod_name)) return -1;
+  cap = s->caprod;
+  if (!grow((void **)&s->rest_x, &cap, s->nrod, sizeof *s->rest_x)) return -1;
+  if (!grow((void **)&s->rest_Q, &s->caprod, s->nrod, sizeof *s->rest_Q)) return -1;
+  int id = s->nrod++;
+  s->rod[id] = *r;
+  s->rod_name[id] = strdup(r->name ? r->name : "rod");
+  s->rod[id].name = s->rod_name[id];
+  s->rest_x[id] = s->rest_Q[id] = NULL;
+  return id;
+}
+
+int sw_spec_add_load(swSpec *s, const swLoadDesc *l) {
+  if (!grow((void **)&s->load, &s->capload, s->nload, sizeof *s->load)) return -1;
+  s->load[s->nload] = *l;
+  return s->nload++;
+}
+
+int sw_spec_add_bc(swSpec *s, const swBCDesc *b) {
+  if (!grow((void **)&s->bc, &s->capbc, s->nbc, sizeof *s->bc)) return -1;
+  s->bc[s->nbc] = *b;
+  return s->nbc++;
+}
+
+void sw_spec_set_gravity(swSpec *s, const double g[3]) {
+  memcpy(s->gravity, g, sizeof s->gravity);
+}
+void sw_spec_set_integrator(swSpec *s, swIntegrator integ) { s->integrator = integ; }
+void sw_spec_set_dt(swSpec *s, double dt) { s->dt = dt; }
+
+int sw_spec_set_rest_shape(swSpec *s, int rod, const double *x, const double *Q) {
+  if (rod < 0 || rod >= s->nrod) return SW_EUSAGE;
+  int n = s->rod[rod].nelem;
+  if (n < 1) return SW_EMODEL;
+  free(s->rest_x[rod]);
+  free(s->rest_Q[rod]);
+  s->rest_x[rod] = malloc(sizeof(double) * 3 * (size_t)(n + 1));
+  s->rest_Q[rod] = malloc(sizeof(double) * 9 * (size_t)n);
+  if (!s->rest_x[rod] || !s->rest_Q[rod]) return SW_EMODEL;
+  memcpy(s->rest_x[rod], x, sizeof(double) * 3 * (size_t)(n + 1));
+  memcpy(s->rest_Q[rod], Q, sizeof(double) * 9 * (size_t)n);
+  return SW_OK;
+}
+
+/* ---- compilation ---- */
+
+static int fail(char *err, size_t errlen, const char *fmt, ...) {
+  if (err && errlen) {
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(err, errlen, fmt, ap);
+    va_end(ap);
+  }
+  return 0;
+}
+
+static int finite_pos(double x) { return isfinite(x) && x > 0; }
+
+static int check_rod(const swRodDesc *r, char *err, size_t errlen) {
+  const char *nm = r->name;
+  if (r->nelem < 2)
+    return fail(err, errlen, "rod '%s': needs at least 2 elements, has %d", nm, r->nelem);
+  if (r->nelem > 10000000)
+    return fail(err, errlen, "rod '%s': %d elements is more than this build supports", nm, r->nelem);
+  if (!finite_pos(r->length)) return fail(err, errlen, "rod '%s': length must be > 0", nm);
+  if (!finite_pos(r->radius_start) || !finite_pos(r->radius_end))
+    return fail(err, errlen, "rod '%s': radius must be > 0", nm);
+  if (!finite_pos(r->density)) return fail(err, errlen, "rod '%s': density must be > 0", nm);
+  if (!finite_pos(r->youngs)) return fail(err, errlen, "rod '%s': Young's modulus must be > 0", nm);
+  if (r->shear_modulus == 0 && !(r->poisson > -1.0 && r->poisson <= 0.5))
+    return fail(err, errlen, "rod '%s': Poisson ratio %g outside (-1, 0.5]", nm, r->poisson);
+  if (r->shear_modulus != 0 && !finite_pos(r->shear_modulus))
+    return fail(err, errlen, "rod '%s': shear modulus must be > 0", nm);
+  if (!finite_pos(r->shear_hardening) || !finite_pos(r->twist_hardening))
+    return fail(err, errlen, "rod '%s': hardening factors must be > 0", nm);
+  if (!(r->gamma >= 0) || !isfinite(r->gamma))
+    return fail(err, errlen, "rod '%s': dissipation constant must be >= 0", nm);
+  if (r->damping != SW_DAMP_NONE && r->damping != SW_DAMP_LINEAR && r->damping != SW_DAMP_ANALYTIC)
+    return fail(err, errlen, "rod '%s': unknown damping kind %d", nm, (int)r->damping);
+  double Q[9];
+  if (!sw_frame_from(Q, r->direction, r->normal))
+    return fail(err, errlen, "rod '%s': direction is zero or parallel to normal", nm);
+  return 1;
+}
+
+static double *dalloc(size_t n) { return calloc(n ? n : 1, sizeof(double)); }
+
+void sw_model_free(swModel *m) {
+  if (!m) return;
+  for (int r = 0; r < m->nrod; r++) free(m->rod_name[r]);
+  free(m->rod_name); free(m->rod_nelem); free(m->node_adr); free(m->elem_adr);
+  free(m->vor_adr); free(m->rod_wave_dt); free(m->rod_damping); free(m->rod_wave_speed);
+  free(m->mass); free(m->inv_mass); free(m->node_gamma); free(m->node_decay); free(m->elem_decay); free(m->x0);
+  free(m->rest_len); free(m->radius); free(m->shear_stiff); free(m->inertia);
+  free(m->inv_inertia); free(m->rest_sigma); free(m->elem_gamma); free(m->Q0);
+  free(m->rest_vor_len); free(m->bend_stiff); free(m->rest_kappa);
+  free(m->load); free(m->bc);
+  free(m);
+}
+
+/* Initial node positions and directors of rod r: straight, or the rest shape
+ * given with sw_spec_set_rest_shape. */
+static void place_rod(const swSpec *s, int r, double *x, double *Q) {
+  const swRodDesc *rd = &s->rod[r];
+  int n = rd->nelem;
+  if (s->rest_x[r]) {
+    memcpy(x, s->rest_x[r], sizeof(double) * 3 * (size_t)(n + 1));
+    memcpy(Q, s->rest_Q[r], sizeof(double) * 9 * (size_t)n);
+    return;
+  }
+  double Q0[9];
+  sw_frame_from(Q0, rd->direction, rd->normal);
+  for (int i = 0; i <= n; i++) {
+    double f = rd->length * i / n;
+    for (int k = 0; k < 3; k++) x[3 * i + k] = rd->start[k] + f * Q0[6 + k];
+  }
+  for (int i = 0; i < n; i++) memcpy(Q + 9 * i, Q0, sizeof Q0);
+}
+
+static int check_loads_bcs(const swSpec *s, char *err, size_t errlen) {
+  for (int k = 0; k < s->nload; k++) {
+    const swLoadDesc *l = &s->load[k];
+    if (l->rod < 0 || l->rod >= s->nrod)
+      return fail(err, errlen, "load %d: rod index %d out of range", k, l->rod);
+    int n = s->rod[l->rod].nelem, lim = l->kind == SW_LOAD_FORCE ? n + 1 : n;
+    if (l->index < -1 || l->index >= lim)
+      return fail(err, errlen, "load %d on rod '%s': %s index %d out of range [0, %d)", k,
+                  s->rod[l->rod].name, l->kind == SW_LOAD_FORCE ? "node" : "element", l->index, lim);
+    if (l->signal.kind == SW_SIG_TABLE && (l->signal.npts < 1 || l->signal.npts > SW_SIGNAL_MAXPTS))
+      return fail(err, errlen, "load %d: table signal needs 1..%d points", k, SW_SIGNAL_MAXPTS);
+  }
+  for (int k = 0; k < s->nbc; k++) {
+    const swBCDesc *b = &s->bc[k];
+    if (b->rod < 0 || b->rod >= s->nrod)
+      return fail(err, errlen, "boundary condition %d: rod index %d out of range", k, b->rod);
+    if (b->end != 0 && b->end != 1)
+      return fail(err, errlen, "boundary condition %d: end must be 0 (start) or 1 (end)", k);
+    if (b->kind < SW_BC_CLAMP || b->kind > SW_BC_OMEGA)
+      return fail(err, errlen, "boundary condition %d: unknown kind %d", k, (int)b->kind);
+  }
+  return 1;
+}
+
+swModel *sw_compile(const swSpec *s, char *err, size_t errlen) {
+  if (!s || s->nrod < 1) {
+    fail(err, errlen, "the scene has no rods");
+    return NULL;
+  }
+  if (!finite_pos(s->dt)) {
+    fail(err, errlen, "time step must be > 0, got %g", s->dt);
+    return NULL;
+  }
+  if (s->integrator != SW_VERLET && s->integrator != SW_PEFRL) {
+    fail(err, errlen, "unknown integrator %d", (int)s->integrator);
+    return NULL;
+  }
+  for (int r = 0; r < s->nrod; r++)
+    if (!check_rod(&s->rod[r], err, errlen)) return NULL;
+  if (!check_loads_bcs(s, err, errlen)) return NULL;
+
+  swModel *m = calloc(1, sizeof *m);
+  if (!m) return NULL;
+  m->nrod = s->nrod;
+  m->dt = s->dt;
+  m->integrator = s->integrator;
+  memcpy(m->gravity, s->gravity, sizeof m->gravity);
+  m->has_gravity = s->gravity[0] != 0 || s->gravity[1] != 0 || s->gravity[2] != 0;
+  int nr = m->nrod;
+  m->rod_name = calloc((size_t)nr, sizeof(char *));
+  m->rod_nelem = calloc((size_t)nr, sizeof(int));
+  m->node_adr = calloc((size_t)nr, sizeof(int));
+  m->elem_adr = calloc((size_t)nr, sizeof(int));
+  m->vor_adr = calloc((size_t)nr, sizeof(int));
+  m->rod_damping = calloc((size_t)nr, sizeof(swDampingKind));
+  m->rod_wave_dt = dalloc((size_t)nr);
+  m->rod_wave_speed = dalloc((size_t)nr);
+  if (!m->rod_name || !m->rod_nelem || !m->node_adr || !m->elem_adr || !m->vor_adr ||
+      !m->rod_damping || !m->rod_wave_dt || !m->rod_wave_speed)
+    goto oom;
+  for (int r = 0; r < nr; r++) {
+    int n = s->rod[r].nelem;
+    m->rod_name[r] = strdup(s->rod[r].name);
+    if (!m->rod_name[r]) goto oom;
+    m->rod_nelem[r] = n;
+    m->node_adr[r] = m->nnode;
+    m->elem_adr[r] = m->nelem;
+    m->vor_adr[r] = m->nvor;
+    m->nnode += n + 1;
+    m->nelem += n;
+    m->nvor += n - 1;
+    m->rod_damping[r] = s->rod[r].gamma > 0 ? s->rod[r].damping : SW_DAMP_NONE;
+    if (m->rod_damping[r] != SW_DAMP_NONE) m->has_damping = 1;
+  }
+  size_t N = (size_t)m->nnode, E = (size_t)m->nelem, V = (size_t)m->nvor;
+  m->mass = dalloc(N); m->inv_mass = dalloc(N); m->node_gamma = dalloc(N); m->node_decay = dalloc(N); m->x0 = dalloc(3 * N);
+  m->rest_len = dalloc(E); m->radius = dalloc(E); m->shear_stiff = dalloc(3 * E);
+  m->inertia = dalloc(3 * E); m->inv_inertia = dalloc(3 * E); m->rest_sigma = dalloc(3 * E);
+  m->elem_gamma = dalloc(3 * E); m->elem_decay = dalloc(3 * E); m->Q0 = dalloc(9 * E);
+  m->rest_vor_len = dalloc(V); m->bend_stiff = dalloc(3 * V); m->rest_kappa = dalloc(3 * V);
+  if (!m->mass || !m->inv_mass || !m->node_gamma || !m->node_decay || !m->elem_decay || !m->x0 || !m->rest_len || !m->radius ||
+      !m->shear_stiff || !m->inertia || !m->inv_inertia || !m->rest_sigma || !m->elem_gamma ||
+      !m->Q0 || !m->rest_vor_len || !m->bend_stiff || !m->rest_kappa)
+    goto oom;
+
+  for (int r = 0; r < nr; r++) {
+    const swRodDesc *rd = &s->rod[r];
+    int n = rd->nelem, na = m->node_adr[r], ea = m->elem_adr[r], va = m->vor_adr[r];
+    double *x = m->x0 + 3 * na, *Q = m->Q0 + 9 * ea;
+    place_rod(s, r, x, Q);
+    double G = rd->shear_modulus > 0 ? rd->shear_modulus : rd->youngs / (2.0 * (1.0 + rd->poisson));
+    double Gs = G * rd->shear_hardening, Gt = G * rd->twist_hardening;
+    double *bend_elem = dalloc(3 * (size_t)n); /* element B^ before Voronoi averaging */
+    if (!bend_elem) goto oom;
+    for (int i = 0; i < n; i++) {
+      int e = ea + i;
+      double dx[3];
+      sw_v3_sub(dx, x + 3 * (i + 1), x + 3 * i);
+      double l = sw_v3_norm(dx);
+      if (!(l > 0)) {
+        free(bend_elem);
+        fail(err, errlen, "rod '%s': element %d has zero rest length", rd->name, i);
+        sw_model_free(m);
+        return NULL;
+      }
+      /* radius tapers linearly from the first to the last element centre */
+      double f = n > 1 ? (double)i / (n - 1) : 0.0;
+      double rad = rd->radius_start + f * (rd->radius_end - rd->radius_start);
+      double A = SW_PI * rad * rad, I1 = A * rad * rad / 4.0;
+      m->rest_len[e] = l;
+      m->radius[e] = rad;
+      m->shear_stiff[3 * e + 0] = SW_ALPHA_SHEAR * Gs * A;
+      m->shear_stiff[3 * e + 1] = SW_ALPHA_SHEAR * Gs * A;
+      m->shear_stiff[3 * e + 2] = rd->youngs * A;
+      double Ik[3] = {I1, I1, 2.0 * I1};
+      for (int k = 0; k < 3; k++) {
+        m->inertia[3 * e + k] = rd->density * l * Ik[k];
+        m->inv_inertia[3 * e + k] = 1.0 / m->inertia[3 * e + k];
+        m->rest_sigma[3 * e + k] = rd->rest_sigma[k];
+        /* rotational dissipation: gamma I_k / A per unit length, so that
+         * rotation and translation decay at the same rate gamma/(rho A) */
+        m->elem_gamma[3 * e + k] = rd->gamma * l * Ik[k] / A;
+      }
+      bend_elem[3 * i + 0] = rd->youngs * I1;
+      bend_elem[3 * i + 1] = rd->youngs * I1;
+      bend_elem[3 * i + 2] = Gt * 2.0 * I1;
+      /* lumped mass: half of each element to each of its nodes */
+      double me = rd->density * A * l;
+      m->mass[na + i] += 0.5 * me;
+      m->mass[na + i + 1] += 0.5 * me;
+      m->node_gamma[na + i] += 0.5 * rd->gamma * l;
+      m->node_gamma[na + i + 1] += 0.5 * rd->gamma * l;
+    }
+    for (int j = 0; j < n - 1; j++) {
+      int v = va + j, e = ea + j;
+      double la = m->rest_len[e], lb = m->rest_len[e + 1];
+      m->rest_vor_len[v] = 0.5 * (la + lb);
+      for (int k = 0; k < 3; k++) {
+        m->bend_stiff[3 * v + k] = (bend_elem[3 * j + k] * la + bend_elem[3 * (j + 1) + k] * lb) / (la + lb);
+        m->rest_kappa[3 * v + k] = rd->rest_kappa[k];
+      }
+      /* A given rest shape fixes the rest curvature unless one is given. */
+      if (s->rest_Q[r] && rd->rest_kappa[0] == 0 && rd->rest_kappa[1] == 0 && rd->rest_kappa[2] == 0) {
+        double phi[3];
+        sw_frame_log(phi, Q + 9 * j, Q + 9 * (j + 1));
+        for (int k = 0; k < 3; k++) m->rest_kappa[3 * v + k] = phi[k] / m->rest_vor_len[v];
+      }
+    }
+    free(bend_elem);
+    for (int i = 0; i <= n; i++) m->inv_mass[na + i] = 1.0 / m->mass[na + i];
+    /* Analytic damping: the exact decay of dv/dt = -c v over half a step,
+     * c = gamma D^ / m for nodes and elem_gamma / J^ for elements (the
+     * dilatation is taken as 1 in the rate).  The factor is in (0, 1] for
+     * every gamma and dt, hence unconditionally stable. */
+    int analytic = m->rod_damping[r] == SW_DAMP_ANALYTIC;
+    for (int i = 0; i <= n; i++)
+      m->node_decay[na + i] = analytic ? exp(-0.5 * s->dt * m->node_gamma[na + i] * m->inv_mass[na + i]) : 1.0;
+    for (int i = 0; i < n; i++)
+      for (int k = 0; k < 3; k++) {
+        int q = 3 * (ea + i) + k;
+        m->elem_decay[q] = analytic ? exp(-0.5 * s->dt * m->elem_gamma[q] * m->inv_inertia[q]) : 1.0;
+      }
+    m->rod_wave_speed[r] = sqrt(rd->youngs / rd->density);
+  }
+
+  m->nload = s->nload;
+  m->nbc = s->nbc;
+  m->load = calloc((size_t)(s->nload ? s->nload : 1), sizeof *m->load);
+  m->bc = calloc((size_t)(s->nbc ? s->nbc : 1), sizeof *m->bc);
+  if (!m->load || !m->bc) goto oom;
+  memcpy(m->load, s->load, sizeof *m->load * (size_t)s->nload);
+  memcpy(m->bc, s->bc, sizeof *m->bc * (size_t)s->nbc);
+  for (int k = 0; k < m->nload; k++)
+    if (m->load[k].index == -1)
+      m->load[k].index = m->rod_nelem[m->load[k].rod] - (m->load[k].kind == SW_LOAD_TORQUE);
+  for (int r = 0; r < nr; r++) m->rod_wave_dt[r] = sw_stable_dt_rod(m, r);
+  return m;
+
+oom:
+  fail(err, errlen, "out of memory while building the model");
+  sw_model_free(m);
+  return NULL;
+}
+
+/* ---- data ---- */
+
+void sw_data_free(swData *d) {
+  if (!d) return;
+  free(d->x); free(d->v); free(d->Q); free(d->omega);
+  free(d->tangent); free(d->length); free(d->dilatation); free(d->dilatation_rate);
+  free(d->sigma); free(d->stress); free(d->vor_dilatation); free(d->kappa); free(d->couple);
+  free(d->force); free(d->torque); free(d->ext_force); free(d->ext_torque);
+  free(d);
+}
+
+swData *sw_data_new(const swModel *m) {
+  swData *d = calloc(1, sizeof *d);
+  if (!d) return NULL;
+  size_t N = (size_t)m->nnode, E = (size_t)m->nelem, V = (size_t)m->nvor;
+  d->x = dalloc(3 * N); d->v = dalloc(3 * N); d->Q = dalloc(9 * E); d->omega = dalloc(3 * E);
+  d->tangent = dalloc(3 * E); d->length = dalloc(E); d->dilatation = dalloc(E);
+  d->dilatation_rate = dalloc(E); d->sigma = dalloc(3 * E); d->stress = dalloc(3 * E);
+  d->vor_dilatation = dalloc(V); d->kappa = dalloc(3 * V); d->couple = dalloc(3 * V);
+  d->force = dalloc(3 * N); d->torque = dalloc(3 * E);
+  d->ext_force = dalloc(3 * N); d->ext_torque = dalloc(3 * E);
+  if (!d->x || !d->v || !d->Q || !d->omega || !d->tangent || !d->length || !d->dilatation ||
+      !d->dilatation_rate || !d->sigma || !d->stress || !d->vor_dilatation || !d->kappa ||
+      !d->couple || !d->force || !d->torque || !d->ext_force || !d->ext_torque) {
+    sw_data_free(d);
+    return NULL;
+  }
+  sw_reset(m, d);
+  return d;
+}
+
+void sw_reset(const swModel *m, swData *d) {
+  d->time = 0;
+  d->step = 0;
+  d->work = 0;
+  d->error[0] = 0;
+  memcpy(d->x, m->x0, sizeof(double) * 3 * (size_t)m->nnode);
+  memcpy(d->Q, m->Q0, sizeof(double) * 9 * (size_t)m->nelem);
+  memset(d->v, 0, sizeof(double) * 3 * (size_t)m->nnode);
+  memset(d->omega, 0, sizeof(double) * 3 * (size_t)m->nelem);
+  sw_apply_bc_velocity(m, d, 0.0);
+  sw_strains(m, d);
+}

@@ -1,0 +1,133 @@
+/* rod.c — strains, internal forces and internal couples of Cosserat rods.
+ *
+ * Design.  One pass over the elements of a rod computes the shear/stretch
+ * strain, the internal force n and everything that lives on an element; one
+ * pass over the Voronoi domains computes curvature and the bending couple and
+ * scatters it to the two neighbouring elements.  The difference operator
+ * Delta^h and the averaging operator A^h of the discretisation (Gazzola et al.
+ * 2018, eqs. 3.1-3.4, with zero padding at both ends) are done in the same
+ * passes by carrying the previous element's or domain's value, so no extra
+ * array or pass is needed.  Results: d->force (lab frame, per node) and
+ * d->torque (material frame, per element), both overwritten.
+ *
+ * Discrete equations (Gazzola 2018, eq. 3.7, with the notation of sinew.h):
+ *   sigma_i  = Q_i (x_{i+1} - x_i) / l^_i - d3               shear/stretch strain
+ *   n_i      = S^_i (sigma_i - sigma0_i) / e_i                internal force (material)
+ *   F_node   = Delta^h( Q_i^T n_i )
+ *   kappa_j  = log(Q_{j+1} Q_j^T) / D^_j                      curvature (material)
+ *   c_j      = B^_j (kappa_j - kappa0_j) / eps_j^3            bending couple
+ *   tau_i    = Delta^h(c) + A^h(kappa x c D^) + (Q_i x_s,i x n_i) l^_i
+ *              + (J^_i w_i / e_i) x w_i + (J^_i w_i / e_i) de_i/dt / e_i
+ * Q_i x_s,i l^_i = Q_i (x_{i+1} - x_i) = l^_i (sigma_i + d3), which is how the
+ * shear couple is formed below.  The same constitutive law (S = S^/e,
+ * B = B^/eps^3 at the Voronoi domains) is used by PyElastica.
+ */
+#include <string.h>
+#include "sinew.h"
+#include "vec.h"
+
+/* Element pass: strains, internal force, shear couple and the two inertial
+ * couples.  Writes force on nodes 0..n (node n last) and torque on elements. */
+static void rod_elements(const swModel *m, swData *d, int r) {
+  const int n = m->rod_nelem[r], na = m->node_adr[r], ea = m->elem_adr[r];
+  const double *restrict x = d->x + 3 * na;
+  const double *restrict v = d->v + 3 * na;
+  const double *restrict Qs = d->Q + 9 * ea;
+  const double *restrict w = d->omega + 3 * ea;
+  const double *restrict rl = m->rest_len + ea;
+  const double *restrict S = m->shear_stiff + 3 * ea;
+  const double *restrict s0 = m->rest_sigma + 3 * ea;
+  const double *restrict J = m->inertia + 3 * ea;
+  double *restrict F = d->force + 3 * na;
+  double *restrict T = d->torque + 3 * ea;
+  double *restrict tan = d->tangent + 3 * ea;
+  double *restrict len = d->length + ea, *restrict dil = d->dilatation + ea;
+  double *restrict dil_rate = d->dilatation_rate + ea;
+  double *restrict sig = d->sigma + 3 * ea, *restrict str = d->stress + 3 * ea;
+  double fprev[3] = {0, 0, 0};
+  for (int i = 0; i < n; i++) {
+    const double *Q = Qs + 9 * i;
+    double dx[3], dv[3];
+    sw_v3_sub(dx, x + 3 * (i + 1), x + 3 * i);
+    sw_v3_sub(dv, v + 3 * (i + 1), v + 3 * i);
+    const double l = sw_v3_norm(dx), inv_l = 1.0 / l, inv_rl = 1.0 / rl[i];
+    const double e = l * inv_rl, inv_e = 1.0 / e;
+    double Qdx[3], nm[3], f[3];
+    sw_mat_vec(Qdx, Q, dx);
+    for (int k = 0; k < 3; k++) {
+      tan[3 * i + k] = dx[k] * inv_l;
+      sig[3 * i + k] = Qdx[k] * inv_rl - (k == 2);
+      nm[k] = S[3 * i + k] * (sig[3 * i + k] - s0[3 * i + k]) * inv_e;
+      str[3 * i + k] = nm[k];
+    }
+    len[i] = l;
+    dil[i] = e;
+    /* de/dt = t . (v_{i+1} - v_i) / l^ */
+    const double edot = sw_v3_dot(dx, dv) * inv_l * inv_rl;
+    dil_rate[i] = edot;
+    /* node force: Delta^h(Q^T n) */
+    sw_matT_vec(f, Q, nm);
+    for (int k = 0; k < 3; k++) {
+      F[3 * i + k] = f[k] - fprev[k];
+      fprev[k] = f[k];
+    }
+    /* shear couple (Q dx) x n, inertial couples of the rotating element */
+    double sc[3], Jw[3], tr[3];
+    sw_v3_cross(sc, Qdx, nm);
+    const double *wi = w + 3 * i;
+    for (int k = 0; k < 3; k++) Jw[k] = J[3 * i + k] * wi[k] * inv_e;
+    sw_v3_cross(tr, Jw, wi);
+    const double ud = edot * inv_e;
+    for (int k = 0; k < 3; k++) T[3 * i + k] = sc[k] + tr[k] + Jw[k] * ud;
+  }
+  for (int k = 0; k < 3; k++) F[3 * n + k] = -fprev[k];
+}
+
+/* Voronoi pass: curvature, bending couple, and its scatter to the elements.
+ * Domain j lies between elements j and j+1; with Q_{j+1} = exp(-D^ [k]x) Q_j,
+ * Delta^h(c) gives +c_j to element j and -c_j to element j+1 (the derivative
+ * of the bending energy with respect to each frame's rotation), and
+ * A^h(kappa x c D^) gives half of h_j = kappa_j x c_j D^_j to each. */
+static void rod_voronoi(const swModel *m, swData *d, int r) {
+  const int n = m->rod_nelem[r], ea = m->elem_adr[r], va = m->vor_adr[r];
+  const double *restrict Qs = d->Q + 9 * ea;
+  const double *restrict len = d->length + ea;
+  const double *restrict D = m->rest_vor_len + va;
+  const double *restrict B = m->bend_stiff + 3 * va;
+  const double *restrict k0 = m->rest_kappa + 3 * va;
+  double *restrict kap = d->kappa + 3 * va, *restrict cpl = d->couple + 3 * va;
+  double *restrict vdil = d->vor_dilatation + va;
+  double *restrict T = d->torque + 3 * ea;
+  for (int j = 0; j < n - 1; j++) {
+    const double inv_D = 1.0 / D[j];
+    const double eps = 0.5 * (len[j] + len[j + 1]) * inv_D;
+    const double inv_eps3 = 1.0 / (eps * eps * eps);
+    double phi[3], c[3], h[3];
+    sw_frame_log(phi, Qs + 9 * j, Qs + 9 * (j + 1));
+    for (int k = 0; k < 3; k++) {
+      kap[3 * j + k] = phi[k] * inv_D;
+      c[k] = B[3 * j + k] * (kap[3 * j + k] - k0[3 * j + k]) * inv_eps3;
+      cpl[3 * j + k] = c[k];
+    }
+    vdil[j] = eps;
+    sw_v3_cross(h, kap + 3 * j, c);
+    for (int k = 0; k < 3; k++) {
+      const double half_h = 0.5 * h[k] * D[j];
+      T[3 * j + k] += c[k] + half_h;
+      T[3 * (j + 1) + k] += -c[k] + half_h;
+    }
+  }
+}
+
+void sw_strains(const swModel *m, swData *d) {
+  /* The element and Voronoi passes compute the strains as part of the
+   * internal loads; nothing is cheaper than doing both. */
+  sw_internal_loads(m, d);
+}
+
+void sw_internal_loads(const swModel *m, swData *d) {
+  for (int r = 0; r < m->nrod; r++) {
+    rod_elements(m, d, r);
+    rod_voronoi(m, d, r);
+  }
+}

@@ -1,0 +1,148 @@
+/* stability.c — the stable time step estimate and the detection of runs that
+ * have gone unstable.
+ *
+ * Design.  An explicit symplectic scheme on a linear oscillator of angular
+ * frequency w is stable while h w stays below a limit that depends only on
+ * the scheme and on the damping ratio; we get that limit exactly by building
+ * the scheme's 2x2 amplification matrix and finding where its spectral
+ * radius first exceeds one (position Verlet undamped: h w < 2).  The highest
+ * frequency of a discrete rod is bounded element by element from the
+ * zig-zag modes of the lumped model (every neighbour moving in opposition):
+ *   axial          w^2 = 4 E / (rho l^2)
+ *   shear+rotation w^2 = (16/3) hs G / rho (1/l^2 + 1/r^2) + 4 E / (rho l D)
+ *                  (lateral zig-zag and alternating element rotation load
+ *                   the same shear strain; bending adds its couple)
+ *   twist          w^2 = 4 ht G / (rho l D)
+ * with l the element rest length, D the Voronoi rest length, r the radius,
+ * hs and ht the hardening factors.  The estimate is the scheme's limit over
+ * the largest of these, and tests/runtime/test_stability.c measures how close
+ * it is to the step at which a rod really blows up.
+ *
+ * A run is declared unstable when a position, velocity or angular velocity
+ * stops being finite, or a node moves faster than 100 times the rod's
+ * longitudinal wave speed sqrt(E/rho), which no physical motion of a rod
+ * reaches: the report names the rod, the element, the time and the estimate.
+ */
+#include <math.h>
+#include <stdio.h>
+#include "sinew.h"
+#include "vec.h"
+#include "internal.h"
+
+/* One step of the scheme on x'' = -x - 2 zeta x' (w = 1), applied to (x, v). */
+static void oscillator_step(swIntegrator integ, double h, double zeta, double *x, double *v) {
+  static const double XI = 0.1786178958448091, LA = -0.2123418310626054, CHI = -0.06626458266981849;
+  const double verlet[] = {0.5, 1.0, 0.5};
+  const double pefrl[] = {XI, 0.5 * (1 - 2 * LA), CHI, LA, 1 - 2 * (CHI + XI), LA, CHI,
+                          0.5 * (1 - 2 * LA), XI};
+  const double *c = integ == SW_PEFRL ? pefrl : verlet;
+  int nc = integ == SW_PEFRL ? 9 : 3;
+  for (int k = 0; k < nc; k++) {
+    if (k % 2 == 0) *x += c[k] * h * *v;                      /* drift */
+    else *v += c[k] * h * (-*x - 2 * zeta * *v);              /* kick  */
+  }
+}
+
+static double spectral_radius(swIntegrator integ, double h, double zeta) {
+  double a = 1, c = 0, b = 0, d = 1;
+  oscillator_step(integ, h, zeta, &a, &c); /* first column  */
+  oscillator_step(integ, h, zeta, &b, &d); /* second column */
+  double tr = a + d, det = a * d - b * c, disc = tr * tr / 4 - det;
+  if (disc >= 0) {
+    double s = sqrt(disc);
+    return fmax(fabs(tr / 2 + s), fabs(tr / 2 - s));
+  }
+  return sqrt(det); /* complex pair: |lambda|^2 = det */
+}
+
+double sw_integrator_stability_limit(swIntegrator integ, double zeta) {
+  /* scan up from 0 for the first unstable h, then bisect */
+  const double tol = 1e-12;
+  double lo = 0, hi = 0;
+  for (int k = 1; k <= 4000; k++) {
+    double h = 5.0 * k / 4000;
+    if (spectral_radius(integ, h, zeta) > 1 + tol) { hi = h; break; }
+    lo = h;
+  }
+  if (hi == 0) return lo;
+  for (int it = 0; it < 60; it++) {
+    double mid = 0.5 * (lo + hi);
+    if (spectral_radius(integ, mid, zeta) > 1 + tol) hi = mid; else lo = mid;
+  }
+  return lo;
+}
+
+double sw_stable_dt_rod(const swModel *m, int r) {
+  int n = m->rod_nelem[r], ea = m->elem_adr[r], va = m->vor_adr[r], na = m->node_adr[r];
+  double dt = INFINITY;
+  for (int i = 0; i < n; i++) {
+    int e = ea + i;
+    double l = m->rest_len[e], rad = m->radius[e];
+    double A = SW_PI * rad * rad;
+    double rhoA = m->inertia[3 * e + 0] / (l * rad * rad / 4.0) ; /* rho A from J^ = rho l A r^2/4 */
+    double rho = rhoA / A;
+    double E = m->shear_stiff[3 * e + 2] / A;
+    double Gs = m->shear_stiff[3 * e + 0] / (A * 4.0 / 3.0);
+    /* the Voronoi domains on either side (or the element itself at the ends) */
+    double D = l, Gt = Gs;
+    if (i > 0) D = fmin(D, m->rest_vor_len[va + i - 1]);
+    if (i < n - 1) D = fmin(D, m->rest_vor_len[va + i]);
+    int v = va + (i < n - 1 ? i : i - 1);
+    if (n > 1) Gt = m->bend_stiff[3 * v + 2] / (2.0 * m->bend_stiff[3 * v + 0]) * E;
+    double w2_axial = 4 * E / (rho * l * l);
+    double w2_shear = 16.0 / 3.0 * Gs / rho * (1 / (l * l) + 1 / (rad * rad)) + 4 * E / (rho * l * D);
+    double w2_twist = 4 * Gt / (rho * l * D);
+    double w = sqrt(fmax(w2_axial, fmax(w2_shear, w2_twist)));
+    /* damping ratio of the linear dissipation at that frequency */
+    double zeta = 0;
+    if (m->rod_damping[r] == SW_DAMP_LINEAR) {
+      double c = fmax(m->node_gamma[na + i] * m->inv_mass[na + i],
+                      m->node_gamma[na + i + 1] * m->inv_mass[na + i + 1]);
+      zeta = c / (2 * w);
+    }
+    double lim = sw_integrator_stability_limit(m->integrator, zeta) / w;
+    if (lim < dt) dt = lim;
+  }
+  return dt;
+}
+
+double sw_stable_dt(const swModel *m) {
+  double dt = INFINITY;
+  for (int r = 0; r < m->nrod; r++) dt = fmin(dt, m->rod_wave_dt[r]);
+  return dt;
+}
+
+int sw_check_finite(const swModel *m, swData *d) {
+  for (int r = 0; r < m->nrod; r++) {
+    int na = m->node_adr[r], ea = m->elem_adr[r], n = m->rod_nelem[r];
+    double vmax = 100.0 * m->rod_wave_speed[r], vmax2 = vmax * vmax;
+    int bad = -1;
+    const char *what = "";
+    double val = 0;
+    for (int i = na; i <= na + n && bad < 0; i++) {
+      const double *x = d->x + 3 * i, *v = d->v + 3 * i;
+      double v2 = sw_v3_dot(v, v);
+      if (!isfinite(x[0] + x[1] + x[2])) { bad = i - na; what = "position is not finite"; }
+      else if (!(v2 <= vmax2)) {
+        bad = i - na;
+        what = isfinite(v2) ? "speed exceeds 100 times the wave speed" : "velocity is not finite";
+        val = sqrt(v2);
+      }
+    }
+    for (int e = ea; e < ea + n && bad < 0; e++) {
+      const double *w = d->omega + 3 * e;
+      if (!isfinite(w[0] + w[1] + w[2])) { bad = e - ea; what = "angular velocity is not finite"; }
+    }
+    if (bad >= 0) {
+      int elem = bad < n ? bad : n - 1; /* a node's element: the one it starts */
+      char speed[64] = "";
+      if (val > 0) snprintf(speed, sizeof speed, " (%.3g m/s)", val);
+      snprintf(d->error, sizeof d->error,
+               "rod '%s' became unstable at element %d, t = %.9g s: %s%s; "
+               "dt = %.3g s, stable dt estimate %.3g s",
+               m->rod_name[r], elem, d->time, what, speed, m->dt, sw_stable_dt(m));
+      return SW_EUNSTABLE;
+    }
+  }
+  return SW_OK;
+}
