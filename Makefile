@@ -12,7 +12,7 @@ PKGS     = hdf5 gsl
 PKG_CFLAGS = $(shell pkg-config --cflags $(PKGS) 2>/dev/null)
 PKG_LIBS   = $(shell pkg-config --libs $(PKGS) 2>/dev/null)
 WARN     = -Wall -Wextra -Wshadow -Wstrict-prototypes -Wmissing-prototypes
-STD      = -std=c11 -D_POSIX_C_SOURCE=200809L
+STD      = -std=c11 -D_DEFAULT_SOURCE
 OPT      = -O2 -fno-math-errno -ftree-vectorize -g
 CFLAGS  ?= $(OPT)
 SAN      = -O1 -g -fno-omit-frame-pointer -fsanitize=address,undefined -fno-sanitize-recover=all

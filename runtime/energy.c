@@ -13,6 +13,7 @@
  */
 #include "sinew.h"
 #include "vec.h"
+#include "internal.h"
 
 void sw_energy(const swModel *m, swData *d, double out[3]) {
   sw_internal_loads(m, d); /* refresh strains; force/torque are scratch */
@@ -29,6 +30,7 @@ void sw_energy(const swModel *m, swData *d, double out[3]) {
       double dk = d->kappa[3 * j + k] - m->rest_kappa[3 * j + k];
       ela += 0.5 * m->rest_vor_len[j] * m->bend_stiff[3 * j + k] * dk * dk;
     }
+  ela += sw_bc_energy(m, d); /* clamp domains */
   out[0] = kin;
   out[1] = ela;
   out[2] = d->work;

@@ -27,18 +27,48 @@
 
 void sw_compute_loads(const swModel *m, swData *d) {
   sw_internal_loads(m, d);
+  if (m->nbc) sw_bc_loads(m, d);
   sw_external_loads(m, d);
 }
 
-/* Positions and frames move with the current velocities for a time h. */
+/* Positions and frames move with the current velocities for a time h.
+ * What a drift holds constant is the momentum: v for nodes and the angular
+ * momentum L = J^ w / e for elements (Gazzola 2018, eq. 2.12: d/dt(J^ w / e)
+ * = couples).  As the nodes move, e changes, so w = e J^-1 L changes with it:
+ * w is rescaled by e_new / e_old, and the frame turns by the exact rotation
+ * J^-1 L * integral of e dt, the integral taken with Simpson's rule (exact to
+ * O(h^5) for e(t) = |dx + t dv| / l^) for PEFRL and the trapezoidal rule
+ * (O(h^3)) for position Verlet.  This is how the dilatation-rate couple
+ * (J^ w / e) de/dt / e of the rotational balance is integrated: keeping it
+ * as an explicit couple in the kick would cap both schemes at first order. */
 static void drift(const swModel *m, swData *d, double h) {
-  const size_t N3 = 3 * (size_t)m->nnode;
-  double *restrict x = d->x;
-  const double *restrict v = d->v;
-  for (size_t i = 0; i < N3; i++) x[i] += h * v[i];
-  for (int e = 0; e < m->nelem; e++) {
-    double phi[3] = {h * d->omega[3 * e], h * d->omega[3 * e + 1], h * d->omega[3 * e + 2]};
-    sw_rotate_frame(d->Q + 9 * e, phi);
+  const int simpson = m->integrator == SW_PEFRL;
+  for (int r = 0; r < m->nrod; r++) {
+    const int n = m->rod_nelem[r], na = m->node_adr[r], ea = m->elem_adr[r];
+    double *restrict x = d->x + 3 * na;
+    const double *restrict v = d->v + 3 * na;
+    double *restrict w = d->omega + 3 * ea, *restrict Q = d->Q + 9 * ea;
+    double *restrict dil = d->dilatation + ea;
+    const double *restrict irl = m->inv_rest_len + ea;
+    for (int i = 0; i < 3 * (n + 1); i++) x[i] += h * v[i];
+    for (int i = 0; i < n; i++) {
+      double dx[3], dv[3];
+      sw_v3_sub(dx, x + 3 * (i + 1), x + 3 * i);
+      sw_v3_sub(dv, v + 3 * (i + 1), v + 3 * i);
+      const double e_old = dil[i], e_new = sw_v3_norm(dx) * irl[i];
+      double mean; /* (1/h) integral of e dt over the drift, in units of e_old */
+      if (simpson) {
+        double mid[3] = {dx[0] - 0.5 * h * dv[0], dx[1] - 0.5 * h * dv[1], dx[2] - 0.5 * h * dv[2]};
+        mean = (e_old + 4.0 * sw_v3_norm(mid) * irl[i] + e_new) / (6.0 * e_old);
+      } else {
+        mean = 0.5 * (e_old + e_new) / e_old;
+      }
+      double *wi = w + 3 * i;
+      double phi[3] = {h * mean * wi[0], h * mean * wi[1], h * mean * wi[2]};
+      sw_rotate_frame(Q + 9 * i, phi);
+      sw_v3_scale(wi, wi, e_new / e_old);
+      dil[i] = e_new;
+    }
   }
   d->time += h;
 }
@@ -59,7 +89,8 @@ static void kick(const swModel *m, swData *d, double h) {
       work += ef[3 * i + k] * (vo + vn);
       v[3 * i + k] = vn;
     }
-  /* (J^/e) dw/dt = tau  (Gazzola 2018, eq. 3.7b, the couples of rod.c) */
+  /* (J^/e) dw/dt = tau  (Gazzola 2018, eq. 3.7b, the couples of rod.c
+   * without the dilatation-rate term, which the drift integrates) */
   for (size_t i = 0; i < E; i++)
     for (int k = 0; k < 3; k++) {
       double wo = w[3 * i + k], wn = wo + h * T[3 * i + k] * iJ[3 * i + k] * e[i];

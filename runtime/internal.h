@@ -5,6 +5,8 @@
 #include "sinew.h"
 
 void sw_bc_kick(const swModel *m, swData *d, double h);               /* boundary.c  */
+void sw_bc_loads(const swModel *m, swData *d);                        /* boundary.c  */
+double sw_bc_energy(const swModel *m, const swData *d);               /* boundary.c  */
 void sw_compute_loads(const swModel *m, swData *d);                   /* integrate.c */
 /* Largest h * omega for which the integrator is stable on the damped
  * oscillator x'' = -omega^2 x - c x', as a function of zeta = c / omega. */

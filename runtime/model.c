@@ -179,8 +179,8 @@ void sw_model_free(swModel *m) {
   free(m->rod_name); free(m->rod_nelem); free(m->node_adr); free(m->elem_adr);
   free(m->vor_adr); free(m->rod_wave_dt); free(m->rod_damping); free(m->rod_wave_speed);
   free(m->mass); free(m->inv_mass); free(m->node_gamma); free(m->node_decay); free(m->elem_decay); free(m->x0);
-  free(m->rest_len); free(m->radius); free(m->shear_stiff); free(m->inertia);
-  free(m->inv_inertia); free(m->rest_sigma); free(m->elem_gamma); free(m->Q0);
+  free(m->rest_len); free(m->inv_rest_len); free(m->radius); free(m->shear_stiff); free(m->inertia);
+  free(m->inv_inertia); free(m->rest_sigma); free(m->elem_gamma); free(m->Q0); free(m->clamp_bend);
   free(m->rest_vor_len); free(m->bend_stiff); free(m->rest_kappa);
   free(m->load); free(m->bc);
   free(m);
@@ -281,13 +281,13 @@ swModel *sw_compile(const swSpec *s, char *err, size_t errlen) {
   }
   size_t N = (size_t)m->nnode, E = (size_t)m->nelem, V = (size_t)m->nvor;
   m->mass = dalloc(N); m->inv_mass = dalloc(N); m->node_gamma = dalloc(N); m->node_decay = dalloc(N); m->x0 = dalloc(3 * N);
-  m->rest_len = dalloc(E); m->radius = dalloc(E); m->shear_stiff = dalloc(3 * E);
+  m->rest_len = dalloc(E); m->inv_rest_len = dalloc(E); m->radius = dalloc(E); m->shear_stiff = dalloc(3 * E);
   m->inertia = dalloc(3 * E); m->inv_inertia = dalloc(3 * E); m->rest_sigma = dalloc(3 * E);
-  m->elem_gamma = dalloc(3 * E); m->elem_decay = dalloc(3 * E); m->Q0 = dalloc(9 * E);
+  m->elem_gamma = dalloc(3 * E); m->elem_decay = dalloc(3 * E); m->Q0 = dalloc(9 * E); m->clamp_bend = dalloc(3 * E);
   m->rest_vor_len = dalloc(V); m->bend_stiff = dalloc(3 * V); m->rest_kappa = dalloc(3 * V);
-  if (!m->mass || !m->inv_mass || !m->node_gamma || !m->node_decay || !m->elem_decay || !m->x0 || !m->rest_len || !m->radius ||
+  if (!m->mass || !m->inv_mass || !m->node_gamma || !m->node_decay || !m->elem_decay || !m->x0 || !m->rest_len || !m->inv_rest_len || !m->radius ||
       !m->shear_stiff || !m->inertia || !m->inv_inertia || !m->rest_sigma || !m->elem_gamma ||
-      !m->Q0 || !m->rest_vor_len || !m->bend_stiff || !m->rest_kappa)
+      !m->Q0 || !m->clamp_bend || !m->rest_vor_len || !m->bend_stiff || !m->rest_kappa)
     goto oom;
 
   for (int r = 0; r < nr; r++) {
@@ -315,6 +315,7 @@ swModel *sw_compile(const swSpec *s, char *err, size_t errlen) {
       double rad = rd->radius_start + f * (rd->radius_end - rd->radius_start);
       double A = SW_PI * rad * rad, I1 = A * rad * rad / 4.0;
       m->rest_len[e] = l;
+      m->inv_rest_len[e] = 1.0 / l;
       m->radius[e] = rad;
       m->shear_stiff[3 * e + 0] = SW_ALPHA_SHEAR * Gs * A;
       m->shear_stiff[3 * e + 1] = SW_ALPHA_SHEAR * Gs * A;
@@ -331,6 +332,7 @@ swModel *sw_compile(const swSpec *s, char *err, size_t errlen) {
       bend_elem[3 * i + 0] = rd->youngs * I1;
       bend_elem[3 * i + 1] = rd->youngs * I1;
       bend_elem[3 * i + 2] = Gt * 2.0 * I1;
+      for (int k = 0; k < 3; k++) m->clamp_bend[3 * e + k] = bend_elem[3 * i + k];
       /* lumped mass: half of each element to each of its nodes */
       double me = rd->density * A * l;
       m->mass[na + i] += 0.5 * me;
@@ -375,8 +377,8 @@ swModel *sw_compile(const swSpec *s, char *err, size_t errlen) {
   m->load = calloc((size_t)(s->nload ? s->nload : 1), sizeof *m->load);
   m->bc = calloc((size_t)(s->nbc ? s->nbc : 1), sizeof *m->bc);
   if (!m->load || !m->bc) goto oom;
-  memcpy(m->load, s->load, sizeof *m->load * (size_t)s->nload);
-  memcpy(m->bc, s->bc, sizeof *m->bc * (size_t)s->nbc);
+  if (s->nload) memcpy(m->load, s->load, sizeof *m->load * (size_t)s->nload);
+  if (s->nbc) memcpy(m->bc, s->bc, sizeof *m->bc * (size_t)s->nbc);
   for (int k = 0; k < m->nload; k++)
     if (m->load[k].index == -1)
       m->load[k].index = m->rod_nelem[m->load[k].rod] - (m->load[k].kind == SW_LOAD_TORQUE);

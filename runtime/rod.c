@@ -18,6 +18,8 @@
  *   c_j      = B^_j (kappa_j - kappa0_j) / eps_j^3            bending couple
  *   tau_i    = Delta^h(c) + A^h(kappa x c D^) + (Q_i x_s,i x n_i) l^_i
  *              + (J^_i w_i / e_i) x w_i + (J^_i w_i / e_i) de_i/dt / e_i
+ * The last term is not formed here: integrate.c integrates it exactly by
+ * holding the angular momentum J^ w / e constant through each drift.
  * Q_i x_s,i l^_i = Q_i (x_{i+1} - x_i) = l^_i (sigma_i + d3), which is how the
  * shear couple is formed below.  The same constitutive law (S = S^/e,
  * B = B^/eps^3 at the Voronoi domains) is used by PyElastica.
@@ -77,8 +79,9 @@ static void rod_elements(const swModel *m, swData *d, int r) {
     const double *wi = w + 3 * i;
     for (int k = 0; k < 3; k++) Jw[k] = J[3 * i + k] * wi[k] * inv_e;
     sw_v3_cross(tr, Jw, wi);
-    const double ud = edot * inv_e;
-    for (int k = 0; k < 3; k++) T[3 * i + k] = sc[k] + tr[k] + Jw[k] * ud;
+    /* The dilatation-rate couple (J^ w / e) de/dt / e is integrated by the
+     * drift (integrate.c), which keeps J^ w / e constant while e changes. */
+    for (int k = 0; k < 3; k++) T[3 * i + k] = sc[k] + tr[k];
   }
   for (int k = 0; k < 3; k++) F[3 * n + k] = -fprev[k];
 }

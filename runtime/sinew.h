@@ -141,6 +141,7 @@ typedef struct {
   double *x0;                /* (nnode*3)  initial positions                 */
   /* per element (nelem) */
   double *rest_len;          /* (nelem)    l^, m                             */
+  double *inv_rest_len;      /* (nelem)    1 / l^                            */
   double *radius;            /* (nelem)    m                                 */
   double *shear_stiff;       /* (nelem*3)  S^ = diag(4GA/3, 4GA/3, EA), N    */
   double *inertia;           /* (nelem*3)  J^ = rho l^ diag(I1, I2, I3)      */
@@ -149,6 +150,7 @@ typedef struct {
   double *elem_gamma;        /* (nelem*3)  rotational dissipation, kg m^2/s  */
   double *elem_decay;        /* (nelem*3)  analytic damping exp(-c dt/2)     */
   double *Q0;                /* (nelem*9)  initial directors                 */
+  double *clamp_bend;        /* (nelem*3)  B^ of the element, for clamps     */
   /* per Voronoi domain (nvor) */
   double *rest_vor_len;      /* (nvor)     D^, m                             */
   double *bend_stiff;        /* (nvor*3)   B^ = diag(EI1, EI2, GJ), N m^2    */

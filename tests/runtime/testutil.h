@@ -14,6 +14,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <math.h>
+#include <string.h>
 #include <cmocka.h>
 #include "sinew.h"
 
@@ -45,5 +46,54 @@ static inline swModel *sw_test_compile(swSpec *s) {
   if (!m) fprintf(stderr, "# compile failed: %s\n", err);
   assert_non_null(m);
   return m;
+}
+#endif
+
+#ifndef SW_TESTUTIL_RUN
+#define SW_TESTUTIL_RUN
+/* Advance until the simulated time reaches t (whole steps). */
+static inline void sw_test_run_to(const swModel *m, swData *d, double t) {
+  while (d->time < t - 0.5 * m->dt) assert_int_equal(sw_step(m, d), SW_OK);
+}
+
+/* Dynamic relaxation to static equilibrium: advance in chunks of `chunk`
+ * seconds until the watched coordinate moves by less than rtol of its size
+ * over a chunk (at most tmax seconds).  Returns the watched value. */
+static inline double sw_test_relax(const swModel *m, swData *d, const double *watch,
+                                   double chunk, double tmax, double rtol) {
+  double prev = *watch;
+  while (d->time < tmax) {
+    sw_test_run_to(m, d, d->time + chunk);
+    if (fabs(*watch - prev) <= rtol * fabs(*watch)) break;
+    prev = *watch;
+  }
+  fprintf(stderr, "#   relaxed to t = %.3g s (%ld steps)\n", d->time, d->step);
+  return *watch;
+}
+
+/* Measured order of convergence from errors at h, h/2, h/4, ... */
+static inline double sw_test_order(const double *err, int k) {
+  return log(fabs(err[k]) / fabs(err[k + 1])) / log(2.0);
+}
+
+static inline swBCDesc sw_test_clamp(int rod, int end) {
+  swBCDesc b;
+  memset(&b, 0, sizeof b);
+  b.kind = SW_BC_CLAMP;
+  b.rod = rod;
+  b.end = end;
+  b.signal = sw_signal_const(1.0);
+  return b;
+}
+
+static inline swLoadDesc sw_test_load(swLoadKind kind, int rod, int index, double x, double y, double z) {
+  swLoadDesc l;
+  memset(&l, 0, sizeof l);
+  l.kind = kind;
+  l.rod = rod;
+  l.index = index;
+  l.vec[0] = x; l.vec[1] = y; l.vec[2] = z;
+  l.signal = sw_signal_const(1.0);
+  return l;
 }
 #endif

@@ -1,0 +1,468 @@
+/* output.c — HDF5 output of a run; the only file of the runtime that includes
+ * hdf5.h.
+ *
+ * Design.  What is written is described by one table, output_fields[]: a
+ * dataset path, whether it exists once or once per rod, its shape per frame
+ * (with symbolic extents for "nodes of this rod" and "elements of this rod"),
+ * its units, optional column names, the option that enables it and the
+ * function that fills one frame from the state.  sw_output_open() walks the
+ * table once and creates every dataset (doubles, first dimension unlimited,
+ * chunked by up to 64 frames) with its `units` attribute; sw_output_frame()
+ * walks the opened datasets, fills a scratch frame allocated at open time,
+ * appends it and flushes the file, so a run that dies later still leaves a
+ * readable file of every frame written so far.  Adding an output is one line
+ * of the table plus, if the quantity is new, a four-line fill function.  The
+ * root group records how the file was made (SPEC.md "Output (HDF5)") and a
+ * `status` attribute that reads "incomplete" until sw_output_close() replaces
+ * it with the caller's verdict.  HDF5's own error printing is switched off;
+ * every call is checked and the failure is reported once, in our words, naming
+ * the file and the object, with HDF5's innermost reason appended. */
+#include <hdf5.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "sinew.h"
+
+/* ---- the output table ---- */
+
+/* Symbolic per-frame extents, resolved for each rod at open time. */
+enum { EXTENT_NODES = -1, EXTENT_ELEMS = -2 };
+enum { SCOPE_ROOT, SCOPE_ROD };
+enum { WHEN_ALWAYS, WHEN_VELOCITY, WHEN_DIRECTORS };
+#define MAX_FRAME_RANK 3
+
+/* Fill one frame of a field (contiguous, row-major) from the state. */
+typedef void (*swFillFn)(const swModel *m, swData *d, int rod, double *frame);
+
+typedef struct {
+  const char *path;          /* under "/" (root) or under "/rods/NAME" (rod)  */
+  int scope;                 /* SCOPE_ROOT or SCOPE_ROD                        */
+  int rank;                  /* rank of one frame                              */
+  int extent[MAX_FRAME_RANK];/* count, EXTENT_NODES or EXTENT_ELEMS            */
+  const char *units;
+  const char *const *columns;/* names along the last dimension, or NULL        */
+  int when;                  /* which option enables it                        */
+  swFillFn fill;
+} swField;
+
+static void fill_time(const swModel *m, swData *d, int rod, double *frame) {
+  (void)m, (void)rod;
+  frame[0] = d->time;
+}
+
+static void fill_energy(const swModel *m, swData *d, int rod, double *frame) {
+  (void)rod;
+  sw_energy(m, d, frame);
+}
+
+static void fill_position(const swModel *m, swData *d, int rod, double *frame) {
+  memcpy(frame, d->x + 3 * (size_t)m->node_adr[rod],
+         3 * (size_t)(m->rod_nelem[rod] + 1) * sizeof *frame);
+}
+
+static void fill_velocity(const swModel *m, swData *d, int rod, double *frame) {
+  memcpy(frame, d->v + 3 * (size_t)m->node_adr[rod],
+         3 * (size_t)(m->rod_nelem[rod] + 1) * sizeof *frame);
+}
+
+/* Rows d1, d2, d3 of each element's frame, lab components (sinew.h). */
+static void fill_directors(const swModel *m, swData *d, int rod, double *frame) {
+  memcpy(frame, d->Q + 9 * (size_t)m->elem_adr[rod],
+         9 * (size_t)m->rod_nelem[rod] * sizeof *frame);
+}
+
+/* Must match the order sw_energy() returns. */
+static const char *const energy_columns[] = {"kinetic", "elastic", "work_done", NULL};
+
+static const swField output_fields[] = {
+  /* path                 scope       rank  extent per frame         units  columns         when            source */
+  {"time",                SCOPE_ROOT, 0, {0},                        "s",   NULL,           WHEN_ALWAYS,    fill_time},
+  {"position",            SCOPE_ROD,  2, {EXTENT_NODES, 3},          "m",   NULL,           WHEN_ALWAYS,    fill_position},
+  {"velocity",            SCOPE_ROD,  2, {EXTENT_NODES, 3},          "m/s", NULL,           WHEN_VELOCITY,  fill_velocity},
+  {"directors",           SCOPE_ROD,  3, {EXTENT_ELEMS, 3, 3},       "-",   NULL,           WHEN_DIRECTORS, fill_directors},
+  {"diagnostics/energy",  SCOPE_ROOT, 1, {3},                        "J",   energy_columns, WHEN_ALWAYS,    fill_energy},
+};
+#define NFIELDS (sizeof output_fields / sizeof output_fields[0])
+
+/* ---- the open file ---- */
+
+#define CHUNK_FRAMES 64                  /* frames per chunk, at most        */
+#define CHUNK_BYTES (1u << 20)           /* and about this many bytes        */
+
+typedef struct {
+  const swField *field;
+  int rod;                               /* -1 for root fields               */
+  hid_t dset;
+  int rank;                              /* 1 + field rank                   */
+  hsize_t dims[1 + MAX_FRAME_RANK];      /* dims[0] = frames written         */
+  size_t frame_len;                      /* doubles per frame                */
+  char *path;                            /* "/rods/arm/position"             */
+} swDataset;
+
+struct swOutput {
+  hid_t file;
+  char *path;                            /* file name, for messages          */
+  int nrod;
+  long frames;
+  int ndset;
+  swDataset *dset;
+  double *frame;                         /* scratch, the largest frame       */
+};
+
+/* ---- errors ---- */
+
+static _Thread_local char last_error[512];
+
+const char *sw_output_error(void) { return last_error; }
+
+static herr_t innermost_reason(unsigned n, const H5E_error2_t *e, void *data) {
+  char *reason = data;
+  (void)n;
+  if (reason[0] || !e->desc || !e->desc[0]) return 0;
+  /* File-driver errors carry the C library's message; prefer it. */
+  const char *msg = strstr(e->desc, "error message = '");
+  if (msg) {
+    msg += strlen("error message = '");
+    size_t len = strcspn(msg, "'");
+    if (len > 255) len = 255;
+    memcpy(reason, msg, len);
+    reason[len] = '\0';
+  } else {
+    snprintf(reason, 256, "%s", e->desc);
+  }
+  return 0;
+}
+
+/* Format the message, append HDF5's innermost reason (if the stack holds
+ * one), store it as the last error and copy it into err.  Returns SW_EIO. */
+static int fail(char *err, size_t errlen, const char *fmt, ...) {
+  char reason[256] = "";
+  va_list ap;
+  va_start(ap, fmt);
+  vsnprintf(last_error, sizeof last_error, fmt, ap);
+  va_end(ap);
+  H5Ewalk2(H5E_DEFAULT, H5E_WALK_UPWARD, innermost_reason, reason);
+  H5Eclear2(H5E_DEFAULT);
+  if (reason[0]) {
+    size_t used = strlen(last_error);
+    snprintf(last_error + used, sizeof last_error - used, " (%s)", reason);
+  }
+  if (err && errlen) snprintf(err, errlen, "%s", last_error);
+  return SW_EIO;
+}
+
+static char *dup_printf(const char *fmt, ...) {
+  va_list ap;
+  va_start(ap, fmt);
+  int len = vsnprintf(NULL, 0, fmt, ap);
+  va_end(ap);
+  if (len < 0) return NULL;
+  char *s = malloc((size_t)len + 1);
+  if (!s) return NULL;
+  va_start(ap, fmt);
+  vsnprintf(s, (size_t)len + 1, fmt, ap);
+  va_end(ap);
+  return s;
+}
+
+/* ---- attributes (scalars, UTF-8 variable-length strings) ---- */
+
+typedef struct {                         /* where an attribute goes          */
+  hid_t obj;
+  const char *file;                      /* for messages                     */
+  const char *obj_path;
+  char *err;
+  size_t errlen;
+} swAttrTarget;
+
+static int write_attr(const swAttrTarget *t, const char *name, hid_t file_type,
+                      hid_t mem_type, hid_t space, const void *value) {
+  hid_t attr = H5Acreate2(t->obj, name, file_type, space, H5P_DEFAULT, H5P_DEFAULT);
+  if (attr < 0)
+    return fail(t->err, t->errlen, "%s: cannot create attribute '%s' of %s", t->file,
+                name, t->obj_path);
+  herr_t wrote = H5Awrite(attr, mem_type, value);
+  herr_t closed = H5Aclose(attr);
+  if (wrote < 0 || closed < 0)
+    return fail(t->err, t->errlen, "%s: cannot write attribute '%s' of %s", t->file, name,
+                t->obj_path);
+  return SW_OK;
+}
+
+static hid_t utf8_string_type(void) {
+  hid_t type = H5Tcopy(H5T_C_S1);
+  if (type < 0) return type;
+  if (H5Tset_size(type, H5T_VARIABLE) < 0 || H5Tset_cset(type, H5T_CSET_UTF8) < 0) {
+    H5Tclose(type);
+    return H5I_INVALID_HID;
+  }
+  return type;
+}
+
+/* A 1-D array of strings when count > 0, a scalar string when count == 0. */
+static int attr_strings(const swAttrTarget *t, const char *name, const char *const *values,
+                        hsize_t count) {
+  hid_t type = utf8_string_type();
+  hid_t space = count ? H5Screate_simple(1, &count, NULL) : H5Screate(H5S_SCALAR);
+  int rc = SW_OK;
+  if (type < 0 || space < 0)
+    rc = fail(t->err, t->errlen, "%s: cannot make the type of attribute '%s' of %s",
+              t->file, name, t->obj_path);
+  else
+    rc = write_attr(t, name, type, type, space, values);
+  if (space >= 0) H5Sclose(space);
+  if (type >= 0) H5Tclose(type);
+  return rc;
+}
+
+static int attr_string(const swAttrTarget *t, const char *name, const char *value) {
+  const char *values[1] = {value ? value : ""};
+  return attr_strings(t, name, values, 0);
+}
+
+static int attr_scalar(const swAttrTarget *t, const char *name, hid_t file_type,
+                       hid_t mem_type, const void *value) {
+  hid_t space = H5Screate(H5S_SCALAR);
+  if (space < 0)
+    return fail(t->err, t->errlen, "%s: cannot make the dataspace of attribute '%s' of %s",
+                t->file, name, t->obj_path);
+  int rc = write_attr(t, name, file_type, mem_type, space, value);
+  H5Sclose(space);
+  return rc;
+}
+
+/* ---- open ---- */
+
+static int valid_group_name(const char *name) {
+  return name && name[0] && !strchr(name, '/') && strcmp(name, ".") && strcmp(name, "..");
+}
+
+static int field_enabled(const swField *f, const swOutputOptions *opt) {
+  switch (f->when) {
+  case WHEN_VELOCITY: return opt->velocity;
+  case WHEN_DIRECTORS: return opt->directors;
+  default: return 1;
+  }
+}
+
+/* Create the dataset of field f (for rod r, or -1) with its attributes. */
+static int create_dataset(swOutput *o, swDataset *ds, const swField *f, const swModel *m,
+                          int rod, hid_t lcpl, char *err, size_t errlen) {
+  hsize_t maxdims[1 + MAX_FRAME_RANK], chunk[1 + MAX_FRAME_RANK];
+  ds->field = f;
+  ds->rod = rod;
+  ds->dset = H5I_INVALID_HID;
+  ds->rank = 1 + f->rank;
+  ds->path = rod < 0 ? dup_printf("/%s", f->path)
+                     : dup_printf("/rods/%s/%s", m->rod_name[rod], f->path);
+  if (!ds->path) return fail(err, errlen, "%s: out of memory", o->path);
+
+  ds->dims[0] = 0;
+  maxdims[0] = H5S_UNLIMITED;
+  ds->frame_len = 1;
+  for (int k = 0; k < f->rank; k++) {
+    int e = f->extent[k];
+    if (e == EXTENT_NODES) e = m->rod_nelem[rod] + 1;
+    else if (e == EXTENT_ELEMS) e = m->rod_nelem[rod];
+    ds->dims[1 + k] = maxdims[1 + k] = chunk[1 + k] = (hsize_t)e;
+    ds->frame_len *= (size_t)e;
+  }
+  size_t frame_bytes = ds->frame_len * sizeof(double);
+  size_t frames_per_chunk = frame_bytes ? CHUNK_BYTES / frame_bytes : CHUNK_FRAMES;
+  if (frames_per_chunk > CHUNK_FRAMES) frames_per_chunk = CHUNK_FRAMES;
+  if (frames_per_chunk < 1) frames_per_chunk = 1;
+  chunk[0] = frames_per_chunk;
+
+  hid_t space = H5Screate_simple(ds->rank, ds->dims, maxdims);
+  hid_t dcpl = H5Pcreate(H5P_DATASET_CREATE);
+  if (space < 0 || dcpl < 0 || H5Pset_chunk(dcpl, ds->rank, chunk) < 0) {
+    if (space >= 0) H5Sclose(space);
+    if (dcpl >= 0) H5Pclose(dcpl);
+    return fail(err, errlen, "%s: cannot describe dataset %s", o->path, ds->path);
+  }
+  ds->dset = H5Dcreate2(o->file, ds->path, H5T_IEEE_F64LE, space, lcpl, dcpl, H5P_DEFAULT);
+  H5Sclose(space);
+  H5Pclose(dcpl);
+  if (ds->dset < 0) return fail(err, errlen, "%s: cannot create dataset %s", o->path, ds->path);
+
+  swAttrTarget t = {ds->dset, o->path, ds->path, err, errlen};
+  int rc = attr_string(&t, "units", f->units);
+  if (rc == SW_OK && f->columns) {
+    hsize_t ncol = 0;
+    while (f->columns[ncol]) ncol++;
+    rc = attr_strings(&t, "columns", f->columns, ncol);
+  }
+  return rc;
+}
+
+static int write_root_attrs(swOutput *o, const swModel *m, const swOutputOptions *opt,
+                            char *err, size_t errlen) {
+  swAttrTarget t = {o->file, o->path, "/", err, errlen};
+  int n_rods = m->nrod;
+  int rc = attr_string(&t, "sinew_version", SW_VERSION);
+  if (rc == SW_OK) rc = attr_string(&t, "model_source", opt->model_source);
+  if (rc == SW_OK) rc = attr_string(&t, "model_sha256", opt->model_sha256);
+  if (rc == SW_OK) rc = attr_scalar(&t, "dt", H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, &m->dt);
+  if (rc == SW_OK)
+    rc = attr_scalar(&t, "duration", H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, &opt->duration);
+  if (rc == SW_OK)
+    rc = attr_string(&t, "integrator",
+                     m->integrator == SW_PEFRL ? "pefrl" : "position-verlet");
+  if (rc == SW_OK) rc = attr_string(&t, "params", opt->params);
+  if (rc == SW_OK) rc = attr_scalar(&t, "n_rods", H5T_STD_I32LE, H5T_NATIVE_INT, &n_rods);
+  /* Replaced by sw_output_close(); a file that still says this was not closed. */
+  if (rc == SW_OK) rc = attr_string(&t, "status", "incomplete: the run did not close this file");
+  return rc;
+}
+
+static void release(swOutput *o) {
+  for (int i = 0; i < o->ndset; i++) {
+    if (o->dset[i].dset >= 0) H5Dclose(o->dset[i].dset);
+    free(o->dset[i].path);
+  }
+  if (o->file >= 0) H5Fclose(o->file);
+  free(o->dset);
+  free(o->frame);
+  free(o->path);
+  free(o);
+}
+
+swOutput *sw_output_open(const char *path, const swModel *m, const swOutputOptions *opt,
+                         char *err, size_t errlen) {
+  static const swOutputOptions no_options;
+  if (!opt) opt = &no_options;
+  H5Eset_auto2(H5E_DEFAULT, NULL, NULL);   /* our messages, not HDF5's stack dump */
+  if (!path || !path[0] || !m) {
+    fail(err, errlen, "output: no file name or no model");
+    return NULL;
+  }
+  for (int r = 0; r < m->nrod; r++)
+    if (!valid_group_name(m->rod_name[r])) {
+      fail(err, errlen, "%s: rod %d has name '%s', which cannot name an HDF5 group", path, r,
+           m->rod_name[r] ? m->rod_name[r] : "");
+      return NULL;
+    }
+
+  swOutput *o = calloc(1, sizeof *o);
+  if (!o || !(o->path = dup_printf("%s", path))) {
+    free(o);
+    fail(err, errlen, "%s: out of memory", path);
+    return NULL;
+  }
+  o->file = H5I_INVALID_HID;
+  o->nrod = m->nrod;
+  size_t max_dsets = 0;
+  for (size_t f = 0; f < NFIELDS; f++)
+    max_dsets += output_fields[f].scope == SCOPE_ROD ? (size_t)m->nrod : 1;
+  o->dset = calloc(max_dsets ? max_dsets : 1, sizeof *o->dset);
+  if (!o->dset) {
+    fail(err, errlen, "%s: out of memory", path);
+    release(o);
+    return NULL;
+  }
+
+  o->file = H5Fcreate(path, H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
+  if (o->file < 0) {
+    fail(err, errlen, "cannot create HDF5 file %s", path);
+    release(o);
+    return NULL;
+  }
+  int rc = write_root_attrs(o, m, opt, err, errlen);
+
+  /* Groups /rods/NAME and /diagnostics come into being with their datasets. */
+  hid_t lcpl = H5Pcreate(H5P_LINK_CREATE);
+  if (rc == SW_OK && (lcpl < 0 || H5Pset_create_intermediate_group(lcpl, 1) < 0))
+    rc = fail(err, errlen, "%s: cannot make a link creation property list", path);
+  size_t max_frame = 1;
+  for (size_t f = 0; f < NFIELDS && rc == SW_OK; f++) {
+    const swField *field = &output_fields[f];
+    if (!field_enabled(field, opt)) continue;
+    int nrep = field->scope == SCOPE_ROD ? m->nrod : 1;
+    for (int r = 0; r < nrep && rc == SW_OK; r++) {
+      swDataset *ds = &o->dset[o->ndset++];
+      rc = create_dataset(o, ds, field, m, field->scope == SCOPE_ROD ? r : -1, lcpl, err,
+                          errlen);
+      if (ds->frame_len > max_frame) max_frame = ds->frame_len;
+    }
+  }
+  if (lcpl >= 0) H5Pclose(lcpl);
+  if (rc == SW_OK && !(o->frame = malloc(max_frame * sizeof *o->frame)))
+    rc = fail(err, errlen, "%s: out of memory", path);
+  if (rc == SW_OK && H5Fflush(o->file, H5F_SCOPE_LOCAL) < 0)
+    rc = fail(err, errlen, "%s: cannot flush the file", path);
+  if (rc != SW_OK) {
+    release(o);
+    return NULL;
+  }
+  return o;
+}
+
+/* ---- frames ---- */
+
+static int append_frame(swOutput *o, swDataset *ds, const double *frame) {
+  hsize_t start[1 + MAX_FRAME_RANK] = {0}, count[1 + MAX_FRAME_RANK];
+  ds->dims[0] = (hsize_t)o->frames + 1;
+  if (H5Dset_extent(ds->dset, ds->dims) < 0) {
+    ds->dims[0] = (hsize_t)o->frames;
+    return fail(NULL, 0, "%s: cannot extend dataset %s to %ld frames", o->path, ds->path,
+                o->frames + 1);
+  }
+  start[0] = (hsize_t)o->frames;
+  count[0] = 1;
+  for (int k = 1; k < ds->rank; k++) count[k] = ds->dims[k];
+  hid_t file_space = H5Dget_space(ds->dset);
+  hid_t mem_space = H5Screate_simple(ds->rank, count, NULL);
+  int ok = file_space >= 0 && mem_space >= 0 &&
+           H5Sselect_hyperslab(file_space, H5S_SELECT_SET, start, NULL, count, NULL) >= 0 &&
+           H5Dwrite(ds->dset, H5T_NATIVE_DOUBLE, mem_space, file_space, H5P_DEFAULT, frame) >= 0;
+  if (mem_space >= 0) H5Sclose(mem_space);
+  if (file_space >= 0) H5Sclose(file_space);
+  if (!ok)
+    return fail(NULL, 0, "%s: cannot write frame %ld of dataset %s", o->path, o->frames,
+                ds->path);
+  return SW_OK;
+}
+
+int sw_output_frame(swOutput *o, const swModel *m, swData *d) {
+  if (!o || !m || !d) return fail(NULL, 0, "output: no file, model or state");
+  if (m->nrod != o->nrod)
+    return fail(NULL, 0, "%s: the model has %d rods but the file was opened for %d", o->path,
+                m->nrod, o->nrod);
+  for (int i = 0; i < o->ndset; i++) {
+    swDataset *ds = &o->dset[i];
+    ds->field->fill(m, d, ds->rod, o->frame);
+    int rc = append_frame(o, ds, o->frame);
+    if (rc != SW_OK) return rc;
+  }
+  /* Metadata on disk after every frame: a run that dies leaves a valid file. */
+  if (H5Fflush(o->file, H5F_SCOPE_LOCAL) < 0)
+    return fail(NULL, 0, "%s: cannot flush the file after frame %ld", o->path, o->frames);
+  o->frames++;
+  return SW_OK;
+}
+
+long sw_output_frames(const swOutput *o) { return o ? o->frames : 0; }
+
+/* ---- close ---- */
+
+int sw_output_close(swOutput *o, const char *status) {
+  if (!o) return SW_OK;
+  int rc = SW_OK;
+  swAttrTarget t = {o->file, o->path, "/", NULL, 0};
+  htri_t had_status = H5Aexists(o->file, "status");
+  if (had_status < 0 || (had_status > 0 && H5Adelete(o->file, "status") < 0))
+    rc = fail(NULL, 0, "%s: cannot replace attribute 'status' of /", o->path);
+  if (rc == SW_OK) rc = attr_string(&t, "status", status ? status : "complete");
+  for (int i = 0; i < o->ndset; i++) {
+    if (o->dset[i].dset >= 0 && H5Dclose(o->dset[i].dset) < 0 && rc == SW_OK)
+      rc = fail(NULL, 0, "%s: cannot close dataset %s", o->path, o->dset[i].path);
+    o->dset[i].dset = H5I_INVALID_HID;
+  }
+  if (H5Fclose(o->file) < 0 && rc == SW_OK)
+    rc = fail(NULL, 0, "%s: cannot close the file", o->path);
+  o->file = H5I_INVALID_HID;
+  release(o);
+  return rc;
+}

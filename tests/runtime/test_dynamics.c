@@ -1,0 +1,182 @@
+/* test_dynamics.c — dynamic validations: the first bending eigenfrequency of
+ * a clamped-free rod against Euler-Bernoulli, energy conservation of an
+ * undamped rod over 10^6 steps, and the measured order in dt of both
+ * integrators on a swinging rod. */
+#include "testutil.h"
+
+/* Slender cantilever: E = 1 MPa, rho = 1000 kg/m^3, L = 1 m, r = 5 mm, so
+ * (r/L)^2 = 2.5e-5 and shear and rotary inertia are negligible. */
+static const double VL = 1.0, VR = 0.005, VE = 1e6, VRHO = 1000.0;
+static const double BETA1 = 1.8751040687119611; /* first root of cos cosh = -1 */
+
+static double eb_frequency(void) {
+  double A = M_PI * VR * VR, I = A * VR * VR / 4.0;
+  return BETA1 * BETA1 / (2 * M_PI * VL * VL) * sqrt(VE * I / (VRHO * A));
+}
+
+/* Euler-Bernoulli first mode shape of a clamped-free beam at s. */
+static double mode1(double s) {
+  double b = BETA1 / VL, bl = BETA1;
+  double sg = (cosh(bl) + cos(bl)) / (sinh(bl) + sin(bl));
+  return cosh(b * s) - cos(b * s) - sg * (sinh(b * s) - sin(b * s));
+}
+
+/* A cantilever along x, clamped at its start, given the mode-1 velocity
+ * profile (amplitude v0 at the tip) along y. */
+static swModel *vibrating_rod(int n, swIntegrator integ, double dt_frac, double v0, swData **dout) {
+  swSpec *s = sw_spec_new();
+  swRodDesc r;
+  sw_rod_desc_init(&r);
+  r.name = "reed";
+  r.nelem = n;
+  r.direction[0] = 1; r.direction[1] = 0; r.direction[2] = 0;
+  r.normal[0] = 0; r.normal[1] = 0; r.normal[2] = 1;
+  r.length = VL;
+  r.radius_start = r.radius_end = VR;
+  r.density = VRHO;
+  r.youngs = VE;
+  int id = sw_spec_add_rod(s, &r);
+  swBCDesc c = sw_test_clamp(id, 0);
+  sw_spec_add_bc(s, &c);
+  sw_spec_set_integrator(s, integ);
+  swModel *m0 = sw_test_compile(s);
+  sw_spec_set_dt(s, dt_frac * sw_stable_dt(m0));
+  sw_model_free(m0);
+  swModel *m = sw_test_compile(s);
+  sw_spec_free(s);
+  swData *d = sw_data_new(m);
+  for (int i = 1; i <= n; i++) d->v[3 * i + 1] = v0 * mode1(VL * i / n) / mode1(VL);
+  *dout = d;
+  return m;
+}
+
+static void test_first_bending_frequency(void **state) {
+  (void)state;
+  int n = 50;
+  swData *d;
+  swModel *m = vibrating_rod(n, SW_VERLET, 0.9, 1e-3, &d);
+  const double *tip = d->x + 3 * n + 1;
+  /* times of upward zero crossings of the tip, linearly interpolated */
+  double crossings[8];
+  int nc = 0, want = sw_test_sanitized() ? 2 : 4;
+  double prev = *tip, tprev = d->time;
+  double f_ref = eb_frequency();
+  while (nc < want && d->time < (want + 1) / f_ref) {
+    assert_int_equal(sw_step(m, d), SW_OK);
+    if (prev < 0 && *tip >= 0) crossings[nc++] = tprev + (d->time - tprev) * (-prev) / (*tip - prev);
+    prev = *tip;
+    tprev = d->time;
+  }
+  assert_int_equal(nc, want);
+  double f = (nc - 1) / (crossings[nc - 1] - crossings[0]);
+  fprintf(stderr, "# %s: n = %d, dt = %.3g s, %d periods measured\n", __func__, n, m->dt, nc - 1);
+  SW_EXPECT_REL("first eigenfrequency (Hz)", f, f_ref, 1e-2);
+  sw_data_free(d);
+  sw_model_free(m);
+}
+
+static double total_energy(const swModel *m, swData *d) {
+  double e[3];
+  sw_energy(m, d, e);
+  return e[0] + e[1] - e[2];
+}
+
+static void test_energy_conservation(void **state) {
+  (void)state;
+  long nsteps = sw_test_sanitized() ? 100000 : 1000000;
+  int n = 50;
+  swData *d;
+  /* a large amplitude (tip speed 0.05 m/s, about 4% of L in deflection), so
+   * that the motion is geometrically nonlinear */
+  swModel *m = vibrating_rod(n, SW_VERLET, 0.9, 5e-2, &d);
+  double e0 = total_energy(m, d), worst = 0;
+  for (long k = 1; k <= nsteps; k++) {
+    assert_int_equal(sw_step(m, d), SW_OK);
+    if (k % 1000 == 0) {
+      double dev = fabs(total_energy(m, d) - e0) / e0;
+      if (dev > worst) worst = dev;
+    }
+  }
+  double tipmax = fabs(d->x[3 * n + 1]);
+  fprintf(stderr, "# %s: %ld steps, %.3g s simulated, energy %.6g J, tip y at end %.3g m\n", __func__,
+          nsteps, d->time, e0, tipmax);
+  SW_EXPECT_ABS("max relative energy drift", worst, 0.0, 5e-3);
+  sw_data_free(d);
+  sw_model_free(m);
+}
+
+/* A rod pinned at its top end (node held, element free to turn), released
+ * at 30 degrees under gravity: a swinging physical pendulum with elastic
+ * modes.  Returns the tip position after `t_end` seconds. */
+static void swing(swIntegrator integ, double dt, double t_end, double tip[3]) {
+  const int n = 16;
+  swSpec *s = sw_spec_new();
+  swRodDesc r;
+  sw_rod_desc_init(&r);
+  r.name = "pendulum";
+  r.nelem = n;
+  double a = 30.0 * M_PI / 180.0;
+  r.direction[0] = sin(a); r.direction[1] = 0; r.direction[2] = -cos(a);
+  r.normal[0] = 0; r.normal[1] = 1; r.normal[2] = 0;
+  r.length = 0.5;
+  r.radius_start = r.radius_end = 0.01;
+  r.density = 1000;
+  r.youngs = 1e6;
+  int id = sw_spec_add_rod(s, &r);
+  swBCDesc pin;
+  memset(&pin, 0, sizeof pin);
+  pin.kind = SW_BC_VELOCITY;
+  pin.rod = id;
+  pin.signal = sw_signal_const(0.0);
+  sw_spec_add_bc(s, &pin);
+  double g[3] = {0, 0, -9.81};
+  sw_spec_set_gravity(s, g);
+  sw_spec_set_integrator(s, integ);
+  sw_spec_set_dt(s, dt);
+  swModel *m = sw_test_compile(s);
+  swData *d = sw_data_new(m);
+  long steps = lround(t_end / dt);
+  for (long k = 0; k < steps; k++) assert_int_equal(sw_step(m, d), SW_OK);
+  for (int k = 0; k < 3; k++) tip[k] = d->x[3 * n + k];
+  sw_data_free(d);
+  sw_model_free(m);
+  sw_spec_free(s);
+}
+
+static void check_time_order(swIntegrator integ, const char *name, double expected, double dt0) {
+  const double T = 0.256; /* a whole number of steps for every dt below */
+  double ref[3], tip[3], err[4];
+  int k = 3;
+  swing(integ, dt0 / 64, T, ref);
+  for (int i = 0; i < k; i++) {
+    double dt = dt0 / (1 << i);
+    swing(integ, dt, T, tip);
+    err[i] = sqrt(pow(tip[0] - ref[0], 2) + pow(tip[1] - ref[1], 2) + pow(tip[2] - ref[2], 2));
+    fprintf(stderr, "# %s: %s dt = %.3e s, tip error %.3e m\n", __func__, name, dt, err[i]);
+  }
+  for (int i = 0; i + 1 < k; i++) {
+    double p = sw_test_order(err, i);
+    fprintf(stderr, "# %s: %s measured order %.3f (expected %.0f)\n", __func__, name, p, expected);
+    assert_true(fabs(p - expected) < 0.25);
+  }
+}
+
+static void test_time_order_verlet(void **state) {
+  (void)state;
+  check_time_order(SW_VERLET, "position Verlet", 2.0, 4e-5);
+}
+
+static void test_time_order_pefrl(void **state) {
+  (void)state;
+  check_time_order(SW_PEFRL, "PEFRL", 4.0, 3.2e-4);
+}
+
+int main(void) {
+  const struct CMUnitTest tests[] = {
+      cmocka_unit_test(test_first_bending_frequency),
+      cmocka_unit_test(test_time_order_verlet),
+      cmocka_unit_test(test_time_order_pefrl),
+      cmocka_unit_test(test_energy_conservation),
+  };
+  return cmocka_run_group_tests_name("dynamics", tests, NULL, NULL);
+}
