@@ -63,8 +63,11 @@ check: $(TEST_BIN) $(TEST_SBIN)
 	@CMOCKA_MESSAGE_OUTPUT=TAP prove -j2 --exec '' $(TEST_BIN) $(TEST_SBIN)
 
 BENCH_BIN = build/bench/bench_rod
+# The benchmark report states the flags the runtime was built with; they are
+# not known at run time, so they are passed in as a string.
+BENCH_FLAGS = -DSW_BENCH_CFLAGS='"$(CC) $(STD) $(CFLAGS)"'
 build/bench/bench_rod: bench/bench_rod.c build/libsinewrt.a | build/bench
-	$(CC) $(ALL_CFLAGS) $< -o $@ build/libsinewrt.a $(LIBS)
+	$(CC) $(ALL_CFLAGS) $(BENCH_FLAGS) $< -o $@ build/libsinewrt.a $(LIBS)
 bench: deps
 	@$(MAKE) --no-print-directory $(BENCH_BIN)
 	@./$(BENCH_BIN) docs/benchmarks.md

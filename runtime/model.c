@@ -177,7 +177,7 @@ void sw_model_free(swModel *m) {
   if (!m) return;
   for (int r = 0; r < m->nrod; r++) free(m->rod_name[r]);
   free(m->rod_name); free(m->rod_nelem); free(m->node_adr); free(m->elem_adr);
-  free(m->vor_adr); free(m->rod_wave_dt); free(m->rod_damping); free(m->rod_wave_speed);
+  free(m->vor_adr); free(m->rod_wave_dt); free(m->rod_damping);
   free(m->mass); free(m->inv_mass); free(m->node_gamma); free(m->node_decay); free(m->elem_decay); free(m->x0);
   free(m->rest_len); free(m->inv_rest_len); free(m->radius); free(m->shear_stiff); free(m->inertia);
   free(m->inv_inertia); free(m->rest_sigma); free(m->elem_gamma); free(m->Q0); free(m->clamp_bend);
@@ -261,9 +261,8 @@ swModel *sw_compile(const swSpec *s, char *err, size_t errlen) {
   m->vor_adr = calloc((size_t)nr, sizeof(int));
   m->rod_damping = calloc((size_t)nr, sizeof(swDampingKind));
   m->rod_wave_dt = dalloc((size_t)nr);
-  m->rod_wave_speed = dalloc((size_t)nr);
   if (!m->rod_name || !m->rod_nelem || !m->node_adr || !m->elem_adr || !m->vor_adr ||
-      !m->rod_damping || !m->rod_wave_dt || !m->rod_wave_speed)
+      !m->rod_damping || !m->rod_wave_dt)
     goto oom;
   for (int r = 0; r < nr; r++) {
     int n = s->rod[r].nelem;
@@ -369,7 +368,6 @@ swModel *sw_compile(const swSpec *s, char *err, size_t errlen) {
         int q = 3 * (ea + i) + k;
         m->elem_decay[q] = analytic ? exp(-0.5 * s->dt * m->elem_gamma[q] * m->inv_inertia[q]) : 1.0;
       }
-    m->rod_wave_speed[r] = sqrt(rd->youngs / rd->density);
   }
 
   m->nload = s->nload;

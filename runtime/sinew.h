@@ -131,7 +131,6 @@ typedef struct {
   int *elem_adr;             /* first element                                */
   int *vor_adr;              /* first Voronoi domain                         */
   double *rod_wave_dt;       /* stable dt estimate of each rod, s            */
-  double *rod_wave_speed;    /* sqrt(E / rho), m/s (runaway detection)       */
   swDampingKind *rod_damping;
   /* per node (nnode) */
   double *mass;              /* (nnode)    lumped node mass, kg              */
