@@ -12,8 +12,12 @@
  * A drift moves each node by h v and rotates each frame exactly by
  * exp(-h [w]x) (Rodrigues); simulated time is advanced by the drifts, so the
  * loads of a kick see the time of the configuration they act on.  Analytic
- * damping is the exact decay exp(-c h/2) applied before and after the step
- * (Strang splitting), stable for any damping constant.
+ * damping is the exact decay exp(-c h/2) applied on either side of the kick
+ * (Verlet) or of the whole step (PEFRL) -- Strang splitting, second order,
+ * stable for any damping constant.
+ *
+ * sw_steps() fuses the trailing half drift of one Verlet step with the
+ * leading half drift of the next (see there).
  *
  * Every kick books the work of the external loads over the kick with the
  * midpoint rule, h F . (v_old + v_new)/2, so that kinetic + elastic - work is
@@ -55,18 +59,20 @@ static void drift(const swModel *m, swData *d, double h) {
       double dx[3], dv[3];
       sw_v3_sub(dx, x + 3 * (i + 1), x + 3 * i);
       sw_v3_sub(dv, v + 3 * (i + 1), v + 3 * i);
-      const double e_old = dil[i], e_new = sw_v3_norm(dx) * irl[i];
+      const double inv_e_old = 1.0 / dil[i], e_new = sw_v3_norm(dx) * irl[i];
+      const double ratio = e_new * inv_e_old;
       double mean; /* (1/h) integral of e dt over the drift, in units of e_old */
       if (simpson) {
         double mid[3] = {dx[0] - 0.5 * h * dv[0], dx[1] - 0.5 * h * dv[1], dx[2] - 0.5 * h * dv[2]};
-        mean = (e_old + 4.0 * sw_v3_norm(mid) * irl[i] + e_new) / (6.0 * e_old);
+        mean = (1.0 + 4.0 * sw_v3_norm(mid) * irl[i] * inv_e_old + ratio) * (1.0 / 6.0);
       } else {
-        mean = 0.5 * (e_old + e_new) / e_old;
+        mean = 0.5 * (1.0 + ratio);
       }
       double *wi = w + 3 * i;
-      double phi[3] = {h * mean * wi[0], h * mean * wi[1], h * mean * wi[2]};
+      const double hm = h * mean;
+      double phi[3] = {hm * wi[0], hm * wi[1], hm * wi[2]};
       sw_rotate_frame(Q + 9 * i, phi);
-      sw_v3_scale(wi, wi, e_new / e_old);
+      sw_v3_scale(wi, wi, ratio);
       dil[i] = e_new;
     }
   }
@@ -128,30 +134,57 @@ static const double PEFRL_XI = 0.1786178958448091;
 static const double PEFRL_LAMBDA = -0.2123418310626054;
 static const double PEFRL_CHI = -0.06626458266981849;
 
-int sw_step(const swModel *m, swData *d) {
+/* The stability check runs every 8 steps and on each of the first 8. */
+static int check_due(long step) { return (step & 7) == 0 || step < 8; }
+
+/* PEFRL step (with analytic damping around it). */
+static void pefrl_step(const swModel *m, swData *d) {
   const double h = m->dt;
   if (m->has_damping) analytic_decay(m, d);
-  switch (m->integrator) {
-  case SW_VERLET:
-    drift(m, d, 0.5 * h);
-    kick(m, d, h);
-    drift(m, d, 0.5 * h);
-    break;
-  case SW_PEFRL:
-    drift(m, d, PEFRL_XI * h);
-    kick(m, d, 0.5 * (1 - 2 * PEFRL_LAMBDA) * h);
-    drift(m, d, PEFRL_CHI * h);
-    kick(m, d, PEFRL_LAMBDA * h);
-    drift(m, d, (1 - 2 * (PEFRL_CHI + PEFRL_XI)) * h);
-    kick(m, d, PEFRL_LAMBDA * h);
-    drift(m, d, PEFRL_CHI * h);
-    kick(m, d, 0.5 * (1 - 2 * PEFRL_LAMBDA) * h);
-    drift(m, d, PEFRL_XI * h);
-    break;
-  }
+  drift(m, d, PEFRL_XI * h);
+  kick(m, d, 0.5 * (1 - 2 * PEFRL_LAMBDA) * h);
+  drift(m, d, PEFRL_CHI * h);
+  kick(m, d, PEFRL_LAMBDA * h);
+  drift(m, d, (1 - 2 * (PEFRL_CHI + PEFRL_XI)) * h);
+  kick(m, d, PEFRL_LAMBDA * h);
+  drift(m, d, PEFRL_CHI * h);
+  kick(m, d, 0.5 * (1 - 2 * PEFRL_LAMBDA) * h);
+  drift(m, d, PEFRL_XI * h);
   if (m->has_damping) analytic_decay(m, d);
-  d->step++;
-  d->time = (double)d->step * h; /* no accumulated round-off in t */
-  if ((d->step & 7) == 0 || d->step < 8) return sw_check_finite(m, d);
+}
+
+/* k steps.  Position Verlet is drift h/2, kick h, drift h/2 with the
+ * analytic damping's half decays around the kick (Strang splitting, second
+ * order); the last half drift of a step and the first of the next are
+ * fused into one drift h, which is the same flow (the director rotation and
+ * the angular-momentum rescaling of two half drifts compose to that of one
+ * drift to the scheme's order), so k steps cost k kicks and k + 1 drifts.
+ * Between fused steps the state sits at the half step, t = (step + 1/2) h;
+ * it is at a whole step when sw_steps returns. */
+int sw_steps(const swModel *m, swData *d, long k) {
+  const double h = m->dt;
+  if (k <= 0) return SW_OK;
+  if (m->integrator == SW_PEFRL) {
+    for (long i = 0; i < k; i++) {
+      pefrl_step(m, d);
+      d->step++;
+      d->time = (double)d->step * h; /* no accumulated round-off in t */
+      if (check_due(d->step) && sw_check_finite(m, d) != SW_OK) return SW_EUNSTABLE;
+    }
+    return SW_OK;
+  }
+  drift(m, d, 0.5 * h);
+  for (long i = 0; i < k; i++) {
+    if (m->has_damping) analytic_decay(m, d);
+    kick(m, d, h);
+    if (m->has_damping) analytic_decay(m, d);
+    d->step++;
+    const int last = i == k - 1;
+    drift(m, d, last ? 0.5 * h : h);
+    d->time = ((double)d->step + (last ? 0.0 : 0.5)) * h;
+    if (check_due(d->step) && sw_check_finite(m, d) != SW_OK) return SW_EUNSTABLE;
+  }
   return SW_OK;
 }
+
+int sw_step(const swModel *m, swData *d) { return sw_steps(m, d, 1); }

@@ -205,26 +205,53 @@ static void place_rod(const swSpec *s, int r, double *x, double *Q) {
   for (int i = 0; i < n; i++) memcpy(Q + 9 * i, Q0, sizeof Q0);
 }
 
+static int check_signal(const swSignal *g, char *err, size_t errlen, const char *what, int k,
+                        const char *rod) {
+  if (g->kind < SW_SIG_CONST || g->kind > SW_SIG_TABLE)
+    return fail(err, errlen, "%s %d on rod '%s': unknown signal kind %d", what, k, rod, (int)g->kind);
+  if (g->kind != SW_SIG_TABLE) return 1;
+  if (g->npts < 1 || g->npts > SW_SIGNAL_MAXPTS)
+    return fail(err, errlen, "%s %d on rod '%s': table signal needs 1..%d points, has %d", what, k,
+                rod, SW_SIGNAL_MAXPTS, g->npts);
+  for (int i = 0; i < g->npts; i++) {
+    if (!isfinite(g->times[i]) || !isfinite(g->values[i]))
+      return fail(err, errlen, "%s %d on rod '%s': table point %d is not finite", what, k, rod, i);
+    if (i > 0 && !(g->times[i] > g->times[i - 1]))
+      return fail(err, errlen, "%s %d on rod '%s': table times must increase (point %d)", what, k,
+                  rod, i);
+  }
+  return 1;
+}
+
 static int check_loads_bcs(const swSpec *s, char *err, size_t errlen) {
   for (int k = 0; k < s->nload; k++) {
     const swLoadDesc *l = &s->load[k];
     if (l->rod < 0 || l->rod >= s->nrod)
       return fail(err, errlen, "load %d: rod index %d out of range", k, l->rod);
+    const char *nm = s->rod[l->rod].name;
+    if (l->kind != SW_LOAD_FORCE && l->kind != SW_LOAD_TORQUE)
+      return fail(err, errlen, "load %d on rod '%s': unknown kind %d", k, nm, (int)l->kind);
     int n = s->rod[l->rod].nelem, lim = l->kind == SW_LOAD_FORCE ? n + 1 : n;
     if (l->index < -1 || l->index >= lim)
-      return fail(err, errlen, "load %d on rod '%s': %s index %d out of range [0, %d)", k,
-                  s->rod[l->rod].name, l->kind == SW_LOAD_FORCE ? "node" : "element", l->index, lim);
-    if (l->signal.kind == SW_SIG_TABLE && (l->signal.npts < 1 || l->signal.npts > SW_SIGNAL_MAXPTS))
-      return fail(err, errlen, "load %d: table signal needs 1..%d points", k, SW_SIGNAL_MAXPTS);
+      return fail(err, errlen, "load %d on rod '%s': %s index %d out of range [0, %d)", k, nm,
+                  l->kind == SW_LOAD_FORCE ? "node" : "element", l->index, lim);
+    if (!isfinite(l->vec[0]) || !isfinite(l->vec[1]) || !isfinite(l->vec[2]))
+      return fail(err, errlen, "load %d on rod '%s': vector is not finite", k, nm);
+    if (!check_signal(&l->signal, err, errlen, "load", k, nm)) return 0;
   }
   for (int k = 0; k < s->nbc; k++) {
     const swBCDesc *b = &s->bc[k];
     if (b->rod < 0 || b->rod >= s->nrod)
       return fail(err, errlen, "boundary condition %d: rod index %d out of range", k, b->rod);
+    const char *nm = s->rod[b->rod].name;
     if (b->end != 0 && b->end != 1)
-      return fail(err, errlen, "boundary condition %d: end must be 0 (start) or 1 (end)", k);
+      return fail(err, errlen, "boundary condition %d on rod '%s': end must be 0 (start) or 1 (end)",
+                  k, nm);
     if (b->kind < SW_BC_CLAMP || b->kind > SW_BC_OMEGA)
-      return fail(err, errlen, "boundary condition %d: unknown kind %d", k, (int)b->kind);
+      return fail(err, errlen, "boundary condition %d on rod '%s': unknown kind %d", k, nm, (int)b->kind);
+    if (!isfinite(b->vec[0]) || !isfinite(b->vec[1]) || !isfinite(b->vec[2]))
+      return fail(err, errlen, "boundary condition %d on rod '%s': vector is not finite", k, nm);
+    if (!check_signal(&b->signal, err, errlen, "boundary condition", k, nm)) return 0;
   }
   return 1;
 }

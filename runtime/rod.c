@@ -36,7 +36,7 @@ static void rod_elements(const swModel *m, swData *d, int r) {
   const double *restrict v = d->v + 3 * na;
   const double *restrict Qs = d->Q + 9 * ea;
   const double *restrict w = d->omega + 3 * ea;
-  const double *restrict rl = m->rest_len + ea;
+  const double *restrict rl = m->rest_len + ea, *restrict irl = m->inv_rest_len + ea;
   const double *restrict S = m->shear_stiff + 3 * ea;
   const double *restrict s0 = m->rest_sigma + 3 * ea;
   const double *restrict J = m->inertia + 3 * ea;
@@ -52,8 +52,8 @@ static void rod_elements(const swModel *m, swData *d, int r) {
     double dx[3], dv[3];
     sw_v3_sub(dx, x + 3 * (i + 1), x + 3 * i);
     sw_v3_sub(dv, v + 3 * (i + 1), v + 3 * i);
-    const double l = sw_v3_norm(dx), inv_l = 1.0 / l, inv_rl = 1.0 / rl[i];
-    const double e = l * inv_rl, inv_e = 1.0 / e;
+    const double l = sw_v3_norm(dx), inv_l = 1.0 / l, inv_rl = irl[i];
+    const double e = l * inv_rl, inv_e = rl[i] * inv_l;
     double Qdx[3], nm[3], f[3];
     sw_mat_vec(Qdx, Q, dx);
     for (int k = 0; k < 3; k++) {

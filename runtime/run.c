@@ -121,8 +121,13 @@ int sw_run(const swModel *m, swData *d, swOutput *out, const swRunOptions *ro) {
   long k = 0, last_frame = 0;
   p.start = p.last_line = wall_seconds();
   while (rc == SW_OK && k < nsteps && !interrupted) {
-    int step_rc = sw_step(m, d);
-    k++;
+    /* as many fused steps as fit before the next frame (at most 256, so
+     * that SIGINT and the progress line stay responsive) */
+    long chunk = every - k % every;
+    if (chunk > nsteps - k) chunk = nsteps - k;
+    if (chunk > 256) chunk = 256;
+    int step_rc = sw_steps(m, d, chunk);
+    k += chunk;
     if (step_rc != SW_OK) {
       progress_end(&p);
       fprintf(log, "sinew: %s\n", d->error[0] ? d->error : "the step failed");

@@ -72,8 +72,8 @@ typedef struct {
   double youngs;              /* E, Pa                                    */
   double shear_modulus;       /* G, Pa; 0 means E / (2 (1 + poisson))     */
   double poisson;             /* used only when shear_modulus == 0        */
-  double shear_hardening;     /* multiplies G in S11, S22; 0 means 1      */
-  double twist_hardening;     /* multiplies G in B33; 0 means 1           */
+  double shear_hardening;     /* multiplies G in S11, S22 (> 0; 1 = none) */
+  double twist_hardening;     /* multiplies G in B33 (> 0; 1 = none)      */
   double rest_kappa[3];       /* uniform rest curvature/twist, 1/m        */
   double rest_sigma[3];       /* uniform rest shear/stretch strain        */
   swDampingKind damping;
@@ -201,6 +201,7 @@ void sw_internal_loads(const swModel *m, swData *d);   /* rod.c         */
 void sw_external_loads(const swModel *m, swData *d);   /* loads.c       */
 void sw_apply_bc_velocity(const swModel *m, swData *d, double t); /* boundary.c */
 int sw_step(const swModel *m, swData *d);              /* integrate.c   */
+int sw_steps(const swModel *m, swData *d, long k);     /* k steps, fused */
 int sw_check_finite(const swModel *m, swData *d);      /* stability.c   */
 
 /* Energies (J): kinetic (translational + rotational), elastic

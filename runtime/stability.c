@@ -62,7 +62,7 @@ static double spectral_radius(swIntegrator integ, double h, double zeta) {
   return sqrt(det); /* complex pair: |lambda|^2 = det */
 }
 
-double sw_integrator_stability_limit(swIntegrator integ, double zeta) {
+static double stability_limit(swIntegrator integ, double zeta) {
   /* scan up from 0 for the first unstable h, then bisect */
   const double tol = 1e-12;
   double lo = 0, hi = 0;
@@ -77,6 +77,18 @@ double sw_integrator_stability_limit(swIntegrator integ, double zeta) {
     if (spectral_radius(integ, mid, zeta) > 1 + tol) hi = mid; else lo = mid;
   }
   return lo;
+}
+
+/* Memoised: a rod asks for the same (scheme, zeta) once per element. */
+double sw_integrator_stability_limit(swIntegrator integ, double zeta) {
+  static _Thread_local swIntegrator last_integ = (swIntegrator)-1;
+  static _Thread_local double last_zeta = -1, last_limit = 0;
+  if (integ != last_integ || zeta != last_zeta) {
+    last_limit = stability_limit(integ, zeta);
+    last_integ = integ;
+    last_zeta = zeta;
+  }
+  return last_limit;
 }
 
 double sw_stable_dt_rod(const swModel *m, int r) {

@@ -74,9 +74,9 @@ static inline void sw_rodrigues_coeffs(double theta2, double *a, double *b) {
     *a = 1.0 - t / 6.0 * (1.0 - t / 20.0 * (1.0 - t / 42.0 * (1.0 - t / 72.0)));
     *b = 0.5 * (1.0 - t / 12.0 * (1.0 - t / 30.0 * (1.0 - t / 56.0 * (1.0 - t / 90.0))));
   } else {
-    const double theta = sqrt(theta2);
+    const double theta = sqrt(theta2), sh = sin(0.5 * theta);
     *a = sin(theta) / theta;
-    *b = (1.0 - cos(theta)) / theta2;
+    *b = 2.0 * sh * sh / theta2; /* = (1 - cos)/theta^2 without cancellation */
   }
 }
 
@@ -129,15 +129,21 @@ static inline void sw_frame_log(double *phi, const double *Qa, const double *Qb)
  * normal. */
 static inline int sw_frame_from(double *Q, const double *dir, const double *normal) {
   double d3[3], d1[3], d2[3];
-  double nd = sw_v3_norm(dir);
-  if (!(nd > 0)) return 0;
+  double nd = sw_v3_norm(dir), nn = sw_v3_norm(normal);
+  if (!(nd > 0) || !(nn > 0)) return 0;
   sw_v3_scale(d3, dir, 1.0 / nd);
-  double p = sw_v3_dot(normal, d3);
-  d1[0] = normal[0] - p * d3[0]; d1[1] = normal[1] - p * d3[1]; d1[2] = normal[2] - p * d3[2];
-  double n1 = sw_v3_norm(d1);
-  if (!(n1 > 1e-12 * (sw_v3_norm(normal) + 1e-300))) return 0;
-  sw_v3_scale(d1, d1, 1.0 / n1);
-  sw_v3_cross(d2, d3, d1);
+  /* d2 = unit(d3 x normal), d1 = d2 x d3.  When normal is nearly parallel to
+   * dir the cross product carries a relative error eps / angle, which one
+   * projection of d2 off d3 removes; d1 = d2 x d3 is then orthonormal to
+   * round-off. */
+  sw_v3_cross(d2, d3, normal);
+  double n2 = sw_v3_norm(d2);
+  if (!(n2 > 1e-12 * nn)) return 0;
+  sw_v3_scale(d2, d2, 1.0 / n2);
+  double p = sw_v3_dot(d2, d3);
+  for (int k = 0; k < 3; k++) d2[k] -= p * d3[k];
+  sw_v3_scale(d2, d2, 1.0 / sw_v3_norm(d2));
+  sw_v3_cross(d1, d2, d3);
   for (int k = 0; k < 3; k++) { Q[k] = d1[k]; Q[3 + k] = d2[k]; Q[6 + k] = d3[k]; }
   return 1;
 }
