@@ -66,26 +66,35 @@ void sw_apply_bc_velocity(const swModel *m, swData *d, double t) {
   }
 }
 
-/* Called right after a free kick of size h: v_free = v_old + h F / m. */
-void sw_bc_kick(const swModel *m, swData *d, double h) {
+/* Called right after a free kick of size h: v_free = v_old + h F / m.  The
+ * prescribed values are those of time t (the integrator passes the
+ * midpoint of the drift the new velocities will be used for). */
+void sw_bc_kick(const swModel *m, swData *d, double h, double t) {
   for (int k = 0; k < m->nbc; k++) {
     int node, elem;
     double vn[3], we[3];
-    int what = bc_target(m, d, &m->bc[k], d->time, &node, &elem, vn, we);
+    int what = bc_target(m, d, &m->bc[k], t, &node, &elem, vn, we);
+    /* The kick booked the external load's work with the free velocity,
+     * h f . (v_old + v_free) / 2; rebook it with the prescribed one and add
+     * the constraint force's, h f_c = m (v_new - v_free). */
     if (what & 1) {
-      double *v = d->v + 3 * node, *F = d->force + 3 * node, mass = m->mass[node];
+      double *v = d->v + 3 * node, mass = m->mass[node];
+      const double *F = d->force + 3 * node, *ef = d->ext_force + 3 * node;
       for (int c = 0; c < 3; c++) {
-        double v_old = v[c] - h * F[c] * m->inv_mass[node];
-        d->work += mass * (vn[c] - v[c]) * 0.5 * (v_old + vn[c]);
+        double v_free = v[c], v_old = v_free - h * F[c] * m->inv_mass[node];
+        d->work -= 0.5 * h * ef[c] * (v_old + v_free);
+        d->work += 0.5 * (h * ef[c] + mass * (vn[c] - v_free)) * (v_old + vn[c]);
         v[c] = vn[c];
       }
     }
     if (what & 2) {
-      double *w = d->omega + 3 * elem, *T = d->torque + 3 * elem, e = d->dilatation[elem];
+      double *w = d->omega + 3 * elem, e = d->dilatation[elem];
+      const double *T = d->torque + 3 * elem, *et = d->ext_torque + 3 * elem;
       for (int c = 0; c < 3; c++) {
         double Je = m->inertia[3 * elem + c] / e;
-        double w_old = w[c] - h * T[c] / Je;
-        d->work += Je * (we[c] - w[c]) * 0.5 * (w_old + we[c]);
+        double w_free = w[c], w_old = w_free - h * T[c] / Je;
+        d->work -= 0.5 * h * et[c] * (w_old + w_free);
+        d->work += 0.5 * (h * et[c] + Je * (we[c] - w_free)) * (w_old + we[c]);
         w[c] = we[c];
       }
     }

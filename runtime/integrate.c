@@ -12,9 +12,10 @@
  * A drift moves each node by h v and rotates each frame exactly by
  * exp(-h [w]x) (Rodrigues); simulated time is advanced by the drifts, so the
  * loads of a kick see the time of the configuration they act on.  Analytic
- * damping is the exact decay exp(-c h/2) applied on either side of the kick
- * (Verlet) or of the whole step (PEFRL) -- Strang splitting, second order,
- * stable for any damping constant.
+ * damping is integrated exactly with the kick's loads held constant
+ * (Verlet: v <- v exp(-c h) + a (1 - exp(-c h)) / c, stable for any damping
+ * constant and right in the overdamped limit), or, for PEFRL, as the decay
+ * exp(-c h/2) before and after the step (Strang splitting).
  *
  * sw_steps() fuses the trailing half drift of one Verlet step with the
  * leading half drift of the next (see there).
@@ -79,35 +80,65 @@ static void drift(const swModel *m, swData *d, double h) {
   d->time += h;
 }
 
-/* Velocities change under the loads of the current configuration. */
-static void kick(const swModel *m, swData *d, double h) {
+/* Velocities change under the loads of the current configuration.  `span`
+ * is the length of drift that the new velocities will be used for before
+ * the next kick: prescribed velocities are taken at its midpoint, so that
+ * a prescribed end moves by the midpoint rule's integral of its profile
+ * (position Verlet's v_{n+1} is the velocity at t_{n+1} = t_kick + h/2). */
+static void kick(const swModel *m, swData *d, double h, double span) {
   sw_compute_loads(m, d);
-  const size_t N = (size_t)m->nnode, E = (size_t)m->nelem;
   double *restrict v = d->v, *restrict w = d->omega;
   const double *restrict F = d->force, *restrict T = d->torque;
   const double *restrict ef = d->ext_force, *restrict et = d->ext_torque;
   const double *restrict im = m->inv_mass, *restrict iJ = m->inv_inertia;
   const double *restrict e = d->dilatation;
-  double work = 0;
-  for (size_t i = 0; i < N; i++)
-    for (int k = 0; k < 3; k++) {
-      double vo = v[3 * i + k], vn = vo + h * F[3 * i + k] * im[i];
-      work += ef[3 * i + k] * (vo + vn);
-      v[3 * i + k] = vn;
+  double work = 0, exact_work = 0;
+  for (int r = 0; r < m->nrod; r++) {
+    const int n0 = m->node_adr[r], n1 = n0 + m->rod_nelem[r] + 1;
+    const int e0 = m->elem_adr[r], e1 = e0 + m->rod_nelem[r];
+    if (m->rod_damping[r] == SW_DAMP_ANALYTIC && m->integrator == SW_VERLET) {
+      /* exact for dv/dt = a - c v (model.c); the work of loads and
+       * dissipation together is the non-internal impulse times the mean
+       * velocity */
+      for (int i = n0; i < n1; i++)
+        for (int k = 0; k < 3; k++) {
+          int q = 3 * i + k;
+          double vo = v[q], vn = vo * m->node_decay[i] + F[q] * im[i] * m->node_kick[i];
+          exact_work += (m->mass[i] * (vn - vo) - h * (F[q] - ef[q])) * (vo + vn);
+          v[q] = vn;
+        }
+      for (int i = e0; i < e1; i++)
+        for (int k = 0; k < 3; k++) {
+          int q = 3 * i + k;
+          double Je = m->inertia[q] / e[i];
+          double wo = w[q], wn = wo * m->elem_decay[q] + T[q] * iJ[q] * e[i] * m->elem_kick[q];
+          exact_work += (Je * (wn - wo) - h * (T[q] - et[q])) * (wo + wn);
+          w[q] = wn;
+        }
+      continue;
     }
-  /* (J^/e) dw/dt = tau  (Gazzola 2018, eq. 3.7b, the couples of rod.c
-   * without the dilatation-rate term, which the drift integrates) */
-  for (size_t i = 0; i < E; i++)
-    for (int k = 0; k < 3; k++) {
-      double wo = w[3 * i + k], wn = wo + h * T[3 * i + k] * iJ[3 * i + k] * e[i];
-      work += et[3 * i + k] * (wo + wn);
-      w[3 * i + k] = wn;
-    }
-  d->work += 0.5 * h * work;
-  if (m->nbc) sw_bc_kick(m, d, h);
+    for (int i = n0; i < n1; i++)
+      for (int k = 0; k < 3; k++) {
+        int q = 3 * i + k;
+        double vo = v[q], vn = vo + h * F[q] * im[i];
+        work += ef[q] * (vo + vn);
+        v[q] = vn;
+      }
+    /* (J^/e) dw/dt = tau  (Gazzola 2018, eq. 3.7b, the couples of rod.c
+     * without the dilatation-rate term, which the drift integrates) */
+    for (int i = e0; i < e1; i++)
+      for (int k = 0; k < 3; k++) {
+        int q = 3 * i + k;
+        double wo = w[q], wn = wo + h * T[q] * iJ[q] * e[i];
+        work += et[q] * (wo + wn);
+        w[q] = wn;
+      }
+  }
+  d->work += 0.5 * h * work + 0.5 * exact_work;
+  if (m->nbc) sw_bc_kick(m, d, h, d->time + 0.5 * span);
 }
 
-/* Exact decay of the analytically damped rods over half a step. */
+/* Exact decay of the analytically damped rods over half a step (PEFRL). */
 static void analytic_decay(const swModel *m, swData *d) {
   double lost = 0;
   for (int r = 0; r < m->nrod; r++) {
@@ -141,21 +172,23 @@ static int check_due(long step) { return (step & 7) == 0 || step < 8; }
 static void pefrl_step(const swModel *m, swData *d) {
   const double h = m->dt;
   if (m->has_damping) analytic_decay(m, d);
+  const double mid = (1 - 2 * (PEFRL_CHI + PEFRL_XI)) * h;
   drift(m, d, PEFRL_XI * h);
-  kick(m, d, 0.5 * (1 - 2 * PEFRL_LAMBDA) * h);
+  kick(m, d, 0.5 * (1 - 2 * PEFRL_LAMBDA) * h, PEFRL_CHI * h);
   drift(m, d, PEFRL_CHI * h);
-  kick(m, d, PEFRL_LAMBDA * h);
-  drift(m, d, (1 - 2 * (PEFRL_CHI + PEFRL_XI)) * h);
-  kick(m, d, PEFRL_LAMBDA * h);
+  kick(m, d, PEFRL_LAMBDA * h, mid);
+  drift(m, d, mid);
+  kick(m, d, PEFRL_LAMBDA * h, PEFRL_CHI * h);
   drift(m, d, PEFRL_CHI * h);
-  kick(m, d, 0.5 * (1 - 2 * PEFRL_LAMBDA) * h);
+  /* the last kick's velocities serve this step's final drift and the next
+   * step's first one */
+  kick(m, d, 0.5 * (1 - 2 * PEFRL_LAMBDA) * h, 2 * PEFRL_XI * h);
   drift(m, d, PEFRL_XI * h);
   if (m->has_damping) analytic_decay(m, d);
 }
 
-/* k steps.  Position Verlet is drift h/2, kick h, drift h/2 with the
- * analytic damping's half decays around the kick (Strang splitting, second
- * order); the last half drift of a step and the first of the next are
+/* k steps.  Position Verlet is drift h/2, kick h, drift h/2 (with analytic
+ * damping inside the kick); the last half drift of a step and the first of the next are
  * fused into one drift h, which is the same flow (the director rotation and
  * the angular-momentum rescaling of two half drifts compose to that of one
  * drift to the scheme's order), so k steps cost k kicks and k + 1 drifts.
@@ -175,9 +208,7 @@ int sw_steps(const swModel *m, swData *d, long k) {
   }
   drift(m, d, 0.5 * h);
   for (long i = 0; i < k; i++) {
-    if (m->has_damping) analytic_decay(m, d);
-    kick(m, d, h);
-    if (m->has_damping) analytic_decay(m, d);
+    kick(m, d, h, h);
     d->step++;
     const int last = i == k - 1;
     drift(m, d, last ? 0.5 * h : h);

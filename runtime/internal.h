@@ -4,7 +4,7 @@
 #define SW_INTERNAL_H
 #include "sinew.h"
 
-void sw_bc_kick(const swModel *m, swData *d, double h);               /* boundary.c  */
+void sw_bc_kick(const swModel *m, swData *d, double h, double t);     /* boundary.c  */
 void sw_bc_loads(const swModel *m, swData *d);                        /* boundary.c  */
 double sw_bc_energy(const swModel *m, const swData *d);               /* boundary.c  */
 void sw_compute_loads(const swModel *m, swData *d);                   /* integrate.c */

@@ -178,7 +178,7 @@ void sw_model_free(swModel *m) {
   for (int r = 0; r < m->nrod; r++) free(m->rod_name[r]);
   free(m->rod_name); free(m->rod_nelem); free(m->node_adr); free(m->elem_adr);
   free(m->vor_adr); free(m->rod_wave_dt); free(m->rod_damping);
-  free(m->mass); free(m->inv_mass); free(m->node_gamma); free(m->node_decay); free(m->elem_decay); free(m->x0);
+  free(m->mass); free(m->inv_mass); free(m->node_gamma); free(m->node_decay); free(m->elem_decay); free(m->node_kick); free(m->elem_kick); free(m->x0);
   free(m->rest_len); free(m->inv_rest_len); free(m->radius); free(m->shear_stiff); free(m->inertia);
   free(m->inv_inertia); free(m->rest_sigma); free(m->elem_gamma); free(m->Q0); free(m->clamp_bend);
   free(m->rest_vor_len); free(m->bend_stiff); free(m->rest_kappa);
@@ -306,12 +306,12 @@ swModel *sw_compile(const swSpec *s, char *err, size_t errlen) {
     if (m->rod_damping[r] != SW_DAMP_NONE) m->has_damping = 1;
   }
   size_t N = (size_t)m->nnode, E = (size_t)m->nelem, V = (size_t)m->nvor;
-  m->mass = dalloc(N); m->inv_mass = dalloc(N); m->node_gamma = dalloc(N); m->node_decay = dalloc(N); m->x0 = dalloc(3 * N);
+  m->mass = dalloc(N); m->inv_mass = dalloc(N); m->node_gamma = dalloc(N); m->node_decay = dalloc(N); m->node_kick = dalloc(N); m->x0 = dalloc(3 * N);
   m->rest_len = dalloc(E); m->inv_rest_len = dalloc(E); m->radius = dalloc(E); m->shear_stiff = dalloc(3 * E);
   m->inertia = dalloc(3 * E); m->inv_inertia = dalloc(3 * E); m->rest_sigma = dalloc(3 * E);
-  m->elem_gamma = dalloc(3 * E); m->elem_decay = dalloc(3 * E); m->Q0 = dalloc(9 * E); m->clamp_bend = dalloc(3 * E);
+  m->elem_gamma = dalloc(3 * E); m->elem_decay = dalloc(3 * E); m->elem_kick = dalloc(3 * E); m->Q0 = dalloc(9 * E); m->clamp_bend = dalloc(3 * E);
   m->rest_vor_len = dalloc(V); m->bend_stiff = dalloc(3 * V); m->rest_kappa = dalloc(3 * V);
-  if (!m->mass || !m->inv_mass || !m->node_gamma || !m->node_decay || !m->elem_decay || !m->x0 || !m->rest_len || !m->inv_rest_len || !m->radius ||
+  if (!m->mass || !m->inv_mass || !m->node_gamma || !m->node_decay || !m->elem_decay || !m->node_kick || !m->elem_kick || !m->x0 || !m->rest_len || !m->inv_rest_len || !m->radius ||
       !m->shear_stiff || !m->inertia || !m->inv_inertia || !m->rest_sigma || !m->elem_gamma ||
       !m->Q0 || !m->clamp_bend || !m->rest_vor_len || !m->bend_stiff || !m->rest_kappa)
     goto oom;
@@ -383,17 +383,29 @@ swModel *sw_compile(const swSpec *s, char *err, size_t errlen) {
     }
     free(bend_elem);
     for (int i = 0; i <= n; i++) m->inv_mass[na + i] = 1.0 / m->mass[na + i];
-    /* Analytic damping: the exact decay of dv/dt = -c v over half a step,
+    /* Analytic damping.  Position Verlet: the kick integrates
+     * dv/dt = a - c v exactly over the step with a held constant,
+     *   v <- v exp(-c dt) + a (1 - exp(-c dt)) / c,
+     * so node_decay = exp(-c dt) and node_kick = (1 - exp(-c dt)) / c (= dt
+     * as c -> 0): stable for every c, and an overdamped rod creeps at the
+     * right terminal velocity a / c.  PEFRL has kicks of negative length,
+     * where that factor would grow, so there the decay exp(-c dt/2) is
+     * applied before and after the step instead (Strang).  Rates:
      * c = gamma D^ / m for nodes and elem_gamma / J^ for elements (the
-     * dilatation is taken as 1 in the rate).  The factor is in (0, 1] for
-     * every gamma and dt, hence unconditionally stable. */
+     * dilatation taken as 1 in the rate). */
     int analytic = m->rod_damping[r] == SW_DAMP_ANALYTIC;
-    for (int i = 0; i <= n; i++)
-      m->node_decay[na + i] = analytic ? exp(-0.5 * s->dt * m->node_gamma[na + i] * m->inv_mass[na + i]) : 1.0;
+    double span = s->integrator == SW_VERLET ? s->dt : 0.5 * s->dt;
+    for (int i = 0; i <= n; i++) {
+      double c = analytic ? m->node_gamma[na + i] * m->inv_mass[na + i] : 0.0;
+      m->node_decay[na + i] = exp(-span * c);
+      m->node_kick[na + i] = c * s->dt > 1e-8 ? -expm1(-s->dt * c) / c : s->dt;
+    }
     for (int i = 0; i < n; i++)
       for (int k = 0; k < 3; k++) {
         int q = 3 * (ea + i) + k;
-        m->elem_decay[q] = analytic ? exp(-0.5 * s->dt * m->elem_gamma[q] * m->inv_inertia[q]) : 1.0;
+        double c = analytic ? m->elem_gamma[q] * m->inv_inertia[q] : 0.0;
+        m->elem_decay[q] = exp(-span * c);
+        m->elem_kick[q] = c * s->dt > 1e-8 ? -expm1(-s->dt * c) / c : s->dt;
       }
   }
 

@@ -136,7 +136,8 @@ typedef struct {
   double *mass;              /* (nnode)    lumped node mass, kg              */
   double *inv_mass;          /* (nnode)                                      */
   double *node_gamma;        /* (nnode)    gamma * Voronoi rest length, kg/s */
-  double *node_decay;        /* (nnode)    analytic damping exp(-c dt/2)     */
+  double *node_decay;        /* (nnode)    analytic damping decay factor     */
+  double *node_kick;         /* (nnode)    analytic damping kick length, s   */
   double *x0;                /* (nnode*3)  initial positions                 */
   /* per element (nelem) */
   double *rest_len;          /* (nelem)    l^, m                             */
@@ -147,7 +148,8 @@ typedef struct {
   double *inv_inertia;       /* (nelem*3)                                    */
   double *rest_sigma;        /* (nelem*3)  rest shear/stretch strain         */
   double *elem_gamma;        /* (nelem*3)  rotational dissipation, kg m^2/s  */
-  double *elem_decay;        /* (nelem*3)  analytic damping exp(-c dt/2)     */
+  double *elem_decay;        /* (nelem*3)  analytic damping decay factor     */
+  double *elem_kick;         /* (nelem*3)  analytic damping kick length, s   */
   double *Q0;                /* (nelem*9)  initial directors                 */
   double *clamp_bend;        /* (nelem*3)  B^ of the element, for clamps     */
   /* per Voronoi domain (nvor) */
