@@ -20,13 +20,6 @@ static swRodDesc rod_along_z(const char *name, int n) {
   return r;
 }
 
-static swModel *compile_at(swSpec *s, double frac) {
-  swModel *m0 = sw_test_compile(s);
-  sw_spec_set_dt(s, frac * sw_stable_dt(m0));
-  sw_model_free(m0);
-  return sw_test_compile(s);
-}
-
 /* End node pulled along the axis with v(t) = V t / T for t < T, V after:
  * displacement V T / 2 + V (t - T).  The prescribed velocity is taken at
  * the midpoint of each drift, exact for a linear profile; what remains is
@@ -49,7 +42,7 @@ static void test_prescribed_velocity(void **state) {
   pull.vec[2] = V;
   pull.signal = sw_signal_ramp(0, 1, 0, T);
   sw_spec_add_bc(s, &pull);
-  swModel *m = compile_at(s, 0.5);
+  swModel *m = sw_test_compile_at(s, 0.5);
   swData *d = sw_data_new(m);
   sw_test_run_to(m, d, tend);
   double moved = d->x[3 * n + 2] - r.length;
@@ -87,7 +80,7 @@ static void test_prescribed_angular_velocity(void **state) {
   turn.vec[2] = W; /* lab frame: about the rod's axis */
   turn.signal = sw_signal_ramp(0, 1, 0, T);
   sw_spec_add_bc(s, &turn);
-  swModel *m = compile_at(s, 0.5);
+  swModel *m = sw_test_compile_at(s, 0.5);
   swData *d = sw_data_new(m);
   sw_test_run_to(m, d, T);
   const double *Q = d->Q + 9 * (n - 1);
@@ -131,7 +124,7 @@ static double balance(swDampingKind damping, double frac) {
   swLoadDesc t = sw_test_load(SW_LOAD_TORQUE, id, -1, 1e-2, 0, 0);
   t.signal = sw_signal_step(0, 1, 0.1);
   sw_spec_add_load(s, &t);
-  swModel *m = compile_at(s, frac);
+  swModel *m = sw_test_compile_at(s, frac);
   swData *d = sw_data_new(m);
   double worst = 0, wmax = 0, e[3];
   while (d->time < 0.5) {

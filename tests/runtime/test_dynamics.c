@@ -39,10 +39,7 @@ static swModel *vibrating_rod(int n, swIntegrator integ, double dt_frac, double 
   swBCDesc c = sw_test_clamp(id, 0);
   sw_spec_add_bc(s, &c);
   sw_spec_set_integrator(s, integ);
-  swModel *m0 = sw_test_compile(s);
-  sw_spec_set_dt(s, dt_frac * sw_stable_dt(m0));
-  sw_model_free(m0);
-  swModel *m = sw_test_compile(s);
+  swModel *m = sw_test_compile_at(s, dt_frac);
   sw_spec_free(s);
   swData *d = sw_data_new(m);
   for (int i = 1; i <= n; i++) d->v[3 * i + 1] = v0 * mode1(VL * i / n) / mode1(VL);

@@ -31,10 +31,7 @@ static swModel *make_rod(const Case *c, double dt_factor) {
   r.twist_hardening = c->hardening;
   sw_spec_add_rod(s, &r);
   sw_spec_set_integrator(s, c->integ);
-  swModel *m0 = sw_test_compile(s);
-  sw_spec_set_dt(s, dt_factor * sw_stable_dt(m0));
-  sw_model_free(m0);
-  swModel *m = sw_test_compile(s);
+  swModel *m = sw_test_compile_at(s, dt_factor);
   sw_spec_free(s);
   return m;
 }

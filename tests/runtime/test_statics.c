@@ -39,10 +39,7 @@ static double timoshenko_tip(int n) {
   sw_spec_add_bc(s, &c);
   swLoadDesc f = sw_test_load(SW_LOAD_FORCE, id, -1, 0, -TF, 0);
   sw_spec_add_load(s, &f);
-  swModel *m0 = sw_test_compile(s);
-  sw_spec_set_dt(s, 0.8 * sw_stable_dt(m0));
-  sw_model_free(m0);
-  swModel *m = sw_test_compile(s);
+  swModel *m = sw_test_compile_at(s, 0.8);
   swData *d = sw_data_new(m);
   const double *tip_y = d->x + 3 * n + 1;
   double y = sw_test_relax(m, d, tip_y, 2.0, 400.0, 1e-9);
@@ -100,10 +97,7 @@ static void test_axial_stretch(void **state) {
   sw_spec_add_bc(s, &c);
   swLoadDesc f = sw_test_load(SW_LOAD_FORCE, id, -1, 0, 0, F);
   sw_spec_add_load(s, &f);
-  swModel *m0 = sw_test_compile(s);
-  sw_spec_set_dt(s, 0.8 * sw_stable_dt(m0));
-  sw_model_free(m0);
-  swModel *m = sw_test_compile(s);
+  swModel *m = sw_test_compile_at(s, 0.8);
   swData *d = sw_data_new(m);
   double z = sw_test_relax(m, d, d->x + 3 * (int)n + 2, 0.05, 20.0, 1e-12);
   SW_EXPECT_REL("extension (m)", z - L, F * L / (E * A), 1e-3);
@@ -137,10 +131,7 @@ static void test_pure_torsion(void **state) {
   sw_spec_add_bc(s, &c);
   swLoadDesc tq = sw_test_load(SW_LOAD_TORQUE, id, -1, 0, 0, T);
   sw_spec_add_load(s, &tq);
-  swModel *m0 = sw_test_compile(s);
-  sw_spec_set_dt(s, 0.8 * sw_stable_dt(m0));
-  sw_model_free(m0);
-  swModel *m = sw_test_compile(s);
+  swModel *m = sw_test_compile_at(s, 0.8);
   swData *d = sw_data_new(m);
   /* twist angle of the last element: angle between its d1 and the initial d1 */
   double angle = 0, prev = -1;

@@ -51,6 +51,14 @@ static inline swModel *sw_test_compile(swSpec *s) {
 
 #ifndef SW_TESTUTIL_RUN
 #define SW_TESTUTIL_RUN
+/* Compile at a fraction of the scene's own stable time step estimate. */
+static inline swModel *sw_test_compile_at(swSpec *s, double frac) {
+  swModel *m0 = sw_test_compile(s);
+  sw_spec_set_dt(s, frac * sw_stable_dt(m0));
+  sw_model_free(m0);
+  return sw_test_compile(s);
+}
+
 /* Advance until the simulated time reaches t (whole steps). */
 static inline void sw_test_run_to(const swModel *m, swData *d, double t) {
   while (d->time < t - 0.5 * m->dt) assert_int_equal(sw_step(m, d), SW_OK);
