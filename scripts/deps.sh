@@ -12,6 +12,7 @@ hdf5-tools:/usr/bin/h5dump
 libgsl-dev:/usr/include/gsl/gsl_math.h
 pkg-config:/usr/bin/pkg-config
 libcmocka-dev:/usr/include/cmocka.h
+perl:/usr/bin/prove
 "
 missing=""
 for pair in $PKGS; do
