@@ -35,9 +35,3 @@ void sw_energy(const swModel *m, swData *d, double out[3]) {
   out[1] = ela;
   out[2] = d->work;
 }
-
-double sw_gravity_potential(const swModel *m, const swData *d) {
-  double p = 0;
-  for (int i = 0; i < m->nnode; i++) p -= m->mass[i] * sw_v3_dot(m->gravity, d->x + 3 * i);
-  return p;
-}

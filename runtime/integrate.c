@@ -30,7 +30,8 @@
 #include "vec.h"
 #include "internal.h"
 
-void sw_compute_loads(const swModel *m, swData *d) {
+/* All loads of the current configuration: internal, clamp couples, external. */
+static void compute_loads(const swModel *m, swData *d) {
   sw_internal_loads(m, d);
   if (m->nbc) sw_bc_loads(m, d);
   sw_external_loads(m, d);
@@ -86,7 +87,7 @@ static void drift(const swModel *m, swData *d, double h) {
  * a prescribed end moves by the midpoint rule's integral of its profile
  * (position Verlet's v_{n+1} is the velocity at t_{n+1} = t_kick + h/2). */
 static void kick(const swModel *m, swData *d, double h, double span) {
-  sw_compute_loads(m, d);
+  compute_loads(m, d);
   double *restrict v = d->v, *restrict w = d->omega;
   const double *restrict F = d->force, *restrict T = d->torque;
   const double *restrict ef = d->ext_force, *restrict et = d->ext_torque;

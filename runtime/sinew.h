@@ -209,7 +209,6 @@ int sw_check_finite(const swModel *m, swData *d);      /* stability.c   */
 /* Energies (J): kinetic (translational + rotational), elastic
  * (bend/twist + shear/stretch), and the work done on the system. */
 void sw_energy(const swModel *m, swData *d, double out[3]);
-double sw_gravity_potential(const swModel *m, const swData *d);
 
 /* Stable time step estimates, s (stability.c). */
 double sw_stable_dt(const swModel *m);
