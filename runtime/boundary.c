@@ -113,8 +113,7 @@ static int clamp_domain(const swModel *m, const swData *d, const swBCDesc *b,
   /* the domain lies clamp -> element at the start, element -> clamp at the end */
   if (b->end) sw_frame_log(phi, Qe, Qc); else sw_frame_log(phi, Qc, Qe);
   *D = 0.5 * m->rest_len[e];
-  /* bending stiffness of the end element (B^ of its nearest domain shares its
-   * E and I; recompute from the element's own section) */
+  /* the end element's own B^ (model.c: clamp_bend) */
   double eps = d->dilatation[e], inv_eps3 = 1.0 / (eps * eps * eps);
   for (int k = 0; k < 3; k++) {
     kappa[k] = phi[k] / *D;

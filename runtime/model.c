@@ -433,7 +433,7 @@ oom:
 void sw_data_free(swData *d) {
   if (!d) return;
   free(d->x); free(d->v); free(d->Q); free(d->omega);
-  free(d->tangent); free(d->length); free(d->dilatation); free(d->dilatation_rate);
+  free(d->length); free(d->dilatation);
   free(d->sigma); free(d->stress); free(d->vor_dilatation); free(d->kappa); free(d->couple);
   free(d->force); free(d->torque); free(d->ext_force); free(d->ext_torque);
   free(d);
@@ -444,13 +444,13 @@ swData *sw_data_new(const swModel *m) {
   if (!d) return NULL;
   size_t N = (size_t)m->nnode, E = (size_t)m->nelem, V = (size_t)m->nvor;
   d->x = dalloc(3 * N); d->v = dalloc(3 * N); d->Q = dalloc(9 * E); d->omega = dalloc(3 * E);
-  d->tangent = dalloc(3 * E); d->length = dalloc(E); d->dilatation = dalloc(E);
-  d->dilatation_rate = dalloc(E); d->sigma = dalloc(3 * E); d->stress = dalloc(3 * E);
+  d->length = dalloc(E); d->dilatation = dalloc(E);
+  d->sigma = dalloc(3 * E); d->stress = dalloc(3 * E);
   d->vor_dilatation = dalloc(V); d->kappa = dalloc(3 * V); d->couple = dalloc(3 * V);
   d->force = dalloc(3 * N); d->torque = dalloc(3 * E);
   d->ext_force = dalloc(3 * N); d->ext_torque = dalloc(3 * E);
-  if (!d->x || !d->v || !d->Q || !d->omega || !d->tangent || !d->length || !d->dilatation ||
-      !d->dilatation_rate || !d->sigma || !d->stress || !d->vor_dilatation || !d->kappa ||
+  if (!d->x || !d->v || !d->Q || !d->omega || !d->length || !d->dilatation ||
+      !d->sigma || !d->stress || !d->vor_dilatation || !d->kappa ||
       !d->couple || !d->force || !d->torque || !d->ext_force || !d->ext_torque) {
     sw_data_free(d);
     return NULL;
@@ -469,5 +469,5 @@ void sw_reset(const swModel *m, swData *d) {
   memset(d->v, 0, sizeof(double) * 3 * (size_t)m->nnode);
   memset(d->omega, 0, sizeof(double) * 3 * (size_t)m->nelem);
   sw_apply_bc_velocity(m, d, 0.0);
-  sw_strains(m, d);
+  sw_internal_loads(m, d); /* strains of the initial state */
 }

@@ -33,7 +33,6 @@
 static void rod_elements(const swModel *m, swData *d, int r) {
   const int n = m->rod_nelem[r], na = m->node_adr[r], ea = m->elem_adr[r];
   const double *restrict x = d->x + 3 * na;
-  const double *restrict v = d->v + 3 * na;
   const double *restrict Qs = d->Q + 9 * ea;
   const double *restrict w = d->omega + 3 * ea;
   const double *restrict rl = m->rest_len + ea, *restrict irl = m->inv_rest_len + ea;
@@ -42,31 +41,24 @@ static void rod_elements(const swModel *m, swData *d, int r) {
   const double *restrict J = m->inertia + 3 * ea;
   double *restrict F = d->force + 3 * na;
   double *restrict T = d->torque + 3 * ea;
-  double *restrict tan = d->tangent + 3 * ea;
   double *restrict len = d->length + ea, *restrict dil = d->dilatation + ea;
-  double *restrict dil_rate = d->dilatation_rate + ea;
   double *restrict sig = d->sigma + 3 * ea, *restrict str = d->stress + 3 * ea;
   double fprev[3] = {0, 0, 0};
   for (int i = 0; i < n; i++) {
     const double *Q = Qs + 9 * i;
-    double dx[3], dv[3];
+    double dx[3];
     sw_v3_sub(dx, x + 3 * (i + 1), x + 3 * i);
-    sw_v3_sub(dv, v + 3 * (i + 1), v + 3 * i);
     const double l = sw_v3_norm(dx), inv_l = 1.0 / l, inv_rl = irl[i];
     const double e = l * inv_rl, inv_e = rl[i] * inv_l;
     double Qdx[3], nm[3], f[3];
     sw_mat_vec(Qdx, Q, dx);
     for (int k = 0; k < 3; k++) {
-      tan[3 * i + k] = dx[k] * inv_l;
       sig[3 * i + k] = Qdx[k] * inv_rl - (k == 2);
       nm[k] = S[3 * i + k] * (sig[3 * i + k] - s0[3 * i + k]) * inv_e;
       str[3 * i + k] = nm[k];
     }
     len[i] = l;
     dil[i] = e;
-    /* de/dt = t . (v_{i+1} - v_i) / l^ */
-    const double edot = sw_v3_dot(dx, dv) * inv_l * inv_rl;
-    dil_rate[i] = edot;
     /* node force: Delta^h(Q^T n) */
     sw_matT_vec(f, Q, nm);
     for (int k = 0; k < 3; k++) {
@@ -120,12 +112,6 @@ static void rod_voronoi(const swModel *m, swData *d, int r) {
       T[3 * (j + 1) + k] += -c[k] + half_h;
     }
   }
-}
-
-void sw_strains(const swModel *m, swData *d) {
-  /* The element and Voronoi passes compute the strains as part of the
-   * internal loads; nothing is cheaper than doing both. */
-  sw_internal_loads(m, d);
 }
 
 void sw_internal_loads(const swModel *m, swData *d) {

@@ -172,10 +172,8 @@ typedef struct {
   /* state (nnode*3, nelem*9, nelem*3) */
   double *x, *v, *Q, *omega;
   /* derived per element (computed each force evaluation) */
-  double *tangent;           /* (nelem*3) unit tangent t                    */
   double *length;            /* (nelem)   current length l                   */
   double *dilatation;        /* (nelem)   e = l / l^                          */
-  double *dilatation_rate;   /* (nelem)   de/dt                              */
   double *sigma;             /* (nelem*3) shear/stretch strain, material     */
   double *stress;            /* (nelem*3) internal force n = S^ (s-s0) / e   */
   /* derived per Voronoi domain */
@@ -198,8 +196,7 @@ void sw_data_free(swData *d);
 void sw_reset(const swModel *m, swData *d);
 
 /* Kernels. */
-void sw_strains(const swModel *m, swData *d);          /* rod.c         */
-void sw_internal_loads(const swModel *m, swData *d);   /* rod.c         */
+void sw_internal_loads(const swModel *m, swData *d);   /* rod.c: strains and internal loads */
 void sw_external_loads(const swModel *m, swData *d);   /* loads.c       */
 void sw_apply_bc_velocity(const swModel *m, swData *d, double t); /* boundary.c */
 int sw_step(const swModel *m, swData *d);              /* integrate.c   */

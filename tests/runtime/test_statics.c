@@ -138,8 +138,7 @@ static void test_pure_torsion(void **state) {
   while (d->time < 50.0) {
     sw_test_run_to(m, d, d->time + 0.05);
     const double *Q = d->Q + 9 * (n - 1);
-    angle = atan2(-Q[1], Q[0]); /* d1 = (cos a, sin a, 0) rotated about z: sign below */
-    angle = fabs(angle);
+    angle = fabs(atan2(Q[1], Q[0])); /* d1 turns about the axis z from x */
     if (fabs(angle - prev) <= 1e-10 * angle) break;
     prev = angle;
   }
