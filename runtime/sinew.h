@@ -116,10 +116,35 @@ void sw_spec_set_dt(swSpec *s, double dt);
  * n x 9 (rows d1 d2 d3).  Optional; default is the straight rod. */
 int sw_spec_set_rest_shape(swSpec *s, int rod, const double *x, const double *Q);
 
+/* ---- joints (joint.c): penalty connections between rod nodes ----
+ * A joint ties node `node_a` of rod `rod_a` to node `node_b` of rod `rod_b`,
+ * or, when rod_b < 0, to the fixed point `anchor` in space (a rod hung on a
+ * hinge).  Node index -1 means the last node.  The positional constraint is a
+ * spring-damper on the gap (Zhang et al. 2019, Methods, "joints"); a hinge
+ * adds a couple that keeps the connected elements' tangents perpendicular to
+ * the axis (the axis is fixed in rod a's material frame, or in space when
+ * anchored); a fixed joint adds a couple that holds the relative rotation of
+ * the two elements at its initial value. */
+typedef enum { SW_JOINT_SPHERICAL = 0, SW_JOINT_HINGE = 1, SW_JOINT_FIXED = 2 } swJointKind;
+typedef struct {
+  const char *name;         /* used in output and error messages            */
+  swJointKind kind;
+  int rod_a, node_a;        /* node -1 = last node of the rod               */
+  int rod_b, node_b;        /* rod_b = -1: anchored to `anchor`             */
+  double anchor[3];         /* m, lab frame (rod_b < 0 only)                */
+  double axis[3];           /* hinge axis, lab frame at t = 0               */
+  double stiffness;         /* k, N/m, positional penalty                   */
+  double damping;           /* nu, N s/m                                    */
+  double rot_stiffness;     /* k_t, N m / rad, hinge and fixed couples      */
+  double rot_damping;       /* N m s / rad                                  */
+} swJointDesc;
+void sw_joint_desc_init(swJointDesc *j);    /* fills defaults */
+int sw_spec_add_joint(swSpec *s, const swJointDesc *j);  /* returns joint id */
+
 /* ---- the compiled model (immutable) ---- */
 typedef struct {
   /* sizes */
-  int nrod, nnode, nelem, nvor, nload, nbc;
+  int nrod, nnode, nelem, nvor, nload, nbc, njoint;
   /* options */
   double dt;                 /* time step, s                                 */
   swIntegrator integrator;
@@ -159,6 +184,8 @@ typedef struct {
   /* loads and boundary conditions */
   swLoadDesc *load;          /* (nload)                                      */
   swBCDesc *bc;              /* (nbc)                                        */
+  swJointDesc *joint;        /* (njoint), names owned by the model           */
+  char **joint_name;         /* (njoint)                                     */
   int has_gravity;
   int has_damping;
 } swModel;
@@ -185,6 +212,9 @@ typedef struct {
   double *torque;            /* (nelem*3) total couple, material frame       */
   double *ext_force;         /* (nnode*3) external force, lab                */
   double *ext_torque;        /* (nelem*3) external couple, material frame    */
+  /* joints, updated with each force evaluation */
+  double *joint_force;       /* (njoint*3) force of the joint on rod a, lab, N */
+  double *joint_angle;       /* (njoint)  hinge angle, rad (0 for others)     */
   /* instability report, filled when sw_step returns SW_EUNSTABLE */
   char error[512];
 } swData;
@@ -245,5 +275,51 @@ int sw_run(const swModel *m, swData *d, swOutput *out, const swRunOptions *ro);
 /* Parse a duration with optional unit ("50ns", "0.5 s", "2ms", "1e-3").
  * Returns 0 on success. */
 int sw_parse_time(const char *text, double *seconds);
+
+/* ---- units (units.c): the one table of unit names, shared with the
+ * compiler, and the parser of quantities on the command line ---- */
+enum { SW_DIM_MASS = 0, SW_DIM_LENGTH, SW_DIM_TIME, SW_DIM_ANGLE, SW_NDIM };
+typedef struct {
+  const char *name;            /* "kPa", "g", "deg"                         */
+  double scale;                /* value of 1 name in SI (rad for angles)    */
+  signed char dim[SW_NDIM];    /* exponents of kg, m, s, rad                */
+} swUnit;
+const swUnit *sw_unit_find(const char *name, size_t len);   /* NULL: unknown */
+const swUnit *sw_unit_table(int *count);
+/* Parse "0.3 m", "1.75 g/cm^3", "50ns", "-2", "10 N/m" into SI value and
+ * dimension.  Returns 0, or nonzero with a message in err. */
+int sw_parse_quantity(const char *text, double *si, signed char dim[SW_NDIM], char *err,
+                      size_t errlen);
+/* "length (m)", "pressure (Pa)", "kg m^-1 s^-2", "dimensionless" */
+const char *sw_dim_describe(char *buf, size_t len, const signed char dim[SW_NDIM]);
+
+/* ---- the simulator's command line (cli.c), called by generated main ---- */
+typedef struct {
+  const char *name;            /* as written in the model                   */
+  double value;                /* default, SI                               */
+  signed char dim[SW_NDIM];
+  const char *unit;            /* unit to show in --help ("m", "" if none)  */
+  const char *where;           /* "arm.sinew:3" for messages                */
+} swParam;
+
+typedef struct {
+  const char *name;            /* model name (file stem)                    */
+  const char *source;          /* full model text, imports inlined          */
+  const char *sha256;          /* hex digest of source                      */
+  int nparam;
+  const swParam *param;
+  /* Builds the scene from parameter values P (SI, in the order of param).
+   * Returns SW_OK, or SW_EMODEL with a message in err. */
+  int (*build)(swSpec *s, const double *P, char *err, size_t errlen);
+  double dt;                   /* s; 0 = half the stable estimate           */
+  double duration;             /* s                                         */
+  double every;                /* s between frames; 0 = every step          */
+  const char *out;             /* default output path                       */
+  int velocity, directors;     /* output selection                          */
+} swProgram;
+
+/* Parses --out --duration --dt --every --set NAME=VALUE --threads --quiet
+ * --info --help, builds, compiles and runs; returns the exit code. */
+int sw_main(const swProgram *p, int argc, char **argv);
 
 #endif
