@@ -32,7 +32,38 @@ TEST_BIN = $(TEST_SRC:tests/runtime/%.c=build/tests/%)
 TEST_SBIN = $(TEST_SRC:tests/runtime/%.c=build/asan/tests/%)
 
 .PHONY: all deps test check demo bench clean install
-all: build/libsinewrt.a
+all: build/libsinewrt.a bin/sinewc
+
+# ---- the compiler: flex + bison front end (lang/), checker and generator
+# (compiler/).  Generated parser sources are build outputs, never committed.
+CC_SRC   = $(wildcard compiler/*.c)
+CC_HDR   = $(wildcard compiler/*.h) build/lang/sinew.tab.h
+CC_OBJ   = $(CC_SRC:compiler/%.c=build/cc/%.o) build/cc/sinew.tab.o build/cc/lex.yy.o
+CC_SOBJ  = $(CC_SRC:compiler/%.c=build/asan/cc/%.o) build/asan/cc/sinew.tab.o build/asan/cc/lex.yy.o
+CC_INC   = -Icompiler -Ibuild/lang -Iruntime
+# flex output is not written for our warning set
+GEN_WARN = -Wno-unused-function -Wno-sign-compare -Wno-missing-prototypes -Wno-unused-parameter
+# the flags sinewc passes to the C compiler when it builds a simulator
+RT_LINK  = -DSW_RT_CFLAGS='"$(PKG_CFLAGS)"' -DSW_RT_LIBS='"$(PKG_LIBS) -lm"'
+
+build/lang/sinew.tab.c build/lang/sinew.tab.h: lang/sinew.y | build/lang
+	bison -Wall -Werror -d -o build/lang/sinew.tab.c lang/sinew.y
+build/lang/lex.yy.c: lang/sinew.l build/lang/sinew.tab.h | build/lang
+	flex -o $@ lang/sinew.l
+build/cc/%.o: compiler/%.c $(CC_HDR) $(RT_HDR) | build/cc
+	$(CC) $(ALL_CFLAGS) $(CC_INC) $(RT_LINK) -c $< -o $@
+build/cc/%.o: build/lang/%.c $(CC_HDR) $(RT_HDR) | build/cc
+	$(CC) $(ALL_CFLAGS) $(GEN_WARN) $(CC_INC) -c $< -o $@
+build/asan/cc/%.o: compiler/%.c $(CC_HDR) $(RT_HDR) | build/asan/cc
+	$(CC) $(SAN_CFLAGS) $(CC_INC) $(RT_LINK) -c $< -o $@
+build/asan/cc/%.o: build/lang/%.c $(CC_HDR) $(RT_HDR) | build/asan/cc
+	$(CC) $(SAN_CFLAGS) $(GEN_WARN) $(CC_INC) -c $< -o $@
+bin/sinewc: $(CC_OBJ) build/libsinewrt.a | bin
+	$(CC) $(ALL_CFLAGS) $(CC_OBJ) -o $@ build/libsinewrt.a $(LIBS)
+build/asan/sinewc: $(CC_SOBJ) build/asan/libsinewrt.a
+	$(CC) $(SAN_CFLAGS) $(CC_SOBJ) -o $@ build/asan/libsinewrt.a $(LIBS)
+build/lang build/cc build/asan/cc bin:
+	@mkdir -p $@
 
 deps:
 	@sh scripts/deps.sh
@@ -81,4 +112,4 @@ demo: deps
 	@h5ls -r build/cantilever.h5
 
 clean:
-	rm -rf build
+	rm -rf build bin

@@ -16,6 +16,7 @@
 #ifndef SINEW_H
 #define SINEW_H
 
+#include <math.h>     /* generated code computes param-dependent values with sqrt, pow, sin */
 #include <stddef.h>
 #include <stdio.h>
 
@@ -137,7 +138,13 @@ typedef struct {
   double damping;           /* nu, N s/m                                    */
   double rot_stiffness;     /* k_t, N m / rad, hinge and fixed couples      */
   double rot_damping;       /* N m s / rad                                  */
+  int undamped;             /* 1: no damping at all (damping, rot_damping   */
+                            /* must then be 0; 0 otherwise means "choose")  */
 } swJointDesc;
+/* sw_joint_desc_init: spherical, rod_a 0 node -1 to anchor (0,0,0) (rod_b -1,
+ * node_b 0), and 0 for stiffness, damping, rot_stiffness and rot_damping,
+ * which sw_compile replaces by values derived from the connected elements
+ * (joint.c explains them; the compiled model->joint holds the values used). */
 void sw_joint_desc_init(swJointDesc *j);    /* fills defaults */
 int sw_spec_add_joint(swSpec *s, const swJointDesc *j);  /* returns joint id */
 
@@ -184,8 +191,18 @@ typedef struct {
   /* loads and boundary conditions */
   swLoadDesc *load;          /* (nload)                                      */
   swBCDesc *bc;              /* (nbc)                                        */
-  swJointDesc *joint;        /* (njoint), names owned by the model           */
+  swJointDesc *joint;        /* (njoint), names owned by the model, nodes,
+                                stiffness and damping resolved (joint.c)    */
   char **joint_name;         /* (njoint)                                     */
+  int *joint_node_a;         /* (njoint)   global node on rod a              */
+  int *joint_node_b;         /* (njoint)   global node on rod b, -1 anchored */
+  int *joint_elem_a;         /* (njoint)   element of rod a taking couples   */
+  int *joint_elem_b;         /* (njoint)   element of rod b, -1 anchored     */
+  double *joint_axis_a;      /* (njoint*3) hinge axis, material frame of elem a */
+  double *joint_axis_b;      /* (njoint*3) of elem b; lab frame when anchored */
+  double *joint_rest_rot;    /* (njoint*9) Q_b Q_a^T at t = 0 (two rods)      */
+  double *joint_angle0;      /* (njoint)   hinge angle at t = 0, rad         */
+  double *joint_wave_dt;     /* (njoint)   stable dt estimate of each joint  */
   int has_gravity;
   int has_damping;
 } swModel;
@@ -240,6 +257,7 @@ void sw_energy(const swModel *m, swData *d, double out[3]);
 /* Stable time step estimates, s (stability.c). */
 double sw_stable_dt(const swModel *m);
 double sw_stable_dt_rod(const swModel *m, int rod);
+double sw_stable_dt_joint(const swModel *m, int joint);
 
 /* ---- output (output.c, the only file that touches HDF5) ---- */
 typedef struct swOutput swOutput;

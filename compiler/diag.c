@@ -1,0 +1,198 @@
+/* diag.c — diagnostics: "file:line:col: error: message", the source line and
+ * a caret, and the "did you mean" search.
+ *
+ * Design.  The file table owns copies of every source text.  A diagnostic
+ * prints its header, then the line it points at with a gutter holding the line
+ * number, then a caret under the first column and tildes under the rest of the
+ * token (only within the first line of a multi-line span).  Tabs in the source
+ * are reproduced in the caret line so the caret stays aligned whatever the tab
+ * width.  After 100 errors the compiler stops talking: by then the first ones
+ * are what matters.
+ */
+#include <stdarg.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "diag.h"
+
+#define MAX_ERRORS 100
+
+static swSource *files;
+static int nfiles, capfiles;
+static int nerrors, nwarnings, werror;
+static FILE *diag_out;
+
+void diag_reset(FILE *out) {
+  for (int i = 0; i < nfiles; i++) {
+    free(files[i].path);
+    free(files[i].text);
+  }
+  free(files);
+  files = NULL;
+  nfiles = capfiles = 0;
+  nerrors = nwarnings = 0;
+  werror = 0;
+  diag_out = out;
+}
+
+int diag_add_file(const char *path, const char *text, size_t len) {
+  if (nfiles == capfiles) {
+    capfiles = capfiles ? 2 * capfiles : 8;
+    files = realloc(files, (size_t)capfiles * sizeof *files);
+    if (!files) abort();
+  }
+  swSource *f = &files[nfiles];
+  f->path = strdup(path);
+  f->text = malloc(len + 1);
+  if (!f->path || !f->text) abort();
+  memcpy(f->text, text, len);
+  f->text[len] = 0;
+  f->len = len;
+  return nfiles++;
+}
+
+const swSource *diag_file(int id) {
+  return id >= 0 && id < nfiles ? &files[id] : NULL;
+}
+
+int diag_nfiles(void) { return nfiles; }
+int diag_errors(void) { return nerrors; }
+int diag_warnings(void) { return nwarnings; }
+void diag_set_werror(int on) { werror = on; }
+
+static FILE *out_stream(void) { return diag_out ? diag_out : stderr; }
+
+/* Start and length of line `line` (1-based) of file f, without the newline. */
+static const char *line_text(const swSource *f, int line, size_t *len) {
+  const char *p = f->text, *end = f->text + f->len;
+  for (int l = 1; l < line && p < end; l++) {
+    const char *nl = memchr(p, '\n', (size_t)(end - p));
+    if (!nl) return NULL;
+    p = nl + 1;
+  }
+  if (p > end) return NULL;
+  const char *nl = memchr(p, '\n', (size_t)(end - p));
+  *len = (size_t)((nl ? nl : end) - p);
+  if (*len && p[*len - 1] == '\r') (*len)--;
+  return p;
+}
+
+static void show_source(FILE *out, swLoc loc) {
+  const swSource *f = diag_file(loc.file);
+  size_t len;
+  const char *text = f && loc.line > 0 ? line_text(f, loc.line, &len) : NULL;
+  if (!text) return;
+  fprintf(out, "%5d | ", loc.line);
+  for (size_t i = 0; i < len; i++) {
+    unsigned char c = (unsigned char)text[i];
+    fputc(c == '\t' || c >= 0x20 ? c : '?', out);   /* control bytes shown as ? */
+  }
+  fputs("\n      | ", out);
+  int col = loc.col < 1 ? 1 : loc.col;
+  for (int i = 1; i < col && (size_t)i <= len; i++) fputc(text[i - 1] == '\t' ? '\t' : ' ', out);
+  fputc('^', out);
+  int last = loc.end_line == loc.line ? loc.end_col : (int)len;
+  if (last > (int)len) last = (int)len;
+  for (int i = col + 1; i <= last; i++) fputc('~', out);
+  fputc('\n', out);
+}
+
+static void report(const char *severity, swLoc loc, const char *fmt, va_list ap) {
+  FILE *out = out_stream();
+  const swSource *f = diag_file(loc.file);
+  if (f && loc.line > 0) fprintf(out, "%s:%d:%d: %s: ", f->path, loc.line, loc.col, severity);
+  else if (f) fprintf(out, "%s: %s: ", f->path, severity);   /* the file as a whole */
+  else fprintf(out, "sinewc: %s: ", severity);
+  vfprintf(out, fmt, ap);
+  fputc('\n', out);
+  if (f && loc.line > 0) show_source(out, loc);
+}
+
+void diag_error(swLoc loc, const char *fmt, ...) {
+  if (++nerrors > MAX_ERRORS) {
+    if (nerrors == MAX_ERRORS + 1)
+      fprintf(out_stream(), "sinewc: too many errors (%d); stopping here\n", MAX_ERRORS);
+    return;
+  }
+  va_list ap;
+  va_start(ap, fmt);
+  report("error", loc, fmt, ap);
+  va_end(ap);
+}
+
+void diag_warning(swLoc loc, const char *fmt, ...) {
+  if (nerrors > MAX_ERRORS) return;
+  va_list ap;
+  va_start(ap, fmt);
+  if (werror) {
+    nerrors++;
+    report("error", loc, fmt, ap);
+  } else {
+    nwarnings++;
+    report("warning", loc, fmt, ap);
+  }
+  va_end(ap);
+}
+
+void diag_note(swLoc loc, const char *fmt, ...) {
+  if (nerrors > MAX_ERRORS) return;
+  va_list ap;
+  va_start(ap, fmt);
+  report("note", loc, fmt, ap);
+  va_end(ap);
+}
+
+void diag_plain(const char *fmt, ...) {
+  nerrors++;
+  FILE *out = out_stream();
+  va_list ap;
+  va_start(ap, fmt);
+  fputs("sinewc: ", out);
+  vfprintf(out, fmt, ap);
+  fputc('\n', out);
+  va_end(ap);
+}
+
+const char *diag_where(swLoc loc, char *buf, size_t len) {
+  const swSource *f = diag_file(loc.file);
+  snprintf(buf, len, "%s:%d", f ? f->path : "?", loc.line);
+  return buf;
+}
+
+/* Optimal string alignment distance (Damerau-Levenshtein without repeated
+ * edits of a substring), bounded to names of at most 63 characters. */
+static int edit_distance(const char *a, const char *b) {
+  size_t la = strlen(a), lb = strlen(b);
+  if (la > 63 || lb > 63) return 1000;
+  int d[64][64];
+  for (size_t i = 0; i <= la; i++) d[i][0] = (int)i;
+  for (size_t j = 0; j <= lb; j++) d[0][j] = (int)j;
+  for (size_t i = 1; i <= la; i++)
+    for (size_t j = 1; j <= lb; j++) {
+      int cost = a[i - 1] != b[j - 1];
+      int best = d[i - 1][j] + 1;
+      if (d[i][j - 1] + 1 < best) best = d[i][j - 1] + 1;
+      if (d[i - 1][j - 1] + cost < best) best = d[i - 1][j - 1] + cost;
+      if (i > 1 && j > 1 && a[i - 1] == b[j - 2] && a[i - 2] == b[j - 1] &&
+          d[i - 2][j - 2] + 1 < best)
+        best = d[i - 2][j - 2] + 1;
+      d[i][j] = best;
+    }
+  return d[la][lb];
+}
+
+const char *diag_suggest(const char *name, const char *const *cands, int n) {
+  const char *best = NULL;
+  int best_d = 1000;
+  int len = (int)strlen(name);
+  int limit = len <= 3 ? 1 : len <= 6 ? 2 : 3;
+  for (int i = 0; i < n; i++) {
+    if (!cands[i] || !strcmp(cands[i], name)) continue;
+    int dist = edit_distance(name, cands[i]);
+    if (dist < best_d) {
+      best_d = dist;
+      best = cands[i];
+    }
+  }
+  return best_d <= limit ? best : NULL;
+}

@@ -1,0 +1,43 @@
+/* diag.h — source files and diagnostics of the compiler.
+ *
+ * Design.  Every file the compiler reads is registered here once and keeps
+ * its text for the whole compilation, so a diagnostic at any stage can print
+ * "file:line:col: error: message", the source line and a caret under the
+ * columns it names (the convention of gcc and clang).  Errors are counted,
+ * not fatal: every stage goes on and reports everything it can.  The output
+ * stream is settable so the tests can capture the exact text.
+ */
+#ifndef SINEW_DIAG_H
+#define SINEW_DIAG_H
+
+#include <stdio.h>
+#include "ast.h"
+
+typedef struct {
+  char *path;        /* as shown in messages                  */
+  char *text;        /* whole file, NUL-terminated            */
+  size_t len;
+} swSource;
+
+void diag_reset(FILE *out);                /* forget all files and counts */
+int diag_add_file(const char *path, const char *text, size_t len);  /* file id */
+const swSource *diag_file(int id);
+int diag_nfiles(void);
+
+void diag_error(swLoc loc, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
+void diag_warning(swLoc loc, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
+void diag_note(swLoc loc, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
+/* A message with no place in a model ("sinewc: cannot read x.sinew"). */
+void diag_plain(const char *fmt, ...) __attribute__((format(printf, 1, 2)));
+int diag_errors(void);
+int diag_warnings(void);
+void diag_set_werror(int on);
+
+/* The closest of n candidate names to `name`, or NULL when none is close
+ * enough to be a likely misspelling (edit distance, transpositions count 1). */
+const char *diag_suggest(const char *name, const char *const *cands, int n);
+
+/* "file:line" of a location, for messages that point elsewhere. */
+const char *diag_where(swLoc loc, char *buf, size_t len);
+
+#endif

@@ -1,0 +1,39 @@
+/* gen.h — from the checked scene to the runtime: the lowering tables shared by
+ * the compiler's checks and the C generator, and the generator itself.
+ *
+ * Design.  See gen_lower.c (one table per runtime struct) and gen_c.c (the
+ * printer).  gen_check() runs the runtime's own validation and stable-dt
+ * estimate on the scene with every param at its default.
+ */
+#ifndef SINEW_GEN_H
+#define SINEW_GEN_H
+
+#include <stdio.h>
+#include "sema.h"
+
+#define GEN_MAX_FIELDS 24
+
+typedef struct {
+  const char *member;        /* C member of the runtime struct            */
+  size_t offset;             /* its offset                                */
+  int n;                     /* doubles                                   */
+  const swValue *value;
+} swLowField;
+
+int gen_rod_fields(const swSceneRod *r, swLowField *out);
+int gen_joint_fields(const swSceneJoint *j, swLowField *out);
+int gen_signal_fields(const swSignalVal *s, swLowField *out);
+swSignal gen_signal(const swSignalVal *sig);
+swSpec *gen_spec(const swScene *sc);
+
+/* Validate the scene with the runtime (sw_compile) and warn when dt is above
+ * the stable estimate.  Returns the number of errors. */
+int gen_check(const swScene *sc);
+
+/* Print the simulator's C source. */
+typedef struct {
+  const char *compiler;      /* "sinewc 0.1.0"                            */
+} swGenOptions;
+int gen_c(FILE *out, swArena *a, const swScene *sc, const swGenOptions *opt);
+
+#endif

@@ -1,0 +1,277 @@
+/* gen_c.c — the C generator: one readable, deterministic C file per model.
+ *
+ * Design.  A plain walk over the checked scene (chibicc's way): the model
+ * source as a string table, the param table, a build() function that fills
+ * the runtime's swSpec one definition at a time, and a main() that hands
+ * everything to the runtime's command line (sw_main).  Each block starts with
+ * a #line directive and a comment quoting the model line it comes from, so
+ * both a reader and a C compiler message lead back to the model.  Constants
+ * are printed folded (shortest round-trip decimal); param-dependent values
+ * are C expressions over P[i].  Nothing from the model reaches the C text
+ * unescaped: strings go through c_string() (octal escapes for everything but
+ * plain printable ASCII), comments through c_comment() (no "*" "/" can close
+ * them), and identifiers only inside those.  No timestamps, no paths of the
+ * machine, stable order: the same model gives the same bytes.
+ */
+#include <stdio.h>
+#include <string.h>
+
+#include "diag.h"
+#include "gen.h"
+
+/* A C string literal of text[0..len), escaped. */
+static void c_string(FILE *out, const char *text, size_t len) {
+  fputc('"', out);
+  for (size_t i = 0; i < len; i++) {
+    unsigned char c = (unsigned char)text[i];
+    if (c == '"' || c == '\\') fprintf(out, "\\%c", c);
+    else if (c == '\n') fputs("\\n", out);
+    else if (c == '\t') fputs("\\t", out);
+    else if (c == '?') fputs("\\?", out);          /* no trigraphs */
+    else if (c >= 0x20 && c < 0x7f) fputc(c, out);
+    else fprintf(out, "\\%03o", c);
+  }
+  fputc('"', out);
+}
+
+static void c_string0(FILE *out, const char *text) { c_string(out, text, strlen(text)); }
+
+/* Model text inside a C comment: printable ASCII only, and nothing that could
+ * end or nest the comment or splice lines. */
+static void c_comment_text(FILE *out, const char *text, size_t len) {
+  for (size_t i = 0; i < len; i++) {
+    unsigned char c = (unsigned char)text[i];
+    if (c == '*' && i + 1 < len && text[i + 1] == '/') fputs("* ", out);
+    else if (c == '/' && i + 1 < len && text[i + 1] == '*') fputs("/ ", out);
+    else if (c == '\\' || c == '?') fputc(c == '\\' ? '|' : '.', out);
+    else if (c == '\t') fputc(' ', out);
+    else if (c >= 0x20 && c < 0x7f) fputc(c, out);
+    else fputc('.', out);
+  }
+}
+
+/* #line and a comment quoting the model line of loc. */
+static void origin(FILE *out, swLoc loc, const char *indent) {
+  const swSource *f = diag_file(loc.file);
+  if (!f || loc.line < 1) return;
+  const char *p = f->text, *end = f->text + f->len;
+  for (int l = 1; l < loc.line && p < end; l++) {
+    const char *nl = memchr(p, '\n', (size_t)(end - p));
+    p = nl ? nl + 1 : end;
+  }
+  const char *nl = memchr(p, '\n', (size_t)(end - p));
+  size_t len = (size_t)((nl ? nl : end) - p);
+  while (len && (p[0] == ' ' || p[0] == '\t')) { p++; len--; }
+  if (len > 100) len = 100;
+  fprintf(out, "#line %d ", loc.line);
+  c_string0(out, f->path);
+  fprintf(out, "\n%s/* ", indent);
+  c_comment_text(out, p, len);
+  fputs(" */\n", out);
+}
+
+static void assign_fields(FILE *out, swArena *a, const char *var, const swLowField *f, int n) {
+  for (int i = 0; i < n; i++) {
+    if (f[i].n == 1)
+      fprintf(out, "    %s.%s = %s;\n", var, f[i].member, val_c(a, f[i].value, 0));
+    else
+      for (int k = 0; k < f[i].n; k++)
+        fprintf(out, "    %s.%s[%d] = %s;\n", var, f[i].member, k, val_c(a, f[i].value, k));
+  }
+}
+
+static void emit_signal(FILE *out, swArena *a, const char *var, const swSignalVal *sig) {
+  if (!sig) {
+    fprintf(out, "    %s.signal = sw_signal_const(1.0);\n", var);
+    return;
+  }
+  static const char *kinds[] = {"SW_SIG_CONST", "SW_SIG_RAMP", "SW_SIG_SINE", "SW_SIG_STEP",
+                                "SW_SIG_TABLE"};
+  fprintf(out, "    %s.signal.kind = %s;\n", var, kinds[sig->kind]);
+  swLowField f[GEN_MAX_FIELDS];
+  char sv[64];
+  snprintf(sv, sizeof sv, "%s.signal", var);
+  assign_fields(out, a, sv, f, gen_signal_fields(sig, f));
+  if (sig->kind == SW_SIG_TABLE) {
+    fprintf(out, "    %s.signal.npts = %d;\n", var, sig->npts);
+    for (int k = 0; k < sig->npts; k++)
+      fprintf(out, "    %s.signal.times[%d] = %s; %s.signal.values[%d] = %s;\n", var, k,
+              val_c(a, &sig->times, k), var, k, val_c(a, &sig->values, k));
+  }
+}
+
+static const char *rod_kind_word(swRodKind k) {
+  static const char *w[] = {"rod", "bone", "tendon", "muscle"};
+  return w[k];
+}
+
+static void emit_build(FILE *out, swArena *a, const swScene *sc) {
+  fputs("/* Builds the scene from the param values P (SI units, in the order of\n"
+        " * params[]).  Returns SW_OK or SW_EMODEL with a message in err. */\n"
+        "static int build(swSpec *s, const double *P, char *err, size_t errlen) {\n"
+        "  int ok = 1;\n"
+        "  (void)P;\n", out);
+  swLowField f[GEN_MAX_FIELDS];
+  for (int i = 0; i < sc->nrod; i++) {
+    const swSceneRod *r = &sc->rod[i];
+    fputc('\n', out);
+    origin(out, r->loc, "  ");
+    fputs("  {\n    swRodDesc rod;\n    sw_rod_desc_init(&rod);\n    rod.name = ", out);
+    c_string0(out, r->name);
+    fprintf(out, ";   /* %s, rod %d */\n", rod_kind_word(r->kind), i);
+    fprintf(out, "    rod.nelem = %d;\n", r->nelem);
+    static const char *damp[] = {"SW_DAMP_NONE", "SW_DAMP_LINEAR", "SW_DAMP_ANALYTIC"};
+    fprintf(out, "    rod.damping = %s;\n", damp[r->damping]);
+    assign_fields(out, a, "rod", f, gen_rod_fields(r, f));
+    fputs("    ok &= sw_spec_add_rod(s, &rod) >= 0;\n  }\n", out);
+  }
+  for (int i = 0; i < sc->njoint; i++) {
+    const swSceneJoint *j = &sc->joint[i];
+    static const char *kinds[] = {"SW_JOINT_SPHERICAL", "SW_JOINT_HINGE", "SW_JOINT_FIXED"};
+    fputc('\n', out);
+    origin(out, j->loc, "  ");
+    fputs("  {\n    swJointDesc joint;\n    sw_joint_desc_init(&joint);\n    joint.name = ", out);
+    c_string0(out, j->name);
+    fprintf(out, ";\n    joint.kind = %s;\n", kinds[j->kind]);
+    fprintf(out, "    joint.rod_a = %d; joint.node_a = %d;\n", j->rod_a, j->node_a);
+    fprintf(out, "    joint.rod_b = %d; joint.node_b = %d;\n", j->rod_b, j->node_b);
+    assign_fields(out, a, "joint", f, gen_joint_fields(j, f));
+    fputs("    ok &= sw_spec_add_joint(s, &joint) >= 0;\n  }\n", out);
+  }
+  for (int i = 0; i < sc->nact; i++) {
+    const swSceneAction *act = &sc->act[i];
+    fputc('\n', out);
+    origin(out, act->loc, "  ");
+    if (act->is_bc) {
+      static const char *kinds[] = {"SW_BC_CLAMP", "SW_BC_VELOCITY", "SW_BC_OMEGA"};
+      fputs("  {\n    swBCDesc bc = {0};\n", out);
+      fprintf(out, "    bc.kind = %s;\n    bc.rod = %d;   /* ", kinds[act->kind], act->rod);
+      c_comment_text(out, sc->rod[act->rod].name, strlen(sc->rod[act->rod].name));
+      fprintf(out, " */\n    bc.end = %d;\n", act->index);
+      if (act->kind != SW_BC_CLAMP)
+        for (int k = 0; k < 3; k++)
+          fprintf(out, "    bc.vec[%d] = %s;\n", k, val_c(a, &act->vec, k));
+      emit_signal(out, a, "bc", act->sig);
+      fputs("    ok &= sw_spec_add_bc(s, &bc) >= 0;\n  }\n", out);
+    } else {
+      static const char *kinds[] = {"SW_LOAD_FORCE", "SW_LOAD_TORQUE"};
+      fputs("  {\n    swLoadDesc load = {0};\n", out);
+      fprintf(out, "    load.kind = %s;\n    load.rod = %d;   /* ", kinds[act->kind], act->rod);
+      c_comment_text(out, sc->rod[act->rod].name, strlen(sc->rod[act->rod].name));
+      fprintf(out, " */\n    load.index = %d;\n", act->index);
+      for (int k = 0; k < 3; k++)
+        fprintf(out, "    load.vec[%d] = %s;\n", k, val_c(a, &act->vec, k));
+      emit_signal(out, a, "load", act->sig);
+      fputs("    ok &= sw_spec_add_load(s, &load) >= 0;\n  }\n", out);
+    }
+  }
+  if (sc->gravity.kind == VAL_VEC) {
+    fputc('\n', out);
+    origin(out, sc->gravity_loc, "  ");
+    fprintf(out, "  {\n    const double g[3] = {%s, %s, %s};\n    sw_spec_set_gravity(s, g);\n  }\n",
+            val_c(a, &sc->gravity, 0), val_c(a, &sc->gravity, 1), val_c(a, &sc->gravity, 2));
+  }
+  fprintf(out, "\n  sw_spec_set_integrator(s, %s);\n",
+          sc->integrator == SW_PEFRL ? "SW_PEFRL" : "SW_VERLET");
+  fputs("  if (!ok) {\n    snprintf(err, errlen, \"out of memory while building the scene\");\n"
+        "    return SW_EMODEL;\n  }\n  return SW_OK;\n}\n", out);
+}
+
+static void emit_source(FILE *out, const char *src) {
+  fputs("/* The model source, imports inlined: the output's model_source attribute. */\n"
+        "static const char model_source[] =\n", out);
+  const char *p = src;
+  if (!*p) fputs("  \"\"", out);
+  while (*p) {
+    const char *nl = strchr(p, '\n');
+    size_t len = nl ? (size_t)(nl - p) + 1 : strlen(p);
+    fputs("  ", out);
+    c_string(out, p, len);
+    p += len;
+    if (*p) fputc('\n', out);
+  }
+  fputs(";\n\n", out);
+}
+
+int gen_c(FILE *out, swArena *a, const swScene *sc, const swGenOptions *opt) {
+  const swSource *main_src = diag_file(0);
+  fputs("/* Generated by ", out);
+  c_comment_text(out, opt->compiler, strlen(opt->compiler));
+  fputs(" from ", out);
+  if (main_src) c_comment_text(out, main_src->path, strlen(main_src->path));
+  fputs(".\n * Do not edit: change the model and compile it again.  Each block of\n"
+        " * build() starts with the model line it comes from. */\n"
+        "#include \"sinew.h\"\n\n", out);
+  emit_source(out, sc->source ? sc->source : "");
+  if (sc->nparam) {
+    fputs("/* Params, overridable with --set NAME=VALUE; defaults in SI units.\n"
+          " * Dimensions are exponents of (kg, m, s, rad). */\n", out);
+    fprintf(out, "static const swParam params[%d] = {\n", sc->nparam);
+    for (int i = 0; i < sc->nparam; i++) {
+      const swSceneParam *p = &sc->param[i];
+      char where[512];
+      fputs("  {", out);
+      c_string0(out, p->name);
+      fprintf(out, ", %s, {%d, %d, %d, %d}, ", val_c(a, &p->value, 0), p->value.dim.e[0],
+              p->value.dim.e[1], p->value.dim.e[2], p->value.dim.e[3]);
+      c_string0(out, p->unit);
+      fputs(", ", out);
+      c_string0(out, diag_where(p->loc, where, sizeof where));
+      fprintf(out, "},   /* P[%d] */\n", i);
+    }
+    fputs("};\n\n", out);
+  }
+  emit_build(out, a, sc);
+  char every[64] = "0.0";
+  swValue ev = val_num(a, sc->every, DIM_TIME, (swLoc){0});
+  snprintf(every, sizeof every, "%s", val_c(a, &ev, 0));
+  swValue dt = val_num(a, sc->dt, DIM_TIME, (swLoc){0});
+  swValue du = val_num(a, sc->has_duration ? sc->duration : 1.0, DIM_TIME, (swLoc){0});
+  fputs("\nint main(int argc, char **argv) {\n  static const swProgram program = {\n    .name = ",
+        out);
+  c_string0(out, sc->model_name);
+  fputs(",\n    .source = model_source,\n    .sha256 = ", out);
+  c_string0(out, sc->sha256);
+  fprintf(out, ",\n    .nparam = %d,\n    .param = %s,\n    .build = build,\n", sc->nparam,
+          sc->nparam ? "params" : "NULL");
+  fprintf(out, "    .dt = %s,%s\n    .duration = %s,\n    .every = %s,\n    .out = ",
+          val_c(a, &dt, 0), sc->dt > 0 ? "" : "   /* half the stable estimate */",
+          val_c(a, &du, 0), every);
+  if (sc->out) c_string0(out, sc->out);
+  else {
+    char def[512];
+    snprintf(def, sizeof def, "%s.h5", sc->model_name);
+    c_string0(out, def);
+  }
+  fprintf(out, ",\n    .velocity = %d,\n    .directors = %d,\n  };\n"
+          "  return sw_main(&program, argc, argv);\n}\n", sc->velocity, sc->directors);
+  return ferror(out) ? -1 : 0;
+}
+
+int gen_check(const swScene *sc) {
+  swSpec *s = gen_spec(sc);
+  if (!s) {
+    diag_plain("out of memory");
+    return 1;
+  }
+  char err[512] = "";
+  swModel *m = sw_compile(s, err, sizeof err);
+  sw_spec_free(s);
+  swLoc whole = {0, 0, 0, 0, 0};
+  if (!m) {
+    diag_error(whole, "the runtime rejects this scene: %s", err[0] ? err : "unknown reason");
+    return 1;
+  }
+  if (sc->dt > 0 && m->nrod > 0) {
+    double est = sw_stable_dt(m);
+    int worst = 0;
+    for (int r = 1; r < m->nrod; r++)
+      if (sw_stable_dt_rod(m, r) < sw_stable_dt_rod(m, worst)) worst = r;
+    if (sc->dt > est)
+      diag_warning(sc->dt_loc, "dt = %g s is above the stable estimate %.3g s of this scene "
+                   "(set by rod '%s'); the run will likely become unstable", sc->dt, est,
+                   m->rod_name[worst]);
+  }
+  sw_model_free(m);
+  return 0;
+}

@@ -1,0 +1,148 @@
+/* gen_lower.c — the one mapping from the checked scene to the runtime's
+ * description structs (swRodDesc, swJointDesc, swSignal, ...).
+ *
+ * Design.  The mapping is a table per struct: C member name, offset,
+ * component count, and the scene value that fills it.  Two consumers walk the
+ * same tables: gen_spec() fills real structs with the default values, so the
+ * compiler can hand the scene to the runtime's own validation (sw_compile)
+ * and stable-dt estimate; gen_c.c prints an assignment per entry, with the
+ * value's folded constant or its param-dependent C expression.  One table
+ * means the generated simulator and the compiler's checks cannot drift apart.
+ */
+#include <stddef.h>
+#include <stdio.h>
+#include <string.h>
+
+#include "gen.h"
+
+#define F(member, n, value) {#member, offsetof(swRodDesc, member), n, value}
+
+int gen_rod_fields(const swSceneRod *r, swLowField *out) {
+  const swLowField f[] = {
+    F(start, 3, &r->start),
+    F(direction, 3, &r->direction),
+    F(normal, 3, &r->normal),
+    F(length, 1, &r->length),
+    F(radius_start, 1, &r->radius_start),
+    F(radius_end, 1, &r->radius_end),
+    F(density, 1, &r->density),
+    F(youngs, 1, &r->youngs),
+    F(shear_modulus, 1, &r->shear_modulus),
+    F(poisson, 1, &r->poisson),
+    F(shear_hardening, 1, &r->shear_hardening),
+    F(twist_hardening, 1, &r->twist_hardening),
+    F(rest_kappa, 3, &r->rest_kappa),
+    F(rest_sigma, 3, &r->rest_sigma),
+    F(gamma, 1, &r->gamma),
+  };
+  memcpy(out, f, sizeof f);
+  return (int)(sizeof f / sizeof f[0]);
+}
+#undef F
+
+#define F(member, n, value) {#member, offsetof(swJointDesc, member), n, value}
+int gen_joint_fields(const swSceneJoint *j, swLowField *out) {
+  const swLowField f[] = {
+    F(anchor, 3, &j->anchor),
+    F(axis, 3, &j->axis),
+    F(stiffness, 1, &j->stiffness),
+    F(damping, 1, &j->damping),
+    F(rot_stiffness, 1, &j->rot_stiffness),
+    F(rot_damping, 1, &j->rot_damping),
+  };
+  memcpy(out, f, sizeof f);
+  return (int)(sizeof f / sizeof f[0]);
+}
+#undef F
+
+#define F(member, value) {#member, offsetof(swSignal, member), 1, value}
+int gen_signal_fields(const swSignalVal *s, swLowField *out) {
+  const swLowField f[] = {
+    F(a, &s->a), F(b, &s->b), F(t0, &s->t0), F(T, &s->T), F(freq, &s->freq), F(phase, &s->phase),
+  };
+  int n = 0;
+  for (size_t i = 0; i < sizeof f / sizeof f[0]; i++)
+    if (f[i].value->kind == VAL_NUM) out[n++] = f[i];
+  return n;
+}
+#undef F
+
+static void fill(void *desc, const swLowField *f, int n) {
+  for (int i = 0; i < n; i++) {
+    double *dst = (double *)((char *)desc + f[i].offset);
+    for (int k = 0; k < f[i].n; k++) dst[k] = f[i].value->v[k];
+  }
+}
+
+swSignal gen_signal(const swSignalVal *sig) {
+  swSignal s = sw_signal_const(1.0);
+  if (!sig) return s;
+  swLowField f[GEN_MAX_FIELDS];
+  s.kind = sig->kind;
+  s.a = s.b = s.t0 = s.T = s.freq = s.phase = 0;
+  fill(&s, f, gen_signal_fields(sig, f));
+  if (sig->kind == SW_SIG_TABLE) {
+    s.npts = sig->npts;
+    for (int k = 0; k < sig->npts; k++) {
+      s.times[k] = sig->times.v[k];
+      s.values[k] = sig->values.v[k];
+    }
+  }
+  return s;
+}
+
+swSpec *gen_spec(const swScene *sc) {
+  swSpec *s = sw_spec_new();
+  if (!s) return NULL;
+  swLowField f[GEN_MAX_FIELDS];
+  for (int i = 0; i < sc->nrod; i++) {
+    const swSceneRod *r = &sc->rod[i];
+    swRodDesc d;
+    sw_rod_desc_init(&d);
+    d.name = r->name;
+    d.nelem = r->nelem;
+    d.damping = r->damping;
+    fill(&d, f, gen_rod_fields(r, f));
+    sw_spec_add_rod(s, &d);
+  }
+  for (int i = 0; i < sc->nact; i++) {
+    const swSceneAction *a = &sc->act[i];
+    if (a->is_bc) {
+      swBCDesc b;
+      memset(&b, 0, sizeof b);
+      b.kind = (swBCKind)a->kind;
+      b.rod = a->rod;
+      b.end = a->index;
+      if (a->vec.kind == VAL_VEC)
+        for (int k = 0; k < 3; k++) b.vec[k] = a->vec.v[k];
+      b.signal = gen_signal(a->sig);
+      sw_spec_add_bc(s, &b);
+    } else {
+      swLoadDesc l;
+      memset(&l, 0, sizeof l);
+      l.kind = (swLoadKind)a->kind;
+      l.rod = a->rod;
+      l.index = a->index;
+      for (int k = 0; k < 3; k++) l.vec[k] = a->vec.v[k];
+      l.signal = gen_signal(a->sig);
+      sw_spec_add_load(s, &l);
+    }
+  }
+  for (int i = 0; i < sc->njoint; i++) {
+    const swSceneJoint *j = &sc->joint[i];
+    swJointDesc d;
+    sw_joint_desc_init(&d);
+    d.name = j->name;
+    d.kind = j->kind;
+    d.rod_a = j->rod_a;
+    d.node_a = j->node_a;
+    d.rod_b = j->rod_b;
+    d.node_b = j->node_b;
+    fill(&d, f, gen_joint_fields(j, f));
+    sw_spec_add_joint(s, &d);
+  }
+  if (sc->gravity.kind == VAL_VEC) sw_spec_set_gravity(s, sc->gravity.v);
+  sw_spec_set_integrator(s, sc->integrator);
+  if (sc->dt > 0) sw_spec_set_dt(s, sc->dt);
+  return s;
+}

@@ -1,0 +1,516 @@
+/* sema.c — the checker's driver: scopes, names, imports, components, and the
+ * walk over a file's items.
+ *
+ * Design.  Names live in scopes: the file scope (shared by a file and every
+ * file it imports, so an imported arm model's bones can be clamped by the
+ * scene) and one scope per component instance, whose parent is the scope the
+ * component was defined in (lexical scoping) and whose names are reached from
+ * outside as members (left.humerus).  Items are walked twice: first every
+ * name is declared, so definitions may refer to each other in any order; then
+ * everything is evaluated in file order, definitions lazily on first use (see
+ * sema_def.c).  An import is read, parsed and fully checked where it stands;
+ * a file is read once however often it is imported, and a file that imports
+ * itself through a chain is an error naming the chain.  Imports resolve
+ * relative to the importing file, then along SINEW_PATH.  The model source
+ * recorded in the output is the main file followed by each imported file,
+ * each introduced by a comment line naming it.
+ */
+#include <errno.h>
+#include <limits.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+
+#include "lex.h"
+#include "sema_int.h"
+
+#define MAX_SOURCE_BYTES (16 << 20)
+
+/* ---- scopes ---- */
+
+static swScope *scope_new(swSema *S, swScope *parent, const char *prefix) {
+  swScope *sc = ast_alloc(S->a, sizeof *sc);
+  sc->parent = parent;
+  sc->prefix = prefix;
+  return sc;
+}
+
+swSymbol *sema_lookup_local(swScope *scope, const char *name) {
+  for (int i = 0; scope && i < scope->n; i++)
+    if (!strcmp(scope->sym[i]->name, name)) return scope->sym[i];
+  return NULL;
+}
+
+swSymbol *sema_lookup(swSema *S, swScope *scope, const char *name) {
+  (void)S;
+  for (swScope *sc = scope; sc; sc = sc->parent) {
+    swSymbol *sym = sema_lookup_local(sc, name);
+    if (sym) return sym;
+  }
+  return NULL;
+}
+
+void sema_report_unknown(swSema *S, swScope *scope, const char *name, swLoc loc,
+                         const char *what) {
+  (void)S;
+  enum { MAXC = 512 };
+  const char *cands[MAXC];
+  int n = 0;
+  for (swScope *sc = scope; sc; sc = sc->parent)
+    for (int i = 0; i < sc->n && n < MAXC; i++) cands[n++] = sc->sym[i]->name;
+  const char *near = diag_suggest(name, cands, n);
+  if (near) diag_error(loc, "unknown %s '%s'; did you mean '%s'?", what, name, near);
+  else diag_error(loc, "unknown %s '%s'", what, name);
+}
+
+static const char *sym_noun(swSymKind k) {
+  static const char *nouns[] = {"param", "let", "component parameter", "material", "rod",
+                                "joint", "component", "instance"};
+  return nouns[k];
+}
+
+static swSymbol *declare(swSema *S, swScope *scope, swSymKind kind, const char *name, swLoc loc,
+                         const swAst *def) {
+  swSymbol *old = sema_lookup_local(scope, name);
+  if (old) {
+    char where[256];
+    diag_error(loc, "'%s' is already defined (as a %s at %s)", name, sym_noun(old->kind),
+               diag_where(old->loc, where, sizeof where));
+    return NULL;
+  }
+  if (!strcmp(name, "pi") || !strcmp(name, "all")) {
+    diag_error(loc, "'%s' is a reserved name", name);
+    return NULL;
+  }
+  swSymbol *sym = ast_alloc(S->a, sizeof *sym);
+  sym->kind = kind;
+  sym->name = name;
+  size_t plen = strlen(scope->prefix), nlen = strlen(name);
+  char *full = ast_alloc(S->a, plen + nlen + 1);
+  memcpy(full, scope->prefix, plen);
+  memcpy(full + plen, name, nlen + 1);
+  sym->full = full;
+  sym->loc = loc;
+  sym->def = def;
+  sym->scope = scope;
+  sym->index = -1;
+  sym->main_file = loc.file == S->main_file && S->instance_depth == 0;
+  if (scope->n == scope->cap) {
+    int cap = scope->cap ? 2 * scope->cap : 8;
+    swSymbol **syms = ast_alloc(S->a, (size_t)cap * sizeof *syms);
+    if (scope->n) memcpy(syms, scope->sym, (size_t)scope->n * sizeof *syms);
+    scope->sym = syms;
+    scope->cap = cap;
+  }
+  scope->sym[scope->n++] = sym;
+  if (S->nall == S->capall) {
+    int cap = S->capall ? 2 * S->capall : 32;
+    swSymbol **all = ast_alloc(S->a, (size_t)cap * sizeof *all);
+    if (S->nall) memcpy(all, S->all, (size_t)S->nall * sizeof *all);
+    S->all = all;
+    S->capall = cap;
+  }
+  S->all[S->nall++] = sym;
+  return sym;
+}
+
+/* ---- files and imports ---- */
+
+static void append_source(swSema *S, const char *text, size_t len) {
+  if (S->srclen + len + 1 > S->srccap) {
+    size_t cap = S->srccap ? S->srccap : 4096;
+    while (cap < S->srclen + len + 1) cap *= 2;
+    char *p = realloc(S->src, cap);
+    if (!p) abort();
+    S->src = p;
+    S->srccap = cap;
+  }
+  memcpy(S->src + S->srclen, text, len);
+  S->srclen += len;
+  S->src[S->srclen] = 0;
+}
+
+/* Read a whole file; NULL and a reason when it cannot. */
+static char *read_file(const char *path, size_t *len, const char **why) {
+  struct stat st;
+  if (stat(path, &st) != 0) {
+    *why = strerror(errno);
+    return NULL;
+  }
+  if (S_ISDIR(st.st_mode)) {
+    *why = "it is a directory";
+    return NULL;
+  }
+  FILE *f = fopen(path, "rb");
+  if (!f) {
+    *why = strerror(errno);
+    return NULL;
+  }
+  size_t cap = 4096, n = 0;
+  char *buf = malloc(cap);
+  for (;;) {
+    if (n == cap) {
+      if (cap >= MAX_SOURCE_BYTES) {
+        free(buf);
+        fclose(f);
+        *why = "it is larger than 16 MiB";
+        return NULL;
+      }
+      cap *= 2;
+      buf = realloc(buf, cap);
+    }
+    size_t got = fread(buf + n, 1, cap - n, f);
+    n += got;
+    if (got == 0) break;
+  }
+  int bad = ferror(f);
+  fclose(f);
+  if (bad) {
+    free(buf);
+    *why = "read error";
+    return NULL;
+  }
+  if (memchr(buf, 0, n)) {
+    free(buf);
+    *why = "it contains NUL bytes (not a text file)";
+    return NULL;
+  }
+  *len = n;
+  return buf;
+}
+
+static int already_done(swSema *S, const char *canon) {
+  for (int i = 0; i < S->ndone; i++)
+    if (!strcmp(S->done_paths[i], canon)) return 1;
+  return 0;
+}
+
+static void mark_done(swSema *S, const char *canon) {
+  if (S->ndone == S->capdone) {
+    S->capdone = S->capdone ? 2 * S->capdone : 8;
+    S->done_paths = realloc(S->done_paths, (size_t)S->capdone * sizeof *S->done_paths);
+    if (!S->done_paths) abort();
+  }
+  S->done_paths[S->ndone++] = strdup(canon);
+}
+
+static void check_file(swSema *S, int file);
+
+/* Candidate path for `name` imported from file `from`: its directory first. */
+static int resolve_import(const char *from, const char *name, char *out, size_t len) {
+  struct stat st;
+  if (name[0] == '/') {
+    snprintf(out, len, "%s", name);
+    return stat(out, &st) == 0;
+  }
+  const char *slash = strrchr(from, '/');
+  if (slash) snprintf(out, len, "%.*s/%s", (int)(slash - from), from, name);
+  else snprintf(out, len, "%s", name);
+  if (stat(out, &st) == 0) return 1;
+  const char *path = getenv("SINEW_PATH");
+  while (path && *path) {
+    const char *colon = strchr(path, ':');
+    size_t n = colon ? (size_t)(colon - path) : strlen(path);
+    if (n) {
+      snprintf(out, len, "%.*s/%s", (int)n, path, name);
+      if (stat(out, &st) == 0) return 1;
+    }
+    path = colon ? colon + 1 : NULL;
+  }
+  return 0;
+}
+
+static void do_import(swSema *S, const swAst *item) {
+  const swSource *from = diag_file(item->loc.file);
+  const char *name = item->text;
+  if (!name[0]) {
+    diag_error(item->loc, "import needs a file name");
+    return;
+  }
+  char path[PATH_MAX];
+  if (!resolve_import(from->path, name, path, sizeof path)) {
+    diag_error(item->loc, "cannot find \"%s\" (looked next to %s%s)", name, from->path,
+               getenv("SINEW_PATH") ? " and along SINEW_PATH" : "; SINEW_PATH is not set");
+    return;
+  }
+  char canon[PATH_MAX];
+  if (!realpath(path, canon)) snprintf(canon, sizeof canon, "%s", path);
+  /* a cycle: the file is on the stack of files being imported */
+  for (int i = 0; i < S->import_depth; i++) {
+    const swSource *f = diag_file(S->import_stack[i]);
+    char c2[PATH_MAX];
+    if (f && realpath(f->path, c2) && !strcmp(c2, canon)) {
+      char chain[2048] = "";
+      for (int k = i; k < S->import_depth; k++) {
+        const swSource *fk = diag_file(S->import_stack[k]);
+        strncat(chain, fk ? fk->path : "?", sizeof chain - strlen(chain) - 1);
+        strncat(chain, " -> ", sizeof chain - strlen(chain) - 1);
+      }
+      strncat(chain, path, sizeof chain - strlen(chain) - 1);
+      diag_error(item->loc, "import cycle: %s", chain);
+      return;
+    }
+  }
+  if (already_done(S, canon)) return;
+  if (S->import_depth >= SEMA_MAX_IMPORT_DEPTH) {
+    diag_error(item->loc, "imports are nested more than %d deep", SEMA_MAX_IMPORT_DEPTH);
+    return;
+  }
+  size_t len;
+  const char *why;
+  char *text = read_file(path, &len, &why);
+  if (!text) {
+    diag_error(item->loc, "cannot read \"%s\": %s", path, why);
+    return;
+  }
+  mark_done(S, canon);
+  int file = diag_add_file(path, text, len);
+  char header[PATH_MAX + 64];
+  int hl = snprintf(header, sizeof header, "\n# ---- imported: %s ----\n", path);
+  append_source(S, header, (size_t)hl);
+  append_source(S, text, len);
+  free(text);
+  check_file(S, file);
+}
+
+/* ---- items ---- */
+
+static const char *const def_kinds[] = {"material", "rod", "bone", "tendon", "muscle"};
+
+static void declare_items(swSema *S, swScope *scope, const swAst *items, int first) {
+  for (int i = first; i < items->nkid; i++) {
+    const swAst *it = items->kid[i];
+    switch (it->kind) {
+    case AST_IMPORT:
+      if (scope != S->global)
+        diag_error(it->loc, "import is only allowed at the top of a file, not in a component");
+      else do_import(S, it);
+      break;
+    case AST_PARAM:
+      if (scope != S->global) {
+        diag_error(it->loc, "a param belongs at file level; a component takes parameters "
+                   "in its header: component NAME(%s = ...)", it->name);
+        break;
+      }
+      declare(S, scope, SYM_PARAM, it->name, it->loc, it);
+      break;
+    case AST_LET:
+      declare(S, scope, SYM_LET, it->name, it->loc, it);
+      break;
+    case AST_DEF: {
+      int k;
+      for (k = 0; k < 5; k++)
+        if (!strcmp(it->text, def_kinds[k])) break;
+      if (k == 5) {
+        const char *near = diag_suggest(it->text, def_kinds, 5);
+        swLoc at = it->loc;
+        at.end_col = at.col + (int)strlen(it->text) - 1;
+        at.end_line = at.line;
+        if (near)
+          diag_error(at, "unknown kind of definition '%s'; did you mean '%s'?", it->text, near);
+        else
+          diag_error(at, "unknown kind of definition '%s' (expected material, rod, bone, "
+                     "tendon or muscle)", it->text);
+        break;
+      }
+      declare(S, scope, k == 0 ? SYM_MATERIAL : SYM_ROD, it->name, it->loc, it);
+      break;
+    }
+    case AST_JOINT:
+      declare(S, scope, SYM_JOINT, it->name, it->loc, it);
+      break;
+    case AST_COMPONENT:
+      if (scope != S->global) {
+        diag_error(it->loc, "components cannot be defined inside components");
+        break;
+      }
+      declare(S, scope, SYM_COMPONENT, it->name, it->loc, it);
+      break;
+    case AST_USE:
+      declare(S, scope, SYM_INSTANCE, it->name, it->loc, it);
+      break;
+    default:
+      break;
+    }
+  }
+}
+
+static void instantiate(swSema *S, swScope *scope, const swAst *it) {
+  swSymbol *inst = sema_lookup_local(scope, it->name);
+  if (!inst || inst->def != it) return;   /* declaration failed */
+  swSymbol *comp = sema_lookup(S, scope, it->text);
+  if (!comp) {
+    sema_report_unknown(S, scope, it->text, it->loc, "component");
+    return;
+  }
+  comp->used = 1;
+  if (comp->kind != SYM_COMPONENT) {
+    diag_error(it->loc, "'%s' is a %s, not a component", it->text, sym_noun(comp->kind));
+    return;
+  }
+  if (S->instance_depth >= SEMA_MAX_INSTANCE_DEPTH) {
+    diag_error(it->loc, "components are nested more than %d deep (does '%s' use itself?)",
+               SEMA_MAX_INSTANCE_DEPTH, comp->name);
+    return;
+  }
+  const swAst *def = comp->def, *formals = def->kid[0], *args = it->kid[0];
+  size_t plen = strlen(scope->prefix) + strlen(it->name) + 2;
+  char *prefix = ast_alloc(S->a, plen);
+  snprintf(prefix, plen, "%s%s.", scope->prefix, it->name);
+  swScope *inner = scope_new(S, comp->scope, prefix);
+  inst->members = inner;
+  /* bind arguments to formals: positional first, then by name */
+  const swAst **bound = ast_alloc(S->a, (size_t)(formals->nkid + 1) * sizeof *bound);
+  int pos = 0;
+  for (int i = 0; i < args->nkid; i++) {
+    const swAst *arg = args->kid[i];
+    int slot = -1;
+    if (arg->name) {
+      for (int k = 0; k < formals->nkid; k++)
+        if (!strcmp(formals->kid[k]->name, arg->name)) slot = k;
+      if (slot < 0) {
+        const char *cands[64];
+        int n = 0;
+        for (int k = 0; k < formals->nkid && n < 64; k++) cands[n++] = formals->kid[k]->name;
+        const char *near = diag_suggest(arg->name, cands, n);
+        if (near)
+          diag_error(arg->loc, "component '%s' has no parameter '%s'; did you mean '%s'?",
+                     comp->name, arg->name, near);
+        else
+          diag_error(arg->loc, "component '%s' has no parameter '%s'", comp->name, arg->name);
+        continue;
+      }
+    } else {
+      if (pos >= formals->nkid) {
+        diag_error(arg->loc, "component '%s' takes %d parameters", comp->name, formals->nkid);
+        continue;
+      }
+      slot = pos++;
+    }
+    if (bound[slot]) {
+      diag_error(arg->loc, "parameter '%s' of '%s' is given twice", formals->kid[slot]->name,
+                 comp->name);
+      continue;
+    }
+    bound[slot] = arg;
+  }
+  S->instance_depth++;
+  for (int k = 0; k < formals->nkid; k++) {
+    const swAst *f = formals->kid[k];
+    swSymbol *sym = declare(S, inner, SYM_FORMAL, f->name, f->loc, f);
+    if (!sym) continue;
+    sym->used = 1;
+    sym->state = 2;
+    if (bound[k]) {
+      sym->value = sema_eval(S, scope, ast_kid(bound[k], 0));   /* in the caller's scope */
+      if (sym->value.kind == VAL_WORD) {
+        sema_report_unknown(S, scope, sym->value.word, sym->value.loc, "name");
+        sym->value = val_error();
+      }
+    } else if (f->nkid) {
+      sym->value = sema_eval(S, inner, f->kid[0]);
+    } else {
+      diag_error(it->loc, "'%s' needs a value for parameter '%s' (it has no default)",
+                 comp->name, f->name);
+      sym->value = val_error();
+    }
+  }
+  declare_items(S, inner, def, 1);
+  sema_items(S, inner, def, 1);
+  S->instance_depth--;
+}
+
+void sema_items(swSema *S, swScope *scope, const swAst *items, int first) {
+  for (int i = first; i < items->nkid; i++) {
+    const swAst *it = items->kid[i];
+    switch (it->kind) {
+    case AST_PARAM:
+    case AST_LET:
+    case AST_DEF: {
+      swSymbol *sym = sema_lookup_local(scope, it->name);
+      if (sym && sym->def == it) sema_eval_symbol(S, sym);
+      break;
+    }
+    case AST_JOINT: {
+      swSymbol *sym = sema_lookup_local(scope, it->name);
+      if (sym && sym->def == it) sema_joint(S, scope, it);
+      break;
+    }
+    case AST_USE:
+      instantiate(S, scope, it);
+      break;
+    case AST_ACTION:
+      sema_action(S, scope, it);
+      break;
+    case AST_SIMULATE:
+      sema_simulate(S, scope, it);
+      break;
+    case AST_OUTPUT:
+      sema_output(S, scope, it);
+      break;
+    default:
+      break;
+    }
+  }
+}
+
+static void check_file(swSema *S, int file) {
+  swAst *root = parse_file(S->a, file);
+  if (!root) return;
+  if (S->import_depth < SEMA_MAX_IMPORT_DEPTH) {
+    S->import_stack[S->import_depth] = file;
+    S->import_depth++;
+  }
+  declare_items(S, S->global, root, 0);
+  sema_items(S, S->global, root, 0);
+  S->import_depth--;
+}
+
+static void warn_unused(swSema *S) {
+  for (int i = 0; i < S->nall; i++) {
+    swSymbol *s = S->all[i];
+    if (s->used || !s->main_file) continue;
+    if (s->kind == SYM_PARAM || s->kind == SYM_LET || s->kind == SYM_MATERIAL ||
+        s->kind == SYM_COMPONENT)
+      diag_warning(s->loc, "%s '%s' is defined but never used", sym_noun(s->kind), s->name);
+  }
+}
+
+int sema_check(swArena *arena, int file, swScene *scene) {
+  swSema S;
+  memset(&S, 0, sizeof S);
+  memset(scene, 0, sizeof *scene);
+  S.a = arena;
+  S.scene = scene;
+  S.main_file = file;
+  S.global = scope_new(&S, NULL, "");
+  scene->integrator = SW_VERLET;
+  scene->gravity = val_error();
+  const swSource *src = diag_file(file);
+  char canon[PATH_MAX];
+  if (realpath(src->path, canon)) mark_done(&S, canon);
+  append_source(&S, src->text, src->len);
+  /* the model's name: the file's stem */
+  const char *base = strrchr(src->path, '/');
+  base = base ? base + 1 : src->path;
+  const char *dot = strrchr(base, '.');
+  scene->model_name = ast_strdup(arena, base, dot && dot != base ? (size_t)(dot - base) : strlen(base));
+  int before = diag_errors();
+  check_file(&S, file);
+  warn_unused(&S);
+  scene->source = S.src;
+  sha256_hex(S.src ? S.src : "", S.srclen, scene->sha256);
+  for (int i = 0; i < S.ndone; i++) free(S.done_paths[i]);
+  free(S.done_paths);
+  return diag_errors() - before;
+}
+
+void sema_scene_free(swScene *scene) {
+  free(scene->source);
+  free(scene->rod);
+  free(scene->act);
+  free(scene->joint);
+  free(scene->param);
+  memset(scene, 0, sizeof *scene);
+}

@@ -1,0 +1,184 @@
+/* sema.h — the checked model: values with dimensions, symbols, and the scene
+ * that code generation and the in-compiler checks read.
+ *
+ * Design.  The checker evaluates every expression of the model to a swValue:
+ * a kind (number, vector, point on a rod, time signal, reference to a
+ * definition, bare word), a dimension, the numbers it has with every param at
+ * its default, and -- only when it depends on a param -- the C expression that
+ * recomputes it at run time from the param array P.  So constants are folded
+ * by construction and a param default appears in the generated C exactly
+ * once, in the param table.  The checked scene (swScene) is a flat list of
+ * rods, loads, boundary conditions and joints in definition order, each
+ * field a swValue and each entry with the location of the model line it came
+ * from.  Code generation (gen_c.c) prints it; sema_spec.c turns it into the
+ * runtime's swSpec to reuse the runtime's own checks and stable-dt estimate.
+ */
+#ifndef SINEW_SEMA_H
+#define SINEW_SEMA_H
+
+#include "ast.h"
+#include "sinew.h"
+
+typedef struct { signed char e[SW_NDIM]; } swDim;
+
+typedef enum {
+  VAL_ERROR = 0,  /* already reported; silences follow-on errors          */
+  VAL_NUM,        /* n == 1                                                */
+  VAL_VEC,        /* n >= 2                                                */
+  VAL_POINT,      /* a node of a rod: position (3) + rod + node            */
+  VAL_SIGNAL,     /* a time signal times a scale (number or vector)        */
+  VAL_REF,        /* a definition: material, rod, joint, component, ...    */
+  VAL_WORD        /* an identifier with no definition (all, pefrl, ...)    */
+} swValKind;
+
+struct swSymbol;
+struct swSignalVal;
+
+typedef struct swValue {
+  swValKind kind;
+  swDim dim;
+  int n;                      /* components                                */
+  double *v;                  /* (n) values with params at their defaults  */
+  const char **c;             /* (n) C expressions, NULL entries constant; NULL if all */
+  const char *param;          /* a param it depends on (for messages)      */
+  swLoc loc;
+  /* VAL_POINT */
+  int rod, node;
+  /* VAL_SIGNAL */
+  struct swSignalVal *sig;
+  /* VAL_REF, VAL_WORD */
+  struct swSymbol *ref;
+  const char *word;
+} swValue;
+
+/* swSignal's fields as values (each scalar, dimension checked). */
+typedef struct swSignalVal {
+  swSignalKind kind;
+  swValue a, b, t0, T, freq, phase;
+  int npts;
+  swValue times, values;      /* SW_SIG_TABLE                               */
+  swValue scale;              /* number or vector the signal multiplies     */
+  swDim base;                 /* dimension of the signal's own values       */
+} swSignalVal;
+
+typedef enum {
+  SYM_PARAM, SYM_LET, SYM_FORMAL, SYM_MATERIAL, SYM_ROD, SYM_JOINT, SYM_COMPONENT, SYM_INSTANCE
+} swSymKind;
+
+struct swScope;
+typedef struct swSymbol {
+  swSymKind kind;
+  const char *name;
+  const char *full;           /* with instance prefix: "left.humerus"      */
+  swLoc loc;
+  const swAst *def;
+  struct swScope *scope;      /* where it is defined                       */
+  int used;
+  int state;                  /* 0 new, 1 evaluating, 2 done               */
+  int main_file;              /* defined in the compiled file itself       */
+  int index;                  /* rod, param or joint index in the scene    */
+  swValue value;              /* params, lets, formals                     */
+  struct swScope *members;    /* instances: their scope                    */
+  struct swMaterial *material;
+} swSymbol;
+
+typedef struct swScope {
+  struct swScope *parent;
+  const char *prefix;         /* "" or "left."                             */
+  swSymbol **sym;
+  int n, cap;
+} swScope;
+
+typedef struct swMaterial {
+  swValue E, G, poisson, density;
+} swMaterial;
+
+typedef enum { ROD_PLAIN, ROD_BONE, ROD_TENDON, ROD_MUSCLE } swRodKind;
+
+typedef struct {
+  const char *name;           /* full name                                 */
+  swRodKind kind;
+  swLoc loc;
+  int nelem;                  /* known at compile time                     */
+  swValue start, direction, normal, length, radius_start, radius_end;
+  swValue density, youngs, shear_modulus, poisson;
+  swValue shear_hardening, twist_hardening, rest_kappa, rest_sigma, gamma;
+  swDampingKind damping;
+  int has_material;
+} swSceneRod;
+
+typedef struct {
+  swLoc loc;
+  int is_bc;                  /* 0: load, 1: boundary condition            */
+  int kind;                   /* swLoadKind or swBCKind                     */
+  int rod, index;             /* node/element (loads) or end 0/1 (BCs)      */
+  swValue vec;                /* scale vector (3)                          */
+  swSignalVal *sig;           /* NULL: constant                            */
+} swSceneAction;
+
+typedef struct {
+  const char *name;
+  swLoc loc;
+  swJointKind kind;
+  int rod_a, node_a, rod_b, node_b;
+  swValue anchor, axis, stiffness, damping, rot_stiffness, rot_damping;
+} swSceneJoint;
+
+typedef struct {
+  const char *name;
+  swLoc loc;
+  swValue value;              /* default                                   */
+  const char *unit;           /* as written, for --help                    */
+} swSceneParam;
+
+typedef struct {
+  swSceneRod *rod;       int nrod, caprod;
+  swSceneAction *act;    int nact, capact;
+  swSceneJoint *joint;   int njoint, capjoint;
+  swSceneParam *param;   int nparam, capparam;
+  swValue gravity;            /* kind VAL_ERROR when absent                 */
+  swLoc gravity_loc;
+  swIntegrator integrator;
+  double dt, duration, every; /* s; dt 0 = choose                          */
+  swLoc dt_loc;
+  int has_dt, has_duration;
+  const char *out;            /* output path                               */
+  int velocity, directors;
+  const char *model_name;     /* stem of the main file                     */
+  char *source;               /* main file and imports, inlined (malloc)   */
+  char sha256[65];
+} swScene;
+
+/* Check the model in file `file` (registered with diag) and build its scene.
+ * Returns the number of errors (also counted by diag). */
+int sema_check(swArena *arena, int file, swScene *scene);
+void sema_scene_free(swScene *scene);
+
+/* ---- values (sema_value.c) ---- */
+swValue val_error(void);
+swValue val_num(swArena *a, double x, swDim dim, swLoc loc);
+swValue val_vec(swArena *a, int n, const double *x, swDim dim, swLoc loc);
+int val_is_const(const swValue *v);
+const char *val_c(swArena *a, const swValue *v, int i);  /* C text of component i */
+swValue val_binop(swArena *a, int op, swValue x, swValue y, swLoc loc);
+swValue val_neg(swArena *a, swValue x, swLoc loc);
+swValue val_pow(swArena *a, swValue x, double p, swLoc loc);
+swValue val_func(swArena *a, const char *fn, swValue x, swLoc loc);   /* sqrt, sin, cos */
+swValue val_norm(swArena *a, swValue x, swLoc loc);
+
+/* ---- dimensions (units_dim.c) ---- */
+extern const swDim DIM_NONE, DIM_LENGTH, DIM_TIME, DIM_MASS, DIM_ANGLE;
+swDim dim_make(int kg, int m, int s, int rad);
+int dim_eq(swDim a, swDim b);
+/* equal, ignoring the angle exponent unless `want` is a pure angle */
+int dim_fits(swDim want, swDim got);
+swDim dim_mul(swDim a, swDim b);
+swDim dim_div(swDim a, swDim b);
+int dim_pow(swDim a, double p, swDim *out);        /* 0 if p not integer */
+int dim_is_none(swDim a);
+const char *dim_describe(swArena *a, swDim d);
+
+/* ---- sha256 (sha256.c) ---- */
+void sha256_hex(const void *data, size_t len, char out[65]);
+
+#endif

@@ -1,0 +1,781 @@
+/* sema_def.c — definitions and statements: params, lets, materials, rods,
+ * joints, actions (clamp, force, ...), simulate and output.
+ *
+ * Design.  Each definition is evaluated once, on first use or in file order,
+ * with its body's fields checked against the list of keys it accepts (an
+ * unknown key gets the nearest known one).  A rod's fields fall back on its
+ * material, then on the runtime's defaults; the checked rod is appended to
+ * the scene with every field a swValue, so a param-dependent field keeps its
+ * C expression.  Positions of points on a rod (start, end, at(f)) follow from
+ * its straight rest shape: start + f * length * direction.  Statements become
+ * scene actions (loads and boundary conditions) or joints referring to rods by
+ * scene index and to nodes by number, which must be known when compiling.
+ */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "sema_int.h"
+
+/* ---- field tables ---- */
+
+void sema_fields(swSema *S, const swAst *body, int first, const char *what,
+                 const char *const *keys, int nkeys, swFields *f) {
+  (void)S;
+  f->keys = keys;
+  f->nkeys = nkeys;
+  for (int k = 0; k < SEMA_MAX_FIELDS; k++) f->value[k] = NULL;
+  for (int i = first; body && i < body->nkid; i++) {
+    const swAst *fl = body->kid[i];
+    if (fl->kind == AST_SELECT) {
+      diag_error(fl->loc, "expected '%s = value;' in %s", fl->name, what);
+      continue;
+    }
+    if (fl->kind != AST_FIELD) continue;
+    int k;
+    for (k = 0; k < nkeys; k++)
+      if (!strcmp(fl->name, keys[k])) break;
+    if (k == nkeys) {
+      const char *near = diag_suggest(fl->name, keys, nkeys);
+      swLoc at = fl->loc;
+      if (near)
+        diag_error(at, "%s has no field '%s'; did you mean '%s'?", what, fl->name, near);
+      else
+        diag_error(at, "%s has no field '%s'", what, fl->name);
+      continue;
+    }
+    if (f->value[k]) {
+      diag_error(fl->loc, "field '%s' is given twice (first at line %d)", fl->name,
+                 f->value[k]->loc.line);
+      continue;
+    }
+    f->value[k] = fl;
+  }
+}
+
+const swAst *sema_field(const swFields *f, const char *key) {
+  for (int k = 0; k < f->nkeys; k++)
+    if (!strcmp(f->keys[k], key)) return f->value[k] ? f->value[k]->kid[0] : NULL;
+  return NULL;
+}
+
+static swValue field_value(swSema *S, swScope *scope, const swFields *f, const char *key, int n,
+                           swDim want) {
+  const swAst *e = sema_field(f, key);
+  if (!e) return val_error();
+  char what[64];
+  snprintf(what, sizeof what, "'%s'", key);
+  return sema_expect(S, scope, e, n, want, ast_strdup(S->a, what, strlen(what)));
+}
+
+static const swDim *dim_pressure(void) {
+  static swDim d = {{1, -1, -2, 0}};
+  return &d;
+}
+static const swDim *dim_density(void) {
+  static swDim d = {{1, -3, 0, 0}};
+  return &d;
+}
+
+/* ---- params and lets ---- */
+
+static void eval_param(swSema *S, swSymbol *sym) {
+  const swAst *def = sym->def;
+  swValue v = sema_eval(S, sym->scope, def->kid[0]);
+  if (v.kind == VAL_WORD) {
+    sema_report_unknown(S, sym->scope, v.word, v.loc, "name");
+    v = val_error();
+  }
+  if (v.kind != VAL_ERROR && v.kind != VAL_NUM) {
+    diag_error(def->kid[0]->loc, "a param must be a number (with a unit or without)");
+    v = val_error();
+  }
+  if (v.kind != VAL_ERROR && !val_is_const(&v)) {
+    diag_error(def->kid[0]->loc, "the default of param '%s' cannot depend on param '%s'",
+               sym->name, v.param);
+    v = val_error();
+  }
+  if (v.kind == VAL_ERROR) {
+    sym->value = v;
+    return;
+  }
+  swScene *sc = S->scene;
+  if (sc->nparam == sc->capparam) {
+    sc->capparam = sc->capparam ? 2 * sc->capparam : 8;
+    sc->param = realloc(sc->param, (size_t)sc->capparam * sizeof *sc->param);
+    if (!sc->param) abort();
+  }
+  int idx = sc->nparam++;
+  swSceneParam *p = &sc->param[idx];
+  p->name = sym->full;
+  p->loc = sym->loc;
+  p->value = v;
+  /* the unit as written, when the default is "number unit" */
+  p->unit = "";
+  const swAst *e = def->kid[0];
+  if (e->kind == AST_APPLY && e->kid[0]->kind == AST_NUM) {
+    const swSource *f = diag_file(e->kid[1]->loc.file);
+    const swLoc ul = e->kid[1]->loc;
+    if (f && ul.line == e->loc.end_line) {
+      /* copy the unit text from the source line */
+      const char *p0 = f->text;
+      for (int l = 1; l < ul.line && p0; l++) {
+        p0 = strchr(p0, '\n');
+        if (p0) p0++;
+      }
+      if (p0 && ul.end_col >= ul.col) p->unit = ast_strdup(S->a, p0 + ul.col - 1, (size_t)(ul.end_col - ul.col + 1));
+    }
+  }
+  sym->index = idx;
+  char buf[32];
+  snprintf(buf, sizeof buf, "P[%d]", idx);
+  sym->value = v;
+  sym->value.c = ast_alloc(S->a, sizeof *sym->value.c);
+  sym->value.c[0] = ast_strdup(S->a, buf, strlen(buf));
+  sym->value.param = sym->full;
+}
+
+/* ---- materials ---- */
+
+static const char *const material_keys[] = {"E", "G", "poisson", "density"};
+
+static void eval_material(swSema *S, swSymbol *sym) {
+  swFields f;
+  char what[128];
+  snprintf(what, sizeof what, "material '%s'", sym->name);
+  sema_fields(S, sym->def, 0, what, material_keys, 4, &f);
+  swMaterial *m = ast_alloc(S->a, sizeof *m);
+  m->E = field_value(S, sym->scope, &f, "E", 1, *dim_pressure());
+  m->G = field_value(S, sym->scope, &f, "G", 1, *dim_pressure());
+  m->poisson = field_value(S, sym->scope, &f, "poisson", 1, DIM_NONE);
+  m->density = field_value(S, sym->scope, &f, "density", 1, *dim_density());
+  if (!sema_field(&f, "E"))
+    diag_error(sym->loc, "material '%s' needs Young's modulus E (e.g. E = 10 kPa;)", sym->name);
+  if (!sema_field(&f, "density"))
+    diag_error(sym->loc, "material '%s' needs a density (e.g. density = 1.06 g/cm^3;)", sym->name);
+  if (m->E.kind == VAL_NUM && !(m->E.v[0] > 0))
+    diag_error(m->E.loc, "E must be positive, got %g Pa", m->E.v[0]);
+  if (m->density.kind == VAL_NUM && !(m->density.v[0] > 0))
+    diag_error(m->density.loc, "density must be positive, got %g kg/m^3", m->density.v[0]);
+  if (m->poisson.kind == VAL_NUM && !(m->poisson.v[0] > -1 && m->poisson.v[0] <= 0.5))
+    diag_error(m->poisson.loc, "poisson must be in (-1, 0.5], got %g", m->poisson.v[0]);
+  sym->material = m;
+}
+
+/* ---- rods ---- */
+
+static const char *const rod_keys[] = {
+  "material", "start", "from", "to", "direction", "normal", "length", "radius", "radius_start",
+  "radius_end", "elements", "E", "G", "poisson", "density", "shear_hardening",
+  "twist_hardening", "rest_curvature", "rest_strain", "damping", "damping_model",
+};
+enum { NROD_KEYS = sizeof rod_keys / sizeof rod_keys[0] };
+
+static swRodKind rod_kind(const char *word) {
+  if (!strcmp(word, "bone")) return ROD_BONE;
+  if (!strcmp(word, "tendon")) return ROD_TENDON;
+  if (!strcmp(word, "muscle")) return ROD_MUSCLE;
+  return ROD_PLAIN;
+}
+
+static swValue vec3(swSema *S, double x, double y, double z, swDim dim, swLoc loc) {
+  double v[3] = {x, y, z};
+  return val_vec(S->a, 3, v, dim, loc);
+}
+
+static int positive(swSema *S, const swValue *v, const char *what, const char *unit) {
+  (void)S;
+  if (v->kind != VAL_NUM) return 0;
+  if (!(v->v[0] > 0)) {
+    diag_error(v->loc, "%s must be positive, got %g%s%s", what, v->v[0], unit[0] ? " " : "", unit);
+    return 0;
+  }
+  return 1;
+}
+
+/* A position: a point on a rod, or a length vector. */
+static swValue position(swSema *S, swScope *scope, const swAst *e, const char *what) {
+  swValue v = sema_eval(S, scope, e);
+  if (v.kind == VAL_POINT) {
+    v.kind = VAL_VEC;
+    return v;
+  }
+  if (v.kind == VAL_WORD) {
+    sema_report_unknown(S, scope, v.word, v.loc, "name");
+    return val_error();
+  }
+  return sema_expect_value(S, v, 3, DIM_LENGTH, what);
+}
+
+static void eval_rod(swSema *S, swSymbol *sym) {
+  swFields f;
+  char what[160];
+  snprintf(what, sizeof what, "%s '%s'", sym->def->text, sym->name);
+  sema_fields(S, sym->def, 0, what, rod_keys, NROD_KEYS, &f);
+  swScope *sc = sym->scope;
+  swSceneRod r;
+  memset(&r, 0, sizeof r);
+  r.name = sym->full;
+  r.kind = rod_kind(sym->def->text);
+  r.loc = sym->loc;
+  swLoc loc = sym->loc;
+  int ok = 1;
+
+  /* material, then rod-level overrides */
+  swMaterial *mat = NULL;
+  const swAst *me = sema_field(&f, "material");
+  if (me) {
+    swValue mv = sema_eval(S, sc, me);
+    if (mv.kind == VAL_WORD) {
+      sema_report_unknown(S, sc, mv.word, mv.loc, "material");
+      ok = 0;
+    } else if (mv.kind == VAL_REF && mv.ref->kind == SYM_MATERIAL) {
+      sema_eval_symbol(S, mv.ref);
+      mat = mv.ref->material;
+    } else if (mv.kind != VAL_ERROR) {
+      diag_error(me->loc, "'material' expects the name of a material");
+      ok = 0;
+    } else ok = 0;
+  }
+  const swAst *E_ast = sema_field(&f, "E"), *rho_ast = sema_field(&f, "density");
+  r.youngs = E_ast ? field_value(S, sc, &f, "E", 1, *dim_pressure())
+             : mat ? mat->E : val_num(S->a, 1e6, *dim_pressure(), loc);
+  r.density = rho_ast ? field_value(S, sc, &f, "density", 1, *dim_density())
+              : mat ? mat->density : val_num(S->a, 1000, *dim_density(), loc);
+  r.shear_modulus = sema_field(&f, "G") ? field_value(S, sc, &f, "G", 1, *dim_pressure())
+                    : mat && mat->G.kind ? mat->G : val_num(S->a, 0, *dim_pressure(), loc);
+  r.poisson = sema_field(&f, "poisson") ? field_value(S, sc, &f, "poisson", 1, DIM_NONE)
+              : mat && mat->poisson.kind ? mat->poisson : val_num(S->a, 0.5, DIM_NONE, loc);
+  r.has_material = mat != NULL || (E_ast && rho_ast);
+  if (!mat && !me && !(E_ast && rho_ast))
+    diag_warning(loc, "%s has no material; it gets E = %g Pa and density = %g kg/m^3", what,
+                 r.youngs.kind == VAL_NUM ? r.youngs.v[0] : 0,
+                 r.density.kind == VAL_NUM ? r.density.v[0] : 0);
+  if (E_ast && r.youngs.kind == VAL_NUM) positive(S, &r.youngs, "E", "Pa");
+  if (rho_ast && r.density.kind == VAL_NUM) positive(S, &r.density, "density", "kg/m^3");
+
+  /* placement: start/from, and either to or direction + length */
+  const swAst *start = sema_field(&f, "start"), *from = sema_field(&f, "from");
+  const swAst *to = sema_field(&f, "to"), *dir = sema_field(&f, "direction");
+  const swAst *len = sema_field(&f, "length");
+  if (start && from) {
+    diag_error(from->loc, "give either 'start' or 'from', not both");
+    ok = 0;
+  }
+  const swAst *s0 = start ? start : from;
+  if (!s0) {
+    diag_error(loc, "%s needs a 'start' (or 'from') position", what);
+    ok = 0;
+    r.start = val_error();
+  } else r.start = position(S, sc, s0, start ? "'start'" : "'from'");
+  if (to) {
+    if (dir || len) {
+      diag_error(to->loc, "give either 'to', or 'direction' and 'length', not both");
+      ok = 0;
+    }
+    swValue end = position(S, sc, to, "'to'");
+    swValue d = val_binop(S->a, '-', end, r.start, to->loc);
+    r.length = val_norm(S->a, d, to->loc);
+    if (r.length.kind == VAL_NUM && !(r.length.v[0] > 0)) {
+      diag_error(to->loc, "'to' is the same point as the start, so the rod has no length");
+      ok = 0;
+    }
+    r.direction = r.length.kind == VAL_NUM ? val_binop(S->a, '/', d, r.length, to->loc) : val_error();
+  } else {
+    if (!dir || !len) {
+      diag_error(loc, "%s needs 'to', or 'direction' and 'length'", what);
+      ok = 0;
+    }
+    r.direction = dir ? field_value(S, sc, &f, "direction", 3, DIM_NONE) : val_error();
+    r.length = len ? field_value(S, sc, &f, "length", 1, DIM_LENGTH) : val_error();
+    if (len) positive(S, &r.length, "'length'", "m");
+  }
+  if (r.direction.kind == VAL_VEC) {
+    double n = sqrt(r.direction.v[0] * r.direction.v[0] + r.direction.v[1] * r.direction.v[1] +
+                    r.direction.v[2] * r.direction.v[2]);
+    if (!(n > 0)) {
+      diag_error(r.direction.loc, "'direction' must not be the zero vector");
+      ok = 0;
+    }
+  }
+  if (sema_field(&f, "normal")) {
+    r.normal = field_value(S, sc, &f, "normal", 3, DIM_NONE);
+    if (r.normal.kind == VAL_VEC && r.direction.kind == VAL_VEC) {
+      const double *a = r.normal.v, *b = r.direction.v;
+      double cx = a[1] * b[2] - a[2] * b[1], cy = a[2] * b[0] - a[0] * b[2],
+             cz = a[0] * b[1] - a[1] * b[0];
+      if (!(cx * cx + cy * cy + cz * cz > 1e-24)) {
+        diag_error(r.normal.loc, "'normal' must not be parallel to the rod's direction");
+        ok = 0;
+      }
+    }
+  } else if (r.direction.kind == VAL_VEC) {
+    /* any unit vector perpendicular to the direction: x, unless nearly parallel */
+    const double *d = r.direction.v;
+    double n = sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+    double ax = fabs(d[0]) / n < 0.9 ? 1 : 0, ay = 1 - ax;
+    double dot = (ax * d[0] + ay * d[1]) / (n * n);
+    double nx = ax - dot * d[0], ny = ay - dot * d[1], nz = -dot * d[2];
+    double nn = sqrt(nx * nx + ny * ny + nz * nz);
+    r.normal = vec3(S, nx / nn, ny / nn, nz / nn, DIM_NONE, loc);
+  }
+  /* cross section */
+  const swAst *rad = sema_field(&f, "radius"), *rs = sema_field(&f, "radius_start"),
+              *re = sema_field(&f, "radius_end");
+  if (rad && (rs || re)) {
+    diag_error(rad->loc, "give either 'radius', or 'radius_start' and 'radius_end' (a taper)");
+    ok = 0;
+  }
+  if (rad) {
+    r.radius_start = r.radius_end = field_value(S, sc, &f, "radius", 1, DIM_LENGTH);
+    positive(S, &r.radius_start, "'radius'", "m");
+  } else if (rs && re) {
+    r.radius_start = field_value(S, sc, &f, "radius_start", 1, DIM_LENGTH);
+    r.radius_end = field_value(S, sc, &f, "radius_end", 1, DIM_LENGTH);
+    positive(S, &r.radius_start, "'radius_start'", "m");
+    positive(S, &r.radius_end, "'radius_end'", "m");
+  } else {
+    diag_error(loc, "%s needs a 'radius' (or 'radius_start' and 'radius_end')", what);
+    ok = 0;
+  }
+  /* discretisation */
+  long nelem = 20;
+  if (sema_field(&f, "elements")) {
+    swValue ne = field_value(S, sc, &f, "elements", 1, DIM_NONE);
+    if (!sema_const_int(S, ne, "'elements'", 2, 100000, &nelem)) ok = 0;
+  }
+  r.nelem = (int)nelem;
+  /* hardening, rest shape, damping */
+  r.shear_hardening = sema_field(&f, "shear_hardening")
+                      ? field_value(S, sc, &f, "shear_hardening", 1, DIM_NONE)
+                      : val_num(S->a, 1, DIM_NONE, loc);
+  r.twist_hardening = sema_field(&f, "twist_hardening")
+                      ? field_value(S, sc, &f, "twist_hardening", 1, DIM_NONE)
+                      : val_num(S->a, 1, DIM_NONE, loc);
+  positive(S, &r.shear_hardening, "'shear_hardening'", "");
+  positive(S, &r.twist_hardening, "'twist_hardening'", "");
+  r.rest_kappa = sema_field(&f, "rest_curvature")
+                 ? field_value(S, sc, &f, "rest_curvature", 3, dim_make(0, -1, 0, 0))
+                 : vec3(S, 0, 0, 0, dim_make(0, -1, 0, 0), loc);
+  r.rest_sigma = sema_field(&f, "rest_strain")
+                 ? field_value(S, sc, &f, "rest_strain", 3, DIM_NONE)
+                 : vec3(S, 0, 0, 0, DIM_NONE, loc);
+  r.gamma = sema_field(&f, "damping") ? field_value(S, sc, &f, "damping", 1, dim_make(1, -1, -1, 0))
+            : val_num(S->a, 0, dim_make(1, -1, -1, 0), loc);
+  if (r.gamma.kind == VAL_NUM && r.gamma.v[0] < 0) {
+    diag_error(r.gamma.loc, "'damping' must not be negative");
+    ok = 0;
+  }
+  r.damping = sema_field(&f, "damping") ? SW_DAMP_LINEAR : SW_DAMP_NONE;
+  const swAst *dm = sema_field(&f, "damping_model");
+  if (dm) {
+    static const char *const models[] = {"linear", "analytic"};
+    const char *w = sema_word(S, sc, dm, "damping model", models, 2);
+    if (w && !strcmp(w, "analytic")) r.damping = SW_DAMP_ANALYTIC;
+    if (!sema_field(&f, "damping"))
+      diag_warning(dm->loc, "'damping_model' has no effect without 'damping'");
+  }
+  const swValue *all[] = {&r.youngs, &r.density, &r.shear_modulus, &r.poisson, &r.start,
+                          &r.direction, &r.normal, &r.length, &r.radius_start, &r.radius_end,
+                          &r.shear_hardening, &r.twist_hardening, &r.rest_kappa, &r.rest_sigma,
+                          &r.gamma};
+  for (size_t i = 0; i < sizeof all / sizeof all[0]; i++)
+    if (all[i]->kind == VAL_ERROR) ok = 0;
+  if (!ok) {
+    sym->index = -1;
+    return;
+  }
+  swScene *scn = S->scene;
+  if (scn->nrod == scn->caprod) {
+    scn->caprod = scn->caprod ? 2 * scn->caprod : 8;
+    scn->rod = realloc(scn->rod, (size_t)scn->caprod * sizeof *scn->rod);
+    if (!scn->rod) abort();
+  }
+  sym->index = scn->nrod;
+  scn->rod[scn->nrod++] = r;
+}
+
+void sema_eval_symbol(swSema *S, swSymbol *sym) {
+  if (sym->state == 2) return;
+  if (sym->state == 1) {
+    diag_error(sym->loc, "'%s' is defined in terms of itself", sym->name);
+    sym->value = val_error();
+    return;
+  }
+  sym->state = 1;
+  switch (sym->kind) {
+  case SYM_PARAM:
+    eval_param(S, sym);
+    break;
+  case SYM_LET: {
+    swValue v = sema_eval(S, sym->scope, sym->def->kid[0]);
+    if (v.kind == VAL_WORD) {
+      sema_report_unknown(S, sym->scope, v.word, v.loc, "name");
+      v = val_error();
+    }
+    sym->value = v;
+    break;
+  }
+  case SYM_MATERIAL:
+    eval_material(S, sym);
+    break;
+  case SYM_ROD:
+    eval_rod(S, sym);
+    break;
+  default:
+    break;
+  }
+  sym->state = 2;
+}
+
+swValue sema_rod_length(swSema *S, swSymbol *rod, swLoc loc) {
+  sema_eval_symbol(S, rod);
+  if (rod->index < 0 || rod->state != 2) return val_error();
+  swValue v = S->scene->rod[rod->index].length;
+  v.loc = loc;
+  return v;
+}
+
+/* node: >= 0 a node, -1 the last node, -2 the node nearest to frac */
+swValue sema_rod_point(swSema *S, swSymbol *rod, double frac, int node, swLoc loc) {
+  rod->used = 1;
+  sema_eval_symbol(S, rod);
+  if (rod->index < 0 || rod->state != 2) return val_error();
+  const swSceneRod *r = &S->scene->rod[rod->index];
+  int n = r->nelem;
+  if (node == -1) node = n;
+  if (node == -2) node = (int)lround(frac * n);
+  swValue f = val_num(S->a, frac, DIM_NONE, loc);
+  swValue dir = r->direction;
+  /* direction is normalised by the runtime: do the same here */
+  swValue unit = val_binop(S->a, '/', dir, val_norm(S->a, dir, loc), loc);
+  swValue off = val_binop(S->a, '*', val_binop(S->a, '*', f, r->length, loc), unit, loc);
+  swValue p = val_binop(S->a, '+', r->start, off, loc);
+  if (p.kind == VAL_ERROR) return p;
+  p.kind = VAL_POINT;
+  p.rod = rod->index;
+  p.node = node;
+  p.loc = loc;
+  return p;
+}
+
+/* ---- joints ---- */
+
+static const char *const joint_kinds[] = {"spherical", "hinge", "fixed"};
+static const char *const joint_keys[] = {"axis", "stiffness", "damping", "rot_stiffness",
+                                         "rot_damping"};
+
+void sema_joint(swSema *S, swScope *scope, const swAst *it) {
+  swSceneJoint j;
+  memset(&j, 0, sizeof j);
+  j.loc = it->loc;
+  swSymbol *sym = sema_lookup_local(scope, it->name);
+  j.name = sym ? sym->full : it->name;
+  if (sym) sym->used = 1;
+  int k;
+  for (k = 0; k < 3; k++)
+    if (!strcmp(it->text, joint_kinds[k])) break;
+  if (k == 3) {
+    const char *near = diag_suggest(it->text, joint_kinds, 3);
+    if (near) diag_error(it->loc, "unknown kind of joint '%s'; did you mean '%s'?", it->text, near);
+    else diag_error(it->loc, "unknown kind of joint '%s' (expected hinge, spherical or fixed)", it->text);
+    return;
+  }
+  j.kind = (swJointKind)k;
+  const swAst *args = it->kid[0];
+  int ok = 1;
+  if (args->nkid != 2 || args->kid[0]->name || args->kid[1]->name) {
+    diag_error(it->loc, "%s() joins two points: %s(rod_a.end, rod_b.start), or a point and a "
+               "fixed position: %s(rod.start, (0, 0, 0) m)", it->text, it->text, it->text);
+    return;
+  }
+  swValue a = sema_eval(S, scope, ast_kid(args->kid[0], 0));
+  swValue b = sema_eval(S, scope, ast_kid(args->kid[1], 0));
+  if (a.kind == VAL_WORD) { sema_report_unknown(S, scope, a.word, a.loc, "name"); ok = 0; }
+  if (b.kind == VAL_WORD) { sema_report_unknown(S, scope, b.word, b.loc, "name"); ok = 0; }
+  if (a.kind != VAL_ERROR && a.kind != VAL_WORD && a.kind != VAL_POINT) {
+    diag_error(a.loc, "the first end of a joint must be a point on a rod (rod.start, rod.end, "
+               "rod.at(f))");
+    ok = 0;
+  }
+  if (b.kind == VAL_POINT) {
+    j.rod_b = b.rod;
+    j.node_b = b.node;
+    j.anchor = vec3(S, 0, 0, 0, DIM_LENGTH, it->loc);
+  } else if (b.kind == VAL_VEC || b.kind == VAL_NUM) {
+    j.rod_b = -1;
+    j.node_b = 0;
+    j.anchor = sema_expect_value(S, b, 3, DIM_LENGTH, "a joint's fixed position");
+    if (j.anchor.kind == VAL_ERROR) ok = 0;
+  } else if (b.kind != VAL_WORD) {
+    if (b.kind != VAL_ERROR)
+      diag_error(b.loc, "the second end of a joint must be a point on a rod or a position");
+    ok = 0;
+  }
+  if (a.kind == VAL_POINT) {
+    j.rod_a = a.rod;
+    j.node_a = a.node;
+    if (b.kind == VAL_POINT && a.rod == b.rod) {
+      diag_error(it->loc, "a joint must connect two different rods");
+      ok = 0;
+    }
+  }
+  swFields f;
+  char what[128];
+  snprintf(what, sizeof what, "joint '%s'", it->name);
+  sema_fields(S, it, 1, what, joint_keys, 5, &f);
+  swLoc loc = it->loc;
+  j.axis = sema_field(&f, "axis") ? field_value(S, scope, &f, "axis", 3, DIM_NONE)
+           : vec3(S, 0, 0, 0, DIM_NONE, loc);
+  if (j.kind == SW_JOINT_HINGE && !sema_field(&f, "axis")) {
+    diag_error(loc, "hinge '%s' needs an 'axis' (e.g. axis = (0, 1, 0);)", it->name);
+    ok = 0;
+  } else if (j.kind != SW_JOINT_HINGE && sema_field(&f, "axis")) {
+    diag_warning(sema_field(&f, "axis")->loc, "'axis' has no effect on a %s joint", it->text);
+  }
+  if (j.axis.kind == VAL_VEC && j.kind == SW_JOINT_HINGE &&
+      !(fabs(j.axis.v[0]) + fabs(j.axis.v[1]) + fabs(j.axis.v[2]) > 0)) {
+    diag_error(j.axis.loc, "a hinge's 'axis' must not be the zero vector");
+    ok = 0;
+  }
+  static const swDim kN = {{1, 0, -2, 0}}, kD = {{1, 0, -1, 0}}, kR = {{1, 2, -2, -1}},
+                     kRD = {{1, 2, -1, -1}};
+  j.stiffness = sema_field(&f, "stiffness") ? field_value(S, scope, &f, "stiffness", 1, kN)
+                : val_num(S->a, 0, kN, loc);
+  j.damping = sema_field(&f, "damping") ? field_value(S, scope, &f, "damping", 1, kD)
+              : val_num(S->a, 0, kD, loc);
+  j.rot_stiffness = sema_field(&f, "rot_stiffness")
+                    ? field_value(S, scope, &f, "rot_stiffness", 1, kR) : val_num(S->a, 0, kR, loc);
+  j.rot_damping = sema_field(&f, "rot_damping")
+                  ? field_value(S, scope, &f, "rot_damping", 1, kRD) : val_num(S->a, 0, kRD, loc);
+  const swValue *vals[] = {&j.axis, &j.stiffness, &j.damping, &j.rot_stiffness, &j.rot_damping,
+                           &j.anchor};
+  for (size_t i = 0; i < sizeof vals / sizeof vals[0]; i++) {
+    if (vals[i]->kind == VAL_ERROR) ok = 0;
+    else if (i >= 1 && i <= 4 && vals[i]->v[0] < 0) {
+      diag_error(vals[i]->loc, "joint stiffness and damping must not be negative");
+      ok = 0;
+    }
+  }
+  if (!ok || a.kind != VAL_POINT) return;
+  swScene *sc = S->scene;
+  if (sc->njoint == sc->capjoint) {
+    sc->capjoint = sc->capjoint ? 2 * sc->capjoint : 8;
+    sc->joint = realloc(sc->joint, (size_t)sc->capjoint * sizeof *sc->joint);
+    if (!sc->joint) abort();
+  }
+  sc->joint[sc->njoint++] = j;
+}
+
+/* ---- actions ---- */
+
+static const char *const actions[] = {"clamp", "gravity", "force", "torque", "velocity",
+                                      "angular_velocity"};
+enum { NACTIONS = sizeof actions / sizeof actions[0] };
+
+static void add_action(swSema *S, const swSceneAction *a) {
+  swScene *sc = S->scene;
+  if (sc->nact == sc->capact) {
+    sc->capact = sc->capact ? 2 * sc->capact : 8;
+    sc->act = realloc(sc->act, (size_t)sc->capact * sizeof *sc->act);
+    if (!sc->act) abort();
+  }
+  sc->act[sc->nact++] = *a;
+}
+
+/* a 3-vector of dimension `want`, constant or scaled by a time signal */
+static int action_value(swSema *S, swScope *scope, const swAst *e, swDim want, const char *what,
+                        swSceneAction *act) {
+  swValue v = sema_eval(S, scope, e);
+  if (v.kind == VAL_WORD) {
+    sema_report_unknown(S, scope, v.word, v.loc, "name");
+    return 0;
+  }
+  if (v.kind == VAL_SIGNAL) {
+    if (!dim_fits(want, v.dim)) {
+      diag_error(v.loc, "%s expects %s, got %s", what, dim_describe(S->a, want),
+                 dim_describe(S->a, v.dim));
+      return 0;
+    }
+    if (v.sig->scale.kind != VAL_VEC || v.sig->scale.n != 3) {
+      diag_error(v.loc, "%s expects a vector: multiply the signal by a direction, e.g. "
+                 "(0, 0, 1) * ramp(...)", what);
+      return 0;
+    }
+    act->vec = v.sig->scale;
+    act->sig = v.sig;
+    return 1;
+  }
+  act->vec = sema_expect_value(S, v, 3, want, what);
+  act->sig = NULL;
+  return act->vec.kind != VAL_ERROR;
+}
+
+void sema_action(swSema *S, swScope *scope, const swAst *it) {
+  const char *word = it->text;
+  int k;
+  for (k = 0; k < NACTIONS; k++)
+    if (!strcmp(word, actions[k])) break;
+  swLoc wloc = it->loc;
+  if (k == NACTIONS) {
+    const char *near = diag_suggest(word, actions, NACTIONS);
+    if (near) diag_error(wloc, "unknown statement '%s'; did you mean '%s'?", word, near);
+    else
+      diag_error(wloc, "unknown statement '%s' (expected clamp, gravity, force, torque, "
+                 "velocity or angular_velocity)", word);
+    return;
+  }
+  int has_value = it->nkid == 2;
+  if (k == 0 || k == 1) {
+    if (has_value) {
+      diag_error(it->kid[1]->loc, "'%s' takes no '= value'", word);
+      return;
+    }
+  } else if (!has_value) {
+    diag_error(it->kid[0]->loc, "'%s' needs a value: %s POINT = VALUE;", word, word);
+    return;
+  }
+  if (k == 1) {   /* gravity (0, 0, -9.81) m/s^2; */
+    swValue g = sema_expect(S, scope, it->kid[0], 3, dim_make(0, 1, -2, 0), "gravity");
+    if (g.kind == VAL_ERROR) return;
+    if (S->scene->gravity.kind != VAL_ERROR) {
+      diag_error(it->loc, "gravity is given twice (first at line %d)", S->scene->gravity_loc.line);
+      return;
+    }
+    S->scene->gravity = g;
+    S->scene->gravity_loc = it->loc;
+    return;
+  }
+  swValue p = sema_eval(S, scope, it->kid[0]);
+  if (p.kind == VAL_WORD) {
+    sema_report_unknown(S, scope, p.word, p.loc, "name");
+    return;
+  }
+  if (p.kind == VAL_ERROR) return;
+  if (p.kind != VAL_POINT) {
+    diag_error(p.loc, "'%s' applies to a point on a rod (rod.start, rod.end, rod.at(f))", word);
+    return;
+  }
+  swSceneAction act;
+  memset(&act, 0, sizeof act);
+  act.loc = it->loc;
+  act.rod = p.rod;
+  int n = S->scene->rod[p.rod].nelem;
+  if (k == 0 || k == 4 || k == 5) {   /* boundary conditions act on a rod's end */
+    if (p.node != 0 && p.node != n) {
+      diag_error(p.loc, "'%s' applies to the start or end of a rod, not to a point inside it",
+                 word);
+      return;
+    }
+    act.is_bc = 1;
+    act.index = p.node == 0 ? 0 : 1;
+    act.kind = k == 0 ? SW_BC_CLAMP : k == 4 ? SW_BC_VELOCITY : SW_BC_OMEGA;
+    if (k == 0) {
+      act.vec = vec3(S, 0, 0, 0, DIM_NONE, it->loc);
+      add_action(S, &act);
+      return;
+    }
+    swDim want = k == 4 ? dim_make(0, 1, -1, 0) : dim_make(0, 0, -1, 1);
+    if (action_value(S, scope, it->kid[1], want, k == 4 ? "velocity" : "angular_velocity", &act))
+      add_action(S, &act);
+    return;
+  }
+  act.is_bc = 0;
+  act.kind = k == 2 ? SW_LOAD_FORCE : SW_LOAD_TORQUE;
+  act.index = k == 2 ? p.node : (p.node < n ? p.node : n - 1);
+  swDim want = k == 2 ? dim_make(1, 1, -2, 0) : dim_make(1, 2, -2, 0);
+  if (action_value(S, scope, it->kid[1], want, word, &act)) add_action(S, &act);
+}
+
+/* ---- simulate and output ---- */
+
+static const char *const simulate_keys[] = {"dt", "duration", "integrator"};
+
+void sema_simulate(swSema *S, swScope *scope, const swAst *it) {
+  if (S->has_simulate) {
+    diag_error(it->loc, "a second 'simulate' block (the first is at line %d)",
+               S->simulate_loc.line);
+    return;
+  }
+  S->has_simulate = 1;
+  S->simulate_loc = it->loc;
+  swFields f;
+  sema_fields(S, it, 0, "simulate", simulate_keys, 3, &f);
+  swScene *sc = S->scene;
+  if (sema_field(&f, "dt")) {
+    swValue dt = field_value(S, scope, &f, "dt", 1, DIM_TIME);
+    if (dt.kind == VAL_NUM && sema_require_const(S, &dt, "'dt'") && positive(S, &dt, "'dt'", "s")) {
+      sc->dt = dt.v[0];
+      sc->has_dt = 1;
+      sc->dt_loc = sema_field(&f, "dt")->loc;
+    }
+  }
+  if (sema_field(&f, "duration")) {
+    swValue T = field_value(S, scope, &f, "duration", 1, DIM_TIME);
+    if (T.kind == VAL_NUM && sema_require_const(S, &T, "'duration'")) {
+      if (T.v[0] < 0) diag_error(T.loc, "'duration' must not be negative");
+      else {
+        sc->duration = T.v[0];
+        sc->has_duration = 1;
+      }
+    }
+  }
+  const swAst *integ = sema_field(&f, "integrator");
+  if (integ) {
+    static const char *const names[] = {"verlet", "pefrl"};
+    const char *w = sema_word(S, scope, integ, "integrator", names, 2);
+    if (w) sc->integrator = !strcmp(w, "pefrl") ? SW_PEFRL : SW_VERLET;
+  }
+}
+
+void sema_output(swSema *S, swScope *scope, const swAst *it) {
+  if (S->has_output) {
+    diag_error(it->loc, "a second 'output' (the first is at line %d)", S->output_loc.line);
+    return;
+  }
+  S->has_output = 1;
+  S->output_loc = it->loc;
+  swScene *sc = S->scene;
+  if (!it->text[0]) diag_error(it->loc, "the output file name is empty");
+  else sc->out = it->text;
+  const swAst *every = ast_kid(it, 0);
+  if (every) {
+    swValue e = sema_expect(S, scope, every, 1, DIM_TIME, "'every'");
+    if (e.kind == VAL_NUM && sema_require_const(S, &e, "'every'")) {
+      if (!(e.v[0] > 0)) diag_error(e.loc, "'every' must be positive");
+      else sc->every = e.v[0];
+    }
+  }
+  static const char *const what[] = {"positions", "velocity", "directors", "energy"};
+  for (int i = 1; i < it->nkid; i++) {
+    const swAst *s = it->kid[i];
+    if (s->kind == AST_FIELD) {
+      diag_error(s->loc, "an output selection reads 'velocity all;', not '%s = ...'", s->name);
+      continue;
+    }
+    if (s->kind != AST_SELECT) continue;
+    int k;
+    for (k = 0; k < 4; k++)
+      if (!strcmp(s->name, what[k])) break;
+    if (k == 4) {
+      const char *near = diag_suggest(s->name, what, 4);
+      if (near) diag_error(s->loc, "unknown output '%s'; did you mean '%s'?", s->name, near);
+      else diag_error(s->loc, "unknown output '%s' (expected positions, velocity, directors "
+                      "or energy)", s->name);
+      continue;
+    }
+    /* selections are per scene for now: "all" (or nothing) */
+    int all = s->nkid == 0;
+    for (int t = 0; t < s->nkid; t++) {
+      const swAst *tg = s->kid[t];
+      if (tg->kind == AST_NAME && !strcmp(tg->name, "all")) all = 1;
+      else
+        diag_error(tg->loc, "output of single rods is not supported yet; write '%s all;'",
+                   s->name);
+    }
+    if (!all) continue;
+    if (k == 1) sc->velocity = 1;
+    if (k == 2) sc->directors = 1;
+  }
+}

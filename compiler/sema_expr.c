@@ -1,0 +1,529 @@
+/* sema_expr.c — evaluation of expressions: numbers with units, vectors,
+ * names, points on rods, function calls and time signals.
+ *
+ * Design.  sema_eval() is a plain walk over the expression tree returning a
+ * swValue (see sema.h); it reports every error it finds and answers
+ * VAL_ERROR, which the callers pass on silently, so one mistake gives one
+ * message.  A name is looked up through the enclosing scopes; a name with no
+ * definition evaluates to a bare word (VAL_WORD), which only the few places
+ * that take a word (integrator = pefrl, velocity all) accept -- everywhere
+ * else it is reported as unknown, with the nearest defined name.  Time
+ * signals are the runtime's (constant, ramp, sine, step, table) with their
+ * arguments checked by dimension; a signal may only be scaled.
+ */
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+
+#include "sema_int.h"
+
+#define PI 3.14159265358979323846
+
+static const char *const functions[] = {"sqrt", "sin", "cos", "tan", "ramp", "sine", "step",
+                                        "table"};
+enum { NFUNCTIONS = sizeof functions / sizeof functions[0] };
+
+static const char *describe_value(swSema *S, const swValue *v) {
+  switch (v->kind) {
+  case VAL_POINT: return "a point on a rod";
+  case VAL_SIGNAL: return "a time signal";
+  case VAL_REF: return "a definition";
+  case VAL_WORD: return "a name";
+  case VAL_VEC: {
+    char buf[160];
+    snprintf(buf, sizeof buf, "a %d-component vector of %s", v->n, dim_describe(S->a, v->dim));
+    return ast_strdup(S->a, buf, strlen(buf));
+  }
+  default: {
+    if (dim_is_none(v->dim)) return "dimensionless (a number without a unit)";
+    return dim_describe(S->a, v->dim);
+  }
+  }
+}
+
+/* Evaluate an operand of arithmetic: a bare word here is an unknown name. */
+static swValue operand(swSema *S, swScope *scope, const swAst *e) {
+  swValue v = sema_eval(S, scope, e);
+  if (v.kind == VAL_WORD) {
+    sema_report_unknown(S, scope, v.word, v.loc, "name");
+    return val_error();
+  }
+  if (v.kind == VAL_REF) {
+    diag_error(e->loc, "'%s' is a %s, not a value", v.ref->name,
+               v.ref->kind == SYM_MATERIAL ? "material" : v.ref->kind == SYM_ROD ? "rod"
+               : v.ref->kind == SYM_JOINT ? "joint" : v.ref->kind == SYM_COMPONENT ? "component"
+               : "instance");
+    return val_error();
+  }
+  return v;
+}
+
+swValue sema_expect_value(swSema *S, swValue v, int n, swDim want, const char *what) {
+  if (v.kind == VAL_ERROR) return v;
+  if (v.kind == VAL_WORD) {
+    /* reported by the caller's scope-aware path; here a plain message */
+    diag_error(v.loc, "unknown name '%s'", v.word);
+    return val_error();
+  }
+  int ok_kind = n == 1 ? v.kind == VAL_NUM : (v.kind == VAL_VEC && v.n == n);
+  if (!ok_kind) {
+    if (n == 3 && v.kind == VAL_POINT) ok_kind = 1;   /* a point is a position */
+  }
+  if (!ok_kind) {
+    if (n == 1)
+      diag_error(v.loc, "%s expects a number, got %s", what, describe_value(S, &v));
+    else
+      diag_error(v.loc, "%s expects a %d-component vector, got %s", what, n,
+                 describe_value(S, &v));
+    return val_error();
+  }
+  if (!dim_fits(want, v.dim)) {
+    diag_error(v.loc, "%s expects %s, got %s", what, dim_describe(S->a, want),
+               dim_is_none(v.dim) ? "dimensionless (a number without a unit)"
+                                  : dim_describe(S->a, v.dim));
+    return val_error();
+  }
+  if (v.kind == VAL_POINT) {
+    v.kind = VAL_VEC;
+  }
+  return v;
+}
+
+swValue sema_expect(swSema *S, swScope *scope, const swAst *e, int n, swDim want,
+                    const char *what) {
+  swValue v = operand(S, scope, e);
+  return sema_expect_value(S, v, n, want, what);
+}
+
+int sema_require_const(swSema *S, const swValue *v, const char *what) {
+  (void)S;
+  if (v->kind == VAL_ERROR || val_is_const(v)) return 1;
+  diag_error(v->loc, "%s must be known when the model is compiled, but it depends on param '%s'",
+             what, v->param ? v->param : "?");
+  return 0;
+}
+
+int sema_const_int(swSema *S, swValue v, const char *what, long lo, long hi, long *out) {
+  if (v.kind == VAL_ERROR || !sema_require_const(S, &v, what)) return 0;
+  double x = v.v[0];
+  if (x != floor(x) || x < (double)lo || x > (double)hi) {
+    diag_error(v.loc, "%s must be a whole number from %ld to %ld, got %g", what, lo, hi, x);
+    return 0;
+  }
+  *out = (long)x;
+  return 1;
+}
+
+const char *sema_word(swSema *S, swScope *scope, const swAst *e, const char *what,
+                      const char *const *choices, int nchoices) {
+  (void)S;
+  (void)scope;
+  if (e->kind != AST_NAME) {
+    diag_error(e->loc, "%s expects one of the words %s%s%s", what, choices[0],
+               nchoices > 1 ? " or " : "", nchoices > 1 ? choices[1] : "");
+    return NULL;
+  }
+  for (int i = 0; i < nchoices; i++)
+    if (!strcmp(e->name, choices[i])) return choices[i];
+  const char *near = diag_suggest(e->name, choices, nchoices);
+  if (near)
+    diag_error(e->loc, "unknown %s '%s'; did you mean '%s'?", what, e->name, near);
+  else {
+    char list[256] = "";
+    for (int i = 0; i < nchoices; i++) {
+      strncat(list, i ? ", " : "", sizeof list - strlen(list) - 1);
+      strncat(list, choices[i], sizeof list - strlen(list) - 1);
+    }
+    diag_error(e->loc, "unknown %s '%s' (expected %s)", what, e->name, list);
+  }
+  return NULL;
+}
+
+/* ---- calls ---- */
+
+typedef struct {
+  const char *name;      /* keyword name                       */
+  const swAst *value;
+} swArgSlot;
+
+/* Match positional and keyword arguments to the parameter names of a call. */
+static int bind_args(swSema *S, const swAst *call, const swAst *args, const char *const *names,
+                     int nnames, int nrequired, const swAst **out) {
+  (void)S;
+  int ok = 1, pos = 0;
+  for (int i = 0; i < nnames; i++) out[i] = NULL;
+  for (int i = 0; args && i < args->nkid; i++) {
+    const swAst *arg = args->kid[i];
+    int slot = -1;
+    if (arg->name) {
+      for (int k = 0; k < nnames; k++)
+        if (!strcmp(arg->name, names[k])) slot = k;
+      if (slot < 0) {
+        const char *near = diag_suggest(arg->name, names, nnames);
+        if (near)
+          diag_error(arg->loc, "%s() has no argument '%s'; did you mean '%s'?", call->name,
+                     arg->name, near);
+        else
+          diag_error(arg->loc, "%s() has no argument '%s'", call->name, arg->name);
+        ok = 0;
+        continue;
+      }
+    } else {
+      if (pos >= nnames) {
+        diag_error(arg->loc, "%s() takes at most %d arguments", call->name, nnames);
+        ok = 0;
+        continue;
+      }
+      slot = pos++;
+    }
+    if (out[slot]) {
+      diag_error(arg->loc, "argument '%s' of %s() is given twice", names[slot], call->name);
+      ok = 0;
+      continue;
+    }
+    out[slot] = ast_kid(arg, 0);
+  }
+  for (int i = 0; i < nrequired; i++)
+    if (!out[i]) {
+      diag_error(call->loc, "%s() needs the argument '%s'", call->name, names[i]);
+      ok = 0;
+    }
+  return ok;
+}
+
+static swValue scalar_arg(swSema *S, swScope *scope, const swAst *e, swDim want, const char *fn,
+                          const char *arg, double fallback, swLoc loc) {
+  if (!e) return val_num(S->a, fallback, want, loc);
+  char what[96];
+  snprintf(what, sizeof what, "argument '%s' of %s()", arg, fn);
+  return sema_expect(S, scope, e, 1, want, ast_strdup(S->a, what, strlen(what)));
+}
+
+static swValue make_signal(swSema *S, swSignalVal *sig, swDim dim, swLoc loc) {
+  swValue v = val_error();
+  v.kind = VAL_SIGNAL;
+  v.sig = sig;
+  v.dim = dim;
+  v.loc = loc;
+  v.n = 1;
+  sig->scale = val_num(S->a, 1, DIM_NONE, loc);
+  sig->base = dim;
+  return v;
+}
+
+static int any_error(const swValue *v, int n) {
+  for (int i = 0; i < n; i++)
+    if (v[i].kind == VAL_ERROR) return 1;
+  return 0;
+}
+
+static swValue eval_signal(swSema *S, swScope *scope, const swAst *call) {
+  const swAst *args = ast_kid(call, 0);
+  const swAst *slot[6];
+  swSignalVal *sig = ast_alloc(S->a, sizeof *sig);
+  swLoc loc = call->loc;
+  if (!strcmp(call->name, "ramp")) {
+    static const char *const names[] = {"from", "to", "over", "start"};
+    if (!bind_args(S, call, args, names, 4, 3, slot)) return val_error();
+    sig->kind = SW_SIG_RAMP;
+    sig->a = operand(S, scope, slot[0]);
+    if (sig->a.kind != VAL_ERROR)
+      sig->a = sema_expect_value(S, sig->a, 1, sig->a.dim, "argument 'from' of ramp()");
+    sig->b = sig->a.kind == VAL_ERROR ? val_error()
+             : scalar_arg(S, scope, slot[1], sig->a.dim, "ramp", "to", 0, loc);
+    sig->T = scalar_arg(S, scope, slot[2], DIM_TIME, "ramp", "over", 0, loc);
+    sig->t0 = scalar_arg(S, scope, slot[3], DIM_TIME, "ramp", "start", 0, loc);
+    if (sig->T.kind == VAL_NUM && !(sig->T.v[0] > 0)) {
+      diag_error(sig->T.loc, "ramp() needs a positive duration 'over', got %g s", sig->T.v[0]);
+      return val_error();
+    }
+    if (any_error(&sig->a, 2) || sig->T.kind == VAL_ERROR || sig->t0.kind == VAL_ERROR)
+      return val_error();
+    return make_signal(S, sig, sig->a.dim, loc);
+  }
+  if (!strcmp(call->name, "sine")) {
+    static const char *const names[] = {"amplitude", "freq", "mean", "phase", "start"};
+    if (!bind_args(S, call, args, names, 5, 2, slot)) return val_error();
+    sig->kind = SW_SIG_SINE;
+    sig->b = operand(S, scope, slot[0]);
+    if (sig->b.kind != VAL_ERROR)
+      sig->b = sema_expect_value(S, sig->b, 1, sig->b.dim, "argument 'amplitude' of sine()");
+    if (sig->b.kind == VAL_ERROR) return val_error();
+    sig->freq = scalar_arg(S, scope, slot[1], dim_make(0, 0, -1, 0), "sine", "freq", 0, loc);
+    sig->a = scalar_arg(S, scope, slot[2], sig->b.dim, "sine", "mean", 0, loc);
+    sig->phase = scalar_arg(S, scope, slot[3], DIM_ANGLE, "sine", "phase", 0, loc);
+    sig->t0 = scalar_arg(S, scope, slot[4], DIM_TIME, "sine", "start", 0, loc);
+    if (sig->freq.kind == VAL_ERROR || sig->a.kind == VAL_ERROR ||
+        sig->phase.kind == VAL_ERROR || sig->t0.kind == VAL_ERROR)
+      return val_error();
+    return make_signal(S, sig, sig->b.dim, loc);
+  }
+  if (!strcmp(call->name, "step")) {
+    static const char *const names[] = {"before", "after", "at"};
+    if (!bind_args(S, call, args, names, 3, 3, slot)) return val_error();
+    sig->kind = SW_SIG_STEP;
+    sig->a = operand(S, scope, slot[0]);
+    if (sig->a.kind != VAL_ERROR)
+      sig->a = sema_expect_value(S, sig->a, 1, sig->a.dim, "argument 'before' of step()");
+    if (sig->a.kind == VAL_ERROR) return val_error();
+    sig->b = scalar_arg(S, scope, slot[1], sig->a.dim, "step", "after", 0, loc);
+    sig->t0 = scalar_arg(S, scope, slot[2], DIM_TIME, "step", "at", 0, loc);
+    if (sig->b.kind == VAL_ERROR || sig->t0.kind == VAL_ERROR) return val_error();
+    return make_signal(S, sig, sig->a.dim, loc);
+  }
+  /* table(times = (...) s, values = (...)) */
+  static const char *const names[] = {"times", "values"};
+  if (!bind_args(S, call, args, names, 2, 2, slot)) return val_error();
+  sig->kind = SW_SIG_TABLE;
+  sig->times = operand(S, scope, slot[0]);
+  sig->values = operand(S, scope, slot[1]);
+  if (sig->times.kind == VAL_ERROR || sig->values.kind == VAL_ERROR) return val_error();
+  if (sig->times.kind != VAL_VEC || sig->values.kind != VAL_VEC) {
+    diag_error(loc, "table() takes two lists of at least 2 numbers: times = (t0, t1, ...) s, "
+               "values = (v0, v1, ...)");
+    return val_error();
+  }
+  if (sig->times.n != sig->values.n) {
+    diag_error(loc, "table() has %d times but %d values", sig->times.n, sig->values.n);
+    return val_error();
+  }
+  if (sig->times.n > SW_SIGNAL_MAXPTS) {
+    diag_error(loc, "table() holds at most %d points, got %d", SW_SIGNAL_MAXPTS, sig->times.n);
+    return val_error();
+  }
+  sig->times = sema_expect_value(S, sig->times, sig->times.n, DIM_TIME, "argument 'times' of table()");
+  if (sig->times.kind == VAL_ERROR) return val_error();
+  if (!sema_require_const(S, &sig->times, "the times of table()")) return val_error();
+  for (int i = 1; i < sig->times.n; i++)
+    if (!(sig->times.v[i] > sig->times.v[i - 1])) {
+      diag_error(sig->times.loc, "the times of table() must increase, but time %d (%g s) is "
+                 "not after time %d (%g s)", i + 1, sig->times.v[i], i, sig->times.v[i - 1]);
+      return val_error();
+    }
+  sig->npts = sig->times.n;
+  return make_signal(S, sig, sig->values.dim, loc);
+}
+
+static swValue eval_call(swSema *S, swScope *scope, const swAst *e) {
+  const char *fn = e->name;
+  const swAst *args = ast_kid(e, 0);
+  if (!strcmp(fn, "ramp") || !strcmp(fn, "sine") || !strcmp(fn, "step") ||
+      !strcmp(fn, "table"))
+    return eval_signal(S, scope, e);
+  if (!strcmp(fn, "sqrt") || !strcmp(fn, "sin") || !strcmp(fn, "cos") || !strcmp(fn, "tan")) {
+    if (!args || args->nkid != 1 || args->kid[0]->name) {
+      diag_error(e->loc, "%s() takes one argument", fn);
+      return val_error();
+    }
+    return val_func(S->a, fn, operand(S, scope, ast_kid(args->kid[0], 0)), e->loc);
+  }
+  const char *near = diag_suggest(fn, functions, NFUNCTIONS);
+  if (near)
+    diag_error(e->loc, "unknown function '%s'; did you mean '%s'?", fn, near);
+  else
+    diag_error(e->loc, "unknown function '%s'", fn);
+  return val_error();
+}
+
+/* ---- names and members ---- */
+
+static swValue symbol_value(swSema *S, swSymbol *sym, swLoc loc) {
+  sym->used = 1;
+  switch (sym->kind) {
+  case SYM_PARAM:
+  case SYM_LET:
+  case SYM_FORMAL: {
+    sema_eval_symbol(S, sym);
+    swValue v = sym->value;
+    if (v.kind != VAL_ERROR) v.loc = loc;
+    return v;
+  }
+  default: {
+    swValue v = val_error();
+    v.kind = VAL_REF;
+    v.ref = sym;
+    v.loc = loc;
+    return v;
+  }
+  }
+}
+
+static swValue eval_member(swSema *S, swScope *scope, const swAst *e) {
+  const swAst *base = ast_kid(e, 0);
+  swValue b = sema_eval(S, scope, base);
+  if (b.kind == VAL_ERROR) return b;
+  if (b.kind == VAL_WORD) {
+    sema_report_unknown(S, scope, b.word, b.loc, "name");
+    return val_error();
+  }
+  if (b.kind == VAL_REF && b.ref->kind == SYM_INSTANCE) {
+    swSymbol *m = sema_lookup_local(b.ref->members, e->name);
+    if (!m) {
+      const char *cands[256];
+      int n = 0;
+      for (int i = 0; i < b.ref->members->n && n < 256; i++) cands[n++] = b.ref->members->sym[i]->name;
+      const char *near = diag_suggest(e->name, cands, n);
+      if (near)
+        diag_error(e->loc, "'%s' has no member '%s'; did you mean '%s'?", b.ref->name, e->name, near);
+      else
+        diag_error(e->loc, "'%s' has no member '%s'", b.ref->name, e->name);
+      return val_error();
+    }
+    return symbol_value(S, m, e->loc);
+  }
+  if (b.kind == VAL_REF && b.ref->kind == SYM_ROD) {
+    static const char *const members[] = {"start", "end", "length", "at"};
+    if (!strcmp(e->name, "start")) return sema_rod_point(S, b.ref, 0, 0, e->loc);
+    if (!strcmp(e->name, "end")) return sema_rod_point(S, b.ref, 1, -1, e->loc);
+    if (!strcmp(e->name, "length")) return sema_rod_length(S, b.ref, e->loc);
+    const char *near = diag_suggest(e->name, members, 4);
+    if (!strcmp(e->name, "at"))
+      diag_error(e->loc, "'at' needs a fraction of the length: %s.at(0.5)", b.ref->name);
+    else if (near)
+      diag_error(e->loc, "rod '%s' has no member '%s'; did you mean '%s'?", b.ref->name, e->name, near);
+    else
+      diag_error(e->loc, "rod '%s' has no member '%s' (it has start, end, length and at(f))",
+                 b.ref->name, e->name);
+    return val_error();
+  }
+  if (b.kind == VAL_VEC && (!strcmp(e->name, "x") || !strcmp(e->name, "y") ||
+                            !strcmp(e->name, "z"))) {
+    int i = e->name[0] - 'x';
+    if (i >= b.n) {
+      diag_error(e->loc, "a %d-component vector has no '%s'", b.n, e->name);
+      return val_error();
+    }
+    swValue r = val_num(S->a, b.v[i], b.dim, e->loc);
+    r.param = b.param;
+    if (b.c && b.c[i]) {
+      r.c = ast_alloc(S->a, sizeof *r.c);
+      r.c[0] = b.c[i];
+    }
+    return r;
+  }
+  diag_error(e->loc, "%s has no member '%s'", describe_value(S, &b), e->name);
+  return val_error();
+}
+
+static swValue eval_method(swSema *S, swScope *scope, const swAst *e) {
+  swValue b = sema_eval(S, scope, ast_kid(e, 0));
+  if (b.kind == VAL_ERROR) return b;
+  if (b.kind == VAL_WORD) {
+    sema_report_unknown(S, scope, b.word, b.loc, "name");
+    return val_error();
+  }
+  if (b.kind != VAL_REF || b.ref->kind != SYM_ROD || strcmp(e->name, "at")) {
+    if (b.kind == VAL_REF && b.ref->kind == SYM_ROD)
+      diag_error(e->loc, "rod '%s' has no method '%s' (points are start, end and at(f))",
+                 b.ref->name, e->name);
+    else
+      diag_error(e->loc, "'%s(...)' applies to a rod, not to %s", e->name, describe_value(S, &b));
+    return val_error();
+  }
+  const swAst *args = ast_kid(e, 1);
+  if (!args || args->nkid != 1 || args->kid[0]->name) {
+    diag_error(e->loc, "at() takes one argument, the fraction of the rod's length (0 to 1)");
+    return val_error();
+  }
+  swValue f = sema_expect(S, scope, ast_kid(args->kid[0], 0), 1, DIM_NONE,
+                          "the fraction in at()");
+  if (f.kind == VAL_ERROR || !sema_require_const(S, &f, "the fraction in at()")) return val_error();
+  if (!(f.v[0] >= 0 && f.v[0] <= 1)) {
+    diag_error(f.loc, "the fraction in at() must be between 0 and 1, got %g", f.v[0]);
+    return val_error();
+  }
+  return sema_rod_point(S, b.ref, f.v[0], -2, e->loc);
+}
+
+static swValue eval_vector(swSema *S, swScope *scope, const swAst *e) {
+  swValue *parts = ast_alloc(S->a, (size_t)e->nkid * sizeof *parts);
+  int bad = 0;
+  for (int i = 0; i < e->nkid; i++) {
+    parts[i] = operand(S, scope, e->kid[i]);
+    if (parts[i].kind == VAL_ERROR) bad = 1;
+    else if (parts[i].kind != VAL_NUM) {
+      diag_error(e->kid[i]->loc, "a vector component must be a number, not %s",
+                 describe_value(S, &parts[i]));
+      bad = 1;
+    }
+  }
+  if (bad) return val_error();
+  for (int i = 1; i < e->nkid; i++)
+    if (!dim_eq(parts[i].dim, parts[0].dim)) {
+      diag_error(e->kid[i]->loc, "vector components must share one dimension: component 1 is "
+                 "%s, component %d is %s", describe_value(S, &parts[0]), i + 1,
+                 describe_value(S, &parts[i]));
+      return val_error();
+    }
+  swValue v = val_vec(S->a, e->nkid, NULL, parts[0].dim, e->loc);
+  for (int i = 0; i < e->nkid; i++) {
+    v.v[i] = parts[i].v[0];
+    if (parts[i].c && parts[i].c[0]) {
+      if (!v.c) v.c = ast_alloc(S->a, (size_t)v.n * sizeof *v.c);
+      v.c[i] = parts[i].c[0];
+      v.param = parts[i].param;
+    }
+  }
+  return v;
+}
+
+swValue sema_eval(swSema *S, swScope *scope, const swAst *e) {
+  if (!e) return val_error();
+  switch (e->kind) {
+  case AST_NUM:
+    return val_num(S->a, e->num, DIM_NONE, e->loc);
+  case AST_UNIT: {
+    const swUnit *u = sw_unit_find(e->name, strlen(e->name));
+    if (!u) {
+      diag_error(e->loc, "unknown unit '%s'", e->name);
+      return val_error();
+    }
+    swDim d;
+    memcpy(d.e, u->dim, sizeof d.e);
+    return val_num(S->a, u->scale, d, e->loc);
+  }
+  case AST_NAME: {
+    swSymbol *sym = sema_lookup(S, scope, e->name);
+    if (sym) return symbol_value(S, sym, e->loc);
+    if (!strcmp(e->name, "pi")) return val_num(S->a, PI, DIM_NONE, e->loc);
+    swValue w = val_error();
+    w.kind = VAL_WORD;
+    w.word = e->name;
+    w.loc = e->loc;
+    return w;
+  }
+  case AST_BINOP: {
+    if (e->op == '^') {
+      swValue x = operand(S, scope, e->kid[0]);
+      swValue p = operand(S, scope, e->kid[1]);
+      if (x.kind == VAL_ERROR || p.kind == VAL_ERROR) return val_error();
+      if (p.kind != VAL_NUM || !dim_is_none(p.dim) || !val_is_const(&p)) {
+        diag_error(e->kid[1]->loc, "an exponent must be a plain number known when compiling");
+        return val_error();
+      }
+      return val_pow(S->a, x, p.v[0], e->loc);
+    }
+    swValue x = operand(S, scope, e->kid[0]);
+    swValue y = operand(S, scope, e->kid[1]);
+    return val_binop(S->a, e->op, x, y, e->loc);
+  }
+  case AST_APPLY: {
+    swValue x = operand(S, scope, e->kid[0]);
+    swValue u = operand(S, scope, e->kid[1]);
+    return val_binop(S->a, '*', x, u, e->loc);
+  }
+  case AST_NEG:
+    return val_neg(S->a, operand(S, scope, e->kid[0]), e->loc);
+  case AST_VEC:
+    return eval_vector(S, scope, e);
+  case AST_CALL:
+    return eval_call(S, scope, e);
+  case AST_MEMBER:
+    return eval_member(S, scope, e);
+  case AST_METHOD:
+    return eval_method(S, scope, e);
+  default:
+    diag_error(e->loc, "a %s is not a value", ast_kind_name(e->kind));
+    return val_error();
+  }
+}

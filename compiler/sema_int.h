@@ -1,0 +1,80 @@
+/* sema_int.h — state shared by the checker's files (sema.c, sema_expr.c,
+ * sema_def.c); not used outside the checker.
+ *
+ * Design.  One swSema per compilation: the arena, the scene being built, the
+ * global scope, the stack of files being imported (for cycle messages) and
+ * the list of every symbol (for "never used" warnings).  Definitions are
+ * evaluated lazily, on first use or in file order, whichever comes first; a
+ * definition met again while it is being evaluated is a cycle.
+ */
+#ifndef SINEW_SEMA_INT_H
+#define SINEW_SEMA_INT_H
+
+#include "diag.h"
+#include "sema.h"
+
+#define SEMA_MAX_IMPORT_DEPTH 32
+#define SEMA_MAX_INSTANCE_DEPTH 16
+
+typedef struct {
+  swArena *a;
+  swScene *scene;
+  swScope *global;
+  int main_file;
+  int import_stack[SEMA_MAX_IMPORT_DEPTH];
+  swLoc import_loc[SEMA_MAX_IMPORT_DEPTH];
+  int import_depth;
+  char **done_paths;          /* canonical paths of files already read */
+  int ndone, capdone;
+  swSymbol **all;             /* every symbol, for unused warnings      */
+  int nall, capall;
+  int instance_depth;
+  /* source text with imports, for model_source */
+  char *src;
+  size_t srclen, srccap;
+  /* items met once per scene */
+  swLoc simulate_loc, output_loc;
+  int has_simulate, has_output;
+} swSema;
+
+/* sema.c */
+swSymbol *sema_lookup(swSema *S, swScope *scope, const char *name);
+swSymbol *sema_lookup_local(swScope *scope, const char *name);
+void sema_report_unknown(swSema *S, swScope *scope, const char *name, swLoc loc,
+                         const char *what);
+void sema_items(swSema *S, swScope *scope, const swAst *items, int first);
+
+/* sema_expr.c */
+swValue sema_eval(swSema *S, swScope *scope, const swAst *e);
+/* a value required to be a number (n == 1) or vector of n components with
+ * dimension `want` (dim_fits); `what` names it in messages */
+swValue sema_expect(swSema *S, swScope *scope, const swAst *e, int n, swDim want,
+                    const char *what);
+swValue sema_expect_value(swSema *S, swValue v, int n, swDim want, const char *what);
+int sema_const_int(swSema *S, swValue v, const char *what, long lo, long hi, long *out);
+int sema_require_const(swSema *S, const swValue *v, const char *what);
+const char *sema_word(swSema *S, swScope *scope, const swAst *e, const char *what,
+                      const char *const *choices, int nchoices);
+
+/* sema_def.c */
+void sema_eval_symbol(swSema *S, swSymbol *sym);
+swValue sema_rod_point(swSema *S, swSymbol *rod, double frac, int node, swLoc loc);
+swValue sema_rod_length(swSema *S, swSymbol *rod, swLoc loc);
+void sema_joint(swSema *S, swScope *scope, const swAst *item);
+void sema_action(swSema *S, swScope *scope, const swAst *item);
+void sema_simulate(swSema *S, swScope *scope, const swAst *item);
+void sema_output(swSema *S, swScope *scope, const swAst *item);
+
+/* Field table of a definition body: the entries under their keys, unknown
+ * and repeated keys reported. */
+#define SEMA_MAX_FIELDS 32
+typedef struct {
+  const char *const *keys;
+  int nkeys;
+  const swAst *value[SEMA_MAX_FIELDS];
+} swFields;
+void sema_fields(swSema *S, const swAst *body, int first, const char *what,
+                 const char *const *keys, int nkeys, swFields *f);
+const swAst *sema_field(const swFields *f, const char *key);
+
+#endif

@@ -1,0 +1,282 @@
+/* sinewc.c — the compiler's command line.
+ *
+ *   sinewc MODEL.sinew -o SIM           compile to a standalone simulator
+ *   sinewc MODEL.sinew --emit-c -o F.c  write the generated C only
+ *   sinewc --check MODEL.sinew          parse and check; diagnostics only
+ *
+ * Design.  Read the model, check it (every error of every file reported),
+ * let the runtime validate the scene and estimate its stable step, then
+ * print the C and, for -o, hand it to the system C compiler with the
+ * runtime's header and library.  The C compiler is run with posix_spawn and
+ * an argument vector, never through a shell, so no file name can become a
+ * command.  The runtime is looked up next to the sinewc executable: the
+ * source tree (bin/../runtime, bin/../build) or an installation
+ * (bin/../include/sinew, bin/../lib); SINEW_RUNTIME overrides both with a
+ * directory holding sinew.h and libsinewrt.a.  Exit codes follow SPEC.md:
+ * 0 ok, 1 model error, 2 usage error, 4 I/O error.
+ */
+#include <errno.h>
+#include <limits.h>
+#include <spawn.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include "diag.h"
+#include "gen.h"
+#include "sema.h"
+
+#ifndef SW_RT_CFLAGS
+#define SW_RT_CFLAGS ""
+#endif
+#ifndef SW_RT_LIBS
+#define SW_RT_LIBS "-lhdf5 -lgsl -lgslcblas -lm"
+#endif
+
+extern char **environ;
+
+static const char *progname = "sinewc";
+
+static void usage(FILE *out) {
+  fprintf(out,
+          "usage: sinewc MODEL.sinew -o SIM           compile a model to a simulator\n"
+          "       sinewc MODEL.sinew --emit-c -o F.c  write the generated C only\n"
+          "       sinewc --check MODEL.sinew          parse and check only\n"
+          "options:\n"
+          "  -o FILE      output file (the simulator, or the C file with --emit-c)\n"
+          "  --emit-c     write C instead of compiling it\n"
+          "  --check      report diagnostics and write nothing\n"
+          "  -Werror      treat warnings as errors\n"
+          "  --version    print the version\n"
+          "  --help       this text\n"
+          "environment: SINEW_PATH (import search path), CC (C compiler, default cc),\n"
+          "             SINEW_RUNTIME (directory with sinew.h and libsinewrt.a)\n");
+}
+
+static int exists(const char *path) {
+  struct stat st;
+  return stat(path, &st) == 0;
+}
+
+/* Directory of the runtime's header and of its library. */
+static int find_runtime(char *inc, char *lib, size_t len) {
+  const char *env = getenv("SINEW_RUNTIME");
+  if (env && *env) {
+    snprintf(inc, len, "%s", env);
+    snprintf(lib, len, "%s", env);
+    return 1;
+  }
+  char exe[PATH_MAX];
+  ssize_t n = readlink("/proc/self/exe", exe, sizeof exe - 1);
+  if (n <= 0) return 0;
+  exe[n] = 0;
+  char *slash = strrchr(exe, '/');
+  if (!slash) return 0;
+  *slash = 0;   /* exe is now the bin directory */
+  static const char *layouts[][2] = {
+    {"/../runtime", "/../build"},         /* source tree */
+    {"/../include/sinew", "/../lib"},     /* make install */
+  };
+  for (size_t i = 0; i < sizeof layouts / sizeof layouts[0]; i++) {
+    char h[PATH_MAX + 32], l[PATH_MAX + 32];
+    snprintf(h, sizeof h, "%s%s/sinew.h", exe, layouts[i][0]);
+    snprintf(l, sizeof l, "%s%s/libsinewrt.a", exe, layouts[i][1]);
+    if (exists(h) && exists(l)) {
+      snprintf(inc, len, "%s%s", exe, layouts[i][0]);
+      snprintf(lib, len, "%s%s", exe, layouts[i][1]);
+      return 1;
+    }
+  }
+  return 0;
+}
+
+/* Split a flags string on blanks into argv (the flags are ours, from pkg-config). */
+static int split_flags(char *s, char **argv, int max) {
+  int n = 0;
+  for (char *tok = strtok(s, " \t\n"); tok && n < max; tok = strtok(NULL, " \t\n")) argv[n++] = tok;
+  return n;
+}
+
+static int run_cc(const char *csrc, const char *out) {
+  char inc[PATH_MAX], lib[PATH_MAX];
+  if (!find_runtime(inc, lib, sizeof inc)) {
+    fprintf(stderr, "%s: cannot find the runtime (sinew.h and libsinewrt.a) next to this "
+            "executable; set SINEW_RUNTIME to their directory\n", progname);
+    return 4;
+  }
+  const char *cc = getenv("CC");
+  if (!cc || !*cc) cc = "cc";
+  char incflag[PATH_MAX + 4], libpath[PATH_MAX + 32];
+  snprintf(incflag, sizeof incflag, "-I%s", inc);
+  snprintf(libpath, sizeof libpath, "%s/libsinewrt.a", lib);
+  char cflags[1024], libs[1024];
+  snprintf(cflags, sizeof cflags, "%s", SW_RT_CFLAGS);
+  snprintf(libs, sizeof libs, "%s", SW_RT_LIBS);
+  char *argv[96];
+  int n = 0;
+  argv[n++] = (char *)cc;
+  argv[n++] = "-std=c11";
+  argv[n++] = "-O2";
+  argv[n++] = "-fno-math-errno";
+  argv[n++] = incflag;
+  n += split_flags(cflags, argv + n, 32);
+  argv[n++] = "-x";
+  argv[n++] = "c";
+  argv[n++] = (char *)csrc;
+  argv[n++] = "-x";
+  argv[n++] = "none";
+  argv[n++] = libpath;
+  n += split_flags(libs, argv + n, 32);
+  argv[n++] = "-o";
+  argv[n++] = (char *)out;
+  argv[n] = NULL;
+  pid_t pid;
+  int rc = posix_spawnp(&pid, cc, NULL, NULL, argv, environ);
+  if (rc != 0) {
+    fprintf(stderr, "%s: cannot run the C compiler '%s': %s\n", progname, cc, strerror(rc));
+    return 4;
+  }
+  int status;
+  while (waitpid(pid, &status, 0) < 0)
+    if (errno != EINTR) {
+      fprintf(stderr, "%s: lost the C compiler: %s\n", progname, strerror(errno));
+      return 4;
+    }
+  if (!WIFEXITED(status) || WEXITSTATUS(status) != 0) {
+    fprintf(stderr, "%s: the C compiler '%s' failed on the generated code (a bug in sinewc: "
+            "please report it with the model)\n", progname, cc);
+    return 4;
+  }
+  return 0;
+}
+
+static char *read_all(const char *path, size_t *len) {
+  FILE *f = fopen(path, "rb");
+  if (!f) return NULL;
+  size_t cap = 4096, n = 0;
+  char *buf = malloc(cap);
+  size_t got;
+  while (buf && (got = fread(buf + n, 1, cap - n, f)) > 0) {
+    n += got;
+    if (n == cap) {
+      if (cap >= (16u << 20)) { free(buf); buf = NULL; break; }
+      cap *= 2;
+      char *b = realloc(buf, cap);
+      if (!b) { free(buf); buf = NULL; break; }
+      buf = b;
+    }
+  }
+  if (buf && ferror(f)) { free(buf); buf = NULL; }
+  fclose(f);
+  *len = n;
+  return buf;
+}
+
+int main(int argc, char **argv) {
+  const char *model = NULL, *out = NULL;
+  int emit_c = 0, check = 0, werror = 0;
+  for (int i = 1; i < argc; i++) {
+    const char *a = argv[i];
+    if (!strcmp(a, "-o")) {
+      if (++i >= argc) {
+        fprintf(stderr, "%s: -o needs a file name\n", progname);
+        return 2;
+      }
+      out = argv[i];
+    } else if (!strcmp(a, "--emit-c")) emit_c = 1;
+    else if (!strcmp(a, "--check")) check = 1;
+    else if (!strcmp(a, "-Werror")) werror = 1;
+    else if (!strcmp(a, "--help") || !strcmp(a, "-h")) {
+      usage(stdout);
+      return 0;
+    } else if (!strcmp(a, "--version")) {
+      printf("sinewc %s\n", SW_VERSION);
+      return 0;
+    } else if (a[0] == '-' && a[1]) {
+      static const char *const opts[] = {"-o", "--emit-c", "--check", "-Werror", "--help",
+                                         "--version"};
+      const char *near = diag_suggest(a, opts, 6);
+      fprintf(stderr, "%s: unknown option '%s'%s%s%s\n", progname, a, near ? "; did you mean '" : "",
+              near ? near : "", near ? "'?" : "");
+      return 2;
+    } else if (model) {
+      fprintf(stderr, "%s: one model at a time ('%s' and '%s')\n", progname, model, a);
+      return 2;
+    } else model = a;
+  }
+  if (!model) {
+    usage(stderr);
+    return 2;
+  }
+  if (!check && !out) {
+    fprintf(stderr, "%s: say where to write: -o SIM (or --check to check only)\n", progname);
+    return 2;
+  }
+  if (check && (out || emit_c)) {
+    fprintf(stderr, "%s: --check writes nothing; drop -o and --emit-c\n", progname);
+    return 2;
+  }
+  diag_reset(stderr);
+  diag_set_werror(werror);
+  size_t len;
+  char *text = read_all(model, &len);
+  if (!text) {
+    fprintf(stderr, "%s: cannot read '%s': %s\n", progname, model, strerror(errno));
+    return 4;
+  }
+  if (memchr(text, 0, len)) {
+    fprintf(stderr, "%s: '%s' contains NUL bytes (not a text file)\n", progname, model);
+    free(text);
+    return 1;
+  }
+  int file = diag_add_file(model, text, len);
+  free(text);
+  swArena *arena = ast_arena_new();
+  swScene scene;
+  sema_check(arena, file, &scene);
+  if (!diag_errors()) gen_check(&scene);
+  int rc = 0;
+  if (diag_errors()) {
+    fprintf(stderr, "%s: %d error%s, %d warning%s\n", progname, diag_errors(),
+            diag_errors() == 1 ? "" : "s", diag_warnings(), diag_warnings() == 1 ? "" : "s");
+    rc = 1;
+  } else if (!check) {
+    char tmp[PATH_MAX];
+    const char *cpath = out;
+    if (!emit_c) {
+      const char *dir = getenv("TMPDIR");
+      snprintf(tmp, sizeof tmp, "%s/sinewc-XXXXXX.c", dir && *dir ? dir : "/tmp");
+      int fd = mkstemps(tmp, 2);
+      if (fd < 0) {
+        fprintf(stderr, "%s: cannot create a temporary file: %s\n", progname, strerror(errno));
+        rc = 4;
+        goto done;
+      }
+      close(fd);
+      cpath = tmp;
+    }
+    FILE *f = fopen(cpath, "w");
+    if (!f) {
+      fprintf(stderr, "%s: cannot write '%s': %s\n", progname, cpath, strerror(errno));
+      rc = 4;
+      goto done;
+    }
+    char version[64];
+    snprintf(version, sizeof version, "sinewc %s", SW_VERSION);
+    swGenOptions opt = {version};
+    int bad = gen_c(f, arena, &scene, &opt);
+    if (fclose(f) != 0 || bad) {
+      fprintf(stderr, "%s: cannot write '%s'\n", progname, cpath);
+      rc = 4;
+    } else if (!emit_c) rc = run_cc(cpath, out);
+    if (!emit_c) unlink(cpath);
+  }
+done:
+  sema_scene_free(&scene);
+  ast_arena_free(arena);
+  diag_reset(NULL);
+  return rc;
+}

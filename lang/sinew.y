@@ -1,0 +1,312 @@
+/* sinew.y — the grammar of the sinew language.
+ *
+ * Design.  A pure (reentrant) LALR(1) parser with locations, no conflicts
+ * (%expect 0), building the tree of compiler/ast.h.  The grammar is small and
+ * regular: a file is a list of items; most items are "KIND NAME { key = value;
+ * ... }" or "ACTION operand [= value];", and the words that pick a kind of
+ * definition (material, bone, muscle, ...) or an action (clamp, force,
+ * gravity, ...) are ordinary identifiers that the checker validates, so a
+ * misspelled one gets a "did you mean" rather than a bare syntax error.
+ * Expressions have the usual precedence; a unit written after a value
+ * multiplies it and binds tighter than * and /, so `1.75 g/cm^3` reads as
+ * (1.75 g) / cm^3 and `(0, 0, -9.81) m/s^2` as ((0, 0, -9.81) m) / s^2.
+ * Error recovery resynchronises on ';' and '}', so one run reports every
+ * syntax error of a file.  Each rule is headed by the construct it reads.
+ */
+%define api.pure full
+%define api.prefix {sinew_yy}
+%define api.location.type {swLoc}
+%define parse.error custom
+%locations
+%expect 0
+%param {yyscan_t scanner}
+%parse-param {struct swLexState *st}
+
+%code requires {
+#include "ast.h"
+typedef void *yyscan_t;
+struct swLexState;
+}
+
+%code provides {
+int sinew_yylex(SINEW_YYSTYPE *yylval, swLoc *yylloc, yyscan_t scanner);
+int lex_init(yyscan_t *scanner, struct swLexState *st, const char *text, size_t len);
+void lex_done(yyscan_t scanner);
+}
+
+%code {
+#include <stdio.h>
+#include <string.h>
+#include "lex.h"
+
+#define YYLLOC_DEFAULT(Cur, Rhs, N)                                   \
+  do {                                                                \
+    if (N) (Cur) = ast_span(YYRHSLOC(Rhs, 1), YYRHSLOC(Rhs, N));      \
+    else {                                                            \
+      (Cur) = YYRHSLOC(Rhs, 0);                                       \
+      (Cur).line = (Cur).end_line;                                    \
+      (Cur).col = (Cur).end_col + 1;                                  \
+      (Cur).end_col = (Cur).col;                                      \
+    }                                                                 \
+  } while (0)
+
+#define A (st->arena)
+static swAst *node(struct swLexState *st, swAstKind k, swLoc loc) { return ast_new(st->arena, k, loc); }
+static swAst *named(struct swLexState *st, swAstKind k, swLoc loc, const char *name) {
+  swAst *n = ast_new(st->arena, k, loc);
+  n->name = name;
+  return n;
+}
+static swAst *binop(struct swLexState *st, int op, swAst *a, swAst *b, swLoc loc) {
+  swAst *n = ast_new(st->arena, AST_BINOP, loc);
+  n->op = op;
+  ast_push(st->arena, n, a);
+  ast_push(st->arena, n, b);
+  return n;
+}
+static void sinew_yyerror(swLoc *loc, yyscan_t scanner, struct swLexState *st, const char *msg) {
+  (void)scanner; (void)st;
+  diag_error(*loc, "%s", msg);
+}
+}
+
+%union {
+  double num;
+  const char *str;
+  swAst *ast;
+}
+
+%token <num> NUMBER "number"
+%token <str> IDENT  "name"
+%token <str> UNIT   "unit"
+%token <str> STRING "string"
+%token IMPORT "'import'" PARAM "'param'" LET "'let'" JOINT "'joint'"
+%token COMPONENT "'component'" USE "'use'" SIMULATE "'simulate'"
+%token OUTPUT "'output'" EVERY "'every'"
+
+%left '+' '-'
+%left '*' '/'
+%precedence NEG
+%precedence UNIT
+%right '^'
+
+%type <ast> items item body fields field expr primary args arglist arg
+%type <ast> formals formallist formal exprlist every_opt unit_factor
+%type <num> exponent
+
+%%
+
+/* file: item* */
+file
+  : items                    { st->root = $1; }
+  ;
+
+items
+  : %empty                   { $$ = node(st, AST_FILE, @$); }
+  | items item               { $$ = $2 ? ast_push(A, $1, $2) : $1; }
+  ;
+
+item
+  /* import "path"; */
+  : IMPORT STRING ';'        { $$ = node(st, AST_IMPORT, @$); $$->text = $2; }
+  /* param NAME = expr; */
+  | PARAM IDENT '=' expr ';' { $$ = named(st, AST_PARAM, @2, $2); ast_push(A, $$, $4); }
+  /* let NAME = expr; */
+  | LET IDENT '=' expr ';'   { $$ = named(st, AST_LET, @2, $2); ast_push(A, $$, $4); }
+  /* KIND NAME { fields }      material bone { E = 15 GPa; } */
+  | IDENT IDENT body         { $$ = named(st, AST_DEF, @2, $2); $$->text = $1;
+                               $$->kid = $3->kid; $$->nkid = $3->nkid; $$->capkid = $3->capkid;
+                               $$->loc = ast_span(@1, @2); }
+  /* joint NAME = KIND(args) [{ fields }] */
+  | JOINT IDENT '=' IDENT '(' args ')' body
+                             { $$ = named(st, AST_JOINT, @2, $2); $$->text = $4;
+                               ast_push(A, $$, $6);
+                               for (int i = 0; i < $8->nkid; i++) ast_push(A, $$, $8->kid[i]); }
+  | JOINT IDENT '=' IDENT '(' args ')' ';'
+                             { $$ = named(st, AST_JOINT, @2, $2); $$->text = $4; ast_push(A, $$, $6); }
+  /* component NAME(formals) { items } */
+  | COMPONENT IDENT '(' formals ')' '{' items '}'
+                             { $$ = named(st, AST_COMPONENT, @2, $2); ast_push(A, $$, $4);
+                               for (int i = 0; i < $7->nkid; i++) ast_push(A, $$, $7->kid[i]); }
+  /* use NAME = COMPONENT(args); */
+  | USE IDENT '=' IDENT '(' args ')' ';'
+                             { $$ = named(st, AST_USE, @2, $2); $$->text = $4;
+                               $$->loc = ast_span(@2, @7); ast_push(A, $$, $6); }
+  /* ACTION operand;   ACTION operand = value;      clamp bar.start;  force bar.end = (0, 0, -1) N; */
+  | IDENT expr ';'           { $$ = node(st, AST_ACTION, @1); $$->text = $1; ast_push(A, $$, $2); }
+  | IDENT expr '=' expr ';'  { $$ = node(st, AST_ACTION, @1); $$->text = $1;
+                               ast_push(A, $$, $2); ast_push(A, $$, $4); }
+  /* simulate { fields } */
+  | SIMULATE body            { $$ = $2; $$->kind = AST_SIMULATE; $$->loc = @1; }
+  /* output "file.h5" [every T] [{ selections }] */
+  | OUTPUT STRING every_opt body
+                             { $$ = $4; $$->kind = AST_OUTPUT; $$->loc = ast_span(@1, @2); $$->text = $2;
+                               swAst *every = $3;
+                               ast_push(A, $$, every);
+                               /* every goes first */
+                               for (int i = $$->nkid - 1; i > 0; i--) $$->kid[i] = $$->kid[i - 1];
+                               $$->kid[0] = every; }
+  | OUTPUT STRING every_opt ';'
+                             { $$ = node(st, AST_OUTPUT, ast_span(@1, @2)); $$->text = $2; ast_push(A, $$, $3); }
+  | error ';'                { $$ = NULL; yyerrok; }
+  | error '}'                { $$ = NULL; yyerrok; }
+  ;
+
+every_opt
+  : %empty                   { $$ = NULL; }
+  | EVERY expr               { $$ = $2; }
+  ;
+
+/* body: { field* } */
+body
+  : '{' fields '}'           { $$ = $2; }
+  ;
+
+fields
+  : %empty                   { $$ = node(st, AST_SIMULATE, @$); }
+  | fields field             { $$ = $2 ? ast_push(A, $1, $2) : $1; }
+  ;
+
+field
+  /* key = value; */
+  : IDENT '=' expr ';'       { $$ = named(st, AST_FIELD, @1, $1); ast_push(A, $$, $3); }
+  /* what targets;            velocity all;  energy; */
+  | IDENT exprlist ';'       { $$ = $2; $$->kind = AST_SELECT; $$->name = $1; $$->loc = @1; }
+  | IDENT ';'                { $$ = named(st, AST_SELECT, @1, $1); }
+  | error ';'                { $$ = NULL; yyerrok; }
+  ;
+
+formals
+  : %empty                   { $$ = node(st, AST_FORMALS, @$); }
+  | formallist               { $$ = $1; }
+  ;
+formallist
+  : formal                   { $$ = ast_push(A, node(st, AST_FORMALS, @1), $1); }
+  | formallist ',' formal    { $$ = ast_push(A, $1, $3); }
+  ;
+/* NAME [= default] */
+formal
+  : IDENT                    { $$ = named(st, AST_ARG, @1, $1); }
+  | IDENT '=' expr           { $$ = named(st, AST_ARG, @1, $1); ast_push(A, $$, $3); }
+  ;
+
+args
+  : %empty                   { $$ = node(st, AST_ARGS, @$); }
+  | arglist                  { $$ = $1; }
+  ;
+arglist
+  : arg                      { $$ = ast_push(A, node(st, AST_ARGS, @1), $1); }
+  | arglist ',' arg          { $$ = ast_push(A, $1, $3); }
+  ;
+/* value | name = value */
+arg
+  : expr                     { $$ = ast_push(A, node(st, AST_ARG, @1), $1); }
+  | IDENT '=' expr           { $$ = named(st, AST_ARG, @1, $1); ast_push(A, $$, $3); }
+  ;
+
+exprlist
+  : expr                     { $$ = ast_push(A, node(st, AST_ARGS, @1), $1); }
+  | exprlist ',' expr        { $$ = ast_push(A, $1, $3); }
+  ;
+
+expr
+  : expr '+' expr            { $$ = binop(st, '+', $1, $3, @$); }
+  | expr '-' expr            { $$ = binop(st, '-', $1, $3, @$); }
+  | expr '*' expr            { $$ = binop(st, '*', $1, $3, @$); }
+  | expr '/' expr            { $$ = binop(st, '/', $1, $3, @$); }
+  | '-' expr %prec NEG       { $$ = ast_push(A, node(st, AST_NEG, @$), $2); }
+  | expr '^' expr            { $$ = binop(st, '^', $1, $3, @$); }
+  /* value unit: juxtaposition multiplies */
+  | expr unit_factor %prec UNIT
+                             { $$ = node(st, AST_APPLY, @$); ast_push(A, $$, $1); ast_push(A, $$, $2); }
+  | primary                  { $$ = $1; }
+  ;
+
+unit_factor
+  : UNIT                     { $$ = named(st, AST_UNIT, @1, $1); }
+  | UNIT '^' exponent        { $$ = binop(st, '^', named(st, AST_UNIT, @1, $1),
+                                          node(st, AST_NUM, @3), @$);
+                               $$->kid[1]->num = $3; }
+  ;
+
+exponent
+  : NUMBER                   { $$ = $1; }
+  | '-' NUMBER               { $$ = -$2; }
+  ;
+
+primary
+  : NUMBER                   { $$ = node(st, AST_NUM, @1); $$->num = $1; }
+  | IDENT                    { $$ = named(st, AST_NAME, @1, $1); }
+  | UNIT                     { $$ = named(st, AST_UNIT, @1, $1); }
+  | '(' expr ')'             { $$ = $2; }
+  /* vector: (x, y, z) */
+  | '(' expr ',' exprlist ')'
+                             { $$ = node(st, AST_VEC, @$); ast_push(A, $$, $2);
+                               for (int i = 0; i < $4->nkid; i++) ast_push(A, $$, $4->kid[i]); }
+  /* call: ramp(0, 1, over = 0.1 s) */
+  | IDENT '(' args ')'       { $$ = named(st, AST_CALL, @$, $1); ast_push(A, $$, $3); }
+  /* member: humerus.end */
+  | primary '.' IDENT        { $$ = named(st, AST_MEMBER, @$, $3); ast_push(A, $$, $1); }
+  /* method: humerus.at(0.3) */
+  | primary '.' IDENT '(' args ')'
+                             { $$ = named(st, AST_METHOD, @$, $3); ast_push(A, $$, $1); ast_push(A, $$, $5); }
+  | '(' error ')'            { $$ = node(st, AST_NUM, @$); }
+  ;
+
+%%
+
+/* The message of a syntax error: what was found, what would have fitted, and,
+ * when a bracket is left open, where it was opened (as Lua does). */
+static int yyreport_syntax_error(const yypcontext_t *ctx, yyscan_t scanner, struct swLexState *st) {
+  (void)scanner;
+  enum { NEXPECT = 6 };
+  yysymbol_kind_t expected[NEXPECT];
+  int n = yypcontext_expected_tokens(ctx, expected, NEXPECT);
+  yysymbol_kind_t found = yypcontext_token(ctx);
+  const swLoc *loc = yypcontext_location(ctx);
+  char msg[512];
+  int len = 0;
+  if (found == YYSYMBOL_YYEOF)
+    len = snprintf(msg, sizeof msg, "unexpected end of file");
+  else
+    len = snprintf(msg, sizeof msg, "unexpected %s", yysymbol_name(found));
+  if (n > 0 && n < NEXPECT) {
+    for (int i = 0; i < n && len < (int)sizeof msg; i++)
+      len += snprintf(msg + len, sizeof msg - (size_t)len, "%s%s",
+                      i == 0 ? ", expected " : i == n - 1 ? " or " : ", ",
+                      yysymbol_name(expected[i]));
+  }
+  /* an unclosed bracket explains an unexpected end of file or keyword */
+  if (st->depth > 0 && st->depth <= LEX_MAX_DEPTH && len < (int)sizeof msg) {
+    char open = st->open[st->depth - 1], want = open == '{' ? '}' : ')';
+    int wanted = found == YYSYMBOL_YYEOF;
+    for (int i = 0; i < n; i++)
+      if (!strcmp(yysymbol_name(expected[i]), want == '}' ? "'}'" : "')'")) wanted = 1;
+    if (wanted)
+      snprintf(msg + len, sizeof msg - (size_t)len, " ('%c' to close '%c' at line %d)", want,
+               open, st->open_loc[st->depth - 1].line);
+  }
+  diag_error(*loc, "%s", msg);
+  return 0;
+}
+
+swAst *parse_file(swArena *arena, int file) {
+  const swSource *src = diag_file(file);
+  struct swLexState st;
+  memset(&st, 0, sizeof st);
+  st.file = file;
+  st.line = st.col = 1;
+  st.arena = arena;
+  yyscan_t scanner;
+  if (lex_init(&scanner, &st, src->text, src->len)) {
+    diag_plain("cannot start the scanner for %s", src->path);
+    return NULL;
+  }
+  sinew_yyparse(scanner, &st);
+  lex_done(scanner);
+  if (!st.root) {
+    swLoc loc = {file, 1, 1, 1, 1};
+    st.root = ast_new(arena, AST_FILE, loc);
+  }
+  return st.root;
+}
