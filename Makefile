@@ -90,8 +90,11 @@ build/rt build/asan/rt build/tests build/asan/tests build/bench:
 test: deps
 	@$(MAKE) --no-print-directory check
 
-check: $(TEST_BIN) $(TEST_SBIN)
-	@CMOCKA_MESSAGE_OUTPUT=TAP prove -j2 --exec '' $(TEST_BIN) $(TEST_SBIN)
+# Language tests are TAP shell scripts (tests/lang/test_*.sh) driving the
+# compiler: the optimised bin/sinewc and the sanitizer build build/asan/sinewc.
+LANG_TESTS = $(wildcard tests/lang/test_*.sh)
+check: $(TEST_BIN) $(TEST_SBIN) bin/sinewc build/asan/sinewc
+	@CMOCKA_MESSAGE_OUTPUT=TAP prove -j2 --exec '' $(TEST_BIN) $(TEST_SBIN) $(LANG_TESTS)
 
 BENCH_BIN = build/bench/bench_rod
 # The benchmark report states the flags the runtime was built with; they are

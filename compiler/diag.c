@@ -17,12 +17,21 @@
 
 #define MAX_ERRORS 100
 
+typedef struct {
+  int file, line, col;
+  long seq;                     /* order of reporting, to keep sorts stable */
+  char *text;                   /* the whole formatted diagnostic           */
+} swPending;
+
+static swPending *pending;
+static long npending, cappending;
 static swSource *files;
 static int nfiles, capfiles;
 static int nerrors, nwarnings, werror;
 static FILE *diag_out;
 
 void diag_reset(FILE *out) {
+  diag_flush();
   for (int i = 0; i < nfiles; i++) {
     free(files[i].path);
     free(files[i].text);
@@ -97,8 +106,12 @@ static void show_source(FILE *out, swLoc loc) {
   fputc('\n', out);
 }
 
+/* Format one diagnostic into the pending list; diag_flush() prints them. */
 static void report(const char *severity, swLoc loc, const char *fmt, va_list ap) {
-  FILE *out = out_stream();
+  char *text = NULL;
+  size_t size = 0;
+  FILE *out = open_memstream(&text, &size);
+  if (!out) abort();
   const swSource *f = diag_file(loc.file);
   if (f && loc.line > 0) fprintf(out, "%s:%d:%d: %s: ", f->path, loc.line, loc.col, severity);
   else if (f) fprintf(out, "%s: %s: ", f->path, severity);   /* the file as a whole */
@@ -106,12 +119,45 @@ static void report(const char *severity, swLoc loc, const char *fmt, va_list ap)
   vfprintf(out, fmt, ap);
   fputc('\n', out);
   if (f && loc.line > 0) show_source(out, loc);
+  fclose(out);
+  if (npending == cappending) {
+    cappending = cappending ? 2 * cappending : 16;
+    pending = realloc(pending, (size_t)cappending * sizeof *pending);
+    if (!pending) abort();
+  }
+  pending[npending] = (swPending){f ? loc.file : -1, loc.line, loc.col, npending, text};
+  npending++;
+}
+
+static int by_place(const void *pa, const void *pb) {
+  const swPending *a = pa, *b = pb;
+  if (a->file != b->file) return a->file < b->file ? -1 : 1;
+  if (a->line != b->line) return a->line < b->line ? -1 : 1;
+  if (a->col != b->col) return a->col < b->col ? -1 : 1;
+  return a->seq < b->seq ? -1 : a->seq > b->seq;
+}
+
+/* Print what is pending, in file order and then by line and column, the
+ * order a reader goes through the model. */
+void diag_flush(void) {
+  qsort(pending, (size_t)npending, sizeof *pending, by_place);
+  FILE *out = out_stream();
+  for (long i = 0; i < npending; i++) {
+    fputs(pending[i].text, out);
+    free(pending[i].text);
+  }
+  free(pending);
+  pending = NULL;
+  npending = cappending = 0;
+  fflush(out);
 }
 
 void diag_error(swLoc loc, const char *fmt, ...) {
   if (++nerrors > MAX_ERRORS) {
-    if (nerrors == MAX_ERRORS + 1)
+    if (nerrors == MAX_ERRORS + 1) {
+      diag_flush();
       fprintf(out_stream(), "sinewc: too many errors (%d); stopping here\n", MAX_ERRORS);
+    }
     return;
   }
   va_list ap;
@@ -144,6 +190,7 @@ void diag_note(swLoc loc, const char *fmt, ...) {
 
 void diag_plain(const char *fmt, ...) {
   nerrors++;
+  diag_flush();
   FILE *out = out_stream();
   va_list ap;
   va_start(ap, fmt);

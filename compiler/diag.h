@@ -3,7 +3,9 @@
  * Design.  Every file the compiler reads is registered here once and keeps
  * its text for the whole compilation, so a diagnostic at any stage can print
  * "file:line:col: error: message", the source line and a caret under the
- * columns it names (the convention of gcc and clang).  Errors are counted,
+ * columns it names (the convention of gcc and clang).  Diagnostics are held
+ * until diag_flush() and printed in the order of the model text, whichever
+ * stage found them.  Errors are counted,
  * not fatal: every stage goes on and reports everything it can.  The output
  * stream is settable so the tests can capture the exact text.
  */
@@ -29,6 +31,8 @@ void diag_warning(swLoc loc, const char *fmt, ...) __attribute__((format(printf,
 void diag_note(swLoc loc, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
 /* A message with no place in a model ("sinewc: cannot read x.sinew"). */
 void diag_plain(const char *fmt, ...) __attribute__((format(printf, 1, 2)));
+/* Print pending diagnostics sorted by file, line and column. */
+void diag_flush(void);
 int diag_errors(void);
 int diag_warnings(void);
 void diag_set_werror(int on);

@@ -55,11 +55,16 @@ void sema_report_unknown(swSema *S, swScope *scope, const char *name, swLoc loc,
                          const char *what) {
   (void)S;
   enum { MAXC = 512 };
-  const char *cands[MAXC];
+  const char *cands[MAXC] = {0};
   int n = 0;
   for (swScope *sc = scope; sc; sc = sc->parent)
     for (int i = 0; i < sc->n && n < MAXC; i++) cands[n++] = sc->sym[i]->name;
   const char *near = diag_suggest(name, cands, n);
+  /* the suggested definition is what the user meant: do not also call it unused */
+  if (near) {
+    swSymbol *meant = sema_lookup(S, scope, near);
+    if (meant) meant->used = 1;
+  }
   if (near) diag_error(loc, "unknown %s '%s'; did you mean '%s'?", what, name, near);
   else diag_error(loc, "unknown %s '%s'", what, name);
 }
@@ -140,6 +145,10 @@ static char *read_file(const char *path, size_t *len, const char **why) {
   }
   if (S_ISDIR(st.st_mode)) {
     *why = "it is a directory";
+    return NULL;
+  }
+  if (!S_ISREG(st.st_mode)) {   /* a FIFO or /dev/stdin would hang the compiler */
+    *why = "it is not a regular file";
     return NULL;
   }
   FILE *f = fopen(path, "rb");

@@ -239,6 +239,7 @@ int main(int argc, char **argv) {
   sema_check(arena, file, &scene);
   if (!diag_errors()) gen_check(&scene);
   int rc = 0;
+  diag_flush();
   if (diag_errors()) {
     fprintf(stderr, "%s: %d error%s, %d warning%s\n", progname, diag_errors(),
             diag_errors() == 1 ? "" : "s", diag_warnings(), diag_warnings() == 1 ? "" : "s");

@@ -102,7 +102,7 @@ file
   ;
 
 items
-  : %empty                   { $$ = node(st, AST_FILE, @$); }
+  : %empty                   { $$ = node(st, AST_FILE, @$); if (!st->root) st->root = $$; }
   | items item               { $$ = $2 ? ast_push(A, $1, $2) : $1; }
   ;
 
@@ -160,6 +160,7 @@ every_opt
 /* body: { field* } */
 body
   : '{' fields '}'           { $$ = $2; }
+  | '{' fields error '}'     { $$ = $2; yyerrok; }
   ;
 
 fields
@@ -259,7 +260,7 @@ primary
  * when a bracket is left open, where it was opened (as Lua does). */
 static int yyreport_syntax_error(const yypcontext_t *ctx, yyscan_t scanner, struct swLexState *st) {
   (void)scanner;
-  enum { NEXPECT = 6 };
+  enum { NEXPECT = 64 };
   yysymbol_kind_t expected[NEXPECT];
   int n = yypcontext_expected_tokens(ctx, expected, NEXPECT);
   yysymbol_kind_t found = yypcontext_token(ctx);
@@ -270,21 +271,43 @@ static int yyreport_syntax_error(const yypcontext_t *ctx, yyscan_t scanner, stru
     len = snprintf(msg, sizeof msg, "unexpected end of file");
   else
     len = snprintf(msg, sizeof msg, "unexpected %s", yysymbol_name(found));
-  if (n > 0 && n < NEXPECT) {
-    for (int i = 0; i < n && len < (int)sizeof msg; i++)
-      len += snprintf(msg + len, sizeof msg - (size_t)len, "%s%s",
-                      i == 0 ? ", expected " : i == n - 1 ? " or " : ", ",
-                      yysymbol_name(expected[i]));
-  }
-  /* an unclosed bracket explains an unexpected end of file or keyword */
-  if (st->depth > 0 && st->depth <= LEX_MAX_DEPTH && len < (int)sizeof msg) {
-    char open = st->open[st->depth - 1], want = open == '{' ? '}' : ')';
+  /* Where an expression could go on, every operator and unit is "expected";
+   * listing them helps nobody.  Name the tokens that end or structure
+   * something (';', '}', ')', ',', '=', '{', a name, a string) when there are
+   * any, otherwise up to four of the rest. */
+  static const char *const structural[] = {"';'", "'}'", "')'", "','", "'='", "'{'", "\"name\"",
+                                           "\"string\""};
+  const char *show[8];
+  int nshow = 0;
+  for (size_t k = 0; k < sizeof structural / sizeof structural[0]; k++)
+    for (int i = 0; i < n; i++)
+      if (!strcmp(yysymbol_name(expected[i]), structural[k])) show[nshow++] = structural[k];
+  if (nshow == 0 && n > 0 && n <= 4)
+    for (int i = 0; i < n; i++) show[nshow++] = yysymbol_name(expected[i]);
+  /* an unclosed bracket explains an unexpected end of file or keyword: say
+   * which bracket, and where it was opened (as Lua does) */
+  char open = 0;
+  if (st->depth > 0 && st->depth <= LEX_MAX_DEPTH) {
+    char o = st->open[st->depth - 1], want = o == '{' ? '}' : ')';
     int wanted = found == YYSYMBOL_YYEOF;
     for (int i = 0; i < n; i++)
       if (!strcmp(yysymbol_name(expected[i]), want == '}' ? "'}'" : "')'")) wanted = 1;
-    if (wanted)
-      snprintf(msg + len, sizeof msg - (size_t)len, " ('%c' to close '%c' at line %d)", want,
-               open, st->open_loc[st->depth - 1].line);
+    if (wanted) open = o;
+  }
+  if (open) {
+    snprintf(msg + len, sizeof msg - (size_t)len, ", expected '%c' (to close '%c' at line %d)",
+             open == '{' ? '}' : ')', open, st->open_loc[st->depth - 1].line);
+  } else {
+    for (int i = 0; i < nshow && len < (int)sizeof msg; i++) {
+      const char *name = show[i];
+      char plain[32];
+      if (name[0] == '"') {   /* "\"name\"" -> "a name" */
+        snprintf(plain, sizeof plain, "a %.*s", (int)strlen(name) - 2, name + 1);
+        name = plain;
+      }
+      len += snprintf(msg + len, sizeof msg - (size_t)len, "%s%s",
+                      i == 0 ? ", expected " : i == nshow - 1 ? " or " : ", ", name);
+    }
   }
   diag_error(*loc, "%s", msg);
   return 0;
