@@ -93,8 +93,14 @@ test: deps
 # Language tests are TAP shell scripts (tests/lang/test_*.sh) driving the
 # compiler: the optimised bin/sinewc and the sanitizer build build/asan/sinewc.
 LANG_TESTS = $(wildcard tests/lang/test_*.sh)
-check: $(TEST_BIN) $(TEST_SBIN) bin/sinewc build/asan/sinewc
-	@CMOCKA_MESSAGE_OUTPUT=TAP prove -j2 --exec '' $(TEST_BIN) $(TEST_SBIN) $(LANG_TESTS)
+# End-to-end tests compile models with the sanitizer build of sinewc, run the
+# simulators and check their HDF5 output against closed forms.
+E2E_BIN  = build/tests/test_e2e
+build/tests/test_e2e: tests/e2e/test_e2e.c | build/tests
+	$(CC) $(ALL_CFLAGS) $< -o $@ $(LIBS) -lcmocka
+check: $(TEST_BIN) $(TEST_SBIN) $(E2E_BIN) build/libsinewrt.a bin/sinewc build/asan/sinewc
+	@SINEWC=build/asan/sinewc CMOCKA_MESSAGE_OUTPUT=TAP prove -j2 --exec '' \
+	  $(E2E_BIN) $(TEST_BIN) $(TEST_SBIN) $(LANG_TESTS)
 
 BENCH_BIN = build/bench/bench_rod
 # The benchmark report states the flags the runtime was built with; they are

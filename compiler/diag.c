@@ -140,7 +140,7 @@ static int by_place(const void *pa, const void *pb) {
 /* Print what is pending, in file order and then by line and column, the
  * order a reader goes through the model. */
 void diag_flush(void) {
-  qsort(pending, (size_t)npending, sizeof *pending, by_place);
+  if (npending) qsort(pending, (size_t)npending, sizeof *pending, by_place);
   FILE *out = out_stream();
   for (long i = 0; i < npending; i++) {
     fputs(pending[i].text, out);

@@ -77,7 +77,8 @@ static int find_runtime(char *inc, char *lib, size_t len) {
   if (!slash) return 0;
   *slash = 0;   /* exe is now the bin directory */
   static const char *layouts[][2] = {
-    {"/../runtime", "/../build"},         /* source tree */
+    {"/../runtime", "/../build"},         /* source tree: bin/sinewc */
+    {"/../../runtime", "/.."},            /* source tree: build/asan/sinewc */
     {"/../include/sinew", "/../lib"},     /* make install */
   };
   for (size_t i = 0; i < sizeof layouts / sizeof layouts[0]; i++) {
