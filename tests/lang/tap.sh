@@ -13,5 +13,5 @@ ok() {     # ok CONDITION_EXIT_CODE DESCRIPTION
   if [ "$1" -eq 0 ]; then echo "ok $TAP_N - $2"
   else echo "not ok $TAP_N - $2"; TAP_FAILED=$((TAP_FAILED + 1)); fi
 }
-diag() { sed 's/^/# /'; }   # pipe text into TAP comments
+diag() { sed '/^$/d; s/^/# /'; }   # pipe text into TAP comments
 done_testing() { echo "1..$TAP_N"; [ "$TAP_FAILED" -eq 0 ]; }
