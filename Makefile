@@ -112,13 +112,27 @@ bench: deps
 	@$(MAKE) --no-print-directory $(BENCH_BIN)
 	@./$(BENCH_BIN) docs/benchmarks.md
 
-# Until sinewc exists, the demo is a scene written against the runtime's C API.
-build/demo_cantilever: examples/c/cantilever.c build/libsinewrt.a
-	$(CC) $(ALL_CFLAGS) $< -o $@ build/libsinewrt.a $(LIBS)
+# `make demo`: compile a model with sinewc, run the simulator, show the file.
+# (examples/elbow_flexion.sinew takes over once muscles exist, issue 4.)
+DEMO_MODEL = examples/pendulum.sinew
 demo: deps
-	@$(MAKE) --no-print-directory build/demo_cantilever
-	@./build/demo_cantilever build/cantilever.h5
-	@h5ls -r build/cantilever.h5
+	@$(MAKE) --no-print-directory bin/sinewc
+	@mkdir -p build/demo
+	./bin/sinewc $(DEMO_MODEL) -o build/demo/sim
+	./build/demo/sim --info
+	./build/demo/sim --out build/demo/demo.h5
+	@h5ls -r build/demo/demo.h5
+
+# `make install PREFIX=...`: compiler, runtime library and header, models.
+PREFIX ?= /usr/local
+install: bin/sinewc build/libsinewrt.a
+	install -d $(DESTDIR)$(PREFIX)/bin $(DESTDIR)$(PREFIX)/lib $(DESTDIR)$(PREFIX)/include/sinew \
+	  $(DESTDIR)$(PREFIX)/share/sinew/models
+	install -m 755 bin/sinewc $(DESTDIR)$(PREFIX)/bin/sinewc
+	install -m 644 build/libsinewrt.a $(DESTDIR)$(PREFIX)/lib/libsinewrt.a
+	install -m 644 runtime/sinew.h $(DESTDIR)$(PREFIX)/include/sinew/sinew.h
+	@if ls models/*.sinew >/dev/null 2>&1; then \
+	  install -m 644 models/*.sinew $(DESTDIR)$(PREFIX)/share/sinew/models/; fi
 
 clean:
 	rm -rf build bin

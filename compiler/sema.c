@@ -11,7 +11,8 @@
  * sema_def.c).  An import is read, parsed and fully checked where it stands;
  * a file is read once however often it is imported, and a file that imports
  * itself through a chain is an error naming the chain.  Imports resolve
- * relative to the importing file, then along SINEW_PATH.  The model source
+ * relative to the importing file, then along SINEW_PATH, then in the models
+ * shipped with sinew (models/ of the tree, or share/sinew/models installed).  The model source
  * recorded in the output is the main file followed by each imported file,
  * each introduced by a comment line naming it.
  */
@@ -21,6 +22,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
+#include <unistd.h>
 
 #include "lex.h"
 #include "sema_int.h"
@@ -226,6 +228,22 @@ static int resolve_import(const char *from, const char *name, char *out, size_t 
       if (stat(out, &st) == 0) return 1;
     }
     path = colon ? colon + 1 : NULL;
+  }
+  /* the models shipped with sinew: the source tree's models/ or the
+   * installed share/sinew/models, found from the compiler's own place */
+  char exe[PATH_MAX];
+  ssize_t n = readlink("/proc/self/exe", exe, sizeof exe - 1);
+  if (n > 0) {
+    exe[n] = 0;
+    char *cut = strrchr(exe, '/');
+    if (cut) {
+      *cut = 0;
+      static const char *dirs[] = {"/../models", "/../share/sinew/models", "/../../models"};
+      for (size_t i = 0; i < sizeof dirs / sizeof dirs[0]; i++) {
+        if (snprintf(out, len, "%s%s/%s", exe, dirs[i], name) >= (int)len) continue;
+        if (stat(out, &st) == 0) return 1;
+      }
+    }
   }
   return 0;
 }
