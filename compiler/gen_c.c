@@ -223,10 +223,12 @@ int gen_c(FILE *out, swArena *a, const swScene *sc, const swGenOptions *opt) {
   }
   emit_build(out, a, sc);
   char every[64] = "0.0";
-  swValue ev = val_num(a, sc->every, DIM_TIME, (swLoc){0});
+  /* without "output ... every T", a thousand frames over the run */
+  double duration = sc->has_duration ? sc->duration : 1.0;
+  swValue ev = val_num(a, sc->every > 0 ? sc->every : duration / 1000, DIM_TIME, (swLoc){0});
   snprintf(every, sizeof every, "%s", val_c(a, &ev, 0));
   swValue dt = val_num(a, sc->dt, DIM_TIME, (swLoc){0});
-  swValue du = val_num(a, sc->has_duration ? sc->duration : 1.0, DIM_TIME, (swLoc){0});
+  swValue du = val_num(a, duration, DIM_TIME, (swLoc){0});
   fputs("\nint main(int argc, char **argv) {\n  static const swProgram program = {\n    .name = ",
         out);
   c_string0(out, sc->model_name);
