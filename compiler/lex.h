@@ -25,6 +25,8 @@ struct swLexState {
   char open[LEX_MAX_DEPTH];
   swLoc open_loc[LEX_MAX_DEPTH];
   swAst *root;                  /* the parser's result                     */
+  const char *last_unit;        /* spelling of the last UNIT token          */
+  int cur_unit, prev_unit;      /* this token / the one before is a UNIT    */
 };
 
 /* Parse text of file `file` (already registered with diag_add_file). */

@@ -366,6 +366,7 @@ static void declare_items(swSema *S, swScope *scope, const swAst *items, int fir
 static void instantiate(swSema *S, swScope *scope, const swAst *it) {
   swSymbol *inst = sema_lookup_local(scope, it->name);
   if (!inst || inst->def != it) return;   /* declaration failed */
+  inst->state = 2;   /* instantiated, or its error reported: members may stay NULL */
   swSymbol *comp = sema_lookup(S, scope, it->text);
   if (!comp) {
     sema_report_unknown(S, scope, it->text, it->loc, "component");
@@ -494,7 +495,11 @@ static void check_file(swSema *S, int file) {
   S->import_depth--;
 }
 
+/* Definitions never used, in a scene (a file with 'simulate'): a library of
+ * materials and components exists to be imported, and after an error the
+ * uses that failed would make false reports. */
 static void warn_unused(swSema *S) {
+  if (!S->has_simulate || diag_errors()) return;
   for (int i = 0; i < S->nall; i++) {
     swSymbol *s = S->all[i];
     if (s->used || !s->main_file) continue;

@@ -80,6 +80,16 @@ static const swDim *dim_density(void) {
 
 /* ---- params and lets ---- */
 
+/* Whether every leaf of e other than `num` is a unit or an exponent. */
+static int units_only(const swAst *e, const swAst *num) {
+  if (e == num || e->kind == AST_UNIT) return 1;
+  if (e->kind == AST_NUM) return 0;
+  if (e->kind == AST_BINOP && e->op == '^') return e->kid[0]->kind == AST_UNIT;
+  if (e->kind == AST_APPLY || e->kind == AST_BINOP)
+    return units_only(e->kid[0], num) && units_only(e->kid[1], num);
+  return 0;
+}
+
 static void eval_param(swSema *S, swSymbol *sym) {
   const swAst *def = sym->def;
   swValue v = sema_eval(S, sym->scope, def->kid[0]);
@@ -113,18 +123,23 @@ static void eval_param(swSema *S, swSymbol *sym) {
   p->value = v;
   /* the unit as written, when the default is "number unit" */
   p->unit = "";
-  const swAst *e = def->kid[0];
-  if (e->kind == AST_APPLY && e->kid[0]->kind == AST_NUM) {
-    const swSource *f = diag_file(e->kid[1]->loc.file);
-    const swLoc ul = e->kid[1]->loc;
-    if (f && ul.line == e->loc.end_line) {
-      /* copy the unit text from the source line */
-      const char *p0 = f->text;
-      for (int l = 1; l < ul.line && p0; l++) {
-        p0 = strchr(p0, '\n');
-        if (p0) p0++;
-      }
-      if (p0 && ul.end_col >= ul.col) p->unit = ast_strdup(S->a, p0 + ul.col - 1, (size_t)(ul.end_col - ul.col + 1));
+  /* "number unit-expression" on one line: keep the unit as written, for
+   * --help ("0.34 m", "1 N s/m") */
+  const swAst *e = def->kid[0], *num = e;
+  while (num->kind == AST_APPLY || (num->kind == AST_BINOP && num->op != '^' &&
+                                    num->op != '+' && num->op != '-'))
+    num = num->kid[0];
+  if (num->kind == AST_NUM && num != e && units_only(e, num) && e->loc.line == e->loc.end_line) {
+    const swSource *f = diag_file(e->loc.file);
+    const char *p0 = f ? f->text : NULL;
+    for (int l = 1; p0 && l < e->loc.line; l++) {
+      p0 = strchr(p0, '\n');
+      if (p0) p0++;
+    }
+    int from = num->loc.end_col + 1, to = e->loc.end_col;
+    if (p0) {
+      while (from <= to && (p0[from - 1] == ' ' || p0[from - 1] == '\t')) from++;
+      if (to >= from) p->unit = ast_strdup(S->a, p0 + from - 1, (size_t)(to - from + 1));
     }
   }
   sym->index = idx;
@@ -248,10 +263,25 @@ static void eval_rod(swSema *S, swSymbol *sym) {
   r.poisson = sema_field(&f, "poisson") ? field_value(S, sc, &f, "poisson", 1, DIM_NONE)
               : mat && mat->poisson.kind ? mat->poisson : val_num(S->a, 0.5, DIM_NONE, loc);
   r.has_material = mat != NULL || (E_ast && rho_ast);
-  if (!mat && !me && !(E_ast && rho_ast))
+  if (!mat && !me && !E_ast && !rho_ast)
     diag_warning(loc, "%s has no material; it gets E = %g Pa and density = %g kg/m^3", what,
                  r.youngs.kind == VAL_NUM ? r.youngs.v[0] : 0,
                  r.density.kind == VAL_NUM ? r.density.v[0] : 0);
+  else if (!mat && !me && !E_ast)
+    diag_warning(loc, "%s has no material and no E; it gets E = %g Pa", what,
+                 r.youngs.kind == VAL_NUM ? r.youngs.v[0] : 0);
+  else if (!mat && !me && !rho_ast)
+    diag_warning(loc, "%s has no material and no density; it gets density = %g kg/m^3", what,
+                 r.density.kind == VAL_NUM ? r.density.v[0] : 0);
+  if (sema_field(&f, "poisson") && r.poisson.kind == VAL_NUM &&
+      !(r.poisson.v[0] > -1 && r.poisson.v[0] <= 0.5)) {
+    diag_error(r.poisson.loc, "poisson must be in (-1, 0.5], got %g", r.poisson.v[0]);
+    ok = 0;
+  }
+  if (sema_field(&f, "G") && r.shear_modulus.kind == VAL_NUM && !(r.shear_modulus.v[0] > 0)) {
+    diag_error(r.shear_modulus.loc, "G must be positive, got %g Pa", r.shear_modulus.v[0]);
+    ok = 0;
+  }
   if (E_ast && r.youngs.kind == VAL_NUM) positive(S, &r.youngs, "E", "Pa");
   if (rho_ast && r.density.kind == VAL_NUM) positive(S, &r.density, "density", "kg/m^3");
 
@@ -534,7 +564,7 @@ void sema_joint(swSema *S, swScope *scope, const swAst *it) {
   } else if (j.kind != SW_JOINT_HINGE && sema_field(&f, "axis")) {
     diag_warning(sema_field(&f, "axis")->loc, "'axis' has no effect on a %s joint", it->text);
   }
-  if (j.axis.kind == VAL_VEC && j.kind == SW_JOINT_HINGE &&
+  if (j.axis.kind == VAL_VEC && j.kind == SW_JOINT_HINGE && sema_field(&f, "axis") &&
       !(fabs(j.axis.v[0]) + fabs(j.axis.v[1]) + fabs(j.axis.v[2]) > 0)) {
     diag_error(j.axis.loc, "a hinge's 'axis' must not be the zero vector");
     ok = 0;

@@ -183,7 +183,8 @@ static int bind_args(swSema *S, const swAst *call, const swAst *args, const char
     }
     out[slot] = ast_kid(arg, 0);
   }
-  for (int i = 0; i < nrequired; i++)
+  /* a misspelled keyword is already reported: do not also call its slot missing */
+  for (int i = 0; ok && i < nrequired; i++)
     if (!out[i]) {
       diag_error(call->loc, "%s() needs the argument '%s'", call->name, names[i]);
       ok = 0;
@@ -197,6 +198,27 @@ static swValue scalar_arg(swSema *S, swScope *scope, const swAst *e, swDim want,
   char what[96];
   snprintf(what, sizeof what, "argument '%s' of %s()", arg, fn);
   return sema_expect(S, scope, e, 1, want, ast_strdup(S->a, what, strlen(what)));
+}
+
+/* Two numbers that must share a dimension (a ramp's ends, a step's levels);
+ * when they do not, the message names both rather than blaming the second. */
+static int same_dims(swSema *S, swScope *scope, const swAst *call, const swAst *ea,
+                     const swAst *eb, const char *na, const char *nb, swValue *a, swValue *b) {
+  char what[96];
+  *a = operand(S, scope, ea);
+  *b = operand(S, scope, eb);
+  if (a->kind == VAL_ERROR || b->kind == VAL_ERROR) return 0;
+  snprintf(what, sizeof what, "argument '%s' of %s()", na, call->name);
+  *a = sema_expect_value(S, *a, 1, a->dim, ast_strdup(S->a, what, strlen(what)));
+  snprintf(what, sizeof what, "argument '%s' of %s()", nb, call->name);
+  *b = sema_expect_value(S, *b, 1, b->dim, ast_strdup(S->a, what, strlen(what)));
+  if (a->kind == VAL_ERROR || b->kind == VAL_ERROR) return 0;
+  if (!dim_eq(a->dim, b->dim)) {
+    diag_error(call->loc, "%s() needs '%s' and '%s' in one dimension, but '%s' is %s and '%s' "
+               "is %s", call->name, na, nb, na, describe_value(S, a), nb, describe_value(S, b));
+    return 0;
+  }
+  return 1;
 }
 
 static swValue make_signal(swSema *S, swSignalVal *sig, swDim dim, swLoc loc) {
@@ -226,11 +248,8 @@ static swValue eval_signal(swSema *S, swScope *scope, const swAst *call) {
     static const char *const names[] = {"from", "to", "over", "start"};
     if (!bind_args(S, call, args, names, 4, 3, slot)) return val_error();
     sig->kind = SW_SIG_RAMP;
-    sig->a = operand(S, scope, slot[0]);
-    if (sig->a.kind != VAL_ERROR)
-      sig->a = sema_expect_value(S, sig->a, 1, sig->a.dim, "argument 'from' of ramp()");
-    sig->b = sig->a.kind == VAL_ERROR ? val_error()
-             : scalar_arg(S, scope, slot[1], sig->a.dim, "ramp", "to", 0, loc);
+    if (!same_dims(S, scope, call, slot[0], slot[1], "from", "to", &sig->a, &sig->b))
+      return val_error();
     sig->T = scalar_arg(S, scope, slot[2], DIM_TIME, "ramp", "over", 0, loc);
     sig->t0 = scalar_arg(S, scope, slot[3], DIM_TIME, "ramp", "start", 0, loc);
     if (sig->T.kind == VAL_NUM && !(sig->T.v[0] > 0)) {
@@ -262,13 +281,10 @@ static swValue eval_signal(swSema *S, swScope *scope, const swAst *call) {
     static const char *const names[] = {"before", "after", "at"};
     if (!bind_args(S, call, args, names, 3, 3, slot)) return val_error();
     sig->kind = SW_SIG_STEP;
-    sig->a = operand(S, scope, slot[0]);
-    if (sig->a.kind != VAL_ERROR)
-      sig->a = sema_expect_value(S, sig->a, 1, sig->a.dim, "argument 'before' of step()");
-    if (sig->a.kind == VAL_ERROR) return val_error();
-    sig->b = scalar_arg(S, scope, slot[1], sig->a.dim, "step", "after", 0, loc);
+    if (!same_dims(S, scope, call, slot[0], slot[1], "before", "after", &sig->a, &sig->b))
+      return val_error();
     sig->t0 = scalar_arg(S, scope, slot[2], DIM_TIME, "step", "at", 0, loc);
-    if (sig->b.kind == VAL_ERROR || sig->t0.kind == VAL_ERROR) return val_error();
+    if (sig->t0.kind == VAL_ERROR) return val_error();
     return make_signal(S, sig, sig->a.dim, loc);
   }
   /* table(times = (...) s, values = (...)) */
@@ -357,6 +373,12 @@ static swValue eval_member(swSema *S, swScope *scope, const swAst *e) {
     return val_error();
   }
   if (b.kind == VAL_REF && b.ref->kind == SYM_INSTANCE) {
+    if (!b.ref->members) {   /* its 'use' failed (reported there) or comes later */
+      if (b.ref->state != 2)
+        diag_error(e->loc, "'%s' is used before the line that creates it (line %d)",
+                   b.ref->name, b.ref->loc.line);
+      return val_error();
+    }
     swSymbol *m = sema_lookup_local(b.ref->members, e->name);
     if (!m) {
       const char *cands[256];
@@ -386,6 +408,7 @@ static swValue eval_member(swSema *S, swScope *scope, const swAst *e) {
                  b.ref->name, e->name);
     return val_error();
   }
+  if (b.kind == VAL_POINT) b.kind = VAL_VEC;   /* a point's coordinates: rod.end.z */
   if (b.kind == VAL_VEC && (!strcmp(e->name, "x") || !strcmp(e->name, "y") ||
                             !strcmp(e->name, "z"))) {
     int i = e->name[0] - 'x';

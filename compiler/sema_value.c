@@ -78,6 +78,7 @@ const char *val_c(swArena *a, const swValue *v, int i) {
   char buf[40];
   double x = i < v->n ? v->v[i] : 0;
   if (!isfinite(x)) return "0.0 /* not finite */";
+  if (x == 0) return "0.0";   /* also -0.0 */
   format_double(buf, sizeof buf, x);
   if (x < 0) {
     char wrapped[44];

@@ -238,7 +238,11 @@ int main(int argc, char **argv) {
   swArena *arena = ast_arena_new();
   swScene scene;
   sema_check(arena, file, &scene);
-  if (!diag_errors()) gen_check(&scene);
+  /* a library file (materials, components, no rods) has nothing to run */
+  if (!diag_errors() && scene.nrod > 0) gen_check(&scene);
+  if (!diag_errors() && scene.nrod == 0 && !check)
+    fprintf(stderr, "%s: warning: '%s' defines no rods; the simulator will have nothing to "
+            "simulate\n", progname, model);
   int rc = 0;
   diag_flush();
   if (diag_errors()) {

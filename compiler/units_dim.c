@@ -3,9 +3,10 @@
  * Design.  A dimension is a vector of small integer exponents over (kg, m, s,
  * rad), the base of the runtime's unit table (runtime/units.c), so the
  * compiler and the simulator's --set agree on every unit.  The angle counts
- * as a dimension so that a bare number is refused where an angle is required;
- * elsewhere (curvature in rad/m or 1/m, angular velocity in rad/s or 1/s) the
- * angle exponent is not held against the user: see dim_fits().
+ * as a dimension so that a bare number is refused where an angle is required
+ * and an angle where a plain number is; elsewhere (curvature in rad/m or 1/m,
+ * angular velocity in rad/s or 1/s) the angle exponent is not held against
+ * the user: see dim_fits().
  */
 #include <math.h>
 #include <stdio.h>
@@ -31,7 +32,9 @@ int dim_eq(swDim a, swDim b) {
 }
 
 int dim_fits(swDim want, swDim got) {
-  if (dim_eq(want, DIM_ANGLE)) return dim_eq(want, got);
+  /* a pure angle, and a plain number (poisson, elements, a fraction), must
+   * match exactly: 30 deg is not a Poisson ratio */
+  if (dim_eq(want, DIM_ANGLE) || dim_is_none(want)) return dim_eq(want, got);
   for (int i = 0; i < SW_NDIM; i++)
     if (i != SW_DIM_ANGLE && want.e[i] != got.e[i]) return 0;
   return 1;

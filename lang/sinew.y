@@ -267,6 +267,18 @@ static int yyreport_syntax_error(const yypcontext_t *ctx, yyscan_t scanner, stru
   const swLoc *loc = yypcontext_location(ctx);
   char msg[512];
   int len = 0;
+  /* a unit where a name belongs: "let g = ...", "material m {" */
+  if (!strcmp(yysymbol_name(found), "'{'") && st->prev_unit && st->last_unit) {   /* material m { */
+    diag_error(*loc, "'%s' is a unit and cannot be used as a name", st->last_unit);
+    return 0;
+  }
+  if (found == YYSYMBOL_UNIT && st->last_unit) {
+    for (int i = 0; i < n; i++)
+      if (expected[i] == YYSYMBOL_IDENT) {
+        diag_error(*loc, "'%s' is a unit and cannot be used as a name", st->last_unit);
+        return 0;
+      }
+  }
   if (found == YYSYMBOL_YYEOF)
     len = snprintf(msg, sizeof msg, "unexpected end of file");
   else
@@ -275,8 +287,8 @@ static int yyreport_syntax_error(const yypcontext_t *ctx, yyscan_t scanner, stru
    * listing them helps nobody.  Name the tokens that end or structure
    * something (';', '}', ')', ',', '=', '{', a name, a string) when there are
    * any, otherwise up to four of the rest. */
-  static const char *const structural[] = {"';'", "'}'", "')'", "','", "'='", "'{'", "\"name\"",
-                                           "\"string\""};
+  static const char *const structural[] = {"';'", "'}'", "')'", "','", "'='", "'{'", "name",
+                                           "string"};
   const char *show[8];
   int nshow = 0;
   for (size_t k = 0; k < sizeof structural / sizeof structural[0]; k++)
@@ -301,8 +313,8 @@ static int yyreport_syntax_error(const yypcontext_t *ctx, yyscan_t scanner, stru
     for (int i = 0; i < nshow && len < (int)sizeof msg; i++) {
       const char *name = show[i];
       char plain[32];
-      if (name[0] == '"') {   /* "\"name\"" -> "a name" */
-        snprintf(plain, sizeof plain, "a %.*s", (int)strlen(name) - 2, name + 1);
+      if (name[0] != '\'') {   /* a token class, not a literal: "name" -> "a name" */
+        snprintf(plain, sizeof plain, "a %s", name);
         name = plain;
       }
       len += snprintf(msg + len, sizeof msg - (size_t)len, "%s%s",
