@@ -7,7 +7,8 @@
  *   elastic  = sum_elements l^ (s - s0) . S^ (s - s0) / 2
  *            + sum_voronoi  D^ (k - k0) . B^ (k - k0) / 2
  * (Gazzola et al. 2018, eq. 2.5 discretised; the same sums as PyElastica's
- * energy diagnostics).  The third value is the work done on the rods by
+ * energy diagnostics), plus the clamp domains (boundary.c) and the joint
+ * springs (joint.c), which are elastic energy too.  The third value is the work done on the rods by
  * loads, gravity, boundaries and dissipation since t = 0 (integrate.c), so
  * kinetic + elastic - work stays constant for an exact integration.
  */
@@ -31,6 +32,7 @@ void sw_energy(const swModel *m, swData *d, double out[3]) {
       ela += 0.5 * m->rest_vor_len[j] * m->bend_stiff[3 * j + k] * dk * dk;
     }
   ela += sw_bc_energy(m, d); /* clamp domains */
+  if (m->njoint) ela += sw_joint_energy(m, d);
   out[0] = kin;
   out[1] = ela;
   out[2] = d->work;

@@ -30,11 +30,14 @@
 #include "vec.h"
 #include "internal.h"
 
-/* All loads of the current configuration: internal, clamp couples, external. */
+/* All loads of the current configuration: internal, clamp couples, external,
+ * joints (whose damping joint.c adds to the external loads, so that the kick
+ * books its work, and whose springs count as elastic energy). */
 static void compute_loads(const swModel *m, swData *d) {
   sw_internal_loads(m, d);
   if (m->nbc) sw_bc_loads(m, d);
   sw_external_loads(m, d);
+  if (m->njoint) sw_joint_loads(m, d);
 }
 
 /* Positions and frames move with the current velocities for a time h.

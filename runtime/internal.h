@@ -8,6 +8,16 @@ void sw_bc_kick(const swModel *m, swData *d, double h, double t);     /* boundar
 void sw_bc_loads(const swModel *m, swData *d);                        /* boundary.c  */
 double sw_bc_energy(const swModel *m, const swData *d);               /* boundary.c  */
 /* Largest h * omega for which the integrator is stable on the damped
- * oscillator x'' = -omega^2 x - c x', as a function of zeta = c / omega. */
+ * oscillator x'' = -omega^2 x - c x', as a function of zeta = c / (2 omega). */
 double sw_integrator_stability_limit(swIntegrator integ, double zeta); /* stability.c */
+/* Joints (joint.c).  sw_joint_setup resolves the defaults and the rest
+ * geometry of m->joint into the joint_* arrays (called by sw_compile after the
+ * rods are built); sw_joint_loads adds the joint loads to d->force/d->torque
+ * (damping also to ext_force/ext_torque, whose work the kick books);
+ * sw_joint_measure refreshes d->joint_force[j] and d->joint_angle[j] for the
+ * current state; sw_joint_energy is the energy stored in the joint springs. */
+void sw_joint_setup(swModel *m);
+void sw_joint_loads(const swModel *m, swData *d);
+void sw_joint_measure(const swModel *m, swData *d, int j);
+double sw_joint_energy(const swModel *m, const swData *d);
 #endif

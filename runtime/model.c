@@ -7,7 +7,8 @@
  * does not change during a run: lumped node masses, element stiffness
  * diagonals S^ and inertias J^, Voronoi bending stiffness B^ (rest-length
  * weighted average of the two neighbouring elements, as in PyElastica), rest
- * lengths, rest strains and the per-rod stable time step.  All memory of a
+ * lengths, rest strains and the per-rod stable time step; joints are
+ * validated here and resolved by joint.c (sw_joint_setup).  All memory of a
  * model and of its data is allocated here and nowhere else.
  *
  * Constitutive constants (Gazzola et al. 2018, sec. 2; Zhang et al. 2019,
@@ -22,15 +23,18 @@
 #include <math.h>
 #include "sinew.h"
 #include "vec.h"
+#include "internal.h"
 
 struct swSpec {
-  int nrod, nload, nbc;
-  int caprod, capload, capbc;
+  int nrod, nload, nbc, njoint;
+  int caprod, capload, capbc, capjoint;
   swRodDesc *rod;
   char **rod_name;
   double **rest_x, **rest_Q;     /* optional rest shapes, per rod */
   swLoadDesc *load;
   swBCDesc *bc;
+  swJointDesc *joint;
+  char **joint_name;             /* owned copies of joint[k].name */
   double gravity[3];
   double dt;
   swIntegrator integrator;
@@ -52,7 +56,8 @@ void sw_spec_free(swSpec *s) {
     free(s->rest_Q[r]);
   }
   free(s->rod); free(s->rod_name); free(s->rest_x); free(s->rest_Q);
-  free(s->load); free(s->bc);
+  for (int k = 0; k < s->njoint; k++) free(s->joint_name[k]);
+  free(s->load); free(s->bc); free(s->joint); free(s->joint_name);
   free(s);
 }
 
@@ -108,6 +113,18 @@ int sw_spec_add_bc(swSpec *s, const swBCDesc *b) {
   if (!grow((void **)&s->bc, &s->capbc, s->nbc, sizeof *s->bc)) return -1;
   s->bc[s->nbc] = *b;
   return s->nbc++;
+}
+
+int sw_spec_add_joint(swSpec *s, const swJointDesc *j) {
+  int cap = s->capjoint;
+  if (!grow((void **)&s->joint, &cap, s->njoint, sizeof *s->joint)) return -1;
+  if (!grow((void **)&s->joint_name, &s->capjoint, s->njoint, sizeof *s->joint_name)) return -1;
+  char *name = strdup(j->name ? j->name : "joint");
+  if (!name) return -1;
+  int id = s->njoint++;
+  s->joint[id] = *j;
+  s->joint[id].name = s->joint_name[id] = name;
+  return id;
 }
 
 void sw_spec_set_gravity(swSpec *s, const double g[3]) {
@@ -183,6 +200,10 @@ void sw_model_free(swModel *m) {
   free(m->inv_inertia); free(m->rest_sigma); free(m->elem_gamma); free(m->Q0); free(m->clamp_bend);
   free(m->rest_vor_len); free(m->bend_stiff); free(m->rest_kappa);
   free(m->load); free(m->bc);
+  for (int j = 0; j < m->njoint; j++) free(m->joint_name[j]);
+  free(m->joint); free(m->joint_name); free(m->joint_node_a); free(m->joint_node_b);
+  free(m->joint_elem_a); free(m->joint_elem_b); free(m->joint_axis_a); free(m->joint_axis_b);
+  free(m->joint_rest_rot); free(m->joint_angle0); free(m->joint_wave_dt);
   free(m);
 }
 
@@ -256,6 +277,65 @@ static int check_loads_bcs(const swSpec *s, char *err, size_t errlen) {
   return 1;
 }
 
+/* A joint's stiffness or damping: finite and >= 0 (0 = chosen by joint.c). */
+static int check_joint_coef(const swJointDesc *j, double v, const char *what, char *err,
+                            size_t errlen) {
+  if (isfinite(v) && v >= 0) return 1;
+  return fail(err, errlen, "joint '%s': %s must be finite and >= 0 (0 = automatic), got %g",
+              j->name, what, v);
+}
+
+/* Node index of a joint end on rod r: -1 (last) or 0..n. */
+static int check_joint_node(const swSpec *s, const swJointDesc *j, int rod, int node,
+                            const char *end, char *err, size_t errlen) {
+  int n = s->rod[rod].nelem;
+  if (node >= -1 && node <= n) return 1;
+  return fail(err, errlen, "joint '%s': %s %d out of range for rod '%s' (nodes 0..%d, -1 = last)",
+              j->name, end, node, s->rod[rod].name, n);
+}
+
+static int check_joints(const swSpec *s, char *err, size_t errlen) {
+  for (int k = 0; k < s->njoint; k++) {
+    const swJointDesc *j = &s->joint[k];
+    const char *nm = j->name;
+    for (int i = 0; i < k; i++)
+      if (!strcmp(s->joint[i].name, nm))
+        return fail(err, errlen, "joint '%s': name already used by joint %d", nm, i);
+    if (j->kind != SW_JOINT_SPHERICAL && j->kind != SW_JOINT_HINGE && j->kind != SW_JOINT_FIXED)
+      return fail(err, errlen, "joint '%s': unknown kind %d", nm, (int)j->kind);
+    if (j->rod_a < 0 || j->rod_a >= s->nrod)
+      return fail(err, errlen, "joint '%s': rod_a index %d out of range [0, %d)", nm, j->rod_a,
+                  s->nrod);
+    if (j->rod_b < -1 || j->rod_b >= s->nrod)
+      return fail(err, errlen, "joint '%s': rod_b index %d out of range [0, %d) (-1 = anchored)",
+                  nm, j->rod_b, s->nrod);
+    if (!check_joint_node(s, j, j->rod_a, j->node_a, "node_a", err, errlen)) return 0;
+    if (j->rod_b >= 0) {
+      if (!check_joint_node(s, j, j->rod_b, j->node_b, "node_b", err, errlen)) return 0;
+      int n = s->rod[j->rod_a].nelem;
+      int na = j->node_a < 0 ? n : j->node_a, nb = j->node_b < 0 ? n : j->node_b;
+      if (j->rod_b == j->rod_a && na == nb)
+        return fail(err, errlen, "joint '%s': joins node %d of rod '%s' to itself", nm, na,
+                    s->rod[j->rod_a].name);
+    } else if (!isfinite(j->anchor[0]) || !isfinite(j->anchor[1]) || !isfinite(j->anchor[2])) {
+      return fail(err, errlen, "joint '%s': anchor is not finite", nm);
+    }
+    if (j->kind == SW_JOINT_HINGE) {
+      double a2 = j->axis[0] * j->axis[0] + j->axis[1] * j->axis[1] + j->axis[2] * j->axis[2];
+      if (!isfinite(a2) || !(a2 > 0))
+        return fail(err, errlen, "joint '%s': hinge axis must be finite and nonzero", nm);
+    }
+    if (!check_joint_coef(j, j->stiffness, "stiffness", err, errlen) ||
+        !check_joint_coef(j, j->damping, "damping", err, errlen) ||
+        !check_joint_coef(j, j->rot_stiffness, "rotational stiffness", err, errlen) ||
+        !check_joint_coef(j, j->rot_damping, "rotational damping", err, errlen))
+      return 0;
+    if (j->undamped && (j->damping != 0 || j->rot_damping != 0))
+      return fail(err, errlen, "joint '%s': declared undamped but damping is given", nm);
+  }
+  return 1;
+}
+
 swModel *sw_compile(const swSpec *s, char *err, size_t errlen) {
   if (!s || s->nrod < 1) {
     fail(err, errlen, "the scene has no rods");
@@ -272,6 +352,7 @@ swModel *sw_compile(const swSpec *s, char *err, size_t errlen) {
   for (int r = 0; r < s->nrod; r++)
     if (!check_rod(&s->rod[r], err, errlen)) return NULL;
   if (!check_loads_bcs(s, err, errlen)) return NULL;
+  if (!check_joints(s, err, errlen)) return NULL;
 
   swModel *m = calloc(1, sizeof *m);
   if (!m) return NULL;
@@ -420,6 +501,27 @@ swModel *sw_compile(const swSpec *s, char *err, size_t errlen) {
     if (m->load[k].index == -1)
       m->load[k].index = m->rod_nelem[m->load[k].rod] - (m->load[k].kind == SW_LOAD_TORQUE);
   for (int r = 0; r < nr; r++) m->rod_wave_dt[r] = sw_stable_dt_rod(m, r);
+
+  /* joints: copies of the descriptions, resolved by joint.c */
+  size_t J = (size_t)s->njoint, J1 = J ? J : 1;
+  m->joint = calloc(J1, sizeof *m->joint);
+  m->joint_name = calloc(J1, sizeof *m->joint_name);
+  m->joint_node_a = calloc(J1, sizeof(int)); m->joint_node_b = calloc(J1, sizeof(int));
+  m->joint_elem_a = calloc(J1, sizeof(int)); m->joint_elem_b = calloc(J1, sizeof(int));
+  m->joint_axis_a = dalloc(3 * J); m->joint_axis_b = dalloc(3 * J);
+  m->joint_rest_rot = dalloc(9 * J); m->joint_angle0 = dalloc(J); m->joint_wave_dt = dalloc(J);
+  if (!m->joint || !m->joint_name || !m->joint_node_a || !m->joint_node_b || !m->joint_elem_a ||
+      !m->joint_elem_b || !m->joint_axis_a || !m->joint_axis_b || !m->joint_rest_rot ||
+      !m->joint_angle0 || !m->joint_wave_dt)
+    goto oom;
+  for (int j = 0; j < s->njoint; j++) {
+    if (!(m->joint_name[j] = strdup(s->joint[j].name))) goto oom;
+    m->njoint = j + 1; /* names freed by sw_model_free from here on */
+    m->joint[j] = s->joint[j];
+    m->joint[j].name = m->joint_name[j];
+  }
+  sw_joint_setup(m);
+  for (int j = 0; j < m->njoint; j++) m->joint_wave_dt[j] = sw_stable_dt_joint(m, j);
   return m;
 
 oom:
@@ -436,6 +538,7 @@ void sw_data_free(swData *d) {
   free(d->length); free(d->dilatation);
   free(d->sigma); free(d->stress); free(d->vor_dilatation); free(d->kappa); free(d->couple);
   free(d->force); free(d->torque); free(d->ext_force); free(d->ext_torque);
+  free(d->joint_force); free(d->joint_angle);
   free(d);
 }
 
@@ -449,9 +552,11 @@ swData *sw_data_new(const swModel *m) {
   d->vor_dilatation = dalloc(V); d->kappa = dalloc(3 * V); d->couple = dalloc(3 * V);
   d->force = dalloc(3 * N); d->torque = dalloc(3 * E);
   d->ext_force = dalloc(3 * N); d->ext_torque = dalloc(3 * E);
+  d->joint_force = dalloc(3 * (size_t)m->njoint); d->joint_angle = dalloc((size_t)m->njoint);
   if (!d->x || !d->v || !d->Q || !d->omega || !d->length || !d->dilatation ||
       !d->sigma || !d->stress || !d->vor_dilatation || !d->kappa ||
-      !d->couple || !d->force || !d->torque || !d->ext_force || !d->ext_torque) {
+      !d->couple || !d->force || !d->torque || !d->ext_force || !d->ext_torque ||
+      !d->joint_force || !d->joint_angle) {
     sw_data_free(d);
     return NULL;
   }
@@ -470,4 +575,8 @@ void sw_reset(const swModel *m, swData *d) {
   memset(d->omega, 0, sizeof(double) * 3 * (size_t)m->nelem);
   sw_apply_bc_velocity(m, d, 0.0);
   sw_internal_loads(m, d); /* strains of the initial state */
+  for (int j = 0; j < m->njoint; j++) {
+    d->joint_angle[j] = m->joint_angle0[j]; /* the reference of the unwrapping */
+    sw_joint_measure(m, d, j);
+  }
 }

@@ -2,17 +2,17 @@
  * hdf5.h.
  *
  * Design.  What is written is described by one table, output_fields[]: a
- * dataset path, whether it exists once or once per rod, its shape per frame
- * (with symbolic extents for "nodes of this rod" and "elements of this rod"),
- * its units, optional column names, the option that enables it and the
- * function that fills one frame from the state.  sw_output_open() walks the
- * table once and creates every dataset (doubles, first dimension unlimited,
- * chunked by up to 64 frames) with its `units` attribute; sw_output_frame()
- * walks the opened datasets, fills a scratch frame allocated at open time,
- * appends it and flushes the file, so a run that dies later still leaves a
- * readable file of every frame written so far.  Adding an output is one line
- * of the table plus, if the quantity is new, a four-line fill function.  The
- * root group records how the file was made (SPEC.md "Output (HDF5)") and a
+ * dataset path, whether it exists once, once per rod or once per joint (or
+ * hinge), its shape per frame (with symbolic extents for "nodes of this rod"
+ * and "elements of this rod"), its units, optional column names, the option
+ * that enables it and the function that fills one frame from the state.
+ * sw_output_open() walks the table once and creates every dataset (doubles,
+ * first dimension unlimited, chunked by up to 64 frames) with its `units`
+ * attribute; sw_output_frame() walks the opened datasets, fills a scratch
+ * frame allocated at open time, appends it and flushes the file, so a run that
+ * dies later still leaves a readable file of every frame written so far.
+ * Adding an output is one line of the table plus, if the quantity is new, a
+ * four-line fill function.  The root group records how the file was made (SPEC.md "Output (HDF5)") and a
  * `status` attribute that reads "incomplete" until sw_output_close() replaces
  * it with the caller's verdict.  HDF5's own error printing is switched off;
  * every call is checked and the failure is reported once, in our words, naming
@@ -24,26 +24,28 @@
 #include <string.h>
 
 #include "sinew.h"
+#include "internal.h"
 
 /* ---- the output table ---- */
 
 /* Symbolic per-frame extents, resolved for each rod at open time. */
 enum { EXTENT_NODES = -1, EXTENT_ELEMS = -2 };
-enum { SCOPE_ROOT, SCOPE_ROD };
-enum { WHEN_ALWAYS, WHEN_VELOCITY, WHEN_DIRECTORS };
+enum { SCOPE_ROOT, SCOPE_ROD, SCOPE_JOINT };
+enum { WHEN_ALWAYS, WHEN_VELOCITY, WHEN_DIRECTORS, WHEN_HINGE };
 #define MAX_FRAME_RANK 3
 
-/* Fill one frame of a field (contiguous, row-major) from the state. */
-typedef void (*swFillFn)(const swModel *m, swData *d, int rod, double *frame);
+/* Fill one frame of a field (contiguous, row-major) from the state; `item`
+ * is the rod or the joint. */
+typedef void (*swFillFn)(const swModel *m, swData *d, int item, double *frame);
 
 typedef struct {
-  const char *path;          /* under "/" (root) or under "/rods/NAME" (rod)  */
-  int scope;                 /* SCOPE_ROOT or SCOPE_ROD                        */
+  const char *path;          /* under "/", "/rods/NAME" or "/joints/NAME"     */
+  int scope;                 /* SCOPE_ROOT, SCOPE_ROD or SCOPE_JOINT           */
   int rank;                  /* rank of one frame                              */
   int extent[MAX_FRAME_RANK];/* count, EXTENT_NODES or EXTENT_ELEMS            */
   const char *units;
   const char *const *columns;/* names along the last dimension, or NULL        */
-  int when;                  /* which option enables it                        */
+  int when;                  /* which option (or joint kind) enables it        */
   swFillFn fill;
 } swField;
 
@@ -73,6 +75,18 @@ static void fill_directors(const swModel *m, swData *d, int rod, double *frame) 
          9 * (size_t)m->rod_nelem[rod] * sizeof *frame);
 }
 
+/* Joint force on rod a (lab) and hinge angle, of the state being written
+ * (d->joint_* hold those of the last force evaluation, half a step away). */
+static void fill_joint_force(const swModel *m, swData *d, int joint, double *frame) {
+  sw_joint_measure(m, d, joint);
+  memcpy(frame, d->joint_force + 3 * (size_t)joint, 3 * sizeof *frame);
+}
+
+static void fill_joint_angle(const swModel *m, swData *d, int joint, double *frame) {
+  sw_joint_measure(m, d, joint);
+  frame[0] = d->joint_angle[joint];
+}
+
 /* Must match the order sw_energy() returns. */
 static const char *const energy_columns[] = {"kinetic", "elastic", "work_done", NULL};
 
@@ -82,6 +96,8 @@ static const swField output_fields[] = {
   {"position",            SCOPE_ROD,  2, {EXTENT_NODES, 3},          "m",   NULL,           WHEN_ALWAYS,    fill_position},
   {"velocity",            SCOPE_ROD,  2, {EXTENT_NODES, 3},          "m/s", NULL,           WHEN_VELOCITY,  fill_velocity},
   {"directors",           SCOPE_ROD,  3, {EXTENT_ELEMS, 3, 3},       "-",   NULL,           WHEN_DIRECTORS, fill_directors},
+  {"force",               SCOPE_JOINT,1, {3},                        "N",   NULL,           WHEN_ALWAYS,    fill_joint_force},
+  {"angle",               SCOPE_JOINT,0, {0},                        "rad", NULL,           WHEN_HINGE,     fill_joint_angle},
   {"diagnostics/energy",  SCOPE_ROOT, 1, {3},                        "J",   energy_columns, WHEN_ALWAYS,    fill_energy},
 };
 #define NFIELDS (sizeof output_fields / sizeof output_fields[0])
@@ -93,7 +109,7 @@ static const swField output_fields[] = {
 
 typedef struct {
   const swField *field;
-  int rod;                               /* -1 for root fields               */
+  int item;                              /* rod or joint; -1 for root fields */
   hid_t dset;
   int rank;                              /* 1 + field rank                   */
   hsize_t dims[1 + MAX_FRAME_RANK];      /* dims[0] = frames written         */
@@ -247,16 +263,27 @@ static int field_enabled(const swField *f, const swOutputOptions *opt) {
   }
 }
 
-/* Create the dataset of field f (for rod r, or -1) with its attributes. */
+/* How many datasets field f can make, and whether item k gets one. */
+static int field_items(const swField *f, const swModel *m) {
+  return f->scope == SCOPE_ROD ? m->nrod : f->scope == SCOPE_JOINT ? m->njoint : 1;
+}
+static int item_enabled(const swField *f, const swModel *m, int k) {
+  return f->when != WHEN_HINGE || m->joint[k].kind == SW_JOINT_HINGE;
+}
+
+/* Create the dataset of field f (for rod or joint `item`, or -1) with its
+ * attributes. */
 static int create_dataset(swOutput *o, swDataset *ds, const swField *f, const swModel *m,
-                          int rod, hid_t lcpl, char *err, size_t errlen) {
+                          int item, hid_t lcpl, char *err, size_t errlen) {
   hsize_t maxdims[1 + MAX_FRAME_RANK], chunk[1 + MAX_FRAME_RANK];
+  const int rod = f->scope == SCOPE_ROD ? item : -1;
   ds->field = f;
-  ds->rod = rod;
+  ds->item = item;
   ds->dset = H5I_INVALID_HID;
   ds->rank = 1 + f->rank;
-  ds->path = rod < 0 ? dup_printf("/%s", f->path)
-                     : dup_printf("/rods/%s/%s", m->rod_name[rod], f->path);
+  ds->path = f->scope == SCOPE_ROD     ? dup_printf("/rods/%s/%s", m->rod_name[item], f->path)
+             : f->scope == SCOPE_JOINT ? dup_printf("/joints/%s/%s", m->joint_name[item], f->path)
+                                       : dup_printf("/%s", f->path);
   if (!ds->path) return fail(err, errlen, "%s: out of memory", o->path);
 
   ds->dims[0] = 0;
@@ -344,6 +371,12 @@ swOutput *sw_output_open(const char *path, const swModel *m, const swOutputOptio
            m->rod_name[r] ? m->rod_name[r] : "");
       return NULL;
     }
+  for (int j = 0; j < m->njoint; j++)
+    if (!valid_group_name(m->joint_name[j])) {
+      fail(err, errlen, "%s: joint %d has name '%s', which cannot name an HDF5 group", path, j,
+           m->joint_name[j] ? m->joint_name[j] : "");
+      return NULL;
+    }
 
   swOutput *o = calloc(1, sizeof *o);
   if (!o || !(o->path = dup_printf("%s", path))) {
@@ -354,8 +387,7 @@ swOutput *sw_output_open(const char *path, const swModel *m, const swOutputOptio
   o->file = H5I_INVALID_HID;
   o->nrod = m->nrod;
   size_t max_dsets = 0;
-  for (size_t f = 0; f < NFIELDS; f++)
-    max_dsets += output_fields[f].scope == SCOPE_ROD ? (size_t)m->nrod : 1;
+  for (size_t f = 0; f < NFIELDS; f++) max_dsets += (size_t)field_items(&output_fields[f], m);
   o->dset = calloc(max_dsets ? max_dsets : 1, sizeof *o->dset);
   if (!o->dset) {
     fail(err, errlen, "%s: out of memory", path);
@@ -371,7 +403,8 @@ swOutput *sw_output_open(const char *path, const swModel *m, const swOutputOptio
   }
   int rc = write_root_attrs(o, m, opt, err, errlen);
 
-  /* Groups /rods/NAME and /diagnostics come into being with their datasets. */
+  /* Groups /rods/NAME, /joints/NAME and /diagnostics come into being with
+   * their datasets. */
   hid_t lcpl = H5Pcreate(H5P_LINK_CREATE);
   if (rc == SW_OK && (lcpl < 0 || H5Pset_create_intermediate_group(lcpl, 1) < 0))
     rc = fail(err, errlen, "%s: cannot make a link creation property list", path);
@@ -379,10 +412,11 @@ swOutput *sw_output_open(const char *path, const swModel *m, const swOutputOptio
   for (size_t f = 0; f < NFIELDS && rc == SW_OK; f++) {
     const swField *field = &output_fields[f];
     if (!field_enabled(field, opt)) continue;
-    int nrep = field->scope == SCOPE_ROD ? m->nrod : 1;
-    for (int r = 0; r < nrep && rc == SW_OK; r++) {
+    int nrep = field_items(field, m);
+    for (int k = 0; k < nrep && rc == SW_OK; k++) {
+      if (field->scope != SCOPE_ROOT && !item_enabled(field, m, k)) continue;
       swDataset *ds = &o->dset[o->ndset++];
-      rc = create_dataset(o, ds, field, m, field->scope == SCOPE_ROD ? r : -1, lcpl, err,
+      rc = create_dataset(o, ds, field, m, field->scope == SCOPE_ROOT ? -1 : k, lcpl, err,
                           errlen);
       if (ds->frame_len > max_frame) max_frame = ds->frame_len;
     }
@@ -432,7 +466,7 @@ int sw_output_frame(swOutput *o, const swModel *m, swData *d) {
                 m->nrod, o->nrod);
   for (int i = 0; i < o->ndset; i++) {
     swDataset *ds = &o->dset[i];
-    ds->field->fill(m, d, ds->rod, o->frame);
+    ds->field->fill(m, d, ds->item, o->frame);
     int rc = append_frame(o, ds, o->frame);
     if (rc != SW_OK) return rc;
   }

@@ -1,5 +1,5 @@
 /* run.c — the run loop: steps, output frames, Ctrl-C, progress; and the
- * parser of time arguments ("50ns", "0.5 s").
+ * parser of time arguments ("50ns", "0.5 s"; a time quantity of units.c).
  *
  * Design.  Everything is counted in steps, never by comparing accumulated
  * times: the run is nsteps = llround(duration / dt) calls of sw_step(), and a
@@ -14,7 +14,6 @@
  * twice a second; the wall clock is read on a stride of steps re-estimated
  * from the measured step rate, so a tiny rod does not pay a clock read per
  * step and a huge one is not left silent. */
-#include <ctype.h>
 #include <math.h>
 #include <signal.h>
 #include <stdio.h>
@@ -158,41 +157,14 @@ int sw_run(const swModel *m, swData *d, swOutput *out, const swRunOptions *ro) {
 
 /* ---- time arguments ---- */
 
-static const struct {
-  const char *name;
-  double seconds;
-} time_units[] = {
-  {"s", 1.0}, {"ms", 1e-3}, {"us", 1e-6}, {"\xc2\xb5s", 1e-6} /* µs */, {"ns", 1e-9},
-  {"min", 60.0},
-};
-
+/* A quantity (units.c) of time, or a bare number of seconds; not negative. */
 int sw_parse_time(const char *text, double *seconds) {
-  if (!text || !seconds) return 1;
-  const char *p = text;
-  while (isspace((unsigned char)*p)) p++;
-  if (!isdigit((unsigned char)*p) && *p != '.' && *p != '+') return 1;  /* no sign, no "inf" */
-  char *end;
-  double value = strtod(p, &end);
-  if (end == p || !isfinite(value) || value < 0) return 1;
-  for (const char *c = p; c < end; c++)
-    if (*c == 'x' || *c == 'X') return 1;                               /* no hex */
-  while (isspace((unsigned char)*end)) end++;
-  size_t unit_len = 0;
-  while (end[unit_len] && !isspace((unsigned char)end[unit_len])) unit_len++;
-  double scale = 1.0;
-  if (unit_len) {
-    size_t u, nunits = sizeof time_units / sizeof time_units[0];
-    for (u = 0; u < nunits; u++)
-      if (strlen(time_units[u].name) == unit_len && !strncmp(end, time_units[u].name, unit_len))
-        break;
-    if (u == nunits) return 1;
-    scale = time_units[u].seconds;
-  }
-  end += unit_len;
-  while (isspace((unsigned char)*end)) end++;
-  if (*end) return 1;
-  value *= scale;
-  if (!isfinite(value)) return 1;
-  *seconds = value;
+  double value;
+  signed char dim[SW_NDIM];
+  static const signed char time_dim[SW_NDIM] = {0, 0, 1, 0}, none[SW_NDIM] = {0, 0, 0, 0};
+  if (!text || !seconds || sw_parse_quantity(text, &value, dim, NULL, 0)) return 1;
+  if (memcmp(dim, time_dim, SW_NDIM) && memcmp(dim, none, SW_NDIM)) return 1;
+  if (!(value >= 0)) return 1;
+  *seconds = value + 0.0; /* no -0 */
   return 0;
 }

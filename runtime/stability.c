@@ -26,6 +26,10 @@
  * a chaotic state), but it always ends up there.  The report names the rod,
  * the element, the time and the estimate.
  *
+ * A joint (joint.c) adds a spring to two nodes and a couple to two elements;
+ * its bound (sw_stable_dt_joint) is the same analysis with the joint's spring
+ * counted in, and sw_stable_dt is the smallest over rods and joints.
+ *
  * The estimate is the oscillator limit times 0.95: the zig-zag analysis
  * ignores the half-mass end nodes, and a shear-hardened rod was measured to
  * go unstable at 0.9999 of the unreduced value.
@@ -125,9 +129,74 @@ double sw_stable_dt_rod(const swModel *m, int r) {
   return dt;
 }
 
+/* The rod of global element e. */
+static int rod_of_elem(const swModel *m, int e) {
+  int r = 0;
+  while (r + 1 < m->nrod && m->elem_adr[r + 1] <= e) r++;
+  return r;
+}
+
+/* Node i's side of joint j: the joint spring k is one more spring on the
+ * node, so the Gershgorin row of the node in the lumped chain (of which the
+ * rod's axial bound 4 EA/(l m) is the interior-node instance) bounds the
+ * frequency: w^2 = (2 sum EA/l + s k) / m_i over the node's elements, with
+ * s = 2 when the other end is a node that can move against it and s = 1
+ * for an anchor (EA is replaced by the shear stiffness where larger, the
+ * transverse row).  The joint damper adds c = s nu / m_i to the node's
+ * damping rate. */
+static double joint_node_dt(const swModel *m, const swJointDesc *jd, int i, int e, int s) {
+  int r = rod_of_elem(m, e);
+  int first = m->node_adr[r], last = first + m->rod_nelem[r];
+  double ksum = 0;
+  for (int q = i - 1; q <= i; q++) { /* elements q = i-1 and i of node i */
+    if (q < first || q >= last) continue;
+    int el = m->elem_adr[r] + (q - first);
+    ksum += fmax(m->shear_stiff[3 * el + 2], m->shear_stiff[3 * el]) * m->inv_rest_len[el];
+  }
+  double w = sqrt((2 * ksum + s * jd->stiffness) * m->inv_mass[i]);
+  double c = s * jd->damping * m->inv_mass[i];
+  if (m->rod_damping[r] == SW_DAMP_LINEAR) c += m->node_gamma[i] * m->inv_mass[i];
+  return 0.95 * sw_integrator_stability_limit(m->integrator, c / (2 * w)) / w;
+}
+
+/* Element e's side of joint j: the element's rotation row of the rod bound
+ * above, 16/3 Gs/rho (1/l^2 + 1/r^2) + 2 sum B/(D J) over its Voronoi domains,
+ * with the joint couple k_t as one more domain, s k_t / J (J the bending
+ * inertia rho l I).  For an end element the rod bound counts two domains where
+ * the rod has one, so the default k_t = B/D costs nothing there. */
+static double joint_elem_dt(const swModel *m, const swJointDesc *jd, int e, int s) {
+  int r = rod_of_elem(m, e), i = e - m->elem_adr[r], n = m->rod_nelem[r], va = m->vor_adr[r];
+  double l = m->rest_len[e], rad = m->radius[e], A = SW_PI * rad * rad;
+  double rho = m->inertia[3 * e] / (l * A * rad * rad / 4.0);
+  double Gs = m->shear_stiff[3 * e] / (A * 4.0 / 3.0);
+  double J = m->inertia[3 * e], bend = 0;
+  if (i > 0) bend += m->bend_stiff[3 * (va + i - 1)] / m->rest_vor_len[va + i - 1];
+  if (i < n - 1) bend += m->bend_stiff[3 * (va + i)] / m->rest_vor_len[va + i];
+  double w2 = 16.0 / 3.0 * Gs / rho * (1 / (l * l) + 1 / (rad * rad)) +
+              (2 * bend + s * jd->rot_stiffness) / J;
+  double w = sqrt(w2);
+  double c = s * jd->rot_damping / J;
+  if (m->rod_damping[r] == SW_DAMP_LINEAR) c += m->elem_gamma[3 * e] / J;
+  return 0.95 * sw_integrator_stability_limit(m->integrator, c / (2 * w)) / w;
+}
+
+double sw_stable_dt_joint(const swModel *m, int j) {
+  const swJointDesc *jd = &m->joint[j];
+  int s = m->joint_node_b[j] >= 0 ? 2 : 1;
+  double dt = joint_node_dt(m, jd, m->joint_node_a[j], m->joint_elem_a[j], s);
+  if (m->joint_node_b[j] >= 0)
+    dt = fmin(dt, joint_node_dt(m, jd, m->joint_node_b[j], m->joint_elem_b[j], s));
+  if (jd->kind != SW_JOINT_SPHERICAL) {
+    dt = fmin(dt, joint_elem_dt(m, jd, m->joint_elem_a[j], s));
+    if (m->joint_elem_b[j] >= 0) dt = fmin(dt, joint_elem_dt(m, jd, m->joint_elem_b[j], s));
+  }
+  return dt;
+}
+
 double sw_stable_dt(const swModel *m) {
   double dt = INFINITY;
   for (int r = 0; r < m->nrod; r++) dt = fmin(dt, m->rod_wave_dt[r]);
+  for (int j = 0; j < m->njoint; j++) dt = fmin(dt, m->joint_wave_dt[j]);
   return dt;
 }
 

@@ -1,0 +1,696 @@
+/* cli.c — the command line of every generated simulator (SPEC.md "Commands"):
+ *   SIM [--out F.h5] [--duration T] [--dt DT] [--every T] [--set NAME=VALUE]...
+ *       [--threads N] [--quiet] [--info] [--help]
+ *
+ * Design.  The options are one table (name, argument, help), from which both
+ * the parser and --help are made, so they cannot disagree.  An option takes its
+ * value as "--dt 50ns" or "--dt=50ns"; times and param values are quantities
+ * of units.c and are checked by dimension, and every complaint is one line on
+ * stderr, prefixed with the program's name, that quotes what was written, names
+ * what was expected, suggests the nearest option or param for a misspelling,
+ * and exits with SW_EUSAGE.  Nothing is built until the whole command line has
+ * been read.  The scene is then built by the program's build() from the param
+ * values and compiled; when neither --dt nor the model fixes the step, the
+ * scene is compiled once to read its stable step estimate and again at half of
+ * it (the damping factors of a model depend on dt, so dt cannot be patched into
+ * a compiled model).  A step above the estimate is allowed, with a warning: the
+ * estimate is conservative and the user may know better.  --info prints the
+ * compiled scene and stops; otherwise the run writes HDF5 through output.c,
+ * closes the file with a status that says how the run ended, prints a one-line
+ * summary and returns sw_run()'s code as the exit code.  The runtime is
+ * single-threaded: --threads is accepted and checked so that scripts written
+ * for a threaded build keep working, and a request for more than one thread is
+ * noted once. */
+#include <ctype.h>
+#include <errno.h>
+#include <limits.h>
+#include <math.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+#include "sinew.h"
+
+/* ---- the options ---- */
+
+typedef enum {
+  OPT_OUT, OPT_DURATION, OPT_DT, OPT_EVERY, OPT_SET, OPT_THREADS, OPT_QUIET, OPT_INFO, OPT_HELP
+} swOptionId;
+
+typedef struct {
+  swOptionId id;
+  const char *name;
+  const char *arg;           /* what the value is called; NULL for a flag   */
+  const char *help;
+} swOption;
+
+static const swOption options[] = {
+  {OPT_OUT, "--out", "FILE", "HDF5 file to write"},
+  {OPT_DURATION, "--duration", "T", "simulated time"},
+  {OPT_DT, "--dt", "DT", "time step"},
+  {OPT_EVERY, "--every", "T", "simulated time between frames, 0 = every step"},
+  {OPT_SET, "--set", "NAME=VALUE", "override a param, VALUE with its unit (repeatable)"},
+  {OPT_THREADS, "--threads", "N", "threads to use"},
+  {OPT_QUIET, "--quiet", NULL, "no progress line, notes or summary"},
+  {OPT_INFO, "--info", NULL, "print the compiled scene and exit"},
+  {OPT_HELP, "--help", NULL, "print this help and exit"},
+};
+#define NOPTIONS (sizeof options / sizeof options[0])
+
+static const signed char DIM_NONE[SW_NDIM] = {0, 0, 0, 0};
+static const signed char DIM_TIME[SW_NDIM] = {0, 0, 1, 0};
+
+/* What the command line asked for. */
+typedef struct {
+  const swProgram *p;
+  const char *prog;          /* basename of argv[0], prefix of messages     */
+  const char *out;           /* output path                                 */
+  double duration, every, dt;
+  int dt_given;              /* --dt was given                              */
+  long threads;
+  int quiet, info, help;
+  double *P;                 /* (nparam) param values, SI                   */
+  char *overridden;          /* (nparam) set by --set                       */
+} swCli;
+
+static int complain(const swCli *c, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
+static int complain(const swCli *c, const char *fmt, ...) {
+  va_list ap;
+  fprintf(stderr, "%s: ", c->prog);
+  va_start(ap, fmt);
+  vfprintf(stderr, fmt, ap);
+  va_end(ap);
+  fputc('\n', stderr);
+  fflush(stderr);
+  return SW_EUSAGE;
+}
+
+/* ---- did you mean ---- */
+
+/* Edit distance with transpositions ("lenght" is one edit from "length");
+ * names longer than 63 characters are never close. */
+static int edit_distance(const char *a, size_t la, const char *b) {
+  size_t lb = strlen(b);
+  if (la > 63 || lb > 63) return INT_MAX;
+  int d[64][64];
+  for (size_t i = 0; i <= la; i++) d[i][0] = (int)i;
+  for (size_t j = 0; j <= lb; j++) d[0][j] = (int)j;
+  for (size_t i = 1; i <= la; i++)
+    for (size_t j = 1; j <= lb; j++) {
+      int cost = a[i - 1] != b[j - 1];
+      int best = d[i - 1][j] + 1;
+      if (d[i][j - 1] + 1 < best) best = d[i][j - 1] + 1;
+      if (d[i - 1][j - 1] + cost < best) best = d[i - 1][j - 1] + cost;
+      if (i > 1 && j > 1 && a[i - 1] == b[j - 2] && a[i - 2] == b[j - 1] &&
+          d[i - 2][j - 2] + 1 < best)
+        best = d[i - 2][j - 2] + 1;
+      d[i][j] = best;
+    }
+  return d[la][lb];
+}
+
+/* Close enough to suggest: one edit for short names, two for longer ones. */
+static int close_enough(int distance, size_t len) { return distance <= (len <= 3 ? 1 : 2); }
+
+/* ---- values ---- */
+
+/* "50 ns", "1.5 ms", "2 s": the unit that keeps the number readable. */
+static const char *format_time(char *buf, size_t len, double t) {
+  double a = fabs(t);
+  if (a == 0 || !isfinite(a) || a >= 1) snprintf(buf, len, "%.6g s", t);
+  else if (a >= 1e-3) snprintf(buf, len, "%.6g ms", t * 1e3);
+  else if (a >= 1e-6) snprintf(buf, len, "%.6g us", t * 1e6);
+  else snprintf(buf, len, "%.6g ns", t * 1e9);
+  return buf;
+}
+
+static const char *format_bytes(char *buf, size_t len, double bytes) {
+  if (bytes < 1024) snprintf(buf, len, "%.0f B", bytes);
+  else if (bytes < 1024 * 1024) snprintf(buf, len, "%.1f KiB", bytes / 1024);
+  else if (bytes < 1024.0 * 1024 * 1024) snprintf(buf, len, "%.1f MiB", bytes / (1024 * 1024));
+  else snprintf(buf, len, "%.2f GiB", bytes / (1024.0 * 1024 * 1024));
+  return buf;
+}
+
+static const char *format_wall(char *buf, size_t len, double seconds) {
+  if (seconds < 60) snprintf(buf, len, "%.3g s", seconds);
+  else if (seconds < 3600)
+    snprintf(buf, len, "%d min %02d s", (int)(seconds / 60), (int)fmod(seconds, 60));
+  else snprintf(buf, len, "%d h %02d min", (int)(seconds / 3600), (int)fmod(seconds / 60, 60));
+  return buf;
+}
+
+/* A param's value in the unit the model wrote it in ("0.3 m"), or in SI when
+ * that unit cannot be read or does not fit the param's dimension. */
+static const char *format_param(char *buf, size_t len, const swParam *q, double value) {
+  if (q->unit && q->unit[0]) {
+    char text[96];
+    double scale;
+    signed char dim[SW_NDIM];
+    snprintf(text, sizeof text, "1 %s", q->unit);
+    if (!sw_parse_quantity(text, &scale, dim, NULL, 0) && !memcmp(dim, q->dim, SW_NDIM) &&
+        scale != 0) {
+      snprintf(buf, len, "%.6g %s", value / scale, q->unit);
+      return buf;
+    }
+  }
+  if (memcmp(q->dim, DIM_NONE, SW_NDIM)) {
+    char what[64];
+    snprintf(buf, len, "%.6g (SI, %s)", value, sw_dim_describe(what, sizeof what, q->dim));
+  } else {
+    snprintf(buf, len, "%.6g", value);
+  }
+  return buf;
+}
+
+static double wall_seconds(void) {
+  struct timespec ts;
+  clock_gettime(CLOCK_MONOTONIC, &ts);
+  return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
+/* ---- reading the command line ---- */
+
+/* --duration, --dt, --every: a time, or a bare number of seconds. */
+static int read_time(const swCli *c, const char *opt, const char *value, int positive,
+                     double *seconds) {
+  char err[256], expected[64], got[64];
+  double t;
+  signed char dim[SW_NDIM];
+  if (sw_parse_quantity(value, &t, dim, err, sizeof err))
+    return complain(c, "%s: %s", opt, err);
+  if (memcmp(dim, DIM_TIME, SW_NDIM) && memcmp(dim, DIM_NONE, SW_NDIM))
+    return complain(c, "%s: expected %s, got %s in '%s'", opt,
+                    sw_dim_describe(expected, sizeof expected, DIM_TIME),
+                    sw_dim_describe(got, sizeof got, dim), value);
+  if (positive && !(t > 0)) return complain(c, "%s: must be positive, got '%s'", opt, value);
+  if (!(t >= 0)) return complain(c, "%s: must not be negative, got '%s'", opt, value);
+  *seconds = t + 0.0; /* no -0 */
+  return SW_OK;
+}
+
+static int read_threads(swCli *c, const char *value) {
+  char *end;
+  errno = 0;
+  long n = strtol(value, &end, 10);
+  if (!isdigit((unsigned char)value[0]) || *end || errno || n < 1 || n > INT_MAX)
+    return complain(c, "--threads: expected a positive integer, got '%s'", value);
+  c->threads = n;
+  return SW_OK;
+}
+
+/* --set NAME=VALUE: VALUE must have the param's dimension. */
+static int read_set(swCli *c, const char *value) {
+  const swProgram *p = c->p;
+  const char *eq = strchr(value, '=');
+  if (!eq || eq == value) return complain(c, "--set: expected NAME=VALUE, got '%s'", value);
+  size_t len = (size_t)(eq - value);
+  int k = -1;
+  for (int i = 0; i < p->nparam && k < 0; i++)
+    if (strlen(p->param[i].name) == len && !memcmp(p->param[i].name, value, len)) k = i;
+  if (k < 0) {
+    int best = -1, best_distance = INT_MAX;
+    for (int i = 0; i < p->nparam; i++) {
+      int distance = edit_distance(value, len, p->param[i].name);
+      if (distance < best_distance) best = i, best_distance = distance;
+    }
+    if (best >= 0 && close_enough(best_distance, len))
+      return complain(c, "--set: unknown param '%.*s' (did you mean '%s'?)", (int)len, value,
+                      p->param[best].name);
+    if (p->nparam == 0)
+      return complain(c, "--set: unknown param '%.*s' (the model has no params)", (int)len, value);
+    char list[512] = "";
+    size_t used = 0;
+    for (int i = 0; i < p->nparam && used < sizeof list; i++) {
+      int n = snprintf(list + used, sizeof list - used, "%s%s", i ? ", " : "", p->param[i].name);
+      if (n < 0) break;
+      used += (size_t)n;
+    }
+    return complain(c, "--set: unknown param '%.*s' (the params are: %s)", (int)len, value, list);
+  }
+
+  const swParam *q = &p->param[k];
+  const char *text = eq + 1;
+  char err[256], expected[64], got[64];
+  double v;
+  signed char dim[SW_NDIM];
+  if (sw_parse_quantity(text, &v, dim, err, sizeof err))
+    return complain(c, "--set %s: %s", q->name, err);
+  if (memcmp(dim, q->dim, SW_NDIM)) {
+    sw_dim_describe(expected, sizeof expected, q->dim);
+    if (!memcmp(dim, DIM_NONE, SW_NDIM)) {
+      if (q->unit && q->unit[0])
+        return complain(c, "--set %s: expected %s, got a number without a unit in '%s' "
+                        "(write e.g. '%s %s')", q->name, expected, text, text, q->unit);
+      return complain(c, "--set %s: expected %s, got a number without a unit in '%s'", q->name,
+                      expected, text);
+    }
+    return complain(c, "--set %s: expected %s, got %s in '%s'", q->name, expected,
+                    sw_dim_describe(got, sizeof got, dim), text);
+  }
+  c->P[k] = v;
+  c->overridden[k] = 1;
+  return SW_OK;
+}
+
+static int unknown_option(const swCli *c, const char *arg, size_t len) {
+  const char *bare = arg;             /* compared without its dashes */
+  while (*bare == '-' && (size_t)(bare - arg) < len) bare++;
+  size_t bare_len = len - (size_t)(bare - arg);
+  const swOption *best = NULL;
+  int best_distance = INT_MAX;
+  for (size_t i = 0; i < NOPTIONS; i++) {
+    int distance = edit_distance(bare, bare_len, options[i].name + 2);
+    if (distance < best_distance) best = &options[i], best_distance = distance;
+  }
+  if (best && bare_len && close_enough(best_distance, bare_len))
+    return complain(c, "unknown option '%.*s' (did you mean '%s'?)", (int)len, arg, best->name);
+  return complain(c, "unknown option '%.*s' (see --help)", (int)len, arg);
+}
+
+static int parse_args(swCli *c, int argc, char **argv) {
+  for (int i = 1; i < argc; i++) {
+    const char *arg = argv[i];
+    if (arg[0] != '-' || !arg[1])
+      return complain(c, "unexpected argument '%s' (options start with '--'; see --help)", arg);
+    if (!strcmp(arg, "-h")) {
+      c->help = 1;
+      continue;
+    }
+    const char *eq = strchr(arg, '=');
+    size_t len = eq ? (size_t)(eq - arg) : strlen(arg);
+    const swOption *opt = NULL;
+    for (size_t k = 0; k < NOPTIONS && !opt; k++)
+      if (strlen(options[k].name) == len && !strncmp(options[k].name, arg, len))
+        opt = &options[k];
+    if (!opt) return unknown_option(c, arg, len);
+
+    const char *value = NULL;
+    if (opt->arg) {
+      if (eq) value = eq + 1;
+      else if (i + 1 < argc && strncmp(argv[i + 1], "--", 2)) value = argv[++i];
+      else return complain(c, "%s: missing value (%s %s)", opt->name, opt->name, opt->arg);
+    } else if (eq) {
+      return complain(c, "%s takes no value, got '%s'", opt->name, arg);
+    }
+
+    int rc = SW_OK;
+    switch (opt->id) {
+    case OPT_OUT:
+      if (!value[0]) rc = complain(c, "--out: empty file name");
+      c->out = value;
+      break;
+    case OPT_DURATION: rc = read_time(c, opt->name, value, 0, &c->duration); break;
+    case OPT_DT:
+      rc = read_time(c, opt->name, value, 1, &c->dt);
+      c->dt_given = 1;
+      break;
+    case OPT_EVERY: rc = read_time(c, opt->name, value, 0, &c->every); break;
+    case OPT_SET: rc = read_set(c, value); break;
+    case OPT_THREADS: rc = read_threads(c, value); break;
+    case OPT_QUIET: c->quiet = 1; break;
+    case OPT_INFO: c->info = 1; break;
+    case OPT_HELP: c->help = 1; break;
+    }
+    if (rc != SW_OK) return rc;
+  }
+  return SW_OK;
+}
+
+/* ---- --help ---- */
+
+static void print_help(const swCli *c, const char *default_out) {
+  const swProgram *p = c->p;
+  char buf[128];
+  printf("usage: %s [options]\n\n", c->prog);
+  printf("Simulates the sinew model '%s' and writes its output as HDF5.\n\n", p->name);
+  printf("options:\n");
+  for (size_t i = 0; i < NOPTIONS; i++) {
+    const swOption *o = &options[i];
+    char head[64];
+    snprintf(head, sizeof head, "%s%s%s", o->name, o->arg ? " " : "", o->arg ? o->arg : "");
+    const char *def = NULL;
+    switch (o->id) {
+    case OPT_OUT: def = default_out; break;
+    case OPT_DURATION: def = format_time(buf, sizeof buf, p->duration); break;
+    case OPT_DT:
+      def = p->dt > 0 ? format_time(buf, sizeof buf, p->dt) : "half the stable estimate";
+      break;
+    case OPT_EVERY: def = p->every > 0 ? format_time(buf, sizeof buf, p->every) : "every step";
+      break;
+    case OPT_THREADS: def = "1; this runtime is single-threaded"; break;
+    default: break;
+    }
+    printf("  %-18s %s", head, o->help);
+    if (def) printf(" (default: %s)", def);
+    printf("\n");
+  }
+  printf("An option takes its value as '--dt 50ns' or '--dt=50ns'. Times take a unit\n"
+         "(s, ms, us, ns, min); a number without one is in seconds.\n\n");
+
+  if (p->nparam) {
+    int width = 4, what_width = 0;
+    char what[64];
+    for (int i = 0; i < p->nparam; i++) {
+      int n = (int)strlen(p->param[i].name);
+      int w = (int)strlen(sw_dim_describe(what, sizeof what, p->param[i].dim));
+      if (n > width) width = n;
+      if (w > what_width) what_width = w;
+    }
+    printf("params (--set NAME=VALUE, VALUE in the dimension shown):\n");
+    for (int i = 0; i < p->nparam; i++) {
+      const swParam *q = &p->param[i];
+      char value[96];
+      format_param(value, sizeof value, q, q->value);
+      sw_dim_describe(what, sizeof what, q->dim);
+      if (q->where && q->where[0])
+        printf("  %-*s = %-12s %-*s  %s\n", width, q->name, value, what_width, what, q->where);
+      else printf("  %-*s = %-12s %s\n", width, q->name, value, what);
+    }
+    printf("\n");
+  } else {
+    printf("The model has no params.\n\n");
+  }
+  printf("exit status: 0 ok, 1 model error, 2 usage error, 3 the simulation became\n"
+         "unstable, 4 I/O error, 130 interrupted (the file holds every frame written).\n");
+  fflush(stdout);
+}
+
+/* ---- building ---- */
+
+/* Builds and compiles the scene at the step asked for, or at half the stable
+ * estimate.  Returns the model, or NULL with the exit code in *rc. */
+static swModel *build_model(const swCli *c, double *stable, const char **dt_source, int *rc) {
+  const swProgram *p = c->p;
+  char err[512] = "";
+  *rc = SW_EMODEL;
+  if (!p->build) {
+    complain(c, "the program has no scene to build");
+    return NULL;
+  }
+  swSpec *s = sw_spec_new();
+  if (!s) {
+    complain(c, "out of memory");
+    return NULL;
+  }
+  int built = p->build(s, c->P, err, sizeof err);
+  if (built != SW_OK) {
+    complain(c, "%s", err[0] ? err : "the scene could not be built");
+    sw_spec_free(s);
+    *rc = built > 0 ? built : SW_EMODEL;
+    return NULL;
+  }
+  double dt = c->dt_given ? c->dt : p->dt;
+  *dt_source = c->dt_given ? "--dt" : p->dt > 0 ? "from the model" : "half the stable estimate";
+  if (dt > 0) sw_spec_set_dt(s, dt);
+  swModel *m = sw_compile(s, err, sizeof err);
+  if (m) {
+    *stable = sw_stable_dt(m);
+    if (!(dt > 0)) {
+      if (!(*stable > 0) || !isfinite(*stable)) {
+        complain(c, "the scene has no finite stable time step estimate; give one with --dt");
+        sw_model_free(m);
+        sw_spec_free(s);
+        return NULL;
+      }
+      sw_model_free(m);
+      /* half the estimate, shortened so that a whole number of steps
+       * spans the frame interval: frames then fall on the times asked for */
+      double auto_dt = 0.5 * *stable;
+      if (c->every > 0 && isfinite(c->every)) {
+        double k = ceil(c->every / auto_dt - 1e-9);
+        if (k >= 1 && k < 1e12) auto_dt = c->every / k;
+      }
+      sw_spec_set_dt(s, auto_dt);
+      m = sw_compile(s, err, sizeof err);
+    }
+  }
+  sw_spec_free(s);
+  if (!m) {
+    complain(c, "%s", err);
+    return NULL;
+  }
+  if (m->dt > *stable) {
+    char dt_text[32], stable_text[32];
+    fprintf(stderr, "%s: warning: dt = %s is above the stable estimate %s; the run may "
+            "become unstable\n", c->prog, format_time(dt_text, sizeof dt_text, m->dt),
+            format_time(stable_text, sizeof stable_text, *stable));
+    fflush(stderr);
+  }
+  *rc = SW_OK;
+  return m;
+}
+
+/* "length=0.29999999999999999;strength=1", SI values, exact.  Caller frees. */
+static char *params_string(const swCli *c) {
+  const swProgram *p = c->p;
+  size_t size = 1;
+  for (int i = 0; i < p->nparam; i++) size += strlen(p->param[i].name) + 32;
+  char *text = malloc(size);
+  if (!text) return NULL;
+  size_t used = 0;
+  text[0] = '\0';
+  for (int i = 0; i < p->nparam; i++)
+    used += (size_t)snprintf(text + used, size - used, "%s%s=%.17g", i ? ";" : "",
+                             p->param[i].name, c->P[i]);
+  return text;
+}
+
+/* ---- --info ---- */
+
+/* Approximate bytes of the model's and the state's arrays (sinew.h lists
+ * them with their shapes: per node, element, Voronoi domain and joint). */
+static double model_bytes(const swModel *m) {
+  double b = sizeof *m;
+  b += (double)m->nrod * (sizeof(char *) + 4 * sizeof(int) + sizeof(double) + sizeof(swDampingKind));
+  for (int r = 0; r < m->nrod; r++) b += m->rod_name[r] ? (double)strlen(m->rod_name[r]) + 1 : 0;
+  b += sizeof(double) * (8.0 * m->nnode + 36.0 * m->nelem + 7.0 * m->nvor);
+  b += (double)m->nload * sizeof(swLoadDesc) + (double)m->nbc * sizeof(swBCDesc);
+  /* per joint: description, name, 4 indices, axes (2x3), rest rotation (9),
+   * initial angle and stable dt */
+  b += (double)m->njoint * (sizeof(swJointDesc) + sizeof(char *) + 4 * sizeof(int) +
+                            17 * sizeof(double));
+  return b;
+}
+
+static double data_bytes(const swModel *m) {
+  return sizeof(swData) +
+         sizeof(double) * (12.0 * m->nnode + 26.0 * m->nelem + 7.0 * m->nvor + 4.0 * m->njoint);
+}
+
+/* Frames a run of this length writes (run.c: step 0, every k steps, the last). */
+static long frame_count(double duration, double every, double dt, long *nsteps) {
+  *nsteps = duration > 0 ? (long)llround(duration / dt) : 0;
+  long k = every > 0 ? (long)llround(every / dt) : 1;
+  if (k < 1) k = 1;
+  return 1 + *nsteps / k + (*nsteps % k != 0);
+}
+
+static const char *joint_kind_name(swJointKind kind) {
+  switch (kind) {
+  case SW_JOINT_SPHERICAL: return "spherical";
+  case SW_JOINT_HINGE: return "hinge";
+  case SW_JOINT_FIXED: return "fixed";
+  }
+  return "joint";
+}
+
+static void print_info(const swCli *c, const swModel *m, double stable, const char *dt_source,
+                       const char *out) {
+  const swProgram *p = c->p;
+  char a[64], b[64], e[64];
+  printf("model: %s\n", p->name ? p->name : "(unnamed)");
+  printf("  sha256: %s\n", p->sha256 && p->sha256[0] ? p->sha256 : "(none)");
+  printf("rods: %d (%d elements, %d nodes)\n", m->nrod, m->nelem, m->nnode);
+  for (int r = 0; r < m->nrod; r++) {
+    int n = m->rod_nelem[r], ea = m->elem_adr[r], na = m->node_adr[r];
+    double length = 0, mass = 0;
+    for (int i = 0; i < n; i++) length += m->rest_len[ea + i];
+    for (int i = 0; i <= n; i++) mass += m->mass[na + i];
+    double r0 = m->radius[ea], r1 = m->radius[ea + n - 1];
+    printf("  %s: %d elements, length %.6g m, radius %.4g mm", m->rod_name[r], n, length,
+           r0 * 1e3);
+    if (r1 != r0) printf(" to %.4g mm", r1 * 1e3);
+    printf(", mass %.6g kg, stable dt %s%s\n", mass,
+           format_time(a, sizeof a, m->rod_wave_dt[r]),
+           m->rod_damping[r] == SW_DAMP_ANALYTIC ? ", analytic damping"
+           : m->rod_damping[r] == SW_DAMP_LINEAR ? ", linear damping" : "");
+  }
+  printf("joints: %d\n", m->njoint);
+  for (int j = 0; j < m->njoint; j++) {
+    const char *name = m->joint_name && m->joint_name[j] ? m->joint_name[j]
+                       : m->joint && m->joint[j].name ? m->joint[j].name : "(unnamed)";
+    printf("  %s: %s\n", name, m->joint ? joint_kind_name(m->joint[j].kind) : "joint");
+  }
+  int nforce = 0, ntorque = 0, nclamp = 0, nvel = 0, nomega = 0;
+  for (int k = 0; k < m->nload; k++) {
+    if (m->load[k].kind == SW_LOAD_TORQUE) ntorque++;
+    else nforce++;
+  }
+  for (int k = 0; k < m->nbc; k++)
+    switch (m->bc[k].kind) {
+    case SW_BC_CLAMP: nclamp++; break;
+    case SW_BC_VELOCITY: nvel++; break;
+    case SW_BC_OMEGA: nomega++; break;
+    }
+  printf("loads: %d (%d point force%s, %d point couple%s)\n", m->nload, nforce,
+         nforce == 1 ? "" : "s", ntorque, ntorque == 1 ? "" : "s");
+  printf("boundary conditions: %d (%d clamped end%s, %d prescribed velocit%s, "
+         "%d prescribed angular velocit%s)\n", m->nbc, nclamp, nclamp == 1 ? "" : "s", nvel,
+         nvel == 1 ? "y" : "ies", nomega, nomega == 1 ? "y" : "ies");
+  if (m->has_gravity)
+    printf("gravity: (%g, %g, %g) m/s^2\n", m->gravity[0], m->gravity[1], m->gravity[2]);
+  else printf("gravity: none\n");
+  printf("forces in use: elasticity (stretch, shear, bend, twist)%s%s%s%s%s\n",
+         m->has_gravity ? ", gravity" : "", m->nload ? ", point loads" : "",
+         m->nbc ? ", boundary conditions" : "", m->njoint ? ", joints" : "",
+         m->has_damping ? ", damping" : "");
+  printf("integrator: %s\n", m->integrator == SW_PEFRL ? "PEFRL" : "position Verlet");
+  printf("dt: %s (%s; stable estimate %s)\n", format_time(a, sizeof a, m->dt), dt_source,
+         format_time(b, sizeof b, stable));
+  long nsteps, frames = frame_count(c->duration, c->every, m->dt, &nsteps);
+  printf("duration: %s, %ld steps; a frame every %s: %ld frames\n",
+         format_time(a, sizeof a, c->duration), nsteps,
+         c->every > 0 ? format_time(b, sizeof b, c->every) : "step", frames);
+  printf("output: %s (position%s%s, energy)\n", out, p->velocity ? ", velocity" : "",
+         p->directors ? ", directors" : "");
+  double mb = model_bytes(m), db = data_bytes(m);
+  printf("memory: about %s (model %s, state %s)\n", format_bytes(a, sizeof a, mb + db),
+         format_bytes(b, sizeof b, mb), format_bytes(e, sizeof e, db));
+  printf("threads: 1 (the runtime is single-threaded%s)\n",
+         c->threads > 1 ? "; --threads is ignored" : "");
+  if (p->nparam) {
+    printf("params:\n");
+    for (int i = 0; i < p->nparam; i++) {
+      const swParam *q = &p->param[i];
+      printf("  %s = %s", q->name, format_param(a, sizeof a, q, c->P[i]));
+      if (c->overridden[i]) printf(" (--set; default %s)", format_param(b, sizeof b, q, q->value));
+      printf("\n");
+    }
+  } else {
+    printf("params: none\n");
+  }
+  fflush(stdout);
+}
+
+/* ---- the run ---- */
+
+static int run(const swCli *c, const swModel *m, const char *out) {
+  const swProgram *p = c->p;
+  char err[512] = "";
+  swData *d = sw_data_new(m);
+  char *params = params_string(c);
+  if (!d || !params) {
+    complain(c, "out of memory");
+    sw_data_free(d);
+    free(params);
+    return SW_EMODEL;
+  }
+  swOutputOptions oo = {p->source, p->sha256, params, c->duration, p->velocity, p->directors};
+  swOutput *o = sw_output_open(out, m, &oo, err, sizeof err);
+  free(params);
+  if (!o) {
+    complain(c, "%s", err);
+    sw_data_free(d);
+    return SW_EIO;
+  }
+  swRunOptions ro = {c->duration, c->every, c->quiet, NULL};
+  double start = wall_seconds();
+  int rc = sw_run(m, d, o, &ro);
+  double wall = wall_seconds() - start;
+
+  /* The file says how the run ended. */
+  char status[600];
+  const char *verdict;
+  switch (rc) {
+  case SW_OK:
+    verdict = "done";
+    snprintf(status, sizeof status, "complete");
+    break;
+  case SW_EUNSTABLE:
+    verdict = "unstable";
+    snprintf(status, sizeof status, "unstable: %s", d->error[0] ? d->error : "the step failed");
+    break;
+  case SW_EINTERRUPT:
+    verdict = "interrupted";
+    snprintf(status, sizeof status, "interrupted at t = %.9g s", d->time);
+    break;
+  case SW_EIO:
+    verdict = "I/O error";
+    snprintf(status, sizeof status, "io error: %s", sw_output_error());
+    break;
+  default:
+    verdict = "failed";
+    snprintf(status, sizeof status, "failed (code %d)", rc);
+    break;
+  }
+  long frames = sw_output_frames(o);
+  if (sw_output_close(o, status) != SW_OK) {
+    complain(c, "%s", sw_output_error());
+    if (rc == SW_OK) rc = SW_EIO;
+  }
+  if (!c->quiet) {
+    char t[32], total[32], w[32];
+    fprintf(stderr, "%s: %s: %ld frame%s written to %s; simulated %s", c->prog, verdict, frames,
+            frames == 1 ? "" : "s", out, format_time(t, sizeof t, d->time));
+    if (rc != SW_OK) fprintf(stderr, " of %s", format_time(total, sizeof total, c->duration));
+    fprintf(stderr, " in %s wall time (%ld steps)\n", format_wall(w, sizeof w, wall), d->step);
+    fflush(stderr);
+  }
+  sw_data_free(d);
+  return rc;
+}
+
+/* ---- main ---- */
+
+int sw_main(const swProgram *p, int argc, char **argv) {
+  swCli c;
+  memset(&c, 0, sizeof c);
+  c.p = p;
+  c.prog = p && p->name ? p->name : "sinew";
+  if (argc > 0 && argv && argv[0] && argv[0][0]) {
+    const char *slash = strrchr(argv[0], '/');
+    c.prog = slash && slash[1] ? slash + 1 : argv[0];
+  }
+  if (!p || p->nparam < 0 || (p->nparam > 0 && !p->param))
+    return complain(&c, "sw_main: no program");
+  c.duration = p->duration;
+  c.every = p->every;
+  c.threads = 1;
+
+  /* default output: the model's, or NAME.h5 */
+  char default_out[256];
+  snprintf(default_out, sizeof default_out, "%s.h5", p->name && p->name[0] ? p->name : "sinew");
+  c.out = p->out && p->out[0] ? p->out : default_out;
+
+  c.P = malloc(((size_t)p->nparam + 1) * sizeof *c.P);
+  c.overridden = calloc((size_t)p->nparam + 1, 1);
+  if (!c.P || !c.overridden) {
+    free(c.P);
+    free(c.overridden);
+    return complain(&c, "out of memory");
+  }
+  for (int i = 0; i < p->nparam; i++) c.P[i] = p->param[i].value;
+
+  int rc = parse_args(&c, argc, argv);
+  if (rc == SW_OK && c.help) {
+    print_help(&c, p->out && p->out[0] ? p->out : default_out);
+  } else if (rc == SW_OK) {
+    if (c.threads > 1 && !c.quiet && !c.info) {
+      fprintf(stderr, "%s: note: this runtime is single-threaded; running on 1 thread, not %ld\n",
+              c.prog, c.threads);
+      fflush(stderr);
+    }
+    double stable = 0;
+    const char *dt_source = "";
+    swModel *m = build_model(&c, &stable, &dt_source, &rc);
+    if (m && c.info) print_info(&c, m, stable, dt_source, c.out);
+    else if (m) rc = run(&c, m, c.out);
+    sw_model_free(m);
+  }
+  free(c.P);
+  free(c.overridden);
+  return rc;
+}

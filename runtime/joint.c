@@ -1,0 +1,306 @@
+/* joint.c — joints: penalty connections between a node of one rod and a node
+ * of another (or the same) rod, or a fixed point in space.
+ *
+ * Design.  A joint is a spring-damper, as in Zhang et al. 2019 (Methods,
+ * "joints") and PyElastica's joint.py, and never a hard constraint: it adds
+ * loads to the step like any other load and needs no solver.  Every joint
+ * holds its two nodes together; a hinge and a fixed joint also exchange an
+ * equal and opposite couple between the two elements next to the nodes (node
+ * 0 -> element 0, node n -> element n-1, interior node i -> element i).  Side
+ * a is always a rod; side b is a rod or, when rod_b < 0, space (an anchor
+ * point with zero velocity and a frame that never turns).
+ *
+ *   position (all kinds), gap g = x_b - x_a:
+ *     F_a = k g + nu (v_b - v_a),  F_b = -F_a;      U = k |g|^2 / 2
+ *   hinge: the axis is carried by both sides, a_a = Q_a^T alpha_a and
+ *     a_b = Q_b^T alpha_b (alpha the axis in each element's material frame at
+ *     t = 0; a_b is the lab axis itself when anchored):
+ *     U = k_t (1 - a_a . a_b),  couple on a  C_a = k_t a_a x a_b,  C_b = -C_a,
+ *     plus  C_a = c_t (w_b - w_a)_perp, the relative angular velocity
+ *     without its component along the axis.
+ *   fixed: with Q_b* = (Q_b Q_a^T)|_{t=0} Q_a the frame rod b would have if
+ *     it moved rigidly with rod a, and phi = log(Q_b Q_b*^T) the rotation
+ *     from there to Q_b (lab components Phi = Q_b^T phi; vec.h):
+ *     U = k_t |phi|^2 / 2,  C_b = -k_t Phi,  C_a = k_t Phi,
+ *     plus  C_a = c_t (w_b - w_a).  Anchored: Q_b* = Q_a(t = 0), C_a = -k_t Phi.
+ *   spherical: position only.
+ * The couples are exact gradients of U (for the fixed joint because the
+ * rotation vector of exp(phi) is its own gradient, J(phi)^T phi = phi), and
+ * they come in equal and opposite pairs, so an undamped jointed system
+ * conserves energy and angular momentum.  Why a hinge constrains the axis on
+ * both sides and not only rod b's tangent (U = k_t (d3_b . a)^2 / 2, as in
+ * PyElastica): a hinge removes two relative rotations; the tangent form
+ * removes one, leaving rod b free to spin about its own tangent, and it would
+ * force the tangent perpendicular to the axis even when the scene starts it
+ * otherwise.  For bending out of the hinge's plane both give the couple
+ * k_t theta to leading order.
+ *
+ * Energy bookkeeping: the spring parts go into d->force / d->torque only,
+ * like the rods' own elastic loads, and sw_joint_energy() adds their U to the
+ * elastic energy; the damping parts also go into d->ext_force / ext_torque,
+ * so the kick books their (negative) work.  Then kinetic + elastic - work is
+ * conserved, damped or not.
+ *
+ * Hinge angle (d->joint_angle, /joints/NAME/angle): between two rods, the
+ * angle from rod a's tangent to rod b's tangent about the axis at t = 0 (0
+ * when they continue each other straight), plus the relative rotation of
+ * element b with respect to element a about the axis since then; anchored,
+ * the rotation of rod a's element about the axis since t = 0.  It is unwrapped
+ * from evaluation to evaluation, so it is continuous past +-pi.
+ *
+ * Defaults (0 in swJointDesc means "choose"; the compiled model->joint holds
+ * what was chosen).  The penalty has to be stiff enough that the gap stays a
+ * small fraction of an element and soft enough not to lower the stable time
+ * step, which the rods' stiffest elements already set:
+ *   k   = min(EA/l) / 2 over the connected elements.  With it the gap under a
+ *         force F is 2 F l / (EA), the stretch of two elements of the softer
+ *         rod, and a lumped chain with such a joint (two rods, or a rod and an
+ *         anchor) keeps its highest axial frequency within 10 % of the rod's
+ *         own, while the element shear/rotation frequency that sets a rod's
+ *         step is at least 1.2 times higher (for G = E/3), so the step does
+ *         not change: two rods of 10 elements joined this way blow up at the
+ *         same step as one rod of 20 (undamped joint) or at 0.98 of it
+ *         (default damping), and stability.c's joint bound stays 5-10 %
+ *         below the measured limit, as the rods' own does.
+ *   k_t = min(EI) / D, D the distance between the two element centres
+ *         ((l_a + l_b)/2; l_a/2 when anchored): the Voronoi domain the joint
+ *         stands in for, so that two rods joined by a fixed joint bend like
+ *         one rod, and an anchored fixed joint is the clamp of boundary.c.
+ *   nu  = 0.1 * 2 sqrt(k mu), c_t = 0.1 * 2 sqrt(k_t J_mu): a tenth of
+ *         critical for the joint's own spring with the reduced node mass mu
+ *         (node mass when anchored) or reduced element inertia J_mu (bending
+ *         inertia rho l I).  Damping is explicit in the kick, and the explicit
+ *         schemes lose stable step quickly with damping at the highest
+ *         frequencies (position Verlet: h w < 2 undamped, < 0.83 at critical),
+ *         so critical damping would cost up to half the step; a tenth still
+ *         damps a gap oscillation by e^-0.63 per period.
+ */
+#include <math.h>
+#include <string.h>
+#include "sinew.h"
+#include "vec.h"
+#include "internal.h"
+
+static const double SW_JOINT_ZETA = 0.1; /* default damping, fraction of critical */
+
+void sw_joint_desc_init(swJointDesc *j) {
+  memset(j, 0, sizeof *j);
+  j->name = "joint";
+  j->kind = SW_JOINT_SPHERICAL;
+  j->rod_a = 0;
+  j->node_a = -1;
+  j->rod_b = -1;
+  j->node_b = 0;
+}
+
+/* C = A B^T */
+static void mat_mul_T(double *C, const double *A, const double *B) {
+  double T[9];
+  for (int i = 0; i < 3; i++)
+    for (int k = 0; k < 3; k++) T[3 * i + k] = sw_v3_dot(A + 3 * i, B + 3 * k);
+  memcpy(C, T, sizeof T);
+}
+
+/* The element of rod r that takes the couples of a joint at its node i. */
+static int joint_element(const swModel *m, int r, int i) {
+  int n = m->rod_nelem[r];
+  return m->elem_adr[r] + (i < n ? i : n - 1);
+}
+
+void sw_joint_setup(swModel *m) {
+  for (int j = 0; j < m->njoint; j++) {
+    swJointDesc *jd = &m->joint[j];
+    const int anchored = jd->rod_b < 0;
+    int ra = jd->rod_a, rb = jd->rod_b;
+    if (jd->node_a < 0) jd->node_a = m->rod_nelem[ra];
+    int na = m->node_adr[ra] + jd->node_a, ea = joint_element(m, ra, jd->node_a);
+    int nb = -1, eb = -1;
+    if (!anchored) {
+      if (jd->node_b < 0) jd->node_b = m->rod_nelem[rb];
+      nb = m->node_adr[rb] + jd->node_b;
+      eb = joint_element(m, rb, jd->node_b);
+    } else {
+      jd->node_b = -1;
+    }
+    m->joint_node_a[j] = na;
+    m->joint_node_b[j] = nb;
+    m->joint_elem_a[j] = ea;
+    m->joint_elem_b[j] = eb;
+
+    /* defaults (see the top of the file) */
+    double axial_a = m->shear_stiff[3 * ea + 2] * m->inv_rest_len[ea];
+    double axial = anchored ? axial_a
+                            : fmin(axial_a, m->shear_stiff[3 * eb + 2] * m->inv_rest_len[eb]);
+    double mu = anchored ? m->mass[na] : m->mass[na] * m->mass[nb] / (m->mass[na] + m->mass[nb]);
+    if (jd->stiffness == 0) jd->stiffness = 0.5 * axial;
+    if (jd->damping == 0 && !jd->undamped)
+      jd->damping = SW_JOINT_ZETA * 2.0 * sqrt(jd->stiffness * mu);
+    if (jd->kind == SW_JOINT_SPHERICAL) {
+      jd->rot_stiffness = jd->rot_damping = 0;
+    } else {
+      double bend = anchored ? m->clamp_bend[3 * ea] : fmin(m->clamp_bend[3 * ea], m->clamp_bend[3 * eb]);
+      double D = 0.5 * m->rest_len[ea] + (anchored ? 0.0 : 0.5 * m->rest_len[eb]);
+      double Ja = m->inertia[3 * ea];
+      double Jmu = anchored ? Ja : Ja * m->inertia[3 * eb] / (Ja + m->inertia[3 * eb]);
+      if (jd->rot_stiffness == 0) jd->rot_stiffness = bend / D;
+      if (jd->rot_damping == 0 && !jd->undamped)
+        jd->rot_damping = SW_JOINT_ZETA * 2.0 * sqrt(jd->rot_stiffness * Jmu);
+    }
+
+    /* rest geometry */
+    const double *Qa0 = m->Q0 + 9 * ea, *Qb0 = anchored ? NULL : m->Q0 + 9 * eb;
+    double *rest = m->joint_rest_rot + 9 * j;
+    if (anchored) {
+      memset(rest, 0, 9 * sizeof *rest);
+      rest[0] = rest[4] = rest[8] = 1.0;
+    } else {
+      mat_mul_T(rest, Qb0, Qa0);
+    }
+    m->joint_angle0[j] = 0;
+    if (jd->kind == SW_JOINT_HINGE) {
+      double u[3];
+      sw_v3_scale(u, jd->axis, 1.0 / sw_v3_norm(jd->axis));
+      sw_mat_vec(m->joint_axis_a + 3 * j, Qa0, u);
+      if (anchored) {
+        memcpy(m->joint_axis_b + 3 * j, u, sizeof u);
+      } else {
+        sw_mat_vec(m->joint_axis_b + 3 * j, Qb0, u);
+        /* angle from tangent a to tangent b about u, in the plane normal to u */
+        const double *ta = Qa0 + 6, *tb = Qb0 + 6;
+        double c[3];
+        sw_v3_cross(c, ta, tb);
+        m->joint_angle0[j] =
+            atan2(sw_v3_dot(u, c), sw_v3_dot(ta, tb) - sw_v3_dot(ta, u) * sw_v3_dot(tb, u));
+      }
+    }
+  }
+}
+
+/* One joint in the current state: loads on side a (side b gets minus), lab. */
+typedef struct {
+  double force[3];       /* spring force on node a                          */
+  double force_damp[3];  /* damping force on node a                         */
+  double couple[3];      /* spring couple on element a                      */
+  double couple_damp[3]; /* damping couple on element a                     */
+  double energy;         /* stored in the springs, J                        */
+  double angle;          /* hinge angle, not unwrapped (0 for other kinds)  */
+} swJointEval;
+
+static void joint_eval(const swModel *m, const swData *d, int j, swJointEval *o) {
+  const swJointDesc *jd = &m->joint[j];
+  const int na = m->joint_node_a[j], nb = m->joint_node_b[j];
+  const int ea = m->joint_elem_a[j], eb = m->joint_elem_b[j];
+  static const double zero[3] = {0, 0, 0};
+  memset(o, 0, sizeof *o);
+
+  /* position */
+  const double *xb = nb >= 0 ? d->x + 3 * nb : jd->anchor, *vb = nb >= 0 ? d->v + 3 * nb : zero;
+  double g[3], dv[3];
+  sw_v3_sub(g, xb, d->x + 3 * na);
+  sw_v3_sub(dv, vb, d->v + 3 * na);
+  sw_v3_scale(o->force, g, jd->stiffness);
+  sw_v3_scale(o->force_damp, dv, jd->damping);
+  o->energy = 0.5 * jd->stiffness * sw_v3_dot(g, g);
+  if (jd->kind == SW_JOINT_SPHERICAL) return;
+
+  /* relative angular velocity w_b - w_a, lab */
+  const double *Qa = d->Q + 9 * ea, *Qb = eb >= 0 ? d->Q + 9 * eb : NULL;
+  double wa[3], wb[3] = {0, 0, 0}, dw[3];
+  sw_matT_vec(wa, Qa, d->omega + 3 * ea);
+  if (Qb) sw_matT_vec(wb, Qb, d->omega + 3 * eb);
+  sw_v3_sub(dw, wb, wa);
+
+  /* relative rotation Phi (lab) of side b from where it would be had it
+   * moved rigidly with side a; anchored, of rod a from its initial frame */
+  double target[9], phi[3], Phi[3];
+  if (Qb) {
+    sw_mat_mul(target, m->joint_rest_rot + 9 * j, Qa);
+    sw_frame_log(phi, target, Qb);
+    sw_matT_vec(Phi, Qb, phi);
+  } else {
+    sw_frame_log(phi, m->Q0 + 9 * ea, Qa);
+    sw_matT_vec(Phi, Qa, phi);
+  }
+
+  const double kt = jd->rot_stiffness, ct = jd->rot_damping;
+  if (jd->kind == SW_JOINT_HINGE) {
+    double aa[3], ab[3];
+    sw_matT_vec(aa, Qa, m->joint_axis_a + 3 * j);
+    if (Qb) sw_matT_vec(ab, Qb, m->joint_axis_b + 3 * j);
+    else memcpy(ab, m->joint_axis_b + 3 * j, sizeof ab);
+    sw_v3_cross(o->couple, aa, ab);
+    sw_v3_scale(o->couple, o->couple, kt);
+    o->energy += kt * (1.0 - sw_v3_dot(aa, ab));
+    double along = sw_v3_dot(dw, aa);
+    for (int k = 0; k < 3; k++) o->couple_damp[k] = ct * (dw[k] - along * aa[k]);
+    /* anchored: the rod's rotation about the fixed axis */
+    o->angle = m->joint_angle0[j] + sw_v3_dot(Phi, Qb ? aa : ab);
+  } else { /* fixed */
+    sw_v3_scale(o->couple, Phi, Qb ? kt : -kt);
+    o->energy += 0.5 * kt * sw_v3_dot(phi, phi);
+    sw_v3_scale(o->couple_damp, dw, ct);
+  }
+}
+
+/* The continuous branch of an angle known modulo 2 pi, nearest to prev. */
+static double unwrap(double angle, double prev) {
+  return angle + 2.0 * SW_PI * nearbyint((prev - angle) / (2.0 * SW_PI));
+}
+
+static void record(const swModel *m, swData *d, int j, const swJointEval *o) {
+  sw_v3_add(d->joint_force + 3 * j, o->force, o->force_damp);
+  d->joint_angle[j] = m->joint[j].kind == SW_JOINT_HINGE ? unwrap(o->angle, d->joint_angle[j]) : 0.0;
+}
+
+void sw_joint_measure(const swModel *m, swData *d, int j) {
+  swJointEval o;
+  joint_eval(m, d, j, &o);
+  record(m, d, j, &o);
+}
+
+void sw_joint_loads(const swModel *m, swData *d) {
+  for (int j = 0; j < m->njoint; j++) {
+    swJointEval o;
+    joint_eval(m, d, j, &o);
+    record(m, d, j, &o);
+    const int na = m->joint_node_a[j], nb = m->joint_node_b[j];
+    const int ea = m->joint_elem_a[j], eb = m->joint_elem_b[j];
+    for (int k = 0; k < 3; k++) {
+      double f = o.force[k] + o.force_damp[k];
+      d->force[3 * na + k] += f;
+      d->ext_force[3 * na + k] += o.force_damp[k];
+      if (nb >= 0) {
+        d->force[3 * nb + k] -= f;
+        d->ext_force[3 * nb + k] -= o.force_damp[k];
+      }
+    }
+    if (m->joint[j].kind == SW_JOINT_SPHERICAL) continue;
+    /* couples act in the material frame of each element (loads.c) */
+    double c[3], cm[3], cdm[3];
+    sw_v3_add(c, o.couple, o.couple_damp);
+    sw_mat_vec(cm, d->Q + 9 * ea, c);
+    sw_mat_vec(cdm, d->Q + 9 * ea, o.couple_damp);
+    for (int k = 0; k < 3; k++) {
+      d->torque[3 * ea + k] += cm[k];
+      d->ext_torque[3 * ea + k] += cdm[k];
+    }
+    if (eb >= 0) {
+      sw_mat_vec(cm, d->Q + 9 * eb, c);
+      sw_mat_vec(cdm, d->Q + 9 * eb, o.couple_damp);
+      for (int k = 0; k < 3; k++) {
+        d->torque[3 * eb + k] -= cm[k];
+        d->ext_torque[3 * eb + k] -= cdm[k];
+      }
+    }
+  }
+}
+
+double sw_joint_energy(const swModel *m, const swData *d) {
+  double u = 0;
+  for (int j = 0; j < m->njoint; j++) {
+    swJointEval o;
+    joint_eval(m, d, j, &o);
+    u += o.energy;
+  }
+  return u;
+}
