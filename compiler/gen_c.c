@@ -135,6 +135,7 @@ static void emit_build(FILE *out, swArena *a, const swScene *sc) {
     fprintf(out, ";\n    joint.kind = %s;\n", kinds[j->kind]);
     fprintf(out, "    joint.rod_a = %d; joint.node_a = %d;\n", j->rod_a, j->node_a);
     fprintf(out, "    joint.rod_b = %d; joint.node_b = %d;\n", j->rod_b, j->node_b);
+    if (j->undamped) fputs("    joint.undamped = 1;\n", out);
     assign_fields(out, a, "joint", f, gen_joint_fields(j, f));
     fputs("    ok &= sw_spec_add_joint(s, &joint) >= 0;\n  }\n", out);
   }

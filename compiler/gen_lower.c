@@ -138,6 +138,7 @@ swSpec *gen_spec(const swScene *sc) {
     d.node_a = j->node_a;
     d.rod_b = j->rod_b;
     d.node_b = j->node_b;
+    d.undamped = j->undamped;
     fill(&d, f, gen_joint_fields(j, f));
     sw_spec_add_joint(s, &d);
   }

@@ -122,6 +122,7 @@ typedef struct {
   swJointKind kind;
   int rod_a, node_a, rod_b, node_b;
   swValue anchor, axis, stiffness, damping, rot_stiffness, rot_damping;
+  int undamped;               /* damping = 0 written: no damping at all     */
 } swSceneJoint;
 
 typedef struct {

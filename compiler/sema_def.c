@@ -579,6 +579,17 @@ void sema_joint(swSema *S, swScope *scope, const swAst *it) {
                     ? field_value(S, scope, &f, "rot_stiffness", 1, kR) : val_num(S->a, 0, kR, loc);
   j.rot_damping = sema_field(&f, "rot_damping")
                   ? field_value(S, scope, &f, "rot_damping", 1, kRD) : val_num(S->a, 0, kRD, loc);
+  /* 0 lets the runtime choose a damping; "damping = 0" written out means
+   * none at all (the runtime's undamped flag, both parts) */
+  if (sema_field(&f, "damping") && j.damping.kind == VAL_NUM && j.damping.v[0] == 0 &&
+      val_is_const(&j.damping)) {
+    j.undamped = 1;
+    if (j.rot_damping.kind == VAL_NUM && j.rot_damping.v[0] != 0) {
+      diag_error(j.rot_damping.loc, "joint '%s' has damping = 0 (none) but a rot_damping; "
+                 "give both or neither", it->name);
+      ok = 0;
+    }
+  }
   const swValue *vals[] = {&j.axis, &j.stiffness, &j.damping, &j.rot_stiffness, &j.rot_damping,
                            &j.anchor};
   for (size_t i = 0; i < sizeof vals / sizeof vals[0]; i++) {
