@@ -14,6 +14,7 @@
 #include <string.h>
 
 #include "diag.h"
+#include "sinew.h"
 
 #define MAX_ERRORS 100
 
@@ -206,28 +207,6 @@ const char *diag_where(swLoc loc, char *buf, size_t len) {
   return buf;
 }
 
-/* Optimal string alignment distance (Damerau-Levenshtein without repeated
- * edits of a substring), bounded to names of at most 63 characters. */
-static int edit_distance(const char *a, const char *b) {
-  size_t la = strlen(a), lb = strlen(b);
-  if (la > 63 || lb > 63) return 1000;
-  int d[64][64];
-  for (size_t i = 0; i <= la; i++) d[i][0] = (int)i;
-  for (size_t j = 0; j <= lb; j++) d[0][j] = (int)j;
-  for (size_t i = 1; i <= la; i++)
-    for (size_t j = 1; j <= lb; j++) {
-      int cost = a[i - 1] != b[j - 1];
-      int best = d[i - 1][j] + 1;
-      if (d[i][j - 1] + 1 < best) best = d[i][j - 1] + 1;
-      if (d[i - 1][j - 1] + cost < best) best = d[i - 1][j - 1] + cost;
-      if (i > 1 && j > 1 && a[i - 1] == b[j - 2] && a[i - 2] == b[j - 1] &&
-          d[i - 2][j - 2] + 1 < best)
-        best = d[i - 2][j - 2] + 1;
-      d[i][j] = best;
-    }
-  return d[la][lb];
-}
-
 const char *diag_suggest(const char *name, const char *const *cands, int n) {
   const char *best = NULL;
   int best_d = 1000;
@@ -235,7 +214,7 @@ const char *diag_suggest(const char *name, const char *const *cands, int n) {
   int limit = len <= 3 ? 1 : len <= 6 ? 2 : 3;
   for (int i = 0; i < n; i++) {
     if (!cands[i] || !strcmp(cands[i], name)) continue;
-    int dist = edit_distance(name, cands[i]);
+    int dist = sw_edit_distance(name, strlen(name), cands[i]);
     if (dist < best_d) {
       best_d = dist;
       best = cands[i];

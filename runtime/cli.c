@@ -90,8 +90,9 @@ static int complain(const swCli *c, const char *fmt, ...) {
 /* ---- did you mean ---- */
 
 /* Edit distance with transpositions ("lenght" is one edit from "length");
- * names longer than 63 characters are never close. */
-static int edit_distance(const char *a, size_t la, const char *b) {
+ * names longer than 63 characters are never close.  Public: the compiler's
+ * "did you mean" uses it too. */
+int sw_edit_distance(const char *a, size_t la, const char *b) {
   size_t lb = strlen(b);
   if (la > 63 || lb > 63) return INT_MAX;
   int d[64][64];
@@ -213,7 +214,7 @@ static int read_set(swCli *c, const char *value) {
   if (k < 0) {
     int best = -1, best_distance = INT_MAX;
     for (int i = 0; i < p->nparam; i++) {
-      int distance = edit_distance(value, len, p->param[i].name);
+      int distance = sw_edit_distance(value, len, p->param[i].name);
       if (distance < best_distance) best = i, best_distance = distance;
     }
     if (best >= 0 && close_enough(best_distance, len))
@@ -262,7 +263,7 @@ static int unknown_option(const swCli *c, const char *arg, size_t len) {
   const swOption *best = NULL;
   int best_distance = INT_MAX;
   for (size_t i = 0; i < NOPTIONS; i++) {
-    int distance = edit_distance(bare, bare_len, options[i].name + 2);
+    int distance = sw_edit_distance(bare, bare_len, options[i].name + 2);
     if (distance < best_distance) best = &options[i], best_distance = distance;
   }
   if (best && bare_len && close_enough(best_distance, bare_len))

@@ -336,6 +336,11 @@ typedef struct {
   int velocity, directors;     /* output selection                          */
 } swProgram;
 
+/* Optimal-string-alignment edit distance between a[0..la) and b (a
+ * transposition counts one edit); INT_MAX for names over 63 characters.
+ * For "did you mean" suggestions, here and in the compiler. */
+int sw_edit_distance(const char *a, size_t la, const char *b);
+
 /* Parses --out --duration --dt --every --set NAME=VALUE --threads --quiet
  * --info --help, builds, compiles and runs; returns the exit code. */
 int sw_main(const swProgram *p, int argc, char **argv);
