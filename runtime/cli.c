@@ -349,7 +349,7 @@ static void print_help(const swCli *c, const char *default_out) {
     printf("\n");
   }
   printf("An option takes its value as '--dt 50ns' or '--dt=50ns'. Times take a unit\n"
-         "(s, ms, us, ns, min); a number without one is in seconds.\n\n");
+         "(s, ms, us, ns, min, h); a number without one is in seconds.\n\n");
 
   if (p->nparam) {
     int width = 4, what_width = 0;

@@ -122,10 +122,11 @@ int sw_spec_set_rest_shape(swSpec *s, int rod, const double *x, const double *Q)
  * or, when rod_b < 0, to the fixed point `anchor` in space (a rod hung on a
  * hinge).  Node index -1 means the last node.  The positional constraint is a
  * spring-damper on the gap (Zhang et al. 2019, Methods, "joints"); a hinge
- * adds a couple that keeps the connected elements' tangents perpendicular to
- * the axis (the axis is fixed in rod a's material frame, or in space when
- * anchored); a fixed joint adds a couple that holds the relative rotation of
- * the two elements at its initial value. */
+ * adds a couple that keeps the axis, carried in the material frame of each
+ * connected element (in space when anchored), common to both, so only the
+ * rotation about it is free (U = k_t (1 - a_a . a_b)); a fixed joint adds a
+ * couple that holds the relative rotation of the two elements at its initial
+ * value.  docs/physics.md, "Joints". */
 typedef enum { SW_JOINT_SPHERICAL = 0, SW_JOINT_HINGE = 1, SW_JOINT_FIXED = 2 } swJointKind;
 typedef struct {
   const char *name;         /* used in output and error messages            */
