@@ -136,3 +136,11 @@ install: bin/sinewc build/libsinewrt.a
 
 clean:
 	rm -rf build bin
+
+# ---- fuzzing (docs/fuzzing.md): AFL++ on the whole front end for
+# FUZZ_SECONDS (default 10 minutes); crashes and hangs are minimised into
+# tests/fuzz/regressions/, which tests/lang/test_fuzz_regressions.sh replays.
+FUZZ_SECONDS ?= 600
+.PHONY: fuzz
+fuzz: deps
+	@sh scripts/fuzz.sh $(FUZZ_SECONDS)

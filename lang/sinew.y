@@ -251,7 +251,6 @@ primary
   /* method: humerus.at(0.3) */
   | primary '.' IDENT '(' args ')'
                              { $$ = named(st, AST_METHOD, @$, $3); ast_push(A, $$, $1); ast_push(A, $$, $5); }
-  | '(' error ')'            { $$ = node(st, AST_NUM, @$); }
   ;
 
 %%
@@ -284,18 +283,33 @@ static int yyreport_syntax_error(const yypcontext_t *ctx, yyscan_t scanner, stru
   else
     len = snprintf(msg, sizeof msg, "unexpected %s", yysymbol_name(found));
   /* Where an expression could go on, every operator and unit is "expected";
-   * listing them helps nobody.  Name the tokens that end or structure
-   * something (';', '}', ')', ',', '=', '{', a name, a string) when there are
-   * any, otherwise up to four of the rest. */
-  static const char *const structural[] = {"';'", "'}'", "')'", "','", "'='", "'{'", "name",
-                                           "string"};
-  const char *show[8];
+   * listing them helps nobody.  Say "a value" where an expression may start,
+   * "a definition or statement" where an item may, "a name" or "a string"
+   * where one is due, with the punctuation that would end or structure
+   * something (';', '}', ')', ',', '=', '{'); otherwise up to four tokens. */
+  int want_value = 0, want_item = 0, want_name = 0, want_string = 0;
+  for (int i = 0; i < n; i++) {
+    want_value |= expected[i] == YYSYMBOL_NUMBER;
+    want_item |= expected[i] == YYSYMBOL_IMPORT;
+    want_name |= expected[i] == YYSYMBOL_IDENT;
+    want_string |= expected[i] == YYSYMBOL_STRING;
+  }
+  static const char *const structural[] = {"';'", "'}'", "')'", "','", "'='", "'{'"};
+  const char *show[10];
   int nshow = 0;
+  if (want_value) show[nshow++] = "a value";
+  else if (want_item) show[nshow++] = "a definition or statement";
+  else {
+    if (want_name) show[nshow++] = "a name";
+    if (want_string) show[nshow++] = "a string";
+  }
   for (size_t k = 0; k < sizeof structural / sizeof structural[0]; k++)
     for (int i = 0; i < n; i++)
       if (!strcmp(yysymbol_name(expected[i]), structural[k])) show[nshow++] = structural[k];
   if (nshow == 0 && n > 0 && n <= 4)
-    for (int i = 0; i < n; i++) show[nshow++] = yysymbol_name(expected[i]);
+    for (int i = 0; i < n; i++)
+      show[nshow++] = expected[i] == YYSYMBOL_YYEOF ? "the end of the file"
+                      : expected[i] == YYSYMBOL_UNIT ? "a unit" : yysymbol_name(expected[i]);
   /* an unclosed bracket explains an unexpected end of file or keyword: say
    * which bracket, and where it was opened (as Lua does) */
   char open = 0;
@@ -311,14 +325,8 @@ static int yyreport_syntax_error(const yypcontext_t *ctx, yyscan_t scanner, stru
              open == '{' ? '}' : ')', open, st->open_loc[st->depth - 1].line);
   } else {
     for (int i = 0; i < nshow && len < (int)sizeof msg; i++) {
-      const char *name = show[i];
-      char plain[32];
-      if (name[0] != '\'') {   /* a token class, not a literal: "name" -> "a name" */
-        snprintf(plain, sizeof plain, "a %s", name);
-        name = plain;
-      }
       len += snprintf(msg + len, sizeof msg - (size_t)len, "%s%s",
-                      i == 0 ? ", expected " : i == nshow - 1 ? " or " : ", ", name);
+                      i == 0 ? ", expected " : i == nshow - 1 ? " or " : ", ", show[i]);
     }
   }
   diag_error(*loc, "%s", msg);

@@ -1,0 +1,122 @@
+#!/bin/sh
+# fuzz.sh [SECONDS] — fuzz sinewc's front end (lexer, parser, checker, runtime
+# validation, C generator) with AFL++; see docs/fuzzing.md.
+#
+#   scripts/fuzz.sh          600 s (10 minutes), one afl-fuzz instance
+#   scripts/fuzz.sh 3600     an hour
+#   FUZZ_JOBS=2 scripts/fuzz.sh   a main and a secondary instance (2 cores)
+#   FUZZ_FRESH=1 scripts/fuzz.sh  forget the previous run's corpus
+#
+# Builds tests/fuzz/fuzz_sinewc.c with afl-clang-fast under ASan and UBSan
+# (persistent mode) plus a CmpLog build, runs afl-fuzz in an empty directory
+# (imports in the inputs then fail cleanly) with the seeds, the regressions
+# and the dictionary, and copies every crash and hang it found into
+# tests/fuzz/regressions/, minimised and named by content hash, for
+# tests/lang/test_fuzz_regressions.sh.  Run from anywhere; the state of the
+# last run stays in build/fuzz/out (fuzzer_stats has the figures).
+set -eu
+SECONDS_TO_RUN=${1:-600}
+JOBS=${FUZZ_JOBS:-1}
+ROOT=$(cd "$(dirname "$0")/.." && pwd)
+cd "$ROOT"
+OUT=build/fuzz
+
+# AFL++ is in Debian; install it like scripts/deps.sh installs the rest.
+if ! command -v afl-fuzz >/dev/null || ! command -v afl-clang-fast >/dev/null; then
+  echo "fuzz: installing afl++" >&2
+  SUDO=""; [ "$(id -u)" = 0 ] || SUDO=sudo
+  DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq afl++ >/dev/null
+fi
+
+# ---- build: the generated parser, then one afl-clang-fast link each
+make --no-print-directory build/lang/sinew.tab.c build/lang/lex.yy.c >/dev/null
+mkdir -p "$OUT"
+SRC="tests/fuzz/fuzz_sinewc.c build/lang/sinew.tab.c build/lang/lex.yy.c"
+for f in compiler/*.c runtime/*.c; do
+  [ "$f" = compiler/sinewc.c ] || SRC="$SRC $f"      # sinewc.c has main()
+done
+CFLAGS="-std=c11 -D_DEFAULT_SOURCE -O1 -g -fno-omit-frame-pointer -w
+        -Icompiler -Ibuild/lang -Iruntime $(pkg-config --cflags hdf5 gsl)"
+LIBS="$(pkg-config --libs hdf5 gsl) -lm"
+echo "fuzz: building $OUT/fuzz_sinewc (ASan+UBSan) and $OUT/fuzz_sinewc.cmplog" >&2
+# shellcheck disable=SC2086
+AFL_QUIET=1 AFL_USE_ASAN=1 AFL_USE_UBSAN=1 afl-clang-fast $CFLAGS $SRC -o "$OUT/fuzz_sinewc" $LIBS
+# shellcheck disable=SC2086
+AFL_QUIET=1 AFL_LLVM_CMPLOG=1 afl-clang-fast $CFLAGS $SRC -o "$OUT/fuzz_sinewc.cmplog" $LIBS
+
+# ---- corpus: seeds, every earlier finding, and the queue of the previous
+# run if there is one (FUZZ_FRESH=1 starts from the seeds alone)
+IN=$OUT/in
+rm -rf "$IN"
+mkdir -p "$IN"
+cp tests/fuzz/seeds/* "$IN"/
+for f in tests/fuzz/regressions/*; do [ -f "$f" ] && cp "$f" "$IN"/; done
+if [ "${FUZZ_FRESH:-0}" != 1 ]; then
+  n=0
+  for f in "$OUT"/out/*/queue/id:*; do
+    [ -f "$f" ] || continue
+    n=$((n + 1)); cp "$f" "$IN/prev-$n"
+  done
+  [ "$n" = 0 ] || echo "fuzz: starting from the seeds and $n inputs of the previous run" >&2
+fi
+rm -rf "$OUT/out"
+
+# ---- run in an empty directory, so that `import "x";` in an input finds nothing
+WORK=$(mktemp -d "${TMPDIR:-/tmp}/sinew-fuzz.XXXXXX")
+trap 'rm -rf "$WORK"' EXIT
+export AFL_SKIP_CPUFREQ=1 AFL_NO_UI=1
+# crashes must reach afl-fuzz, not a core-dump helper
+if [ "$(cat /proc/sys/kernel/core_pattern 2>/dev/null)" != core ]; then
+  echo core 2>/dev/null >/proc/sys/kernel/core_pattern ||
+    export AFL_I_DONT_CARE_ABOUT_MISSING_CRASHES=1
+fi
+# afl-fuzz sets its own ASAN_OPTIONS/UBSAN_OPTIONS for AFL_USE_ASAN builds
+BIN="$ROOT/$OUT/fuzz_sinewc"
+ARGS="-i $ROOT/$IN -o $ROOT/$OUT/out -x $ROOT/tests/fuzz/sinew.dict -t 2000 -m none -V $SECONDS_TO_RUN"
+echo "fuzz: running $JOBS afl-fuzz instance(s) for $SECONDS_TO_RUN s (log: $OUT/fuzz-*.log)" >&2
+pids=""
+i=0
+while [ "$i" -lt "$JOBS" ]; do
+  if [ "$i" = 0 ]; then role="-M main"; else role="-S sec$i"; fi
+  # the main instance uses CmpLog (solves comparisons with keywords and units)
+  cmplog=""; [ "$i" = 0 ] && cmplog="-c $ROOT/$OUT/fuzz_sinewc.cmplog"
+  # shellcheck disable=SC2086
+  (cd "$WORK" && exec afl-fuzz $role $ARGS $cmplog -- "$BIN") >"$OUT/fuzz-$i.log" 2>&1 &
+  pids="$pids $!"
+  i=$((i + 1))
+done
+status=0
+for p in $pids; do wait "$p" || status=$?; done
+# afl-fuzz 4.04c can leave its CmpLog fork server behind, stopped and pinned to
+# a core (the next run then finds "no more free CPU cores"): end exactly the
+# processes running the binaries built above
+for p in /proc/[0-9]*; do
+  case "$(readlink "$p/exe" 2>/dev/null)" in
+    "$BIN" | "$BIN.cmplog") kill -9 "${p#/proc/}" 2>/dev/null || true ;;
+  esac
+done
+
+# ---- figures and findings
+for stats in "$OUT"/out/*/fuzzer_stats; do
+  [ -f "$stats" ] || continue
+  echo "fuzz: $stats"
+  grep -E '^(run_time|execs_done|execs_per_sec|corpus_count|saved_crashes|saved_hangs|stability|bitmap_cvg) ' "$stats"
+done
+# each finding is shrunk with afl-tmin (test cases over shared memory, as
+# when fuzzing) and kept under the hash of its minimised text, so one bug
+# found many times mostly collapses to a few small files
+new=0
+for f in "$OUT"/out/*/crashes/id:* "$OUT"/out/*/hangs/id:*; do
+  [ -f "$f" ] || continue
+  case "$f" in */crashes/*) kind=crash; mode="" ;; *) kind=hang; mode=-H ;; esac
+  min="$OUT/min.tmp"
+  # shellcheck disable=SC2086
+  (cd "$WORK" && afl-tmin $mode -t 2000 -m none -i "$ROOT/$f" -o "$ROOT/$min" -- "$BIN") \
+    >/dev/null 2>&1 || cp "$f" "$min"
+  h=$(sha256sum "$min" | cut -c1-16)
+  dest="tests/fuzz/regressions/$kind-$h.sinew"
+  if [ ! -e "$dest" ]; then mv "$min" "$dest"; new=$((new + 1)); echo "fuzz: new $kind: $dest"; fi
+  rm -f "$min"
+done
+echo "fuzz: $new new finding(s) copied to tests/fuzz/regressions/"
+[ "$status" = 0 ] || { echo "fuzz: afl-fuzz failed (status $status); see $OUT/fuzz-*.log" >&2; exit "$status"; }
