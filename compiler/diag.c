@@ -21,6 +21,7 @@
 typedef struct {
   int file, line, col;
   long seq;                     /* order of reporting, to keep sorts stable */
+  char severity;                /* 'e'rror, 'w'arning or 'n'ote             */
   char *text;                   /* the whole formatted diagnostic           */
 } swPending;
 
@@ -29,6 +30,7 @@ static long npending, cappending;
 static swSource *files;
 static int nfiles, capfiles;
 static int nerrors, nwarnings, werror;
+static int stopped;             /* MAX_ERRORS reached: report nothing more */
 static FILE *diag_out;
 
 void diag_reset(FILE *out) {
@@ -42,6 +44,7 @@ void diag_reset(FILE *out) {
   nfiles = capfiles = 0;
   nerrors = nwarnings = 0;
   werror = 0;
+  stopped = 0;
   diag_out = out;
 }
 
@@ -126,7 +129,7 @@ static void report(const char *severity, swLoc loc, const char *fmt, va_list ap)
     pending = realloc(pending, (size_t)cappending * sizeof *pending);
     if (!pending) abort();
   }
-  pending[npending] = (swPending){f ? loc.file : -1, loc.line, loc.col, npending, text};
+  pending[npending] = (swPending){f ? loc.file : -1, loc.line, loc.col, npending, severity[0], text};
   npending++;
 }
 
@@ -144,9 +147,20 @@ void diag_flush(void) {
   if (npending) qsort(pending, (size_t)npending, sizeof *pending, by_place);
   FILE *out = out_stream();
   for (long i = 0; i < npending; i++) {
-    fputs(pending[i].text, out);
-    free(pending[i].text);
+    /* the same message at the same place once more (an error in the body of
+     * a component is found again for every use of it): print it once */
+    int again = 0;
+    for (long k = i - 1; k >= 0 && !again; k--) {
+      if (pending[k].file != pending[i].file || pending[k].line != pending[i].line ||
+          pending[k].col != pending[i].col)
+        break;
+      again = !strcmp(pending[k].text, pending[i].text);
+    }
+    if (!again) fputs(pending[i].text, out);
+    else if (pending[i].severity == 'e') nerrors--;
+    else if (pending[i].severity == 'w') nwarnings--;
   }
+  for (long i = 0; i < npending; i++) free(pending[i].text);
   free(pending);
   pending = NULL;
   npending = cappending = 0;
@@ -154,11 +168,12 @@ void diag_flush(void) {
 }
 
 void diag_error(swLoc loc, const char *fmt, ...) {
-  if (++nerrors > MAX_ERRORS) {
-    if (nerrors == MAX_ERRORS + 1) {
-      diag_flush();
-      fprintf(out_stream(), "sinewc: too many errors (%d); stopping here\n", MAX_ERRORS);
-    }
+  nerrors++;
+  if (stopped) return;
+  if (nerrors > MAX_ERRORS) {
+    stopped = 1;
+    diag_flush();
+    fprintf(out_stream(), "sinewc: too many errors (%d); stopping here\n", MAX_ERRORS);
     return;
   }
   va_list ap;
@@ -168,7 +183,7 @@ void diag_error(swLoc loc, const char *fmt, ...) {
 }
 
 void diag_warning(swLoc loc, const char *fmt, ...) {
-  if (nerrors > MAX_ERRORS) return;
+  if (stopped) return;
   va_list ap;
   va_start(ap, fmt);
   if (werror) {
@@ -182,7 +197,7 @@ void diag_warning(swLoc loc, const char *fmt, ...) {
 }
 
 void diag_note(swLoc loc, const char *fmt, ...) {
-  if (nerrors > MAX_ERRORS) return;
+  if (stopped) return;
   va_list ap;
   va_start(ap, fmt);
   report("note", loc, fmt, ap);

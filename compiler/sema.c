@@ -377,9 +377,25 @@ static void instantiate(swSema *S, swScope *scope, const swAst *it) {
     diag_error(it->loc, "'%s' is a %s, not a component", it->text, sym_noun(comp->kind));
     return;
   }
+  /* a component whose body uses itself, directly or through others, would
+   * instantiate without end (and with two such uses, exponentially) */
+  if (comp->state == 1) {
+    diag_error(it->loc, "component '%s' uses itself", comp->name);
+    return;
+  }
   if (S->instance_depth >= SEMA_MAX_INSTANCE_DEPTH) {
-    diag_error(it->loc, "components are nested more than %d deep (does '%s' use itself?)",
-               SEMA_MAX_INSTANCE_DEPTH, comp->name);
+    diag_error(it->loc, "components are nested more than %d deep", SEMA_MAX_INSTANCE_DEPTH);
+    return;
+  }
+  /* each instance costs the items of its body (at least one): nesting
+   * multiplies them, so the total is bounded */
+  int before = S->nexpanded;
+  S->nexpanded += comp->def->nkid;
+  if (S->nexpanded > SEMA_MAX_EXPANDED) {
+    if (before <= SEMA_MAX_EXPANDED)
+      diag_error(it->loc, "the components of this model expand to more than %d definitions "
+                 "and statements", SEMA_MAX_EXPANDED);
+    S->nexpanded = SEMA_MAX_EXPANDED + 1;
     return;
   }
   const swAst *def = comp->def, *formals = def->kid[0], *args = it->kid[0];
@@ -424,6 +440,7 @@ static void instantiate(swSema *S, swScope *scope, const swAst *it) {
     bound[slot] = arg;
   }
   S->instance_depth++;
+  comp->state = 1;   /* its body is being instantiated */
   for (int k = 0; k < formals->nkid; k++) {
     const swAst *f = formals->kid[k];
     swSymbol *sym = declare(S, inner, SYM_FORMAL, f->name, f->loc, f);
@@ -446,6 +463,7 @@ static void instantiate(swSema *S, swScope *scope, const swAst *it) {
   }
   declare_items(S, inner, def, 1);
   sema_items(S, inner, def, 1);
+  comp->state = 0;
   S->instance_depth--;
 }
 

@@ -15,6 +15,9 @@
 
 #define SEMA_MAX_IMPORT_DEPTH 32
 #define SEMA_MAX_INSTANCE_DEPTH 16
+/* definitions and statements that component instances may add to a model:
+ * nesting multiplies them (ten uses of a component that uses ten ...) */
+#define SEMA_MAX_EXPANDED 50000
 
 typedef struct {
   swArena *a;
@@ -29,6 +32,7 @@ typedef struct {
   swSymbol **all;             /* every symbol, for unused warnings      */
   int nall, capall;
   int instance_depth;
+  int nexpanded;              /* items added by instances, against SEMA_MAX_EXPANDED */
   /* source text with imports, for model_source */
   char *src;
   size_t srclen, srccap;

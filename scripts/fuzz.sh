@@ -102,21 +102,36 @@ for stats in "$OUT"/out/*/fuzzer_stats; do
   echo "fuzz: $stats"
   grep -E '^(run_time|execs_done|execs_per_sec|corpus_count|saved_crashes|saved_hangs|stability|bitmap_cvg) ' "$stats"
 done
-# each finding is shrunk with afl-tmin (test cases over shared memory, as
-# when fuzzing) and kept under the hash of its minimised text, so one bug
-# found many times mostly collapses to a few small files
+# Each crash is shrunk with afl-tmin (test cases over shared memory, as when
+# fuzzing) and kept under the hash of its minimised text, so one bug found
+# many times mostly collapses to a few small files.  Hangs are kept as found:
+# every try of a minimiser on a hang costs a timeout, so only the first hang
+# is also shrunk (-H, 0.5 s per try, at most 5 minutes).
 new=0
-for f in "$OUT"/out/*/crashes/id:* "$OUT"/out/*/hangs/id:*; do
+keep() {   # keep FILE KIND: copy into tests/fuzz/regressions/KIND-HASH.sinew
+  h=$(sha256sum "$1" | cut -c1-16)
+  dest="tests/fuzz/regressions/$2-$h.sinew"
+  if [ ! -e "$dest" ]; then cp "$1" "$dest"; new=$((new + 1)); echo "fuzz: new $2: $dest"; fi
+}
+min="$OUT/min.tmp"
+for f in "$OUT"/out/*/crashes/id:*; do
   [ -f "$f" ] || continue
-  case "$f" in */crashes/*) kind=crash; mode="" ;; *) kind=hang; mode=-H ;; esac
-  min="$OUT/min.tmp"
-  # shellcheck disable=SC2086
-  (cd "$WORK" && afl-tmin $mode -t 2000 -m none -i "$ROOT/$f" -o "$ROOT/$min" -- "$BIN") \
-    >/dev/null 2>&1 || cp "$f" "$min"
-  h=$(sha256sum "$min" | cut -c1-16)
-  dest="tests/fuzz/regressions/$kind-$h.sinew"
-  if [ ! -e "$dest" ]; then mv "$min" "$dest"; new=$((new + 1)); echo "fuzz: new $kind: $dest"; fi
   rm -f "$min"
+  (cd "$WORK" && afl-tmin -t 2000 -m none -i "$ROOT/$f" -o "$ROOT/$min" -- "$BIN") >/dev/null 2>&1 &&
+    [ -s "$min" ] || cp "$f" "$min"
+  keep "$min" crash
 done
+first=1
+for f in "$OUT"/out/*/hangs/id:*; do
+  [ -f "$f" ] || continue
+  keep "$f" hang
+  if [ "$first" = 1 ]; then
+    first=0
+    rm -f "$min"
+    (cd "$WORK" && timeout 300 afl-tmin -H -t 500 -m none -i "$ROOT/$f" -o "$ROOT/$min" -- "$BIN") \
+      >/dev/null 2>&1 && [ -s "$min" ] && keep "$min" hang
+  fi
+done
+rm -f "$min"
 echo "fuzz: $new new finding(s) copied to tests/fuzz/regressions/"
 [ "$status" = 0 ] || { echo "fuzz: afl-fuzz failed (status $status); see $OUT/fuzz-*.log" >&2; exit "$status"; }
