@@ -376,6 +376,15 @@ static void eval_rod(swSema *S, swSymbol *sym) {
     if (!sema_const_int(S, ne, "'elements'", 2, 100000, &nelem)) ok = 0;
   }
   r.nelem = (int)nelem;
+  /* a bound on the whole scene, so a 20 kB file cannot ask for gigabytes
+   * (the checker hands the scene to the runtime, which allocates it) */
+  long total = nelem;
+  for (int i = 0; i < S->scene->nrod; i++) total += S->scene->rod[i].nelem;
+  if (ok && total > SEMA_MAX_ELEMENTS) {
+    diag_error(loc, "the scene would have %ld elements with %s; at most %d are allowed", total,
+               what, SEMA_MAX_ELEMENTS);
+    ok = 0;
+  }
   /* hardening, rest shape, damping */
   r.shear_hardening = sema_field(&f, "shear_hardening")
                       ? field_value(S, sc, &f, "shear_hardening", 1, DIM_NONE)

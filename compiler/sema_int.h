@@ -14,6 +14,7 @@
 #include "sema.h"
 
 #define SEMA_MAX_IMPORT_DEPTH 32
+#define SEMA_MAX_ELEMENTS 1000000   /* elements in a whole scene */
 #define SEMA_MAX_INSTANCE_DEPTH 16
 /* definitions and statements that component instances may add to a model:
  * nesting multiplies them (ten uses of a component that uses ten ...) */
