@@ -77,9 +77,9 @@ build/libsinewrt.a: $(RT_OBJ)
 build/asan/libsinewrt.a: $(RT_SOBJ)
 	ar rcs $@ $^
 
-build/tests/%: tests/runtime/%.c tests/runtime/testutil.h build/libsinewrt.a | build/tests
+build/tests/%: tests/runtime/%.c tests/runtime/testutil.h tests/runtime/h5read.h build/libsinewrt.a | build/tests
 	$(CC) $(ALL_CFLAGS) -Itests/runtime $< -o $@ build/libsinewrt.a $(LIBS) -lcmocka
-build/asan/tests/%: tests/runtime/%.c tests/runtime/testutil.h build/asan/libsinewrt.a | build/asan/tests
+build/asan/tests/%: tests/runtime/%.c tests/runtime/testutil.h tests/runtime/h5read.h build/asan/libsinewrt.a | build/asan/tests
 	$(CC) $(SAN_CFLAGS) -Itests/runtime $< -o $@ build/asan/libsinewrt.a $(LIBS) -lcmocka
 
 build/rt build/asan/rt build/tests build/asan/tests build/bench:
@@ -96,8 +96,8 @@ LANG_TESTS = $(wildcard tests/lang/test_*.sh)
 # End-to-end tests compile models with the sanitizer build of sinewc, run the
 # simulators and check their HDF5 output against closed forms.
 E2E_BIN  = build/tests/test_e2e
-build/tests/test_e2e: tests/e2e/test_e2e.c | build/tests
-	$(CC) $(ALL_CFLAGS) $< -o $@ $(LIBS) -lcmocka
+build/tests/test_e2e: tests/e2e/test_e2e.c tests/runtime/h5read.h | build/tests
+	$(CC) $(ALL_CFLAGS) -Itests/runtime $< -o $@ $(LIBS) -lcmocka
 check: $(TEST_BIN) $(TEST_SBIN) $(E2E_BIN) build/libsinewrt.a bin/sinewc build/asan/sinewc
 	@SINEWC=build/asan/sinewc CMOCKA_MESSAGE_OUTPUT=TAP prove -j2 --exec '' \
 	  $(E2E_BIN) $(TEST_BIN) $(TEST_SBIN) $(LANG_TESTS)

@@ -223,11 +223,9 @@ int gen_c(FILE *out, swArena *a, const swScene *sc, const swGenOptions *opt) {
     fputs("};\n\n", out);
   }
   emit_build(out, a, sc);
-  char every[64] = "0.0";
   /* without "output ... every T", a thousand frames over the run */
   double duration = sc->has_duration ? sc->duration : 1.0;
   swValue ev = val_num(a, sc->every > 0 ? sc->every : duration / 1000, DIM_TIME, (swLoc){0});
-  snprintf(every, sizeof every, "%s", val_c(a, &ev, 0));
   swValue dt = val_num(a, sc->dt, DIM_TIME, (swLoc){0});
   swValue du = val_num(a, duration, DIM_TIME, (swLoc){0});
   fputs("\nint main(int argc, char **argv) {\n  static const swProgram program = {\n    .name = ",
@@ -239,7 +237,7 @@ int gen_c(FILE *out, swArena *a, const swScene *sc, const swGenOptions *opt) {
           sc->nparam ? "params" : "NULL");
   fprintf(out, "    .dt = %s,%s\n    .duration = %s,\n    .every = %s,\n    .out = ",
           val_c(a, &dt, 0), sc->dt > 0 ? "" : "   /* half the stable estimate */",
-          val_c(a, &du, 0), every);
+          val_c(a, &du, 0), val_c(a, &ev, 0));
   if (sc->out) c_string0(out, sc->out);
   else {
     char def[512];

@@ -138,8 +138,11 @@ static void append_source(swSema *S, const char *text, size_t len) {
   S->src[S->srclen] = 0;
 }
 
-/* Read a whole file; NULL and a reason when it cannot. */
-static char *read_file(const char *path, size_t *len, const char **why) {
+/* Read a whole model file; NULL and a reason when it cannot (*not_text set
+ * when the file was read but holds NUL bytes).  Used for imports and, by
+ * sinewc, for the model itself. */
+char *sema_read_file(const char *path, size_t *len, const char **why, int *not_text) {
+  *not_text = 0;
   struct stat st;
   if (stat(path, &st) != 0) {
     *why = strerror(errno);
@@ -184,6 +187,7 @@ static char *read_file(const char *path, size_t *len, const char **why) {
   }
   if (memchr(buf, 0, n)) {
     free(buf);
+    *not_text = 1;
     *why = "it contains NUL bytes (not a text file)";
     return NULL;
   }
@@ -286,7 +290,8 @@ static void do_import(swSema *S, const swAst *item) {
   }
   size_t len;
   const char *why;
-  char *text = read_file(path, &len, &why);
+  int not_text;
+  char *text = sema_read_file(path, &len, &why, &not_text);
   if (!text) {
     diag_error(item->loc, "cannot read \"%s\": %s", path, why);
     return;

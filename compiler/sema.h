@@ -154,6 +154,7 @@ typedef struct {
  * Returns the number of errors (also counted by diag). */
 int sema_check(swArena *arena, int file, swScene *scene);
 void sema_scene_free(swScene *scene);
+char *sema_read_file(const char *path, size_t *len, const char **why, int *not_text);
 
 /* ---- values (sema_value.c) ---- */
 swValue val_error(void);

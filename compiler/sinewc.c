@@ -154,28 +154,6 @@ static int run_cc(const char *csrc, const char *out) {
   return 0;
 }
 
-static char *read_all(const char *path, size_t *len) {
-  FILE *f = fopen(path, "rb");
-  if (!f) return NULL;
-  size_t cap = 4096, n = 0;
-  char *buf = malloc(cap);
-  size_t got;
-  while (buf && (got = fread(buf + n, 1, cap - n, f)) > 0) {
-    n += got;
-    if (n == cap) {
-      if (cap >= (16u << 20)) { free(buf); buf = NULL; break; }
-      cap *= 2;
-      char *b = realloc(buf, cap);
-      if (!b) { free(buf); buf = NULL; break; }
-      buf = b;
-    }
-  }
-  if (buf && ferror(f)) { free(buf); buf = NULL; }
-  fclose(f);
-  *len = n;
-  return buf;
-}
-
 int main(int argc, char **argv) {
   const char *model = NULL, *out = NULL;
   int emit_c = 0, check = 0, werror = 0;
@@ -223,15 +201,12 @@ int main(int argc, char **argv) {
   diag_reset(stderr);
   diag_set_werror(werror);
   size_t len;
-  char *text = read_all(model, &len);
+  const char *why;
+  int not_text;
+  char *text = sema_read_file(model, &len, &why, &not_text);
   if (!text) {
-    fprintf(stderr, "%s: cannot read '%s': %s\n", progname, model, strerror(errno));
-    return 4;
-  }
-  if (memchr(text, 0, len)) {
-    fprintf(stderr, "%s: '%s' contains NUL bytes (not a text file)\n", progname, model);
-    free(text);
-    return 1;
+    fprintf(stderr, "%s: cannot read '%s': %s\n", progname, model, why);
+    return not_text ? 1 : 4;
   }
   int file = diag_add_file(model, text, len);
   free(text);

@@ -26,6 +26,8 @@
 #include <cmocka.h>
 #include <hdf5.h>
 
+#include "h5read.h"
+
 extern char **environ;
 
 static char tmpdir[] = "/tmp/sinew-e2e-XXXXXX";
@@ -95,26 +97,7 @@ static double *read_dataset(const char *file, const char *path, size_t *count) {
 static char *read_root_attr(const char *file, const char *name) {
   hid_t f = H5Fopen(file, H5F_ACC_RDONLY, H5P_DEFAULT);
   assert_true(f >= 0);
-  hid_t a = H5Aopen(f, name, H5P_DEFAULT);
-  assert_true(a >= 0);
-  hid_t t = H5Aget_type(a);
-  char *s = NULL;
-  if (H5Tis_variable_str(t) > 0) {
-    hid_t mt = H5Tcopy(H5T_C_S1);
-    H5Tset_size(mt, H5T_VARIABLE);
-    H5Tset_cset(mt, H5T_CSET_UTF8);
-    char *v = NULL;
-    assert_true(H5Aread(a, mt, &v) >= 0);
-    s = strdup(v);
-    H5free_memory(v);
-    H5Tclose(mt);
-  } else {
-    size_t len = H5Tget_size(t);
-    s = calloc(len + 1, 1);
-    assert_true(H5Aread(a, t, s) >= 0);
-  }
-  H5Tclose(t);
-  H5Aclose(a);
+  char *s = read_string_attr(f, "/", name);
   H5Fclose(f);
   return s;
 }

@@ -17,6 +17,7 @@
 #include <unistd.h>
 
 #include "testutil.h"
+#include "h5read.h"
 
 /* ---- the program under test ---- */
 
@@ -133,29 +134,15 @@ static void expect_contains(const char *text, const char *piece) {
 
 /* ---- reading a file back ---- */
 
-static char *read_string_attr(hid_t file, const char *name) {
+/* A root attribute, which sw_main writes as a variable-length string. */
+static char *read_root_string(hid_t file, const char *name) {
   hid_t attr = H5Aopen_by_name(file, "/", name, H5P_DEFAULT, H5P_DEFAULT);
   assert_true(attr >= 0);
   hid_t type = H5Aget_type(attr);
   assert_true(H5Tis_variable_str(type) > 0);
-  hid_t mem = H5Tget_native_type(type, H5T_DIR_ASCEND);
-  char *value = NULL;
-  assert_true(H5Aread(attr, mem, &value) >= 0);
-  char *copy = strdup(value ? value : "");
-  H5free_memory(value);
-  H5Tclose(mem);
   H5Tclose(type);
   H5Aclose(attr);
-  return copy;
-}
-
-static double read_double_attr(hid_t file, const char *name) {
-  double value = NAN;
-  hid_t attr = H5Aopen_by_name(file, "/", name, H5P_DEFAULT, H5P_DEFAULT);
-  assert_true(attr >= 0);
-  assert_true(H5Aread(attr, H5T_NATIVE_DOUBLE, &value) >= 0);
-  H5Aclose(attr);
-  return value;
+  return read_string_attr(file, "/", name);
 }
 
 /* Frames in the file, and the x coordinate of the last node in frame 0. */
@@ -327,10 +314,10 @@ static void test_run_writes_file(void **state) {
   fprintf(stderr, "# %s: %ld frames, tip at x = %.17g m in frame 0\n", __func__, frames, tip_x0);
   assert_int_equal(frames, 11);
   SW_EXPECT_ABS("rod length set by --set (m)", tip_x0, 0.3, 1e-15);
-  char *params = read_string_attr(file, "params");
-  char *status = read_string_attr(file, "status");
-  char *sha = read_string_attr(file, "model_sha256");
-  char *source = read_string_attr(file, "model_source");
+  char *params = read_root_string(file, "params");
+  char *status = read_root_string(file, "status");
+  char *sha = read_root_string(file, "model_sha256");
+  char *source = read_root_string(file, "model_source");
   fprintf(stderr, "# %s: params \"%s\", status \"%s\"\n", __func__, params, status);
   assert_string_equal(params, "length=0.29999999999999999;strength=3");
   assert_string_equal(status, "complete");
@@ -409,7 +396,7 @@ static void test_unstable_dt(void **state) {
   expect_contains(r.err, " of 2 s in ");
   hid_t file = H5Fopen(path, H5F_ACC_RDONLY, H5P_DEFAULT);
   assert_true(file >= 0);
-  char *status = read_string_attr(file, "status");
+  char *status = read_root_string(file, "status");
   fprintf(stderr, "# %s: status \"%s\"\n", __func__, status);
   assert_true(strncmp(status, "unstable: ", 10) == 0);
   free(status);

@@ -19,6 +19,7 @@
 #include <unistd.h>
 
 #include "testutil.h"
+#include "h5read.h"
 
 /* A free rod of 4 elements falling under gravity. */
 static swModel *falling_rod(double dt) {
@@ -79,34 +80,6 @@ static double *read_doubles(hid_t file, const char *path) {
   return buf;
 }
 
-/* A scalar string attribute, fixed or variable length; caller frees. */
-static char *read_string_attr(hid_t file, const char *obj_path, const char *name) {
-  if (H5Aexists_by_name(file, obj_path, name, H5P_DEFAULT) <= 0) {
-    fprintf(stderr, "# %s has no attribute '%s'\n", obj_path, name);
-    fail();
-  }
-  hid_t attr = H5Aopen_by_name(file, obj_path, name, H5P_DEFAULT, H5P_DEFAULT);
-  assert_true(attr >= 0);
-  hid_t type = H5Aget_type(attr);
-  assert_int_equal(H5Tget_class(type), H5T_STRING);
-  char *copy;
-  if (H5Tis_variable_str(type) > 0) {
-    char *value = NULL;
-    hid_t mem = H5Tget_native_type(type, H5T_DIR_ASCEND);
-    assert_true(H5Aread(attr, mem, &value) >= 0);
-    copy = strdup(value ? value : "");
-    H5free_memory(value);
-    H5Tclose(mem);
-  } else {
-    size_t size = H5Tget_size(type);
-    copy = calloc(size + 1, 1);
-    assert_true(H5Aread(attr, type, copy) >= 0);
-  }
-  H5Tclose(type);
-  H5Aclose(attr);
-  return copy;
-}
-
 static void expect_string_attr(hid_t file, const char *obj_path, const char *name,
                                const char *expected) {
   char *value = read_string_attr(file, obj_path, name);
@@ -114,15 +87,6 @@ static void expect_string_attr(hid_t file, const char *obj_path, const char *nam
     fprintf(stderr, "# %s@%s = \"%.80s\", expected \"%.80s\"\n", obj_path, name, value, expected);
   assert_string_equal(value, expected);
   free(value);
-}
-
-static double read_double_attr(hid_t file, const char *name) {
-  double value = NAN;
-  hid_t attr = H5Aopen_by_name(file, "/", name, H5P_DEFAULT, H5P_DEFAULT);
-  assert_true(attr >= 0);
-  assert_true(H5Aread(attr, H5T_NATIVE_DOUBLE, &value) >= 0);
-  H5Aclose(attr);
-  return value;
 }
 
 /* ---- (a) the schema of a complete run ---- */
