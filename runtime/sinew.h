@@ -79,6 +79,10 @@ typedef struct {
   double rest_sigma[3];       /* uniform rest shear/stretch strain        */
   swDampingKind damping;
   double gamma;               /* force dissipation, kg m^-1 s^-1 (Zhang 2019) */
+  int rigid;                  /* 1: the rod moves as one rigid body (rigid.c):
+                                 no deformation, so its stiffness sets no
+                                 stable-dt limit; mass and inertia as if it
+                                 were elastic                               */
 } swRodDesc;
 
 typedef enum { SW_LOAD_FORCE = 0, SW_LOAD_TORQUE = 1 } swLoadKind;
@@ -149,6 +153,59 @@ typedef struct {
 void sw_joint_desc_init(swJointDesc *j);    /* fills defaults */
 int sw_spec_add_joint(swSpec *s, const swJointDesc *j);  /* returns joint id */
 
+/* ---- muscles (muscle.c): bundles of contracting filaments ----
+ * A muscle is N filaments, each a Cosserat rod standing for a group of motor
+ * units, laid from `start` to `end` and tied there to the attachment rods by
+ * spherical joints (Zhang et al. 2019, Suppl. Note 1).  By the size principle
+ * the filament cross-sections A_k grow geometrically from the smallest to the
+ * largest (ratio `size_ratio`, summing to A = pi radius^2), peak force is
+ * sigma_max A_k, and the activation time constant falls linearly from
+ * twitch_small to twitch_large.  Each filament pulls on its nodes along its
+ * elements with one tension T_k (uniform along it), computed from its
+ * stretch eta = l / l0 and strain rate (docs/physics.md, "Muscles"):
+ *   F_qs = a_k f_act(eta) F_max,k + F_max,k p(eta)      Suppl. eqs. 3-4
+ *   T_k  = F_qs - zeta(v) v / l0,  v = -dl/dt             Suppl. eq. 5 (Hill)
+ * The muscle's activation u(t) recruits filaments smallest first: filament k
+ * is driven by clamp((u - C_{k-1}) / (C_k - C_{k-1}), 0, 1) with C_k the
+ * cumulative share of peak force, so the bundle's peak force is u F_max. */
+typedef struct {
+  const char *name;           /* output group /muscles/NAME, rods NAME.f01..  */
+  int filaments;              /* N >= 1                                       */
+  int motor_units;            /* total motor units (0 = one per filament)     */
+  int nelem;                  /* elements of each filament (>= 2)             */
+  double start[3], end[3];    /* attachment points at t = 0, m                */
+  double normal[3];           /* d1 of the filaments                          */
+  double radius;              /* whole muscle at rest, A = pi radius^2, m     */
+  double density, youngs, shear_modulus, poisson; /* filament tissue (as rods) */
+  double shear_hardening, twist_hardening;
+  swDampingKind damping;      /* rod dissipation of each filament             */
+  double gamma;
+  double sigma_max;           /* peak isometric stress, Pa                    */
+  double size_ratio;          /* largest / smallest filament section, >= 1    */
+  double twitch_small;        /* s: activation time constant of the smallest  */
+  double twitch_large;        /*    and of the largest filament; 0 = instant  */
+  double hill_a;              /* Hill's a / F_qs (0.16, Hill 1938)            */
+  double v_max;               /* maximum shortening rate v0 / l0, 1/s (6)      */
+  double fibre_diameter;      /* m (75 um): fibre counts in --info only       */
+  swSignal activation;        /* u(t), clamped to [0, 1]                      */
+  int attach_rod[2];          /* rod tied to start / end (-1: not tied)       */
+  int attach_node[2];         /* node of that rod (-1 = last)                 */
+  double attach_stiffness;    /* N/m per filament end; 0 = 100 F_max,k / l0  */
+  double attach_damping;      /* N s/m per filament end; 0 = choose (joint.c) */
+} swMuscleDesc;
+void sw_muscle_desc_init(swMuscleDesc *md);  /* fills defaults */
+/* Adds the filaments as rods [nrod, nrod + filaments), smallest first, named
+ * NAME.f01, NAME.f02, ..., and for each tied end a spherical joint named
+ * NAME.f01.start / NAME.f01.end; returns the muscle id (-1: out of memory). */
+int sw_spec_add_muscle(swSpec *s, const swMuscleDesc *md);
+/* Filament k (0-based, smallest first) of muscle `muscle` is passive (an
+ * injured motor unit): it keeps its tissue and membrane but never contracts. */
+int sw_spec_set_filament_passive(swSpec *s, int muscle, int filament);
+/* The reference's fits (Suppl. eq. 3): f_act(eta), the active force factor,
+ * and p(eta) = E_membrane(eta) A (eta - 1) / F_max, the passive factor. */
+double sw_muscle_f_act(double eta);
+double sw_muscle_f_pass(double eta);
+
 /* ---- the compiled model (immutable) ---- */
 typedef struct {
   /* sizes */
@@ -204,6 +261,21 @@ typedef struct {
   double *joint_rest_rot;    /* (njoint*9) Q_b Q_a^T at t = 0 (two rods)      */
   double *joint_angle0;      /* (njoint)   hinge angle at t = 0, rad         */
   double *joint_wave_dt;     /* (njoint)   stable dt estimate of each joint  */
+  /* muscles (muscle.c) */
+  int nmuscle, nfil;
+  char **muscle_name;        /* (nmuscle)                                    */
+  int *muscle_fil_adr;       /* (nmuscle+1) first filament of each muscle    */
+  swSignal *muscle_activation; /* (nmuscle)                                  */
+  int *fil_rod;              /* (nfil)     rod of each filament              */
+  int *fil_passive;          /* (nfil)     1: never contracts                */
+  double *fil_area;          /* (nfil)     rest cross-section A_k, m^2       */
+  double *fil_fmax;          /* (nfil)     peak isometric force, N           */
+  double *fil_l0;            /* (nfil)     rest length, m                    */
+  double *fil_tau;           /* (nfil)     activation time constant, s       */
+  double *fil_recruit;       /* (nfil*2)   C_{k-1}, C_k: recruitment window  */
+  double *fil_hill_a;        /* (nfil)     Hill a / F_qs                     */
+  double *fil_v_max;         /* (nfil)     v0 / l0, 1/s                      */
+  double *fil_fibres;        /* (nfil)     muscle fibres in the filament     */
   int has_gravity;
   int has_damping;
 } swModel;
@@ -233,6 +305,11 @@ typedef struct {
   /* joints, updated with each force evaluation */
   double *joint_force;       /* (njoint*3) force of the joint on rod a, lab, N */
   double *joint_angle;       /* (njoint)  hinge angle, rad (0 for others)     */
+  /* muscles, updated with each force evaluation (activation once a step) */
+  double *fil_activation;    /* (nfil)    a_k in [0, 1]                        */
+  double *fil_stretch;       /* (nfil)    eta = l / l0                          */
+  double *fil_rate;          /* (nfil)    strain rate dl/dt / l0, 1/s           */
+  double *fil_tension;       /* (nfil)    T_k, N                                */
   /* instability report, filled when sw_step returns SW_EUNSTABLE */
   char error[512];
 } swData;
