@@ -22,9 +22,9 @@
  *             v0 = v_max l0                              (Hill 1938)
  * so that T_k = F_qs (1 - (1 + k) u / (u + k u0)) with u = v / l0 and
  * u0 = v_max, which is Hill's hyperbola (T + a)(v + b) = (F_qs + a) b.
- * Outside what the fits cover: f_act is evaluated at eta clamped to the fitted
- * range [0.5, 1.6] and floored at 0; p is floored at 0 (the fit is -0.005 at
- * eta = 1, a slack membrane cannot push); at u >= u0 the tension is 0; when
+ * Outside what the fits cover: f_act is 0 outside its roots (0.4406 and
+ * 1.5736, just outside the fitted range [0.5, 1.6]); p is floored at 0 (the
+ * fit is -0.005 at eta = 1, a slack membrane cannot push); at u >= u0 the tension is 0; when
  * lengthening (u < 0) the damping keeps its value at u = 0, zeta(0), so the
  * law is continuous with a continuous slope.
  *
@@ -50,13 +50,15 @@
 #include "vec.h"
 #include "internal.h"
 
-/* Range of eta over which Suppl. eq. 3 was fitted. */
-#define ETA_FIT_LO 0.5
-#define ETA_FIT_HI 1.6
+/* The fit of f_act (Suppl. eq. 3, stated for 0.5 <= eta <= 1.6) is positive
+ * between its roots 0.44059 and 1.57358; outside them the active force is 0,
+ * so it vanishes continuously at both ends (the quartic turns up again beyond
+ * them, which no muscle does). */
+#define ETA_ACT_LO 0.44058965597893646
+#define ETA_ACT_HI 1.5735803537167226
 
 double sw_muscle_f_act(double eta) {
-  if (eta < ETA_FIT_LO) eta = ETA_FIT_LO;
-  if (eta > ETA_FIT_HI) eta = ETA_FIT_HI;
+  if (!(eta > ETA_ACT_LO && eta < ETA_ACT_HI)) return 0;
   double f = (((6.405 * eta - 24.42) * eta + 29.64) * eta - 12.01) * eta + 1.385;
   return f > 0 ? f : 0;
 }
@@ -459,8 +461,8 @@ void sw_muscle_loads(const swModel *m, swData *d) {
  * is stable for h c / mu < 2. */
 double sw_stable_dt_filament(const swModel *m, int f) {
   double peak = 0; /* max of f_act + p over the fitted range */
-  for (int s = 0; s <= 110; s++) {
-    double eta = ETA_FIT_LO + 0.01 * s, q = sw_muscle_f_act(eta) + sw_muscle_f_pass(eta);
+  for (int s = 0; s <= 120; s++) {
+    double eta = 0.4 + 0.01 * s, q = sw_muscle_f_act(eta) + sw_muscle_f_pass(eta);
     if (q > peak) peak = q;
   }
   const double k = m->fil_hill_a[f], u0 = m->fil_v_max[f];

@@ -92,8 +92,9 @@ static void test_fits(void **state) {
       assert_true(fabs(sw_muscle_f_act(eta) + sw_muscle_f_pass(eta) - fqs_ref(eta)) < 1e-12);
   SW_EXPECT_ABS("f_act(1)", sw_muscle_f_act(1.0), 1.0, 1e-3);
   assert_true(sw_muscle_f_pass(0.99) == 0 && sw_muscle_f_pass(1.0) == 0); /* fit is -0.005 */
-  assert_true(sw_muscle_f_act(0.3) == sw_muscle_f_act(0.5));                /* held outside */
-  assert_true(sw_muscle_f_act(2.0) == 0);
+  /* zero outside the roots of the quartic, continuous there */
+  assert_true(sw_muscle_f_act(0.3) == 0 && sw_muscle_f_act(2.0) == 0);
+  assert_true(sw_muscle_f_act(0.4406) < 1e-4 && sw_muscle_f_act(1.5735) < 1e-4);
 }
 
 /* ---- size principle and recruitment (validation 5) ---- */
@@ -279,7 +280,7 @@ static void test_force_length_load_control(void **state) {
   double targets[] = {0.6, 0.7, 0.8, 0.9, 1.5, 1.55};
   int nt = sw_test_sanitized() ? 2 : (int)(sizeof targets / sizeof targets[0]);
   double worst = 0;
-  FILE *pts = fopen("build/validation/force_length_load.txt", "w");
+  FILE *pts = sw_test_sanitized() ? NULL : fopen("build/validation/force_length_load.txt", "w");
   if (pts) fprintf(pts, "# eta F/F_max  (load control, F_set prescribed)\n");
   for (int i = 0; i < nt; i++) {
     double fset, t;
@@ -301,7 +302,7 @@ static void test_force_length_held(void **state) {
   double etas[] = {0.6, 0.8, 1.0, 1.1, 1.2, 1.3, 1.4, 1.5};
   int ne = sw_test_sanitized() ? 3 : (int)(sizeof etas / sizeof etas[0]);
   double worst = 0, tissue_worst = 0;
-  FILE *pts = fopen("build/validation/force_length_held.txt", "w");
+  FILE *pts = sw_test_sanitized() ? NULL : fopen("build/validation/force_length_held.txt", "w");
   if (pts) fprintf(pts, "# eta F/F_max  (length held)\n");
   for (int i = 0; i < ne; i++) {
     const int N = 2;
@@ -353,7 +354,7 @@ static void test_force_velocity(void **state) {
   double us[] = {0.5, 1.0, 1.5, 2.0, 2.5, 3.0};
   int nu = sw_test_sanitized() ? 2 : 6;
   double worst = 0;
-  FILE *pts = fopen("build/validation/force_velocity.txt", "w");
+  FILE *pts = sw_test_sanitized() ? NULL : fopen("build/validation/force_velocity.txt", "w");
   if (pts) fprintf(pts, "# u (l0/s)  F/F_qs(0.85)\n");
   for (int i = 0; i < nu; i++) {
     const int N = 2;
