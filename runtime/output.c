@@ -19,6 +19,7 @@
  * every call is checked and the failure is reported once, in our words, naming
  * the file and the object, with HDF5's innermost reason appended. */
 #include <hdf5.h>
+#include <math.h>
 #include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -89,8 +90,11 @@ static void fill_joint_angle(const swModel *m, swData *d, int joint, double *fra
 }
 
 /* Muscles (muscle.c): the bundle's tension is the sum of its filaments'
- * (they pull in parallel), its stretch and activation the means weighted by
- * cross-section and by peak force; all of the last force evaluation. */
+ * (they pull in parallel), of the last force evaluation; its stretch is the
+ * muscle's length over its rest length, the end-to-end distance of each
+ * filament (a slack, unrecruited filament bows and keeps its arc length,
+ * which is what its own law uses) averaged by cross-section; its activation
+ * is the mean weighted by peak force. */
 static void fill_muscle_force(const swModel *m, swData *d, int mu, double *frame) {
   double T = 0;
   for (int f = m->muscle_fil_adr[mu]; f < m->muscle_fil_adr[mu + 1]; f++) T += d->fil_tension[f];
@@ -100,7 +104,10 @@ static void fill_muscle_force(const swModel *m, swData *d, int mu, double *frame
 static void fill_muscle_stretch(const swModel *m, swData *d, int mu, double *frame) {
   double s = 0, w = 0;
   for (int f = m->muscle_fil_adr[mu]; f < m->muscle_fil_adr[mu + 1]; f++) {
-    s += m->fil_area[f] * d->fil_stretch[f];
+    const int r = m->fil_rod[f];
+    const double *a = d->x + 3 * m->node_adr[r], *b = a + 3 * m->rod_nelem[r];
+    const double dx[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]};
+    s += m->fil_area[f] * sqrt(dx[0] * dx[0] + dx[1] * dx[1] + dx[2] * dx[2]) / m->fil_l0[f];
     w += m->fil_area[f];
   }
   frame[0] = s / w;
