@@ -31,7 +31,7 @@ TEST_BIN = $(TEST_SRC:tests/runtime/%.c=build/tests/%)
 # runs are exercised there with reduced sizes via SW_SANITIZED=1).
 TEST_SBIN = $(TEST_SRC:tests/runtime/%.c=build/asan/tests/%)
 
-.PHONY: all deps test check demo bench clean install
+.PHONY: all deps test check demo bench clean install plots
 all: build/libsinewrt.a bin/sinewc
 
 # ---- the compiler: flex + bison front end (lang/), checker and generator
@@ -124,12 +124,19 @@ demo: deps
 	./build/demo/sim --out build/demo/demo.h5
 	@h5ls -r build/demo/demo.h5
 
-# `make install PREFIX=...`: compiler, runtime library and header, models.
+# `make plots`: the figures of docs/img/ from the outputs that exist
+# (scripts/plots.sh says which inputs it found and which it skipped).
+plots: deps
+	@sh scripts/plots.sh
+
+# `make install PREFIX=...`: compiler, runtime library and header, models,
+# and the plot tool.
 PREFIX ?= /usr/local
 install: bin/sinewc build/libsinewrt.a
 	install -d $(DESTDIR)$(PREFIX)/bin $(DESTDIR)$(PREFIX)/lib $(DESTDIR)$(PREFIX)/include/sinew \
 	  $(DESTDIR)$(PREFIX)/share/sinew/models
 	install -m 755 bin/sinewc $(DESTDIR)$(PREFIX)/bin/sinewc
+	install -m 755 scripts/sinew-plot $(DESTDIR)$(PREFIX)/bin/sinew-plot
 	install -m 644 build/libsinewrt.a $(DESTDIR)$(PREFIX)/lib/libsinewrt.a
 	install -m 644 runtime/sinew.h $(DESTDIR)$(PREFIX)/include/sinew/sinew.h
 	@if ls models/*.sinew >/dev/null 2>&1; then \

@@ -1,6 +1,6 @@
 #!/bin/sh
 # deps.sh — install the Debian packages sinew needs, only those that are missing.
-# Called by `make test`, `make demo` and `make bench` so that each works on a
+# Called by `make test`, `make demo`, `make bench` and `make plots` so that each works on a
 # fresh Debian machine.  docs/dependencies.md says why each package is here.
 set -e
 # package:probe-file pairs; a package is missing when its probe file is absent.
@@ -13,6 +13,8 @@ libgsl-dev:/usr/include/gsl/gsl_math.h
 pkg-config:/usr/bin/pkg-config
 libcmocka-dev:/usr/include/cmocka.h
 perl:/usr/bin/prove
+python3-h5py:/usr/lib/python3/dist-packages/h5py/__init__.py
+python3-matplotlib:/usr/lib/python3/dist-packages/matplotlib/__init__.py
 "
 missing=""
 for pair in $PKGS; do
