@@ -144,7 +144,12 @@ static const char *kind_noun(const swValue *v) {
 static swValue scale_signal(swArena *a, int op, swValue sig, swValue k, swLoc loc) {
   swSignalVal *s = ast_alloc(a, sizeof *s);
   *s = *sig.sig;
-  s->scale = val_binop(a, op, s->scale, k, loc);
+  /* the first scale of a signal replaces its unit scale: P[0], not (1.0 * P[0]) */
+  if (op == '*' && s->scale.kind == VAL_NUM && val_is_const(&s->scale) && s->scale.v[0] == 1 &&
+      dim_is_none(s->scale.dim) && k.kind != VAL_ERROR)
+    s->scale = k;
+  else
+    s->scale = val_binop(a, op, s->scale, k, loc);
   if (s->scale.kind == VAL_ERROR) return val_error();
   swValue r = sig;
   r.sig = s;
