@@ -473,12 +473,16 @@ static double model_bytes(const swModel *m) {
    * initial angle and stable dt */
   b += (double)m->njoint * (sizeof(swJointDesc) + sizeof(char *) + 4 * sizeof(int) +
                             17 * sizeof(double));
+  /* per muscle: name, first filament, activation signal; per filament: 2
+   * ints and 10 doubles */
+  b += (double)m->nmuscle * (sizeof(char *) + sizeof(int) + sizeof(swSignal));
+  b += (double)m->nfil * (2 * sizeof(int) + 10 * sizeof(double));
   return b;
 }
 
 static double data_bytes(const swModel *m) {
-  return sizeof(swData) +
-         sizeof(double) * (12.0 * m->nnode + 26.0 * m->nelem + 7.0 * m->nvor + 4.0 * m->njoint);
+  return sizeof(swData) + sizeof(double) * (12.0 * m->nnode + 26.0 * m->nelem + 7.0 * m->nvor +
+                                            4.0 * m->njoint + 4.0 * m->nfil);
 }
 
 /* Frames a run of this length writes (run.c: step 0, every k steps, the last). */
@@ -525,6 +529,25 @@ static void print_info(const swCli *c, const swModel *m, double stable, const ch
                        : m->joint && m->joint[j].name ? m->joint[j].name : "(unnamed)";
     printf("  %s: %s\n", name, m->joint ? joint_kind_name(m->joint[j].kind) : "joint");
   }
+  printf("muscles: %d\n", m->nmuscle);
+  for (int i = 0; i < m->nmuscle; i++) {
+    const int f0 = m->muscle_fil_adr[i], f1 = m->muscle_fil_adr[i + 1];
+    double fmax = 0, area = 0, fibres = 0;
+    int passive = 0;
+    for (int f = f0; f < f1; f++) {
+      fmax += m->fil_fmax[f];
+      area += m->fil_area[f];
+      fibres += m->fil_fibres[f];
+      passive += m->fil_passive[f];
+    }
+    printf("  %s: %d filaments (%.4g to %.4g mm^2, %.0f fibres), F_max %.6g N, l0 %.6g m, "
+           "twitch %s to %s", m->muscle_name[i], f1 - f0, m->fil_area[f0] * 1e6,
+           m->fil_area[f1 - 1] * 1e6, fibres, fmax, m->fil_l0[f0],
+           format_time(a, sizeof a, m->fil_tau[f0]), format_time(b, sizeof b, m->fil_tau[f1 - 1]));
+    if (passive) printf(", %d passive", passive);
+    printf("\n");
+    (void)area;
+  }
   int nforce = 0, ntorque = 0, nclamp = 0, nvel = 0, nomega = 0;
   for (int k = 0; k < m->nload; k++) {
     if (m->load[k].kind == SW_LOAD_TORQUE) ntorque++;
@@ -544,10 +567,10 @@ static void print_info(const swCli *c, const swModel *m, double stable, const ch
   if (m->has_gravity)
     printf("gravity: (%g, %g, %g) m/s^2\n", m->gravity[0], m->gravity[1], m->gravity[2]);
   else printf("gravity: none\n");
-  printf("forces in use: elasticity (stretch, shear, bend, twist)%s%s%s%s%s\n",
+  printf("forces in use: elasticity (stretch, shear, bend, twist)%s%s%s%s%s%s\n",
          m->has_gravity ? ", gravity" : "", m->nload ? ", point loads" : "",
          m->nbc ? ", boundary conditions" : "", m->njoint ? ", joints" : "",
-         m->has_damping ? ", damping" : "");
+         m->nmuscle ? ", muscles" : "", m->has_damping ? ", damping" : "");
   printf("integrator: %s\n", m->integrator == SW_PEFRL ? "PEFRL" : "position Verlet");
   printf("dt: %s (%s; stable estimate %s)\n", format_time(a, sizeof a, m->dt), dt_source,
          format_time(b, sizeof b, stable));
@@ -555,8 +578,8 @@ static void print_info(const swCli *c, const swModel *m, double stable, const ch
   printf("duration: %s, %ld steps; a frame every %s: %ld frames\n",
          format_time(a, sizeof a, c->duration), nsteps,
          c->every > 0 ? format_time(b, sizeof b, c->every) : "step", frames);
-  printf("output: %s (position%s%s, energy)\n", out, p->velocity ? ", velocity" : "",
-         p->directors ? ", directors" : "");
+  printf("output: %s (position%s%s, energy%s)\n", out, p->velocity ? ", velocity" : "",
+         p->directors ? ", directors" : "", m->nmuscle ? ", muscles" : "");
   double mb = model_bytes(m), db = data_bytes(m);
   printf("memory: about %s (model %s, state %s)\n", format_bytes(a, sizeof a, mb + db),
          format_bytes(b, sizeof b, mb), format_bytes(e, sizeof e, db));

@@ -32,12 +32,15 @@
 
 /* All loads of the current configuration: internal, clamp couples, external,
  * joints (whose damping joint.c adds to the external loads, so that the kick
- * books its work, and whose springs count as elastic energy). */
+ * books its work, and whose springs count as elastic energy), muscles (active:
+ * their tensions count as external loads, muscle.c).  Muscle activations
+ * advance once a step, before its first kick (sw_muscle_advance). */
 static void compute_loads(const swModel *m, swData *d) {
   sw_internal_loads(m, d);
   if (m->nbc) sw_bc_loads(m, d);
   sw_external_loads(m, d);
   if (m->njoint) sw_joint_loads(m, d);
+  if (m->nmuscle) sw_muscle_loads(m, d);
 }
 
 /* Positions and frames move with the current velocities for a time h.
@@ -203,6 +206,7 @@ int sw_steps(const swModel *m, swData *d, long k) {
   if (k <= 0) return SW_OK;
   if (m->integrator == SW_PEFRL) {
     for (long i = 0; i < k; i++) {
+      if (m->nmuscle) sw_muscle_advance(m, d, (double)d->step * h, h);
       pefrl_step(m, d);
       d->step++;
       d->time = (double)d->step * h; /* no accumulated round-off in t */
@@ -212,6 +216,7 @@ int sw_steps(const swModel *m, swData *d, long k) {
   }
   drift(m, d, 0.5 * h);
   for (long i = 0; i < k; i++) {
+    if (m->nmuscle) sw_muscle_advance(m, d, (double)d->step * h, h);
     kick(m, d, h, h);
     d->step++;
     const int last = i == k - 1;

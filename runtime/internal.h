@@ -20,4 +20,24 @@ void sw_joint_setup(swModel *m);
 void sw_joint_loads(const swModel *m, swData *d);
 void sw_joint_measure(const swModel *m, swData *d, int j);
 double sw_joint_energy(const swModel *m, const swData *d);
+/* Muscles (muscle.c).  The swSpec keeps its muscles in an opaque list that
+ * muscle.c owns (sw_spec_muscles gives its slot; model.c frees it with
+ * sw_muscle_spec_free); sw_muscle_setup fills the model's muscle and filament
+ * arrays after the rods are built (0 and a message on a bad muscle);
+ * sw_muscle_reset sets the activations of t = 0; sw_muscle_advance moves the
+ * activation dynamics over a step [t, t + h]; sw_muscle_loads adds the
+ * filament tensions to d->force and d->ext_force; sw_stable_dt_filament is the
+ * step limit of filament f's Hill damping. */
+typedef struct swMuscleSpec swMuscleSpec;
+swMuscleSpec **sw_spec_muscles(swSpec *s);                            /* model.c */
+int sw_spec_nrod(const swSpec *s);                                    /* model.c */
+void sw_muscle_spec_free(swMuscleSpec *ms);
+int sw_muscle_check(const swMuscleSpec *ms, int nrod, char *err, size_t errlen);
+int sw_muscle_setup(swModel *m, const swMuscleSpec *ms, char *err, size_t errlen);
+void sw_muscle_free(swModel *m);
+void sw_muscle_reset(const swModel *m, swData *d);
+void sw_muscle_advance(const swModel *m, swData *d, double t, double h);
+void sw_muscle_loads(const swModel *m, swData *d);
+double sw_muscle_tension(const swModel *m, int f, double eta, double edot, double a);
+double sw_stable_dt_filament(const swModel *m, int f);
 #endif

@@ -38,7 +38,11 @@ struct swSpec {
   double gravity[3];
   double dt;
   swIntegrator integrator;
+  swMuscleSpec *muscles;         /* owned by muscle.c */
 };
+
+swMuscleSpec **sw_spec_muscles(swSpec *s) { return &s->muscles; }
+int sw_spec_nrod(const swSpec *s) { return s->nrod; }
 
 static const double SW_ALPHA_SHEAR = 4.0 / 3.0; /* circular section */
 
@@ -58,6 +62,7 @@ void sw_spec_free(swSpec *s) {
   free(s->rod); free(s->rod_name); free(s->rest_x); free(s->rest_Q);
   for (int k = 0; k < s->njoint; k++) free(s->joint_name[k]);
   free(s->load); free(s->bc); free(s->joint); free(s->joint_name);
+  sw_muscle_spec_free(s->muscles);
   free(s);
 }
 
@@ -204,6 +209,7 @@ void sw_model_free(swModel *m) {
   free(m->joint); free(m->joint_name); free(m->joint_node_a); free(m->joint_node_b);
   free(m->joint_elem_a); free(m->joint_elem_b); free(m->joint_axis_a); free(m->joint_axis_b);
   free(m->joint_rest_rot); free(m->joint_angle0); free(m->joint_wave_dt);
+  sw_muscle_free(m);
   free(m);
 }
 
@@ -337,6 +343,7 @@ static int check_joints(const swSpec *s, char *err, size_t errlen) {
 }
 
 swModel *sw_compile(const swSpec *s, char *err, size_t errlen) {
+  if (s && !sw_muscle_check(s->muscles, s->nrod, err, errlen)) return NULL;
   if (!s || s->nrod < 1) {
     fail(err, errlen, "the scene has no rods");
     return NULL;
@@ -522,6 +529,10 @@ swModel *sw_compile(const swSpec *s, char *err, size_t errlen) {
   }
   sw_joint_setup(m);
   for (int j = 0; j < m->njoint; j++) m->joint_wave_dt[j] = sw_stable_dt_joint(m, j);
+  if (!sw_muscle_setup(m, s->muscles, err, errlen)) {
+    sw_model_free(m);
+    return NULL;
+  }
   return m;
 
 oom:
@@ -539,6 +550,7 @@ void sw_data_free(swData *d) {
   free(d->sigma); free(d->stress); free(d->vor_dilatation); free(d->kappa); free(d->couple);
   free(d->force); free(d->torque); free(d->ext_force); free(d->ext_torque);
   free(d->joint_force); free(d->joint_angle);
+  free(d->fil_activation); free(d->fil_stretch); free(d->fil_rate); free(d->fil_tension);
   free(d);
 }
 
@@ -553,10 +565,14 @@ swData *sw_data_new(const swModel *m) {
   d->force = dalloc(3 * N); d->torque = dalloc(3 * E);
   d->ext_force = dalloc(3 * N); d->ext_torque = dalloc(3 * E);
   d->joint_force = dalloc(3 * (size_t)m->njoint); d->joint_angle = dalloc((size_t)m->njoint);
+  size_t F = (size_t)m->nfil;
+  d->fil_activation = dalloc(F); d->fil_stretch = dalloc(F); d->fil_rate = dalloc(F);
+  d->fil_tension = dalloc(F);
   if (!d->x || !d->v || !d->Q || !d->omega || !d->length || !d->dilatation ||
       !d->sigma || !d->stress || !d->vor_dilatation || !d->kappa ||
       !d->couple || !d->force || !d->torque || !d->ext_force || !d->ext_torque ||
-      !d->joint_force || !d->joint_angle) {
+      !d->joint_force || !d->joint_angle || !d->fil_activation || !d->fil_stretch ||
+      !d->fil_rate || !d->fil_tension) {
     sw_data_free(d);
     return NULL;
   }
@@ -575,6 +591,10 @@ void sw_reset(const swModel *m, swData *d) {
   memset(d->omega, 0, sizeof(double) * 3 * (size_t)m->nelem);
   sw_apply_bc_velocity(m, d, 0.0);
   sw_internal_loads(m, d); /* strains of the initial state */
+  if (m->nmuscle) {
+    sw_muscle_reset(m, d);
+    sw_muscle_loads(m, d); /* stretch and tension of the initial state */
+  }
   for (int j = 0; j < m->njoint; j++) {
     d->joint_angle[j] = m->joint_angle0[j]; /* the reference of the unwrapping */
     sw_joint_measure(m, d, j);

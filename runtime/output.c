@@ -12,7 +12,8 @@
  * frame allocated at open time, appends it and flushes the file, so a run that
  * dies later still leaves a readable file of every frame written so far.
  * Adding an output is one line of the table plus, if the quantity is new, a
- * four-line fill function.  The root group records how the file was made (SPEC.md "Output (HDF5)") and a
+ * four-line fill function.  Muscle groups also carry what a reader needs to
+ * normalise their forces (write_muscle_attrs).  The root group records how the file was made (SPEC.md "Output (HDF5)") and a
  * `status` attribute that reads "incomplete" until sw_output_close() replaces
  * it with the caller's verdict.  HDF5's own error printing is switched off;
  * every call is checked and the failure is reported once, in our words, naming
@@ -29,8 +30,8 @@
 /* ---- the output table ---- */
 
 /* Symbolic per-frame extents, resolved for each rod at open time. */
-enum { EXTENT_NODES = -1, EXTENT_ELEMS = -2 };
-enum { SCOPE_ROOT, SCOPE_ROD, SCOPE_JOINT };
+enum { EXTENT_NODES = -1, EXTENT_ELEMS = -2, EXTENT_FILAMENTS = -3 };
+enum { SCOPE_ROOT, SCOPE_ROD, SCOPE_JOINT, SCOPE_MUSCLE };
 enum { WHEN_ALWAYS, WHEN_VELOCITY, WHEN_DIRECTORS, WHEN_HINGE };
 #define MAX_FRAME_RANK 3
 
@@ -87,6 +88,38 @@ static void fill_joint_angle(const swModel *m, swData *d, int joint, double *fra
   frame[0] = d->joint_angle[joint];
 }
 
+/* Muscles (muscle.c): the bundle's tension is the sum of its filaments'
+ * (they pull in parallel), its stretch and activation the means weighted by
+ * cross-section and by peak force; all of the last force evaluation. */
+static void fill_muscle_force(const swModel *m, swData *d, int mu, double *frame) {
+  double T = 0;
+  for (int f = m->muscle_fil_adr[mu]; f < m->muscle_fil_adr[mu + 1]; f++) T += d->fil_tension[f];
+  frame[0] = T;
+}
+
+static void fill_muscle_stretch(const swModel *m, swData *d, int mu, double *frame) {
+  double s = 0, w = 0;
+  for (int f = m->muscle_fil_adr[mu]; f < m->muscle_fil_adr[mu + 1]; f++) {
+    s += m->fil_area[f] * d->fil_stretch[f];
+    w += m->fil_area[f];
+  }
+  frame[0] = s / w;
+}
+
+static void fill_muscle_activation(const swModel *m, swData *d, int mu, double *frame) {
+  double s = 0, w = 0;
+  for (int f = m->muscle_fil_adr[mu]; f < m->muscle_fil_adr[mu + 1]; f++) {
+    s += m->fil_fmax[f] * d->fil_activation[f];
+    w += m->fil_fmax[f];
+  }
+  frame[0] = s / w;
+}
+
+static void fill_filament_force(const swModel *m, swData *d, int mu, double *frame) {
+  const int f0 = m->muscle_fil_adr[mu];
+  memcpy(frame, d->fil_tension + f0, (size_t)(m->muscle_fil_adr[mu + 1] - f0) * sizeof *frame);
+}
+
 /* Must match the order sw_energy() returns. */
 static const char *const energy_columns[] = {"kinetic", "elastic", "work_done", NULL};
 
@@ -98,6 +131,10 @@ static const swField output_fields[] = {
   {"directors",           SCOPE_ROD,  3, {EXTENT_ELEMS, 3, 3},       "-",   NULL,           WHEN_DIRECTORS, fill_directors},
   {"force",               SCOPE_JOINT,1, {3},                        "N",   NULL,           WHEN_ALWAYS,    fill_joint_force},
   {"angle",               SCOPE_JOINT,0, {0},                        "rad", NULL,           WHEN_HINGE,     fill_joint_angle},
+  {"force",               SCOPE_MUSCLE,0,{0},                        "N",   NULL,           WHEN_ALWAYS,    fill_muscle_force},
+  {"stretch",             SCOPE_MUSCLE,0,{0},                        "-",   NULL,           WHEN_ALWAYS,    fill_muscle_stretch},
+  {"activation",          SCOPE_MUSCLE,0,{0},                        "-",   NULL,           WHEN_ALWAYS,    fill_muscle_activation},
+  {"filament_force",      SCOPE_MUSCLE,1,{EXTENT_FILAMENTS},         "N",   NULL,           WHEN_ALWAYS,    fill_filament_force},
   {"diagnostics/energy",  SCOPE_ROOT, 1, {3},                        "J",   energy_columns, WHEN_ALWAYS,    fill_energy},
 };
 #define NFIELDS (sizeof output_fields / sizeof output_fields[0])
@@ -249,6 +286,18 @@ static int attr_scalar(const swAttrTarget *t, const char *name, hid_t file_type,
   return rc;
 }
 
+/* A 1-D array of doubles. */
+static int attr_vector(const swAttrTarget *t, const char *name, const double *values, int n) {
+  hsize_t count = (hsize_t)n;
+  hid_t space = H5Screate_simple(1, &count, NULL);
+  if (space < 0)
+    return fail(t->err, t->errlen, "%s: cannot make the dataspace of attribute '%s' of %s",
+                t->file, name, t->obj_path);
+  int rc = write_attr(t, name, H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, space, values);
+  H5Sclose(space);
+  return rc;
+}
+
 /* ---- open ---- */
 
 static int valid_group_name(const char *name) {
@@ -265,7 +314,10 @@ static int field_enabled(const swField *f, const swOutputOptions *opt) {
 
 /* How many datasets field f can make, and whether item k gets one. */
 static int field_items(const swField *f, const swModel *m) {
-  return f->scope == SCOPE_ROD ? m->nrod : f->scope == SCOPE_JOINT ? m->njoint : 1;
+  return f->scope == SCOPE_ROD      ? m->nrod
+         : f->scope == SCOPE_JOINT  ? m->njoint
+         : f->scope == SCOPE_MUSCLE ? m->nmuscle
+                                    : 1;
 }
 static int item_enabled(const swField *f, const swModel *m, int k) {
   return f->when != WHEN_HINGE || m->joint[k].kind == SW_JOINT_HINGE;
@@ -281,9 +333,10 @@ static int create_dataset(swOutput *o, swDataset *ds, const swField *f, const sw
   ds->item = item;
   ds->dset = H5I_INVALID_HID;
   ds->rank = 1 + f->rank;
-  ds->path = f->scope == SCOPE_ROD     ? dup_printf("/rods/%s/%s", m->rod_name[item], f->path)
-             : f->scope == SCOPE_JOINT ? dup_printf("/joints/%s/%s", m->joint_name[item], f->path)
-                                       : dup_printf("/%s", f->path);
+  ds->path = f->scope == SCOPE_ROD      ? dup_printf("/rods/%s/%s", m->rod_name[item], f->path)
+             : f->scope == SCOPE_JOINT  ? dup_printf("/joints/%s/%s", m->joint_name[item], f->path)
+             : f->scope == SCOPE_MUSCLE ? dup_printf("/muscles/%s/%s", m->muscle_name[item], f->path)
+                                        : dup_printf("/%s", f->path);
   if (!ds->path) return fail(err, errlen, "%s: out of memory", o->path);
 
   ds->dims[0] = 0;
@@ -293,6 +346,7 @@ static int create_dataset(swOutput *o, swDataset *ds, const swField *f, const sw
     int e = f->extent[k];
     if (e == EXTENT_NODES) e = m->rod_nelem[rod] + 1;
     else if (e == EXTENT_ELEMS) e = m->rod_nelem[rod];
+    else if (e == EXTENT_FILAMENTS) e = m->muscle_fil_adr[item + 1] - m->muscle_fil_adr[item];
     ds->dims[1 + k] = maxdims[1 + k] = chunk[1 + k] = (hsize_t)e;
     ds->frame_len *= (size_t)e;
   }
@@ -344,6 +398,33 @@ static int write_root_attrs(swOutput *o, const swModel *m, const swOutputOptions
   return rc;
 }
 
+/* What a reader needs to normalise a muscle's output: F_max (N, the sum of
+ * its filaments' peak forces), l0 (m), its filament count, and per filament
+ * the peak force, the rest cross-section and the number of muscle fibres. */
+static int write_muscle_attrs(swOutput *o, const swModel *m, int mu, char *err, size_t errlen) {
+  char *gpath = dup_printf("/muscles/%s", m->muscle_name[mu]);
+  if (!gpath) return fail(err, errlen, "%s: out of memory", o->path);
+  hid_t g = H5Gopen2(o->file, gpath, H5P_DEFAULT);
+  if (g < 0) {
+    int rc = fail(err, errlen, "%s: cannot open group %s", o->path, gpath);
+    free(gpath);
+    return rc;
+  }
+  const int f0 = m->muscle_fil_adr[mu], nf = m->muscle_fil_adr[mu + 1] - f0;
+  double fmax = 0;
+  for (int f = f0; f < f0 + nf; f++) fmax += m->fil_fmax[f];
+  swAttrTarget t = {g, o->path, gpath, err, errlen};
+  int rc = attr_scalar(&t, "F_max", H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, &fmax);
+  if (rc == SW_OK) rc = attr_scalar(&t, "l0", H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, &m->fil_l0[f0]);
+  if (rc == SW_OK) rc = attr_scalar(&t, "filaments", H5T_STD_I32LE, H5T_NATIVE_INT, &nf);
+  if (rc == SW_OK) rc = attr_vector(&t, "filament_F_max", m->fil_fmax + f0, nf);
+  if (rc == SW_OK) rc = attr_vector(&t, "filament_area", m->fil_area + f0, nf);
+  if (rc == SW_OK) rc = attr_vector(&t, "filament_fibres", m->fil_fibres + f0, nf);
+  H5Gclose(g);
+  free(gpath);
+  return rc;
+}
+
 static void release(swOutput *o) {
   for (int i = 0; i < o->ndset; i++) {
     if (o->dset[i].dset >= 0) H5Dclose(o->dset[i].dset);
@@ -375,6 +456,12 @@ swOutput *sw_output_open(const char *path, const swModel *m, const swOutputOptio
     if (!valid_group_name(m->joint_name[j])) {
       fail(err, errlen, "%s: joint %d has name '%s', which cannot name an HDF5 group", path, j,
            m->joint_name[j] ? m->joint_name[j] : "");
+      return NULL;
+    }
+  for (int i = 0; i < m->nmuscle; i++)
+    if (!valid_group_name(m->muscle_name[i])) {
+      fail(err, errlen, "%s: muscle %d has name '%s', which cannot name an HDF5 group", path, i,
+           m->muscle_name[i] ? m->muscle_name[i] : "");
       return NULL;
     }
 
@@ -422,6 +509,7 @@ swOutput *sw_output_open(const char *path, const swModel *m, const swOutputOptio
     }
   }
   if (lcpl >= 0) H5Pclose(lcpl);
+  for (int i = 0; i < m->nmuscle && rc == SW_OK; i++) rc = write_muscle_attrs(o, m, i, err, errlen);
   if (rc == SW_OK && !(o->frame = malloc(max_frame * sizeof *o->frame)))
     rc = fail(err, errlen, "%s: out of memory", path);
   if (rc == SW_OK && H5Fflush(o->file, H5F_SCOPE_LOCAL) < 0)

@@ -126,6 +126,9 @@ double sw_stable_dt_rod(const swModel *m, int r) {
     double lim = 0.95 * sw_integrator_stability_limit(m->integrator, zeta) / w;
     if (lim < dt) dt = lim;
   }
+  /* a muscle filament's Hill damping (muscle.c) */
+  for (int f = 0; f < m->nfil; f++)
+    if (m->fil_rod[f] == r) dt = fmin(dt, 0.95 * sw_stable_dt_filament(m, f));
   return dt;
 }
 

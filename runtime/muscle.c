@@ -1,0 +1,473 @@
+/* muscle.c — muscles as bundles of contracting Cosserat filaments.
+ *
+ * Design.  A muscle is N filaments (Zhang et al. 2019, Suppl. Note 1), each an
+ * ordinary rod of the scene standing for a group of motor units, laid from the
+ * muscle's start to its end and tied there by spherical joints to the rods it
+ * attaches to (tendons, bones).  The rods bend, twist, shear and stretch like
+ * any other (the tissue's own E, 10 kPa for muscle); this file adds the
+ * contraction.  Each filament k pulls with one tension T_k, the same in every
+ * element and directed along each element's current tangent t_i, so node i
+ * gets +T t_i and node i+1 gets -T t_i: a central pair per element, which
+ * conserves momentum and angular momentum without couples.  T_k is a function
+ * of the filament's stretch eta = l / l0 (l the arc length) and strain rate
+ * de/dt = (sum_i t_i . (v_{i+1} - v_i)) / l0, so the law sees the whole
+ * filament, as the reference's eta does, and cannot localise strain:
+ *
+ *   F_qs(eta) = a_k f_act(eta) F_max,k + F_max,k p(eta)          Suppl. eq. 4
+ *   f_act(eta) = 6.405 eta^4 - 24.42 eta^3 + 29.64 eta^2 - 12.01 eta + 1.385
+ *   p(eta)     = 3.375 eta^3 - 11.33 eta^2 + 13 eta - 5.05  (eta >= 1)
+ *                (= E_membrane(eta) A (eta - 1) / F_max of Suppl. eq. 3)
+ *   T_k = F_qs - zeta(v) v / l0,  v = -dl/dt the shortening speed  eq. 5
+ *   zeta(v) = (F_qs + a) F_qs l0 / (a v0 + v F_qs),  a = hill_a F_qs,
+ *             v0 = v_max l0                              (Hill 1938)
+ * so that T_k = F_qs (1 - (1 + k) u / (u + k u0)) with u = v / l0 and
+ * u0 = v_max, which is Hill's hyperbola (T + a)(v + b) = (F_qs + a) b.
+ * Outside what the fits cover: f_act is 0 outside its roots (0.4406 and
+ * 1.5736, just outside the fitted range [0.5, 1.6]); p is floored at 0 (the
+ * fit is -0.005 at eta = 1, a slack membrane cannot push); at u >= u0 the tension is 0; when
+ * lengthening (u < 0) the damping keeps its value at u = 0, zeta(0), so the
+ * law is continuous with a continuous slope.
+ *
+ * Size principle (Suppl. Note 1): the N cross-sections grow geometrically from
+ * the smallest to the largest by `size_ratio` and sum to the muscle's A;
+ * F_max,k = sigma_max A_k; activation time constants fall linearly with A_k
+ * from twitch_small to twitch_large.  Recruitment: the muscle activation u(t)
+ * drives filament k with clamp((u - C_{k-1}) / (C_k - C_{k-1}), 0, 1), C_k
+ * the cumulative share of peak force of filaments 0..k, so the small ones are
+ * recruited first and the bundle's peak isometric force is u F_max.  With a
+ * time constant tau_k the filament's activation follows its drive by
+ * da/dt = (drive - a) / tau_k, advanced once a step with the exact
+ * exponential of a drive held at the step's midpoint value.
+ *
+ * The muscle's forces are active: they enter ext_force as well, so the kick
+ * books their work as work done on the rods (energy diagnostic).
+ */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include "sinew.h"
+#include "vec.h"
+#include "internal.h"
+
+/* The fit of f_act (Suppl. eq. 3, stated for 0.5 <= eta <= 1.6) is positive
+ * between its roots 0.44059 and 1.57358; outside them the active force is 0,
+ * so it vanishes continuously at both ends (the quartic turns up again beyond
+ * them, which no muscle does). */
+#define ETA_ACT_LO 0.44058965597893646
+#define ETA_ACT_HI 1.5735803537167226
+
+double sw_muscle_f_act(double eta) {
+  if (!(eta > ETA_ACT_LO && eta < ETA_ACT_HI)) return 0;
+  double f = (((6.405 * eta - 24.42) * eta + 29.64) * eta - 12.01) * eta + 1.385;
+  return f > 0 ? f : 0;
+}
+
+double sw_muscle_f_pass(double eta) {
+  if (eta < 1) return 0;
+  double p = ((3.375 * eta - 11.33) * eta + 13.0) * eta - 5.05;
+  return p > 0 ? p : 0;
+}
+
+void sw_muscle_desc_init(swMuscleDesc *md) {
+  memset(md, 0, sizeof *md);
+  md->name = "muscle";
+  md->filaments = 1;
+  md->nelem = 14;                  /* n_m of Suppl. Table 5 */
+  md->end[2] = 0.1;
+  md->radius = 0.01;
+  md->density = 1060.0;            /* Suppl. Table 1 */
+  md->youngs = 10e3;
+  md->poisson = 0.5;
+  md->shear_hardening = md->twist_hardening = 1.0;
+  md->sigma_max = 0;               /* must be given */
+  md->size_ratio = 1.0;
+  md->hill_a = 0.16;               /* a = 0.16 F_qs, Suppl. Note 7.1 (Hill 1938) */
+  md->v_max = 6.0;                 /* v0 = 6 l0 /s, Suppl. Note 7.1 (Winter 2009) */
+  md->fibre_diameter = 75e-6;      /* Suppl. Note 1 (Klein et al. 2003) */
+  md->activation = sw_signal_const(0.0);
+  md->attach_rod[0] = md->attach_rod[1] = -1;
+  md->attach_node[0] = 0;
+  md->attach_node[1] = -1;
+}
+
+static double dist3(const double *a, const double *b) {
+  double d[3];
+  sw_v3_sub(d, a, b);
+  return sw_v3_norm(d);
+}
+
+/* The filaments' d1: `normal` if it is usable, else the lab axis least
+ * aligned with dir (any perpendicular serves a round filament). */
+static void filament_normal(double *out, const double *dir, const double *normal) {
+  double Q[9];
+  if (sw_frame_from(Q, dir, normal)) {
+    memcpy(out, normal, 3 * sizeof *out);
+    return;
+  }
+  int k = 0;
+  for (int c = 1; c < 3; c++)
+    if (fabs(dir[c]) < fabs(dir[k])) k = c;
+  out[0] = out[1] = out[2] = 0;
+  out[k] = 1;
+}
+
+/* ---- the specification side ---- */
+
+typedef struct {
+  swMuscleDesc desc;             /* name points to `name` */
+  char *name;
+  int rod0;                      /* first filament rod */
+  unsigned char *passive;        /* (filaments) */
+} swMuscleItem;
+
+struct swMuscleSpec {
+  int n, cap;
+  swMuscleItem *item;
+};
+
+void sw_muscle_spec_free(swMuscleSpec *ms) {
+  if (!ms) return;
+  for (int i = 0; i < ms->n; i++) {
+    free(ms->item[i].name);
+    free(ms->item[i].passive);
+  }
+  free(ms->item);
+  free(ms);
+}
+
+/* Cross-sections of the N filaments, smallest first: A q^k / sum q^j with
+ * q = ratio^(1/(N-1)). */
+static void filament_areas(int N, double A, double ratio, double *out) {
+  double q = N > 1 ? pow(ratio, 1.0 / (N - 1)) : 1.0, sum = 0, w = 1;
+  for (int k = 0; k < N; k++, w *= q) sum += (out[k] = w);
+  for (int k = 0; k < N; k++) out[k] *= A / sum;
+}
+
+static int bad_muscle(const swMuscleDesc *md) {
+  const double L = dist3(md->start, md->end);
+  return !md->name || md->filaments < 1 || md->filaments > 100000 || md->nelem < 2 ||
+         !(L > 0) || !isfinite(L) || !(md->radius > 0) || !isfinite(md->radius) ||
+         !(md->size_ratio >= 1) || !isfinite(md->size_ratio);
+}
+
+int sw_spec_add_muscle(swSpec *s, const swMuscleDesc *md) {
+  swMuscleSpec **slot = sw_spec_muscles(s);
+  if (!*slot && !(*slot = calloc(1, sizeof **slot))) return -1;
+  swMuscleSpec *ms = *slot;
+  if (ms->n == ms->cap) {
+    int nc = ms->cap ? 2 * ms->cap : 4;
+    swMuscleItem *p = realloc(ms->item, (size_t)nc * sizeof *p);
+    if (!p) return -1;
+    ms->item = p;
+    ms->cap = nc;
+  }
+  swMuscleItem *it = &ms->item[ms->n];
+  memset(it, 0, sizeof *it);
+  it->desc = *md;
+  it->name = strdup(md->name ? md->name : "muscle");
+  if (!it->name) return -1;
+  it->desc.name = it->name;
+  it->rod0 = sw_spec_nrod(s);
+  /* Invalid descriptions are kept and reported by sw_compile (sw_muscle_check),
+   * which names the muscle; only the rods of a sensible muscle are made. */
+  int N = md->filaments >= 1 && md->filaments <= 100000 ? md->filaments : 1;
+  it->passive = calloc((size_t)N, 1);
+  if (!it->passive) {
+    free(it->name);
+    return -1;
+  }
+  ms->n++;
+  if (bad_muscle(md)) return ms->n - 1;
+
+  double *area = malloc(sizeof(double) * (size_t)N);
+  if (!area) return -1;
+  filament_areas(N, SW_PI * md->radius * md->radius, md->size_ratio, area);
+  double dir[3];
+  sw_v3_sub(dir, md->end, md->start);
+  const double L = sw_v3_norm(dir);
+  for (int k = 0; k < N; k++) {
+    char name[96];
+    snprintf(name, sizeof name, "%s.f%02d", it->name, k + 1);
+    swRodDesc r;
+    sw_rod_desc_init(&r);
+    r.name = name;
+    r.nelem = md->nelem;
+    memcpy(r.start, md->start, sizeof r.start);
+    memcpy(r.direction, dir, sizeof dir);
+    filament_normal(r.normal, dir, md->normal);
+    r.length = L;
+    r.radius_start = r.radius_end = sqrt(area[k] / SW_PI);
+    r.density = md->density;
+    r.youngs = md->youngs;
+    r.shear_modulus = md->shear_modulus;
+    r.poisson = md->poisson;
+    r.shear_hardening = md->shear_hardening;
+    r.twist_hardening = md->twist_hardening;
+    r.damping = md->damping;
+    r.gamma = md->gamma;
+    int rod = sw_spec_add_rod(s, &r);
+    if (rod < 0) {
+      free(area);
+      return -1;
+    }
+    for (int end = 0; end < 2; end++) {
+      if (md->attach_rod[end] < 0) continue;
+      swJointDesc j;
+      sw_joint_desc_init(&j);
+      char jname[112];
+      snprintf(jname, sizeof jname, "%s.%s", name, end ? "end" : "start");
+      j.name = jname;
+      j.kind = SW_JOINT_SPHERICAL;
+      j.rod_a = rod;
+      j.node_a = end ? -1 : 0;
+      j.rod_b = md->attach_rod[end];
+      j.node_b = md->attach_node[end];
+      /* 0 = 100 F_max,k / l0: the attachment gives 1% of l0 under peak force */
+      j.stiffness = md->attach_stiffness > 0 ? md->attach_stiffness
+                                             : 100.0 * md->sigma_max * area[k] / L;
+      j.damping = md->attach_damping;
+      if (sw_spec_add_joint(s, &j) < 0) {
+        free(area);
+        return -1;
+      }
+    }
+  }
+  free(area);
+  return ms->n - 1;
+}
+
+int sw_spec_set_filament_passive(swSpec *s, int muscle, int filament) {
+  swMuscleSpec *ms = *sw_spec_muscles(s);
+  if (!ms || muscle < 0 || muscle >= ms->n) return SW_EUSAGE;
+  swMuscleItem *it = &ms->item[muscle];
+  if (filament < 0 || filament >= it->desc.filaments) return SW_EUSAGE;
+  it->passive[filament] = 1;
+  return SW_OK;
+}
+
+/* ---- compilation ---- */
+
+static int check_item(const swMuscleItem *it, int nrod, char *err, size_t errlen) {
+  const swMuscleDesc *md = &it->desc;
+  const char *nm = it->name;
+#define BAD(...) (snprintf(err, errlen, __VA_ARGS__), 0)
+  if (md->filaments < 1 || md->filaments > 100000)
+    return BAD("muscle '%s': needs 1 to 100000 filaments, has %d", nm, md->filaments);
+  if (md->motor_units != 0 && md->motor_units < md->filaments)
+    return BAD("muscle '%s': %d motor units cannot fill %d filaments", nm, md->motor_units,
+               md->filaments);
+  if (md->nelem < 2)
+    return BAD("muscle '%s': filaments need at least 2 elements, have %d", nm, md->nelem);
+  double L = dist3(md->start, md->end);
+  if (!(L > 0) || !isfinite(L)) return BAD("muscle '%s': start and end coincide", nm);
+  if (!(md->radius > 0) || !isfinite(md->radius))
+    return BAD("muscle '%s': radius must be > 0", nm);
+  if (!(md->sigma_max > 0) || !isfinite(md->sigma_max))
+    return BAD("muscle '%s': sigma_max (peak isometric stress) must be > 0", nm);
+  if (!(md->size_ratio >= 1) || !isfinite(md->size_ratio))
+    return BAD("muscle '%s': size_ratio must be >= 1, got %g", nm, md->size_ratio);
+  if (!(md->twitch_small >= 0) || !(md->twitch_large >= 0) || !isfinite(md->twitch_small) ||
+      !isfinite(md->twitch_large))
+    return BAD("muscle '%s': twitch times must be >= 0", nm);
+  if (!(md->hill_a > 0) || !isfinite(md->hill_a))
+    return BAD("muscle '%s': hill_a must be > 0", nm);
+  if (!(md->v_max > 0) || !isfinite(md->v_max))
+    return BAD("muscle '%s': v_max must be > 0", nm);
+  if (!(md->fibre_diameter > 0) || !isfinite(md->fibre_diameter))
+    return BAD("muscle '%s': fibre_diameter must be > 0", nm);
+  if (!(md->attach_stiffness >= 0) || !(md->attach_damping >= 0))
+    return BAD("muscle '%s': attachment stiffness and damping must be >= 0", nm);
+  for (int e = 0; e < 2; e++)
+    if (md->attach_rod[e] >= nrod)
+      return BAD("muscle '%s': %s attached to rod %d, the scene has %d rods", nm,
+                 e ? "end" : "start", md->attach_rod[e], nrod);
+#undef BAD
+  return 1;
+}
+
+void sw_muscle_free(swModel *m) {
+  if (m->muscle_name)
+    for (int i = 0; i < m->nmuscle; i++) free(m->muscle_name[i]);
+  free(m->muscle_name); free(m->muscle_fil_adr); free(m->muscle_activation);
+  free(m->fil_rod); free(m->fil_passive); free(m->fil_area); free(m->fil_fmax);
+  free(m->fil_l0); free(m->fil_tau); free(m->fil_recruit); free(m->fil_hill_a);
+  free(m->fil_v_max); free(m->fil_fibres);
+}
+
+int sw_muscle_check(const swMuscleSpec *ms, int nrod, char *err, size_t errlen) {
+  for (int i = 0; ms && i < ms->n; i++)
+    if (!check_item(&ms->item[i], nrod, err, errlen)) return 0;
+  return 1;
+}
+
+int sw_muscle_setup(swModel *m, const swMuscleSpec *ms, char *err, size_t errlen) {
+  if (!ms || ms->n == 0) return 1;
+  if (!sw_muscle_check(ms, m->nrod, err, errlen)) return 0;
+  int nf = 0;
+  for (int i = 0; i < ms->n; i++) nf += ms->item[i].desc.filaments;
+  const size_t M = (size_t)ms->n, F = (size_t)nf;
+  m->nmuscle = ms->n;
+  m->nfil = nf;
+  m->muscle_name = calloc(M, sizeof *m->muscle_name);
+  m->muscle_fil_adr = calloc(M + 1, sizeof *m->muscle_fil_adr);
+  m->muscle_activation = calloc(M, sizeof *m->muscle_activation);
+  m->fil_rod = calloc(F, sizeof *m->fil_rod);
+  m->fil_passive = calloc(F, sizeof *m->fil_passive);
+  m->fil_area = calloc(F, sizeof(double));
+  m->fil_fmax = calloc(F, sizeof(double));
+  m->fil_l0 = calloc(F, sizeof(double));
+  m->fil_tau = calloc(F, sizeof(double));
+  m->fil_recruit = calloc(2 * F, sizeof(double));
+  m->fil_hill_a = calloc(F, sizeof(double));
+  m->fil_v_max = calloc(F, sizeof(double));
+  m->fil_fibres = calloc(F, sizeof(double));
+  if (!m->muscle_name || !m->muscle_fil_adr || !m->muscle_activation || !m->fil_rod ||
+      !m->fil_passive || !m->fil_area || !m->fil_fmax || !m->fil_l0 || !m->fil_tau ||
+      !m->fil_recruit || !m->fil_hill_a || !m->fil_v_max || !m->fil_fibres) {
+    snprintf(err, errlen, "out of memory");
+    return 0;
+  }
+  int f = 0;
+  for (int i = 0; i < ms->n; i++) {
+    const swMuscleItem *it = &ms->item[i];
+    const swMuscleDesc *md = &it->desc;
+    const int N = md->filaments;
+    if (!(m->muscle_name[i] = strdup(it->name))) {
+      snprintf(err, errlen, "out of memory");
+      return 0;
+    }
+    m->muscle_fil_adr[i] = f;
+    m->muscle_activation[i] = md->activation;
+    double *A = m->fil_area + f;
+    filament_areas(N, SW_PI * md->radius * md->radius, md->size_ratio, A);
+    const double Amin = A[0], Amax = A[N - 1];
+    const double fibre_area = 0.25 * SW_PI * md->fibre_diameter * md->fibre_diameter;
+    double total = 0, cum = 0;
+    for (int k = 0; k < N; k++) total += A[k];
+    for (int k = 0; k < N; k++, f++) {
+      const int r = it->rod0 + k;
+      m->fil_rod[f] = r;
+      m->fil_passive[f] = it->passive[k];
+      m->fil_fmax[f] = md->sigma_max * A[k];
+      double l0 = 0;
+      for (int e = m->elem_adr[r]; e < m->elem_adr[r] + m->rod_nelem[r]; e++) l0 += m->rest_len[e];
+      m->fil_l0[f] = l0;
+      /* twitch time linear in size; equal sizes take the mean of the two */
+      double w = Amax > Amin ? (A[k] - Amin) / (Amax - Amin) : 0.5;
+      m->fil_tau[f] = md->twitch_small + w * (md->twitch_large - md->twitch_small);
+      m->fil_recruit[2 * f] = cum / total;
+      cum += A[k];
+      m->fil_recruit[2 * f + 1] = k == N - 1 ? 1.0 : cum / total;
+      m->fil_hill_a[f] = md->hill_a;
+      m->fil_v_max[f] = md->v_max;
+      m->fil_fibres[f] = A[k] / fibre_area;
+    }
+  }
+  m->muscle_fil_adr[ms->n] = f;
+  for (int g = 0; g < nf; g++) m->rod_wave_dt[m->fil_rod[g]] = sw_stable_dt_rod(m, m->fil_rod[g]);
+  return 1;
+}
+
+/* ---- the kernels ---- */
+
+/* The drive of filament f under muscle activation u (recruitment). */
+static double drive(const swModel *m, int f, double u) {
+  if (m->fil_passive[f]) return 0;
+  const double lo = m->fil_recruit[2 * f], hi = m->fil_recruit[2 * f + 1];
+  double x = (u - lo) / (hi - lo);
+  return x < 0 ? 0 : x > 1 ? 1 : x;
+}
+
+static double muscle_input(const swModel *m, int i, double t) {
+  double u = sw_signal_eval(&m->muscle_activation[i], t);
+  return u < 0 ? 0 : u > 1 ? 1 : u;
+}
+
+void sw_muscle_reset(const swModel *m, swData *d) {
+  for (int i = 0; i < m->nmuscle; i++) {
+    const double u = muscle_input(m, i, 0.0);
+    for (int f = m->muscle_fil_adr[i]; f < m->muscle_fil_adr[i + 1]; f++)
+      d->fil_activation[f] = m->fil_tau[f] > 0 ? 0.0 : drive(m, f, u);
+  }
+}
+
+void sw_muscle_advance(const swModel *m, swData *d, double t, double h) {
+  for (int i = 0; i < m->nmuscle; i++) {
+    const double u = muscle_input(m, i, t + 0.5 * h);
+    for (int f = m->muscle_fil_adr[i]; f < m->muscle_fil_adr[i + 1]; f++) {
+      if (!(m->fil_tau[f] > 0)) continue;
+      const double x = drive(m, f, u);
+      d->fil_activation[f] += (x - d->fil_activation[f]) * -expm1(-h / m->fil_tau[f]);
+    }
+  }
+}
+
+/* Tension of filament f at stretch eta, strain rate edot (1/s), activation a. */
+double sw_muscle_tension(const swModel *m, int f, double eta, double edot, double a) {
+  const double Fmax = m->fil_fmax[f];
+  const double Fqs = a * sw_muscle_f_act(eta) * Fmax + Fmax * sw_muscle_f_pass(eta);
+  const double k = m->fil_hill_a[f], u0 = m->fil_v_max[f], u = -edot;
+  double g; /* T / F_qs */
+  if (u >= u0) g = 0;
+  else if (u >= 0) g = 1.0 - (1.0 + k) * u / (u + k * u0);
+  else g = 1.0 - (1.0 + k) * u / (k * u0);
+  return Fqs * g;
+}
+
+void sw_muscle_loads(const swModel *m, swData *d) {
+  for (int i = 0; i < m->nmuscle; i++) {
+    const double u = muscle_input(m, i, d->time);
+    for (int f = m->muscle_fil_adr[i]; f < m->muscle_fil_adr[i + 1]; f++) {
+      const int r = m->fil_rod[f], n = m->rod_nelem[r];
+      const int na = m->node_adr[r], ea = m->elem_adr[r];
+      const double *x = d->x + 3 * na, *v = d->v + 3 * na, *len = d->length + ea;
+      double l = 0, ldot = 0;
+      for (int e = 0; e < n; e++) {
+        double dx[3], dv[3];
+        sw_v3_sub(dx, x + 3 * (e + 1), x + 3 * e);
+        sw_v3_sub(dv, v + 3 * (e + 1), v + 3 * e);
+        l += len[e];
+        ldot += sw_v3_dot(dx, dv) / len[e];
+      }
+      if (!(m->fil_tau[f] > 0)) d->fil_activation[f] = drive(m, f, u);
+      const double inv_l0 = 1.0 / m->fil_l0[f];
+      const double eta = l * inv_l0, edot = ldot * inv_l0;
+      const double T = sw_muscle_tension(m, f, eta, edot, d->fil_activation[f]);
+      d->fil_stretch[f] = eta;
+      d->fil_rate[f] = edot;
+      d->fil_tension[f] = T;
+      double *F = d->force + 3 * na, *EF = d->ext_force + 3 * na;
+      for (int e = 0; e < n; e++) {
+        double dx[3];
+        sw_v3_sub(dx, x + 3 * (e + 1), x + 3 * e);
+        const double s = T / len[e];
+        for (int c = 0; c < 3; c++) {
+          const double fc = s * dx[c];
+          F[3 * e + c] += fc;
+          F[3 * (e + 1) + c] -= fc;
+          EF[3 * e + c] += fc;
+          EF[3 * (e + 1) + c] -= fc;
+        }
+      }
+    }
+  }
+}
+
+/* Largest stable step for the Hill damping of filament f: the dashpot
+ * zeta(0) / l0 on the filament's length, with zeta(0) = (1 + k) F_qs / (k u0)
+ * per unit strain rate at the largest F_qs of the law, acts between the end
+ * nodes (reduced mass m_end / 2); the explicit kick of a damper of rate c / mu
+ * is stable for h c / mu < 2. */
+double sw_stable_dt_filament(const swModel *m, int f) {
+  double peak = 0; /* max of f_act + p over the fitted range */
+  for (int s = 0; s <= 120; s++) {
+    double eta = 0.4 + 0.01 * s, q = sw_muscle_f_act(eta) + sw_muscle_f_pass(eta);
+    if (q > peak) peak = q;
+  }
+  const double k = m->fil_hill_a[f], u0 = m->fil_v_max[f];
+  const double c = (1.0 + k) * peak * m->fil_fmax[f] / (k * u0) / m->fil_l0[f];
+  const int r = m->fil_rod[f], na = m->node_adr[r];
+  double mass = fmin(m->mass[na], m->mass[na + m->rod_nelem[r]]);
+  return c > 0 ? 2.0 * (0.5 * mass) / c : INFINITY;
+}
