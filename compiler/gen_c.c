@@ -138,7 +138,7 @@ static void emit_muscle(FILE *out, swArena *a, const swScene *sc, int mi) {
   fprintf(out, ";   /* muscle %d: filaments are rods %d to %d */\n", mi, m->id,
           m->id + m->filaments - 1);
   fprintf(out, "    muscle.filaments = %d;\n", m->filaments);
-  fprintf(out, "    muscle.nelem = %d;\n", m->nelem);
+  if (m->has_nelem) fprintf(out, "    muscle.nelem = %d;\n", m->nelem);
   if (m->motor_units) fprintf(out, "    muscle.motor_units = %ld;\n", m->motor_units);
   static const char *damp[] = {"SW_DAMP_NONE", "SW_DAMP_LINEAR", "SW_DAMP_ANALYTIC"};
   if (m->has_damping) fprintf(out, "    muscle.damping = %s;\n", damp[m->damping]);

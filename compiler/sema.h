@@ -120,6 +120,7 @@ typedef struct {
   swLoc loc;
   int id;                     /* runtime rod id of its first filament      */
   int filaments, nelem;       /* known at compile time                     */
+  int has_nelem;              /* elements written (else the runtime's)     */
   long motor_units;           /* 0: not given                              */
   swValue start, end, normal, radius;
   swValue density, youngs, shear_modulus, poisson;

@@ -1,5 +1,5 @@
 /* sema_int.h — state shared by the checker's files (sema.c, sema_expr.c,
- * sema_def.c, sema_muscle.c); not used outside the checker.
+ * sema_def.c, sema_stmt.c, sema_muscle.c); not used outside the checker.
  *
  * Design.  One swSema per compilation: the arena, the scene being built, the
  * global scope, the stack of files being imported (for cycle messages) and
@@ -71,6 +71,8 @@ int sema_positive(swSema *S, const swValue *v, const char *what, const char *uni
 swValue sema_position(swSema *S, swScope *scope, const swAst *e, const char *what);
 swValue sema_rod_point(swSema *S, swSymbol *rod, double frac, int node, swLoc loc);
 swValue sema_rod_length(swSema *S, swSymbol *rod, swLoc loc);
+
+/* sema_stmt.c */
 void sema_joint(swSema *S, swScope *scope, const swAst *item);
 void sema_action(swSema *S, swScope *scope, const swAst *item);
 void sema_simulate(swSema *S, swScope *scope, const swAst *item);

@@ -10,8 +10,8 @@
  * units, and the contraction model (sigma_max, size_ratio, twitch times,
  * Hill's a, v_max).  A field the model does not write stays VAL_ERROR in the
  * scene and keeps the runtime's default (sw_muscle_desc_init), so the runtime
- * is the one source of defaults; only `elements` defaults here, to the rods'
- * 20, because the checker must know the scene's size.  The muscle takes the
+ * is the one source of defaults (the checker reads the default of `elements`
+ * from sw_muscle_desc_init too, since it must know the scene's size).  The muscle takes the
  * next `filaments` runtime rod ids, which shifts the ids of every rod after
  * it (swSceneRod.id).  `activate NAME = u;` sets the activation signal, a
  * dimensionless number or time signal whose constant scale is folded into
@@ -127,16 +127,16 @@ void sema_eval_muscle(swSema *S, swSymbol *sym) {
   m.shear_modulus = t.shear_modulus;
   m.poisson = t.poisson;
   if (!t.mat && !t.me && (!t.E_ast || !t.rho_ast)) {
-    swMuscleDesc def;
-    sw_muscle_desc_init(&def);
+    swMuscleDesc tissue;
+    sw_muscle_desc_init(&tissue);
     if (!t.E_ast && !t.rho_ast)
       diag_warning(loc, "%s has no material; it gets the runtime's muscle tissue, E = %g Pa and "
-                   "density = %g kg/m^3", what, def.youngs, def.density);
+                   "density = %g kg/m^3", what, tissue.youngs, tissue.density);
     else if (!t.E_ast)
-      diag_warning(loc, "%s has no material and no E; it gets E = %g Pa", what, def.youngs);
+      diag_warning(loc, "%s has no material and no E; it gets E = %g Pa", what, tissue.youngs);
     else
       diag_warning(loc, "%s has no material and no density; it gets density = %g kg/m^3", what,
-                   def.density);
+                   tissue.density);
   }
 
   /* placement: from and to, each a point on a rod (tied) or a position */
@@ -162,7 +162,7 @@ void sema_eval_muscle(swSema *S, swSymbol *sym) {
   if (sema_field(&f, "normal")) {
     m.normal = sema_field_value(S, sc, &f, "normal", 3, DIM_NONE);
     if (m.normal.kind == VAL_ERROR) ok = 0;
-    else {
+    else if (fabs(axis[0]) + fabs(axis[1]) + fabs(axis[2]) > 0) {
       const double *a = m.normal.v, *b = axis;
       double cx = a[1] * b[2] - a[2] * b[1], cy = a[2] * b[0] - a[0] * b[2],
              cz = a[0] * b[1] - a[1] * b[0];
@@ -203,10 +203,14 @@ void sema_eval_muscle(swSema *S, swSymbol *sym) {
       ok = 0;
     } else m.motor_units = mu;
   }
-  long nelem = 20;
+  /* the runtime's default when not written; known here, for the scene's size */
+  swMuscleDesc def;
+  sw_muscle_desc_init(&def);
+  long nelem = def.nelem;
   if (sema_field(&f, "elements")) {
     swValue ne = sema_field_value(S, sc, &f, "elements", 1, DIM_NONE);
     if (!sema_const_int(S, ne, "'elements'", 2, 100000, &nelem)) ok = 0;
+    m.has_nelem = 1;
   }
   m.nelem = (int)nelem;
   long total = S->scene->nelem + filaments * nelem;
