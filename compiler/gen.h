@@ -11,7 +11,7 @@
 #include <stdio.h>
 #include "sema.h"
 
-#define GEN_MAX_FIELDS 24
+#define GEN_MAX_FIELDS 32
 
 typedef struct {
   const char *member;        /* C member of the runtime struct            */
@@ -21,9 +21,18 @@ typedef struct {
 } swLowField;
 
 int gen_rod_fields(const swSceneRod *r, swLowField *out);
+/* the fields of a muscle that the model gives (the rest keep the runtime's
+ * defaults from sw_muscle_desc_init) */
+int gen_muscle_fields(const swSceneMuscle *m, swLowField *out);
 int gen_joint_fields(const swSceneJoint *j, swLowField *out);
 int gen_signal_fields(const swSignalVal *s, swLowField *out);
 swSignal gen_signal(const swSignalVal *sig);
+/* The runtime's id of scene rod `rod` (scene indices skip muscles' filaments,
+ * runtime ids do not), or -1 for -1. */
+int gen_rod_id(const swScene *sc, int rod);
+/* Rods and muscles are added to the runtime in the order of their ids: with
+ * ri rods and mi muscles added so far, whether a rod comes next. */
+int gen_rod_next(const swScene *sc, int ri, int mi);
 swSpec *gen_spec(const swScene *sc);
 
 /* Validate the scene with the runtime (sw_compile) and warn when dt is above

@@ -80,29 +80,86 @@ static void assign_fields(FILE *out, swArena *a, const char *var, const swLowFie
   }
 }
 
+/* The assignments of a signal to the lvalue `var` (load.signal, ...). */
 static void emit_signal(FILE *out, swArena *a, const char *var, const swSignalVal *sig) {
   if (!sig) {
-    fprintf(out, "    %s.signal = sw_signal_const(1.0);\n", var);
+    fprintf(out, "    %s = sw_signal_const(1.0);\n", var);
     return;
   }
   static const char *kinds[] = {"SW_SIG_CONST", "SW_SIG_RAMP", "SW_SIG_SINE", "SW_SIG_STEP",
                                 "SW_SIG_TABLE"};
-  fprintf(out, "    %s.signal.kind = %s;\n", var, kinds[sig->kind]);
+  fprintf(out, "    %s.kind = %s;\n", var, kinds[sig->kind]);
   swLowField f[GEN_MAX_FIELDS];
-  char sv[64];
-  snprintf(sv, sizeof sv, "%s.signal", var);
-  assign_fields(out, a, sv, f, gen_signal_fields(sig, f));
+  assign_fields(out, a, var, f, gen_signal_fields(sig, f));
   if (sig->kind == SW_SIG_TABLE) {
-    fprintf(out, "    %s.signal.npts = %d;\n", var, sig->npts);
+    fprintf(out, "    %s.npts = %d;\n", var, sig->npts);
     for (int k = 0; k < sig->npts; k++)
-      fprintf(out, "    %s.signal.times[%d] = %s; %s.signal.values[%d] = %s;\n", var, k,
+      fprintf(out, "    %s.times[%d] = %s; %s.values[%d] = %s;\n", var, k,
               val_c(a, &sig->times, k), var, k, val_c(a, &sig->values, k));
   }
 }
 
 static const char *rod_kind_word(swRodKind k) {
-  static const char *w[] = {"rod", "bone", "tendon", "muscle"};
+  static const char *w[] = {"rod", "bone", "tendon"};
   return w[k];
+}
+
+/* the rod's name as a comment after its index */
+static void rod_comment(FILE *out, const swScene *sc, int rod) {
+  fputs("   /* ", out);
+  c_comment_text(out, sc->rod[rod].name, strlen(sc->rod[rod].name));
+  fputs(" */\n", out);
+}
+
+static void emit_rod(FILE *out, swArena *a, const swSceneRod *r) {
+  swLowField f[GEN_MAX_FIELDS];
+  fputc('\n', out);
+  origin(out, r->loc, "  ");
+  fputs("  {\n    swRodDesc rod;\n    sw_rod_desc_init(&rod);\n    rod.name = ", out);
+  c_string0(out, r->name);
+  fprintf(out, ";   /* %s, rod %d */\n", rod_kind_word(r->kind), r->id);
+  fprintf(out, "    rod.nelem = %d;\n", r->nelem);
+  static const char *damp[] = {"SW_DAMP_NONE", "SW_DAMP_LINEAR", "SW_DAMP_ANALYTIC"};
+  fprintf(out, "    rod.damping = %s;\n", damp[r->damping]);
+  if (r->rigid) fputs("    rod.rigid = 1;\n", out);
+  assign_fields(out, a, "rod", f, gen_rod_fields(r, f));
+  fputs("    ok &= sw_spec_add_rod(s, &rod) >= 0;\n  }\n", out);
+}
+
+/* A muscle: sw_muscle_desc_init's defaults, then what the model wrote. */
+static void emit_muscle(FILE *out, swArena *a, const swScene *sc, int mi) {
+  const swSceneMuscle *m = &sc->muscle[mi];
+  swLowField f[GEN_MAX_FIELDS];
+  fputc('\n', out);
+  origin(out, m->loc, "  ");
+  fputs("  {\n    swMuscleDesc muscle;\n    sw_muscle_desc_init(&muscle);\n    muscle.name = ",
+        out);
+  c_string0(out, m->name);
+  fprintf(out, ";   /* muscle %d: filaments are rods %d to %d */\n", mi, m->id,
+          m->id + m->filaments - 1);
+  fprintf(out, "    muscle.filaments = %d;\n", m->filaments);
+  if (m->has_nelem) fprintf(out, "    muscle.nelem = %d;\n", m->nelem);
+  if (m->motor_units) fprintf(out, "    muscle.motor_units = %ld;\n", m->motor_units);
+  static const char *damp[] = {"SW_DAMP_NONE", "SW_DAMP_LINEAR", "SW_DAMP_ANALYTIC"};
+  if (m->has_damping) fprintf(out, "    muscle.damping = %s;\n", damp[m->damping]);
+  for (int e = 0; e < 2; e++)
+    if (m->attach_rod[e] >= 0) {
+      fprintf(out, "    muscle.attach_rod[%d] = %d; muscle.attach_node[%d] = %d;", e,
+              gen_rod_id(sc, m->attach_rod[e]), e, m->attach_node[e]);
+      rod_comment(out, sc, m->attach_rod[e]);
+    }
+  assign_fields(out, a, "muscle", f, gen_muscle_fields(m, f));
+  if (m->activation) {
+    origin(out, m->activation_loc, "    ");
+    const swSignalVal *sig = m->activation;
+    if (sig->kind == SW_SIG_CONST)
+      fprintf(out, "    muscle.activation = sw_signal_const(%s);\n", val_c(a, &sig->a, 0));
+    else {
+      fputs("    muscle.activation = sw_signal_const(0.0);\n", out);
+      emit_signal(out, a, "muscle.activation", sig);
+    }
+  }
+  fputs("    ok &= sw_spec_add_muscle(s, &muscle) >= 0;\n  }\n", out);
 }
 
 static void emit_build(FILE *out, swArena *a, const swScene *sc) {
@@ -112,18 +169,19 @@ static void emit_build(FILE *out, swArena *a, const swScene *sc) {
         "  int ok = 1;\n"
         "  (void)P;\n", out);
   swLowField f[GEN_MAX_FIELDS];
-  for (int i = 0; i < sc->nrod; i++) {
-    const swSceneRod *r = &sc->rod[i];
+  /* rods and muscles in the order of their runtime ids */
+  for (int ri = 0, mi = 0; ri < sc->nrod || mi < sc->nmuscle;) {
+    if (gen_rod_next(sc, ri, mi)) emit_rod(out, a, &sc->rod[ri++]);
+    else emit_muscle(out, a, sc, mi++);
+  }
+  for (int i = 0; i < sc->npassive; i++) {
+    const swScenePassive *p = &sc->passive[i];
     fputc('\n', out);
-    origin(out, r->loc, "  ");
-    fputs("  {\n    swRodDesc rod;\n    sw_rod_desc_init(&rod);\n    rod.name = ", out);
-    c_string0(out, r->name);
-    fprintf(out, ";   /* %s, rod %d */\n", rod_kind_word(r->kind), i);
-    fprintf(out, "    rod.nelem = %d;\n", r->nelem);
-    static const char *damp[] = {"SW_DAMP_NONE", "SW_DAMP_LINEAR", "SW_DAMP_ANALYTIC"};
-    fprintf(out, "    rod.damping = %s;\n", damp[r->damping]);
-    assign_fields(out, a, "rod", f, gen_rod_fields(r, f));
-    fputs("    ok &= sw_spec_add_rod(s, &rod) >= 0;\n  }\n", out);
+    origin(out, p->loc, "  ");
+    fprintf(out, "  ok &= sw_spec_set_filament_passive(s, %d, %d) == SW_OK;   /* ", p->muscle,
+            p->filament);
+    c_comment_text(out, sc->muscle[p->muscle].name, strlen(sc->muscle[p->muscle].name));
+    fprintf(out, ", filament %d */\n", p->filament + 1);
   }
   for (int i = 0; i < sc->njoint; i++) {
     const swSceneJoint *j = &sc->joint[i];
@@ -133,8 +191,11 @@ static void emit_build(FILE *out, swArena *a, const swScene *sc) {
     fputs("  {\n    swJointDesc joint;\n    sw_joint_desc_init(&joint);\n    joint.name = ", out);
     c_string0(out, j->name);
     fprintf(out, ";\n    joint.kind = %s;\n", kinds[j->kind]);
-    fprintf(out, "    joint.rod_a = %d; joint.node_a = %d;\n", j->rod_a, j->node_a);
-    fprintf(out, "    joint.rod_b = %d; joint.node_b = %d;\n", j->rod_b, j->node_b);
+    fprintf(out, "    joint.rod_a = %d; joint.node_a = %d;", gen_rod_id(sc, j->rod_a), j->node_a);
+    rod_comment(out, sc, j->rod_a);
+    fprintf(out, "    joint.rod_b = %d; joint.node_b = %d;", gen_rod_id(sc, j->rod_b), j->node_b);
+    if (j->rod_b >= 0) rod_comment(out, sc, j->rod_b);
+    else fputs("   /* anchored in space */\n", out);
     if (j->undamped) fputs("    joint.undamped = 1;\n", out);
     assign_fields(out, a, "joint", f, gen_joint_fields(j, f));
     fputs("    ok &= sw_spec_add_joint(s, &joint) >= 0;\n  }\n", out);
@@ -146,23 +207,24 @@ static void emit_build(FILE *out, swArena *a, const swScene *sc) {
     if (act->is_bc) {
       static const char *kinds[] = {"SW_BC_CLAMP", "SW_BC_VELOCITY", "SW_BC_OMEGA"};
       fputs("  {\n    swBCDesc bc = {0};\n", out);
-      fprintf(out, "    bc.kind = %s;\n    bc.rod = %d;   /* ", kinds[act->kind], act->rod);
-      c_comment_text(out, sc->rod[act->rod].name, strlen(sc->rod[act->rod].name));
-      fprintf(out, " */\n    bc.end = %d;\n", act->index);
+      fprintf(out, "    bc.kind = %s;\n    bc.rod = %d;", kinds[act->kind], gen_rod_id(sc, act->rod));
+      rod_comment(out, sc, act->rod);
+      fprintf(out, "    bc.end = %d;\n", act->index);
       if (act->kind != SW_BC_CLAMP)
         for (int k = 0; k < 3; k++)
           fprintf(out, "    bc.vec[%d] = %s;\n", k, val_c(a, &act->vec, k));
-      emit_signal(out, a, "bc", act->sig);
+      emit_signal(out, a, "bc.signal", act->sig);
       fputs("    ok &= sw_spec_add_bc(s, &bc) >= 0;\n  }\n", out);
     } else {
       static const char *kinds[] = {"SW_LOAD_FORCE", "SW_LOAD_TORQUE"};
       fputs("  {\n    swLoadDesc load = {0};\n", out);
-      fprintf(out, "    load.kind = %s;\n    load.rod = %d;   /* ", kinds[act->kind], act->rod);
-      c_comment_text(out, sc->rod[act->rod].name, strlen(sc->rod[act->rod].name));
-      fprintf(out, " */\n    load.index = %d;\n", act->index);
+      fprintf(out, "    load.kind = %s;\n    load.rod = %d;", kinds[act->kind],
+              gen_rod_id(sc, act->rod));
+      rod_comment(out, sc, act->rod);
+      fprintf(out, "    load.index = %d;\n", act->index);
       for (int k = 0; k < 3; k++)
         fprintf(out, "    load.vec[%d] = %s;\n", k, val_c(a, &act->vec, k));
-      emit_signal(out, a, "load", act->sig);
+      emit_signal(out, a, "load.signal", act->sig);
       fputs("    ok &= sw_spec_add_load(s, &load) >= 0;\n  }\n", out);
     }
   }

@@ -8,6 +8,9 @@
  * and stable-dt estimate; gen_c.c prints an assignment per entry, with the
  * value's folded constant or its param-dependent C expression.  One table
  * means the generated simulator and the compiler's checks cannot drift apart.
+ * Scene entries name rods by their index in the scene; the runtime numbers
+ * rods in the order they are added, and a muscle adds one rod per filament,
+ * so every rod index goes through gen_rod_id() on the way out.
  */
 #include <stddef.h>
 #include <stdio.h>
@@ -37,6 +40,37 @@ int gen_rod_fields(const swSceneRod *r, swLowField *out) {
   };
   memcpy(out, f, sizeof f);
   return (int)(sizeof f / sizeof f[0]);
+}
+#undef F
+
+#define F(member, n, value) {#member, offsetof(swMuscleDesc, member), n, value}
+int gen_muscle_fields(const swSceneMuscle *m, swLowField *out) {
+  const swLowField f[] = {
+    F(start, 3, &m->start),
+    F(end, 3, &m->end),
+    F(normal, 3, &m->normal),
+    F(radius, 1, &m->radius),
+    F(density, 1, &m->density),
+    F(youngs, 1, &m->youngs),
+    F(shear_modulus, 1, &m->shear_modulus),
+    F(poisson, 1, &m->poisson),
+    F(shear_hardening, 1, &m->shear_hardening),
+    F(twist_hardening, 1, &m->twist_hardening),
+    F(gamma, 1, &m->gamma),
+    F(sigma_max, 1, &m->sigma_max),
+    F(size_ratio, 1, &m->size_ratio),
+    F(twitch_small, 1, &m->twitch_small),
+    F(twitch_large, 1, &m->twitch_large),
+    F(hill_a, 1, &m->hill_a),
+    F(v_max, 1, &m->v_max),
+    F(fibre_diameter, 1, &m->fibre_diameter),
+    F(attach_stiffness, 1, &m->attach_stiffness),
+    F(attach_damping, 1, &m->attach_damping),
+  };
+  int n = 0;
+  for (size_t i = 0; i < sizeof f / sizeof f[0]; i++)
+    if (f[i].value->kind == VAL_NUM || f[i].value->kind == VAL_VEC) out[n++] = f[i];
+  return n;
 }
 #undef F
 
@@ -91,27 +125,56 @@ swSignal gen_signal(const swSignalVal *sig) {
   return s;
 }
 
+int gen_rod_id(const swScene *sc, int rod) { return rod < 0 ? -1 : sc->rod[rod].id; }
+
+int gen_rod_next(const swScene *sc, int ri, int mi) {
+  if (ri >= sc->nrod) return 0;
+  return mi >= sc->nmuscle || sc->rod[ri].id < sc->muscle[mi].id;
+}
+
 swSpec *gen_spec(const swScene *sc) {
   swSpec *s = sw_spec_new();
   if (!s) return NULL;
   swLowField f[GEN_MAX_FIELDS];
-  for (int i = 0; i < sc->nrod; i++) {
-    const swSceneRod *r = &sc->rod[i];
-    swRodDesc d;
-    sw_rod_desc_init(&d);
-    d.name = r->name;
-    d.nelem = r->nelem;
-    d.damping = r->damping;
-    fill(&d, f, gen_rod_fields(r, f));
-    sw_spec_add_rod(s, &d);
+  for (int ri = 0, mi = 0; ri < sc->nrod || mi < sc->nmuscle;) {
+    if (gen_rod_next(sc, ri, mi)) {
+      const swSceneRod *r = &sc->rod[ri++];
+      swRodDesc d;
+      sw_rod_desc_init(&d);
+      d.name = r->name;
+      d.nelem = r->nelem;
+      d.damping = r->damping;
+      d.rigid = r->rigid;
+      fill(&d, f, gen_rod_fields(r, f));
+      sw_spec_add_rod(s, &d);
+      continue;
+    }
+    const swSceneMuscle *m = &sc->muscle[mi++];
+    swMuscleDesc d;
+    sw_muscle_desc_init(&d);
+    d.name = m->name;
+    d.filaments = m->filaments;
+    d.nelem = m->nelem;
+    if (m->motor_units) d.motor_units = (int)m->motor_units;
+    if (m->has_damping) d.damping = m->damping;
+    for (int e = 0; e < 2; e++)
+      if (m->attach_rod[e] >= 0) {
+        d.attach_rod[e] = gen_rod_id(sc, m->attach_rod[e]);
+        d.attach_node[e] = m->attach_node[e];
+      }
+    if (m->activation) d.activation = gen_signal(m->activation);
+    fill(&d, f, gen_muscle_fields(m, f));
+    sw_spec_add_muscle(s, &d);
   }
+  for (int i = 0; i < sc->npassive; i++)
+    sw_spec_set_filament_passive(s, sc->passive[i].muscle, sc->passive[i].filament);
   for (int i = 0; i < sc->nact; i++) {
     const swSceneAction *a = &sc->act[i];
     if (a->is_bc) {
       swBCDesc b;
       memset(&b, 0, sizeof b);
       b.kind = (swBCKind)a->kind;
-      b.rod = a->rod;
+      b.rod = gen_rod_id(sc, a->rod);
       b.end = a->index;
       if (a->vec.kind == VAL_VEC)
         for (int k = 0; k < 3; k++) b.vec[k] = a->vec.v[k];
@@ -121,7 +184,7 @@ swSpec *gen_spec(const swScene *sc) {
       swLoadDesc l;
       memset(&l, 0, sizeof l);
       l.kind = (swLoadKind)a->kind;
-      l.rod = a->rod;
+      l.rod = gen_rod_id(sc, a->rod);
       l.index = a->index;
       for (int k = 0; k < 3; k++) l.vec[k] = a->vec.v[k];
       l.signal = gen_signal(a->sig);
@@ -134,9 +197,9 @@ swSpec *gen_spec(const swScene *sc) {
     sw_joint_desc_init(&d);
     d.name = j->name;
     d.kind = j->kind;
-    d.rod_a = j->rod_a;
+    d.rod_a = gen_rod_id(sc, j->rod_a);
     d.node_a = j->node_a;
-    d.rod_b = j->rod_b;
+    d.rod_b = gen_rod_id(sc, j->rod_b);
     d.node_b = j->node_b;
     d.undamped = j->undamped;
     fill(&d, f, gen_joint_fields(j, f));

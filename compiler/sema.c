@@ -73,7 +73,7 @@ void sema_report_unknown(swSema *S, swScope *scope, const char *name, swLoc loc,
 
 static const char *sym_noun(swSymKind k) {
   static const char *nouns[] = {"param", "let", "component parameter", "material", "rod",
-                                "joint", "component", "instance"};
+                                "joint", "component", "instance", "muscle"};
   return nouns[k];
 }
 
@@ -346,7 +346,8 @@ static void declare_items(swSema *S, swScope *scope, const swAst *items, int fir
                      "tendon or muscle)", it->text);
         break;
       }
-      declare(S, scope, k == 0 ? SYM_MATERIAL : SYM_ROD, it->name, it->loc, it);
+      declare(S, scope, k == 0 ? SYM_MATERIAL : k == 4 ? SYM_MUSCLE : SYM_ROD, it->name, it->loc,
+              it);
       break;
     }
     case AST_JOINT:
@@ -567,5 +568,7 @@ void sema_scene_free(swScene *scene) {
   free(scene->act);
   free(scene->joint);
   free(scene->param);
+  free(scene->muscle);
+  free(scene->passive);
   memset(scene, 0, sizeof *scene);
 }

@@ -8,9 +8,12 @@
  * recomputes it at run time from the param array P.  So constants are folded
  * by construction and a param default appears in the generated C exactly
  * once, in the param table.  The checked scene (swScene) is a flat list of
- * rods, loads, boundary conditions and joints in definition order, each
- * field a swValue and each entry with the location of the model line it came
- * from.  Code generation (gen_c.c) prints it; sema_spec.c turns it into the
+ * rods, muscles, loads, boundary conditions and joints in definition order,
+ * each field a swValue and each entry with the location of the model line it
+ * came from.  Scene entries refer to rods by their index in swScene.rod; the
+ * runtime numbers rods differently, because a muscle adds one rod per
+ * filament, so each rod and muscle also carries its runtime rod id and code
+ * generation maps one to the other (gen_rod_id).  Code generation (gen_c.c) prints it; sema_spec.c turns it into the
  * runtime's swSpec to reuse the runtime's own checks and stable-dt estimate.
  */
 #ifndef SINEW_SEMA_H
@@ -62,7 +65,8 @@ typedef struct swSignalVal {
 } swSignalVal;
 
 typedef enum {
-  SYM_PARAM, SYM_LET, SYM_FORMAL, SYM_MATERIAL, SYM_ROD, SYM_JOINT, SYM_COMPONENT, SYM_INSTANCE
+  SYM_PARAM, SYM_LET, SYM_FORMAL, SYM_MATERIAL, SYM_ROD, SYM_JOINT, SYM_COMPONENT, SYM_INSTANCE,
+  SYM_MUSCLE
 } swSymKind;
 
 struct swScope;
@@ -76,7 +80,7 @@ typedef struct swSymbol {
   int used;
   int state;                  /* 0 new, 1 evaluating, 2 done               */
   int main_file;              /* defined in the compiled file itself       */
-  int index;                  /* rod, param or joint index in the scene    */
+  int index;                  /* rod, muscle, param or joint index in the scene */
   swValue value;              /* params, lets, formals                     */
   struct swScope *members;    /* instances: their scope                    */
   struct swMaterial *material;
@@ -93,19 +97,50 @@ typedef struct swMaterial {
   swValue E, G, poisson, density;
 } swMaterial;
 
-typedef enum { ROD_PLAIN, ROD_BONE, ROD_TENDON, ROD_MUSCLE } swRodKind;
+typedef enum { ROD_PLAIN, ROD_BONE, ROD_TENDON } swRodKind;
 
 typedef struct {
   const char *name;           /* full name                                 */
   swRodKind kind;
   swLoc loc;
+  int id;                     /* the runtime's rod id (sw_spec_add_rod)    */
   int nelem;                  /* known at compile time                     */
+  int rigid;                  /* rigid = true                              */
   swValue start, direction, normal, length, radius_start, radius_end;
   swValue density, youngs, shear_modulus, poisson;
   swValue shear_hardening, twist_hardening, rest_kappa, rest_sigma, gamma;
   swDampingKind damping;
   int has_material;
 } swSceneRod;
+
+/* A muscle (swMuscleDesc): values the model did not give are VAL_ERROR and
+ * keep sw_muscle_desc_init's defaults. */
+typedef struct {
+  const char *name;           /* full name                                 */
+  swLoc loc;
+  int id;                     /* runtime rod id of its first filament      */
+  int filaments, nelem;       /* known at compile time                     */
+  int has_nelem;              /* elements written (else the runtime's)     */
+  long motor_units;           /* 0: not given                              */
+  swValue start, end, normal, radius;
+  swValue density, youngs, shear_modulus, poisson;
+  swValue shear_hardening, twist_hardening, gamma;
+  int has_damping;            /* damping written: damping, gamma set       */
+  swDampingKind damping;
+  swValue sigma_max, size_ratio, twitch_small, twitch_large, hill_a, v_max, fibre_diameter;
+  swValue attach_stiffness, attach_damping;
+  int attach_rod[2];          /* scene rod index tied at from / to, -1 none */
+  int attach_node[2];
+  swSignalVal *activation;    /* NULL: not activated (the runtime's default) */
+  swLoc activation_loc;       /* the activate statement                    */
+} swSceneMuscle;
+
+/* passive MUSCLE.filament(K); */
+typedef struct {
+  swLoc loc;
+  int muscle;                 /* index in swScene.muscle (= runtime muscle id) */
+  int filament;               /* 0-based                                   */
+} swScenePassive;
 
 typedef struct {
   swLoc loc;
@@ -134,6 +169,10 @@ typedef struct {
 
 typedef struct {
   swSceneRod *rod;       int nrod, caprod;
+  swSceneMuscle *muscle; int nmuscle, capmuscle;
+  swScenePassive *passive; int npassive, cappassive;
+  int nrodid;                 /* rods of the runtime: rods + filaments      */
+  long nelem;                 /* elements of the whole scene                */
   swSceneAction *act;    int nact, capact;
   swSceneJoint *joint;   int njoint, capjoint;
   swSceneParam *param;   int nparam, capparam;
@@ -169,7 +208,7 @@ swValue val_func(swArena *a, const char *fn, swValue x, swLoc loc);   /* sqrt, s
 swValue val_norm(swArena *a, swValue x, swLoc loc);
 
 /* ---- dimensions (units_dim.c) ---- */
-extern const swDim DIM_NONE, DIM_LENGTH, DIM_TIME, DIM_MASS, DIM_ANGLE;
+extern const swDim DIM_NONE, DIM_LENGTH, DIM_TIME, DIM_MASS, DIM_ANGLE, DIM_PRESSURE, DIM_DENSITY;
 swDim dim_make(int kg, int m, int s, int rad);
 int dim_eq(swDim a, swDim b);
 /* equal, ignoring the angle exponent unless `want` is a pure angle */

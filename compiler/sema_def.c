@@ -1,5 +1,5 @@
-/* sema_def.c — definitions and statements: params, lets, materials, rods,
- * joints, actions (clamp, force, ...), simulate and output.
+/* sema_def.c — definitions: field tables, params, lets, materials, rods and
+ * the points on rods.
  *
  * Design.  Each definition is evaluated once, on first use or in file order,
  * with its body's fields checked against the list of keys it accepts (an
@@ -7,9 +7,8 @@
  * material, then on the runtime's defaults; the checked rod is appended to
  * the scene with every field a swValue, so a param-dependent field keeps its
  * C expression.  Positions of points on a rod (start, end, at(f)) follow from
- * its straight rest shape: start + f * length * direction.  Statements become
- * scene actions (loads and boundary conditions) or joints referring to rods by
- * scene index and to nodes by number, which must be known when compiling.
+ * its straight rest shape: start + f * length * direction.  Muscles are in
+ * sema_muscle.c, statements (joints, clamp, force, ...) in sema_stmt.c.
  */
 #include <math.h>
 #include <stdio.h>
@@ -60,8 +59,8 @@ const swAst *sema_field(const swFields *f, const char *key) {
   return NULL;
 }
 
-static swValue field_value(swSema *S, swScope *scope, const swFields *f, const char *key, int n,
-                           swDim want) {
+swValue sema_field_value(swSema *S, swScope *scope, const swFields *f, const char *key, int n,
+                         swDim want) {
   const swAst *e = sema_field(f, key);
   if (!e) return val_error();
   char what[64];
@@ -69,14 +68,6 @@ static swValue field_value(swSema *S, swScope *scope, const swFields *f, const c
   return sema_expect(S, scope, e, n, want, ast_strdup(S->a, what, strlen(what)));
 }
 
-static const swDim *dim_pressure(void) {
-  static swDim d = {{1, -1, -2, 0}};
-  return &d;
-}
-static const swDim *dim_density(void) {
-  static swDim d = {{1, -3, 0, 0}};
-  return &d;
-}
 
 /* ---- params and lets ---- */
 
@@ -161,10 +152,10 @@ static void eval_material(swSema *S, swSymbol *sym) {
   snprintf(what, sizeof what, "material '%s'", sym->name);
   sema_fields(S, sym->def, 0, what, material_keys, 4, &f);
   swMaterial *m = ast_alloc(S->a, sizeof *m);
-  m->E = field_value(S, sym->scope, &f, "E", 1, *dim_pressure());
-  m->G = field_value(S, sym->scope, &f, "G", 1, *dim_pressure());
-  m->poisson = field_value(S, sym->scope, &f, "poisson", 1, DIM_NONE);
-  m->density = field_value(S, sym->scope, &f, "density", 1, *dim_density());
+  m->E = sema_field_value(S, sym->scope, &f, "E", 1, DIM_PRESSURE);
+  m->G = sema_field_value(S, sym->scope, &f, "G", 1, DIM_PRESSURE);
+  m->poisson = sema_field_value(S, sym->scope, &f, "poisson", 1, DIM_NONE);
+  m->density = sema_field_value(S, sym->scope, &f, "density", 1, DIM_DENSITY);
   if (!sema_field(&f, "E"))
     diag_error(sym->loc, "material '%s' needs Young's modulus E (e.g. E = 10 kPa;)", sym->name);
   if (!sema_field(&f, "density"))
@@ -178,28 +169,79 @@ static void eval_material(swSema *S, swSymbol *sym) {
   sym->material = m;
 }
 
+/* material = NAME and the per-definition overrides E, G, poisson, density
+ * of a rod or a muscle.  Each value comes from the override, else from the
+ * material; one given by neither stays VAL_ERROR.  Returns 0 after an error
+ * (reported here, or in the material). */
+int sema_tissue(swSema *S, swScope *sc, const swFields *f, swTissue *t) {
+  memset(t, 0, sizeof *t);
+  int ok = 1;
+  t->me = sema_field(f, "material");
+  if (t->me) {
+    swValue mv = sema_eval(S, sc, t->me);
+    if (mv.kind == VAL_WORD) {
+      sema_report_unknown(S, sc, mv.word, mv.loc, "material");
+      ok = 0;
+    } else if (mv.kind == VAL_REF && mv.ref->kind == SYM_MATERIAL) {
+      sema_eval_symbol(S, mv.ref);
+      t->mat = mv.ref->material;
+    } else if (mv.kind != VAL_ERROR) {
+      diag_error(t->me->loc, "'material' expects the name of a material");
+      ok = 0;
+    } else ok = 0;
+  }
+  const swMaterial *mat = t->mat;
+  t->E_ast = sema_field(f, "E");
+  t->rho_ast = sema_field(f, "density");
+  const swAst *G_ast = sema_field(f, "G"), *nu_ast = sema_field(f, "poisson");
+  t->youngs = t->E_ast ? sema_field_value(S, sc, f, "E", 1, DIM_PRESSURE)
+              : mat ? mat->E : val_error();
+  t->density = t->rho_ast ? sema_field_value(S, sc, f, "density", 1, DIM_DENSITY)
+               : mat ? mat->density : val_error();
+  t->shear_modulus = G_ast ? sema_field_value(S, sc, f, "G", 1, DIM_PRESSURE)
+                     : mat ? mat->G : val_error();
+  t->poisson = nu_ast ? sema_field_value(S, sc, f, "poisson", 1, DIM_NONE)
+               : mat ? mat->poisson : val_error();
+  /* a value written here that failed, or the material's E or density
+   * (required there, so reported there) */
+  if ((t->E_ast || mat) && t->youngs.kind == VAL_ERROR) ok = 0;
+  if ((t->rho_ast || mat) && t->density.kind == VAL_ERROR) ok = 0;
+  if (G_ast && t->shear_modulus.kind == VAL_ERROR) ok = 0;
+  if (nu_ast && t->poisson.kind == VAL_ERROR) ok = 0;
+  if (nu_ast && t->poisson.kind == VAL_NUM && !(t->poisson.v[0] > -1 && t->poisson.v[0] <= 0.5)) {
+    diag_error(t->poisson.loc, "poisson must be in (-1, 0.5], got %g", t->poisson.v[0]);
+    ok = 0;
+  }
+  if (G_ast && t->shear_modulus.kind == VAL_NUM && !(t->shear_modulus.v[0] > 0)) {
+    diag_error(t->shear_modulus.loc, "G must be positive, got %g Pa", t->shear_modulus.v[0]);
+    ok = 0;
+  }
+  if (t->E_ast && t->youngs.kind == VAL_NUM) sema_positive(S, &t->youngs, "E", "Pa");
+  if (t->rho_ast && t->density.kind == VAL_NUM) sema_positive(S, &t->density, "density", "kg/m^3");
+  return ok;
+}
+
 /* ---- rods ---- */
 
 static const char *const rod_keys[] = {
   "material", "start", "from", "to", "direction", "normal", "length", "radius", "radius_start",
   "radius_end", "elements", "E", "G", "poisson", "density", "shear_hardening",
-  "twist_hardening", "rest_curvature", "rest_strain", "damping", "damping_model",
+  "twist_hardening", "rest_curvature", "rest_strain", "damping", "damping_model", "rigid",
 };
 enum { NROD_KEYS = sizeof rod_keys / sizeof rod_keys[0] };
 
 static swRodKind rod_kind(const char *word) {
   if (!strcmp(word, "bone")) return ROD_BONE;
   if (!strcmp(word, "tendon")) return ROD_TENDON;
-  if (!strcmp(word, "muscle")) return ROD_MUSCLE;
   return ROD_PLAIN;
 }
 
-static swValue vec3(swSema *S, double x, double y, double z, swDim dim, swLoc loc) {
+swValue sema_vec3(swSema *S, double x, double y, double z, swDim dim, swLoc loc) {
   double v[3] = {x, y, z};
   return val_vec(S->a, 3, v, dim, loc);
 }
 
-static int positive(swSema *S, const swValue *v, const char *what, const char *unit) {
+int sema_positive(swSema *S, const swValue *v, const char *what, const char *unit) {
   (void)S;
   if (v->kind != VAL_NUM) return 0;
   if (!(v->v[0] > 0)) {
@@ -210,7 +252,7 @@ static int positive(swSema *S, const swValue *v, const char *what, const char *u
 }
 
 /* A position: a point on a rod, or a length vector. */
-static swValue position(swSema *S, swScope *scope, const swAst *e, const char *what) {
+swValue sema_position(swSema *S, swScope *scope, const swAst *e, const char *what) {
   swValue v = sema_eval(S, scope, e);
   if (v.kind == VAL_POINT) {
     v.kind = VAL_VEC;
@@ -237,53 +279,24 @@ static void eval_rod(swSema *S, swSymbol *sym) {
   swLoc loc = sym->loc;
   int ok = 1;
 
-  /* material, then rod-level overrides */
-  swMaterial *mat = NULL;
-  const swAst *me = sema_field(&f, "material");
-  if (me) {
-    swValue mv = sema_eval(S, sc, me);
-    if (mv.kind == VAL_WORD) {
-      sema_report_unknown(S, sc, mv.word, mv.loc, "material");
-      ok = 0;
-    } else if (mv.kind == VAL_REF && mv.ref->kind == SYM_MATERIAL) {
-      sema_eval_symbol(S, mv.ref);
-      mat = mv.ref->material;
-    } else if (mv.kind != VAL_ERROR) {
-      diag_error(me->loc, "'material' expects the name of a material");
-      ok = 0;
-    } else ok = 0;
-  }
-  const swAst *E_ast = sema_field(&f, "E"), *rho_ast = sema_field(&f, "density");
-  r.youngs = E_ast ? field_value(S, sc, &f, "E", 1, *dim_pressure())
-             : mat ? mat->E : val_num(S->a, 1e6, *dim_pressure(), loc);
-  r.density = rho_ast ? field_value(S, sc, &f, "density", 1, *dim_density())
-              : mat ? mat->density : val_num(S->a, 1000, *dim_density(), loc);
-  r.shear_modulus = sema_field(&f, "G") ? field_value(S, sc, &f, "G", 1, *dim_pressure())
-                    : mat && mat->G.kind ? mat->G : val_num(S->a, 0, *dim_pressure(), loc);
-  r.poisson = sema_field(&f, "poisson") ? field_value(S, sc, &f, "poisson", 1, DIM_NONE)
-              : mat && mat->poisson.kind ? mat->poisson : val_num(S->a, 0.5, DIM_NONE, loc);
-  r.has_material = mat != NULL || (E_ast && rho_ast);
-  if (!mat && !me && !E_ast && !rho_ast)
+  /* material, then rod-level overrides; without them, defaults and a warning */
+  swTissue t;
+  if (!sema_tissue(S, sc, &f, &t)) ok = 0;
+  r.youngs = t.youngs.kind || t.mat ? t.youngs : val_num(S->a, 1e6, DIM_PRESSURE, loc);
+  r.density = t.density.kind || t.mat ? t.density : val_num(S->a, 1000, DIM_DENSITY, loc);
+  r.shear_modulus = t.shear_modulus.kind ? t.shear_modulus : val_num(S->a, 0, DIM_PRESSURE, loc);
+  r.poisson = t.poisson.kind ? t.poisson : val_num(S->a, 0.5, DIM_NONE, loc);
+  r.has_material = t.mat != NULL || (t.E_ast && t.rho_ast);
+  if (!t.mat && !t.me && !t.E_ast && !t.rho_ast)
     diag_warning(loc, "%s has no material; it gets E = %g Pa and density = %g kg/m^3", what,
                  r.youngs.kind == VAL_NUM ? r.youngs.v[0] : 0,
                  r.density.kind == VAL_NUM ? r.density.v[0] : 0);
-  else if (!mat && !me && !E_ast)
+  else if (!t.mat && !t.me && !t.E_ast)
     diag_warning(loc, "%s has no material and no E; it gets E = %g Pa", what,
                  r.youngs.kind == VAL_NUM ? r.youngs.v[0] : 0);
-  else if (!mat && !me && !rho_ast)
+  else if (!t.mat && !t.me && !t.rho_ast)
     diag_warning(loc, "%s has no material and no density; it gets density = %g kg/m^3", what,
                  r.density.kind == VAL_NUM ? r.density.v[0] : 0);
-  if (sema_field(&f, "poisson") && r.poisson.kind == VAL_NUM &&
-      !(r.poisson.v[0] > -1 && r.poisson.v[0] <= 0.5)) {
-    diag_error(r.poisson.loc, "poisson must be in (-1, 0.5], got %g", r.poisson.v[0]);
-    ok = 0;
-  }
-  if (sema_field(&f, "G") && r.shear_modulus.kind == VAL_NUM && !(r.shear_modulus.v[0] > 0)) {
-    diag_error(r.shear_modulus.loc, "G must be positive, got %g Pa", r.shear_modulus.v[0]);
-    ok = 0;
-  }
-  if (E_ast && r.youngs.kind == VAL_NUM) positive(S, &r.youngs, "E", "Pa");
-  if (rho_ast && r.density.kind == VAL_NUM) positive(S, &r.density, "density", "kg/m^3");
 
   /* placement: start/from, and either to or direction + length */
   const swAst *start = sema_field(&f, "start"), *from = sema_field(&f, "from");
@@ -298,13 +311,13 @@ static void eval_rod(swSema *S, swSymbol *sym) {
     diag_error(loc, "%s needs a 'start' (or 'from') position", what);
     ok = 0;
     r.start = val_error();
-  } else r.start = position(S, sc, s0, start ? "'start'" : "'from'");
+  } else r.start = sema_position(S, sc, s0, start ? "'start'" : "'from'");
   if (to) {
     if (dir || len) {
       diag_error(to->loc, "give either 'to', or 'direction' and 'length', not both");
       ok = 0;
     }
-    swValue end = position(S, sc, to, "'to'");
+    swValue end = sema_position(S, sc, to, "'to'");
     swValue d = val_binop(S->a, '-', end, r.start, to->loc);
     r.length = val_norm(S->a, d, to->loc);
     if (r.length.kind == VAL_NUM && !(r.length.v[0] > 0)) {
@@ -317,9 +330,9 @@ static void eval_rod(swSema *S, swSymbol *sym) {
       diag_error(loc, "%s needs 'to', or 'direction' and 'length'", what);
       ok = 0;
     }
-    r.direction = dir ? field_value(S, sc, &f, "direction", 3, DIM_NONE) : val_error();
-    r.length = len ? field_value(S, sc, &f, "length", 1, DIM_LENGTH) : val_error();
-    if (len) positive(S, &r.length, "'length'", "m");
+    r.direction = dir ? sema_field_value(S, sc, &f, "direction", 3, DIM_NONE) : val_error();
+    r.length = len ? sema_field_value(S, sc, &f, "length", 1, DIM_LENGTH) : val_error();
+    if (len) sema_positive(S, &r.length, "'length'", "m");
   }
   if (r.direction.kind == VAL_VEC) {
     double n = sqrt(r.direction.v[0] * r.direction.v[0] + r.direction.v[1] * r.direction.v[1] +
@@ -330,7 +343,7 @@ static void eval_rod(swSema *S, swSymbol *sym) {
     }
   }
   if (sema_field(&f, "normal")) {
-    r.normal = field_value(S, sc, &f, "normal", 3, DIM_NONE);
+    r.normal = sema_field_value(S, sc, &f, "normal", 3, DIM_NONE);
     if (r.normal.kind == VAL_VEC && r.direction.kind == VAL_VEC) {
       const double *a = r.normal.v, *b = r.direction.v;
       double cx = a[1] * b[2] - a[2] * b[1], cy = a[2] * b[0] - a[0] * b[2],
@@ -348,7 +361,7 @@ static void eval_rod(swSema *S, swSymbol *sym) {
     double dot = (ax * d[0] + ay * d[1]) / (n * n);
     double nx = ax - dot * d[0], ny = ay - dot * d[1], nz = -dot * d[2];
     double nn = sqrt(nx * nx + ny * ny + nz * nz);
-    r.normal = vec3(S, nx / nn, ny / nn, nz / nn, DIM_NONE, loc);
+    r.normal = sema_vec3(S, nx / nn, ny / nn, nz / nn, DIM_NONE, loc);
   }
   /* cross section */
   const swAst *rad = sema_field(&f, "radius"), *rs = sema_field(&f, "radius_start"),
@@ -358,13 +371,13 @@ static void eval_rod(swSema *S, swSymbol *sym) {
     ok = 0;
   }
   if (rad) {
-    r.radius_start = r.radius_end = field_value(S, sc, &f, "radius", 1, DIM_LENGTH);
-    positive(S, &r.radius_start, "'radius'", "m");
+    r.radius_start = r.radius_end = sema_field_value(S, sc, &f, "radius", 1, DIM_LENGTH);
+    sema_positive(S, &r.radius_start, "'radius'", "m");
   } else if (rs && re) {
-    r.radius_start = field_value(S, sc, &f, "radius_start", 1, DIM_LENGTH);
-    r.radius_end = field_value(S, sc, &f, "radius_end", 1, DIM_LENGTH);
-    positive(S, &r.radius_start, "'radius_start'", "m");
-    positive(S, &r.radius_end, "'radius_end'", "m");
+    r.radius_start = sema_field_value(S, sc, &f, "radius_start", 1, DIM_LENGTH);
+    r.radius_end = sema_field_value(S, sc, &f, "radius_end", 1, DIM_LENGTH);
+    sema_positive(S, &r.radius_start, "'radius_start'", "m");
+    sema_positive(S, &r.radius_end, "'radius_end'", "m");
   } else {
     diag_error(loc, "%s needs a 'radius' (or 'radius_start' and 'radius_end')", what);
     ok = 0;
@@ -372,14 +385,13 @@ static void eval_rod(swSema *S, swSymbol *sym) {
   /* discretisation */
   long nelem = 20;
   if (sema_field(&f, "elements")) {
-    swValue ne = field_value(S, sc, &f, "elements", 1, DIM_NONE);
+    swValue ne = sema_field_value(S, sc, &f, "elements", 1, DIM_NONE);
     if (!sema_const_int(S, ne, "'elements'", 2, 100000, &nelem)) ok = 0;
   }
   r.nelem = (int)nelem;
   /* a bound on the whole scene, so a 20 kB file cannot ask for gigabytes
    * (the checker hands the scene to the runtime, which allocates it) */
-  long total = nelem;
-  for (int i = 0; i < S->scene->nrod; i++) total += S->scene->rod[i].nelem;
+  long total = S->scene->nelem + nelem;
   if (ok && total > SEMA_MAX_ELEMENTS) {
     diag_error(loc, "the scene would have %ld elements with %s; at most %d are allowed", total,
                what, SEMA_MAX_ELEMENTS);
@@ -387,20 +399,20 @@ static void eval_rod(swSema *S, swSymbol *sym) {
   }
   /* hardening, rest shape, damping */
   r.shear_hardening = sema_field(&f, "shear_hardening")
-                      ? field_value(S, sc, &f, "shear_hardening", 1, DIM_NONE)
+                      ? sema_field_value(S, sc, &f, "shear_hardening", 1, DIM_NONE)
                       : val_num(S->a, 1, DIM_NONE, loc);
   r.twist_hardening = sema_field(&f, "twist_hardening")
-                      ? field_value(S, sc, &f, "twist_hardening", 1, DIM_NONE)
+                      ? sema_field_value(S, sc, &f, "twist_hardening", 1, DIM_NONE)
                       : val_num(S->a, 1, DIM_NONE, loc);
-  positive(S, &r.shear_hardening, "'shear_hardening'", "");
-  positive(S, &r.twist_hardening, "'twist_hardening'", "");
+  sema_positive(S, &r.shear_hardening, "'shear_hardening'", "");
+  sema_positive(S, &r.twist_hardening, "'twist_hardening'", "");
   r.rest_kappa = sema_field(&f, "rest_curvature")
-                 ? field_value(S, sc, &f, "rest_curvature", 3, dim_make(0, -1, 0, 0))
-                 : vec3(S, 0, 0, 0, dim_make(0, -1, 0, 0), loc);
+                 ? sema_field_value(S, sc, &f, "rest_curvature", 3, dim_make(0, -1, 0, 0))
+                 : sema_vec3(S, 0, 0, 0, dim_make(0, -1, 0, 0), loc);
   r.rest_sigma = sema_field(&f, "rest_strain")
-                 ? field_value(S, sc, &f, "rest_strain", 3, DIM_NONE)
-                 : vec3(S, 0, 0, 0, DIM_NONE, loc);
-  r.gamma = sema_field(&f, "damping") ? field_value(S, sc, &f, "damping", 1, dim_make(1, -1, -1, 0))
+                 ? sema_field_value(S, sc, &f, "rest_strain", 3, DIM_NONE)
+                 : sema_vec3(S, 0, 0, 0, DIM_NONE, loc);
+  r.gamma = sema_field(&f, "damping") ? sema_field_value(S, sc, &f, "damping", 1, dim_make(1, -1, -1, 0))
             : val_num(S->a, 0, dim_make(1, -1, -1, 0), loc);
   if (r.gamma.kind == VAL_NUM && r.gamma.v[0] < 0) {
     diag_error(r.gamma.loc, "'damping' must not be negative");
@@ -414,6 +426,25 @@ static void eval_rod(swSema *S, swSymbol *sym) {
     if (w && !strcmp(w, "analytic")) r.damping = SW_DAMP_ANALYTIC;
     if (!sema_field(&f, "damping"))
       diag_warning(dm->loc, "'damping_model' has no effect without 'damping'");
+  }
+  /* rigid = true: the runtime moves the rod as one rigid body; the language
+   * has no booleans, so true and false are words, as damping_model's are */
+  const swAst *rg = sema_field(&f, "rigid");
+  if (rg) {
+    static const char *const truth[] = {"true", "false"};
+    if (rg->kind == AST_NAME && (!strcmp(rg->name, "true") || !strcmp(rg->name, "false"))) {
+      r.rigid = !strcmp(rg->name, "true");
+    } else {
+      const char *near = rg->kind == AST_NAME ? diag_suggest(rg->name, truth, 2) : NULL;
+      if (near)
+        diag_error(rg->loc, "'rigid' is true or false, not '%s'; did you mean '%s'?", rg->name,
+                   near);
+      else if (rg->kind == AST_NAME)
+        diag_error(rg->loc, "'rigid' is true or false, not '%s'", rg->name);
+      else
+        diag_error(rg->loc, "'rigid' takes the word true or false");
+      ok = 0;
+    }
   }
   const swValue *all[] = {&r.youngs, &r.density, &r.shear_modulus, &r.poisson, &r.start,
                           &r.direction, &r.normal, &r.length, &r.radius_start, &r.radius_end,
@@ -432,6 +463,8 @@ static void eval_rod(swSema *S, swSymbol *sym) {
     if (!scn->rod) abort();
   }
   sym->index = scn->nrod;
+  r.id = scn->nrodid++;
+  scn->nelem += r.nelem;
   scn->rod[scn->nrod++] = r;
 }
 
@@ -461,6 +494,9 @@ void sema_eval_symbol(swSema *S, swSymbol *sym) {
     break;
   case SYM_ROD:
     eval_rod(S, sym);
+    break;
+  case SYM_MUSCLE:
+    sema_eval_muscle(S, sym);
     break;
   default:
     break;
@@ -497,335 +533,4 @@ swValue sema_rod_point(swSema *S, swSymbol *rod, double frac, int node, swLoc lo
   p.node = node;
   p.loc = loc;
   return p;
-}
-
-/* ---- joints ---- */
-
-static const char *const joint_kinds[] = {"spherical", "hinge", "fixed"};
-static const char *const joint_keys[] = {"axis", "stiffness", "damping", "rot_stiffness",
-                                         "rot_damping"};
-
-void sema_joint(swSema *S, swScope *scope, const swAst *it) {
-  swSceneJoint j;
-  memset(&j, 0, sizeof j);
-  j.loc = it->loc;
-  swSymbol *sym = sema_lookup_local(scope, it->name);
-  j.name = sym ? sym->full : it->name;
-  if (sym) sym->used = 1;
-  int k;
-  for (k = 0; k < 3; k++)
-    if (!strcmp(it->text, joint_kinds[k])) break;
-  if (k == 3) {
-    const char *near = diag_suggest(it->text, joint_kinds, 3);
-    if (near) diag_error(it->loc, "unknown kind of joint '%s'; did you mean '%s'?", it->text, near);
-    else diag_error(it->loc, "unknown kind of joint '%s' (expected hinge, spherical or fixed)", it->text);
-    return;
-  }
-  j.kind = (swJointKind)k;
-  const swAst *args = it->kid[0];
-  int ok = 1;
-  if (args->nkid != 2 || args->kid[0]->name || args->kid[1]->name) {
-    diag_error(it->loc, "%s() joins two points: %s(rod_a.end, rod_b.start), or a point and a "
-               "fixed position: %s(rod.start, (0, 0, 0) m)", it->text, it->text, it->text);
-    return;
-  }
-  swValue a = sema_eval(S, scope, ast_kid(args->kid[0], 0));
-  swValue b = sema_eval(S, scope, ast_kid(args->kid[1], 0));
-  if (a.kind == VAL_WORD) { sema_report_unknown(S, scope, a.word, a.loc, "name"); ok = 0; }
-  if (b.kind == VAL_WORD) { sema_report_unknown(S, scope, b.word, b.loc, "name"); ok = 0; }
-  if (a.kind != VAL_ERROR && a.kind != VAL_WORD && a.kind != VAL_POINT) {
-    diag_error(a.loc, "the first end of a joint must be a point on a rod (rod.start, rod.end, "
-               "rod.at(f))");
-    ok = 0;
-  }
-  if (b.kind == VAL_POINT) {
-    j.rod_b = b.rod;
-    j.node_b = b.node;
-    j.anchor = vec3(S, 0, 0, 0, DIM_LENGTH, it->loc);
-  } else if (b.kind == VAL_VEC || b.kind == VAL_NUM) {
-    j.rod_b = -1;
-    j.node_b = 0;
-    j.anchor = sema_expect_value(S, b, 3, DIM_LENGTH, "a joint's fixed position");
-    if (j.anchor.kind == VAL_ERROR) ok = 0;
-  } else if (b.kind != VAL_WORD) {
-    if (b.kind != VAL_ERROR)
-      diag_error(b.loc, "the second end of a joint must be a point on a rod or a position");
-    ok = 0;
-  }
-  if (a.kind == VAL_POINT) {
-    j.rod_a = a.rod;
-    j.node_a = a.node;
-    if (b.kind == VAL_POINT && a.rod == b.rod) {
-      diag_error(it->loc, "a joint must connect two different rods");
-      ok = 0;
-    }
-  }
-  swFields f;
-  char what[128];
-  snprintf(what, sizeof what, "joint '%s'", it->name);
-  sema_fields(S, it, 1, what, joint_keys, 5, &f);
-  swLoc loc = it->loc;
-  j.axis = sema_field(&f, "axis") ? field_value(S, scope, &f, "axis", 3, DIM_NONE)
-           : vec3(S, 0, 0, 0, DIM_NONE, loc);
-  if (j.kind == SW_JOINT_HINGE && !sema_field(&f, "axis")) {
-    diag_error(loc, "hinge '%s' needs an 'axis' (e.g. axis = (0, 1, 0);)", it->name);
-    ok = 0;
-  } else if (j.kind != SW_JOINT_HINGE && sema_field(&f, "axis")) {
-    diag_warning(sema_field(&f, "axis")->loc, "'axis' has no effect on a %s joint", it->text);
-  }
-  if (j.axis.kind == VAL_VEC && j.kind == SW_JOINT_HINGE && sema_field(&f, "axis") &&
-      !(fabs(j.axis.v[0]) + fabs(j.axis.v[1]) + fabs(j.axis.v[2]) > 0)) {
-    diag_error(j.axis.loc, "a hinge's 'axis' must not be the zero vector");
-    ok = 0;
-  }
-  static const swDim kN = {{1, 0, -2, 0}}, kD = {{1, 0, -1, 0}}, kR = {{1, 2, -2, -1}},
-                     kRD = {{1, 2, -1, -1}};
-  j.stiffness = sema_field(&f, "stiffness") ? field_value(S, scope, &f, "stiffness", 1, kN)
-                : val_num(S->a, 0, kN, loc);
-  j.damping = sema_field(&f, "damping") ? field_value(S, scope, &f, "damping", 1, kD)
-              : val_num(S->a, 0, kD, loc);
-  j.rot_stiffness = sema_field(&f, "rot_stiffness")
-                    ? field_value(S, scope, &f, "rot_stiffness", 1, kR) : val_num(S->a, 0, kR, loc);
-  j.rot_damping = sema_field(&f, "rot_damping")
-                  ? field_value(S, scope, &f, "rot_damping", 1, kRD) : val_num(S->a, 0, kRD, loc);
-  /* 0 lets the runtime choose a damping; "damping = 0" written out means
-   * none at all (the runtime's undamped flag, both parts) */
-  if (sema_field(&f, "damping") && j.damping.kind == VAL_NUM && j.damping.v[0] == 0 &&
-      val_is_const(&j.damping)) {
-    j.undamped = 1;
-    if (j.rot_damping.kind == VAL_NUM && j.rot_damping.v[0] != 0) {
-      diag_error(j.rot_damping.loc, "joint '%s' has damping = 0 (none) but a rot_damping; "
-                 "give both or neither", it->name);
-      ok = 0;
-    }
-  }
-  const swValue *vals[] = {&j.axis, &j.stiffness, &j.damping, &j.rot_stiffness, &j.rot_damping,
-                           &j.anchor};
-  for (size_t i = 0; i < sizeof vals / sizeof vals[0]; i++) {
-    if (vals[i]->kind == VAL_ERROR) ok = 0;
-    else if (i >= 1 && i <= 4 && vals[i]->v[0] < 0) {
-      diag_error(vals[i]->loc, "joint stiffness and damping must not be negative");
-      ok = 0;
-    }
-  }
-  if (!ok || a.kind != VAL_POINT) return;
-  swScene *sc = S->scene;
-  if (sc->njoint == sc->capjoint) {
-    sc->capjoint = sc->capjoint ? 2 * sc->capjoint : 8;
-    sc->joint = realloc(sc->joint, (size_t)sc->capjoint * sizeof *sc->joint);
-    if (!sc->joint) abort();
-  }
-  sc->joint[sc->njoint++] = j;
-}
-
-/* ---- actions ---- */
-
-static const char *const actions[] = {"clamp", "gravity", "force", "torque", "velocity",
-                                      "angular_velocity"};
-enum { NACTIONS = sizeof actions / sizeof actions[0] };
-
-static void add_action(swSema *S, const swSceneAction *a) {
-  swScene *sc = S->scene;
-  if (sc->nact == sc->capact) {
-    sc->capact = sc->capact ? 2 * sc->capact : 8;
-    sc->act = realloc(sc->act, (size_t)sc->capact * sizeof *sc->act);
-    if (!sc->act) abort();
-  }
-  sc->act[sc->nact++] = *a;
-}
-
-/* a 3-vector of dimension `want`, constant or scaled by a time signal */
-static int action_value(swSema *S, swScope *scope, const swAst *e, swDim want, const char *what,
-                        swSceneAction *act) {
-  swValue v = sema_eval(S, scope, e);
-  if (v.kind == VAL_WORD) {
-    sema_report_unknown(S, scope, v.word, v.loc, "name");
-    return 0;
-  }
-  if (v.kind == VAL_SIGNAL) {
-    if (!dim_fits(want, v.dim)) {
-      diag_error(v.loc, "%s expects %s, got %s", what, dim_describe(S->a, want),
-                 dim_describe(S->a, v.dim));
-      return 0;
-    }
-    if (v.sig->scale.kind != VAL_VEC || v.sig->scale.n != 3) {
-      diag_error(v.loc, "%s expects a vector: multiply the signal by a direction, e.g. "
-                 "(0, 0, 1) * ramp(...)", what);
-      return 0;
-    }
-    act->vec = v.sig->scale;
-    act->sig = v.sig;
-    return 1;
-  }
-  act->vec = sema_expect_value(S, v, 3, want, what);
-  act->sig = NULL;
-  return act->vec.kind != VAL_ERROR;
-}
-
-void sema_action(swSema *S, swScope *scope, const swAst *it) {
-  const char *word = it->text;
-  int k;
-  for (k = 0; k < NACTIONS; k++)
-    if (!strcmp(word, actions[k])) break;
-  swLoc wloc = it->loc;
-  if (k == NACTIONS) {
-    const char *near = diag_suggest(word, actions, NACTIONS);
-    if (near) diag_error(wloc, "unknown statement '%s'; did you mean '%s'?", word, near);
-    else
-      diag_error(wloc, "unknown statement '%s' (expected clamp, gravity, force, torque, "
-                 "velocity or angular_velocity)", word);
-    return;
-  }
-  int has_value = it->nkid == 2;
-  if (k == 0 || k == 1) {
-    if (has_value) {
-      diag_error(it->kid[1]->loc, "'%s' takes no '= value'", word);
-      return;
-    }
-  } else if (!has_value) {
-    diag_error(it->kid[0]->loc, "'%s' needs a value: %s POINT = VALUE;", word, word);
-    return;
-  }
-  if (k == 1) {   /* gravity (0, 0, -9.81) m/s^2; */
-    swValue g = sema_expect(S, scope, it->kid[0], 3, dim_make(0, 1, -2, 0), "gravity");
-    if (g.kind == VAL_ERROR) return;
-    if (S->scene->gravity.kind != VAL_ERROR) {
-      diag_error(it->loc, "gravity is given twice (first at line %d)", S->scene->gravity_loc.line);
-      return;
-    }
-    S->scene->gravity = g;
-    S->scene->gravity_loc = it->loc;
-    return;
-  }
-  swValue p = sema_eval(S, scope, it->kid[0]);
-  if (p.kind == VAL_WORD) {
-    sema_report_unknown(S, scope, p.word, p.loc, "name");
-    return;
-  }
-  if (p.kind == VAL_ERROR) return;
-  if (p.kind != VAL_POINT) {
-    diag_error(p.loc, "'%s' applies to a point on a rod (rod.start, rod.end, rod.at(f))", word);
-    return;
-  }
-  swSceneAction act;
-  memset(&act, 0, sizeof act);
-  act.loc = it->loc;
-  act.rod = p.rod;
-  int n = S->scene->rod[p.rod].nelem;
-  if (k == 0 || k == 4 || k == 5) {   /* boundary conditions act on a rod's end */
-    if (p.node != 0 && p.node != n) {
-      diag_error(p.loc, "'%s' applies to the start or end of a rod, not to a point inside it",
-                 word);
-      return;
-    }
-    act.is_bc = 1;
-    act.index = p.node == 0 ? 0 : 1;
-    act.kind = k == 0 ? SW_BC_CLAMP : k == 4 ? SW_BC_VELOCITY : SW_BC_OMEGA;
-    if (k == 0) {
-      act.vec = vec3(S, 0, 0, 0, DIM_NONE, it->loc);
-      add_action(S, &act);
-      return;
-    }
-    swDim want = k == 4 ? dim_make(0, 1, -1, 0) : dim_make(0, 0, -1, 1);
-    if (action_value(S, scope, it->kid[1], want, k == 4 ? "velocity" : "angular_velocity", &act))
-      add_action(S, &act);
-    return;
-  }
-  act.is_bc = 0;
-  act.kind = k == 2 ? SW_LOAD_FORCE : SW_LOAD_TORQUE;
-  act.index = k == 2 ? p.node : (p.node < n ? p.node : n - 1);
-  swDim want = k == 2 ? dim_make(1, 1, -2, 0) : dim_make(1, 2, -2, 0);
-  if (action_value(S, scope, it->kid[1], want, word, &act)) add_action(S, &act);
-}
-
-/* ---- simulate and output ---- */
-
-static const char *const simulate_keys[] = {"dt", "duration", "integrator"};
-
-void sema_simulate(swSema *S, swScope *scope, const swAst *it) {
-  if (S->has_simulate) {
-    diag_error(it->loc, "a second 'simulate' block (the first is at line %d)",
-               S->simulate_loc.line);
-    return;
-  }
-  S->has_simulate = 1;
-  S->simulate_loc = it->loc;
-  swFields f;
-  sema_fields(S, it, 0, "simulate", simulate_keys, 3, &f);
-  swScene *sc = S->scene;
-  if (sema_field(&f, "dt")) {
-    swValue dt = field_value(S, scope, &f, "dt", 1, DIM_TIME);
-    if (dt.kind == VAL_NUM && sema_require_const(S, &dt, "'dt'") && positive(S, &dt, "'dt'", "s")) {
-      sc->dt = dt.v[0];
-      sc->has_dt = 1;
-      sc->dt_loc = sema_field(&f, "dt")->loc;
-    }
-  }
-  if (sema_field(&f, "duration")) {
-    swValue T = field_value(S, scope, &f, "duration", 1, DIM_TIME);
-    if (T.kind == VAL_NUM && sema_require_const(S, &T, "'duration'")) {
-      if (T.v[0] < 0) diag_error(T.loc, "'duration' must not be negative");
-      else {
-        sc->duration = T.v[0];
-        sc->has_duration = 1;
-      }
-    }
-  }
-  const swAst *integ = sema_field(&f, "integrator");
-  if (integ) {
-    static const char *const names[] = {"verlet", "pefrl"};
-    const char *w = sema_word(S, scope, integ, "integrator", names, 2);
-    if (w) sc->integrator = !strcmp(w, "pefrl") ? SW_PEFRL : SW_VERLET;
-  }
-}
-
-void sema_output(swSema *S, swScope *scope, const swAst *it) {
-  if (S->has_output) {
-    diag_error(it->loc, "a second 'output' (the first is at line %d)", S->output_loc.line);
-    return;
-  }
-  S->has_output = 1;
-  S->output_loc = it->loc;
-  swScene *sc = S->scene;
-  if (!it->text[0]) diag_error(it->loc, "the output file name is empty");
-  else sc->out = it->text;
-  const swAst *every = ast_kid(it, 0);
-  if (every) {
-    swValue e = sema_expect(S, scope, every, 1, DIM_TIME, "'every'");
-    if (e.kind == VAL_NUM && sema_require_const(S, &e, "'every'")) {
-      if (!(e.v[0] > 0)) diag_error(e.loc, "'every' must be positive");
-      else sc->every = e.v[0];
-    }
-  }
-  static const char *const what[] = {"positions", "velocity", "directors", "energy"};
-  for (int i = 1; i < it->nkid; i++) {
-    const swAst *s = it->kid[i];
-    if (s->kind == AST_FIELD) {
-      diag_error(s->loc, "an output selection reads 'velocity all;', not '%s = ...'", s->name);
-      continue;
-    }
-    if (s->kind != AST_SELECT) continue;
-    int k;
-    for (k = 0; k < 4; k++)
-      if (!strcmp(s->name, what[k])) break;
-    if (k == 4) {
-      const char *near = diag_suggest(s->name, what, 4);
-      if (near) diag_error(s->loc, "unknown output '%s'; did you mean '%s'?", s->name, near);
-      else diag_error(s->loc, "unknown output '%s' (expected positions, velocity, directors "
-                      "or energy)", s->name);
-      continue;
-    }
-    /* selections are per scene for now: "all" (or nothing) */
-    int all = s->nkid == 0;
-    for (int t = 0; t < s->nkid; t++) {
-      const swAst *tg = s->kid[t];
-      if (tg->kind == AST_NAME && !strcmp(tg->name, "all")) all = 1;
-      else
-        diag_error(tg->loc, "output of single rods is not supported yet; write '%s all;'",
-                   s->name);
-    }
-    if (!all) continue;
-    if (k == 1) sc->velocity = 1;
-    if (k == 2) sc->directors = 1;
-  }
 }

@@ -52,7 +52,7 @@ static swValue operand(swSema *S, swScope *scope, const swAst *e) {
     diag_error(e->loc, "'%s' is a %s, not a value", v.ref->name,
                v.ref->kind == SYM_MATERIAL ? "material" : v.ref->kind == SYM_ROD ? "rod"
                : v.ref->kind == SYM_JOINT ? "joint" : v.ref->kind == SYM_COMPONENT ? "component"
-               : "instance");
+               : v.ref->kind == SYM_MUSCLE ? "muscle" : "instance");
     return val_error();
   }
   return v;
@@ -393,6 +393,10 @@ static swValue eval_member(swSema *S, swScope *scope, const swAst *e) {
     }
     return symbol_value(S, m, e->loc);
   }
+  if (b.kind == VAL_REF && b.ref->kind == SYM_MUSCLE) {
+    sema_muscle_not_rod(S, b.ref, e->loc);
+    return val_error();
+  }
   if (b.kind == VAL_REF && b.ref->kind == SYM_ROD) {
     static const char *const members[] = {"start", "end", "length", "at"};
     if (!strcmp(e->name, "start")) return sema_rod_point(S, b.ref, 0, 0, e->loc);
@@ -433,6 +437,10 @@ static swValue eval_method(swSema *S, swScope *scope, const swAst *e) {
   if (b.kind == VAL_ERROR) return b;
   if (b.kind == VAL_WORD) {
     sema_report_unknown(S, scope, b.word, b.loc, "name");
+    return val_error();
+  }
+  if (b.kind == VAL_REF && b.ref->kind == SYM_MUSCLE) {
+    sema_muscle_not_rod(S, b.ref, e->loc);
     return val_error();
   }
   if (b.kind != VAL_REF || b.ref->kind != SYM_ROD || strcmp(e->name, "at")) {

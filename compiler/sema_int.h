@@ -1,5 +1,5 @@
 /* sema_int.h — state shared by the checker's files (sema.c, sema_expr.c,
- * sema_def.c); not used outside the checker.
+ * sema_def.c, sema_stmt.c, sema_muscle.c); not used outside the checker.
  *
  * Design.  One swSema per compilation: the arena, the scene being built, the
  * global scope, the stack of files being imported (for cycle messages) and
@@ -63,12 +63,27 @@ const char *sema_word(swSema *S, swScope *scope, const swAst *e, const char *wha
 
 /* sema_def.c */
 void sema_eval_symbol(swSema *S, swSymbol *sym);
+swValue sema_vec3(swSema *S, double x, double y, double z, swDim dim, swLoc loc);
+/* reports "WHAT must be positive" unless v is a positive number; 0 if not */
+int sema_positive(swSema *S, const swValue *v, const char *what, const char *unit);
+/* a position: a point on a rod (kept as VAL_VEC with its rod and node), or a
+ * 3-vector of lengths */
+swValue sema_position(swSema *S, swScope *scope, const swAst *e, const char *what);
 swValue sema_rod_point(swSema *S, swSymbol *rod, double frac, int node, swLoc loc);
 swValue sema_rod_length(swSema *S, swSymbol *rod, swLoc loc);
+
+/* sema_stmt.c */
 void sema_joint(swSema *S, swScope *scope, const swAst *item);
 void sema_action(swSema *S, swScope *scope, const swAst *item);
 void sema_simulate(swSema *S, swScope *scope, const swAst *item);
 void sema_output(swSema *S, swScope *scope, const swAst *item);
+
+/* sema_muscle.c */
+void sema_eval_muscle(swSema *S, swSymbol *sym);
+void sema_activate(swSema *S, swScope *scope, const swAst *item);
+void sema_passive(swSema *S, swScope *scope, const swAst *item);
+/* the error for a muscle used where a rod or a point on one is expected */
+void sema_muscle_not_rod(swSema *S, const swSymbol *muscle, swLoc loc);
 
 /* Field table of a definition body: the entries under their keys, unknown
  * and repeated keys reported. */
@@ -81,5 +96,17 @@ typedef struct {
 void sema_fields(swSema *S, const swAst *body, int first, const char *what,
                  const char *const *keys, int nkeys, swFields *f);
 const swAst *sema_field(const swFields *f, const char *key);
+/* the value of field `key` as a number (n == 1) or n-vector of dimension
+ * `want`; VAL_ERROR when absent or wrong */
+swValue sema_field_value(swSema *S, swScope *scope, const swFields *f, const char *key, int n,
+                         swDim want);
+
+/* material = NAME and the overrides E, G, poisson, density (sema_tissue) */
+typedef struct {
+  const swMaterial *mat;      /* NULL: no material                         */
+  const swAst *me, *E_ast, *rho_ast;   /* the fields, when written         */
+  swValue youngs, density, shear_modulus, poisson;   /* VAL_ERROR: not given */
+} swTissue;
+int sema_tissue(swSema *S, swScope *sc, const swFields *f, swTissue *t);
 
 #endif

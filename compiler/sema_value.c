@@ -144,7 +144,12 @@ static const char *kind_noun(const swValue *v) {
 static swValue scale_signal(swArena *a, int op, swValue sig, swValue k, swLoc loc) {
   swSignalVal *s = ast_alloc(a, sizeof *s);
   *s = *sig.sig;
-  s->scale = val_binop(a, op, s->scale, k, loc);
+  /* the first scale of a signal replaces its unit scale: P[0], not (1.0 * P[0]) */
+  if (op == '*' && s->scale.kind == VAL_NUM && val_is_const(&s->scale) && s->scale.v[0] == 1 &&
+      dim_is_none(s->scale.dim) && k.kind != VAL_ERROR)
+    s->scale = k;
+  else
+    s->scale = val_binop(a, op, s->scale, k, loc);
   if (s->scale.kind == VAL_ERROR) return val_error();
   swValue r = sig;
   r.sig = s;
@@ -155,6 +160,10 @@ static swValue scale_signal(swArena *a, int op, swValue sig, swValue k, swLoc lo
 
 swValue val_binop(swArena *a, int op, swValue x, swValue y, swLoc loc) {
   if (x.kind == VAL_ERROR || y.kind == VAL_ERROR) return val_error();
+  /* in arithmetic a point on a rod is its position: insertion - humerus.start
+   * is a vector, humerus.end + (1, 0, 0) cm a position on no rod */
+  if (x.kind == VAL_POINT) x.kind = VAL_VEC;
+  if (y.kind == VAL_POINT) y.kind = VAL_VEC;
   if (op == '*' && x.kind == VAL_SIGNAL && (y.kind == VAL_NUM || y.kind == VAL_VEC))
     return scale_signal(a, '*', x, y, loc);
   if (op == '*' && y.kind == VAL_SIGNAL && (x.kind == VAL_NUM || x.kind == VAL_VEC))
@@ -234,6 +243,7 @@ swValue val_binop(swArena *a, int op, swValue x, swValue y, swLoc loc) {
 }
 
 swValue val_neg(swArena *a, swValue x, swLoc loc) {
+  if (x.kind == VAL_POINT) x.kind = VAL_VEC;
   if (x.kind == VAL_SIGNAL) {
     swValue m1 = val_num(a, -1, DIM_NONE, loc);
     return val_binop(a, '*', x, m1, loc);

@@ -214,8 +214,8 @@ int main(int argc, char **argv) {
   swScene scene;
   sema_check(arena, file, &scene);
   /* a library file (materials, components, no rods) has nothing to run */
-  if (!diag_errors() && scene.nrod > 0) gen_check(&scene);
-  if (!diag_errors() && scene.nrod == 0 && !check)
+  if (!diag_errors() && scene.nrodid > 0) gen_check(&scene);
+  if (!diag_errors() && scene.nrodid == 0 && !check)
     fprintf(stderr, "%s: warning: '%s' defines no rods; the simulator will have nothing to "
             "simulate\n", progname, model);
   int rc = 0;

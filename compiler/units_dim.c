@@ -19,6 +19,8 @@ const swDim DIM_MASS = {{1, 0, 0, 0}};
 const swDim DIM_LENGTH = {{0, 1, 0, 0}};
 const swDim DIM_TIME = {{0, 0, 1, 0}};
 const swDim DIM_ANGLE = {{0, 0, 0, 1}};
+const swDim DIM_PRESSURE = {{1, -1, -2, 0}};
+const swDim DIM_DENSITY = {{1, -3, 0, 0}};
 
 swDim dim_make(int kg, int m, int s, int rad) {
   swDim d = {{(signed char)kg, (signed char)m, (signed char)s, (signed char)rad}};

@@ -1,0 +1,355 @@
+/* sema_stmt.c — statements: joints, actions (clamp, gravity, force, torque,
+ * velocity, angular_velocity; activate and passive are handed to
+ * sema_muscle.c), simulate and output.
+ *
+ * Design.  Statements are checked in file order.  They become scene joints
+ * and actions (loads and boundary conditions) that refer to rods by scene
+ * index and to nodes by number, which must be known when compiling; the
+ * runtime's rod ids are applied when lowering (gen_rod_id).  simulate and
+ * output are met once per scene and fill the scene's options.
+ */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "sema_int.h"
+
+/* ---- joints ---- */
+
+static const char *const joint_kinds[] = {"spherical", "hinge", "fixed"};
+static const char *const joint_keys[] = {"axis", "stiffness", "damping", "rot_stiffness",
+                                         "rot_damping"};
+
+void sema_joint(swSema *S, swScope *scope, const swAst *it) {
+  swSceneJoint j;
+  memset(&j, 0, sizeof j);
+  j.loc = it->loc;
+  swSymbol *sym = sema_lookup_local(scope, it->name);
+  j.name = sym ? sym->full : it->name;
+  if (sym) sym->used = 1;
+  int k;
+  for (k = 0; k < 3; k++)
+    if (!strcmp(it->text, joint_kinds[k])) break;
+  if (k == 3) {
+    const char *near = diag_suggest(it->text, joint_kinds, 3);
+    if (near) diag_error(it->loc, "unknown kind of joint '%s'; did you mean '%s'?", it->text, near);
+    else diag_error(it->loc, "unknown kind of joint '%s' (expected hinge, spherical or fixed)", it->text);
+    return;
+  }
+  j.kind = (swJointKind)k;
+  const swAst *args = it->kid[0];
+  int ok = 1;
+  if (args->nkid != 2 || args->kid[0]->name || args->kid[1]->name) {
+    diag_error(it->loc, "%s() joins two points: %s(rod_a.end, rod_b.start), or a point and a "
+               "fixed position: %s(rod.start, (0, 0, 0) m)", it->text, it->text, it->text);
+    return;
+  }
+  swValue a = sema_eval(S, scope, ast_kid(args->kid[0], 0));
+  swValue b = sema_eval(S, scope, ast_kid(args->kid[1], 0));
+  if (a.kind == VAL_WORD) { sema_report_unknown(S, scope, a.word, a.loc, "name"); ok = 0; }
+  if (b.kind == VAL_WORD) { sema_report_unknown(S, scope, b.word, b.loc, "name"); ok = 0; }
+  if (a.kind != VAL_ERROR && a.kind != VAL_WORD && a.kind != VAL_POINT) {
+    diag_error(a.loc, "the first end of a joint must be a point on a rod (rod.start, rod.end, "
+               "rod.at(f))");
+    ok = 0;
+  }
+  if (b.kind == VAL_POINT) {
+    j.rod_b = b.rod;
+    j.node_b = b.node;
+    j.anchor = sema_vec3(S, 0, 0, 0, DIM_LENGTH, it->loc);
+  } else if (b.kind == VAL_VEC || b.kind == VAL_NUM) {
+    j.rod_b = -1;
+    j.node_b = 0;
+    j.anchor = sema_expect_value(S, b, 3, DIM_LENGTH, "a joint's fixed position");
+    if (j.anchor.kind == VAL_ERROR) ok = 0;
+  } else if (b.kind != VAL_WORD) {
+    if (b.kind != VAL_ERROR)
+      diag_error(b.loc, "the second end of a joint must be a point on a rod or a position");
+    ok = 0;
+  }
+  if (a.kind == VAL_POINT) {
+    j.rod_a = a.rod;
+    j.node_a = a.node;
+    if (b.kind == VAL_POINT && a.rod == b.rod) {
+      diag_error(it->loc, "a joint must connect two different rods");
+      ok = 0;
+    }
+  }
+  swFields f;
+  char what[128];
+  snprintf(what, sizeof what, "joint '%s'", it->name);
+  sema_fields(S, it, 1, what, joint_keys, 5, &f);
+  swLoc loc = it->loc;
+  j.axis = sema_field(&f, "axis") ? sema_field_value(S, scope, &f, "axis", 3, DIM_NONE)
+           : sema_vec3(S, 0, 0, 0, DIM_NONE, loc);
+  if (j.kind == SW_JOINT_HINGE && !sema_field(&f, "axis")) {
+    diag_error(loc, "hinge '%s' needs an 'axis' (e.g. axis = (0, 1, 0);)", it->name);
+    ok = 0;
+  } else if (j.kind != SW_JOINT_HINGE && sema_field(&f, "axis")) {
+    diag_warning(sema_field(&f, "axis")->loc, "'axis' has no effect on a %s joint", it->text);
+  }
+  if (j.axis.kind == VAL_VEC && j.kind == SW_JOINT_HINGE && sema_field(&f, "axis") &&
+      !(fabs(j.axis.v[0]) + fabs(j.axis.v[1]) + fabs(j.axis.v[2]) > 0)) {
+    diag_error(j.axis.loc, "a hinge's 'axis' must not be the zero vector");
+    ok = 0;
+  }
+  static const swDim kN = {{1, 0, -2, 0}}, kD = {{1, 0, -1, 0}}, kR = {{1, 2, -2, -1}},
+                     kRD = {{1, 2, -1, -1}};
+  j.stiffness = sema_field(&f, "stiffness") ? sema_field_value(S, scope, &f, "stiffness", 1, kN)
+                : val_num(S->a, 0, kN, loc);
+  j.damping = sema_field(&f, "damping") ? sema_field_value(S, scope, &f, "damping", 1, kD)
+              : val_num(S->a, 0, kD, loc);
+  j.rot_stiffness = sema_field(&f, "rot_stiffness")
+                    ? sema_field_value(S, scope, &f, "rot_stiffness", 1, kR) : val_num(S->a, 0, kR, loc);
+  j.rot_damping = sema_field(&f, "rot_damping")
+                  ? sema_field_value(S, scope, &f, "rot_damping", 1, kRD) : val_num(S->a, 0, kRD, loc);
+  /* 0 lets the runtime choose a damping; "damping = 0" written out means
+   * none at all (the runtime's undamped flag, both parts) */
+  if (sema_field(&f, "damping") && j.damping.kind == VAL_NUM && j.damping.v[0] == 0 &&
+      val_is_const(&j.damping)) {
+    j.undamped = 1;
+    if (j.rot_damping.kind == VAL_NUM && j.rot_damping.v[0] != 0) {
+      diag_error(j.rot_damping.loc, "joint '%s' has damping = 0 (none) but a rot_damping; "
+                 "give both or neither", it->name);
+      ok = 0;
+    }
+  }
+  const swValue *vals[] = {&j.axis, &j.stiffness, &j.damping, &j.rot_stiffness, &j.rot_damping,
+                           &j.anchor};
+  for (size_t i = 0; i < sizeof vals / sizeof vals[0]; i++) {
+    if (vals[i]->kind == VAL_ERROR) ok = 0;
+    else if (i >= 1 && i <= 4 && vals[i]->v[0] < 0) {
+      diag_error(vals[i]->loc, "joint stiffness and damping must not be negative");
+      ok = 0;
+    }
+  }
+  if (!ok || a.kind != VAL_POINT) return;
+  swScene *sc = S->scene;
+  if (sc->njoint == sc->capjoint) {
+    sc->capjoint = sc->capjoint ? 2 * sc->capjoint : 8;
+    sc->joint = realloc(sc->joint, (size_t)sc->capjoint * sizeof *sc->joint);
+    if (!sc->joint) abort();
+  }
+  sc->joint[sc->njoint++] = j;
+}
+
+/* ---- actions ---- */
+
+static const char *const actions[] = {"clamp", "gravity", "force", "torque", "velocity",
+                                      "angular_velocity", "activate", "passive"};
+enum { NACTIONS = sizeof actions / sizeof actions[0] };
+
+static void add_action(swSema *S, const swSceneAction *a) {
+  swScene *sc = S->scene;
+  if (sc->nact == sc->capact) {
+    sc->capact = sc->capact ? 2 * sc->capact : 8;
+    sc->act = realloc(sc->act, (size_t)sc->capact * sizeof *sc->act);
+    if (!sc->act) abort();
+  }
+  sc->act[sc->nact++] = *a;
+}
+
+/* a 3-vector of dimension `want`, constant or scaled by a time signal */
+static int action_value(swSema *S, swScope *scope, const swAst *e, swDim want, const char *what,
+                        swSceneAction *act) {
+  swValue v = sema_eval(S, scope, e);
+  if (v.kind == VAL_WORD) {
+    sema_report_unknown(S, scope, v.word, v.loc, "name");
+    return 0;
+  }
+  if (v.kind == VAL_SIGNAL) {
+    if (!dim_fits(want, v.dim)) {
+      diag_error(v.loc, "%s expects %s, got %s", what, dim_describe(S->a, want),
+                 dim_describe(S->a, v.dim));
+      return 0;
+    }
+    if (v.sig->scale.kind != VAL_VEC || v.sig->scale.n != 3) {
+      diag_error(v.loc, "%s expects a vector: multiply the signal by a direction, e.g. "
+                 "(0, 0, 1) * ramp(...)", what);
+      return 0;
+    }
+    act->vec = v.sig->scale;
+    act->sig = v.sig;
+    return 1;
+  }
+  act->vec = sema_expect_value(S, v, 3, want, what);
+  act->sig = NULL;
+  return act->vec.kind != VAL_ERROR;
+}
+
+void sema_action(swSema *S, swScope *scope, const swAst *it) {
+  const char *word = it->text;
+  int k;
+  for (k = 0; k < NACTIONS; k++)
+    if (!strcmp(word, actions[k])) break;
+  swLoc wloc = it->loc;
+  if (k == NACTIONS) {
+    const char *near = diag_suggest(word, actions, NACTIONS);
+    if (near) diag_error(wloc, "unknown statement '%s'; did you mean '%s'?", word, near);
+    else
+      diag_error(wloc, "unknown statement '%s' (expected clamp, gravity, force, torque, "
+                 "velocity, angular_velocity, activate or passive)", word);
+    return;
+  }
+  if (k == 6) {
+    sema_activate(S, scope, it);
+    return;
+  }
+  if (k == 7) {
+    sema_passive(S, scope, it);
+    return;
+  }
+  int has_value = it->nkid == 2;
+  if (k == 0 || k == 1) {
+    if (has_value) {
+      diag_error(it->kid[1]->loc, "'%s' takes no '= value'", word);
+      return;
+    }
+  } else if (!has_value) {
+    diag_error(it->kid[0]->loc, "'%s' needs a value: %s POINT = VALUE;", word, word);
+    return;
+  }
+  if (k == 1) {   /* gravity (0, 0, -9.81) m/s^2; */
+    swValue g = sema_expect(S, scope, it->kid[0], 3, dim_make(0, 1, -2, 0), "gravity");
+    if (g.kind == VAL_ERROR) return;
+    if (S->scene->gravity.kind != VAL_ERROR) {
+      diag_error(it->loc, "gravity is given twice (first at line %d)", S->scene->gravity_loc.line);
+      return;
+    }
+    S->scene->gravity = g;
+    S->scene->gravity_loc = it->loc;
+    return;
+  }
+  swValue p = sema_eval(S, scope, it->kid[0]);
+  if (p.kind == VAL_WORD) {
+    sema_report_unknown(S, scope, p.word, p.loc, "name");
+    return;
+  }
+  if (p.kind == VAL_ERROR) return;
+  if (p.kind != VAL_POINT) {
+    diag_error(p.loc, "'%s' applies to a point on a rod (rod.start, rod.end, rod.at(f))", word);
+    return;
+  }
+  swSceneAction act;
+  memset(&act, 0, sizeof act);
+  act.loc = it->loc;
+  act.rod = p.rod;
+  int n = S->scene->rod[p.rod].nelem;
+  if (k == 0 || k == 4 || k == 5) {   /* boundary conditions act on a rod's end */
+    if (p.node != 0 && p.node != n) {
+      diag_error(p.loc, "'%s' applies to the start or end of a rod, not to a point inside it",
+                 word);
+      return;
+    }
+    act.is_bc = 1;
+    act.index = p.node == 0 ? 0 : 1;
+    act.kind = k == 0 ? SW_BC_CLAMP : k == 4 ? SW_BC_VELOCITY : SW_BC_OMEGA;
+    if (k == 0) {
+      act.vec = sema_vec3(S, 0, 0, 0, DIM_NONE, it->loc);
+      add_action(S, &act);
+      return;
+    }
+    swDim want = k == 4 ? dim_make(0, 1, -1, 0) : dim_make(0, 0, -1, 1);
+    if (action_value(S, scope, it->kid[1], want, k == 4 ? "velocity" : "angular_velocity", &act))
+      add_action(S, &act);
+    return;
+  }
+  act.is_bc = 0;
+  act.kind = k == 2 ? SW_LOAD_FORCE : SW_LOAD_TORQUE;
+  act.index = k == 2 ? p.node : (p.node < n ? p.node : n - 1);
+  swDim want = k == 2 ? dim_make(1, 1, -2, 0) : dim_make(1, 2, -2, 0);
+  if (action_value(S, scope, it->kid[1], want, word, &act)) add_action(S, &act);
+}
+
+/* ---- simulate and output ---- */
+
+static const char *const simulate_keys[] = {"dt", "duration", "integrator"};
+
+void sema_simulate(swSema *S, swScope *scope, const swAst *it) {
+  if (S->has_simulate) {
+    diag_error(it->loc, "a second 'simulate' block (the first is at line %d)",
+               S->simulate_loc.line);
+    return;
+  }
+  S->has_simulate = 1;
+  S->simulate_loc = it->loc;
+  swFields f;
+  sema_fields(S, it, 0, "simulate", simulate_keys, 3, &f);
+  swScene *sc = S->scene;
+  if (sema_field(&f, "dt")) {
+    swValue dt = sema_field_value(S, scope, &f, "dt", 1, DIM_TIME);
+    if (dt.kind == VAL_NUM && sema_require_const(S, &dt, "'dt'") && sema_positive(S, &dt, "'dt'", "s")) {
+      sc->dt = dt.v[0];
+      sc->has_dt = 1;
+      sc->dt_loc = sema_field(&f, "dt")->loc;
+    }
+  }
+  if (sema_field(&f, "duration")) {
+    swValue T = sema_field_value(S, scope, &f, "duration", 1, DIM_TIME);
+    if (T.kind == VAL_NUM && sema_require_const(S, &T, "'duration'")) {
+      if (T.v[0] < 0) diag_error(T.loc, "'duration' must not be negative");
+      else {
+        sc->duration = T.v[0];
+        sc->has_duration = 1;
+      }
+    }
+  }
+  const swAst *integ = sema_field(&f, "integrator");
+  if (integ) {
+    static const char *const names[] = {"verlet", "pefrl"};
+    const char *w = sema_word(S, scope, integ, "integrator", names, 2);
+    if (w) sc->integrator = !strcmp(w, "pefrl") ? SW_PEFRL : SW_VERLET;
+  }
+}
+
+void sema_output(swSema *S, swScope *scope, const swAst *it) {
+  if (S->has_output) {
+    diag_error(it->loc, "a second 'output' (the first is at line %d)", S->output_loc.line);
+    return;
+  }
+  S->has_output = 1;
+  S->output_loc = it->loc;
+  swScene *sc = S->scene;
+  if (!it->text[0]) diag_error(it->loc, "the output file name is empty");
+  else sc->out = it->text;
+  const swAst *every = ast_kid(it, 0);
+  if (every) {
+    swValue e = sema_expect(S, scope, every, 1, DIM_TIME, "'every'");
+    if (e.kind == VAL_NUM && sema_require_const(S, &e, "'every'")) {
+      if (!(e.v[0] > 0)) diag_error(e.loc, "'every' must be positive");
+      else sc->every = e.v[0];
+    }
+  }
+  static const char *const what[] = {"positions", "velocity", "directors", "energy"};
+  for (int i = 1; i < it->nkid; i++) {
+    const swAst *s = it->kid[i];
+    if (s->kind == AST_FIELD) {
+      diag_error(s->loc, "an output selection reads 'velocity all;', not '%s = ...'", s->name);
+      continue;
+    }
+    if (s->kind != AST_SELECT) continue;
+    int k;
+    for (k = 0; k < 4; k++)
+      if (!strcmp(s->name, what[k])) break;
+    if (k == 4) {
+      const char *near = diag_suggest(s->name, what, 4);
+      if (near) diag_error(s->loc, "unknown output '%s'; did you mean '%s'?", s->name, near);
+      else diag_error(s->loc, "unknown output '%s' (expected positions, velocity, directors "
+                      "or energy)", s->name);
+      continue;
+    }
+    /* selections are per scene for now: "all" (or nothing) */
+    int all = s->nkid == 0;
+    for (int t = 0; t < s->nkid; t++) {
+      const swAst *tg = s->kid[t];
+      if (tg->kind == AST_NAME && !strcmp(tg->name, "all")) all = 1;
+      else
+        diag_error(tg->loc, "output of single rods is not supported yet; write '%s all;'",
+                   s->name);
+    }
+    if (!all) continue;
+    if (k == 1) sc->velocity = 1;
+    if (k == 2) sc->directors = 1;
+  }
+}
