@@ -96,8 +96,8 @@ LANG_TESTS = $(wildcard tests/lang/test_*.sh)
 # End-to-end tests compile models with the sanitizer build of sinewc, run the
 # simulators and check their HDF5 output against closed forms.
 E2E_BIN  = build/tests/test_e2e
-build/tests/test_e2e: tests/e2e/test_e2e.c tests/runtime/h5read.h | build/tests
-	$(CC) $(ALL_CFLAGS) -Itests/runtime $< -o $@ $(LIBS) -lcmocka
+build/tests/test_e2e: tests/e2e/test_e2e.c tests/e2e/e2e.h tests/runtime/h5read.h | build/tests
+	$(CC) $(ALL_CFLAGS) -Itests/runtime -Itests/e2e $< -o $@ $(LIBS) -lcmocka
 check: $(TEST_BIN) $(TEST_SBIN) $(E2E_BIN) build/libsinewrt.a bin/sinewc build/asan/sinewc
 	@mkdir -p build/validation   # measured tables the validation tests leave for `make plots`
 	@SINEWC=build/asan/sinewc CMOCKA_MESSAGE_OUTPUT=TAP prove -j2 --exec '' \
