@@ -108,9 +108,15 @@ BENCH_BIN = build/bench/bench_rod
 BENCH_FLAGS = -DSW_BENCH_CFLAGS='"$(CC) $(STD) $(CFLAGS)"'
 build/bench/bench_rod: bench/bench_rod.c build/libsinewrt.a | build/bench
 	$(CC) $(ALL_CFLAGS) $(BENCH_FLAGS) $< -o $@ build/libsinewrt.a $(LIBS)
+# bench_rigid (one bone elastic vs rigid) replaces its own section at the end
+# of the report bench_rod has just written.
+BENCH_RIGID = build/bench/bench_rigid
+build/bench/bench_rigid: bench/bench_rigid.c build/libsinewrt.a | build/bench
+	$(CC) $(ALL_CFLAGS) $< -o $@ build/libsinewrt.a $(LIBS)
 bench: deps
-	@$(MAKE) --no-print-directory $(BENCH_BIN)
+	@$(MAKE) --no-print-directory $(BENCH_BIN) $(BENCH_RIGID)
 	@./$(BENCH_BIN) docs/benchmarks.md
+	@./$(BENCH_RIGID) docs/benchmarks.md
 
 # `make demo`: compile a model with sinewc, run the simulator, show the file.
 # (examples/elbow_flexion.sinew takes over once muscles exist, issue 4.)
