@@ -58,6 +58,7 @@ static int bc_target(const swModel *m, const swData *d, const swBCDesc *b, doubl
 
 void sw_apply_bc_velocity(const swModel *m, swData *d, double t) {
   for (int k = 0; k < m->nbc; k++) {
+    if (sw_rod_is_rigid(m, m->bc[k].rod)) continue; /* a clamp holds the body (rigid.c) */
     int node, elem;
     double vn[3], we[3];
     int what = bc_target(m, d, &m->bc[k], t, &node, &elem, vn, we);
@@ -71,6 +72,7 @@ void sw_apply_bc_velocity(const swModel *m, swData *d, double t) {
  * midpoint of the drift the new velocities will be used for). */
 void sw_bc_kick(const swModel *m, swData *d, double h, double t) {
   for (int k = 0; k < m->nbc; k++) {
+    if (sw_rod_is_rigid(m, m->bc[k].rod)) continue; /* a clamp holds the body (rigid.c) */
     int node, elem;
     double vn[3], we[3];
     int what = bc_target(m, d, &m->bc[k], t, &node, &elem, vn, we);

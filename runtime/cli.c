@@ -477,12 +477,17 @@ static double model_bytes(const swModel *m) {
    * ints and 10 doubles */
   b += (double)m->nmuscle * (sizeof(char *) + sizeof(int) + sizeof(swSignal));
   b += (double)m->nfil * (2 * sizeof(int) + 10 * sizeof(double));
+  /* rigid rods: per rod its body, per body 4 indices and 16 numbers, per
+   * node of a body p (3), per element B (9) */
+  b += (double)m->nrod * sizeof(int) + (double)m->nrigid * (4 * sizeof(int) + 16 * sizeof(double));
+  for (int k = 0; k < m->nrigid; k++)
+    b += sizeof(double) * (3.0 * (m->rod_nelem[m->rigid_rod[k]] + 1) + 9.0 * m->rod_nelem[m->rigid_rod[k]]);
   return b;
 }
 
 static double data_bytes(const swModel *m) {
   return sizeof(swData) + sizeof(double) * (12.0 * m->nnode + 26.0 * m->nelem + 7.0 * m->nvor +
-                                            4.0 * m->njoint + 4.0 * m->nfil);
+                                            4.0 * m->njoint + 4.0 * m->nfil + 21.0 * m->nrigid);
 }
 
 /* Frames a run of this length writes (run.c: step 0, every k steps, the last). */
@@ -518,10 +523,11 @@ static void print_info(const swCli *c, const swModel *m, double stable, const ch
     printf("  %s: %d elements, length %.6g m, radius %.4g mm", m->rod_name[r], n, length,
            r0 * 1e3);
     if (r1 != r0) printf(" to %.4g mm", r1 * 1e3);
-    printf(", mass %.6g kg, stable dt %s%s\n", mass,
-           format_time(a, sizeof a, m->rod_wave_dt[r]),
+    printf(", mass %.6g kg, stable dt %s%s%s\n", mass,
+           isinf(m->rod_wave_dt[r]) ? "none" : format_time(a, sizeof a, m->rod_wave_dt[r]),
            m->rod_damping[r] == SW_DAMP_ANALYTIC ? ", analytic damping"
-           : m->rod_damping[r] == SW_DAMP_LINEAR ? ", linear damping" : "");
+           : m->rod_damping[r] == SW_DAMP_LINEAR ? ", linear damping" : "",
+           m->nrigid && m->rod_rigid[r] >= 0 ? ", rigid" : "");
   }
   printf("joints: %d\n", m->njoint);
   for (int j = 0; j < m->njoint; j++) {

@@ -23,6 +23,9 @@
  * Every kick books the work of the external loads over the kick with the
  * midpoint rule, h F . (v_old + v_new)/2, so that kinetic + elastic - work is
  * conserved up to the integrator's error (the energy diagnostic).
+ *
+ * Rigid rods are skipped by the node and element loops here: each drift and
+ * kick ends with rigid.c's, which moves them as rigid bodies.
  */
 #include <math.h>
 #include <string.h>
@@ -56,6 +59,7 @@ static void compute_loads(const swModel *m, swData *d) {
 static void drift(const swModel *m, swData *d, double h) {
   const int simpson = m->integrator == SW_PEFRL;
   for (int r = 0; r < m->nrod; r++) {
+    if (sw_rod_is_rigid(m, r)) continue;
     const int n = m->rod_nelem[r], na = m->node_adr[r], ea = m->elem_adr[r];
     double *restrict x = d->x + 3 * na;
     const double *restrict v = d->v + 3 * na;
@@ -84,6 +88,7 @@ static void drift(const swModel *m, swData *d, double h) {
       dil[i] = e_new;
     }
   }
+  if (m->nrigid) sw_rigid_drift(m, d, h);
   d->time += h;
 }
 
@@ -101,6 +106,7 @@ static void kick(const swModel *m, swData *d, double h, double span) {
   const double *restrict e = d->dilatation;
   double work = 0, exact_work = 0;
   for (int r = 0; r < m->nrod; r++) {
+    if (sw_rod_is_rigid(m, r)) continue;
     const int n0 = m->node_adr[r], n1 = n0 + m->rod_nelem[r] + 1;
     const int e0 = m->elem_adr[r], e1 = e0 + m->rod_nelem[r];
     if (m->rod_damping[r] == SW_DAMP_ANALYTIC && m->integrator == SW_VERLET) {
@@ -142,6 +148,7 @@ static void kick(const swModel *m, swData *d, double h, double span) {
       }
   }
   d->work += 0.5 * h * work + 0.5 * exact_work;
+  if (m->nrigid) sw_rigid_kick(m, d, h);
   if (m->nbc) sw_bc_kick(m, d, h, d->time + 0.5 * span);
 }
 
@@ -149,7 +156,7 @@ static void kick(const swModel *m, swData *d, double h, double span) {
 static void analytic_decay(const swModel *m, swData *d) {
   double lost = 0;
   for (int r = 0; r < m->nrod; r++) {
-    if (m->rod_damping[r] != SW_DAMP_ANALYTIC) continue;
+    if (m->rod_damping[r] != SW_DAMP_ANALYTIC || sw_rod_is_rigid(m, r)) continue;
     int na = m->node_adr[r], ea = m->elem_adr[r], n = m->rod_nelem[r];
     for (int i = na; i <= na + n; i++) {
       double v2 = sw_v3_dot(d->v + 3 * i, d->v + 3 * i), f = m->node_decay[i];

@@ -40,4 +40,22 @@ void sw_muscle_advance(const swModel *m, swData *d, double t, double h);
 void sw_muscle_loads(const swModel *m, swData *d);
 double sw_muscle_tension(const swModel *m, int f, double eta, double edot, double a);
 double sw_stable_dt_filament(const swModel *m, int f);
+/* Rigid rods (rigid.c).  sw_rigid_setup fills the rigid_* arrays of the
+ * model (mass, principal inertia, body-frame nodes and element frames; called
+ * by sw_compile once the rods, loads and boundary conditions are in);
+ * sw_rigid_reset puts the bodies at rest at t = 0; sw_rigid_internal stands
+ * for rod.c's kernels on rigid rod r (no internal loads, rest strains);
+ * sw_rigid_drift and sw_rigid_kick are the bodies' parts of integrate.c's
+ * drift and kick; sw_rigid_stable_dt is body b's own bound (linear damping
+ * only) and sw_rigid_joint_dt the bound of all joints on it (stability.c). */
+static inline int sw_rod_is_rigid(const swModel *m, int r) {
+  return m->nrigid > 0 && m->rod_rigid[r] >= 0;
+}
+void sw_rigid_setup(swModel *m);
+void sw_rigid_reset(const swModel *m, swData *d);
+void sw_rigid_internal(const swModel *m, swData *d, int r);
+void sw_rigid_drift(const swModel *m, swData *d, double h);
+void sw_rigid_kick(const swModel *m, swData *d, double h);
+double sw_rigid_stable_dt(const swModel *m, int b);
+double sw_rigid_joint_dt(const swModel *m, int b);
 #endif

@@ -187,6 +187,11 @@ static int check_rod(const swRodDesc *r, char *err, size_t errlen) {
     return fail(err, errlen, "rod '%s': dissipation constant must be >= 0", nm);
   if (r->damping != SW_DAMP_NONE && r->damping != SW_DAMP_LINEAR && r->damping != SW_DAMP_ANALYTIC)
     return fail(err, errlen, "rod '%s': unknown damping kind %d", nm, (int)r->damping);
+  if (r->rigid != 0 && r->rigid != 1)
+    return fail(err, errlen, "rod '%s': rigid must be 0 or 1, got %d", nm, r->rigid);
+  if (r->rigid && r->damping == SW_DAMP_ANALYTIC && r->gamma > 0)
+    return fail(err, errlen, "rod '%s': analytic damping is not supported on a rigid rod "
+                "(use linear damping)", nm);
   double Q[9];
   if (!sw_frame_from(Q, r->direction, r->normal))
     return fail(err, errlen, "rod '%s': direction is zero or parallel to normal", nm);
@@ -194,6 +199,41 @@ static int check_rod(const swRodDesc *r, char *err, size_t errlen) {
 }
 
 static double *dalloc(size_t n) { return calloc(n ? n : 1, sizeof(double)); }
+
+/* Rigid rods (rigid.c fills these): which rod is which body, and room for
+ * each body's nodes and elements in the body frame. */
+static int rigid_alloc(swModel *m, const swSpec *s) {
+  size_t nodes = 0, elems = 0;
+  m->rod_rigid = calloc((size_t)m->nrod, sizeof(int));
+  if (!m->rod_rigid) return 0;
+  for (int r = 0; r < m->nrod; r++) m->nrigid += s->rod[r].rigid != 0;
+  size_t B = (size_t)m->nrigid;
+  m->rigid_rod = calloc(B ? B : 1, sizeof(int));
+  m->rigid_fixed = calloc(B ? B : 1, sizeof(int));
+  m->rigid_node_adr = calloc(B ? B : 1, sizeof(int));
+  m->rigid_elem_adr = calloc(B ? B : 1, sizeof(int));
+  if (!m->rigid_rod || !m->rigid_fixed || !m->rigid_node_adr || !m->rigid_elem_adr) return 0;
+  for (int r = 0, b = 0; r < m->nrod; r++) {
+    m->rod_rigid[r] = s->rod[r].rigid ? b : -1;
+    if (!s->rod[r].rigid) continue;
+    m->rigid_rod[b] = r;
+    m->rigid_node_adr[b] = (int)nodes;
+    m->rigid_elem_adr[b] = (int)elems;
+    nodes += (size_t)m->rod_nelem[r] + 1;
+    elems += (size_t)m->rod_nelem[r];
+    b++;
+  }
+  m->rigid_mass = dalloc(B); m->rigid_inertia = dalloc(3 * B); m->rigid_X0 = dalloc(3 * B);
+  m->rigid_R0 = dalloc(9 * B); m->rigid_p = dalloc(3 * nodes); m->rigid_B = dalloc(9 * elems);
+  return m->rigid_mass && m->rigid_inertia && m->rigid_X0 && m->rigid_R0 && m->rigid_p &&
+         m->rigid_B;
+}
+
+static void rigid_free(swModel *m) {
+  free(m->rod_rigid); free(m->rigid_rod); free(m->rigid_fixed); free(m->rigid_node_adr);
+  free(m->rigid_elem_adr); free(m->rigid_mass); free(m->rigid_inertia); free(m->rigid_X0);
+  free(m->rigid_R0); free(m->rigid_p); free(m->rigid_B);
+}
 
 void sw_model_free(swModel *m) {
   if (!m) return;
@@ -210,6 +250,7 @@ void sw_model_free(swModel *m) {
   free(m->joint_elem_a); free(m->joint_elem_b); free(m->joint_axis_a); free(m->joint_axis_b);
   free(m->joint_rest_rot); free(m->joint_angle0); free(m->joint_wave_dt);
   sw_muscle_free(m);
+  rigid_free(m);
   free(m);
 }
 
@@ -279,6 +320,10 @@ static int check_loads_bcs(const swSpec *s, char *err, size_t errlen) {
     if (!isfinite(b->vec[0]) || !isfinite(b->vec[1]) || !isfinite(b->vec[2]))
       return fail(err, errlen, "boundary condition %d on rod '%s': vector is not finite", k, nm);
     if (!check_signal(&b->signal, err, errlen, "boundary condition", k, nm)) return 0;
+    if (s->rod[b->rod].rigid && b->kind != SW_BC_CLAMP)
+      return fail(err, errlen, "boundary condition %d on rod '%s': a prescribed %s is not "
+                  "supported on a rigid rod (clamp it, or hold it with a joint)", k, nm,
+                  b->kind == SW_BC_VELOCITY ? "velocity" : "angular velocity");
   }
   return 1;
 }
@@ -507,6 +552,8 @@ swModel *sw_compile(const swSpec *s, char *err, size_t errlen) {
   for (int k = 0; k < m->nload; k++)
     if (m->load[k].index == -1)
       m->load[k].index = m->rod_nelem[m->load[k].rod] - (m->load[k].kind == SW_LOAD_TORQUE);
+  if (!rigid_alloc(m, s)) goto oom;
+  sw_rigid_setup(m);
   for (int r = 0; r < nr; r++) m->rod_wave_dt[r] = sw_stable_dt_rod(m, r);
 
   /* joints: copies of the descriptions, resolved by joint.c */
@@ -551,6 +598,7 @@ void sw_data_free(swData *d) {
   free(d->force); free(d->torque); free(d->ext_force); free(d->ext_torque);
   free(d->joint_force); free(d->joint_angle);
   free(d->fil_activation); free(d->fil_stretch); free(d->fil_rate); free(d->fil_tension);
+  free(d->rigid_X); free(d->rigid_V); free(d->rigid_R); free(d->rigid_L); free(d->rigid_omega);
   free(d);
 }
 
@@ -576,6 +624,13 @@ swData *sw_data_new(const swModel *m) {
     sw_data_free(d);
     return NULL;
   }
+  size_t B = (size_t)m->nrigid;
+  d->rigid_X = dalloc(3 * B); d->rigid_V = dalloc(3 * B); d->rigid_R = dalloc(9 * B);
+  d->rigid_L = dalloc(3 * B); d->rigid_omega = dalloc(3 * B);
+  if (!d->rigid_X || !d->rigid_V || !d->rigid_R || !d->rigid_L || !d->rigid_omega) {
+    sw_data_free(d);
+    return NULL;
+  }
   sw_reset(m, d);
   return d;
 }
@@ -589,6 +644,7 @@ void sw_reset(const swModel *m, swData *d) {
   memcpy(d->Q, m->Q0, sizeof(double) * 9 * (size_t)m->nelem);
   memset(d->v, 0, sizeof(double) * 3 * (size_t)m->nnode);
   memset(d->omega, 0, sizeof(double) * 3 * (size_t)m->nelem);
+  if (m->nrigid) sw_rigid_reset(m, d);
   sw_apply_bc_velocity(m, d, 0.0);
   sw_internal_loads(m, d); /* strains of the initial state */
   if (m->nmuscle) {

@@ -27,6 +27,7 @@
 #include <string.h>
 #include "sinew.h"
 #include "vec.h"
+#include "internal.h"
 
 /* Element pass: strains, internal force, shear couple and the two inertial
  * couples.  Writes force on nodes 0..n (node n last) and torque on elements. */
@@ -116,6 +117,10 @@ static void rod_voronoi(const swModel *m, swData *d, int r) {
 
 void sw_internal_loads(const swModel *m, swData *d) {
   for (int r = 0; r < m->nrod; r++) {
+    if (sw_rod_is_rigid(m, r)) { /* no deformation, no internal loads (rigid.c) */
+      sw_rigid_internal(m, d, r);
+      continue;
+    }
     rod_elements(m, d, r);
     rod_voronoi(m, d, r);
   }

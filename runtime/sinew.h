@@ -261,6 +261,24 @@ typedef struct {
   double *joint_rest_rot;    /* (njoint*9) Q_b Q_a^T at t = 0 (two rods)      */
   double *joint_angle0;      /* (njoint)   hinge angle at t = 0, rad         */
   double *joint_wave_dt;     /* (njoint)   stable dt estimate of each joint  */
+  /* rigid rods (rigid.c).  A rod with swRodDesc.rigid keeps its nodes and
+   * elements in the arrays above and moves as one rigid body b: node
+   * x_i = X + R p_i, element frame Q_e = B_e R^T, with R the rotation from the
+   * body frame (the principal axes of the inertia tensor) to the lab frame.
+   * Body b owns rows [rigid_node_adr[b], +nelem+1) of rigid_p and
+   * [rigid_elem_adr[b], +nelem) of rigid_B. */
+  int nrigid;
+  int *rod_rigid;            /* (nrod)      rigid body of each rod, -1 elastic */
+  int *rigid_rod;            /* (nrigid)    rod of each rigid body            */
+  int *rigid_fixed;          /* (nrigid)    1: clamped, never moves           */
+  int *rigid_node_adr;       /* (nrigid)    first row in rigid_p              */
+  int *rigid_elem_adr;       /* (nrigid)    first row in rigid_B              */
+  double *rigid_mass;        /* (nrigid)    M = sum of the node masses, kg    */
+  double *rigid_inertia;     /* (nrigid*3)  principal moments about X, kg m^2 */
+  double *rigid_X0;          /* (nrigid*3)  initial centre of mass, m         */
+  double *rigid_R0;          /* (nrigid*9)  initial R (columns: principal axes) */
+  double *rigid_p;           /* (rigid nodes*3)    node in the body frame, m  */
+  double *rigid_B;           /* (rigid elements*9) Q_e R, constant            */
   /* muscles (muscle.c) */
   int nmuscle, nfil;
   char **muscle_name;        /* (nmuscle)                                    */
@@ -305,6 +323,13 @@ typedef struct {
   /* joints, updated with each force evaluation */
   double *joint_force;       /* (njoint*3) force of the joint on rod a, lab, N */
   double *joint_angle;       /* (njoint)  hinge angle, rad (0 for others)     */
+  /* rigid bodies (rigid.c), the state the nodes and elements of a rigid rod
+   * are set from after every drift and kick */
+  double *rigid_X;           /* (nrigid*3) centre of mass, lab, m              */
+  double *rigid_V;           /* (nrigid*3) its velocity, m/s                   */
+  double *rigid_R;           /* (nrigid*9) rotation body -> lab, row-major     */
+  double *rigid_L;           /* (nrigid*3) angular momentum about X, lab, kg m^2/s */
+  double *rigid_omega;       /* (nrigid*3) angular velocity, lab, rad/s        */
   /* muscles, updated with each force evaluation (activation once a step) */
   double *fil_activation;    /* (nfil)    a_k in [0, 1]                        */
   double *fil_stretch;       /* (nfil)    eta = l / l0                          */
@@ -327,6 +352,11 @@ void sw_apply_bc_velocity(const swModel *m, swData *d, double t); /* boundary.c 
 int sw_step(const swModel *m, swData *d);              /* integrate.c   */
 int sw_steps(const swModel *m, swData *d, long k);     /* k steps, fused */
 int sw_check_finite(const swModel *m, swData *d);      /* stability.c   */
+/* Sets the motion of rigid rod `rod` (rigid.c): centre-of-mass velocity V and
+ * angular velocity omega, lab frame; node and element velocities follow.
+ * Returns SW_OK, or SW_EUSAGE if the rod is not rigid or is clamped. */
+int sw_rigid_set_motion(const swModel *m, swData *d, int rod, const double V[3],
+                        const double omega[3]);
 
 /* Energies (J): kinetic (translational + rotational), elastic
  * (bend/twist + shear/stretch), and the work done on the system. */

@@ -30,6 +30,11 @@
  * its bound (sw_stable_dt_joint) is the same analysis with the joint's spring
  * counted in, and sw_stable_dt is the smallest over rods and joints.
  *
+ * A rigid rod (rigid.c) has no elastic waves: its own bound is its linear
+ * damping's alone, and a joint side on it is bounded by the body's effective
+ * mass and inertia at the joint, all the body's joints summed
+ * (sw_rigid_joint_dt).
+ *
  * The estimate is the oscillator limit times 0.95: the zig-zag analysis
  * ignores the half-mass end nodes, and a shear-hardened rod was measured to
  * go unstable at 0.9999 of the unreduced value.
@@ -96,6 +101,8 @@ double sw_integrator_stability_limit(swIntegrator integ, double zeta) {
 }
 
 double sw_stable_dt_rod(const swModel *m, int r) {
+  /* a rigid rod has no elastic waves; only its damping limits the step */
+  if (sw_rod_is_rigid(m, r)) return sw_rigid_stable_dt(m, m->rod_rigid[r]);
   int n = m->rod_nelem[r], ea = m->elem_adr[r], va = m->vor_adr[r], na = m->node_adr[r];
   double dt = INFINITY;
   for (int i = 0; i < n; i++) {
@@ -183,16 +190,22 @@ static double joint_elem_dt(const swModel *m, const swJointDesc *jd, int e, int 
   return 0.95 * sw_integrator_stability_limit(m->integrator, c / (2 * w)) / w;
 }
 
+/* A side on a rigid rod is bounded by rigid.c instead: the body's effective
+ * mass and inertia at the joint, with every joint on the body counted. */
+static double joint_side_dt(const swModel *m, const swJointDesc *jd, int rod, int node, int elem,
+                            int s) {
+  if (sw_rod_is_rigid(m, rod)) return sw_rigid_joint_dt(m, m->rod_rigid[rod]);
+  double dt = joint_node_dt(m, jd, node, elem, s);
+  if (jd->kind != SW_JOINT_SPHERICAL) dt = fmin(dt, joint_elem_dt(m, jd, elem, s));
+  return dt;
+}
+
 double sw_stable_dt_joint(const swModel *m, int j) {
   const swJointDesc *jd = &m->joint[j];
   int s = m->joint_node_b[j] >= 0 ? 2 : 1;
-  double dt = joint_node_dt(m, jd, m->joint_node_a[j], m->joint_elem_a[j], s);
+  double dt = joint_side_dt(m, jd, jd->rod_a, m->joint_node_a[j], m->joint_elem_a[j], s);
   if (m->joint_node_b[j] >= 0)
-    dt = fmin(dt, joint_node_dt(m, jd, m->joint_node_b[j], m->joint_elem_b[j], s));
-  if (jd->kind != SW_JOINT_SPHERICAL) {
-    dt = fmin(dt, joint_elem_dt(m, jd, m->joint_elem_a[j], s));
-    if (m->joint_elem_b[j] >= 0) dt = fmin(dt, joint_elem_dt(m, jd, m->joint_elem_b[j], s));
-  }
+    dt = fmin(dt, joint_side_dt(m, jd, jd->rod_b, m->joint_node_b[j], m->joint_elem_b[j], s));
   return dt;
 }
 
@@ -219,7 +232,7 @@ int sw_check_finite(const swModel *m, swData *d) {
       if (!isfinite(x[0] + x[1] + x[2] + v[0] + v[1] + v[2])) {
         bad = i - na;
         what = "position or velocity is not finite";
-      } else if (i < na + n) {
+      } else if (i < na + n && !sw_rod_is_rigid(m, r)) { /* rigid: the turn check below */
         double dv[3];
         sw_v3_sub(dv, v + 3, v);
         double lim = 0.5 * m->rest_len[ea + i - na] / dt, dv2 = sw_v3_dot(dv, dv);

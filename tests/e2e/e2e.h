@@ -26,7 +26,7 @@ extern char **environ;
 static char tmpdir[] = "/tmp/sinew-e2e-XXXXXX";
 
 /* Run argv; returns the exit code (or 128 + signal). */
-static int run(const char *const *argv) {
+static inline int run(const char *const *argv) {
   pid_t pid;
   if (posix_spawnp(&pid, argv[0], NULL, NULL, (char *const *)argv, environ) != 0) return -1;
   int status;
@@ -35,13 +35,13 @@ static int run(const char *const *argv) {
   return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
 }
 
-static const char *sinewc(void) {
+static inline const char *sinewc(void) {
   const char *s = getenv("SINEWC");
   return s && *s ? s : "bin/sinewc";
 }
 
 /* Compile model into tmpdir/name with `compiler`; returns the simulator's path. */
-static const char *compile_with(const char *compiler, const char *model, const char *name) {
+static inline const char *compile_with(const char *compiler, const char *model, const char *name) {
   static char sim[512];
   snprintf(sim, sizeof sim, "%s/%s", tmpdir, name);
   const char *argv[] = {compiler, model, "-o", sim, NULL};
@@ -51,12 +51,12 @@ static const char *compile_with(const char *compiler, const char *model, const c
   return sim;
 }
 
-static const char *compile(const char *model, const char *name) {
+static inline const char *compile(const char *model, const char *name) {
   return compile_with(sinewc(), model, name);
 }
 
 /* Run a simulator with extra arguments (NULL-terminated) writing out.h5. */
-static void simulate(const char *sim, const char *out, ...) {
+static inline void simulate(const char *sim, const char *out, ...) {
   const char *argv[32];
   int n = 0;
   argv[n++] = sim;
@@ -73,7 +73,7 @@ static void simulate(const char *sim, const char *out, ...) {
 }
 
 /* Read a whole double dataset; *count = number of doubles. */
-static double *read_dataset(const char *file, const char *path, size_t *count) {
+static inline double *read_dataset(const char *file, const char *path, size_t *count) {
   hid_t f = H5Fopen(file, H5F_ACC_RDONLY, H5P_DEFAULT);
   assert_true(f >= 0);
   hid_t d = H5Dopen2(f, path, H5P_DEFAULT);
@@ -91,7 +91,7 @@ static double *read_dataset(const char *file, const char *path, size_t *count) {
 }
 
 /* A string attribute of the root group (caller frees). */
-static char *read_root_attr(const char *file, const char *name) {
+static inline char *read_root_attr(const char *file, const char *name) {
   hid_t f = H5Fopen(file, H5F_ACC_RDONLY, H5P_DEFAULT);
   assert_true(f >= 0);
   char *s = read_string_attr(f, "/", name);
@@ -107,12 +107,12 @@ static char *read_root_attr(const char *file, const char *name) {
     assert_true(e_ <= (tol));                                                                \
   } while (0)
 
-static int setup(void **state) {
+static inline int setup(void **state) {
   (void)state;
   return mkdtemp(tmpdir) ? 0 : -1;
 }
 
-static int teardown(void **state) {
+static inline int teardown(void **state) {
   (void)state;
   const char *argv[] = {"rm", "-rf", tmpdir, NULL};
   return run(argv) == 0 ? 0 : -1;

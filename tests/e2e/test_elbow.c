@@ -9,8 +9,9 @@
  *     roughness of the angle (validation 3, first 0.3 s of the flexion);
  *   dt: the flexion at dt = 50 ns against the stable-dt estimate over the
  *     first 20 ms (validation 6; the whole 0.5 s is `make bench`);
- *   isometric: the force-length scene runs and the muscle shortens under a
- *     load below its peak force (the equilibrium itself is test_muscle's).
+ *   isometric: the force-length scene runs; the muscle shortens under a
+ *     load below its peak force, pulling with that load (the equilibrium,
+ *     seconds later, is checked by test_muscle on a lighter scene).
  * These scenes run for tens of seconds each, so they use the optimised
  * compiler and runtime (bin/sinewc); the sanitizer chain is exercised by
  * test_e2e's small models.  Each test prints the figures it measured. */
@@ -161,14 +162,16 @@ static void test_isometric(void **state) {
   const char *sim = arm_sim("examples/elbow_isometric.sinew", "isometric");
   char out[512];
   snprintf(out, sizeof out, "%s/isometric.h5", tmpdir);
-  simulate(sim, out, "--duration", "20 ms", NULL);
+  simulate(sim, out, "--duration", "0.1 s", NULL);
   size_t n;
   double *eta = read_dataset(out, "/muscles/head/stretch", &n);
   double *F = read_dataset(out, "/muscles/head/force", &n);
-  fprintf(stderr, "# %s: after 20 ms, stretch %.4f, force %.1f N (F_set 1000 N)\n", __func__,
+  /* F_set = 500 N below F_qs(1) = 749.7 N: the head shortens at the speed
+   * Hill's law gives that force, pulling with about F_set meanwhile */
+  fprintf(stderr, "# %s: after 0.1 s, stretch %.4f, force %.1f N (F_set 500 N)\n", __func__,
           eta[n - 1], F[n - 1]);
-  assert_true(eta[n - 1] < 1 && eta[n - 1] > 0.6);
-  for (size_t k = 1; k < n; k++) assert_true(eta[k] <= eta[k - 1] + 1e-6);
+  assert_true(eta[n - 1] < 0.97);
+  EXPECT_REL("muscle force while shortening (N)", F[n - 1], 500, 0.05);
   free(eta);
   free(F);
 }
