@@ -116,20 +116,23 @@ BENCH_RIGID = build/bench/bench_rigid
 build/bench/bench_rigid: bench/bench_rigid.c build/libsinewrt.a | build/bench
 	$(CC) $(ALL_CFLAGS) $< -o $@ build/libsinewrt.a $(LIBS)
 bench: deps
-	@$(MAKE) --no-print-directory $(BENCH_BIN) $(BENCH_RIGID)
+	@$(MAKE) --no-print-directory $(BENCH_BIN) $(BENCH_RIGID) bin/sinewc
 	@./$(BENCH_BIN) docs/benchmarks.md
 	@./$(BENCH_RIGID) docs/benchmarks.md
+	@sh bench/bench_elbow.sh        # the elbow at 50 ns and at the stable dt (~20 min)
 
-# `make demo`: compile a model with sinewc, run the simulator, show the file.
-# (examples/elbow_flexion.sinew takes over once muscles exist, issue 4.)
-DEMO_MODEL = examples/pendulum.sinew
+# `make demo`: compile the elbow flexion with sinewc, run it (about a minute),
+# show what the file holds and plot the elbow angle.
+DEMO_MODEL = examples/elbow_flexion.sinew
 demo: deps
 	@$(MAKE) --no-print-directory bin/sinewc
 	@mkdir -p build/demo
 	./bin/sinewc $(DEMO_MODEL) -o build/demo/sim
-	./build/demo/sim --info
-	./build/demo/sim --out build/demo/demo.h5
-	@h5ls -r build/demo/demo.h5
+	./build/demo/sim --info | grep -v '\.f[0-9][0-9]'
+	./build/demo/sim --out build/demo/elbow_flexion.h5
+	@h5ls -r build/demo/elbow_flexion.h5 | grep -v '\.f[0-9][0-9]'
+	scripts/sinew-plot angle build/demo/elbow_flexion.h5 --joint arm.elbow -o build/demo/elbow_angle.png
+	@echo "demo: wrote build/demo/elbow_flexion.h5 and build/demo/elbow_angle.png"
 
 # `make plots`: the figures of docs/img/ from the outputs that exist
 # (scripts/plots.sh says which inputs it found and which it skipped).

@@ -1,14 +1,19 @@
 #!/bin/sh
 # plots.sh — `make plots`: the figures of docs/img/ from whatever outputs exist.
 #
-#   docs/img/force_length.png    build/validation/force_length.{csv,txt}
-#                                (points eta, F/F_max) on the reference curve
-#   docs/img/force_velocity.png  build/validation/force_velocity.{csv,txt}
+#   docs/img/force_length.png    build/validation/force_length_held.txt
+#                                (points eta, F/F_max: test_muscle, length
+#                                held) on the reference curve
+#   docs/img/force_length_load.png  build/validation/force_length_load.txt
+#                                (test_muscle, F_set prescribed)
+#   docs/img/force_velocity.png  build/validation/force_velocity.txt
 #                                (points u in l0/s, F/F_qs) on Hill's curve
-#   docs/img/elbow_angle.png     build/examples/elbow_flexion.h5, joint `elbow`
+#   docs/img/elbow_angle.png     build/bench/elbow/{dt50ns,stable}.h5 (make
+#                                bench), else build/demo/elbow_flexion.h5
+#                                (make demo), joint `arm.elbow`
 #
-# The runs that write these inputs are not wired yet; a missing input is
-# skipped with a line saying which file was missing, not an error.  A
+# `make test` writes the tables, `make bench` or `make demo` the runs; a
+# missing input is skipped with a line saying which file was missing.  A
 # sinew-plot failure on an input that exists is an error (exit 1).
 cd "$(dirname "$0")/.." || exit 1
 PLOT=scripts/sinew-plot
@@ -36,12 +41,19 @@ draw() {
 }
 
 mkdir -p docs/img
-fl=$(first_of build/validation/force_length.csv build/validation/force_length.txt)
-fv=$(first_of build/validation/force_velocity.csv build/validation/force_velocity.txt)
+fl=build/validation/force_length_held.txt
+fll=build/validation/force_length_load.txt
+fv=build/validation/force_velocity.txt
 draw docs/img/force_length.png "$fl" force-length --points "$fl"
+draw docs/img/force_length_load.png "$fll" force-length --points "$fll"
 draw docs/img/force_velocity.png "$fv" force-velocity --points "$fv"
-h5=build/examples/elbow_flexion.h5
-draw docs/img/elbow_angle.png "$h5" angle "$h5" --joint elbow
+if [ -e build/bench/elbow/stable.h5 ]; then
+  draw docs/img/elbow_angle.png build/bench/elbow/dt50ns.h5 angle build/bench/elbow/dt50ns.h5 \
+    build/bench/elbow/stable.h5 --joint arm.elbow --label "dt = 50 ns" --label "stable dt"
+else
+  h5=build/demo/elbow_flexion.h5
+  draw docs/img/elbow_angle.png "$h5" angle "$h5" --joint arm.elbow
+fi
 
 echo "plots: $made written, $skipped skipped, $failed failed"
 [ "$failed" -eq 0 ]
