@@ -17,14 +17,6 @@
  * test_e2e's small models.  Each test prints the figures it measured. */
 #include "e2e.h"
 
-#define EXPECT_REL(what, got, want, tol)                                                     \
-  do {                                                                                       \
-    double g_ = (got), w_ = (want), e_ = fabs(g_ - w_) / fabs(w_);                           \
-    fprintf(stderr, "# %s: %s = %.9g, reference %.9g, rel. error %.2e (tolerance %.0e)\n",  \
-            __func__, what, g_, w_, e_, (double)(tol));                                      \
-    assert_true(e_ <= (tol));                                                                \
-  } while (0)
-
 static const char *arm_sim(const char *scene, const char *name) {
   setenv("SINEW_PATH", "models", 1);
   return compile_with("bin/sinewc", scene, name);
