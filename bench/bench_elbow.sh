@@ -20,9 +20,9 @@ wall() { # label dt -> runs and prints seconds of wall time
 }
 T50=$(wall dt50ns 50ns)
 TST=$(wall stable "$STABLE")
-REPORT=$(python3 scripts/elbow_compare.py $OUT/dt50ns.h5 $OUT/stable.h5 "$T50" "$TST" "$STABLE" "$DUR")
+REPORT=$(/usr/bin/python3 scripts/elbow_compare.py $OUT/dt50ns.h5 $OUT/stable.h5 "$T50" "$TST" "$STABLE" "$DUR")
 echo "$REPORT"
-python3 - "$REPORT" <<'PY'
+/usr/bin/python3 - "$REPORT" <<'PY'
 import re, sys
 path = "docs/benchmarks.md"
 text = open(path).read()
