@@ -265,6 +265,23 @@ swValue sema_position(swSema *S, swScope *scope, const swAst *e, const char *wha
   return sema_expect_value(S, v, 3, DIM_LENGTH, what);
 }
 
+/* The damping kind of a definition with fields `damping` and
+ * `damping_model` (rods and muscles): none without `damping`, else linear
+ * unless damping_model says analytic.  A damping_model that is no model is
+ * reported, leaves the default kind and clears *ok (when ok is given). */
+swDampingKind sema_damping_kind(swSema *S, swScope *sc, const swFields *f, int *ok) {
+  swDampingKind kind = sema_field(f, "damping") ? SW_DAMP_LINEAR : SW_DAMP_NONE;
+  const swAst *dm = sema_field(f, "damping_model");
+  if (!dm) return kind;
+  static const char *const models[] = {"linear", "analytic"};
+  const char *w = sema_word(S, sc, dm, "damping model", models, 2);
+  if (!w && ok) *ok = 0;
+  else if (w && !strcmp(w, "analytic")) kind = SW_DAMP_ANALYTIC;
+  if (!sema_field(f, "damping"))
+    diag_warning(dm->loc, "'damping_model' has no effect without 'damping'");
+  return kind;
+}
+
 static void eval_rod(swSema *S, swSymbol *sym) {
   swFields f;
   char what[160];
@@ -418,15 +435,7 @@ static void eval_rod(swSema *S, swSymbol *sym) {
     diag_error(r.gamma.loc, "'damping' must not be negative");
     ok = 0;
   }
-  r.damping = sema_field(&f, "damping") ? SW_DAMP_LINEAR : SW_DAMP_NONE;
-  const swAst *dm = sema_field(&f, "damping_model");
-  if (dm) {
-    static const char *const models[] = {"linear", "analytic"};
-    const char *w = sema_word(S, sc, dm, "damping model", models, 2);
-    if (w && !strcmp(w, "analytic")) r.damping = SW_DAMP_ANALYTIC;
-    if (!sema_field(&f, "damping"))
-      diag_warning(dm->loc, "'damping_model' has no effect without 'damping'");
-  }
+  r.damping = sema_damping_kind(S, sc, &f, NULL);
   /* rigid = true: the runtime moves the rod as one rigid body; the language
    * has no booleans, so true and false are words, as damping_model's are */
   const swAst *rg = sema_field(&f, "rigid");

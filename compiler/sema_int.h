@@ -100,6 +100,9 @@ const swAst *sema_field(const swFields *f, const char *key);
  * `want`; VAL_ERROR when absent or wrong */
 swValue sema_field_value(swSema *S, swScope *scope, const swFields *f, const char *key, int n,
                          swDim want);
+/* damping and damping_model of rods and muscles (sema_def.c); clears *ok
+ * (if given) on a bad model word */
+swDampingKind sema_damping_kind(swSema *S, swScope *sc, const swFields *f, int *ok);
 
 /* material = NAME and the overrides E, G, poisson, density (sema_tissue) */
 typedef struct {

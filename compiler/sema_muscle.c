@@ -265,15 +265,7 @@ void sema_eval_muscle(swSema *S, swSymbol *sym) {
   m.gamma = opt_scalar(S, sc, &f, "damping", dim_make(1, -1, -1, 0), &ok);
   not_negative(&m.gamma, "damping", &ok);
   m.has_damping = sema_field(&f, "damping") != NULL;
-  m.damping = m.has_damping ? SW_DAMP_LINEAR : SW_DAMP_NONE;
-  const swAst *dm = sema_field(&f, "damping_model");
-  if (dm) {
-    static const char *const models[] = {"linear", "analytic"};
-    const char *w = sema_word(S, sc, dm, "damping model", models, 2);
-    if (!w) ok = 0;
-    else if (!strcmp(w, "analytic")) m.damping = SW_DAMP_ANALYTIC;
-    if (!m.has_damping) diag_warning(dm->loc, "'damping_model' has no effect without 'damping'");
-  }
+  m.damping = sema_damping_kind(S, sc, &f, &ok);
 
   if (!ok) {
     sym->index = -1;

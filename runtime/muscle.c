@@ -46,6 +46,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <limits.h>
 #include "sinew.h"
 #include "vec.h"
 #include "internal.h"
@@ -144,12 +145,7 @@ static void filament_areas(int N, double A, double ratio, double *out) {
   for (int k = 0; k < N; k++) out[k] *= A / sum;
 }
 
-static int bad_muscle(const swMuscleDesc *md) {
-  const double L = dist3(md->start, md->end);
-  return !md->name || md->filaments < 1 || md->filaments > 100000 || md->nelem < 2 ||
-         !(L > 0) || !isfinite(L) || !(md->radius > 0) || !isfinite(md->radius) ||
-         !(md->size_ratio >= 1) || !isfinite(md->size_ratio);
-}
+static int check_item(const swMuscleItem *it, int nrod, char *err, size_t errlen);
 
 int sw_spec_add_muscle(swSpec *s, const swMuscleDesc *md) {
   swMuscleSpec **slot = sw_spec_muscles(s);
@@ -178,7 +174,8 @@ int sw_spec_add_muscle(swSpec *s, const swMuscleDesc *md) {
     return -1;
   }
   ms->n++;
-  if (bad_muscle(md)) return ms->n - 1;
+  char why[256];
+  if (!check_item(it, INT_MAX, why, sizeof why)) return ms->n - 1;
 
   double *area = malloc(sizeof(double) * (size_t)N);
   if (!area) return -1;

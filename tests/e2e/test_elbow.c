@@ -22,14 +22,11 @@ static const char *arm_sim(const char *scene, const char *name) {
   return compile_with("bin/sinewc", scene, name);
 }
 
-static double group_attr(const char *file, const char *obj, const char *name) {
-  hid_t f = H5Fopen(file, H5F_ACC_RDONLY, H5P_DEFAULT);
+/* A double attribute of an object of the file at `path`. */
+static double group_attr(const char *path, const char *obj, const char *name) {
+  hid_t f = H5Fopen(path, H5F_ACC_RDONLY, H5P_DEFAULT);
   assert_true(f >= 0);
-  double v = NAN;
-  hid_t a = H5Aopen_by_name(f, obj, name, H5P_DEFAULT, H5P_DEFAULT);
-  assert_true(a >= 0);
-  assert_true(H5Aread(a, H5T_NATIVE_DOUBLE, &v) >= 0);
-  H5Aclose(a);
+  double v = read_double_attr_of(f, obj, name);
   H5Fclose(f);
   return v;
 }

@@ -37,14 +37,19 @@ static inline char *read_string_attr(hid_t file, const char *obj_path, const cha
   return copy;
 }
 
-/* A scalar double attribute of the root group. */
-static inline double read_double_attr(hid_t file, const char *name) {
+/* A scalar double attribute of obj_path (a group or a dataset). */
+static inline double read_double_attr_of(hid_t file, const char *obj_path, const char *name) {
   double value = NAN;
-  hid_t attr = H5Aopen_by_name(file, "/", name, H5P_DEFAULT, H5P_DEFAULT);
+  hid_t attr = H5Aopen_by_name(file, obj_path, name, H5P_DEFAULT, H5P_DEFAULT);
   assert_true(attr >= 0);
   assert_true(H5Aread(attr, H5T_NATIVE_DOUBLE, &value) >= 0);
   H5Aclose(attr);
   return value;
+}
+
+/* A scalar double attribute of the root group. */
+static inline double read_double_attr(hid_t file, const char *name) {
+  return read_double_attr_of(file, "/", name);
 }
 
 #endif

@@ -21,6 +21,7 @@
 #include <unistd.h>
 
 #include "testutil.h"
+#include "h5read.h"
 
 #define SW_PI_TEST 3.14159265358979323846
 static const double L0 = 0.2, RADIUS = 0.016, SIGMA = 1e6;
@@ -439,15 +440,6 @@ static void test_energy_balance(void **state) {
   sw_spec_free(s);
 }
 
-static double read_attr(hid_t file, const char *obj, const char *name) {
-  double v = NAN;
-  hid_t a = H5Aopen_by_name(file, obj, name, H5P_DEFAULT, H5P_DEFAULT);
-  assert_true(a >= 0);
-  assert_true(H5Aread(a, H5T_NATIVE_DOUBLE, &v) >= 0);
-  H5Aclose(a);
-  return v;
-}
-
 static void test_output(void **state) {
   (void)state;
   swMuscleDesc md = muscle_desc(3, 4);
@@ -468,7 +460,7 @@ static void test_output(void **state) {
   assert_int_equal(sw_output_close(o, "ok"), SW_OK);
   hid_t f = H5Fopen(path, H5F_ACC_RDONLY, H5P_DEFAULT);
   assert_true(f >= 0);
-  SW_EXPECT_REL("F_max attribute (N)", read_attr(f, "/muscles/biceps", "F_max"), fmax_total(),
+  SW_EXPECT_REL("F_max attribute (N)", read_double_attr_of(f, "/muscles/biceps", "F_max"), fmax_total(),
                 1e-12);
   const char *sets[] = {"/muscles/biceps/force", "/muscles/biceps/stretch",
                         "/muscles/biceps/activation", "/muscles/biceps/filament_force",
