@@ -251,10 +251,16 @@ int sema_positive(swSema *S, const swValue *v, const char *what, const char *uni
   return 1;
 }
 
-/* A position: a point on a rod, or a length vector. */
-swValue sema_position(swSema *S, swScope *scope, const swAst *e, const char *what) {
+/* A position: a point on a rod, or a length vector.  When rod and node are
+ * given they receive the rod and node of a point on a rod, -1 and 0 else. */
+swValue sema_position_on(swSema *S, swScope *scope, const swAst *e, const char *what, int *rod,
+                         int *node) {
+  if (rod) *rod = -1;
+  if (node) *node = 0;
   swValue v = sema_eval(S, scope, e);
   if (v.kind == VAL_POINT) {
+    if (rod) *rod = v.rod;
+    if (node) *node = v.node;
     v.kind = VAL_VEC;
     return v;
   }
@@ -263,6 +269,10 @@ swValue sema_position(swSema *S, swScope *scope, const swAst *e, const char *wha
     return val_error();
   }
   return sema_expect_value(S, v, 3, DIM_LENGTH, what);
+}
+
+swValue sema_position(swSema *S, swScope *scope, const swAst *e, const char *what) {
+  return sema_position_on(S, scope, e, what, NULL, NULL);
 }
 
 /* The damping kind of a definition with fields `damping` and

@@ -69,6 +69,8 @@ int sema_positive(swSema *S, const swValue *v, const char *what, const char *uni
 /* a position: a point on a rod (kept as VAL_VEC with its rod and node), or a
  * 3-vector of lengths */
 swValue sema_position(swSema *S, swScope *scope, const swAst *e, const char *what);
+swValue sema_position_on(swSema *S, swScope *scope, const swAst *e, const char *what, int *rod,
+                         int *node);   /* also the rod and node of a point on a rod */
 swValue sema_rod_point(swSema *S, swSymbol *rod, double frac, int node, swLoc loc);
 swValue sema_rod_length(swSema *S, swSymbol *rod, swLoc loc);
 

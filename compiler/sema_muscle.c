@@ -45,26 +45,6 @@ void sema_muscle_not_rod(swSema *S, const swSymbol *muscle, swLoc loc) {
              muscle->name);
 }
 
-/* An attachment end: a point on a rod ties the filaments there; a position
- * leaves the end free.  *rod = scene rod index or -1. */
-static swValue attachment(swSema *S, swScope *scope, const swAst *e, const char *what, int *rod,
-                          int *node) {
-  *rod = -1;
-  *node = 0;
-  swValue v = sema_eval(S, scope, e);
-  if (v.kind == VAL_POINT) {
-    *rod = v.rod;
-    *node = v.node;
-    v.kind = VAL_VEC;
-    return v;
-  }
-  if (v.kind == VAL_WORD) {
-    sema_report_unknown(S, scope, v.word, v.loc, "name");
-    return val_error();
-  }
-  return sema_expect_value(S, v, 3, DIM_LENGTH, what);
-}
-
 /* An optional scalar field: its value, VAL_ERROR when absent; *ok cleared on
  * an error. */
 static swValue opt_scalar(swSema *S, swScope *sc, const swFields *f, const char *key, swDim dim,
@@ -146,9 +126,11 @@ void sema_eval_muscle(swSema *S, swSymbol *sym) {
                what, !from ? "from" : "to", !from ? "where it starts" : "where it ends");
     ok = 0;
   }
-  m.start = from ? attachment(S, sc, from, "'from'", &m.attach_rod[0], &m.attach_node[0])
+  /* a point on a rod ties the filaments there; a position leaves that end free */
+  m.start = from ? sema_position_on(S, sc, from, "'from'", &m.attach_rod[0], &m.attach_node[0])
                  : val_error();
-  m.end = to ? attachment(S, sc, to, "'to'", &m.attach_rod[1], &m.attach_node[1]) : val_error();
+  m.end = to ? sema_position_on(S, sc, to, "'to'", &m.attach_rod[1], &m.attach_node[1])
+             : val_error();
   if (from && m.start.kind == VAL_ERROR) ok = 0;
   if (to && m.end.kind == VAL_ERROR) ok = 0;
   double axis[3] = {0, 0, 0};
