@@ -44,6 +44,7 @@ static void compute_loads(const swModel *m, swData *d) {
   sw_external_loads(m, d);
   if (m->njoint) sw_joint_loads(m, d);
   if (m->nmuscle) sw_muscle_loads(m, d);
+  if (sw_has_env(m)) sw_env_loads(m, d); /* last: the ground balances the rest */
 }
 
 /* Positions and frames move with the current velocities for a time h.

@@ -58,4 +58,21 @@ void sw_rigid_drift(const swModel *m, swData *d, double h);
 void sw_rigid_kick(const swModel *m, swData *d, double h);
 double sw_rigid_stable_dt(const swModel *m, int b);
 double sw_rigid_joint_dt(const swModel *m, int b);
+/* Environments (environment.c).  The swSpec keeps them in an opaque slot
+ * (sw_spec_env); sw_env_check validates them in sw_compile, sw_env_setup
+ * puts resolved copies and each kind's derived data in the model, sw_env_free
+ * releases them; sw_env_loads adds their loads after all others (integrate.c),
+ * sw_env_energy is their stored energy, sw_env_stable_dt their step limit. */
+typedef struct swEnvSpec swEnvSpec;
+swEnvSpec **sw_spec_env(swSpec *s);                                   /* model.c */
+void sw_env_spec_free(swEnvSpec *e);
+int sw_env_check(const swEnvSpec *e, int nrod, char *err, size_t errlen);
+int sw_env_setup(swModel *m, const swEnvSpec *e, char *err, size_t errlen);
+void sw_env_free(swModel *m);
+static inline int sw_has_env(const swModel *m) {
+  return m->nground + m->nfluid + m->ncontact + m->nwave > 0;
+}
+void sw_env_loads(const swModel *m, swData *d);
+double sw_env_energy(const swModel *m, const swData *d);
+double sw_env_stable_dt(const swModel *m);
 #endif

@@ -39,9 +39,11 @@ struct swSpec {
   double dt;
   swIntegrator integrator;
   swMuscleSpec *muscles;         /* owned by muscle.c */
+  swEnvSpec *env;                /* owned by environment.c */
 };
 
 swMuscleSpec **sw_spec_muscles(swSpec *s) { return &s->muscles; }
+swEnvSpec **sw_spec_env(swSpec *s) { return &s->env; }
 int sw_spec_nrod(const swSpec *s) { return s->nrod; }
 
 static const double SW_ALPHA_SHEAR = 4.0 / 3.0; /* circular section */
@@ -63,6 +65,7 @@ void sw_spec_free(swSpec *s) {
   for (int k = 0; k < s->njoint; k++) free(s->joint_name[k]);
   free(s->load); free(s->bc); free(s->joint); free(s->joint_name);
   sw_muscle_spec_free(s->muscles);
+  sw_env_spec_free(s->env);
   free(s);
 }
 
@@ -250,6 +253,7 @@ void sw_model_free(swModel *m) {
   free(m->joint_elem_a); free(m->joint_elem_b); free(m->joint_axis_a); free(m->joint_axis_b);
   free(m->joint_rest_rot); free(m->joint_angle0); free(m->joint_wave_dt);
   sw_muscle_free(m);
+  sw_env_free(m);
   rigid_free(m);
   free(m);
 }
@@ -405,6 +409,7 @@ swModel *sw_compile(const swSpec *s, char *err, size_t errlen) {
     if (!check_rod(&s->rod[r], err, errlen)) return NULL;
   if (!check_loads_bcs(s, err, errlen)) return NULL;
   if (!check_joints(s, err, errlen)) return NULL;
+  if (!sw_env_check(s->env, s->nrod, err, errlen)) return NULL;
 
   swModel *m = calloc(1, sizeof *m);
   if (!m) return NULL;
@@ -576,7 +581,7 @@ swModel *sw_compile(const swSpec *s, char *err, size_t errlen) {
   }
   sw_joint_setup(m);
   for (int j = 0; j < m->njoint; j++) m->joint_wave_dt[j] = sw_stable_dt_joint(m, j);
-  if (!sw_muscle_setup(m, s->muscles, err, errlen)) {
+  if (!sw_muscle_setup(m, s->muscles, err, errlen) || !sw_env_setup(m, s->env, err, errlen)) {
     sw_model_free(m);
     return NULL;
   }

@@ -41,13 +41,16 @@ typedef enum {
   SW_SIG_RAMP,      /* a -> b linearly over [t0, t0+T], constant outside       */
   SW_SIG_SINE,      /* a + b sin(2 pi f (t - t0) + phase)                      */
   SW_SIG_STEP,      /* a before t0, b from t0 on                               */
-  SW_SIG_TABLE      /* piecewise linear through (times[k], values[k]), clamped */
+  SW_SIG_TABLE,     /* piecewise linear through (times[k], values[k]), clamped */
+  SW_SIG_BSPLINE    /* clamped cubic B-spline with coefficients values[0..npts)
+                       on uniform knots over [t0, t0+T], constant outside   */
 } swSignalKind;
 
 #define SW_SIGNAL_MAXPTS 64
 typedef struct {
   swSignalKind kind;
   double a, b, t0, T, freq, phase;
+  double period;                     /* > 0: periodic, s(t) = s(t0 + (t - t0) mod period) */
   int npts;                          /* SW_SIG_TABLE only                 */
   double times[SW_SIGNAL_MAXPTS];    /* strictly increasing               */
   double values[SW_SIGNAL_MAXPTS];
@@ -206,6 +209,121 @@ int sw_spec_set_filament_passive(swSpec *s, int muscle, int filament);
 double sw_muscle_f_act(double eta);
 double sw_muscle_f_pass(double eta);
 
+/* ---- environments: ground and terrain, fluids, rod-rod contact, the
+ * travelling torque wave, probes (environment.c keeps the lists and compiles
+ * them; ground.c, fluid.c, contact.c, wave.c and probe.c are the kernels;
+ * docs/physics.md, "Environments").  Each description that lists rods copies
+ * the list (rods[0..nrods), runtime rod ids) when it is added; nrods = 0
+ * means every rod of the scene. ---- */
+
+/* Terrain height z = h(x, y), lab frame, z up, m; fills grad with
+ * (dh/dx, dh/dy).  `ctx` is the description's height_ctx (the generated
+ * simulator passes its param values). */
+typedef double (*swHeightFn)(double x, double y, double grad[2], const void *ctx);
+
+/* A ground: the half space below a plane (height == NULL) or below the
+ * terrain z = height(x, y).  Elements touching it feel a penalty response
+ * along the surface normal (stiffness k_w and damping gamma_w, Gazzola et
+ * al. 2018, sec. 4.3) and anisotropic Coulomb friction against their slip:
+ * coefficients forward (along the element tangent d3), backward (against it)
+ * and sideways, kinetic and static, blended by the slip-velocity tolerance;
+ * optional rolling friction. */
+typedef struct {
+  const char *name;
+  double origin[3];         /* a point of the plane, m (plane only)          */
+  double normal[3];         /* out of the ground (plane only; normalised)    */
+  swHeightFn height;        /* terrain: z = height(x, y); NULL: the plane     */
+  const void *height_ctx;
+  double stiffness;         /* k_w, N/m per element                          */
+  double damping;           /* gamma_w, kg/s per element                     */
+  double mu_kinetic[3];     /* forward, backward, sideways (>= 0)            */
+  double mu_static[3];      /* forward, backward, sideways (>= 0; 0: none)   */
+  double mu_rolling;        /* rolling friction coefficient (>= 0; 0: none)  */
+  double slip_velocity;     /* v_eps, m/s, below which friction is static    */
+  int nrods;                /* rods it acts on (0: all)                      */
+  const int *rods;
+} swGroundDesc;
+void sw_ground_desc_init(swGroundDesc *g);   /* fills defaults */
+int sw_spec_add_ground(swSpec *s, const swGroundDesc *g);   /* returns its id */
+
+/* A fluid acting on the elements of its rods. */
+typedef enum {
+  SW_FLUID_STOKES = 0,      /* slender-body Stokes drag, Zhang 2019 Suppl. eq. 1 */
+  SW_FLUID_QUADRATIC = 1    /* quadratic (Morison) drag, Zhang 2019 Suppl. eq. 2 */
+} swFluidModel;
+typedef struct {
+  const char *name;
+  swFluidModel model;
+  double viscosity;         /* mu, Pa s (Stokes)                             */
+  double density;           /* rho_f, kg/m^3 (quadratic drag, buoyancy)      */
+  double drag_coefficient;  /* C_d (quadratic)                               */
+  double body_length;       /* L of ln(L / r) (Stokes); 0: each rod's length */
+  double velocity[3];       /* uniform background flow, m/s                  */
+  int buoyancy;             /* 1: buoyancy -rho_f V g on each element        */
+  int nrods;                /* rods immersed (0: all)                        */
+  const int *rods;
+} swFluidDesc;
+void sw_fluid_desc_init(swFluidDesc *f);     /* fills defaults */
+int sw_spec_add_fluid(swSpec *s, const swFluidDesc *f);
+
+/* Rod-rod contact among a set of rods: every pair of elements of different
+ * rods, and, with `self`, pairs within one rod that are not neighbours along
+ * it, whose centrelines come closer than the sum of their radii repel with
+ * k_c times the overlap plus gamma_c times the approach speed (Zhang et al.
+ * 2019, Suppl. Table 4); a broad phase keeps far pairs out. */
+typedef struct {
+  const char *name;
+  double stiffness;         /* k_c, N/m                                      */
+  double damping;           /* gamma_c, kg/s                                 */
+  int self;                 /* 1: also within each rod                       */
+  int nrods;                /* rods in contact (0: all)                      */
+  const int *rods;
+} swContactDesc;
+void sw_contact_desc_init(swContactDesc *c); /* fills defaults */
+int sw_spec_add_contact(swSpec *s, const swContactDesc *c);
+
+/* The travelling muscle-torque wave of Gazzola et al. 2018 (sec. 4.3):
+ *   tau(s, t) = ramp(t) beta(s) sin(2 pi t / T - 2 pi s / lambda + phi),
+ * beta a clamped cubic B-spline through `coef` over s in [0, L] (s from the
+ * rod's start, or from its end with `reverse`), applied about `direction` as
+ * an internal couple of the rod (each element gets the difference of tau at
+ * its two ends). */
+#define SW_WAVE_MAXCOEF 32
+typedef struct {
+  const char *name;
+  int rod;
+  int ncoef;                /* 4 .. SW_WAVE_MAXCOEF                          */
+  double coef[SW_WAVE_MAXCOEF]; /* beta_i, N m                              */
+  double wavelength;        /* lambda, m                                     */
+  double period;            /* T, s                                          */
+  double phase;             /* phi, rad                                      */
+  double ramp;              /* s over which the amplitude grows from 0; 0: none */
+  double direction[3];      /* couple axis, lab frame                        */
+  int reverse;              /* 1: s measured from the rod's end               */
+} swWaveDesc;
+void sw_wave_desc_init(swWaveDesc *w);       /* fills defaults */
+int sw_spec_add_wave(swSpec *s, const swWaveDesc *w);
+
+/* Observables for /probes/NAME, one row [3] a frame. */
+typedef enum {
+  SW_PROBE_COM = 0,         /* centre of mass of the rods, m                 */
+  SW_PROBE_COM_VELOCITY,    /* its velocity, m/s                             */
+  SW_PROBE_MEAN_VELOCITY,   /* displacement of the centre of mass over the
+                               last `window` s (or since the previous frame)
+                               divided by that time, m/s                     */
+  SW_PROBE_NODE             /* position of node `node` of rod `rod` (tip), m */
+} swProbeKind;
+typedef struct {
+  const char *name;
+  swProbeKind kind;
+  int nrods;                /* rods of the centre of mass (0: all)           */
+  const int *rods;
+  int rod, node;            /* SW_PROBE_NODE; node -1 = last                 */
+  double window;            /* SW_PROBE_MEAN_VELOCITY, s (0: frame interval) */
+} swProbeDesc;
+void sw_probe_desc_init(swProbeDesc *p);     /* fills defaults */
+int sw_spec_add_probe(swSpec *s, const swProbeDesc *p);
+
 /* ---- the compiled model (immutable) ---- */
 typedef struct {
   /* sizes */
@@ -294,6 +412,20 @@ typedef struct {
   double *fil_hill_a;        /* (nfil)     Hill a / F_qs                     */
   double *fil_v_max;         /* (nfil)     v0 / l0, 1/s                      */
   double *fil_fibres;        /* (nfil)     muscle fibres in the filament     */
+  /* environments (environment.c): resolved copies of the descriptions, in
+   * the order added; rod lists owned by the model (every rod listed when the
+   * description said 0) */
+  int nground, nfluid, ncontact, nwave, nprobe;
+  swGroundDesc *ground;      /* (nground)                                    */
+  swFluidDesc *fluid;        /* (nfluid)                                     */
+  swContactDesc *contact;    /* (ncontact)                                   */
+  swWaveDesc *wave;          /* (nwave)                                      */
+  swProbeDesc *probe;        /* (nprobe)                                     */
+  /* ground.c */
+  /* fluid.c */
+  /* contact.c */
+  /* wave.c */
+  /* probe.c */
   int has_gravity;
   int has_damping;
 } swModel;
@@ -335,6 +467,12 @@ typedef struct {
   double *fil_stretch;       /* (nfil)    eta = l / l0                          */
   double *fil_rate;          /* (nfil)    strain rate dl/dt / l0, 1/s           */
   double *fil_tension;       /* (nfil)    T_k, N                                */
+  /* environments, updated with each force evaluation */
+  /* ground.c */
+  /* fluid.c */
+  /* contact.c */
+  /* wave.c */
+  /* probe.c */
   /* instability report, filled when sw_step returns SW_EUNSTABLE */
   char error[512];
 } swData;

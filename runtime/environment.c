@@ -1,0 +1,415 @@
+/* environment.c — the scene's environments: grounds and terrains, fluids,
+ * rod-rod contact, travelling torque waves and probes, from description to
+ * compiled model, and the one place the step reaches them from.
+ *
+ * Design.  Like muscles, environments are lists the swSpec keeps in an
+ * opaque slot (swEnvSpec) that this file owns.  Adding a description copies
+ * it with its name and rod list, so a caller's buffers can go away; checking
+ * happens in sw_compile (sw_env_check), where every message names the
+ * description and what is wrong with it; compiling (sw_env_setup) puts
+ * resolved copies in the model, with "every rod" (nrods = 0) expanded into
+ * an explicit list, so kernels never special-case it.  Each kind's physics
+ * lives in its own file (ground.c, fluid.c, contact.c, wave.c, probe.c);
+ * this file only dispatches: sw_env_loads is called by integrate.c after all
+ * other loads (the ground's response balances the normal part of the others,
+ * so it must come last), sw_env_energy adds the stored contact and ground
+ * energies, sw_env_stable_dt the environments' step limits.
+ */
+#include <math.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "sinew.h"
+#include "vec.h"
+#include "internal.h"
+
+struct swEnvSpec {
+  swGroundDesc *ground;   int nground, capground;
+  swFluidDesc *fluid;     int nfluid, capfluid;
+  swContactDesc *contact; int ncontact, capcontact;
+  swWaveDesc *wave;       int nwave, capwave;
+  swProbeDesc *probe;     int nprobe, capprobe;
+};
+
+/* ---- defaults ---- */
+
+void sw_ground_desc_init(swGroundDesc *g) {
+  memset(g, 0, sizeof *g);
+  g->name = "ground";
+  g->normal[2] = 1.0;
+  g->slip_velocity = 1e-4; /* PyElastica's default slip tolerance, m/s */
+}
+
+void sw_fluid_desc_init(swFluidDesc *f) {
+  memset(f, 0, sizeof *f);
+  f->name = "fluid";
+  f->model = SW_FLUID_STOKES;
+}
+
+void sw_contact_desc_init(swContactDesc *c) {
+  memset(c, 0, sizeof *c);
+  c->name = "contact";
+}
+
+void sw_wave_desc_init(swWaveDesc *w) {
+  memset(w, 0, sizeof *w);
+  w->name = "wave";
+  w->direction[2] = 1.0;
+}
+
+void sw_probe_desc_init(swProbeDesc *p) {
+  memset(p, 0, sizeof *p);
+  p->name = "probe";
+  p->kind = SW_PROBE_COM;
+  p->node = -1;
+}
+
+/* ---- the spec's lists ---- */
+
+static swEnvSpec *env_of(swSpec *s) {
+  swEnvSpec **slot = sw_spec_env(s);
+  if (!*slot) *slot = calloc(1, sizeof **slot);
+  return *slot;
+}
+
+static int grow(void **p, int *cap, int n, size_t item) {
+  if (n < *cap) return 1;
+  int nc = *cap ? 2 * *cap : 4;
+  void *q = realloc(*p, (size_t)nc * item);
+  if (!q) return 0;
+  *p = q;
+  *cap = nc;
+  return 1;
+}
+
+/* Owned copies of a name and a rod list; 0 when out of memory (nothing kept). */
+static int own(const char **name, const int **rods, int nrods, const char *fallback) {
+  char *nm = strdup(*name ? *name : fallback);
+  int *list = NULL;
+  if (nrods > 0 && *rods) {
+    list = malloc(sizeof(int) * (size_t)nrods);
+    if (list) memcpy(list, *rods, sizeof(int) * (size_t)nrods);
+  }
+  if (!nm || (nrods > 0 && *rods && !list)) {
+    free(nm);
+    free(list);
+    return 0;
+  }
+  *name = nm;
+  *rods = list;
+  return 1;
+}
+
+static void disown(const char *name, const int *rods) {
+  free((char *)name);
+  free((int *)rods);
+}
+
+int sw_spec_add_ground(swSpec *s, const swGroundDesc *g) {
+  swGroundDesc c = *g;
+  if (!own(&c.name, &c.rods, c.nrods, "ground")) return -1;
+  swEnvSpec *e = env_of(s);
+  if (!e || !grow((void **)&e->ground, &e->capground, e->nground, sizeof c)) {
+    disown(c.name, c.rods);
+    return -1;
+  }
+  e->ground[e->nground] = c;
+  return e->nground++;
+}
+
+int sw_spec_add_fluid(swSpec *s, const swFluidDesc *f) {
+  swFluidDesc c = *f;
+  if (!own(&c.name, &c.rods, c.nrods, "fluid")) return -1;
+  swEnvSpec *e = env_of(s);
+  if (!e || !grow((void **)&e->fluid, &e->capfluid, e->nfluid, sizeof c)) {
+    disown(c.name, c.rods);
+    return -1;
+  }
+  e->fluid[e->nfluid] = c;
+  return e->nfluid++;
+}
+
+int sw_spec_add_contact(swSpec *s, const swContactDesc *cd) {
+  swContactDesc c = *cd;
+  if (!own(&c.name, &c.rods, c.nrods, "contact")) return -1;
+  swEnvSpec *e = env_of(s);
+  if (!e || !grow((void **)&e->contact, &e->capcontact, e->ncontact, sizeof c)) {
+    disown(c.name, c.rods);
+    return -1;
+  }
+  e->contact[e->ncontact] = c;
+  return e->ncontact++;
+}
+
+int sw_spec_add_wave(swSpec *s, const swWaveDesc *w) {
+  swWaveDesc c = *w;
+  const int *none = NULL;
+  if (!own(&c.name, &none, 0, "wave")) return -1;
+  swEnvSpec *e = env_of(s);
+  if (!e || !grow((void **)&e->wave, &e->capwave, e->nwave, sizeof c)) {
+    disown(c.name, NULL);
+    return -1;
+  }
+  e->wave[e->nwave] = c;
+  return e->nwave++;
+}
+
+int sw_spec_add_probe(swSpec *s, const swProbeDesc *p) {
+  swProbeDesc c = *p;
+  if (!own(&c.name, &c.rods, c.nrods, "probe")) return -1;
+  swEnvSpec *e = env_of(s);
+  if (!e || !grow((void **)&e->probe, &e->capprobe, e->nprobe, sizeof c)) {
+    disown(c.name, c.rods);
+    return -1;
+  }
+  e->probe[e->nprobe] = c;
+  return e->nprobe++;
+}
+
+void sw_env_spec_free(swEnvSpec *e) {
+  if (!e) return;
+  for (int k = 0; k < e->nground; k++) disown(e->ground[k].name, e->ground[k].rods);
+  for (int k = 0; k < e->nfluid; k++) disown(e->fluid[k].name, e->fluid[k].rods);
+  for (int k = 0; k < e->ncontact; k++) disown(e->contact[k].name, e->contact[k].rods);
+  for (int k = 0; k < e->nwave; k++) disown(e->wave[k].name, NULL);
+  for (int k = 0; k < e->nprobe; k++) disown(e->probe[k].name, e->probe[k].rods);
+  free(e->ground); free(e->fluid); free(e->contact); free(e->wave); free(e->probe);
+  free(e);
+}
+
+/* ---- checks ---- */
+
+static int fail(char *err, size_t errlen, const char *fmt, ...) {
+  if (err && errlen) {
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(err, errlen, fmt, ap);
+    va_end(ap);
+  }
+  return 0;
+}
+
+static int nonneg(double x) { return isfinite(x) && x >= 0; }
+static int positive(double x) { return isfinite(x) && x > 0; }
+static int finite3(const double v[3]) { return isfinite(v[0]) && isfinite(v[1]) && isfinite(v[2]); }
+
+static int check_rods(const char *what, const char *name, int nrods, const int *rods, int nrod,
+                      char *err, size_t errlen) {
+  if (nrods < 0 || (nrods > 0 && !rods))
+    return fail(err, errlen, "%s '%s': bad rod list (%d rods)", what, name, nrods);
+  for (int k = 0; k < nrods; k++)
+    if (rods[k] < 0 || rods[k] >= nrod)
+      return fail(err, errlen, "%s '%s': rod %d does not exist (the scene has %d)", what, name,
+                  rods[k], nrod);
+  return 1;
+}
+
+/* A coefficient triple (forward, backward, sideways) of friction. */
+static int check_mu(const char *name, const char *which, const double mu[3], char *err,
+                    size_t errlen) {
+  static const char *const dir[3] = {"forward", "backward", "sideways"};
+  for (int k = 0; k < 3; k++)
+    if (!nonneg(mu[k]))
+      return fail(err, errlen, "ground '%s': %s friction coefficient %s is %g, must be >= 0", name,
+                  which, dir[k], mu[k]);
+  return 1;
+}
+
+static int check_ground(const swGroundDesc *g, int nrod, char *err, size_t errlen) {
+  const char *nm = g->name;
+  if (!check_rods("ground", nm, g->nrods, g->rods, nrod, err, errlen)) return 0;
+  if (!g->height) {
+    if (!finite3(g->origin)) return fail(err, errlen, "ground '%s': origin is not finite", nm);
+    if (!finite3(g->normal) || !(sw_v3_norm(g->normal) > 0))
+      return fail(err, errlen, "ground '%s': normal must be a nonzero vector", nm);
+  }
+  if (!nonneg(g->stiffness)) return fail(err, errlen, "ground '%s': stiffness must be >= 0", nm);
+  if (!nonneg(g->damping)) return fail(err, errlen, "ground '%s': damping must be >= 0", nm);
+  if (!check_mu(nm, "kinetic", g->mu_kinetic, err, errlen)) return 0;
+  if (!check_mu(nm, "static", g->mu_static, err, errlen)) return 0;
+  if (!nonneg(g->mu_rolling))
+    return fail(err, errlen, "ground '%s': rolling friction coefficient must be >= 0", nm);
+  if (!positive(g->slip_velocity))
+    return fail(err, errlen, "ground '%s': slip velocity tolerance must be > 0", nm);
+  return 1;
+}
+
+static int check_fluid(const swFluidDesc *f, int nrod, char *err, size_t errlen) {
+  const char *nm = f->name;
+  if (!check_rods("fluid", nm, f->nrods, f->rods, nrod, err, errlen)) return 0;
+  if (f->model != SW_FLUID_STOKES && f->model != SW_FLUID_QUADRATIC)
+    return fail(err, errlen, "fluid '%s': unknown model %d", nm, (int)f->model);
+  if (f->model == SW_FLUID_STOKES && !positive(f->viscosity))
+    return fail(err, errlen, "fluid '%s': Stokes drag needs a viscosity > 0", nm);
+  if (f->model == SW_FLUID_QUADRATIC && !positive(f->density))
+    return fail(err, errlen, "fluid '%s': quadratic drag needs a density > 0", nm);
+  if (f->model == SW_FLUID_QUADRATIC && !positive(f->drag_coefficient))
+    return fail(err, errlen, "fluid '%s': quadratic drag needs a drag coefficient > 0", nm);
+  if (f->buoyancy && !positive(f->density))
+    return fail(err, errlen, "fluid '%s': buoyancy needs a density > 0", nm);
+  if (!nonneg(f->viscosity) || !nonneg(f->density) || !nonneg(f->drag_coefficient))
+    return fail(err, errlen, "fluid '%s': viscosity, density and drag coefficient must be >= 0", nm);
+  if (!nonneg(f->body_length)) return fail(err, errlen, "fluid '%s': body length must be >= 0", nm);
+  if (!finite3(f->velocity)) return fail(err, errlen, "fluid '%s': flow velocity is not finite", nm);
+  return 1;
+}
+
+static int check_contact(const swContactDesc *c, int nrod, char *err, size_t errlen) {
+  const char *nm = c->name;
+  if (!check_rods("contact", nm, c->nrods, c->rods, nrod, err, errlen)) return 0;
+  if (!positive(c->stiffness)) return fail(err, errlen, "contact '%s': stiffness must be > 0", nm);
+  if (!nonneg(c->damping)) return fail(err, errlen, "contact '%s': damping must be >= 0", nm);
+  if (c->self != 0 && c->self != 1)
+    return fail(err, errlen, "contact '%s': self must be 0 or 1, got %d", nm, c->self);
+  if (!c->self && c->nrods == 1)
+    return fail(err, errlen, "contact '%s': one rod and no self-contact: nothing can touch", nm);
+  return 1;
+}
+
+static int check_wave(const swWaveDesc *w, int nrod, char *err, size_t errlen) {
+  const char *nm = w->name;
+  if (w->rod < 0 || w->rod >= nrod)
+    return fail(err, errlen, "torque wave '%s': rod %d does not exist (the scene has %d)", nm,
+                w->rod, nrod);
+  if (w->ncoef < 4 || w->ncoef > SW_WAVE_MAXCOEF)
+    return fail(err, errlen, "torque wave '%s': %d B-spline coefficients; a cubic B-spline needs "
+                "4 to %d", nm, w->ncoef, SW_WAVE_MAXCOEF);
+  for (int k = 0; k < w->ncoef; k++)
+    if (!isfinite(w->coef[k]))
+      return fail(err, errlen, "torque wave '%s': coefficient %d is not finite", nm, k);
+  if (!positive(w->wavelength)) return fail(err, errlen, "torque wave '%s': wavelength must be > 0", nm);
+  if (!positive(w->period)) return fail(err, errlen, "torque wave '%s': period must be > 0", nm);
+  if (!isfinite(w->phase)) return fail(err, errlen, "torque wave '%s': phase is not finite", nm);
+  if (!nonneg(w->ramp)) return fail(err, errlen, "torque wave '%s': ramp time must be >= 0", nm);
+  if (!finite3(w->direction) || !(sw_v3_norm(w->direction) > 0))
+    return fail(err, errlen, "torque wave '%s': direction must be a nonzero vector", nm);
+  return 1;
+}
+
+static int check_probe(const swProbeDesc *p, int nrod, char *err, size_t errlen) {
+  const char *nm = p->name;
+  if (p->kind == SW_PROBE_NODE) {
+    if (p->rod < 0 || p->rod >= nrod)
+      return fail(err, errlen, "probe '%s': rod %d does not exist (the scene has %d)", nm, p->rod,
+                  nrod);
+    return 1;
+  }
+  if (p->kind != SW_PROBE_COM && p->kind != SW_PROBE_COM_VELOCITY &&
+      p->kind != SW_PROBE_MEAN_VELOCITY)
+    return fail(err, errlen, "probe '%s': unknown kind %d", nm, (int)p->kind);
+  if (!nonneg(p->window)) return fail(err, errlen, "probe '%s': window must be >= 0", nm);
+  return check_rods("probe", nm, p->nrods, p->rods, nrod, err, errlen);
+}
+
+int sw_env_check(const swEnvSpec *e, int nrod, char *err, size_t errlen) {
+  if (!e) return 1;
+  for (int k = 0; k < e->nground; k++)
+    if (!check_ground(&e->ground[k], nrod, err, errlen)) return 0;
+  for (int k = 0; k < e->nfluid; k++)
+    if (!check_fluid(&e->fluid[k], nrod, err, errlen)) return 0;
+  for (int k = 0; k < e->ncontact; k++)
+    if (!check_contact(&e->contact[k], nrod, err, errlen)) return 0;
+  for (int k = 0; k < e->nwave; k++)
+    if (!check_wave(&e->wave[k], nrod, err, errlen)) return 0;
+  for (int k = 0; k < e->nprobe; k++)
+    if (!check_probe(&e->probe[k], nrod, err, errlen)) return 0;
+  return 1;
+}
+
+/* ---- compilation into the model ---- */
+
+/* The model's own copy of a name and rod list, "all" expanded. */
+static int resolve(const char **name, const int **rods, int *nrods, int nrod) {
+  char *nm = strdup(*name);
+  int n = *nrods > 0 ? *nrods : nrod;
+  int *list = malloc(sizeof(int) * (size_t)(n ? n : 1));
+  if (!nm || !list) {
+    free(nm);
+    free(list);
+    *name = NULL;
+    *rods = NULL;
+    *nrods = 0;
+    return 0;
+  }
+  for (int k = 0; k < n; k++) list[k] = *nrods > 0 ? (*rods)[k] : k;
+  *name = nm;
+  *rods = list;
+  *nrods = n;
+  return 1;
+}
+
+int sw_env_setup(swModel *m, const swEnvSpec *e, char *err, size_t errlen) {
+  int ng = e ? e->nground : 0, nf = e ? e->nfluid : 0, nc = e ? e->ncontact : 0;
+  int nw = e ? e->nwave : 0, np = e ? e->nprobe : 0;
+  m->ground = calloc((size_t)(ng ? ng : 1), sizeof *m->ground);
+  m->fluid = calloc((size_t)(nf ? nf : 1), sizeof *m->fluid);
+  m->contact = calloc((size_t)(nc ? nc : 1), sizeof *m->contact);
+  m->wave = calloc((size_t)(nw ? nw : 1), sizeof *m->wave);
+  m->probe = calloc((size_t)(np ? np : 1), sizeof *m->probe);
+  if (!m->ground || !m->fluid || !m->contact || !m->wave || !m->probe) goto oom;
+  for (int k = 0; k < ng; k++) {
+    m->ground[k] = e->ground[k];
+    if (!resolve(&m->ground[k].name, &m->ground[k].rods, &m->ground[k].nrods, m->nrod)) goto oom;
+    m->nground = k + 1; /* owned by the model from here on */
+  }
+  for (int k = 0; k < nf; k++) {
+    m->fluid[k] = e->fluid[k];
+    if (!resolve(&m->fluid[k].name, &m->fluid[k].rods, &m->fluid[k].nrods, m->nrod)) goto oom;
+    m->nfluid = k + 1;
+  }
+  for (int k = 0; k < nc; k++) {
+    m->contact[k] = e->contact[k];
+    if (!resolve(&m->contact[k].name, &m->contact[k].rods, &m->contact[k].nrods, m->nrod)) goto oom;
+    m->ncontact = k + 1;
+  }
+  for (int k = 0; k < nw; k++) {
+    m->wave[k] = e->wave[k];
+    if (!(m->wave[k].name = strdup(e->wave[k].name))) goto oom;
+    m->nwave = k + 1;
+  }
+  for (int k = 0; k < np; k++) {
+    m->probe[k] = e->probe[k];
+    if (!resolve(&m->probe[k].name, &m->probe[k].rods, &m->probe[k].nrods, m->nrod)) goto oom;
+    m->nprobe = k + 1;
+    if (m->probe[k].kind == SW_PROBE_NODE && m->probe[k].node < 0)
+      m->probe[k].node = m->rod_nelem[m->probe[k].rod];
+  }
+  /* each kind's derived data */
+  return 1;
+oom:
+  return fail(err, errlen, "out of memory while building the environments");
+}
+
+void sw_env_free(swModel *m) {
+  for (int k = 0; k < m->nground; k++) disown(m->ground[k].name, m->ground[k].rods);
+  for (int k = 0; k < m->nfluid; k++) disown(m->fluid[k].name, m->fluid[k].rods);
+  for (int k = 0; k < m->ncontact; k++) disown(m->contact[k].name, m->contact[k].rods);
+  for (int k = 0; k < m->nwave; k++) disown(m->wave[k].name, NULL);
+  for (int k = 0; k < m->nprobe; k++) disown(m->probe[k].name, m->probe[k].rods);
+  free(m->ground); free(m->fluid); free(m->contact); free(m->wave); free(m->probe);
+  m->ground = NULL; m->fluid = NULL; m->contact = NULL; m->wave = NULL; m->probe = NULL;
+  m->nground = m->nfluid = m->ncontact = m->nwave = m->nprobe = 0;
+}
+
+/* ---- dispatch from the step ---- */
+
+/* Loads of the environments, after every other load of this evaluation. */
+void sw_env_loads(const swModel *m, swData *d) {
+  (void)m;
+  (void)d;
+}
+
+/* Energy stored in environment springs (contact and ground penalties), J. */
+double sw_env_energy(const swModel *m, const swData *d) {
+  (void)m;
+  (void)d;
+  return 0.0;
+}
+
+/* The smallest step limit of the environments, s (INFINITY: none). */
+double sw_env_stable_dt(const swModel *m) {
+  (void)m;
+  return INFINITY;
+}
