@@ -422,7 +422,17 @@ typedef struct {
   swWaveDesc *wave;          /* (nwave)                                      */
   swProbeDesc *probe;        /* (nprobe)                                     */
   /* ground.c */
-  /* fluid.c */
+  /* fluid.c: fluid k acts on rows [fluid_row_adr[k], fluid_row_adr[k+1]), one
+   * row per element of its rods, in the order of its rod list */
+  int nfluidrow;
+  int *fluid_row_adr;        /* (nfluid+1) first row of each fluid           */
+  int *fluid_elem;           /* (nfluidrow) global element of the row         */
+  int *fluid_node;           /* (nfluidrow) its first node (second: +1)       */
+  double *fluid_stokes;      /* (nfluidrow) 4 pi mu / ln(L/r), Pa s (Stokes)  */
+  double *fluid_cap;         /* (nfluidrow) exposed end-cap silhouette, m^2:
+                                pi r^2 / 2 per rod end on it (quadratic)     */
+  double *fluid_displaced;   /* (nfluidrow) rho_f pi r^2 l^, kg (buoyancy)    */
+  double fluid_dt;           /* step limit of the Stokes drag, s (INFINITY: none) */
   /* contact.c */
   /* wave.c */
   /* probe.c */

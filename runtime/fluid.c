@@ -1,0 +1,229 @@
+/* fluid.c — a fluid acting on the elements of its rods: slender-body Stokes
+ * drag or quadratic (Morison-type) drag, a uniform background flow, and
+ * buoyancy.
+ *
+ * Design.  Each fluid acts element by element; the load of an element is
+ * computed from the element's relative velocity w = (v_a + v_b)/2 - u (v_a,
+ * v_b the velocities of its two nodes, u the flow) and its current tangent
+ * t = (x_b - x_a) / l, and is shared half and half by the two nodes.
+ *
+ *   Stokes (Zhang et al. 2019, Suppl. Note 3, eq. 1; slender-body theory of
+ *   Cox, J. Fluid Mech. 44 (1970) 791): a force per unit length
+ *     f = -c (I - t t^T / 2) w,   c = 4 pi mu / ln(L / r),
+ *   integrated over the element as c l (I - t t^T / 2) w.  L is the body
+ *   length (the description's, or the rod's rest length), r the element's
+ *   radius.  A rod moving broadside feels c per unit length, one moving
+ *   along its axis c / 2.
+ *
+ *   Quadratic (Zhang et al. 2019, Suppl. Note 5.2, eq. 2):
+ *     F = -(1/2) rho_f C_d A |w| w,
+ *   with A the area the element shows to the relative flow: the silhouette
+ *   of a cylinder seen along w, 2 r l |sin a| + (caps) pi r^2 |cos a|, a the
+ *   angle between t and w.  Only the two ends of a rod are caps the fluid
+ *   can see (the faces between elements are inside the rod), and a whole
+ *   cylinder seen along w shows one cap's worth, pi r^2 |cos a| (two
+ *   half-ellipses), so each end element carries pi r^2 / 2 of it.  With
+ *   |w| sin a = |w - (t.w) t| and |w| cos a = |t.w| the force needs no angle:
+ *     F = -(1/2) rho_f C_d (2 r l |w_n| + cap |t.w|) w.
+ *   Why this area and not the reference's "cross-sectional area of each
+ *   filament": read as pi r^2 per element it would make the drag on a rod
+ *   grow with the number of elements it is cut into, and read as pi r^2 per
+ *   rod it is the area seen along the axis only, orders of magnitude below
+ *   the broadside silhouette 2 r L that sets the drag of a barb or a limb
+ *   moving sideways.  The projected area is what the drag coefficient of a
+ *   cylinder (C_d = 1.2 in the reference, for cross flow) is defined
+ *   against; one C_d serves every direction, which is this model's
+ *   approximation (a real cylinder in axial flow has another C_d).
+ *
+ *   Buoyancy: -rho_f V g on each element, V = pi r^2 l^ its rest volume (the
+ *   rod model keeps each element's volume as it stretches, Gazzola et al.
+ *   2018, sec. 2), g the scene's gravity.
+ *
+ * Which length: the drag is a density along the centreline as it is, so an
+ * element's drag is its force per unit length times its current length l
+ * (slender-body theory integrates over the deformed body's arc length; a
+ * stretched muscle filament shows the fluid more of itself).  The radius is
+ * the rest radius, as everywhere in the runtime.  Which velocity: the mean
+ * of the element's nodes, so an element is dragged as a whole; a zig-zag of
+ * neighbouring nodes (the rod's fastest elastic mode) feels no drag, which
+ * keeps the drag out of the elastic waves' step limit (below).
+ *
+ * All three loads are external: they go into d->ext_force (whose work the
+ * kick books) and d->force, so kinetic + elastic - work stays constant and
+ * the work column shows what the fluid took out.
+ *
+ * Step limit.  Explicit drag is a damper; a kick of length h multiplies the
+ * velocity of a mode with damping rate c by a factor that grows past 1 in
+ * size once h c passes the scheme's limit for a pure damper, S = 2 for
+ * position Verlet (1 - h c) and 2.34 for PEFRL (the limit of
+ * sw_integrator_stability_limit as the damping ratio goes to infinity).  The
+ * Stokes drag is linear in the node velocities, with the symmetric matrix
+ * c l / 4 [[P, P], [P, P]] per element (P = I - t t^T / 2, |P| = 1) on its
+ * two nodes; the largest rate of the mass-scaled matrix is bounded by its
+ * Gershgorin rows, rate_i = sum over node i's elements of c l^ / (2 m_i)
+ * (plus the rod's own linear damping gamma D^ / m_i), which is the exact
+ * rate c / (rho A) of a uniform rod moving broadside.  The bound is
+ * h < 0.95 S / max rate_i (sw_fluid_stable_dt), at rest length: an element
+ * stretched by e drags e times harder (the default step is half the
+ * estimate).  Quadratic drag's Jacobian on an element's relative velocity
+ * has norm rho_f C_d A |w| (twice the secant), so node i's rate is
+ * sum over its elements of rho_f C_d A_e |w_e| / (2 m_i), and the step is
+ * stable below a relative speed |w| ~ 2 S m_i / (h rho_f C_d sum A_e); the speed a
+ * scene will reach is not known when it is compiled, so it adds no term to
+ * the estimate: above that speed the velocity overshoots and grows faster
+ * than exponentially, and the instability check (stability.c) reports it
+ * within a few steps.  For the reference's wing (barbs r = 0.6 mm, 2.5 kg/m^3,
+ * air, C_d = 1.2) that speed is 2 / (611 h) m/s, 3 km/s at h = 1 us.
+ */
+#include <math.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+
+#include "sinew.h"
+#include "vec.h"
+#include "internal.h"
+
+static int fail(char *err, size_t errlen, const char *fmt, ...) {
+  if (err && errlen) {
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(err, errlen, fmt, ap);
+    va_end(ap);
+  }
+  return 0;
+}
+
+/* The scheme's limit on h c for a pure damper dv/dt = -c v: the damped
+ * oscillator's limit on h w times 2 zeta, at a damping ratio so large that
+ * the spring no longer matters: at zeta = 1e4 it is within 1e-8 of the
+ * limit (2 for Verlet, 2.3414576 for PEFRL).  Much larger zeta does worse:
+ * the slow mode's eigenvalue, 1 - h w / (2 zeta), comes within the
+ * stability test's 1e-12 of 1 and rounding decides. */
+static double damper_limit(swIntegrator integ) {
+  const double zeta = 1e4;
+  return 2.0 * zeta * sw_integrator_stability_limit(integ, zeta);
+}
+
+int sw_fluid_setup(swModel *m, char *err, size_t errlen) {
+  int rows = 0;
+  for (int k = 0; k < m->nfluid; k++)
+    for (int q = 0; q < m->fluid[k].nrods; q++) rows += m->rod_nelem[m->fluid[k].rods[q]];
+  size_t R = (size_t)(rows ? rows : 1);
+  m->nfluidrow = rows;
+  m->fluid_row_adr = calloc((size_t)m->nfluid + 1, sizeof(int));
+  m->fluid_elem = calloc(R, sizeof(int));
+  m->fluid_node = calloc(R, sizeof(int));
+  m->fluid_stokes = calloc(R, sizeof(double));
+  m->fluid_cap = calloc(R, sizeof(double));
+  m->fluid_displaced = calloc(R, sizeof(double));
+  double *rate = calloc((size_t)m->nnode, sizeof(double)); /* Stokes damping rate per node */
+  if (!m->fluid_row_adr || !m->fluid_elem || !m->fluid_node || !m->fluid_stokes ||
+      !m->fluid_cap || !m->fluid_displaced || !rate) {
+    free(rate);
+    return fail(err, errlen, "out of memory while building the fluids");
+  }
+  int row = 0;
+  for (int k = 0; k < m->nfluid; k++) {
+    const swFluidDesc *f = &m->fluid[k];
+    m->fluid_row_adr[k] = row;
+    for (int q = 0; q < f->nrods; q++) {
+      const int r = f->rods[q], n = m->rod_nelem[r], ea = m->elem_adr[r], na = m->node_adr[r];
+      double L = f->body_length;
+      if (L == 0)
+        for (int i = 0; i < n; i++) L += m->rest_len[ea + i];
+      for (int i = 0; i < n; i++, row++) {
+        const int e = ea + i;
+        const double rad = m->radius[e], area = SW_PI * rad * rad;
+        m->fluid_elem[row] = e;
+        m->fluid_node[row] = na + i;
+        if (f->model == SW_FLUID_STOKES) {
+          /* Zhang 2019, Suppl. eq. 1: c = 4 pi mu / ln(L / r) */
+          if (!(L > rad)) {
+            free(rate);
+            return fail(err, errlen,
+                        "fluid '%s': slender-body drag on rod '%s' needs the body length "
+                        "(%g m) to exceed the radius of element %d (%g m)",
+                        f->name, m->rod_name[r], L, i, rad);
+          }
+          double c = 4.0 * SW_PI * f->viscosity / log(L / rad);
+          m->fluid_stokes[row] = c;
+          double half = 0.5 * c * m->rest_len[e];
+          rate[na + i] += half * m->inv_mass[na + i];
+          rate[na + i + 1] += half * m->inv_mass[na + i + 1];
+        } else {
+          /* the rod's two end caps, half a cap's silhouette each (above) */
+          m->fluid_cap[row] = 0.5 * area * ((i == 0) + (i == n - 1));
+        }
+        if (f->buoyancy) m->fluid_displaced[row] = f->density * area * m->rest_len[e];
+      }
+    }
+  }
+  m->fluid_row_adr[m->nfluid] = row;
+  /* Gershgorin bound of the drag's damping rate (header), with the rods'
+   * own linear damping, which damps the same translations */
+  double worst = 0;
+  for (int r = 0; r < m->nrod; r++) {
+    const int na = m->node_adr[r], n = m->rod_nelem[r];
+    for (int i = na; i <= na + n; i++) {
+      if (!(rate[i] > 0)) continue;
+      double c = rate[i];
+      if (m->rod_damping[r] == SW_DAMP_LINEAR) c += m->node_gamma[i] * m->inv_mass[i];
+      if (c > worst) worst = c;
+    }
+  }
+  free(rate);
+  m->fluid_dt = worst > 0 ? 0.95 * damper_limit(m->integrator) / worst : INFINITY;
+  return 1;
+}
+
+void sw_fluid_free(swModel *m) {
+  free(m->fluid_row_adr); free(m->fluid_elem); free(m->fluid_node);
+  free(m->fluid_stokes); free(m->fluid_cap); free(m->fluid_displaced);
+  m->fluid_row_adr = NULL; m->fluid_elem = NULL; m->fluid_node = NULL;
+  m->fluid_stokes = NULL; m->fluid_cap = NULL; m->fluid_displaced = NULL;
+  m->nfluidrow = 0;
+}
+
+double sw_fluid_stable_dt(const swModel *m) { return m->nfluid ? m->fluid_dt : INFINITY; }
+
+void sw_fluid_loads(const swModel *m, swData *d) {
+  const double *restrict x = d->x, *restrict v = d->v;
+  double *restrict ef = d->ext_force, *restrict F = d->force;
+  for (int k = 0; k < m->nfluid; k++) {
+    const swFluidDesc *fl = &m->fluid[k];
+    const double *u = fl->velocity;
+    const int stokes = fl->model == SW_FLUID_STOKES;
+    const double half_rho_cd = 0.5 * fl->density * fl->drag_coefficient;
+    for (int row = m->fluid_row_adr[k]; row < m->fluid_row_adr[k + 1]; row++) {
+      const int a = m->fluid_node[row], e = m->fluid_elem[row];
+      const double *xa = x + 3 * a, *va = v + 3 * a;
+      double t[3], w[3], load[3];
+      sw_v3_sub(t, xa + 3, xa);
+      const double l = sw_v3_norm(t);
+      sw_v3_scale(t, t, 1.0 / l);
+      for (int q = 0; q < 3; q++) w[q] = 0.5 * (va[q] + va[3 + q]) - u[q];
+      const double wt = sw_v3_dot(w, t);
+      if (stokes) {
+        /* -c l (I - t t^T / 2) w  (Suppl. eq. 1 over the element) */
+        const double cl = m->fluid_stokes[row] * l;
+        for (int q = 0; q < 3; q++) load[q] = -cl * (w[q] - 0.5 * wt * t[q]);
+      } else {
+        /* -(1/2) rho C_d A |w| w, A |w| = 2 r l |w_n| + cap |t.w| (Suppl. eq. 2) */
+        double wn[3] = {w[0] - wt * t[0], w[1] - wt * t[1], w[2] - wt * t[2]};
+        const double area_speed = 2.0 * m->radius[e] * l * sw_v3_norm(wn) + m->fluid_cap[row] * fabs(wt);
+        for (int q = 0; q < 3; q++) load[q] = -half_rho_cd * area_speed * w[q];
+      }
+      /* buoyancy: -rho_f V g */
+      const double dm = m->fluid_displaced[row];
+      for (int q = 0; q < 3; q++) load[q] -= dm * m->gravity[q];
+      for (int q = 0; q < 3; q++) {
+        const double h = 0.5 * load[q];
+        ef[3 * a + q] += h;
+        ef[3 * a + 3 + q] += h;
+        F[3 * a + q] += h;
+        F[3 * a + 3 + q] += h;
+      }
+    }
+  }
+}
