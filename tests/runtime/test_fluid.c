@@ -15,7 +15,7 @@
  * has no internal stress and the closed forms of a point body apply to it
  * exactly; the lengthwise and oblique quadratic cases use rigid rods, whose
  * drag is carried by the end caps alone lengthwise.  Runs are a few thousand
- * steps of ten-element rods; the sanitizer build runs them as they are. */
+ * steps of ten-element rods; under SW_SANITIZED only the stable-step runs shrink. */
 #include "testutil.h"
 
 static const double GRAV = 9.81;
