@@ -246,7 +246,10 @@ typedef struct {
 void sw_ground_desc_init(swGroundDesc *g);   /* fills defaults */
 int sw_spec_add_ground(swSpec *s, const swGroundDesc *g);   /* returns its id */
 
-/* A fluid acting on the elements of its rods. */
+/* A fluid acting on the elements of its rods (fluid.c): drag on each
+ * element's velocity relative to the flow, quadratic drag on the area the
+ * element shows the flow (2 r l |sin| plus the rod's end caps), and
+ * buoyancy (docs/physics.md, "Fluids"). */
 typedef enum {
   SW_FLUID_STOKES = 0,      /* slender-body Stokes drag, Zhang 2019 Suppl. eq. 1 */
   SW_FLUID_QUADRATIC = 1    /* quadratic (Morison) drag, Zhang 2019 Suppl. eq. 2 */
