@@ -377,6 +377,7 @@ int sw_env_setup(swModel *m, const swEnvSpec *e, char *err, size_t errlen) {
       m->probe[k].node = m->rod_nelem[m->probe[k].rod];
   }
   /* each kind's derived data */
+  sw_ground_setup(m);
   return 1;
 oom:
   return fail(err, errlen, "out of memory while building the environments");
@@ -397,19 +398,19 @@ void sw_env_free(swModel *m) {
 
 /* Loads of the environments, after every other load of this evaluation. */
 void sw_env_loads(const swModel *m, swData *d) {
-  (void)m;
-  (void)d;
+  if (m->nground) sw_ground_loads(m, d); /* last: the ground balances the rest */
 }
 
 /* Energy stored in environment springs (contact and ground penalties), J. */
 double sw_env_energy(const swModel *m, const swData *d) {
-  (void)m;
-  (void)d;
-  return 0.0;
+  double energy = 0.0;
+  if (m->nground) energy += sw_ground_energy(m, d);
+  return energy;
 }
 
 /* The smallest step limit of the environments, s (INFINITY: none). */
 double sw_env_stable_dt(const swModel *m) {
-  (void)m;
-  return INFINITY;
+  double dt = INFINITY;
+  if (m->nground) dt = fmin(dt, sw_ground_stable_dt(m));
+  return dt;
 }
