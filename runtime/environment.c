@@ -233,6 +233,8 @@ static int check_ground(const swGroundDesc *g, int nrod, char *err, size_t errle
     return fail(err, errlen, "ground '%s': rolling friction coefficient must be >= 0", nm);
   if (!positive(g->slip_velocity))
     return fail(err, errlen, "ground '%s': slip velocity tolerance must be > 0", nm);
+  if (!nonneg(g->contact_tolerance))
+    return fail(err, errlen, "ground '%s': contact tolerance must be >= 0", nm);
   return 1;
 }
 

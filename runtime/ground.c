@@ -8,7 +8,12 @@
  * s with s = sqrt(1 + h_x^2 + h_y^2), and the gap is the vertical one scaled
  * by 1/s, (c_z - h) / s: exact for a plane, first order for a curved terrain
  * (its error is about curvature x gap^2, i.e. kappa r^2, at contact).  An
- * element is in contact while its penetration p = r - gap is >= 0.
+ * element touches while its penetration p = r - gap is >= -tol, with tol the
+ * description's contact_tolerance (default 1e-6 r); the penalty acts on
+ * max(p, 0).  The balance below holds a resting element exactly at p = 0, the
+ * edge of contact, where a round-off would otherwise lift it out for a step
+ * of free fall (and give it a slip that static friction, which only balances
+ * loads, never takes back); PyElastica has the same band (1e-4 m).
  *
  * Normal response (Gazzola et al., R. Soc. Open Sci. 2018, sec. 4.2, eq. 4.8):
  * the ground cancels the part of the element's other loads that pushes into
@@ -120,14 +125,15 @@ static int ground_element(const swModel *m, swData *d, const swGroundDesc *g, in
   }
   const double r = m->radius[e];
   const double pen = r - surface_gap(g, c, n);
-  if (!(pen >= 0)) return 0;
+  const double tol = g->contact_tolerance > 0 ? g->contact_tolerance : 1e-6 * r;
+  if (!(pen >= -tol)) return 0;
 
   /* the element's share of its other loads (Gazzola 2018, eq. 4.8: F_perp) */
   double F[3];
   for (int k = 0; k < 3; k++)
     F[k] = wa * (d->force[3 * ia + k] - carry[k]) + wb * d->force[3 * ib + k];
   const double Fn = sw_v3_dot(F, n), vn = sw_v3_dot(vc, n);
-  const double balance = fmax(0.0, -Fn), spring = g->stiffness * pen;
+  const double balance = fmax(0.0, -Fn), spring = g->stiffness * fmax(pen, 0.0);
   const double normal_ext = fmax(balance - g->damping * vn, -spring); /* never pulls */
   const double N = spring + normal_ext;
 
