@@ -6,8 +6,10 @@
  * gap (the distance of c from the surface along n) are exact; for a terrain
  * z = h(x, y) the normal is taken at the point below c, n = (-h_x, -h_y, 1) /
  * s with s = sqrt(1 + h_x^2 + h_y^2), and the gap is the vertical one scaled
- * by 1/s, (c_z - h) / s: exact for a plane, first order for a curved terrain
- * (its error is about curvature x gap^2, i.e. kappa r^2, at contact).  An
+ * by 1/s, (c_z - h) / s: exact for a plane; on a curved terrain, at gap r,
+ * the true distance is r - r^2 h'^2 h'' / (2 s^3) + O(r^3) along a slope h'
+ * of curvature h'' (test_ground's barrier measures it), exact where the
+ * terrain is level or straight.  An
  * element touches while its penetration p = r - gap is >= -tol, with tol the
  * description's contact_tolerance (default 1e-6 r); the penalty acts on
  * max(p, 0).  The balance below holds a resting element exactly at p = 0, the
@@ -15,7 +17,7 @@
  * of free fall (and give it a slip that static friction, which only balances
  * loads, never takes back); PyElastica has the same band (1e-4 m).
  *
- * Normal response (Gazzola et al., R. Soc. Open Sci. 2018, sec. 4.2, eq. 4.8):
+ * Normal response (Gazzola et al., R. Soc. Open Sci. 2018, sec. 4, eq. 4.8):
  * the ground cancels the part of the element's other loads that pushes into
  * it, B = max(0, -F . n), and adds a penalty k_w p and a damper -gamma_w
  * v_c . n; the total never pulls, N = k_w p + max(B - gamma_w v_n, -k_w p)
@@ -27,8 +29,8 @@
  * sw_ground_energy; balance, damping and friction go into d->ext_force too,
  * so that the kick books their work.
  *
- * Friction (Gazzola 2018, eqs. 4.9-4.12, and PyElastica's
- * AnisotropicFrictionalPlane): the in-plane axial direction a (the element
+ * Friction (Gazzola 2018, sec. 4, and PyElastica's AnisotropicFrictionalPlane,
+ * which implements it): the in-plane axial direction a (the element
  * tangent projected onto the surface) and the sideways direction b = a x n
  * each get their own Coulomb friction against the slip of the element centre
  * along them, u_a = v_c . a and u_b = v_c . b.  Along a the coefficient is
@@ -171,7 +173,8 @@ static int ground_element(const swModel *m, swData *d, const swGroundDesc *g, in
     }
   } else if (N > 0) {
     /* element standing on end: no axis in the surface, isotropic friction
-     * with the sideways coefficients along the slip */
+     * with the sideways coefficients, along the slip (or, at rest, along the
+     * tangential load) */
     double us = sw_v3_norm(u), Ts = sw_v3_norm(T), dir[3];
     const double *src = us > 0 ? u : T;
     double len = us > 0 ? us : Ts;
