@@ -99,10 +99,11 @@ void sw_ground_setup(swModel *m) {
   }
 }
 
-/* Coulomb friction along unit direction dir against the slip u along it:
- * kinetic with coefficient mu_k (forward/backward chosen by the caller
- * through mu_kp / mu_km for u > 0 / u < 0), then static against the
- * remaining load T along dir.  Returns the friction force along dir. */
+/* Coulomb friction along one direction against the slip u along it, under
+ * normal force N: kinetic with mu_kp (u > 0) or mu_km (u < 0), then static
+ * against the remaining load T + kinetic with mu_sp (load > 0) or mu_sm
+ * (load < 0), blended by the slip function.  Returns the friction along the
+ * direction. */
 static double coulomb(double u, double T, double N, double v_eps, double mu_kp, double mu_km,
                       double mu_sp, double mu_sm) {
   double phi = slip_function(fabs(u), v_eps);
