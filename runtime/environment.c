@@ -233,6 +233,8 @@ static int check_ground(const swGroundDesc *g, int nrod, char *err, size_t errle
     return fail(err, errlen, "ground '%s': rolling friction coefficient must be >= 0", nm);
   if (!positive(g->slip_velocity))
     return fail(err, errlen, "ground '%s': slip velocity tolerance must be > 0", nm);
+  if (!nonneg(g->contact_tolerance))
+    return fail(err, errlen, "ground '%s': contact tolerance must be >= 0", nm);
   return 1;
 }
 
@@ -378,6 +380,7 @@ int sw_env_setup(swModel *m, const swEnvSpec *e, char *err, size_t errlen) {
   }
   /* each kind's derived data */
   if (!sw_fluid_setup(m, err, errlen)) return 0;
+  sw_ground_setup(m);
   return 1;
 oom:
   return fail(err, errlen, "out of memory while building the environments");
@@ -400,18 +403,20 @@ void sw_env_free(swModel *m) {
 /* Loads of the environments, after every other load of this evaluation. */
 void sw_env_loads(const swModel *m, swData *d) {
   if (m->nfluid) sw_fluid_loads(m, d);
+  if (m->nground) sw_ground_loads(m, d); /* last: the ground balances the rest */
 }
 
 /* Energy stored in environment springs (contact and ground penalties), J. */
 double sw_env_energy(const swModel *m, const swData *d) {
-  (void)m;
-  (void)d;
-  return 0.0;
+  double energy = 0.0;
+  if (m->nground) energy += sw_ground_energy(m, d);
+  return energy;
 }
 
 /* The smallest step limit of the environments, s (INFINITY: none). */
 double sw_env_stable_dt(const swModel *m) {
   double dt = INFINITY;
   if (m->nfluid) dt = fmin(dt, sw_fluid_stable_dt(m));
+  if (m->nground) dt = fmin(dt, sw_ground_stable_dt(m));
   return dt;
 }

@@ -84,4 +84,13 @@ int sw_fluid_setup(swModel *m, char *err, size_t errlen);
 void sw_fluid_free(swModel *m);
 void sw_fluid_loads(const swModel *m, swData *d);
 double sw_fluid_stable_dt(const swModel *m);
+/* Grounds and terrains (ground.c).  sw_ground_setup normalises the planes'
+ * normals (from sw_env_setup); sw_ground_loads adds the normal response and
+ * friction of every ground (its balance, damping and friction also to
+ * ext_force/ext_torque), called last by sw_env_loads; sw_ground_energy is the
+ * energy of the ground penalties; sw_ground_stable_dt their step limit. */
+void sw_ground_setup(swModel *m);
+void sw_ground_loads(const swModel *m, swData *d);
+double sw_ground_energy(const swModel *m, const swData *d);
+double sw_ground_stable_dt(const swModel *m);
 #endif

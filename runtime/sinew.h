@@ -242,6 +242,11 @@ typedef struct {
   double slip_velocity;     /* v_eps, m/s, below which friction is static    */
   int nrods;                /* rods it acts on (0: all)                      */
   const int *rods;
+  double contact_tolerance; /* m: an element whose gap exceeds its radius by
+                               up to this still touches (the balance, damper
+                               and friction act, the penalty starts at the
+                               radius), so round-off cannot lift a resting
+                               rod; 0: 1e-6 of the element's radius          */
 } swGroundDesc;
 void sw_ground_desc_init(swGroundDesc *g);   /* fills defaults */
 int sw_spec_add_ground(swSpec *s, const swGroundDesc *g);   /* returns its id */
