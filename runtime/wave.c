@@ -22,12 +22,12 @@
  * and Elastica's C++ snake (the source of Gazzola 2018's numbers) passes
  * {17.29, 48.54, 5.392, 14.74} N m unscaled.  For the reference's snake
  * (Zhang 2019, Suppl. Fig. 12: E = 1e7 Pa, r = 0.025 m, so E I = 3.07 N m^2)
- * the spline's peak of about 29 N m (coefficients {0, 17.4, 48.5, 5.4, 14.7,
- * 0}) would hold a curvature of about 9.5 / m, i.e. a lateral amplitude of
- * kappa / k^2 ~ 0.2 L for the wave number k = 2 pi / (0.97 L) — the same
- * ratio as PyElastica's own snake example (L = 0.35 m, E I = 1.7e-4 N m^2,
- * beta ~ 3.5e-3 N m), so the magnitude is plausible and no normalisation is
- * implied.
+ * the spline of {0, 17.4, 48.5, 5.4, 14.7, 0} peaks at 33.6 N m (s = 0.34 L,
+ * test_wave.c), which would hold a curvature of 10.9 / m, a lateral
+ * amplitude kappa / k^2 = 0.26 L for k = 2 pi / (0.97 L) — close to the
+ * 0.20 L of PyElastica's own snake example (L = 0.35 m, E I = 1.7e-4 N m^2,
+ * beta peaking at 3.8e-3 N m, lambda = L).  Both are plausible undulations,
+ * so the reference's numbers need no normalisation.
  *
  * Cost.  beta is evaluated once, at setup, with GSL's B-splines; the step
  * only evaluates sin and cos of 2 pi t / T once per wave, because
