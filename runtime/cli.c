@@ -483,12 +483,15 @@ static double model_bytes(const swModel *m) {
   b += (double)m->nrod * sizeof(int) + (double)m->nrigid * (4 * sizeof(int) + 16 * sizeof(double));
   for (int k = 0; k < m->nrigid; k++)
     b += sizeof(double) * (3.0 * (m->rod_nelem[m->rigid_rod[k]] + 1) + 9.0 * m->rod_nelem[m->rigid_rod[k]]);
+  /* torque waves: per node of each wave's rod s, beta and 2 phase terms */
+  if (m->nwave) b += 4.0 * sizeof(double) * m->wave_node_adr[m->nwave];
   return b;
 }
 
 static double data_bytes(const swModel *m) {
   return sizeof(swData) + sizeof(double) * (12.0 * m->nnode + 26.0 * m->nelem + 7.0 * m->nvor +
-                                            4.0 * m->njoint + 4.0 * m->nfil + 21.0 * m->nrigid);
+                                            4.0 * m->njoint + 4.0 * m->nfil + 21.0 * m->nrigid) +
+         (double)m->nprobe * (4.0 * SW_PROBE_RING * sizeof(double) + 2 * sizeof(int));
 }
 
 /* Frames a run of this length writes (run.c: step 0, every k steps, the last). */
@@ -636,10 +639,11 @@ static void print_info(const swCli *c, const swModel *m, double stable, const ch
   if (m->has_gravity)
     printf("gravity: (%g, %g, %g) m/s^2\n", m->gravity[0], m->gravity[1], m->gravity[2]);
   else printf("gravity: none\n");
-  printf("forces in use: elasticity (stretch, shear, bend, twist)%s%s%s%s%s%s\n",
+  printf("forces in use: elasticity (stretch, shear, bend, twist)%s%s%s%s%s%s%s\n",
          m->has_gravity ? ", gravity" : "", m->nload ? ", point loads" : "",
          m->nbc ? ", boundary conditions" : "", m->njoint ? ", joints" : "",
-         m->nmuscle ? ", muscles" : "", m->has_damping ? ", damping" : "");
+         m->nmuscle ? ", muscles" : "", m->nwave ? ", torque waves" : "",
+         m->has_damping ? ", damping" : "");
   printf("integrator: %s\n", m->integrator == SW_PEFRL ? "PEFRL" : "position Verlet");
   printf("dt: %s (%s; stable estimate %s)\n", format_time(a, sizeof a, m->dt), dt_source,
          format_time(b, sizeof b, stable));
