@@ -291,9 +291,8 @@ int sw_spec_add_contact(swSpec *s, const swContactDesc *c);
  *   tau(s, t) = ramp(t) beta(s) sin(2 pi t / T - 2 pi s / lambda + phi),
  * ramp(t) = min(1, t / ramp) (1 when ramp = 0).  tau is a bending moment,
  * N m (not per unit length): the couple the muscles hold across the
- * cross-section at s, about
- * `direction`, so a rod at rest under it takes the curvature tau / (E I)
- * about that axis.  beta is the clamped cubic B-spline with coefficients
+ * cross-section at s, about `direction`, so a rod at rest under it takes
+ * the curvature tau / (E I) about that axis.  beta is the clamped cubic B-spline with coefficients
  * `coef` on uniform knots over s in [0, L] (beta(0) = coef[0], beta(L) =
  * coef[ncoef-1]); the coefficients are in N m, unscaled, as in Gazzola 2018,
  * Zhang 2019 (Suppl. Fig. 12) and PyElastica's MuscleTorques.  s runs from
