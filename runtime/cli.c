@@ -32,6 +32,7 @@
 #include <time.h>
 
 #include "sinew.h"
+#include "internal.h"
 
 /* ---- the options ---- */
 
@@ -482,12 +483,15 @@ static double model_bytes(const swModel *m) {
   b += (double)m->nrod * sizeof(int) + (double)m->nrigid * (4 * sizeof(int) + 16 * sizeof(double));
   for (int k = 0; k < m->nrigid; k++)
     b += sizeof(double) * (3.0 * (m->rod_nelem[m->rigid_rod[k]] + 1) + 9.0 * m->rod_nelem[m->rigid_rod[k]]);
+  /* torque waves: per node of each wave's rod s, beta and 2 phase terms */
+  if (m->nwave) b += 4.0 * sizeof(double) * m->wave_node_adr[m->nwave];
   return b;
 }
 
 static double data_bytes(const swModel *m) {
   return sizeof(swData) + sizeof(double) * (12.0 * m->nnode + 26.0 * m->nelem + 7.0 * m->nvor +
-                                            4.0 * m->njoint + 4.0 * m->nfil + 21.0 * m->nrigid);
+                                            4.0 * m->njoint + 4.0 * m->nfil + 21.0 * m->nrigid) +
+         (double)m->nprobe * (4.0 * SW_PROBE_RING * sizeof(double) + 2 * sizeof(int));
 }
 
 /* Frames a run of this length writes (run.c: step 0, every k steps, the last). */
@@ -505,6 +509,67 @@ static const char *joint_kind_name(swJointKind kind) {
   case SW_JOINT_FIXED: return "fixed";
   }
   return "joint";
+}
+
+/* The rods an environment acts on: "all rods" or "rods a, b". */
+static const char *rod_list(char *buf, size_t len, const swModel *m, int nrods, const int *rods) {
+  if (nrods == m->nrod) return "all rods";
+  size_t used = (size_t)snprintf(buf, len, "rod%s", nrods == 1 ? "" : "s");
+  for (int k = 0; k < nrods && used < len; k++)
+    used += (size_t)snprintf(buf + used, len - used, "%s %s", k ? "," : "", m->rod_name[rods[k]]);
+  return buf;
+}
+
+/* Grounds, fluids, contacts, torque waves and probes, one line each. */
+static void print_environments(const swModel *m) {
+  char a[256], b[64];
+  printf("environments: %d grounds, %d fluids, %d contacts, %d torque waves, %d probes\n",
+         m->nground, m->nfluid, m->ncontact, m->nwave, m->nprobe);
+  for (int k = 0; k < m->nground; k++) {
+    const swGroundDesc *g = &m->ground[k];
+    printf("  ground %s: %s, stiffness %g N/m, damping %g kg/s, kinetic friction %g/%g/%g "
+           "(forward/backward/sideways), static %g/%g/%g, %s\n", g->name,
+           g->height ? "terrain" : "plane", g->stiffness, g->damping, g->mu_kinetic[0],
+           g->mu_kinetic[1], g->mu_kinetic[2], g->mu_static[0], g->mu_static[1], g->mu_static[2],
+           rod_list(a, sizeof a, m, g->nrods, g->rods));
+  }
+  for (int k = 0; k < m->nfluid; k++) {
+    const swFluidDesc *f = &m->fluid[k];
+    if (f->model == SW_FLUID_STOKES)
+      printf("  fluid %s: Stokes drag, viscosity %g Pa s", f->name, f->viscosity);
+    else
+      printf("  fluid %s: quadratic drag, density %g kg/m^3, C_d %g", f->name, f->density,
+             f->drag_coefficient);
+    printf("%s, %s\n", f->buoyancy ? ", buoyancy" : "", rod_list(a, sizeof a, m, f->nrods, f->rods));
+  }
+  for (int k = 0; k < m->ncontact; k++) {
+    const swContactDesc *c = &m->contact[k];
+    printf("  contact %s: stiffness %g N/m, damping %g kg/s%s, %s\n", c->name, c->stiffness,
+           c->damping, c->self ? ", self-contact" : "", rod_list(a, sizeof a, m, c->nrods, c->rods));
+  }
+  for (int k = 0; k < m->nwave; k++) {
+    const swWaveDesc *w = &m->wave[k];
+    double peak = 0;
+    for (int i = m->wave_node_adr[k]; i < m->wave_node_adr[k + 1]; i++)
+      if (fabs(m->wave_beta[i]) > fabs(peak)) peak = m->wave_beta[i];
+    printf("  torque wave %s: rod %s, %d coefficients (peak beta %g N m), wavelength %g m, "
+           "period %g s, about (%g, %g, %g), from the rod's %s\n", w->name, m->rod_name[w->rod],
+           w->ncoef, peak, w->wavelength, w->period, w->direction[0], w->direction[1],
+           w->direction[2], w->reverse ? "end" : "start");
+  }
+  for (int k = 0; k < m->nprobe; k++) {
+    const swProbeDesc *p = &m->probe[k];
+    if (p->kind == SW_PROBE_NODE)
+      printf("  probe %s: node_position, node %d of rod %s\n", p->name, p->node,
+             m->rod_name[p->rod]);
+    else if (p->kind == SW_PROBE_MEAN_VELOCITY)
+      printf("  probe %s: mean_velocity over %s (%s)\n", p->name,
+             p->window > 0 ? format_time(b, sizeof b, p->window) : "the frame interval",
+             rod_list(a, sizeof a, m, p->nrods, p->rods));
+    else
+      printf("  probe %s: %s (%s)\n", p->name, sw_probe_kind_name(p->kind),
+             rod_list(a, sizeof a, m, p->nrods, p->rods));
+  }
 }
 
 static void print_info(const swCli *c, const swModel *m, double stable, const char *dt_source,
@@ -554,6 +619,7 @@ static void print_info(const swCli *c, const swModel *m, double stable, const ch
     printf("\n");
     (void)area;
   }
+  print_environments(m);
   int nforce = 0, ntorque = 0, nclamp = 0, nvel = 0, nomega = 0;
   for (int k = 0; k < m->nload; k++) {
     if (m->load[k].kind == SW_LOAD_TORQUE) ntorque++;
@@ -573,10 +639,11 @@ static void print_info(const swCli *c, const swModel *m, double stable, const ch
   if (m->has_gravity)
     printf("gravity: (%g, %g, %g) m/s^2\n", m->gravity[0], m->gravity[1], m->gravity[2]);
   else printf("gravity: none\n");
-  printf("forces in use: elasticity (stretch, shear, bend, twist)%s%s%s%s%s%s\n",
+  printf("forces in use: elasticity (stretch, shear, bend, twist)%s%s%s%s%s%s%s\n",
          m->has_gravity ? ", gravity" : "", m->nload ? ", point loads" : "",
          m->nbc ? ", boundary conditions" : "", m->njoint ? ", joints" : "",
-         m->nmuscle ? ", muscles" : "", m->has_damping ? ", damping" : "");
+         m->nmuscle ? ", muscles" : "", m->nwave ? ", torque waves" : "",
+         m->has_damping ? ", damping" : "");
   printf("integrator: %s\n", m->integrator == SW_PEFRL ? "PEFRL" : "position Verlet");
   printf("dt: %s (%s; stable estimate %s)\n", format_time(a, sizeof a, m->dt), dt_source,
          format_time(b, sizeof b, stable));

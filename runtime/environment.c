@@ -375,12 +375,18 @@ int sw_env_setup(swModel *m, const swEnvSpec *e, char *err, size_t errlen) {
     m->probe[k] = e->probe[k];
     if (!resolve(&m->probe[k].name, &m->probe[k].rods, &m->probe[k].nrods, m->nrod)) goto oom;
     m->nprobe = k + 1;
-    if (m->probe[k].kind == SW_PROBE_NODE && m->probe[k].node < 0)
-      m->probe[k].node = m->rod_nelem[m->probe[k].rod];
+    if (m->probe[k].kind == SW_PROBE_NODE) {
+      const int n = m->rod_nelem[m->probe[k].rod], node = m->probe[k].node;
+      if (node < -1 || node > n)
+        return fail(err, errlen, "probe '%s': node %d out of range for rod '%s' (nodes 0..%d, "
+                    "-1 = last)", m->probe[k].name, node, m->rod_name[m->probe[k].rod], n);
+      if (node < 0) m->probe[k].node = n;
+    }
   }
   /* each kind's derived data */
   if (!sw_fluid_setup(m, err, errlen)) return 0;
   sw_ground_setup(m);
+  if (!sw_wave_setup(m)) goto oom;
   return 1;
 oom:
   return fail(err, errlen, "out of memory while building the environments");
@@ -393,6 +399,7 @@ void sw_env_free(swModel *m) {
   for (int k = 0; k < m->ncontact; k++) disown(m->contact[k].name, m->contact[k].rods);
   for (int k = 0; k < m->nwave; k++) disown(m->wave[k].name, NULL);
   for (int k = 0; k < m->nprobe; k++) disown(m->probe[k].name, m->probe[k].rods);
+  sw_wave_free(m);
   free(m->ground); free(m->fluid); free(m->contact); free(m->wave); free(m->probe);
   m->ground = NULL; m->fluid = NULL; m->contact = NULL; m->wave = NULL; m->probe = NULL;
   m->nground = m->nfluid = m->ncontact = m->nwave = m->nprobe = 0;
@@ -402,6 +409,7 @@ void sw_env_free(swModel *m) {
 
 /* Loads of the environments, after every other load of this evaluation. */
 void sw_env_loads(const swModel *m, swData *d) {
+  if (m->nwave) sw_wave_loads(m, d);
   if (m->nfluid) sw_fluid_loads(m, d);
   if (m->nground) sw_ground_loads(m, d); /* last: the ground balances the rest */
 }

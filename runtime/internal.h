@@ -93,4 +93,18 @@ void sw_ground_setup(swModel *m);
 void sw_ground_loads(const swModel *m, swData *d);
 double sw_ground_energy(const swModel *m, const swData *d);
 double sw_ground_stable_dt(const swModel *m);
+/* Torque waves (wave.c): sw_wave_setup fills the wave_* arrays of the model
+ * (beta and the wave's phase at every node; 0 when out of memory), called by
+ * sw_env_setup; sw_wave_loads adds the couples to d->ext_torque and
+ * d->torque, called by sw_env_loads. */
+int sw_wave_setup(swModel *m);
+void sw_wave_free(swModel *m);
+void sw_wave_loads(const swModel *m, swData *d);
+/* Probes (probe.c): their samples live in swData (sw_data_new, sw_data_free
+ * and sw_reset call these); kind names and units for output and --info. */
+int sw_probe_data_new(const swModel *m, swData *d);
+void sw_probe_data_free(swData *d);
+void sw_probe_reset(const swModel *m, swData *d);
+const char *sw_probe_kind_name(swProbeKind kind);
+const char *sw_probe_units(swProbeKind kind);
 #endif

@@ -52,7 +52,47 @@ swSignal sw_signal_step(double before, double after, double t0) {
   return s;
 }
 
+swSignal sw_signal_bspline(const double *c, int n, double t0, double duration) {
+  swSignal s = sw_signal_const(n > 0 ? c[0] : 0.0);
+  s.kind = SW_SIG_BSPLINE;
+  s.t0 = t0;
+  s.T = duration;
+  s.npts = n;
+  for (int k = 0; k < n && k < SW_SIGNAL_MAXPTS; k++) s.values[k] = c[k];
+  return s;
+}
+
+swSignal sw_signal_periodic(swSignal s, double period) {
+  s.period = period;
+  return s;
+}
+
+/* The clamped cubic B-spline with coefficients c[0..n) on the uniform knot
+ * vector of [0, 1] (four-fold end knots, n - 4 interior knots at j / (n - 3)),
+ * at u in [0, 1], by de Boor's algorithm (de Boor, A Practical Guide to
+ * Splines, 1978, ch. X): no allocation, four coefficients touched. */
+static double bspline_uniform(const double *c, int n, double u) {
+  const int spans = n - 3;
+  int i = (int)(u * spans); /* span [i, i+1) / spans, clamped to the last */
+  if (i < 0) i = 0;
+  if (i > spans - 1) i = spans - 1;
+  double knot[6], dj[4]; /* knots t_{i+1..i+6} of the clamped vector, in spans */
+  for (int k = 0; k < 6; k++) {
+    int kk = i + k - 2; /* knot index relative to the first interior breakpoint */
+    knot[k] = (kk < 0 ? 0 : kk > spans ? spans : kk) / (double)spans;
+  }
+  for (int k = 0; k < 4; k++) dj[k] = c[i + k];
+  for (int r = 1; r <= 3; r++)
+    for (int k = 3; k >= r; k--) {
+      const double lo = knot[k - 1], hi = knot[k + 3 - r];
+      const double a = hi > lo ? (u - lo) / (hi - lo) : 0.0;
+      dj[k] = (1.0 - a) * dj[k - 1] + a * dj[k];
+    }
+  return dj[3];
+}
+
 double sw_signal_eval(const swSignal *s, double t) {
+  if (s->period > 0 && t > s->t0) t = s->t0 + fmod(t - s->t0, s->period);
   switch (s->kind) {
   case SW_SIG_CONST:
     return s->a;
@@ -77,6 +117,11 @@ double sw_signal_eval(const swSignal *s, double t) {
     double f = (t - s->times[lo]) / (s->times[hi] - s->times[lo]);
     return s->values[lo] + f * (s->values[hi] - s->values[lo]);
   }
+  case SW_SIG_BSPLINE:
+    if (s->npts < 4) return s->npts > 0 ? s->values[0] : 0.0;
+    if (t <= s->t0 || !(s->T > 0)) return s->values[0];
+    if (t >= s->t0 + s->T) return s->values[s->npts - 1];
+    return bspline_uniform(s->values, s->npts, (t - s->t0) / s->T);
   }
   return 0.0;
 }

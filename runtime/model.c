@@ -279,8 +279,24 @@ static void place_rod(const swSpec *s, int r, double *x, double *Q) {
 
 static int check_signal(const swSignal *g, char *err, size_t errlen, const char *what, int k,
                         const char *rod) {
-  if (g->kind < SW_SIG_CONST || g->kind > SW_SIG_TABLE)
+  if (g->kind < SW_SIG_CONST || g->kind > SW_SIG_BSPLINE)
     return fail(err, errlen, "%s %d on rod '%s': unknown signal kind %d", what, k, rod, (int)g->kind);
+  if (!(g->period >= 0) || !isfinite(g->period))
+    return fail(err, errlen, "%s %d on rod '%s': signal period must be >= 0 (0: not periodic), "
+                "got %g", what, k, rod, g->period);
+  if (g->kind == SW_SIG_BSPLINE) {
+    if (g->npts < 4 || g->npts > SW_SIGNAL_MAXPTS)
+      return fail(err, errlen, "%s %d on rod '%s': B-spline signal needs 4..%d coefficients, "
+                  "has %d", what, k, rod, SW_SIGNAL_MAXPTS, g->npts);
+    if (!(g->T > 0) || !isfinite(g->T))
+      return fail(err, errlen, "%s %d on rod '%s': B-spline signal duration must be > 0", what, k,
+                  rod);
+    for (int i = 0; i < g->npts; i++)
+      if (!isfinite(g->values[i]))
+        return fail(err, errlen, "%s %d on rod '%s': B-spline coefficient %d is not finite", what,
+                    k, rod, i);
+    return 1;
+  }
   if (g->kind != SW_SIG_TABLE) return 1;
   if (g->npts < 1 || g->npts > SW_SIGNAL_MAXPTS)
     return fail(err, errlen, "%s %d on rod '%s': table signal needs 1..%d points, has %d", what, k,
@@ -604,6 +620,7 @@ void sw_data_free(swData *d) {
   free(d->joint_force); free(d->joint_angle);
   free(d->fil_activation); free(d->fil_stretch); free(d->fil_rate); free(d->fil_tension);
   free(d->rigid_X); free(d->rigid_V); free(d->rigid_R); free(d->rigid_L); free(d->rigid_omega);
+  sw_probe_data_free(d);
   free(d);
 }
 
@@ -632,7 +649,8 @@ swData *sw_data_new(const swModel *m) {
   size_t B = (size_t)m->nrigid;
   d->rigid_X = dalloc(3 * B); d->rigid_V = dalloc(3 * B); d->rigid_R = dalloc(9 * B);
   d->rigid_L = dalloc(3 * B); d->rigid_omega = dalloc(3 * B);
-  if (!d->rigid_X || !d->rigid_V || !d->rigid_R || !d->rigid_L || !d->rigid_omega) {
+  if (!d->rigid_X || !d->rigid_V || !d->rigid_R || !d->rigid_L || !d->rigid_omega ||
+      !sw_probe_data_new(m, d)) {
     sw_data_free(d);
     return NULL;
   }
@@ -650,6 +668,7 @@ void sw_reset(const swModel *m, swData *d) {
   memset(d->v, 0, sizeof(double) * 3 * (size_t)m->nnode);
   memset(d->omega, 0, sizeof(double) * 3 * (size_t)m->nelem);
   if (m->nrigid) sw_rigid_reset(m, d);
+  sw_probe_reset(m, d);
   sw_apply_bc_velocity(m, d, 0.0);
   sw_internal_loads(m, d); /* strains of the initial state */
   if (m->nmuscle) {

@@ -2,22 +2,26 @@
  * hdf5.h.
  *
  * Design.  What is written is described by one table, output_fields[]: a
- * dataset path, whether it exists once, once per rod or once per joint (or
- * hinge), its shape per frame (with symbolic extents for "nodes of this rod"
- * and "elements of this rod"), its units, optional column names, the option
- * that enables it and the function that fills one frame from the state.
- * sw_output_open() walks the table once and creates every dataset (doubles,
- * first dimension unlimited, chunked by up to 64 frames) with its `units`
- * attribute; sw_output_frame() walks the opened datasets, fills a scratch
- * frame allocated at open time, appends it and flushes the file, so a run that
- * dies later still leaves a readable file of every frame written so far.
- * Adding an output is one line of the table plus, if the quantity is new, a
- * four-line fill function.  Muscle groups also carry what a reader needs to
- * normalise their forces (write_muscle_attrs).  The root group records how the file was made (SPEC.md "Output (HDF5)") and a
- * `status` attribute that reads "incomplete" until sw_output_close() replaces
- * it with the caller's verdict.  HDF5's own error printing is switched off;
- * every call is checked and the failure is reported once, in our words, naming
- * the file and the object, with HDF5's innermost reason appended. */
+ * dataset path, whether it exists once, once per rod, per joint (or hinge),
+ * per muscle or per probe, its shape per frame (with symbolic extents for
+ * "nodes of this rod" and "elements of this rod"), its units, optional
+ * column names, the option that enables it and the function that fills one
+ * frame from the state.  sw_output_open() walks the table once and creates
+ * every dataset (doubles, first dimension unlimited, chunked by up to 64
+ * frames) with its `units` attribute; sw_output_frame() walks the opened
+ * datasets, fills a scratch frame allocated at open time, appends it and
+ * flushes the file, so a run that dies later still leaves a readable file of
+ * every frame written so far.  Adding an output is one line of the table
+ * plus, if the quantity is new, a four-line fill function.  Muscle groups
+ * also carry what a reader needs to normalise their forces
+ * (write_muscle_attrs); a probe is one dataset /probes/NAME [F, 3] whose
+ * units follow its kind and whose attributes say what it measures
+ * (write_probe_attrs).  The root group records how the file was made
+ * (SPEC.md "Output (HDF5)") and a `status` attribute that reads "incomplete"
+ * until sw_output_close() replaces it with the caller's verdict.  HDF5's own
+ * error printing is switched off; every call is checked and the failure is
+ * reported once, in our words, naming the file and the object, with HDF5's
+ * innermost reason appended. */
 #include <hdf5.h>
 #include <math.h>
 #include <stdarg.h>
@@ -32,7 +36,7 @@
 
 /* Symbolic per-frame extents, resolved for each rod at open time. */
 enum { EXTENT_NODES = -1, EXTENT_ELEMS = -2, EXTENT_FILAMENTS = -3 };
-enum { SCOPE_ROOT, SCOPE_ROD, SCOPE_JOINT, SCOPE_MUSCLE };
+enum { SCOPE_ROOT, SCOPE_ROD, SCOPE_JOINT, SCOPE_MUSCLE, SCOPE_PROBE };
 enum { WHEN_ALWAYS, WHEN_VELOCITY, WHEN_DIRECTORS, WHEN_HINGE };
 #define MAX_FRAME_RANK 3
 
@@ -41,11 +45,12 @@ enum { WHEN_ALWAYS, WHEN_VELOCITY, WHEN_DIRECTORS, WHEN_HINGE };
 typedef void (*swFillFn)(const swModel *m, swData *d, int item, double *frame);
 
 typedef struct {
-  const char *path;          /* under "/", "/rods/NAME" or "/joints/NAME"     */
+  const char *path;          /* under "/", "/rods/NAME" or "/joints/NAME";
+                                "" for the probe's own dataset /probes/NAME  */
   int scope;                 /* SCOPE_ROOT, SCOPE_ROD or SCOPE_JOINT           */
   int rank;                  /* rank of one frame                              */
   int extent[MAX_FRAME_RANK];/* count, EXTENT_NODES or EXTENT_ELEMS            */
-  const char *units;
+  const char *units;         /* NULL: the item's own (probes)                  */
   const char *const *columns;/* names along the last dimension, or NULL        */
   int when;                  /* which option (or joint kind) enables it        */
   swFillFn fill;
@@ -127,6 +132,11 @@ static void fill_filament_force(const swModel *m, swData *d, int mu, double *fra
   memcpy(frame, d->fil_tension + f0, (size_t)(m->muscle_fil_adr[mu + 1] - f0) * sizeof *frame);
 }
 
+/* Probes (probe.c): the row of /probes/NAME. */
+static void fill_probe(const swModel *m, swData *d, int probe, double *frame) {
+  sw_probe_measure(m, d, probe, frame);
+}
+
 /* Must match the order sw_energy() returns. */
 static const char *const energy_columns[] = {"kinetic", "elastic", "work_done", NULL};
 
@@ -142,6 +152,7 @@ static const swField output_fields[] = {
   {"stretch",             SCOPE_MUSCLE,0,{0},                        "-",   NULL,           WHEN_ALWAYS,    fill_muscle_stretch},
   {"activation",          SCOPE_MUSCLE,0,{0},                        "-",   NULL,           WHEN_ALWAYS,    fill_muscle_activation},
   {"filament_force",      SCOPE_MUSCLE,1,{EXTENT_FILAMENTS},         "N",   NULL,           WHEN_ALWAYS,    fill_filament_force},
+  {"",                    SCOPE_PROBE,1, {3},                        NULL,  NULL,           WHEN_ALWAYS,    fill_probe},
   {"diagnostics/energy",  SCOPE_ROOT, 1, {3},                        "J",   energy_columns, WHEN_ALWAYS,    fill_energy},
 };
 #define NFIELDS (sizeof output_fields / sizeof output_fields[0])
@@ -305,6 +316,29 @@ static int attr_vector(const swAttrTarget *t, const char *name, const double *va
   return rc;
 }
 
+/* What a probe measures: `kind` (probe.c's name), its rods (or rod and
+ * node), and the averaging window of a mean velocity (s). */
+static int write_probe_attrs(const swAttrTarget *t, const swProbeDesc *p) {
+  int rc = attr_string(t, "kind", sw_probe_kind_name(p->kind));
+  if (rc == SW_OK && p->kind == SW_PROBE_NODE) {
+    rc = attr_scalar(t, "rod", H5T_STD_I32LE, H5T_NATIVE_INT, &p->rod);
+    if (rc == SW_OK) rc = attr_scalar(t, "node", H5T_STD_I32LE, H5T_NATIVE_INT, &p->node);
+    return rc;
+  }
+  if (rc == SW_OK) {
+    hsize_t n = (hsize_t)p->nrods;
+    hid_t space = H5Screate_simple(1, &n, NULL);
+    if (space < 0)
+      return fail(t->err, t->errlen, "%s: cannot make the dataspace of attribute 'rods' of %s",
+                  t->file, t->obj_path);
+    rc = write_attr(t, "rods", H5T_STD_I32LE, H5T_NATIVE_INT, space, p->rods);
+    H5Sclose(space);
+  }
+  if (rc == SW_OK && p->kind == SW_PROBE_MEAN_VELOCITY)
+    rc = attr_scalar(t, "window", H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, &p->window);
+  return rc;
+}
+
 /* ---- open ---- */
 
 static int valid_group_name(const char *name) {
@@ -324,6 +358,7 @@ static int field_items(const swField *f, const swModel *m) {
   return f->scope == SCOPE_ROD      ? m->nrod
          : f->scope == SCOPE_JOINT  ? m->njoint
          : f->scope == SCOPE_MUSCLE ? m->nmuscle
+         : f->scope == SCOPE_PROBE  ? m->nprobe
                                     : 1;
 }
 static int item_enabled(const swField *f, const swModel *m, int k) {
@@ -343,6 +378,8 @@ static int create_dataset(swOutput *o, swDataset *ds, const swField *f, const sw
   ds->path = f->scope == SCOPE_ROD      ? dup_printf("/rods/%s/%s", m->rod_name[item], f->path)
              : f->scope == SCOPE_JOINT  ? dup_printf("/joints/%s/%s", m->joint_name[item], f->path)
              : f->scope == SCOPE_MUSCLE ? dup_printf("/muscles/%s/%s", m->muscle_name[item], f->path)
+             : f->scope == SCOPE_PROBE  ? dup_printf("/probes/%s%s%s", m->probe[item].name,
+                                                     f->path[0] ? "/" : "", f->path)
                                         : dup_printf("/%s", f->path);
   if (!ds->path) return fail(err, errlen, "%s: out of memory", o->path);
 
@@ -376,7 +413,8 @@ static int create_dataset(swOutput *o, swDataset *ds, const swField *f, const sw
   if (ds->dset < 0) return fail(err, errlen, "%s: cannot create dataset %s", o->path, ds->path);
 
   swAttrTarget t = {ds->dset, o->path, ds->path, err, errlen};
-  int rc = attr_string(&t, "units", f->units);
+  int rc = attr_string(&t, "units", f->units ? f->units : sw_probe_units(m->probe[item].kind));
+  if (rc == SW_OK && f->scope == SCOPE_PROBE) rc = write_probe_attrs(&t, &m->probe[item]);
   if (rc == SW_OK && f->columns) {
     hsize_t ncol = 0;
     while (f->columns[ncol]) ncol++;
@@ -469,6 +507,12 @@ swOutput *sw_output_open(const char *path, const swModel *m, const swOutputOptio
     if (!valid_group_name(m->muscle_name[i])) {
       fail(err, errlen, "%s: muscle %d has name '%s', which cannot name an HDF5 group", path, i,
            m->muscle_name[i] ? m->muscle_name[i] : "");
+      return NULL;
+    }
+  for (int i = 0; i < m->nprobe; i++)
+    if (!valid_group_name(m->probe[i].name)) {
+      fail(err, errlen, "%s: probe %d has name '%s', which cannot name an HDF5 dataset", path, i,
+           m->probe[i].name ? m->probe[i].name : "");
       return NULL;
     }
 

@@ -51,7 +51,7 @@ typedef struct {
   swSignalKind kind;
   double a, b, t0, T, freq, phase;
   double period;                     /* > 0: periodic, s(t) = s(t0 + (t - t0) mod period) */
-  int npts;                          /* SW_SIG_TABLE only                 */
+  int npts;                          /* SW_SIG_TABLE and SW_SIG_BSPLINE   */
   double times[SW_SIGNAL_MAXPTS];    /* strictly increasing               */
   double values[SW_SIGNAL_MAXPTS];
 } swSignal;
@@ -60,6 +60,11 @@ swSignal sw_signal_const(double value);
 swSignal sw_signal_ramp(double from, double to, double t0, double duration);
 swSignal sw_signal_sine(double mean, double amplitude, double freq_hz, double phase, double t0);
 swSignal sw_signal_step(double before, double after, double t0);
+/* Clamped cubic B-spline through coefficients c[0..n) (4 <= n <= 64) on
+ * uniform knots over [t0, t0 + duration]: c[0] before t0, c[n-1] after. */
+swSignal sw_signal_bspline(const double *c, int n, double t0, double duration);
+/* The same signal repeated with `period` (> 0) from its t0 on. */
+swSignal sw_signal_periodic(swSignal s, double period);
 double sw_signal_eval(const swSignal *s, double t);
 
 /* ---- scene description ---- */
@@ -292,16 +297,24 @@ int sw_spec_add_contact(swSpec *s, const swContactDesc *c);
 
 /* The travelling muscle-torque wave of Gazzola et al. 2018 (sec. 4.3):
  *   tau(s, t) = ramp(t) beta(s) sin(2 pi t / T - 2 pi s / lambda + phi),
- * beta a clamped cubic B-spline through `coef` over s in [0, L] (s from the
- * rod's start, or from its end with `reverse`), applied about `direction` as
- * an internal couple of the rod (each element gets the difference of tau at
- * its two ends). */
+ * ramp(t) = min(1, t / ramp) (1 when ramp = 0).  tau is a bending moment,
+ * N m (not per unit length): the couple the muscles hold across the
+ * cross-section at s, about `direction`, so a rod at rest under it takes
+ * the curvature tau / (E I) about that axis.  beta is the clamped cubic B-spline with coefficients
+ * `coef` on uniform knots over s in [0, L] (beta(0) = coef[0], beta(L) =
+ * coef[ncoef-1]); the coefficients are in N m, unscaled, as in Gazzola 2018,
+ * Zhang 2019 (Suppl. Fig. 12) and PyElastica's MuscleTorques.  s runs from
+ * the rod's start, or from its end with `reverse` (PyElastica's convention,
+ * head at the rod's end); the wave travels towards growing s at lambda / T.
+ * The moment acts at the rod's interior nodes (none at its free ends), each
+ * element getting the difference of the moments at its two ends, so it is
+ * an internal couple: no net force or torque on the rod (wave.c). */
 #define SW_WAVE_MAXCOEF 32
 typedef struct {
   const char *name;
   int rod;
   int ncoef;                /* 4 .. SW_WAVE_MAXCOEF                          */
-  double coef[SW_WAVE_MAXCOEF]; /* beta_i, N m                              */
+  double coef[SW_WAVE_MAXCOEF]; /* beta_i, N m (B-spline coefficients)      */
   double wavelength;        /* lambda, m                                     */
   double period;            /* T, s                                          */
   double phase;             /* phi, rad                                      */
@@ -331,6 +344,7 @@ typedef struct {
 } swProbeDesc;
 void sw_probe_desc_init(swProbeDesc *p);     /* fills defaults */
 int sw_spec_add_probe(swSpec *s, const swProbeDesc *p);
+#define SW_PROBE_RING 128    /* centre-of-mass samples kept per probe        */
 
 /* ---- the compiled model (immutable) ---- */
 typedef struct {
@@ -442,7 +456,14 @@ typedef struct {
   double *fluid_displaced;   /* (nfluidrow) rho_f pi r^2 l^, kg (buoyancy)    */
   double fluid_dt;           /* step limit of the Stokes drag, s (INFINITY: none) */
   /* contact.c */
-  /* wave.c */
+  /* wave.c: wave w owns rows [wave_node_adr[w], wave_node_adr[w+1]), one
+   * per node of its rod, in the rod's node order */
+  int *wave_node_adr;        /* (nwave+1)  first row of each wave             */
+  double *wave_s;            /* (rows)     s of the node (from the start, or
+                                from the end with `reverse`), m              */
+  double *wave_beta;         /* (rows)     beta(s), N m; 0 at the two end nodes */
+  double *wave_amp;          /* (rows*2)   beta cos(theta), beta sin(theta),
+                                theta = 2 pi s / lambda - phi               */
   /* probe.c */
   int has_gravity;
   int has_damping;
@@ -490,7 +511,11 @@ typedef struct {
   /* fluid.c */
   /* contact.c */
   /* wave.c */
-  /* probe.c */
+  /* probe.c: the centre-of-mass samples (t, X) that mean-velocity probes
+   * difference, a ring of SW_PROBE_RING per probe (probe.c) */
+  double *probe_ring;        /* (nprobe*SW_PROBE_RING*4) t, X of each sample  */
+  int *probe_head;           /* (nprobe)  slot of the oldest sample           */
+  int *probe_count;          /* (nprobe)  samples held                        */
   /* instability report, filled when sw_step returns SW_EUNSTABLE */
   char error[512];
 } swData;
@@ -513,6 +538,11 @@ int sw_check_finite(const swModel *m, swData *d);      /* stability.c   */
  * Returns SW_OK, or SW_EUSAGE if the rod is not rigid or is clamped. */
 int sw_rigid_set_motion(const swModel *m, swData *d, int rod, const double V[3],
                         const double omega[3]);
+
+/* The row of probe p for the current state (probe.c; what /probes/NAME
+ * gets).  A mean-velocity probe also records the sample it differences
+ * later, so call it once per frame, in time order (sw_reset forgets them). */
+void sw_probe_measure(const swModel *m, swData *d, int p, double out[3]);
 
 /* Energies (J): kinetic (translational + rotational), elastic
  * (bend/twist + shear/stretch), and the work done on the system. */
