@@ -377,12 +377,14 @@ int sw_env_setup(swModel *m, const swEnvSpec *e, char *err, size_t errlen) {
       m->probe[k].node = m->rod_nelem[m->probe[k].rod];
   }
   /* each kind's derived data */
+  if (!sw_contact_setup(m)) goto oom;
   return 1;
 oom:
   return fail(err, errlen, "out of memory while building the environments");
 }
 
 void sw_env_free(swModel *m) {
+  sw_contact_free(m);
   for (int k = 0; k < m->nground; k++) disown(m->ground[k].name, m->ground[k].rods);
   for (int k = 0; k < m->nfluid; k++) disown(m->fluid[k].name, m->fluid[k].rods);
   for (int k = 0; k < m->ncontact; k++) disown(m->contact[k].name, m->contact[k].rods);
@@ -397,19 +399,19 @@ void sw_env_free(swModel *m) {
 
 /* Loads of the environments, after every other load of this evaluation. */
 void sw_env_loads(const swModel *m, swData *d) {
-  (void)m;
-  (void)d;
+  if (m->ncontact) sw_contact_loads(m, d);
 }
 
 /* Energy stored in environment springs (contact and ground penalties), J. */
 double sw_env_energy(const swModel *m, const swData *d) {
-  (void)m;
-  (void)d;
-  return 0.0;
+  double energy = 0.0;
+  if (m->ncontact) energy += sw_contact_energy(m, d);
+  return energy;
 }
 
 /* The smallest step limit of the environments, s (INFINITY: none). */
 double sw_env_stable_dt(const swModel *m) {
-  (void)m;
-  return INFINITY;
+  double dt = INFINITY;
+  if (m->ncontact) dt = fmin(dt, sw_contact_stable_dt(m));
+  return dt;
 }

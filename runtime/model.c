@@ -604,6 +604,7 @@ void sw_data_free(swData *d) {
   free(d->joint_force); free(d->joint_angle);
   free(d->fil_activation); free(d->fil_stretch); free(d->fil_rate); free(d->fil_tension);
   free(d->rigid_X); free(d->rigid_V); free(d->rigid_R); free(d->rigid_L); free(d->rigid_omega);
+  sw_contact_data_free(d);
   free(d);
 }
 
@@ -632,7 +633,8 @@ swData *sw_data_new(const swModel *m) {
   size_t B = (size_t)m->nrigid;
   d->rigid_X = dalloc(3 * B); d->rigid_V = dalloc(3 * B); d->rigid_R = dalloc(9 * B);
   d->rigid_L = dalloc(3 * B); d->rigid_omega = dalloc(3 * B);
-  if (!d->rigid_X || !d->rigid_V || !d->rigid_R || !d->rigid_L || !d->rigid_omega) {
+  if (!d->rigid_X || !d->rigid_V || !d->rigid_R || !d->rigid_L || !d->rigid_omega ||
+      !sw_contact_data_new(m, d)) { /* the contact grid's scratch */
     sw_data_free(d);
     return NULL;
   }

@@ -423,7 +423,15 @@ typedef struct {
   swProbeDesc *probe;        /* (nprobe)                                     */
   /* ground.c */
   /* fluid.c */
-  /* contact.c */
+  /* contact.c: the rows of contact c are [contact_row_adr[c],
+   * contact_row_adr[c+1]), its elements rod by rod (each rod once) */
+  int *contact_row_adr;      /* (ncontact+1) first row of each contact       */
+  int *contact_elem;         /* (rows)     global element                    */
+  int *contact_rod;          /* (rows)     its rod                           */
+  double *contact_arc;       /* (rows)     rest arc length from the rod's start
+                                           to the element's start, m         */
+  int contact_maxrows;       /* rows of the largest contact                  */
+  int contact_nbucket;       /* hash grid buckets, a power of two            */
   /* wave.c */
   /* probe.c */
   int has_gravity;
@@ -470,7 +478,13 @@ typedef struct {
   /* environments, updated with each force evaluation */
   /* ground.c */
   /* fluid.c */
-  /* contact.c */
+  /* contact.c: the last evaluation's figures, and the hash grid's scratch */
+  int contact_pairs;         /* element pairs in contact                     */
+  double contact_max_overlap; /* deepest overlap r_a + r_b - D, m (0: none)  */
+  int *contact_cell;         /* (contact_maxrows*3) cell of each row         */
+  int *contact_bucket;       /* (contact_maxrows)   its bucket               */
+  int *contact_sorted;       /* (contact_maxrows)   rows by bucket           */
+  int *contact_start;        /* (contact_nbucket+1) first sorted row of each bucket */
   /* wave.c */
   /* probe.c */
   /* instability report, filled when sw_step returns SW_EUNSTABLE */
