@@ -364,6 +364,260 @@ static void test_restitution_elastic(void **state) {
   sw_model_free(m);
 }
 
+/* ---- 4. self-contact ---- */
+
+/* A hairpin: a leg along -x at y = -R, a half circle of radius R about the
+ * origin on the side x < 0, and a leg back along +x at y = +R, every leg
+ * LEG long; n elements of equal rest arc length, nodes on the path, element
+ * frames d3 along the chord, d1 = z. */
+static const double LEG = 0.05;
+
+static int hairpin(swSpec *s, double R, double radius, int n, double youngs) {
+  const double total = 2 * LEG + M_PI * R;
+  double *x = malloc(sizeof(double) * 3 * (size_t)(n + 1)), *Q = malloc(sizeof(double) * 9 * (size_t)n);
+  assert_non_null(x);
+  assert_non_null(Q);
+  for (int i = 0; i <= n; i++) {
+    double a = total * i / n, *p = x + 3 * i;
+    if (a <= LEG) p[0] = LEG - a, p[1] = -R;
+    else if (a >= LEG + M_PI * R) p[0] = a - LEG - M_PI * R, p[1] = R;
+    else p[0] = -R * sin((a - LEG) / R), p[1] = -R * cos((a - LEG) / R);
+    p[2] = 0;
+  }
+  for (int i = 0; i < n; i++) {
+    double t[3], len;
+    for (int k = 0; k < 3; k++) t[k] = x[3 * i + 3 + k] - x[3 * i + k];
+    len = sqrt(t[0] * t[0] + t[1] * t[1] + t[2] * t[2]);
+    double *q = Q + 9 * i;
+    q[0] = 0, q[1] = 0, q[2] = 1;                          /* d1 = z        */
+    q[6] = t[0] / len, q[7] = t[1] / len, q[8] = t[2] / len; /* d3 = tangent */
+    q[3] = q[7] * q[2] - q[8] * q[1];                      /* d2 = d3 x d1  */
+    q[4] = q[8] * q[0] - q[6] * q[2];
+    q[5] = q[6] * q[1] - q[7] * q[0];
+  }
+  const double o[3] = {LEG, -R, 0}, ex[3] = {-1, 0, 0}, ez[3] = {0, 0, 1};
+  swRodDesc r = rod_desc("hairpin", n, total, radius, o, ex, ez);
+  r.youngs = youngs;
+  int id = sw_spec_add_rod(s, &r);
+  assert_int_equal(sw_spec_set_rest_shape(s, id, x, Q), SW_OK);
+  free(x);
+  free(Q);
+  return id;
+}
+
+/* Contact loads alone of the state's configuration; returns the largest
+ * |force| over the nodes. */
+static double contact_force_only(const swModel *m, swData *d) {
+  memset(d->force, 0, sizeof(double) * 3 * (size_t)m->nnode);
+  memset(d->ext_force, 0, sizeof(double) * 3 * (size_t)m->nnode);
+  sw_contact_loads(m, d);
+  double worst = 0;
+  for (int i = 0; i < 3 * m->nnode; i++) worst = fmax(worst, fabs(d->force[i]));
+  return worst;
+}
+
+/* At rest, a straight rod and the tightest hairpin the neighbour rule allows
+ * (R = 1.05 r: its legs 0.1 r apart, its bend turning at a radius a little
+ * above r) feel no contact; a hairpin whose legs overlap (R = 0.95 r) does,
+ * so the rule does not hide a real overlap. */
+static void test_self_at_rest(void **state) {
+  (void)state;
+  const double radii[3] = {0, 1.05, 0.95};
+  for (int c = 0; c < 3; c++) {
+    swSpec *s = sw_spec_new();
+    if (c == 0) {
+      const double o[3] = {0, 0, 0}, ex[3] = {1, 0, 0}, ey[3] = {0, 1, 0};
+      swRodDesc r = rod_desc("straight", 40, RL, RR, o, ex, ey); /* l = 0.5 r */
+      sw_spec_add_rod(s, &r);
+    } else {
+      hairpin(s, radii[c] * RR, RR, 64, RE);
+    }
+    swContactDesc cd = contact_desc(1e4, 1.0);
+    cd.self = 1;
+    assert_int_equal(sw_spec_add_contact(s, &cd), 0);
+    swModel *m = sw_test_compile(s);
+    sw_spec_free(s);
+    swData *d = sw_data_new(m);
+    double f = contact_force_only(m, d);
+    fprintf(stderr, "# %s: %s: %d pairs in contact, largest contact force %.3e N, overlap %.3e m\n",
+            __func__, c == 0 ? "straight rod (l = r/2)" : (c == 1 ? "hairpin R = 1.05 r" : "hairpin R = 0.95 r"),
+            d->contact_pairs, f, d->contact_max_overlap);
+    if (c < 2) {
+      assert_int_equal(d->contact_pairs, 0);
+      assert_true(f == 0);
+    } else {
+      assert_true(d->contact_pairs > 0);
+      /* the legs overlap by 2 r - 2 R; where the bend meets them, its chords
+       * cut inside the circle by up to the sagitta l^2 / (8 R) */
+      double legs = 2 * RR - 2 * radii[c] * RR, l = (2 * LEG + M_PI * radii[c] * RR) / 64;
+      double sagitta = l * l / (8 * radii[c] * RR);
+      fprintf(stderr, "#   legs overlap by %.4e m, sagitta %.3e m\n", legs, sagitta);
+      assert_true(d->contact_max_overlap >= legs * (1 - 1e-9));
+      assert_true(d->contact_max_overlap <= legs + sagitta);
+    }
+    sw_data_free(d);
+    sw_model_free(m);
+  }
+}
+
+/* A soft hairpin (E = 1 MPa, R = 2 r: legs 2 r apart) whose legs are thrown
+ * at each other at VS each: without self-contact they pass through each
+ * other (the tips change sides); with it, the tips' centrelines never come
+ * closer than 2 r less 1% of r.  k_c from the energy estimate over one pair
+ * (the legs' kinetic energy all in one spring) at 0.5% of r. */
+static void test_self_hairpin_throw(void **state) {
+  (void)state;
+  const double VS = 0.5, R = 2 * RR;
+  const int n = 60;
+  for (int self = 0; self < 2; self++) {
+    swSpec *s = sw_spec_new();
+    hairpin(s, R, RR, n, 1e6);
+    const double total = 2 * LEG + M_PI * R, M = M_PI * RR * RR * total * RRHO;
+    const double K = 0.5 * M * VS * VS, delta = OVERLAP_AIM * RR; /* all of it, a bound */
+    swContactDesc cd = contact_desc(2 * K / (delta * delta), 0);
+    const int only[1] = {0};
+    cd.self = self;
+    cd.nrods = 1;
+    cd.rods = only;
+    if (self) assert_int_equal(sw_spec_add_contact(s, &cd), 0);
+    swModel *m = sw_test_compile_at(s, 0.5);
+    sw_spec_free(s);
+    swData *d = sw_data_new(m);
+    /* the legs' nodes (outside the bend) move towards y = 0 */
+    for (int i = 0; i <= n; i++) {
+      double y = d->x[3 * i + 1], xx = d->x[3 * i];
+      if (xx > 0) d->v[3 * i + 1] = y < 0 ? VS : -VS;
+    }
+    double closest = INFINITY, deepest = 0;
+    const double duration = 0.05;
+    while (d->time < duration) {
+      assert_int_equal(sw_step(m, d), SW_OK);
+      closest = fmin(closest, d->x[3 * n + 1] - d->x[1]); /* tip b - tip a, along y */
+      deepest = fmax(deepest, d->contact_max_overlap);
+    }
+    fprintf(stderr, "# %s: self-contact %s: closest approach of the tips %.4e m (2 r = %.1e m), "
+                    "deepest overlap %.3e m = %.3f%% of r, dt = %.3g s\n",
+            __func__, self ? "on" : "off", closest, 2 * RR, deepest, 100 * deepest / RR, m->dt);
+    if (self) assert_true(closest > 2 * RR - 0.01 * RR && deepest < 0.01 * RR);
+    else assert_true(closest < 0); /* passed through */
+    sw_data_free(d);
+    sw_model_free(m);
+  }
+}
+
+/* ---- 5. the broad phase against brute force ---- */
+
+/* 300 rods of 8 elements (random directions, tapered radii 1-3 mm, lengths
+ * 2-4 cm) in a 10 cm box, their nodes jiggled off the line so that rods
+ * bend and touch themselves, random velocities; two contact descriptions
+ * (all rods with self-contact, and every third rod with another k_c).  The
+ * grid must find every pair the n^2 loop finds: the same forces to
+ * round-off (the sums run in another order). */
+static unsigned long long rng_state = 88172645463325252ull;
+static double uniform(void) {
+  rng_state ^= rng_state << 13, rng_state ^= rng_state >> 7, rng_state ^= rng_state << 17;
+  return (double)(rng_state >> 11) / 9007199254740992.0;
+}
+
+static void test_broad_vs_brute(void **state) {
+  (void)state;
+  const int nrod = sw_test_sanitized() ? 120 : 300, n = 8;
+  const double box = sw_test_sanitized() ? 0.07 : 0.1;
+  swSpec *s = sw_spec_new();
+  int *third = malloc(sizeof(int) * (size_t)nrod), nthird = 0;
+  for (int r = 0; r < nrod; r++) {
+    double o[3], dir[3], nrm[3], len = 0.02 + 0.02 * uniform();
+    for (int k = 0; k < 3; k++) o[k] = box * uniform(), dir[k] = uniform() - 0.5;
+    nrm[0] = -dir[1], nrm[1] = dir[0], nrm[2] = 0;
+    swRodDesc rd = rod_desc("r", n, len, 0.001 + 0.002 * uniform(), o, dir, nrm);
+    rd.radius_end = 0.001 + 0.002 * uniform();
+    assert_int_equal(sw_spec_add_rod(s, &rd), r);
+    if (r % 3 == 0) third[nthird++] = r;
+  }
+  swContactDesc all = contact_desc(1e4, 0.3);
+  all.self = 1;
+  assert_int_equal(sw_spec_add_contact(s, &all), 0);
+  swContactDesc some = contact_desc(3e3, 0.1);
+  some.nrods = nthird;
+  some.rods = third;
+  assert_int_equal(sw_spec_add_contact(s, &some), 1);
+  swModel *m = sw_test_compile(s);
+  sw_spec_free(s);
+  free(third);
+  swData *d = sw_data_new(m);
+  for (int i = 0; i < m->nnode; i++)
+    for (int k = 0; k < 3; k++) {
+      d->x[3 * i + k] += 0.004 * (uniform() - 0.5);
+      d->v[3 * i + k] = uniform() - 0.5;
+    }
+  const size_t N3 = 3 * (size_t)m->nnode;
+  double *grid = malloc(2 * N3 * sizeof(double));
+  for (int phase = 0; phase < 2; phase++) {
+    memset(d->force, 0, N3 * sizeof(double));
+    memset(d->ext_force, 0, N3 * sizeof(double));
+    sw_contact_loads_with(m, d, phase ? SW_CONTACT_BRUTE : SW_CONTACT_GRID);
+    if (phase == 0) {
+      memcpy(grid, d->force, N3 * sizeof(double));
+      memcpy(grid + N3, d->ext_force, N3 * sizeof(double));
+    }
+  }
+  int pairs_brute = d->contact_pairs;
+  double scale = 0, diff = 0;
+  for (size_t q = 0; q < N3; q++) {
+    scale = fmax(scale, fabs(d->force[q]));
+    diff = fmax(diff, fabs(grid[q] - d->force[q]));
+    diff = fmax(diff, fabs(grid[N3 + q] - d->ext_force[q]));
+  }
+  sw_contact_loads_with(m, d, SW_CONTACT_GRID);
+  fprintf(stderr, "# %s: %d rods, %d elements: %d pairs in contact by both (grid %d); largest "
+                  "force difference %.3e N of %.3e N (%.1e); contact energy %.6e J\n",
+          __func__, nrod, m->nelem, pairs_brute, d->contact_pairs, diff, scale, diff / scale,
+          sw_contact_energy(m, d));
+  assert_int_equal(d->contact_pairs, pairs_brute);
+  assert_true(pairs_brute > 100);
+  assert_true(diff <= 1e-12 * scale);
+  free(grid);
+  sw_data_free(d);
+  sw_model_free(m);
+}
+
+/* ---- 6. validation ---- */
+
+static void expect_error(swContactDesc cd, int nrods_scene, const char *message) {
+  swSpec *s = sw_spec_new();
+  for (int r = 0; r < nrods_scene; r++) {
+    const double o[3] = {0, 0.1 * r, 0}, ex[3] = {1, 0, 0}, ey[3] = {0, 1, 0};
+    swRodDesc rd = rod_desc("r", 4, RL, RR, o, ex, ey);
+    sw_spec_add_rod(s, &rd);
+  }
+  assert_true(sw_spec_add_contact(s, &cd) >= 0);
+  char err[256] = "";
+  swModel *m = sw_compile(s, err, sizeof err);
+  fprintf(stderr, "# %s: \"%s\"\n", __func__, err);
+  assert_null(m);
+  assert_string_equal(err, message);
+  sw_spec_free(s);
+}
+
+static void test_validation(void **state) {
+  (void)state;
+  expect_error(contact_desc(0, 0), 2, "contact 'touch': stiffness must be > 0");
+  expect_error(contact_desc(-5, 0), 2, "contact 'touch': stiffness must be > 0");
+  expect_error(contact_desc(NAN, 0), 2, "contact 'touch': stiffness must be > 0");
+  expect_error(contact_desc(1e4, -1), 2, "contact 'touch': damping must be >= 0");
+  swContactDesc c = contact_desc(1e4, 0);
+  c.self = 2;
+  expect_error(c, 2, "contact 'touch': self must be 0 or 1, got 2");
+  const int one[1] = {0}, bad[2] = {0, 7};
+  c = contact_desc(1e4, 0);
+  c.nrods = 1;
+  c.rods = one;
+  expect_error(c, 2, "contact 'touch': one rod and no self-contact: nothing can touch");
+  c.nrods = 2;
+  c.rods = bad;
+  expect_error(c, 2, "contact 'touch': rod 7 does not exist (the scene has 2)");
+}
+
 /* ---- main ---- */
 
 int main(void) {
@@ -374,6 +628,10 @@ int main(void) {
       cmocka_unit_test(test_energy_parallel),
       cmocka_unit_test(test_restitution_rigid),
       cmocka_unit_test(test_restitution_elastic),
+      cmocka_unit_test(test_self_at_rest),
+      cmocka_unit_test(test_self_hairpin_throw),
+      cmocka_unit_test(test_broad_vs_brute),
+      cmocka_unit_test(test_validation),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);
 }
