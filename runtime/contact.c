@@ -42,15 +42,19 @@
  * cell and the 26 around it hold candidates; each element looks in its own
  * cell (partners after it) and in the 13 cells of one half of the
  * neighbourhood, so each pair is seen once, and a bucket's elements of
- * another cell (hash collisions) are passed over.  The cost is linear in
- * the elements plus the candidate pairs; the sizes are fixed when the model
- * and the state are made, so nothing is allocated in the step.  The brute
- * force n^2 loop is kept for tests and the benchmark (SW_CONTACT_BRUTE).
+ * another cell (hash collisions) are passed over.  A bit set of the
+ * non-empty buckets (small enough to stay in the L1 cache) and the cells
+ * copied in bucket order keep most look-ups off main memory, which is what
+ * the loop waits on (bench/bench_contact.c).  The cost is linear in the
+ * elements plus the candidate pairs; the sizes are fixed when the model and
+ * the state are made, so nothing is allocated in the step.  The brute force
+ * n^2 loop is kept for tests and the benchmark (SW_CONTACT_BRUTE).
  *
  * The step limit (sw_contact_stable_dt) is derived in docs/physics.md,
  * "Rod-rod contact".
  */
 #include <math.h>
+#include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -117,7 +121,10 @@ int sw_contact_data_new(const swModel *m, swData *d) {
   d->contact_bucket = calloc(R, sizeof(int));
   d->contact_sorted = calloc(R, sizeof(int));
   d->contact_start = calloc((size_t)m->contact_nbucket + 1, sizeof(int));
-  return d->contact_cell && d->contact_bucket && d->contact_sorted && d->contact_start;
+  d->contact_occupied = calloc((size_t)m->contact_nbucket / 64 + 1, sizeof(unsigned long long));
+  d->contact_sorted_cell = calloc(3 * R, sizeof(int));
+  return d->contact_cell && d->contact_bucket && d->contact_sorted && d->contact_start &&
+         d->contact_occupied && d->contact_sorted_cell;
 }
 
 void sw_contact_data_free(swData *d) {
@@ -125,6 +132,8 @@ void sw_contact_data_free(swData *d) {
   free(d->contact_bucket);
   free(d->contact_sorted);
   free(d->contact_start);
+  free(d->contact_occupied);
+  free(d->contact_sorted_cell);
 }
 
 /* ---- narrow phase ---- */
@@ -215,6 +224,11 @@ static void pair_contact(const swModel *m, const swData *d, const swContactDesc 
   double da[3], db[3], pq[3], n[3], s, t;
   sw_v3_sub(da, a1, a0);
   sw_v3_sub(db, b1, b0);
+  /* the midpoints are within half of each length plus the radii, or no
+   * points are within the radii */
+  double mid[3], reach = 0.5 * (sw_v3_norm(da) + sw_v3_norm(db)) + rsum;
+  for (int k = 0; k < 3; k++) mid[k] = 0.5 * (a0[k] + a1[k] - b0[k] - b1[k]);
+  if (sw_v3_dot(mid, mid) > reach * reach) return;
   const double dist2 = closest_points(a0, da, b0, db, &s, &t, pq);
   if (!(dist2 < rsum * rsum)) return;
   const double dist = sqrt(dist2), delta = rsum - dist;
@@ -246,7 +260,8 @@ static void pair_contact(const swModel *m, const swData *d, const swContactDesc 
  * defined even for a run that is blowing up (stability.c reports it). */
 static int cell_of(double x, double inv_h) {
   double c = floor(x * inv_h);
-  return (int)fmax(-1e9, fmin(1e9, c)); /* fmax(NaN, a) = a */
+  if (!(c > -1e9)) return -1000000000; /* NaN too */
+  return c < 1e9 ? (int)c : 1000000000;
 }
 
 static int bucket_of(const int *cell, int mask) {
@@ -278,17 +293,24 @@ static void grid_pairs(const swModel *m, const swData *d, int c, Sums *sum) {
   if (!(h > 0)) return;
   const double inv_h = 1.0 / h;
   int *cell = d->contact_cell, *bucket = d->contact_bucket, *sorted = d->contact_sorted;
-  int *start = d->contact_start;
+  int *start = d->contact_start, *sorted_cell = d->contact_sorted_cell;
+  unsigned long long *occupied = d->contact_occupied;
   memset(start, 0, sizeof(int) * ((size_t)nb + 1));
+  memset(occupied, 0, sizeof(unsigned long long) * ((size_t)nb / 64 + 1));
   for (int i = 0; i < nrow; i++) {
     int row = r0 + i, e = m->contact_elem[row], rod = m->contact_rod[row];
     const double *x = d->x + 3 * (m->node_adr[rod] + (e - m->elem_adr[rod]));
     for (int k = 0; k < 3; k++) cell[3 * i + k] = cell_of(0.5 * (x[k] + x[k + 3]), inv_h);
     bucket[i] = bucket_of(cell + 3 * i, mask);
     start[bucket[i] + 1]++;
+    occupied[bucket[i] >> 6] |= (unsigned long long)1 << (bucket[i] & 63);
   }
   for (int b = 0; b < nb; b++) start[b + 1] += start[b];
-  for (int i = 0; i < nrow; i++) sorted[start[bucket[i]]++] = i; /* start[b] ends at b+1's */
+  for (int i = 0; i < nrow; i++) { /* start[b] ends at b+1's */
+    int q = start[bucket[i]]++;
+    sorted[q] = i;
+    memcpy(sorted_cell + 3 * q, cell + 3 * i, 3 * sizeof(int)); /* a bucket's cells together */
+  }
   for (int b = nb; b > 0; b--) start[b] = start[b - 1];
   start[0] = 0;
   for (int i = 0; i < nrow; i++) {
@@ -297,11 +319,12 @@ static void grid_pairs(const swModel *m, const swData *d, int c, Sums *sum) {
       int cj[3];
       for (int k = 0; k < 3; k++) cj[k] = ci[k] + (o < 0 ? 0 : HALF[o][k]);
       int b = o < 0 ? bucket[i] : bucket_of(cj, mask);
+      if (!(occupied[b >> 6] >> (b & 63) & 1)) continue; /* most are empty: no cache miss */
       for (int q = start[b]; q < start[b + 1]; q++) {
+        const int *cq = sorted_cell + 3 * q;
+        if (cq[0] != cj[0] || cq[1] != cj[1] || cq[2] != cj[2]) continue; /* a hash collision */
         int j = sorted[q];
         if (o < 0 && j <= i) continue; /* own cell: partners after it */
-        const int *cjj = cell + 3 * j;
-        if (cjj[0] != cj[0] || cjj[1] != cj[1] || cjj[2] != cj[2]) continue;
         pair_contact(m, d, &m->contact[c], r0 + i, r0 + j, sum);
       }
     }

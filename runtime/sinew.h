@@ -485,6 +485,8 @@ typedef struct {
   int *contact_bucket;       /* (contact_maxrows)   its bucket               */
   int *contact_sorted;       /* (contact_maxrows)   rows by bucket           */
   int *contact_start;        /* (contact_nbucket+1) first sorted row of each bucket */
+  int *contact_sorted_cell;  /* (contact_maxrows*3) cell of each sorted row  */
+  unsigned long long *contact_occupied; /* (contact_nbucket/64+1) bit set: bucket not empty */
   /* wave.c */
   /* probe.c */
   /* instability report, filled when sw_step returns SW_EUNSTABLE */

@@ -581,7 +581,72 @@ static void test_broad_vs_brute(void **state) {
   sw_model_free(m);
 }
 
-/* ---- 6. validation ---- */
+/* ---- 6. the stable step ---- */
+
+/* Two stiff rods (E = 1 GPa) clamped at both ends, side by side, pressed
+ * together by loads on every node that hold 0.05% of r of overlap, with a
+ * contact spring k_c = 1e8 N/m that sets the step (the rods' own estimate is
+ * some 20 times longer), lightly damped (gamma_c = 3 kg/s).  The estimate
+ * (3 pairs on a node, docs/physics.md) must be stable, and not far from the
+ * step at which the pressed pair really blows up: stable at 0.9 of it over
+ * NSTEP steps, unstable at some step no longer than 1.5 of it. */
+static int pressed_run(double frac, double *estimate, double *t_fail) {
+  const double k = 1e8, delta = 0.0005 * RR, y = RR - 0.5 * delta;
+  swSpec *s = sw_spec_new();
+  const double ex[3] = {1, 0, 0}, ey[3] = {0, 1, 0};
+  for (int r = 0; r < 2; r++) {
+    const double o[3] = {-0.5 * RL, r ? y : -y, 0};
+    swRodDesc rd = rod_desc(r ? "b" : "a", NT, RL, RR, o, ex, ey);
+    rd.youngs = 1e9;
+    assert_int_equal(sw_spec_add_rod(s, &rd), r);
+    for (int e = 0; e < 2; e++) {
+      swBCDesc bc = sw_test_clamp(r, e);
+      sw_spec_add_bc(s, &bc);
+    }
+    const double per_node = (3 * NT - 2) * k * delta / (NT + 1);
+    for (int i = 0; i <= NT; i++) {
+      swLoadDesc l = sw_test_load(SW_LOAD_FORCE, r, i, 0, r ? -per_node : per_node, 0);
+      sw_spec_add_load(s, &l);
+    }
+  }
+  swContactDesc c = contact_desc(k, 3.0);
+  assert_int_equal(sw_spec_add_contact(s, &c), 0);
+  swModel *m0 = sw_test_compile(s);
+  *estimate = sw_stable_dt(m0);
+  assert_true(sw_contact_stable_dt(m0) == *estimate); /* the contact sets it */
+  sw_model_free(m0);
+  sw_spec_set_dt(s, frac * *estimate);
+  swModel *m = sw_test_compile(s);
+  sw_spec_free(s);
+  swData *d = sw_data_new(m);
+  for (int i = 0; i < m->nnode; i++) d->v[3 * i + 1] = 1e-3 * ((i * 7919) % 13 - 6); /* a kick */
+  const long nstep = sw_test_sanitized() ? 5000 : 20000;
+  int rc = sw_steps(m, d, nstep);
+  *t_fail = rc == SW_OK ? INFINITY : d->time;
+  sw_data_free(d);
+  sw_model_free(m);
+  return rc;
+}
+
+static void test_stable_dt_pressed(void **state) {
+  (void)state;
+  double est, t_fail;
+  int rc = pressed_run(0.9, &est, &t_fail);
+  fprintf(stderr, "# %s: estimate %.4g s; at 0.9 of it: %s\n", __func__, est,
+          rc == SW_OK ? "stable" : "UNSTABLE");
+  assert_int_equal(rc, SW_OK);
+  const double fracs[] = {1.0, 1.1, 1.2, 1.3, 1.5};
+  double first = INFINITY;
+  for (int i = 0; i < 5 && !isfinite(first); i++) {
+    rc = pressed_run(fracs[i], &est, &t_fail);
+    fprintf(stderr, "#   at %.1f of it: %s", fracs[i], rc == SW_OK ? "stable\n" : "unstable");
+    if (rc != SW_OK) fprintf(stderr, " at t = %.3g s\n", t_fail), first = fracs[i];
+  }
+  fprintf(stderr, "# %s: the pressed rods blow up from %.1f times the estimate\n", __func__, first);
+  assert_true(first <= 1.5);
+}
+
+/* ---- 7. validation ---- */
 
 static void expect_error(swContactDesc cd, int nrods_scene, const char *message) {
   swSpec *s = sw_spec_new();
@@ -631,6 +696,7 @@ int main(void) {
       cmocka_unit_test(test_self_at_rest),
       cmocka_unit_test(test_self_hairpin_throw),
       cmocka_unit_test(test_broad_vs_brute),
+      cmocka_unit_test(test_stable_dt_pressed),
       cmocka_unit_test(test_validation),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);
