@@ -115,10 +115,16 @@ build/bench/bench_rod: bench/bench_rod.c build/libsinewrt.a | build/bench
 BENCH_RIGID = build/bench/bench_rigid
 build/bench/bench_rigid: bench/bench_rigid.c build/libsinewrt.a | build/bench
 	$(CC) $(ALL_CFLAGS) $< -o $@ build/libsinewrt.a $(LIBS)
+# bench_contact (rod-rod contact: grid vs brute force against rod count)
+# replaces or appends its own section.
+BENCH_CONTACT = build/bench/bench_contact
+build/bench/bench_contact: bench/bench_contact.c build/libsinewrt.a | build/bench
+	$(CC) $(ALL_CFLAGS) $< -o $@ build/libsinewrt.a $(LIBS)
 bench: deps
-	@$(MAKE) --no-print-directory $(BENCH_BIN) $(BENCH_RIGID) bin/sinewc
+	@$(MAKE) --no-print-directory $(BENCH_BIN) $(BENCH_RIGID) $(BENCH_CONTACT) bin/sinewc
 	@./$(BENCH_BIN) docs/benchmarks.md
 	@./$(BENCH_RIGID) docs/benchmarks.md
+	@./$(BENCH_CONTACT) docs/benchmarks.md
 	@sh bench/bench_elbow.sh        # the elbow at 50 ns and at the stable dt (~20 min)
 
 # `make demo`: compile the elbow flexion with sinewc, run it (about a minute),

@@ -387,6 +387,7 @@ int sw_env_setup(swModel *m, const swEnvSpec *e, char *err, size_t errlen) {
   if (!sw_fluid_setup(m, err, errlen)) return 0;
   sw_ground_setup(m);
   if (!sw_wave_setup(m)) goto oom;
+  if (!sw_contact_setup(m)) goto oom;
   return 1;
 oom:
   return fail(err, errlen, "out of memory while building the environments");
@@ -394,6 +395,7 @@ oom:
 
 void sw_env_free(swModel *m) {
   sw_fluid_free(m);
+  sw_contact_free(m);
   for (int k = 0; k < m->nground; k++) disown(m->ground[k].name, m->ground[k].rods);
   for (int k = 0; k < m->nfluid; k++) disown(m->fluid[k].name, m->fluid[k].rods);
   for (int k = 0; k < m->ncontact; k++) disown(m->contact[k].name, m->contact[k].rods);
@@ -411,6 +413,7 @@ void sw_env_free(swModel *m) {
 void sw_env_loads(const swModel *m, swData *d) {
   if (m->nwave) sw_wave_loads(m, d);
   if (m->nfluid) sw_fluid_loads(m, d);
+  if (m->ncontact) sw_contact_loads(m, d);
   if (m->nground) sw_ground_loads(m, d); /* last: the ground balances the rest */
 }
 
@@ -418,6 +421,7 @@ void sw_env_loads(const swModel *m, swData *d) {
 double sw_env_energy(const swModel *m, const swData *d) {
   double energy = 0.0;
   if (m->nground) energy += sw_ground_energy(m, d);
+  if (m->ncontact) energy += sw_contact_energy(m, d);
   return energy;
 }
 
@@ -426,5 +430,6 @@ double sw_env_stable_dt(const swModel *m) {
   double dt = INFINITY;
   if (m->nfluid) dt = fmin(dt, sw_fluid_stable_dt(m));
   if (m->nground) dt = fmin(dt, sw_ground_stable_dt(m));
+  if (m->ncontact) dt = fmin(dt, sw_contact_stable_dt(m));
   return dt;
 }

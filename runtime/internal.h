@@ -107,4 +107,20 @@ void sw_probe_data_free(swData *d);
 void sw_probe_reset(const swModel *m, swData *d);
 const char *sw_probe_kind_name(swProbeKind kind);
 const char *sw_probe_units(swProbeKind kind);
+/* Rod-rod contact (contact.c).  sw_contact_setup lists each contact's
+ * elements in the model (0: out of memory; from sw_env_setup), sw_contact_free
+ * releases them (sw_env_free); sw_contact_data_new/free the hash grid's
+ * scratch in the state (sw_data_new/free); sw_contact_loads adds the contact
+ * loads (from sw_env_loads), sw_contact_loads_with by the grid or by brute
+ * force over all pairs (tests and benchmark); sw_contact_energy is the
+ * springs' energy, sw_contact_stable_dt their step limit. */
+typedef enum { SW_CONTACT_GRID = 0, SW_CONTACT_BRUTE = 1 } swContactPhase;
+int sw_contact_setup(swModel *m);
+void sw_contact_free(swModel *m);
+int sw_contact_data_new(const swModel *m, swData *d);
+void sw_contact_data_free(swData *d);
+void sw_contact_loads(const swModel *m, swData *d);
+void sw_contact_loads_with(const swModel *m, swData *d, swContactPhase phase);
+double sw_contact_energy(const swModel *m, const swData *d);
+double sw_contact_stable_dt(const swModel *m);
 #endif

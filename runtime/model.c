@@ -621,6 +621,7 @@ void sw_data_free(swData *d) {
   free(d->fil_activation); free(d->fil_stretch); free(d->fil_rate); free(d->fil_tension);
   free(d->rigid_X); free(d->rigid_V); free(d->rigid_R); free(d->rigid_L); free(d->rigid_omega);
   sw_probe_data_free(d);
+  sw_contact_data_free(d);
   free(d);
 }
 
@@ -650,7 +651,8 @@ swData *sw_data_new(const swModel *m) {
   d->rigid_X = dalloc(3 * B); d->rigid_V = dalloc(3 * B); d->rigid_R = dalloc(9 * B);
   d->rigid_L = dalloc(3 * B); d->rigid_omega = dalloc(3 * B);
   if (!d->rigid_X || !d->rigid_V || !d->rigid_R || !d->rigid_L || !d->rigid_omega ||
-      !sw_probe_data_new(m, d)) {
+      !sw_probe_data_new(m, d) ||
+      !sw_contact_data_new(m, d)) { /* the contact grid's scratch */
     sw_data_free(d);
     return NULL;
   }
@@ -669,6 +671,8 @@ void sw_reset(const swModel *m, swData *d) {
   memset(d->omega, 0, sizeof(double) * 3 * (size_t)m->nelem);
   if (m->nrigid) sw_rigid_reset(m, d);
   sw_probe_reset(m, d);
+  d->contact_pairs = 0; /* contact.c's figures are those of the last evaluation */
+  d->contact_max_overlap = 0;
   sw_apply_bc_velocity(m, d, 0.0);
   sw_internal_loads(m, d); /* strains of the initial state */
   if (m->nmuscle) {

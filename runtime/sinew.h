@@ -443,7 +443,6 @@ typedef struct {
   swContactDesc *contact;    /* (ncontact)                                   */
   swWaveDesc *wave;          /* (nwave)                                      */
   swProbeDesc *probe;        /* (nprobe)                                     */
-  /* ground.c */
   /* fluid.c: fluid k acts on rows [fluid_row_adr[k], fluid_row_adr[k+1]), one
    * row per element of its rods, in the order of its rod list */
   int nfluidrow;
@@ -455,7 +454,6 @@ typedef struct {
                                 pi r^2 / 2 per rod end on it (quadratic)     */
   double *fluid_displaced;   /* (nfluidrow) rho_f pi r^2 l^, kg (buoyancy)    */
   double fluid_dt;           /* step limit of the Stokes drag, s (INFINITY: none) */
-  /* contact.c */
   /* wave.c: wave w owns rows [wave_node_adr[w], wave_node_adr[w+1]), one
    * per node of its rod, in the rod's node order */
   int *wave_node_adr;        /* (nwave+1)  first row of each wave             */
@@ -464,6 +462,15 @@ typedef struct {
   double *wave_beta;         /* (rows)     beta(s), N m; 0 at the two end nodes */
   double *wave_amp;          /* (rows*2)   beta cos(theta), beta sin(theta),
                                 theta = 2 pi s / lambda - phi               */
+  /* contact.c: the rows of contact c are [contact_row_adr[c],
+   * contact_row_adr[c+1]), its elements rod by rod (each rod once) */
+  int *contact_row_adr;      /* (ncontact+1) first row of each contact       */
+  int *contact_elem;         /* (rows)     global element                    */
+  int *contact_rod;          /* (rows)     its rod                           */
+  double *contact_arc;       /* (rows)     rest arc length from the rod's start
+                                           to the element's start, m         */
+  int contact_maxrows;       /* rows of the largest contact                  */
+  int contact_nbucket;       /* hash grid buckets, a power of two            */
   /* probe.c */
   int has_gravity;
   int has_damping;
@@ -509,7 +516,15 @@ typedef struct {
   /* environments, updated with each force evaluation */
   /* ground.c */
   /* fluid.c */
-  /* contact.c */
+  /* contact.c: the last evaluation's figures, and the hash grid's scratch */
+  int contact_pairs;         /* element pairs in contact                     */
+  double contact_max_overlap; /* deepest overlap r_a + r_b - D, m (0: none)  */
+  int *contact_cell;         /* (contact_maxrows*3) cell of each row         */
+  int *contact_bucket;       /* (contact_maxrows)   its bucket               */
+  int *contact_sorted;       /* (contact_maxrows)   rows by bucket           */
+  int *contact_start;        /* (contact_nbucket+1) first sorted row of each bucket */
+  int *contact_sorted_cell;  /* (contact_maxrows*3) cell of each sorted row  */
+  unsigned long long *contact_occupied; /* (contact_nbucket/64+1) bit set: bucket not empty */
   /* wave.c */
   /* probe.c: the centre-of-mass samples (t, X) that mean-velocity probes
    * difference, a ring of SW_PROBE_RING per probe (probe.c) */
