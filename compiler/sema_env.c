@@ -377,11 +377,19 @@ static void wave(swSema *S, swScope *sc, const swAst *it, const char *name, cons
   w.loc = it->loc;
   int ok = 1;
   static const char *const required[] = {"rod", "coefficients", "wavelength", "period"};
+  char missing[160] = "";
+  int nmissing = 0;
   for (int i = 0; i < 4; i++)
     if (!sema_field(&f, required[i])) {
-      diag_error(it->loc, "%s needs '%s'", what, required[i]);
-      ok = 0;
+      size_t l = strlen(missing);
+      snprintf(missing + l, sizeof missing - l, "%s'%s'", nmissing ? ", " : "", required[i]);
+      nmissing++;
     }
+  if (nmissing) {
+    diag_error(it->loc, "%s needs %s (e.g. rod = snake; coefficients = (0, 17.4, 48.5, 5.4, "
+               "14.7, 0) N m; wavelength = 1 m; period = 1 s;)", what, missing);
+    ok = 0;
+  }
   const swAst *re = sema_field(&f, "rod");
   if (re) {
     swRodList one;
@@ -451,7 +459,9 @@ void sema_env(swSema *S, swScope *scope, const swAst *it) {
     name = env_kinds[k];
   }
   char what[160];
-  snprintf(what, sizeof what, "%s '%s'", k == ENV_WAVE ? "torque wave" : env_kinds[k], name);
+  const char *noun = k == ENV_WAVE ? "torque wave" : env_kinds[k];
+  if (it->name) snprintf(what, sizeof what, "%s '%s'", noun, name);
+  else snprintf(what, sizeof what, "%s", noun);   /* ground { ... } */
   const char *w = ast_strdup(S->a, what, strlen(what));
   switch (k) {
   case ENV_GROUND: ground(S, scope, it, name, w, 0); break;

@@ -277,8 +277,7 @@ static swValue eval_bspline(swSema *S, swScope *scope, const swAst *call, swSign
     if (!arg->name) {
       if (slot[0] || slot[1] || slot[2]) {
         diag_error(arg->loc, "the coefficients of bspline() come before its named arguments");
-        ok = 0;
-        continue;
+        return val_error();
       }
       char what[64];
       snprintf(what, sizeof what, "coefficient %d of bspline()", n + 1);
