@@ -337,12 +337,12 @@ static void declare_items(swSema *S, swScope *scope, const swAst *items, int fir
         if (it->name) declare(S, scope, SYM_ENV, it->name, it->loc, it);
         break;
       }
-      if (!it->name) {
+      for (k = 0; k < 5; k++)
+        if (!strcmp(it->text, def_kinds[k])) break;
+      if (k < 5 && !it->name) {
         diag_error(it->loc, "a %s needs a name: %s NAME { ... }", it->text, it->text);
         break;
       }
-      for (k = 0; k < 5; k++)
-        if (!strcmp(it->text, def_kinds[k])) break;
       if (k == 5) {
         const char *near = diag_suggest(it->text, def_kinds, 10);
         swLoc at = it->loc;

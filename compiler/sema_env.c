@@ -323,6 +323,14 @@ static void fluid(swSema *S, swScope *sc, const swAst *it, const char *name, con
     diag_error(b->loc, "buoyancy needs the fluid's 'density'");
     ok = 0;
   }
+  /* fields the chosen drag model does not read */
+  const swAst *unused = sema_field(&f, "drag_coefficient");
+  if (ok && fl.model == SW_FLUID_STOKES && unused)
+    diag_warning(unused->loc, "'drag_coefficient' has no effect on Stokes drag");
+  static const char *const stokes_only[] = {"viscosity", "body_length"};
+  for (int i = 0; ok && fl.model == SW_FLUID_QUADRATIC && i < 2; i++)
+    if ((unused = sema_field(&f, stokes_only[i])))
+      diag_warning(unused->loc, "'%s' has no effect on quadratic drag", stokes_only[i]);
   ok &= rods_field(S, sc, &f, what, &fl.rods);
   if (!ok) return;
   swScene *scn = S->scene;

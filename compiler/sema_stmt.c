@@ -336,6 +336,10 @@ void sema_output(swSema *S, swScope *scope, const swAst *it) {
     int k;
     for (k = 0; k < 4; k++)
       if (!strcmp(s->name, what[k])) break;
+    if (k == 4 && !strcmp(s->name, "probe")) {
+      diag_error(s->loc, "a probe has a name and a value: probe NAME = centre_of_mass(RODS);");
+      continue;
+    }
     if (k == 4) {
       const char *near = diag_suggest(s->name, what, 4);
       if (near) diag_error(s->loc, "unknown output '%s'; did you mean '%s'?", s->name, near);
