@@ -7,8 +7,8 @@
  * definition (material, bone, muscle, ...) or an action (clamp, force,
  * gravity, ...) are ordinary identifiers that the checker validates, so a
  * misspelled one gets a "did you mean" rather than a bare syntax error.
- * Expressions have the usual precedence (or below and below the
- * comparisons, which do not chain, below + and -); a unit written after a value
+ * Expressions have the usual precedence (from the loosest: or, and, the
+ * comparisons, which do not chain, + -, * /); a unit written after a value
  * multiplies it and binds tighter than * and /, so `1.75 g/cm^3` reads as
  * (1.75 g) / cm^3 and `(0, 0, -9.81) m/s^2` as ((0, 0, -9.81) m) / s^2.
  * Error recovery resynchronises on ';' and '}', so one run reports every
