@@ -191,10 +191,10 @@ static swHExpr *piecewise(swHCtx *C, const swAst *e, const swAst *args) {
     return NULL;
   }
   swHExpr *pw = node(S, HX_PIECEWISE, DIM_NONE, e->loc, 2 * (n - 1) + 1);
-  int ok = 1, first = -1;
+  const swHExpr *first = NULL;   /* the first good value sets the dimension */
+  int ok = 1, nfirst = 0;
   for (int i = 0; i < n; i++) {
     const swAst *a = args->kid[i];
-    const swAst *ve = a->kind == AST_CASE ? a->kid[1] : ast_kid(a, 0);
     if (a->kind != AST_CASE && i < n - 1) {
       diag_error(a->loc, "every argument of piecewise() but the last is 'condition: value'");
       ok = 0;
@@ -205,10 +205,10 @@ static swHExpr *piecewise(swHCtx *C, const swAst *e, const swAst *args) {
       ok = 0;
       continue;
     }
+    const swAst *ve = a->kind == AST_CASE ? a->kid[1] : ast_kid(a, 0);
     if (a->kind == AST_CASE) {
-      swHExpr *c = condition(C, a->kid[0]);
-      if (!c) ok = 0;
-      pw->kid[2 * i] = c;
+      pw->kid[2 * i] = condition(C, a->kid[0]);
+      if (!pw->kid[2 * i]) ok = 0;
     }
     swHExpr *v = quantity(C, ve, "a value of piecewise()");
     if (!v) {
@@ -216,13 +216,13 @@ static swHExpr *piecewise(swHCtx *C, const swAst *e, const swAst *args) {
       continue;
     }
     pw->kid[i < n - 1 ? 2 * i + 1 : 2 * (n - 1)] = v;
-    if (first < 0) {
-      first = i;
+    if (!first) {
+      first = v;
+      nfirst = i + 1;
       pw->dim = v->dim;
     } else if (!dim_eq(v->dim, pw->dim)) {
       diag_error(ve->loc, "the values of piecewise() must share one dimension: value %d is %s, "
-                 "value %d is %s", first + 1, dim_text(S, pw->kid[first < n - 1 ? 2 * first + 1 : 2 * (n - 1)]),
-                 i + 1, dim_text(S, v));
+                 "value %d is %s", nfirst, dim_text(S, first), i + 1, dim_text(S, v));
       ok = 0;
     }
   }
