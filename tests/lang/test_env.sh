@@ -1,6 +1,6 @@
 #!/bin/sh
 # test_env.sh — the generated C of environments (ground, terrain, fluid,
-# contact, torque wave, probes, periodic signals): deterministic, warning-free
+# contact, torque wave, probes, periodic and B-spline signals): deterministic, warning-free
 # under -Wall -Wextra -Werror, one block per model line with its #line, rod
 # lists resolved to runtime ids (a muscle's filaments, a component's rods,
 # all), only the fields the model gave assigned, params as C over P; and the
@@ -34,6 +34,7 @@ contact touch { rods = (arm.left, arm.right); stiffness = 1e4 N/m; }
 contact coil { rods = snake; stiffness = 1e4 N/m; self = true; }
 torque_wave body { rod = snake; coefficients = (0, 1, 2, 1, 0) mN m; wavelength = 0.5 m; period = 0.2 s; reverse = true; }
 force snake.end = (0, 0, 1) mN * sine(1, 5 Hz, period = 0.1 s);
+activate band = 0.5 * bspline(0, 1, 1, 0, over = 50 ms, from = 1 ms, period = 100 ms);
 simulate { duration = 1 ms; }
 output "env.h5" every 0.1 ms {
   probe com = centre_of_mass(all);
@@ -79,6 +80,12 @@ has 'probe.kind = SW_PROBE_MEAN_VELOCITY;' "a mean-velocity probe"
 has 'probe.window = 0.01;' "its window"
 has 'probe.rod = 2; probe.node = 20;   /* snake */' "a point probe: rod and node"
 has 'load.signal.period = 0.1;' "a periodic signal"
+has 'muscle.activation.kind = SW_SIG_BSPLINE;' "a B-spline activation"
+has 'muscle.activation.npts = 4;   /* B-spline coefficients */' "its coefficient count"
+has 'muscle.activation.values[2] = 0.5;' "its coefficients, scaled by the factor in front"
+has 'muscle.activation.T = 0.05;' "its span (over)"
+has 'muscle.activation.t0 = 0.001;' "its start (from)"
+has 'muscle.activation.period = 0.1;' "its period"
 
 "$SINEWC_ASAN" env.sinew -o sim >"$tmp/out" 2>&1; rc=$?
 diag <"$tmp/out"; ok $rc "the model compiles to a simulator"
