@@ -34,6 +34,8 @@ typedef struct {
   int nlocal;
   const char *local_name[MAX_LETS];
   swHExpr *local[MAX_LETS];   /* each local let's tree (HX_LET or a constant) */
+  swLoc local_loc[MAX_LETS];
+  int local_used[MAX_LETS];
 } swHCtx;
 
 static swHExpr *node(swSema *S, swHOp op, swDim dim, swLoc loc, int nkid) {
@@ -86,7 +88,10 @@ static swHExpr *name(swHCtx *C, const swAst *e) {
   if (!strcmp(e->name, C->h->xname)) return node(S, HX_X, DIM_LENGTH, e->loc, 0);
   if (!strcmp(e->name, C->h->yname)) return node(S, HX_Y, DIM_LENGTH, e->loc, 0);
   for (int i = C->nlocal - 1; i >= 0; i--)
-    if (!strcmp(e->name, C->local_name[i])) return C->local[i];
+    if (!strcmp(e->name, C->local_name[i])) {
+      C->local_used[i] = 1;
+      return C->local[i];
+    }
   swValue v = sema_eval(S, C->scope, e);
   if (v.kind == VAL_WORD) {
     const char *cands[MAX_LETS + 2];
@@ -386,10 +391,14 @@ swHeight *sema_height(swSema *S, swScope *scope, const swAst *body, const swAst 
       v = ref;
     }
     C.local_name[C.nlocal] = l->name;
+    C.local_loc[C.nlocal] = l->loc;
     C.local[C.nlocal++] = v;
   }
   swHExpr *e = quantity(&C, field->kid[0], C.what);
   if (!e || !ok) return NULL;
+  for (int i = 0; i < C.nlocal; i++)
+    if (!C.local_used[i])
+      diag_warning(C.local_loc[i], "let '%s' of %s is never used", C.local_name[i], what);
   if (!dim_eq(e->dim, DIM_LENGTH)) {
     diag_error(field->kid[0]->loc, "%s must be a length, got %s", C.what, dim_text(S, e));
     return NULL;
