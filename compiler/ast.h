@@ -31,14 +31,15 @@ typedef enum {
   AST_SIMULATE,   /* kids = body                                        */
   AST_OUTPUT,     /* text = path, kid[0] = every (or NULL), kids[1..] = body */
   /* body entries */
-  AST_FIELD,      /* name = key, kid[0] = value                         */
+  AST_FIELD,      /* name = key, kid[0] = value, kid[1] = formals of
+                     "key(x, y) = value" (a VEC of names, or one name)  */
   AST_SELECT,     /* name = what, kids = targets                        */
   /* expressions */
   AST_NUM,        /* num                                                */
   AST_STR,        /* text                                               */
   AST_NAME,       /* name                                               */
   AST_UNIT,       /* name = unit spelling                               */
-  AST_BINOP,      /* op in + - * / ^, kid[0], kid[1]                    */
+  AST_BINOP,      /* op in + - * / ^, < > l (<=) g (>=) & (and) | (or)  */
   AST_NEG,        /* kid[0]                                             */
   AST_APPLY,      /* juxtaposition "expr unit": kid[0] value, kid[1] unit */
   AST_VEC,        /* kids = components                                  */
@@ -48,6 +49,7 @@ typedef enum {
   AST_ARGS,       /* kids = ARG                                         */
   AST_ARG,        /* name = keyword or NULL, kid[0] = value             */
   AST_FORMALS,    /* kids = ARG (name, kid[0] = default or NULL)        */
+  AST_CASE,       /* piecewise argument "cond: value": kid[0], kid[1]   */
   AST_FILE        /* kids = items                                       */
 } swAstKind;
 

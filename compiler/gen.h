@@ -26,6 +26,11 @@ int gen_rod_fields(const swSceneRod *r, swLowField *out);
 int gen_muscle_fields(const swSceneMuscle *m, swLowField *out);
 int gen_joint_fields(const swSceneJoint *j, swLowField *out);
 int gen_signal_fields(const swSignalVal *s, swLowField *out);
+/* environments: the fields the model gives (the rest keep sw_*_desc_init's) */
+int gen_ground_fields(const swSceneGround *g, swLowField *out);
+int gen_fluid_fields(const swSceneFluid *f, swLowField *out);
+int gen_contact_fields(const swSceneContact *c, swLowField *out);
+int gen_wave_fields(const swSceneWave *w, swLowField *out);
 swSignal gen_signal(const swSignalVal *sig);
 /* The runtime's id of scene rod `rod` (scene indices skip muscles' filaments,
  * runtime ids do not), or -1 for -1. */
@@ -44,5 +49,16 @@ typedef struct {
   const char *compiler;      /* "sinewc 0.1.0"                            */
 } swGenOptions;
 int gen_c(FILE *out, swArena *a, const swScene *sc, const swGenOptions *opt);
+
+/* gen_c.c's printing helpers, shared with gen_env.c */
+void gen_c_string(FILE *out, const char *text);               /* escaped literal */
+void gen_c_comment(FILE *out, const char *text, size_t len);  /* safe in a comment */
+void gen_origin(FILE *out, swLoc loc, const char *indent);    /* #line + quoted line */
+void gen_assign_fields(FILE *out, swArena *a, const char *var, const swLowField *f, int n);
+
+/* gen_env.c: the terrains' height functions (before build) and the
+ * environments' blocks of build() */
+void gen_env_heights(FILE *out, swArena *a, const swScene *sc);
+void gen_env_build(FILE *out, swArena *a, const swScene *sc);
 
 #endif

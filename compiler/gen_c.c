@@ -34,11 +34,11 @@ static void c_string(FILE *out, const char *text, size_t len) {
   fputc('"', out);
 }
 
-static void c_string0(FILE *out, const char *text) { c_string(out, text, strlen(text)); }
+void gen_c_string(FILE *out, const char *text) { c_string(out, text, strlen(text)); }
 
 /* Model text inside a C comment: printable ASCII only, and nothing that could
  * end or nest the comment or splice lines. */
-static void c_comment_text(FILE *out, const char *text, size_t len) {
+void gen_c_comment(FILE *out, const char *text, size_t len) {
   for (size_t i = 0; i < len; i++) {
     unsigned char c = (unsigned char)text[i];
     if (c == '*' && i + 1 < len && text[i + 1] == '/') fputs("* ", out);
@@ -51,7 +51,7 @@ static void c_comment_text(FILE *out, const char *text, size_t len) {
 }
 
 /* #line and a comment quoting the model line of loc. */
-static void origin(FILE *out, swLoc loc, const char *indent) {
+void gen_origin(FILE *out, swLoc loc, const char *indent) {
   const swSource *f = diag_file(loc.file);
   if (!f || loc.line < 1) return;
   const char *p = f->text, *end = f->text + f->len;
@@ -64,13 +64,13 @@ static void origin(FILE *out, swLoc loc, const char *indent) {
   while (len && (p[0] == ' ' || p[0] == '\t')) { p++; len--; }
   if (len > 100) len = 100;
   fprintf(out, "#line %d ", loc.line);
-  c_string0(out, f->path);
+  gen_c_string(out, f->path);
   fprintf(out, "\n%s/* ", indent);
-  c_comment_text(out, p, len);
+  gen_c_comment(out, p, len);
   fputs(" */\n", out);
 }
 
-static void assign_fields(FILE *out, swArena *a, const char *var, const swLowField *f, int n) {
+void gen_assign_fields(FILE *out, swArena *a, const char *var, const swLowField *f, int n) {
   for (int i = 0; i < n; i++) {
     if (f[i].n == 1)
       fprintf(out, "    %s.%s = %s;\n", var, f[i].member, val_c(a, f[i].value, 0));
@@ -87,15 +87,20 @@ static void emit_signal(FILE *out, swArena *a, const char *var, const swSignalVa
     return;
   }
   static const char *kinds[] = {"SW_SIG_CONST", "SW_SIG_RAMP", "SW_SIG_SINE", "SW_SIG_STEP",
-                                "SW_SIG_TABLE"};
+                                "SW_SIG_TABLE", "SW_SIG_BSPLINE"};
   fprintf(out, "    %s.kind = %s;\n", var, kinds[sig->kind]);
   swLowField f[GEN_MAX_FIELDS];
-  assign_fields(out, a, var, f, gen_signal_fields(sig, f));
+  gen_assign_fields(out, a, var, f, gen_signal_fields(sig, f));
   if (sig->kind == SW_SIG_TABLE) {
     fprintf(out, "    %s.npts = %d;\n", var, sig->npts);
     for (int k = 0; k < sig->npts; k++)
       fprintf(out, "    %s.times[%d] = %s; %s.values[%d] = %s;\n", var, k,
               val_c(a, &sig->times, k), var, k, val_c(a, &sig->values, k));
+  }
+  if (sig->kind == SW_SIG_BSPLINE) {
+    fprintf(out, "    %s.npts = %d;   /* B-spline coefficients */\n", var, sig->npts);
+    for (int k = 0; k < sig->npts; k++)
+      fprintf(out, "    %s.values[%d] = %s;\n", var, k, val_c(a, &sig->values, k));
   }
 }
 
@@ -107,22 +112,22 @@ static const char *rod_kind_word(swRodKind k) {
 /* the rod's name as a comment after its index */
 static void rod_comment(FILE *out, const swScene *sc, int rod) {
   fputs("   /* ", out);
-  c_comment_text(out, sc->rod[rod].name, strlen(sc->rod[rod].name));
+  gen_c_comment(out, sc->rod[rod].name, strlen(sc->rod[rod].name));
   fputs(" */\n", out);
 }
 
 static void emit_rod(FILE *out, swArena *a, const swSceneRod *r) {
   swLowField f[GEN_MAX_FIELDS];
   fputc('\n', out);
-  origin(out, r->loc, "  ");
+  gen_origin(out, r->loc, "  ");
   fputs("  {\n    swRodDesc rod;\n    sw_rod_desc_init(&rod);\n    rod.name = ", out);
-  c_string0(out, r->name);
+  gen_c_string(out, r->name);
   fprintf(out, ";   /* %s, rod %d */\n", rod_kind_word(r->kind), r->id);
   fprintf(out, "    rod.nelem = %d;\n", r->nelem);
   static const char *damp[] = {"SW_DAMP_NONE", "SW_DAMP_LINEAR", "SW_DAMP_ANALYTIC"};
   fprintf(out, "    rod.damping = %s;\n", damp[r->damping]);
   if (r->rigid) fputs("    rod.rigid = 1;\n", out);
-  assign_fields(out, a, "rod", f, gen_rod_fields(r, f));
+  gen_assign_fields(out, a, "rod", f, gen_rod_fields(r, f));
   fputs("    ok &= sw_spec_add_rod(s, &rod) >= 0;\n  }\n", out);
 }
 
@@ -131,10 +136,10 @@ static void emit_muscle(FILE *out, swArena *a, const swScene *sc, int mi) {
   const swSceneMuscle *m = &sc->muscle[mi];
   swLowField f[GEN_MAX_FIELDS];
   fputc('\n', out);
-  origin(out, m->loc, "  ");
+  gen_origin(out, m->loc, "  ");
   fputs("  {\n    swMuscleDesc muscle;\n    sw_muscle_desc_init(&muscle);\n    muscle.name = ",
         out);
-  c_string0(out, m->name);
+  gen_c_string(out, m->name);
   fprintf(out, ";   /* muscle %d: filaments are rods %d to %d */\n", mi, m->id,
           m->id + m->filaments - 1);
   fprintf(out, "    muscle.filaments = %d;\n", m->filaments);
@@ -148,9 +153,9 @@ static void emit_muscle(FILE *out, swArena *a, const swScene *sc, int mi) {
               gen_rod_id(sc, m->attach_rod[e]), e, m->attach_node[e]);
       rod_comment(out, sc, m->attach_rod[e]);
     }
-  assign_fields(out, a, "muscle", f, gen_muscle_fields(m, f));
+  gen_assign_fields(out, a, "muscle", f, gen_muscle_fields(m, f));
   if (m->activation) {
-    origin(out, m->activation_loc, "    ");
+    gen_origin(out, m->activation_loc, "    ");
     const swSignalVal *sig = m->activation;
     if (sig->kind == SW_SIG_CONST)
       fprintf(out, "    muscle.activation = sw_signal_const(%s);\n", val_c(a, &sig->a, 0));
@@ -177,19 +182,19 @@ static void emit_build(FILE *out, swArena *a, const swScene *sc) {
   for (int i = 0; i < sc->npassive; i++) {
     const swScenePassive *p = &sc->passive[i];
     fputc('\n', out);
-    origin(out, p->loc, "  ");
+    gen_origin(out, p->loc, "  ");
     fprintf(out, "  ok &= sw_spec_set_filament_passive(s, %d, %d) == SW_OK;   /* ", p->muscle,
             p->filament);
-    c_comment_text(out, sc->muscle[p->muscle].name, strlen(sc->muscle[p->muscle].name));
+    gen_c_comment(out, sc->muscle[p->muscle].name, strlen(sc->muscle[p->muscle].name));
     fprintf(out, ", filament %d */\n", p->filament + 1);
   }
   for (int i = 0; i < sc->njoint; i++) {
     const swSceneJoint *j = &sc->joint[i];
     static const char *kinds[] = {"SW_JOINT_SPHERICAL", "SW_JOINT_HINGE", "SW_JOINT_FIXED"};
     fputc('\n', out);
-    origin(out, j->loc, "  ");
+    gen_origin(out, j->loc, "  ");
     fputs("  {\n    swJointDesc joint;\n    sw_joint_desc_init(&joint);\n    joint.name = ", out);
-    c_string0(out, j->name);
+    gen_c_string(out, j->name);
     fprintf(out, ";\n    joint.kind = %s;\n", kinds[j->kind]);
     fprintf(out, "    joint.rod_a = %d; joint.node_a = %d;", gen_rod_id(sc, j->rod_a), j->node_a);
     rod_comment(out, sc, j->rod_a);
@@ -197,13 +202,13 @@ static void emit_build(FILE *out, swArena *a, const swScene *sc) {
     if (j->rod_b >= 0) rod_comment(out, sc, j->rod_b);
     else fputs("   /* anchored in space */\n", out);
     if (j->undamped) fputs("    joint.undamped = 1;\n", out);
-    assign_fields(out, a, "joint", f, gen_joint_fields(j, f));
+    gen_assign_fields(out, a, "joint", f, gen_joint_fields(j, f));
     fputs("    ok &= sw_spec_add_joint(s, &joint) >= 0;\n  }\n", out);
   }
   for (int i = 0; i < sc->nact; i++) {
     const swSceneAction *act = &sc->act[i];
     fputc('\n', out);
-    origin(out, act->loc, "  ");
+    gen_origin(out, act->loc, "  ");
     if (act->is_bc) {
       static const char *kinds[] = {"SW_BC_CLAMP", "SW_BC_VELOCITY", "SW_BC_OMEGA"};
       fputs("  {\n    swBCDesc bc = {0};\n", out);
@@ -228,9 +233,10 @@ static void emit_build(FILE *out, swArena *a, const swScene *sc) {
       fputs("    ok &= sw_spec_add_load(s, &load) >= 0;\n  }\n", out);
     }
   }
+  gen_env_build(out, a, sc);
   if (sc->gravity.kind == VAL_VEC) {
     fputc('\n', out);
-    origin(out, sc->gravity_loc, "  ");
+    gen_origin(out, sc->gravity_loc, "  ");
     fprintf(out, "  {\n    const double g[3] = {%s, %s, %s};\n    sw_spec_set_gravity(s, g);\n  }\n",
             val_c(a, &sc->gravity, 0), val_c(a, &sc->gravity, 1), val_c(a, &sc->gravity, 2));
   }
@@ -259,9 +265,9 @@ static void emit_source(FILE *out, const char *src) {
 int gen_c(FILE *out, swArena *a, const swScene *sc, const swGenOptions *opt) {
   const swSource *main_src = diag_file(0);
   fputs("/* Generated by ", out);
-  c_comment_text(out, opt->compiler, strlen(opt->compiler));
+  gen_c_comment(out, opt->compiler, strlen(opt->compiler));
   fputs(" from ", out);
-  if (main_src) c_comment_text(out, main_src->path, strlen(main_src->path));
+  if (main_src) gen_c_comment(out, main_src->path, strlen(main_src->path));
   fputs(".\n * Do not edit: change the model and compile it again.  Each block of\n"
         " * build() starts with the model line it comes from. */\n"
         "#include \"sinew.h\"\n\n", out);
@@ -274,16 +280,17 @@ int gen_c(FILE *out, swArena *a, const swScene *sc, const swGenOptions *opt) {
       const swSceneParam *p = &sc->param[i];
       char where[512];
       fputs("  {", out);
-      c_string0(out, p->name);
+      gen_c_string(out, p->name);
       fprintf(out, ", %s, {%d, %d, %d, %d}, ", val_c(a, &p->value, 0), p->value.dim.e[0],
               p->value.dim.e[1], p->value.dim.e[2], p->value.dim.e[3]);
-      c_string0(out, p->unit);
+      gen_c_string(out, p->unit);
       fputs(", ", out);
-      c_string0(out, diag_where(p->loc, where, sizeof where));
+      gen_c_string(out, diag_where(p->loc, where, sizeof where));
       fprintf(out, "},   /* P[%d] */\n", i);
     }
     fputs("};\n\n", out);
   }
+  gen_env_heights(out, a, sc);
   emit_build(out, a, sc);
   /* without "output ... every T", a thousand frames over the run */
   double duration = sc->has_duration ? sc->duration : 1.0;
@@ -292,19 +299,19 @@ int gen_c(FILE *out, swArena *a, const swScene *sc, const swGenOptions *opt) {
   swValue du = val_num(a, duration, DIM_TIME, (swLoc){0});
   fputs("\nint main(int argc, char **argv) {\n  static const swProgram program = {\n    .name = ",
         out);
-  c_string0(out, sc->model_name);
+  gen_c_string(out, sc->model_name);
   fputs(",\n    .source = model_source,\n    .sha256 = ", out);
-  c_string0(out, sc->sha256);
+  gen_c_string(out, sc->sha256);
   fprintf(out, ",\n    .nparam = %d,\n    .param = %s,\n    .build = build,\n", sc->nparam,
           sc->nparam ? "params" : "NULL");
   fprintf(out, "    .dt = %s,%s\n    .duration = %s,\n    .every = %s,\n    .out = ",
           val_c(a, &dt, 0), sc->dt > 0 ? "" : "   /* half the stable estimate */",
           val_c(a, &du, 0), val_c(a, &ev, 0));
-  if (sc->out) c_string0(out, sc->out);
+  if (sc->out) gen_c_string(out, sc->out);
   else {
     char def[512];
     snprintf(def, sizeof def, "%s.h5", sc->model_name);
-    c_string0(out, def);
+    gen_c_string(out, def);
   }
   fprintf(out, ",\n    .velocity = %d,\n    .directors = %d,\n  };\n"
           "  return sw_main(&program, argc, argv);\n}\n", sc->velocity, sc->directors);

@@ -93,11 +93,73 @@ int gen_joint_fields(const swSceneJoint *j, swLowField *out) {
 int gen_signal_fields(const swSignalVal *s, swLowField *out) {
   const swLowField f[] = {
     F(a, &s->a), F(b, &s->b), F(t0, &s->t0), F(T, &s->T), F(freq, &s->freq), F(phase, &s->phase),
+    F(period, &s->period),
   };
   int n = 0;
   for (size_t i = 0; i < sizeof f / sizeof f[0]; i++)
     if (f[i].value->kind == VAL_NUM) out[n++] = f[i];
   return n;
+}
+#undef F
+
+/* the entries whose value the model gave */
+static int given(const swLowField *f, int n, swLowField *out) {
+  int k = 0;
+  for (int i = 0; i < n; i++)
+    if (f[i].value->kind == VAL_NUM || f[i].value->kind == VAL_VEC) out[k++] = f[i];
+  return k;
+}
+
+#define F(member, n, value) {#member, offsetof(swGroundDesc, member), n, value}
+int gen_ground_fields(const swSceneGround *g, swLowField *out) {
+  const swLowField f[] = {
+    F(origin, 3, &g->origin),
+    F(normal, 3, &g->normal),
+    F(stiffness, 1, &g->stiffness),
+    F(damping, 1, &g->damping),
+    F(mu_kinetic, 3, &g->mu_kinetic),
+    F(mu_static, 3, &g->mu_static),
+    F(mu_rolling, 1, &g->mu_rolling),
+    F(slip_velocity, 1, &g->slip_velocity),
+  };
+  return given(f, (int)(sizeof f / sizeof f[0]), out);
+}
+#undef F
+
+#define F(member, n, value) {#member, offsetof(swFluidDesc, member), n, value}
+int gen_fluid_fields(const swSceneFluid *fl, swLowField *out) {
+  const swLowField f[] = {
+    F(viscosity, 1, &fl->viscosity),
+    F(density, 1, &fl->density),
+    F(drag_coefficient, 1, &fl->drag_coefficient),
+    F(body_length, 1, &fl->body_length),
+    F(velocity, 3, &fl->velocity),
+  };
+  return given(f, (int)(sizeof f / sizeof f[0]), out);
+}
+#undef F
+
+#define F(member, n, value) {#member, offsetof(swContactDesc, member), n, value}
+int gen_contact_fields(const swSceneContact *c, swLowField *out) {
+  const swLowField f[] = {
+    F(stiffness, 1, &c->stiffness),
+    F(damping, 1, &c->damping),
+  };
+  return given(f, (int)(sizeof f / sizeof f[0]), out);
+}
+#undef F
+
+#define F(member, n, value) {#member, offsetof(swWaveDesc, member), n, value}
+int gen_wave_fields(const swSceneWave *w, swLowField *out) {
+  const swLowField f[] = {
+    F(coef, w->coef.n, &w->coef),
+    F(wavelength, 1, &w->wavelength),
+    F(period, 1, &w->period),
+    F(phase, 1, &w->phase),
+    F(ramp, 1, &w->ramp),
+    F(direction, 3, &w->direction),
+  };
+  return given(f, (int)(sizeof f / sizeof f[0]), out);
 }
 #undef F
 
@@ -113,12 +175,12 @@ swSignal gen_signal(const swSignalVal *sig) {
   if (!sig) return s;
   swLowField f[GEN_MAX_FIELDS];
   s.kind = sig->kind;
-  s.a = s.b = s.t0 = s.T = s.freq = s.phase = 0;
+  s.a = s.b = s.t0 = s.T = s.freq = s.phase = s.period = 0;
   fill(&s, f, gen_signal_fields(sig, f));
-  if (sig->kind == SW_SIG_TABLE) {
+  if (sig->kind == SW_SIG_TABLE || sig->kind == SW_SIG_BSPLINE) {
     s.npts = sig->npts;
     for (int k = 0; k < sig->npts; k++) {
-      s.times[k] = sig->times.v[k];
+      if (sig->kind == SW_SIG_TABLE) s.times[k] = sig->times.v[k];
       s.values[k] = sig->values.v[k];
     }
   }
@@ -204,6 +266,67 @@ swSpec *gen_spec(const swScene *sc) {
     d.undamped = j->undamped;
     fill(&d, f, gen_joint_fields(j, f));
     sw_spec_add_joint(s, &d);
+  }
+  for (int i = 0; i < sc->nground; i++) {
+    const swSceneGround *g = &sc->ground[i];
+    swGroundDesc d;
+    sw_ground_desc_init(&d);
+    d.name = g->name;
+    d.nrods = g->rods.n;
+    d.rods = g->rods.id;
+    if (g->height) {
+      d.height = sema_height_eval;
+      d.height_ctx = g->height;
+    }
+    fill(&d, f, gen_ground_fields(g, f));
+    sw_spec_add_ground(s, &d);
+  }
+  for (int i = 0; i < sc->nfluid; i++) {
+    const swSceneFluid *fl = &sc->fluid[i];
+    swFluidDesc d;
+    sw_fluid_desc_init(&d);
+    d.name = fl->name;
+    d.model = fl->model;
+    d.buoyancy = fl->buoyancy;
+    d.nrods = fl->rods.n;
+    d.rods = fl->rods.id;
+    fill(&d, f, gen_fluid_fields(fl, f));
+    sw_spec_add_fluid(s, &d);
+  }
+  for (int i = 0; i < sc->ncontact; i++) {
+    const swSceneContact *c = &sc->contact[i];
+    swContactDesc d;
+    sw_contact_desc_init(&d);
+    d.name = c->name;
+    d.self = c->self;
+    d.nrods = c->rods.n;
+    d.rods = c->rods.id;
+    fill(&d, f, gen_contact_fields(c, f));
+    sw_spec_add_contact(s, &d);
+  }
+  for (int i = 0; i < sc->nwave; i++) {
+    const swSceneWave *w = &sc->wave[i];
+    swWaveDesc d;
+    sw_wave_desc_init(&d);
+    d.name = w->name;
+    d.rod = w->rod;
+    d.ncoef = w->coef.n;
+    d.reverse = w->reverse;
+    fill(&d, f, gen_wave_fields(w, f));
+    sw_spec_add_wave(s, &d);
+  }
+  for (int i = 0; i < sc->nprobe; i++) {
+    const swSceneProbe *p = &sc->probe[i];
+    swProbeDesc d;
+    sw_probe_desc_init(&d);
+    d.name = p->name;
+    d.kind = p->kind;
+    d.nrods = p->rods.n;
+    d.rods = p->rods.id;
+    d.rod = p->rod;
+    d.node = p->node;
+    if (p->window.kind == VAL_NUM) d.window = p->window.v[0];
+    sw_spec_add_probe(s, &d);
   }
   if (sc->gravity.kind == VAL_VEC) sw_spec_set_gravity(s, sc->gravity.v);
   sw_spec_set_integrator(s, sc->integrator);

@@ -73,7 +73,7 @@ void sema_report_unknown(swSema *S, swScope *scope, const char *name, swLoc loc,
 
 static const char *sym_noun(swSymKind k) {
   static const char *nouns[] = {"param", "let", "component parameter", "material", "rod",
-                                "joint", "component", "instance", "muscle"};
+                                "joint", "component", "instance", "muscle", "environment"};
   return nouns[k];
 }
 
@@ -308,7 +308,8 @@ static void do_import(swSema *S, const swAst *item) {
 
 /* ---- items ---- */
 
-static const char *const def_kinds[] = {"material", "rod", "bone", "tendon", "muscle"};
+static const char *const def_kinds[] = {"material", "rod", "bone", "tendon", "muscle",
+                                        "ground", "terrain", "fluid", "contact", "torque_wave"};
 
 static void declare_items(swSema *S, swScope *scope, const swAst *items, int first) {
   for (int i = first; i < items->nkid; i++) {
@@ -332,10 +333,18 @@ static void declare_items(swSema *S, swScope *scope, const swAst *items, int fir
       break;
     case AST_DEF: {
       int k;
+      if (sema_is_env_kind(it->text)) {   /* ground, terrain, fluid, contact, torque_wave */
+        if (it->name) declare(S, scope, SYM_ENV, it->name, it->loc, it);
+        break;
+      }
       for (k = 0; k < 5; k++)
         if (!strcmp(it->text, def_kinds[k])) break;
+      if (k < 5 && !it->name) {
+        diag_error(it->loc, "a %s needs a name: %s NAME { ... }", it->text, it->text);
+        break;
+      }
       if (k == 5) {
-        const char *near = diag_suggest(it->text, def_kinds, 5);
+        const char *near = diag_suggest(it->text, def_kinds, 10);
         swLoc at = it->loc;
         at.end_col = at.col + (int)strlen(it->text) - 1;
         at.end_line = at.line;
@@ -343,7 +352,7 @@ static void declare_items(swSema *S, swScope *scope, const swAst *items, int fir
           diag_error(at, "unknown kind of definition '%s'; did you mean '%s'?", it->text, near);
         else
           diag_error(at, "unknown kind of definition '%s' (expected material, rod, bone, "
-                     "tendon or muscle)", it->text);
+                     "tendon, muscle, ground, terrain, fluid, contact or torque_wave)", it->text);
         break;
       }
       declare(S, scope, k == 0 ? SYM_MATERIAL : k == 4 ? SYM_MUSCLE : SYM_ROD, it->name, it->loc,
@@ -480,6 +489,15 @@ void sema_items(swSema *S, swScope *scope, const swAst *items, int first) {
     case AST_PARAM:
     case AST_LET:
     case AST_DEF: {
+      if (it->kind == AST_DEF && sema_is_env_kind(it->text)) {
+        swSymbol *sym = it->name ? sema_lookup_local(scope, it->name) : NULL;
+        if (!it->name || (sym && sym->def == it)) {
+          if (sym) sym->used = 1;
+          sema_env(S, scope, it);
+        }
+        break;
+      }
+      if (!it->name) break;
       swSymbol *sym = sema_lookup_local(scope, it->name);
       if (sym && sym->def == it) sema_eval_symbol(S, sym);
       break;
@@ -570,5 +588,10 @@ void sema_scene_free(swScene *scene) {
   free(scene->param);
   free(scene->muscle);
   free(scene->passive);
+  free(scene->ground);
+  free(scene->fluid);
+  free(scene->contact);
+  free(scene->wave);
+  free(scene->probe);
   memset(scene, 0, sizeof *scene);
 }

@@ -58,15 +58,17 @@ typedef struct swValue {
 typedef struct swSignalVal {
   swSignalKind kind;
   swValue a, b, t0, T, freq, phase;
+  swValue period;             /* VAL_ERROR: not periodic                    */
   int npts;
-  swValue times, values;      /* SW_SIG_TABLE                               */
+  swValue times, values;      /* SW_SIG_TABLE (times, values); SW_SIG_BSPLINE
+                                 (values: the coefficients)                 */
   swValue scale;              /* number or vector the signal multiplies     */
   swDim base;                 /* dimension of the signal's own values       */
 } swSignalVal;
 
 typedef enum {
   SYM_PARAM, SYM_LET, SYM_FORMAL, SYM_MATERIAL, SYM_ROD, SYM_JOINT, SYM_COMPONENT, SYM_INSTANCE,
-  SYM_MUSCLE
+  SYM_MUSCLE, SYM_ENV
 } swSymKind;
 
 struct swScope;
@@ -167,6 +169,95 @@ typedef struct {
   const char *unit;           /* as written, for --help                    */
 } swSceneParam;
 
+/* ---- environments (sema_env.c, sema_terrain.c) ---- */
+
+/* Rods an environment acts on, as runtime rod ids (a muscle stands for its
+ * filaments); n = 0: every rod of the scene. */
+typedef struct {
+  int n;
+  int *id;                    /* (n) runtime rod ids                       */
+  const char **name;          /* (n) for comments in the generated C       */
+} swRodList;
+
+/* A terrain's height z = h(x, y) as a tree over x and y: each node a
+ * constant (a swValue, possibly param-dependent), x, y, a local let, an
+ * operation or a piecewise choice.  Checked for dimensions when built;
+ * generated as forward-mode dual-number C (gen_env.c) and evaluated the
+ * same way inside the compiler (sema_height_eval). */
+typedef enum {
+  HX_CONST, HX_X, HX_Y, HX_LET, HX_ADD, HX_SUB, HX_MUL, HX_DIV, HX_NEG, HX_POW,
+  HX_SQRT, HX_SIN, HX_COS, HX_TAN, HX_EXP,
+  HX_LT, HX_LE, HX_GT, HX_GE, HX_AND, HX_OR,
+  HX_PIECEWISE               /* kid: cond0, value0, cond1, value1, ..., default */
+} swHOp;
+typedef struct swHExpr {
+  swHOp op;
+  swDim dim;
+  int boolean;                /* a condition, not a quantity               */
+  swLoc loc;
+  swValue k;                  /* HX_CONST                                  */
+  double p;                   /* HX_POW exponent                           */
+  int let;                    /* HX_LET: index into swHeight.let           */
+  int nkid;
+  struct swHExpr **kid;
+} swHExpr;
+typedef struct {
+  swHExpr *expr;
+  int nlet;
+  swHExpr **let;              /* (nlet) lets of the body that depend on x, y */
+  const char **let_name;
+  swLoc *let_loc;
+  const char *xname, *yname;  /* the formals of height(x, y)               */
+  swLoc loc;                  /* the height field                          */
+} swHeight;
+/* swHeightFn over a swHeight (ctx), params at their defaults. */
+double sema_height_eval(double x, double y, double grad[2], const void *ctx);
+
+typedef struct {
+  const char *name;
+  swLoc loc;
+  swHeight *height;           /* terrain; NULL: a plane                     */
+  swValue origin, normal, stiffness, damping, mu_kinetic, mu_static, mu_rolling, slip_velocity;
+  swRodList rods;             /* values not given are VAL_ERROR: the runtime's default */
+} swSceneGround;
+
+typedef struct {
+  const char *name;
+  swLoc loc;
+  swFluidModel model;
+  swValue viscosity, density, drag_coefficient, body_length, velocity;
+  int buoyancy;
+  swRodList rods;
+} swSceneFluid;
+
+typedef struct {
+  const char *name;
+  swLoc loc;
+  swValue stiffness, damping;
+  int self;
+  swRodList rods;
+} swSceneContact;
+
+typedef struct {
+  const char *name;
+  swLoc loc;
+  int rod;                    /* runtime rod id                            */
+  const char *rod_name;
+  swValue coef;               /* (ncoef) N m                               */
+  swValue wavelength, period, phase, ramp, direction;
+  int reverse;
+} swSceneWave;
+
+typedef struct {
+  const char *name;
+  swLoc loc;
+  swProbeKind kind;
+  swRodList rods;             /* COM, COM_VELOCITY, MEAN_VELOCITY           */
+  int rod, node;              /* NODE: runtime rod id and node             */
+  const char *rod_name;
+  swValue window;             /* MEAN_VELOCITY; VAL_ERROR: frame interval  */
+} swSceneProbe;
+
 typedef struct {
   swSceneRod *rod;       int nrod, caprod;
   swSceneMuscle *muscle; int nmuscle, capmuscle;
@@ -176,6 +267,11 @@ typedef struct {
   swSceneAction *act;    int nact, capact;
   swSceneJoint *joint;   int njoint, capjoint;
   swSceneParam *param;   int nparam, capparam;
+  swSceneGround *ground; int nground, capground;
+  swSceneFluid *fluid;   int nfluid, capfluid;
+  swSceneContact *contact; int ncontact, capcontact;
+  swSceneWave *wave;     int nwave, capwave;
+  swSceneProbe *probe;   int nprobe, capprobe;
   swValue gravity;            /* kind VAL_ERROR when absent                 */
   swLoc gravity_loc;
   swIntegrator integrator;
@@ -204,7 +300,7 @@ const char *val_c(swArena *a, const swValue *v, int i);  /* C text of component 
 swValue val_binop(swArena *a, int op, swValue x, swValue y, swLoc loc);
 swValue val_neg(swArena *a, swValue x, swLoc loc);
 swValue val_pow(swArena *a, swValue x, double p, swLoc loc);
-swValue val_func(swArena *a, const char *fn, swValue x, swLoc loc);   /* sqrt, sin, cos */
+swValue val_func(swArena *a, const char *fn, swValue x, swLoc loc);   /* sqrt, sin, cos, tan, exp */
 swValue val_norm(swArena *a, swValue x, swLoc loc);
 
 /* ---- dimensions (units_dim.c) ---- */

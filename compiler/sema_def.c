@@ -31,10 +31,24 @@ void sema_fields(swSema *S, const swAst *body, int first, const char *what,
       diag_error(fl->loc, "expected '%s = value;' in %s", fl->name, what);
       continue;
     }
+    /* a let in a body and "key(x, y) = value" are a terrain's height(x, y)'s
+     * (sema_terrain.c); a body whose keys have no height takes neither */
+    int takes_height = 0;
+    for (int k = 0; k < nkeys; k++) takes_height |= !strcmp(keys[k], "height");
+    if (fl->kind == AST_LET && !takes_height) {
+      diag_error(fl->loc, "a 'let' inside %s is not allowed (only a terrain's body has lets); "
+                 "put it at file level", what);
+      continue;
+    }
     if (fl->kind != AST_FIELD) continue;
     int k;
     for (k = 0; k < nkeys; k++)
       if (!strcmp(fl->name, keys[k])) break;
+    if (k < nkeys && fl->nkid > 1 && strcmp(fl->name, "height")) {
+      diag_error(fl->loc, "'%s' is a value, not a function: write '%s = ...;'", fl->name,
+                 fl->name);
+      continue;
+    }
     if (k == nkeys) {
       const char *near = diag_suggest(fl->name, keys, nkeys);
       swLoc at = fl->loc;

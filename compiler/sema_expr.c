@@ -20,7 +20,7 @@
 #define PI 3.14159265358979323846
 
 static const char *const functions[] = {"sqrt", "sin", "cos", "tan", "ramp", "sine", "step",
-                                        "table"};
+                                        "table", "bspline", "exp", "piecewise"};
 enum { NFUNCTIONS = sizeof functions / sizeof functions[0] };
 
 static const char *describe_value(swSema *S, const swValue *v) {
@@ -52,7 +52,8 @@ static swValue operand(swSema *S, swScope *scope, const swAst *e) {
     diag_error(e->loc, "'%s' is a %s, not a value", v.ref->name,
                v.ref->kind == SYM_MATERIAL ? "material" : v.ref->kind == SYM_ROD ? "rod"
                : v.ref->kind == SYM_JOINT ? "joint" : v.ref->kind == SYM_COMPONENT ? "component"
-               : v.ref->kind == SYM_MUSCLE ? "muscle" : "instance");
+               : v.ref->kind == SYM_MUSCLE ? "muscle" : v.ref->kind == SYM_ENV ? "environment"
+               : "instance");
     return val_error();
   }
   return v;
@@ -239,14 +240,110 @@ static int any_error(const swValue *v, int n) {
   return 0;
 }
 
+/* period = T, an argument of every signal: the signal repeats with period T
+ * from its start (swSignal.period); absent, the signal is not periodic. */
+static int signal_period(swSema *S, swScope *scope, const swAst *call, const swAst *e,
+                         swSignalVal *sig) {
+  sig->period = val_error();
+  if (!e) return 1;
+  sig->period = scalar_arg(S, scope, e, DIM_TIME, call->name, "period", 0, call->loc);
+  if (sig->period.kind == VAL_ERROR) return 0;
+  if (!(sig->period.v[0] > 0)) {
+    diag_error(sig->period.loc, "the period of %s() must be positive, got %g s", call->name,
+               sig->period.v[0]);
+    return 0;
+  }
+  return 1;
+}
+
+/* bspline(c0, c1, c2, c3, ..., over = T, from = t0, period = P): a clamped
+ * cubic B-spline with the coefficients c_i on uniform knots over [t0, t0+T]
+ * (SW_SIG_BSPLINE); the coefficients are positional, share one dimension
+ * and are at least 4 (a cubic needs 4) and at most SW_SIGNAL_MAXPTS. */
+static swValue eval_bspline(swSema *S, swScope *scope, const swAst *call, swSignalVal *sig) {
+  const swAst *args = ast_kid(call, 0);
+  static const char *const names[] = {"over", "from", "period"};
+  const swAst *slot[3] = {NULL, NULL, NULL};
+  swValue *coef = ast_alloc(S->a, (size_t)(args ? args->nkid : 0) * sizeof *coef + 1);
+  int n = 0, ok = 1;
+  sig->kind = SW_SIG_BSPLINE;
+  for (int i = 0; args && i < args->nkid; i++) {
+    const swAst *arg = args->kid[i];
+    if (arg->kind != AST_ARG) {
+      diag_error(arg->loc, "bspline() takes coefficients and over =, from =, period =");
+      ok = 0;
+      continue;
+    }
+    if (!arg->name) {
+      if (slot[0] || slot[1] || slot[2]) {
+        diag_error(arg->loc, "the coefficients of bspline() come before its named arguments");
+        return val_error();
+      }
+      char what[64];
+      snprintf(what, sizeof what, "coefficient %d of bspline()", n + 1);
+      coef[n] = operand(S, scope, ast_kid(arg, 0));
+      if (coef[n].kind != VAL_ERROR)
+        coef[n] = sema_expect_value(S, coef[n], 1, n ? coef[0].dim : coef[n].dim,
+                                    ast_strdup(S->a, what, strlen(what)));
+      if (coef[n].kind == VAL_ERROR) ok = 0;
+      n++;
+      continue;
+    }
+    int k;
+    for (k = 0; k < 3; k++)
+      if (!strcmp(arg->name, names[k])) break;
+    if (k == 3) {
+      const char *near = diag_suggest(arg->name, names, 3);
+      if (near)
+        diag_error(arg->loc, "bspline() has no argument '%s'; did you mean '%s'?", arg->name, near);
+      else
+        diag_error(arg->loc, "bspline() has no argument '%s'", arg->name);
+      ok = 0;
+    } else if (slot[k]) {
+      diag_error(arg->loc, "argument '%s' of bspline() is given twice", names[k]);
+      ok = 0;
+    } else slot[k] = ast_kid(arg, 0);
+  }
+  if (!ok) return val_error();
+  if (n < 4 || n > SW_SIGNAL_MAXPTS) {
+    diag_error(call->loc, "bspline() has %d coefficients; a cubic B-spline needs 4 to %d", n,
+               SW_SIGNAL_MAXPTS);
+    return val_error();
+  }
+  if (!slot[0]) {
+    diag_error(call->loc, "bspline() needs the argument 'over' (the time it spans)");
+    return val_error();
+  }
+  sig->T = scalar_arg(S, scope, slot[0], DIM_TIME, "bspline", "over", 0, call->loc);
+  sig->t0 = scalar_arg(S, scope, slot[1], DIM_TIME, "bspline", "from", 0, call->loc);
+  if (sig->T.kind == VAL_ERROR || sig->t0.kind == VAL_ERROR) return val_error();
+  if (!(sig->T.v[0] > 0)) {
+    diag_error(sig->T.loc, "bspline() needs a positive duration 'over', got %g s", sig->T.v[0]);
+    return val_error();
+  }
+  if (!signal_period(S, scope, call, slot[2], sig)) return val_error();
+  sig->values = val_vec(S->a, n, NULL, coef[0].dim, call->loc);
+  for (int i = 0; i < n; i++) {
+    sig->values.v[i] = coef[i].v[0];
+    if (coef[i].c && coef[i].c[0]) {
+      if (!sig->values.c) sig->values.c = ast_alloc(S->a, (size_t)n * sizeof *sig->values.c);
+      sig->values.c[i] = coef[i].c[0];
+      sig->values.param = coef[i].param;
+    }
+  }
+  sig->npts = n;
+  return make_signal(S, sig, coef[0].dim, call->loc);
+}
+
 static swValue eval_signal(swSema *S, swScope *scope, const swAst *call) {
   const swAst *args = ast_kid(call, 0);
   const swAst *slot[6];
   swSignalVal *sig = ast_alloc(S->a, sizeof *sig);
   swLoc loc = call->loc;
   if (!strcmp(call->name, "ramp")) {
-    static const char *const names[] = {"from", "to", "over", "start"};
-    if (!bind_args(S, call, args, names, 4, 3, slot)) return val_error();
+    static const char *const names[] = {"from", "to", "over", "start", "period"};
+    if (!bind_args(S, call, args, names, 5, 3, slot)) return val_error();
+    if (!signal_period(S, scope, call, slot[4], sig)) return val_error();
     sig->kind = SW_SIG_RAMP;
     if (!same_dims(S, scope, call, slot[0], slot[1], "from", "to", &sig->a, &sig->b))
       return val_error();
@@ -261,8 +358,9 @@ static swValue eval_signal(swSema *S, swScope *scope, const swAst *call) {
     return make_signal(S, sig, sig->a.dim, loc);
   }
   if (!strcmp(call->name, "sine")) {
-    static const char *const names[] = {"amplitude", "freq", "mean", "phase", "start"};
-    if (!bind_args(S, call, args, names, 5, 2, slot)) return val_error();
+    static const char *const names[] = {"amplitude", "freq", "mean", "phase", "start", "period"};
+    if (!bind_args(S, call, args, names, 6, 2, slot)) return val_error();
+    if (!signal_period(S, scope, call, slot[5], sig)) return val_error();
     sig->kind = SW_SIG_SINE;
     sig->b = operand(S, scope, slot[0]);
     if (sig->b.kind != VAL_ERROR)
@@ -278,8 +376,9 @@ static swValue eval_signal(swSema *S, swScope *scope, const swAst *call) {
     return make_signal(S, sig, sig->b.dim, loc);
   }
   if (!strcmp(call->name, "step")) {
-    static const char *const names[] = {"before", "after", "at"};
-    if (!bind_args(S, call, args, names, 3, 3, slot)) return val_error();
+    static const char *const names[] = {"before", "after", "at", "period"};
+    if (!bind_args(S, call, args, names, 4, 3, slot)) return val_error();
+    if (!signal_period(S, scope, call, slot[3], sig)) return val_error();
     sig->kind = SW_SIG_STEP;
     if (!same_dims(S, scope, call, slot[0], slot[1], "before", "after", &sig->a, &sig->b))
       return val_error();
@@ -288,8 +387,10 @@ static swValue eval_signal(swSema *S, swScope *scope, const swAst *call) {
     return make_signal(S, sig, sig->a.dim, loc);
   }
   /* table(times = (...) s, values = (...)) */
-  static const char *const names[] = {"times", "values"};
-  if (!bind_args(S, call, args, names, 2, 2, slot)) return val_error();
+  if (!strcmp(call->name, "bspline")) return eval_bspline(S, scope, call, sig);
+  static const char *const names[] = {"times", "values", "period"};
+  if (!bind_args(S, call, args, names, 3, 2, slot)) return val_error();
+  if (!signal_period(S, scope, call, slot[2], sig)) return val_error();
   sig->kind = SW_SIG_TABLE;
   sig->times = operand(S, scope, slot[0]);
   sig->values = operand(S, scope, slot[1]);
@@ -324,9 +425,14 @@ static swValue eval_call(swSema *S, swScope *scope, const swAst *e) {
   const char *fn = e->name;
   const swAst *args = ast_kid(e, 0);
   if (!strcmp(fn, "ramp") || !strcmp(fn, "sine") || !strcmp(fn, "step") ||
-      !strcmp(fn, "table"))
+      !strcmp(fn, "table") || !strcmp(fn, "bspline"))
     return eval_signal(S, scope, e);
-  if (!strcmp(fn, "sqrt") || !strcmp(fn, "sin") || !strcmp(fn, "cos") || !strcmp(fn, "tan")) {
+  if (!strcmp(fn, "piecewise")) {
+    diag_error(e->loc, "piecewise() belongs in a terrain's height(x, y)");
+    return val_error();
+  }
+  if (!strcmp(fn, "sqrt") || !strcmp(fn, "sin") || !strcmp(fn, "cos") || !strcmp(fn, "tan") ||
+      !strcmp(fn, "exp")) {
     if (!args || args->nkid != 1 || args->kid[0]->name) {
       diag_error(e->loc, "%s() takes one argument", fn);
       return val_error();
@@ -524,6 +630,10 @@ swValue sema_eval(swSema *S, swScope *scope, const swAst *e) {
     return w;
   }
   case AST_BINOP: {
+    if (strchr("<>lg&|", e->op)) {
+      diag_error(e->loc, "a comparison is a condition of piecewise(), not a value");
+      return val_error();
+    }
     if (e->op == '^') {
       swValue x = operand(S, scope, e->kid[0]);
       swValue p = operand(S, scope, e->kid[1]);

@@ -80,6 +80,20 @@ void sema_action(swSema *S, swScope *scope, const swAst *item);
 void sema_simulate(swSema *S, swScope *scope, const swAst *item);
 void sema_output(swSema *S, swScope *scope, const swAst *item);
 
+/* sema_env.c: ground, terrain, fluid, contact, torque_wave definitions and
+ * the probes of an output block */
+int sema_is_env_kind(const char *kind);
+void sema_env(swSema *S, swScope *scope, const swAst *item);
+void sema_probe(swSema *S, swScope *scope, const swAst *field);
+/* true or false (the language's words for them); -1 after an error */
+int sema_truth(swSema *S, const swAst *e, const char *what);
+/* a rod list: NAME, (NAME, NAME, ...), all; muscles stand for their filaments */
+int sema_rod_list(swSema *S, swScope *scope, const swAst *e, const char *what, swRodList *out);
+
+/* sema_terrain.c: the height(x, y) of a terrain; NULL after an error */
+swHeight *sema_height(swSema *S, swScope *scope, const swAst *body, const swAst *field,
+                      const char *what);
+
 /* sema_muscle.c */
 void sema_eval_muscle(swSema *S, swSymbol *sym);
 void sema_activate(swSema *S, swScope *scope, const swAst *item);

@@ -365,8 +365,10 @@ void sema_activate(swSema *S, swScope *scope, const swAst *it) {
     const swValue *k = &v.sig->scale;
     sig->a = scaled(S, sig->a, k);
     sig->b = scaled(S, sig->b, k);
-    if (sig->kind == SW_SIG_TABLE) sig->values = scaled(S, sig->values, k);
-    if (sig->a.kind == VAL_ERROR && sig->kind != SW_SIG_TABLE) return;
+    /* a table's and a B-spline's values are in values[], a and b unused */
+    int listed = sig->kind == SW_SIG_TABLE || sig->kind == SW_SIG_BSPLINE;
+    if (listed) sig->values = scaled(S, sig->values, k);
+    if (listed ? sig->values.kind == VAL_ERROR : sig->a.kind == VAL_ERROR) return;
     sig->scale = val_num(S->a, 1, DIM_NONE, v.loc);
   }
   sig->base = DIM_NONE;

@@ -324,6 +324,10 @@ void sema_output(swSema *S, swScope *scope, const swAst *it) {
   static const char *const what[] = {"positions", "velocity", "directors", "energy"};
   for (int i = 1; i < it->nkid; i++) {
     const swAst *s = it->kid[i];
+    if (s->kind == AST_FIELD && !strcmp(s->name, "probe")) {   /* probe NAME = WHAT; */
+      sema_probe(S, scope, s);
+      continue;
+    }
     if (s->kind == AST_FIELD) {
       diag_error(s->loc, "an output selection reads 'velocity all;', not '%s = ...'", s->name);
       continue;
@@ -332,11 +336,15 @@ void sema_output(swSema *S, swScope *scope, const swAst *it) {
     int k;
     for (k = 0; k < 4; k++)
       if (!strcmp(s->name, what[k])) break;
+    if (k == 4 && !strcmp(s->name, "probe")) {
+      diag_error(s->loc, "a probe has a name and a value: probe NAME = centre_of_mass(RODS);");
+      continue;
+    }
     if (k == 4) {
       const char *near = diag_suggest(s->name, what, 4);
       if (near) diag_error(s->loc, "unknown output '%s'; did you mean '%s'?", s->name, near);
-      else diag_error(s->loc, "unknown output '%s' (expected positions, velocity, directors "
-                      "or energy)", s->name);
+      else diag_error(s->loc, "unknown output '%s' (expected positions, velocity, directors, "
+                      "energy or probe)", s->name);
       continue;
     }
     /* selections are per scene for now: "all" (or nothing) */

@@ -308,6 +308,16 @@ swValue val_func(swArena *a, const char *fn, swValue x, swLoc loc) {
       return val_error();
     }
     r = sqrt(x.v[0]);
+  } else if (!strcmp(fn, "exp")) {
+    if (!dim_is_none(x.dim)) {
+      diag_error(loc, "exp() takes a plain number, not %s", dim_describe(a, x.dim));
+      return val_error();
+    }
+    r = exp(x.v[0]);
+    if (!isfinite(r)) {
+      diag_error(loc, "exp() of %g is not a finite number", x.v[0]);
+      return val_error();
+    }
   } else {
     if (!dim_is_none(x.dim) && !dim_eq(x.dim, DIM_ANGLE)) {
       diag_error(loc, "%s() takes an angle or a plain number, not %s", fn,

@@ -3,6 +3,8 @@
  *   sinewc MODEL.sinew -o SIM           compile to a standalone simulator
  *   sinewc MODEL.sinew --emit-c -o F.c  write the generated C only
  *   sinewc --check MODEL.sinew          parse and check; diagnostics only
+ *   sinewc --eval-height MODEL.sinew    the compiler's own height and gradient of
+ *                                       each terrain at "x y" lines of stdin
  *
  * Design.  Read the model, check it (every error of every file reported),
  * let the runtime validate the scene and estimate its stable step, then
@@ -50,6 +52,9 @@ static void usage(FILE *out) {
           "  --emit-c     write C instead of compiling it\n"
           "  --check      report diagnostics and write nothing\n"
           "  -Werror      treat warnings as errors\n"
+          "  --eval-height  check, then print each terrain's height and gradient at\n"
+          "               the points \"x y\" (m) read from stdin: \"k x y h dh/dx dh/dy\"\n"
+          "               (the compiler's evaluator; tests compare it with the C)\n"
           "  --version    print the version\n"
           "  --help       this text\n"
           "environment: SINEW_PATH (import search path), CC (C compiler, default cc),\n"
@@ -154,9 +159,22 @@ static int run_cc(const char *csrc, const char *out) {
   return 0;
 }
 
+/* --eval-height: "k x y h dh/dx dh/dy" for every terrain k (its index among
+ * the grounds) at every "x y" line of stdin, with params at their defaults. */
+static void print_heights(const swScene *sc) {
+  double x, y;
+  while (scanf("%lf %lf", &x, &y) == 2)
+    for (int k = 0; k < sc->nground; k++) {
+      if (!sc->ground[k].height) continue;
+      double grad[2];
+      double h = sema_height_eval(x, y, grad, sc->ground[k].height);
+      printf("%d %.17g %.17g %.17g %.17g %.17g\n", k, x, y, h, grad[0], grad[1]);
+    }
+}
+
 int main(int argc, char **argv) {
   const char *model = NULL, *out = NULL;
-  int emit_c = 0, check = 0, werror = 0;
+  int emit_c = 0, check = 0, werror = 0, eval_height = 0;
   for (int i = 1; i < argc; i++) {
     const char *a = argv[i];
     if (!strcmp(a, "-o")) {
@@ -167,6 +185,7 @@ int main(int argc, char **argv) {
       out = argv[i];
     } else if (!strcmp(a, "--emit-c")) emit_c = 1;
     else if (!strcmp(a, "--check")) check = 1;
+    else if (!strcmp(a, "--eval-height")) check = eval_height = 1;
     else if (!strcmp(a, "-Werror")) werror = 1;
     else if (!strcmp(a, "--help") || !strcmp(a, "-h")) {
       usage(stdout);
@@ -176,8 +195,8 @@ int main(int argc, char **argv) {
       return 0;
     } else if (a[0] == '-' && a[1]) {
       static const char *const opts[] = {"-o", "--emit-c", "--check", "-Werror", "--help",
-                                         "--version"};
-      const char *near = diag_suggest(a, opts, 6);
+                                         "--version", "--eval-height"};
+      const char *near = diag_suggest(a, opts, 7);
       fprintf(stderr, "%s: unknown option '%s'%s%s%s\n", progname, a, near ? "; did you mean '" : "",
               near ? near : "", near ? "'?" : "");
       return 2;
@@ -224,6 +243,8 @@ int main(int argc, char **argv) {
     fprintf(stderr, "%s: %d error%s, %d warning%s\n", progname, diag_errors(),
             diag_errors() == 1 ? "" : "s", diag_warnings(), diag_warnings() == 1 ? "" : "s");
     rc = 1;
+  } else if (eval_height) {
+    print_heights(&scene);
   } else if (!check) {
     char tmp[PATH_MAX];
     const char *cpath = out;

@@ -7,7 +7,8 @@
  * definition (material, bone, muscle, ...) or an action (clamp, force,
  * gravity, ...) are ordinary identifiers that the checker validates, so a
  * misspelled one gets a "did you mean" rather than a bare syntax error.
- * Expressions have the usual precedence; a unit written after a value
+ * Expressions have the usual precedence (from the loosest: or, and, the
+ * comparisons, which do not chain, + -, * /); a unit written after a value
  * multiplies it and binds tighter than * and /, so `1.75 g/cm^3` reads as
  * (1.75 g) / cm^3 and `(0, 0, -9.81) m/s^2` as ((0, 0, -9.81) m) / s^2.
  * Error recovery resynchronises on ';' and '}', so one run reports every
@@ -83,7 +84,11 @@ static void sinew_yyerror(swLoc *loc, yyscan_t scanner, struct swLexState *st, c
 %token IMPORT "'import'" PARAM "'param'" LET "'let'" JOINT "'joint'"
 %token COMPONENT "'component'" USE "'use'" SIMULATE "'simulate'"
 %token OUTPUT "'output'" EVERY "'every'"
+%token AND "'and'" OR "'or'" LE "'<='" GE "'>='"
 
+%left OR
+%left AND
+%nonassoc '<' '>' LE GE
 %left '+' '-'
 %left '*' '/'
 %precedence NEG
@@ -117,6 +122,9 @@ item
   | IDENT IDENT body         { $$ = named(st, AST_DEF, @2, $2); $$->text = $1;
                                $$->kid = $3->kid; $$->nkid = $3->nkid; $$->capkid = $3->capkid;
                                $$->loc = ast_span(@1, @2); }
+  /* KIND { fields }           ground { stiffness = 1e4 N/m; }  (named after its kind) */
+  | IDENT body               { $$ = named(st, AST_DEF, @1, NULL); $$->text = $1;
+                               $$->kid = $2->kid; $$->nkid = $2->nkid; $$->capkid = $2->capkid; }
   /* joint NAME = KIND(args) [{ fields }] */
   | JOINT IDENT '=' IDENT '(' args ')' body
                              { $$ = named(st, AST_JOINT, @2, $2); $$->text = $4;
@@ -174,6 +182,10 @@ field
   /* what targets;            velocity all;  energy; */
   | IDENT exprlist ';'       { $$ = $2; $$->kind = AST_SELECT; $$->name = $1; $$->loc = @1; }
   | IDENT ';'                { $$ = named(st, AST_SELECT, @1, $1); }
+  /* key(formals) = value;    height(x, y) = 0.1 m * sin(x / 1 m); */
+  | IDENT expr '=' expr ';'  { $$ = named(st, AST_FIELD, @1, $1); ast_push(A, $$, $4); ast_push(A, $$, $2); }
+  /* let NAME = value;         a name local to the body (terrain) */
+  | LET IDENT '=' expr ';'   { $$ = named(st, AST_LET, @2, $2); ast_push(A, $$, $4); }
   | error ';'                { $$ = NULL; yyerrok; }
   ;
 
@@ -199,9 +211,10 @@ arglist
   : arg                      { $$ = ast_push(A, node(st, AST_ARGS, @1), $1); }
   | arglist ',' arg          { $$ = ast_push(A, $1, $3); }
   ;
-/* value | name = value */
+/* value | name = value | condition: value */
 arg
   : expr                     { $$ = ast_push(A, node(st, AST_ARG, @1), $1); }
+  | expr ':' expr            { $$ = node(st, AST_CASE, @$); ast_push(A, $$, $1); ast_push(A, $$, $3); }
   | IDENT '=' expr           { $$ = named(st, AST_ARG, @1, $1); ast_push(A, $$, $3); }
   ;
 
@@ -217,6 +230,13 @@ expr
   | expr '/' expr            { $$ = binop(st, '/', $1, $3, @$); }
   | '-' expr %prec NEG       { $$ = ast_push(A, node(st, AST_NEG, @$), $2); }
   | expr '^' expr            { $$ = binop(st, '^', $1, $3, @$); }
+  /* comparisons and logic, for piecewise(): x < 3 m and y >= 0 m */
+  | expr '<' expr            { $$ = binop(st, '<', $1, $3, @$); }
+  | expr '>' expr            { $$ = binop(st, '>', $1, $3, @$); }
+  | expr LE expr             { $$ = binop(st, 'l', $1, $3, @$); }
+  | expr GE expr             { $$ = binop(st, 'g', $1, $3, @$); }
+  | expr AND expr            { $$ = binop(st, '&', $1, $3, @$); }
+  | expr OR expr             { $$ = binop(st, '|', $1, $3, @$); }
   /* value unit: juxtaposition multiplies */
   | expr unit_factor %prec UNIT
                              { $$ = node(st, AST_APPLY, @$); ast_push(A, $$, $1); ast_push(A, $$, $2); }
