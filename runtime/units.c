@@ -54,7 +54,7 @@ static const swUnit units[] = {
   {"uN", 1e-6, DIM_FORCE},   {"\xc2\xb5N", 1e-6, DIM_FORCE},
   {"\xce\xbcN", 1e-6, DIM_FORCE},
   {"Pa", 1, DIM_PRESSURE},   {"kPa", 1e3, DIM_PRESSURE}, {"MPa", 1e6, DIM_PRESSURE},
-  {"GPa", 1e9, DIM_PRESSURE},
+  {"GPa", 1e9, DIM_PRESSURE}, {"mPa", 1e-3, DIM_PRESSURE}, /* viscosities: 1 mPa s */
   {"J", 1, DIM_ENERGY},      {"mJ", 1e-3, DIM_ENERGY},
   {"W", 1, DIM_POWER},
   {"Hz", 1, DIM_FREQUENCY},  {"kHz", 1e3, DIM_FREQUENCY},
