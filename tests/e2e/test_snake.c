@@ -118,22 +118,27 @@ static void test_convergence(void **state) {
   EXPECT_REL("speed, n = 50 against 100", vn[1], vn[2], 0.01);
 }
 
-/* Grid-scale content of a field f[0..n) of element values: the RMS of its
- * second difference over the RMS of its deviation from the mean.  A smooth
- * field of wavelength lambda sampled every h has (2 pi h / lambda)^2 there
- * (0.017 for the snake's lambda = 0.97 m, h = 2 cm; the ends, where a
- * strain drops to its boundary value, add to it); a zig-zag from element to
- * element has 4. */
+/* Grid-scale content of a field of element values f[i * stride], over the
+ * interior elements [2, n-2) (the two elements at each free end, where a
+ * strain drops to its boundary value, are not a grid-scale mode): the share
+ * of the field's variance in the top quarter of its cosine spectrum (DCT-II
+ * modes k > 3m/4 of m values).  A zig-zag from element to element is all
+ * there (share 1), and a ripple of 10% of the field's RMS gives 1e-2; a
+ * smooth field with the kinks that friction's changes of sign put in the
+ * strains has a spectrum that decays like 1/k^2, and the snake's strains
+ * measure a few 1e-4. */
 static double grid_scale(const double *f, int n, int stride) {
-  double mean = 0, dev = 0, d2 = 0;
-  for (int i = 0; i < n; i++) mean += f[i * stride];
-  mean /= n;
-  for (int i = 0; i < n; i++) dev += (f[i * stride] - mean) * (f[i * stride] - mean);
-  for (int i = 1; i + 1 < n; i++) {
-    double s = f[(i + 1) * stride] - 2 * f[i * stride] + f[(i - 1) * stride];
-    d2 += s * s;
+  const int a = 2, m = n - 4;
+  double mean = 0, total = 0, top = 0;
+  for (int i = 0; i < m; i++) mean += f[(a + i) * stride];
+  mean /= m;
+  for (int k = 1; k < m; k++) {
+    double c = 0;
+    for (int i = 0; i < m; i++) c += (f[(a + i) * stride] - mean) * cos(M_PI * k * (i + 0.5) / m);
+    total += c * c;
+    if (4 * k > 3 * m) top += c * c;
   }
-  return dev > 0 ? sqrt(d2 / (n - 2)) / sqrt(dev / n) : 0;
+  return total > 0 ? top / total : 0;
 }
 
 /* Largest grid-scale content over the frames after the ramp, for the three
@@ -199,23 +204,25 @@ static void test_hardening(void **state) {
   (void)state;
   snake_model_with(50);
   const char *sim = snake_sim("examples/snake_hardening.sinew", "hardening");
-  /* time steps stable for the hardened snake (estimate 31 us) and, the
-   * last, for the original only (estimate 121 us) */
+  /* time steps stable for the hardened snake (estimate 31 us; the
+   * original's is 121 us, and 40 us, stable for it, is not for this
+   * explicit scheme on the x25 snake) */
   static const char *dts[2] = {"10 us", "20 us"};
-  static const char *names[3] = {"shear", "stretch", "lateral shear"};
-  (void)names;
   char hard[700], orig[700];
-  double v_hard = 0, v_orig = 0, e_hard = 0, e_orig = 0;
+  double v_hard = 0, v_orig = 0, e_hard = 0, e_orig = 0, hard_worst[3] = {0, 0, 0};
   for (int i = 0; i < 2; i++) {
     snprintf(hard, sizeof hard, "%s/hard_%d.h5", tmpdir, i);
     simulate(sim, hard, "--duration", "3 s", "--dt", dts[i], NULL);
     double worst[3], size[3];
     strain_grid_scale(hard, 50, worst, size);
     fprintf(stderr, "# %s: hardened x25, dt = %s: grid-scale content of the strains "
-            "(RMS second difference / RMS deviation): d1 shear %.3e, d2 shear %.3e, "
+            "(variance share of the top quarter of the spectrum): d1 shear %.3e, d2 shear %.3e, "
             "stretch %.3e (largest strains %.2e, %.2e, %.2e)\n", __func__, dts[i], worst[0],
             worst[1], worst[2], size[0], size[1], size[2]);
-    for (int c = 0; c < 3; c++) assert_true(worst[c] < 0.5);
+    for (int c = 0; c < 3; c++) {
+      assert_true(worst[c] < 1e-2);
+      hard_worst[c] = fmax(hard_worst[c], worst[c]);
+    }
     if (i == 0) {
       v_hard = forward_speed(hard);
       e_hard = lateral_excursion(hard, 1.0, 3.0);
@@ -229,6 +236,8 @@ static void test_hardening(void **state) {
   fprintf(stderr, "# %s: original, dt = 10 us: grid-scale content %.3e, %.3e, %.3e "
           "(largest strains %.2e, %.2e, %.2e)\n", __func__, worst[0], worst[1], worst[2],
           size[0], size[1], size[2]);
+  /* hardening must not make the strains rougher than the original's */
+  for (int c = 0; c < 3; c++) assert_true(hard_worst[c] <= 2 * worst[c] + 1e-12);
   v_orig = forward_speed(orig);
   e_orig = lateral_excursion(orig, 1.0, 3.0);
   fprintf(stderr, "# %s: speed %.5f m/s hardened, %.5f m/s original (%+.2f%%; reference: up to "
