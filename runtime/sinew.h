@@ -299,7 +299,8 @@ int sw_spec_add_contact(swSpec *s, const swContactDesc *c);
  *   tau(s, t) = ramp(t) beta(s) sin(2 pi t / T - 2 pi s / lambda + phi),
  * ramp(t) = min(1, t / ramp) (1 when ramp = 0).  tau is a bending moment,
  * N m (not per unit length): the couple the muscles hold across the
- * cross-section at s, about `direction`, so a rod at rest under it takes
+ * cross-section at s, about `direction` (body-fixed: the axis each element
+ * had at t = 0, turning with it; wave.c), so a rod at rest under it takes
  * the curvature tau / (E I) about that axis.  beta is the clamped cubic B-spline with coefficients
  * `coef` on uniform knots over s in [0, L] (beta(0) = coef[0], beta(L) =
  * coef[ncoef-1]); the coefficients are in N m, unscaled, as in Gazzola 2018,
@@ -319,7 +320,8 @@ typedef struct {
   double period;            /* T, s                                          */
   double phase;             /* phi, rad                                      */
   double ramp;              /* s over which the amplitude grows from 0; 0: none */
-  double direction[3];      /* couple axis, lab frame                        */
+  double direction[3];      /* couple axis, lab frame at t = 0; turns with
+                               each element afterwards (body-fixed)        */
   int reverse;              /* 1: s measured from the rod's end               */
 } swWaveDesc;
 void sw_wave_desc_init(swWaveDesc *w);       /* fills defaults */

@@ -6,16 +6,34 @@
  * with beta(s) a cubic B-spline whose coefficients an optimiser chose.  The
  * moment is internal: the muscles on one side of a cross-section pull on
  * those on the other, so the moment tau_i at interior node i turns the
- * element after the node by +tau_i and the one before it by -tau_i, about
- * `direction` (lab frame, taken into each element's material frame with its
- * own directors).  Each element therefore gets the difference of the moment
- * at its two ends, tau(start) - tau(end); the free ends carry none, so the
- * couples sum to zero and the rod's total angular momentum is untouched.
- * This is how PyElastica's MuscleTorques and Elastica's SplineMuscleTorques
- * apply it, and its sign is the one under which a rod at rest settles at
- * the curvature kappa = tau / B (rod.c scatters the bending couple c_j as
- * +c_j to element j and -c_j to element j+1, and the balance c_j = tau_j
- * follows node by node from a free end).
+ * element after the node by +tau_i m_i and the one before it by -tau_i m_i.
+ * Each element therefore gets the difference of the moments at its two
+ * ends, tau(start) m(start) - tau(end) m(end); the free ends carry none, so
+ * the couples sum to zero and the rod's total angular momentum is untouched.
+ * Its sign is the one under which a rod at rest settles at the curvature
+ * kappa = tau / B (rod.c scatters the bending couple c_j as +c_j to element
+ * j and -c_j to element j+1, and the balance c_j = tau_j follows node by
+ * node from a free end).
+ *
+ * The axis turns with the body.  The muscles are attached to the body, so
+ * the moment is about a body-fixed axis: each element carries the axis that
+ * `direction` (lab frame) had in its material frame at t = 0, a_e = Q0_e
+ * direction, and m_i is the normalised mean of the two elements' current
+ * axes Q^T a.  PyElastica's MuscleTorques and Elastica's SplineMuscleTorques
+ * keep the axis fixed in the lab instead; the two agree while the rod only
+ * bends about that axis (a snake on flat ground: to round-off).  They part
+ * on a terrain: on a rod curved in a vertical plane, a lab-fixed lateral
+ * moment has a component sum_i tau_i z . (d3_i - d3_{i-1}) about the
+ * elements' own axes that does not depend on how far they have rolled.  The
+ * roll of a round, isotropic rod has no elastic stiffness, the ground's
+ * friction acts at the element centre (no couple, ground.c) and the
+ * mass-proportional damping lets it decay at only gamma / (rho A), so the
+ * reference's snake on the barrier of Zhang 2019 Suppl. Fig. 11 spun up to
+ * ~600 rad/s (100 J of the wave's work) and the explicit gyroscopic couple
+ * (J^ w / e) x w then made it unstable (docs/physics.md, "Torque wave").  A
+ * body-fixed moment turns with the roll, so its part about the axis goes as
+ * cos(roll) and the roll stays a bounded swing (test_ground, the roll on a
+ * curved terrain).
  *
  * Units.  beta and its coefficients are moments in N m, used as they are:
  * PyElastica's MuscleTorques multiplies the spline straight into the couple,
@@ -109,6 +127,14 @@ void sw_wave_free(swModel *m) {
   m->wave_s = m->wave_beta = m->wave_amp = NULL;
 }
 
+/* The body-fixed axis of element e in the lab frame: `direction` as the
+ * element saw it at t = 0 (Q0 direction, material), turned with it (Q^T). */
+static void body_axis(double out[3], const swModel *m, const swData *d, int e, const double dir[3]) {
+  double a[3];
+  sw_mat_vec(a, m->Q0 + 9 * (size_t)e, dir);
+  sw_matT_vec(out, d->Q + 9 * (size_t)e, a);
+}
+
 /* The moment at every node of each wave's rod, and the couple it makes on
  * each element (sinew.h, "travelling muscle-torque wave"). */
 void sw_wave_loads(const swModel *m, swData *d) {
@@ -120,20 +146,34 @@ void sw_wave_loads(const swModel *m, swData *d) {
     const double sin_wt = ramp * sin(wt), cos_wt = ramp * cos(wt);
     const int n = m->rod_nelem[w->rod], ea = m->elem_adr[w->rod];
     const double *restrict amp = m->wave_amp + 2 * m->wave_node_adr[k];
-    double tau_start = 0; /* tau at node 0: none at a free end */
+    double tau_start = 0, m_start[3] = {0, 0, 0}; /* node 0: a free end, no moment */
+    double axis[3], axis_next[3] = {0, 0, 0};
+    body_axis(axis, m, d, ea, w->direction);
     for (int i = 0; i < n; i++) {
-      /* tau at the element's end node, sin(wt - theta) expanded */
+      /* tau at the element's end node, sin(wt - theta) expanded, about the
+       * mean of the axes of the two elements that meet there */
       const double tau_end = sin_wt * amp[2 * (i + 1)] - cos_wt * amp[2 * (i + 1) + 1];
+      double m_end[3] = {0, 0, 0};
+      if (i + 1 < n) {
+        body_axis(axis_next, m, d, ea + i + 1, w->direction);
+        sw_v3_add(m_end, axis, axis_next);
+        const double len = sw_v3_norm(m_end);
+        if (len > 0) sw_v3_scale(m_end, m_end, 1.0 / len);
+      }
+      double lab[3], c[3];
+      for (int q = 0; q < 3; q++) lab[q] = tau_start * m_start[q] - tau_end * m_end[q];
       const double *Q = d->Q + 9 * (size_t)(ea + i);
-      double axis[3];
-      sw_mat_vec(axis, Q, w->direction); /* lab -> material frame of the element */
-      const double c = tau_start - tau_end;
+      sw_mat_vec(c, Q, lab); /* lab -> material frame of the element */
       double *et = d->ext_torque + 3 * (size_t)(ea + i), *T = d->torque + 3 * (size_t)(ea + i);
       for (int q = 0; q < 3; q++) {
-        et[q] += c * axis[q];
-        T[q] += c * axis[q];
+        et[q] += c[q];
+        T[q] += c[q];
       }
       tau_start = tau_end;
+      for (int q = 0; q < 3; q++) {
+        m_start[q] = m_end[q];
+        axis[q] = axis_next[q];
+      }
     }
   }
 }

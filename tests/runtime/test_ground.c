@@ -6,8 +6,11 @@
  * a rod settling on the barrier of Zhang et al. 2019, Supplementary Fig. 11,
  * at the height the contact law gives; the penetration of a rod at rest; the
  * energy balance of a rod bouncing on a frictionless, undamped ground; the
- * rolling-resistance couple spinning a rod down at 2 mu_rolling g / r; and the
- * validation messages (exact text).
+ * rolling-resistance couple spinning a rod down at 2 mu_rolling g / r; a
+ * lateral muscle moment on a rod draped over a valley swinging its roll
+ * within the work bound of a body-fixed moment instead of spinning it (the
+ * reference snake's instability on the barrier); and the validation
+ * messages (exact text).
  *
  * Design.  Scenes are built through the public API.  The rods are short and
  * coarse (8 elements), so every run is a few thousand steps; the ground's
@@ -497,6 +500,120 @@ static void test_kinetic_on_element_velocity(void **state) {
   sw_spec_free(s);
 }
 
+/* ---- the roll of a rod on a curved terrain ---- */
+
+/* A valley of radius of curvature VALLEY_R at its bottom, z = x^2 / (2 R). */
+static const double VALLEY_R = 0.5;
+static double valley(double x, double y, double grad[2], const void *ctx) {
+  (void)y;
+  (void)ctx;
+  grad[0] = x / VALLEY_R;
+  grad[1] = 0;
+  return 0.5 * x * x / VALLEY_R;
+}
+
+/* Arc length of the valley's curve from its bottom to abscissa x. */
+static double valley_arc(double x) {
+  const double u = x / VALLEY_R;
+  return 0.5 * x * sqrt(1 + u * u) + 0.5 * VALLEY_R * asinh(u);
+}
+
+/* Claim: a lateral muscle moment cannot spin a rod lying over a curved
+ * terrain about its own axis.  The roll of a straight-at-rest, round,
+ * isotropic rod has no elastic stiffness and this ground puts no couple on
+ * it (friction at the element centre, mu_rolling = 0), so a moment about a
+ * lab-fixed axis z, whose part about the element axes
+ * sum_i tau_i z . (d3_i - d3_{i-1}) does not depend on the roll, spins the
+ * rod up without bound at D / J (how the reference's snake went unstable on
+ * the barrier of Zhang 2019 Suppl. Fig. 11).  The wave's moment is
+ * body-fixed (wave.c), about d1, which on the draped rod starts along the
+ * turn of the tangent d3_i - d3_{i-1}: its part about the axes goes as
+ * tau_i |d3_i - d3_{i-1}| cos(roll), so over any roll from rest it does at
+ * most the work D = sum_i |tau_i| |d3_i - d3_{i-1}|, which bounds the
+ * kinetic energy of the roll.  A soft rod (L = 0.4 m,
+ * r = 2 cm, E = 0.1 MPa, so that gravity keeps it draped: E I kappa is a
+ * tenth of the weight's w L^2 / 8) lies across the bottom of a valley of
+ * radius 0.5 m (tangents +-22 deg at its ends) under a uniform moment
+ * tau = E I x 1/m about z, ramped in over 0.05 s, with the reference snake's
+ * kinetic friction. */
+static void test_roll_on_curved_terrain(void **state) {
+  (void)state;
+  const int n = 16;
+  const double L = 0.4, R = 0.02, E = 1e5, tau = E * M_PI * pow(R, 4) / 4 * 1.0;
+  swSpec *s = sw_spec_new();
+  const double zero[3] = {0, 0, 0}, mu_k[3] = {0.5, 0.75, 1.0};
+  swRodDesc r = rod_at(zero, (const double[3]){1, 0, 0}, (const double[3]){0, 0, 1}, R);
+  r.nelem = n;
+  r.length = L;
+  r.youngs = E;
+  sw_spec_add_rod(s, &r);
+  swGroundDesc g = ground_of(1000, 40, mu_k, zero);
+  g.name = "valley";
+  g.height = valley;
+  sw_spec_add_ground(s, &g);
+  const double grav[3] = {0, 0, -GRAV};
+  sw_spec_set_gravity(s, grav);
+  swWaveDesc w;
+  sw_wave_desc_init(&w);
+  w.rod = 0;
+  w.ncoef = 4;
+  for (int k = 0; k < 4; k++) w.coef[k] = tau; /* beta = tau all along */
+  w.wavelength = w.period = 1e12;
+  w.phase = M_PI / 2; /* tau(s, t) = ramp(t) beta */
+  w.ramp = 0.05;
+  w.direction[2] = 1;
+  sw_spec_add_wave(s, &w);
+  swModel *m = sw_test_compile_at(s, 0.5);
+  swData *d = sw_data_new(m);
+  /* drape the rod (straight at rest) over the valley: nodes at equal arc
+   * length on the curve offset by r, rows d1 (the normal) d2 d3 (tangent) */
+  for (int i = 0; i <= n; i++) {
+    double target = L * ((double)i / n - 0.5), xi = target;
+    for (int it = 0; it < 50; it++) /* Newton on the arc length */
+      xi -= (valley_arc(xi) - target) / sqrt(1 + xi * xi / (VALLEY_R * VALLEY_R));
+    double gr[2], h = valley(xi, 0, gr, NULL), sc = sqrt(1 + gr[0] * gr[0]);
+    d->x[3 * i] = xi - (R - PEN0) * gr[0] / sc;
+    d->x[3 * i + 1] = 0;
+    d->x[3 * i + 2] = h + (R - PEN0) / sc;
+  }
+  for (int e = 0; e < n; e++) {
+    double *Q = d->Q + 9 * e, t[3];
+    for (int k = 0; k < 3; k++) t[k] = d->x[3 * (e + 1) + k] - d->x[3 * e + k];
+    const double len = sqrt(dot3(t, t));
+    const double row[9] = {-t[2] / len, 0, t[0] / len, 0, -1, 0, t[0] / len, 0, t[2] / len};
+    for (int k = 0; k < 9; k++) Q[k] = row[k];
+  }
+  double bound = 0; /* D on the draped rod: the interior nodes carry tau */
+  for (int e = 1; e < n; e++) {
+    double turn[3];
+    for (int k = 0; k < 3; k++) turn[k] = d->Q[9 * e + 6 + k] - d->Q[9 * (e - 1) + 6 + k];
+    bound += tau * sqrt(dot3(turn, turn));
+  }
+  /* the lab-fixed drive, sum_i tau z . (d3_i - d3_{i-1}) = tau z . (d3_last - d3_first) */
+  const double drive = tau * (d->Q[9 * (n - 1) + 8] - d->Q[8]);
+  const double T = sw_test_sanitized() ? 0.5 : 1.0;
+  double roll_max = 0, w_max = 0;
+  while (d->time < T) {
+    sw_test_run_to(m, d, d->time + 0.005);
+    double roll = 0;
+    for (int e = 0; e < n; e++) {
+      const double w3 = d->omega[3 * e + 2];
+      roll += 0.5 * m->inertia[3 * e + 2] / d->dilatation[e] * w3 * w3;
+      w_max = fmax(w_max, fabs(w3));
+    }
+    roll_max = fmax(roll_max, roll);
+  }
+  /* the lab-fixed drive would have turned the rod (J = n J_3) at
+   * drive (T - ramp / 2) / J by T */
+  fprintf(stderr, "# %s: D = %.3g N m; largest roll rate %.3g rad/s, against %.3g rad/s by %.2f s "
+          "for a lab-fixed moment\n", __func__, bound, w_max,
+          drive * (T - 0.5 * w.ramp) / (n * m->inertia[2]), T);
+  SW_EXPECT_ABS("largest kinetic energy of the roll / D", roll_max / bound, 0.0, 1.0);
+  sw_data_free(d);
+  sw_model_free(m);
+  sw_spec_free(s);
+}
+
 /* ---- validation ---- */
 
 static void expect_error(const swGroundDesc *g, const char *want) {
@@ -581,6 +698,7 @@ int main(void) {
       cmocka_unit_test(test_bounce_energy),
       cmocka_unit_test(test_rolling_resistance),
       cmocka_unit_test(test_kinetic_on_element_velocity),
+      cmocka_unit_test(test_roll_on_curved_terrain),
   };
   return cmocka_run_group_tests_name("ground", tests, NULL, NULL);
 }
