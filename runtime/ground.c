@@ -37,7 +37,11 @@
  * the forward one when u_a > 0 (slip along the tangent), the backward one
  * when u_a < 0.  The slip function phi(u) = 1 for |u| <= v_eps, 2 - |u|/v_eps
  * up to 2 v_eps and 0 beyond blends the two laws: kinetic friction
- * -(1 - phi) mu_k N sign(u), then static friction, which cancels the
+ * -(1 - phi) mu_k N u / |u_s| with |u_s| the whole slip speed in the
+ * surface, so that each coefficient is weighted by the slip's direction
+ * cosine along its direction (the anisotropic Coulomb law of Hu et al.,
+ * PNAS 2009, that Gazzola 2018 and PyElastica's snake use), then static
+ * friction, which cancels the
  * remaining tangential load T (others plus kinetic) up to phi mu_s N, with
  * the coefficient chosen by the sign of T.  Friction acts at the element
  * centre (no couple): with mu_static = 0 and mu_rolling = 0 this is kinetic
@@ -104,10 +108,11 @@ void sw_ground_setup(swModel *m) {
  * against the remaining load T + kinetic with mu_sp (load > 0) or mu_sm
  * (load < 0), blended by the slip function.  Returns the friction along the
  * direction. */
-static double coulomb(double u, double T, double N, double v_eps, double mu_kp, double mu_km,
-                      double mu_sp, double mu_sm) {
+static double coulomb(double u, double speed, double T, double N, double v_eps, double mu_kp,
+                      double mu_km, double mu_sp, double mu_sm) {
   double phi = slip_function(fabs(u), v_eps);
-  double kinetic = -(1.0 - phi) * (u > 0 ? mu_kp : mu_km) * N * sign_of(u);
+  double share = speed > 0 ? u / speed : 0.0; /* u/|u| = sign(u) along a single direction */
+  double kinetic = -(1.0 - phi) * (u > 0 ? mu_kp : mu_km) * N * share;
   double rest = T + kinetic;
   double cap = phi * (rest > 0 ? mu_sp : mu_sm) * N;
   return kinetic - sign_of(rest) * fmin(fabs(rest), cap);
@@ -157,8 +162,9 @@ static int ground_element(const swModel *m, swData *d, const swGroundDesc *g, in
     sw_v3_scale(a, a, 1.0 / alen);
     sw_v3_cross(b, a, n);
     /* forward = along the tangent: mu[0] for slip (or load) along +a */
-    double fa = coulomb(sw_v3_dot(u, a), sw_v3_dot(T, a), N, ve, mk[0], mk[1], ms[0], ms[1]);
-    double fb = coulomb(sw_v3_dot(u, b), sw_v3_dot(T, b), N, ve, mk[2], mk[2], ms[2], ms[2]);
+    const double slip = sw_v3_norm(u);
+    double fa = coulomb(sw_v3_dot(u, a), slip, sw_v3_dot(T, a), N, ve, mk[0], mk[1], ms[0], ms[1]);
+    double fb = coulomb(sw_v3_dot(u, b), slip, sw_v3_dot(T, b), N, ve, mk[2], mk[2], ms[2], ms[2]);
     for (int k = 0; k < 3; k++) friction[k] = fa * a[k] + fb * b[k];
     if (g->mu_rolling > 0) {
       /* rolling resistance about a (design note) */
@@ -168,7 +174,7 @@ static int ground_element(const swModel *m, swData *d, const swGroundDesc *g, in
       sw_matT_vec(tl, Q, d->torque + 3 * e);
       double wa_rate = sw_v3_dot(wl, a);
       double mr = g->mu_rolling * r;
-      double ca = coulomb(r * wa_rate, sw_v3_dot(tl, a), N, ve, mr, mr, mr, mr);
+      double ca = coulomb(r * wa_rate, fabs(r * wa_rate), sw_v3_dot(tl, a), N, ve, mr, mr, mr, mr);
       double cl[3] = {ca * a[0], ca * a[1], ca * a[2]};
       sw_mat_vec(couple, Q, cl);
     }
@@ -181,7 +187,8 @@ static int ground_element(const swModel *m, swData *d, const swGroundDesc *g, in
     double len = us > 0 ? us : Ts;
     if (len > 0) {
       sw_v3_scale(dir, src, 1.0 / len);
-      double f = coulomb(sw_v3_dot(u, dir), sw_v3_dot(T, dir), N, ve, mk[2], mk[2], ms[2], ms[2]);
+      double ud = sw_v3_dot(u, dir);
+      double f = coulomb(ud, fabs(ud), sw_v3_dot(T, dir), N, ve, mk[2], mk[2], ms[2], ms[2]);
       sw_v3_scale(friction, dir, f);
     }
   }
