@@ -126,6 +126,7 @@ bench: deps
 	@./$(BENCH_RIGID) docs/benchmarks.md
 	@./$(BENCH_CONTACT) docs/benchmarks.md
 	@sh bench/bench_elbow.sh        # the elbow at 50 ns and at the stable dt (~20 min)
+	@sh bench/bench_snake.sh        # the snake scenes in full (~3 min)
 
 # `make demo`: compile the elbow flexion with sinewc, run it (about a minute),
 # show what the file holds and plot the elbow angle.

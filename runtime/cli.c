@@ -639,11 +639,12 @@ static void print_info(const swCli *c, const swModel *m, double stable, const ch
   if (m->has_gravity)
     printf("gravity: (%g, %g, %g) m/s^2\n", m->gravity[0], m->gravity[1], m->gravity[2]);
   else printf("gravity: none\n");
-  printf("forces in use: elasticity (stretch, shear, bend, twist)%s%s%s%s%s%s%s\n",
+  printf("forces in use: elasticity (stretch, shear, bend, twist)%s%s%s%s%s%s%s%s%s%s\n",
          m->has_gravity ? ", gravity" : "", m->nload ? ", point loads" : "",
          m->nbc ? ", boundary conditions" : "", m->njoint ? ", joints" : "",
          m->nmuscle ? ", muscles" : "", m->nwave ? ", torque waves" : "",
-         m->has_damping ? ", damping" : "");
+         m->nground ? ", ground contact and friction" : "", m->nfluid ? ", fluid" : "",
+         m->ncontact ? ", rod-rod contact" : "", m->has_damping ? ", damping" : "");
   printf("integrator: %s\n", m->integrator == SW_PEFRL ? "PEFRL" : "position Verlet");
   printf("dt: %s (%s; stable estimate %s)\n", format_time(a, sizeof a, m->dt), dt_source,
          format_time(b, sizeof b, stable));

@@ -473,7 +473,6 @@ typedef struct {
                                            to the element's start, m         */
   int contact_maxrows;       /* rows of the largest contact                  */
   int contact_nbucket;       /* hash grid buckets, a power of two            */
-  /* probe.c */
   int has_gravity;
   int has_damping;
 } swModel;
@@ -516,8 +515,6 @@ typedef struct {
   double *fil_rate;          /* (nfil)    strain rate dl/dt / l0, 1/s           */
   double *fil_tension;       /* (nfil)    T_k, N                                */
   /* environments, updated with each force evaluation */
-  /* ground.c */
-  /* fluid.c */
   /* contact.c: the last evaluation's figures, and the hash grid's scratch */
   int contact_pairs;         /* element pairs in contact                     */
   double contact_max_overlap; /* deepest overlap r_a + r_b - D, m (0: none)  */
@@ -527,7 +524,6 @@ typedef struct {
   int *contact_start;        /* (contact_nbucket+1) first sorted row of each bucket */
   int *contact_sorted_cell;  /* (contact_maxrows*3) cell of each sorted row  */
   unsigned long long *contact_occupied; /* (contact_nbucket/64+1) bit set: bucket not empty */
-  /* wave.c */
   /* probe.c: the centre-of-mass samples (t, X) that mean-velocity probes
    * difference, a ring of SW_PROBE_RING per probe (probe.c) */
   double *probe_ring;        /* (nprobe*SW_PROBE_RING*4) t, X of each sample  */
