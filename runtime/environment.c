@@ -16,7 +16,6 @@
  * energies, sw_env_stable_dt the environments' step limits.
  */
 #include <math.h>
-#include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -74,14 +73,12 @@ static swEnvSpec *env_of(swSpec *s) {
   return *slot;
 }
 
-static int grow(void **p, int *cap, int n, size_t item) {
-  if (n < *cap) return 1;
-  int nc = *cap ? 2 * *cap : 4;
-  void *q = realloc(*p, (size_t)nc * item);
-  if (!q) return 0;
-  *p = q;
-  *cap = nc;
-  return 1;
+/* Append item (size bytes) to the list *p of *n items; its index, or -1
+ * when out of memory. */
+static int push(void **p, int *n, int *cap, const void *item, size_t size) {
+  if (!sw_grow(p, cap, *n, size)) return -1;
+  memcpy((char *)*p + (size_t)*n * size, item, size);
+  return (*n)++;
 }
 
 /* Owned copies of a name and a rod list; 0 when out of memory (nothing kept). */
@@ -111,36 +108,27 @@ int sw_spec_add_ground(swSpec *s, const swGroundDesc *g) {
   swGroundDesc c = *g;
   if (!own(&c.name, &c.rods, c.nrods, "ground")) return -1;
   swEnvSpec *e = env_of(s);
-  if (!e || !grow((void **)&e->ground, &e->capground, e->nground, sizeof c)) {
-    disown(c.name, c.rods);
-    return -1;
-  }
-  e->ground[e->nground] = c;
-  return e->nground++;
+  int id = e ? push((void **)&e->ground, &e->nground, &e->capground, &c, sizeof c) : -1;
+  if (id < 0) disown(c.name, c.rods);
+  return id;
 }
 
 int sw_spec_add_fluid(swSpec *s, const swFluidDesc *f) {
   swFluidDesc c = *f;
   if (!own(&c.name, &c.rods, c.nrods, "fluid")) return -1;
   swEnvSpec *e = env_of(s);
-  if (!e || !grow((void **)&e->fluid, &e->capfluid, e->nfluid, sizeof c)) {
-    disown(c.name, c.rods);
-    return -1;
-  }
-  e->fluid[e->nfluid] = c;
-  return e->nfluid++;
+  int id = e ? push((void **)&e->fluid, &e->nfluid, &e->capfluid, &c, sizeof c) : -1;
+  if (id < 0) disown(c.name, c.rods);
+  return id;
 }
 
 int sw_spec_add_contact(swSpec *s, const swContactDesc *cd) {
   swContactDesc c = *cd;
   if (!own(&c.name, &c.rods, c.nrods, "contact")) return -1;
   swEnvSpec *e = env_of(s);
-  if (!e || !grow((void **)&e->contact, &e->capcontact, e->ncontact, sizeof c)) {
-    disown(c.name, c.rods);
-    return -1;
-  }
-  e->contact[e->ncontact] = c;
-  return e->ncontact++;
+  int id = e ? push((void **)&e->contact, &e->ncontact, &e->capcontact, &c, sizeof c) : -1;
+  if (id < 0) disown(c.name, c.rods);
+  return id;
 }
 
 int sw_spec_add_wave(swSpec *s, const swWaveDesc *w) {
@@ -148,24 +136,18 @@ int sw_spec_add_wave(swSpec *s, const swWaveDesc *w) {
   const int *none = NULL;
   if (!own(&c.name, &none, 0, "wave")) return -1;
   swEnvSpec *e = env_of(s);
-  if (!e || !grow((void **)&e->wave, &e->capwave, e->nwave, sizeof c)) {
-    disown(c.name, NULL);
-    return -1;
-  }
-  e->wave[e->nwave] = c;
-  return e->nwave++;
+  int id = e ? push((void **)&e->wave, &e->nwave, &e->capwave, &c, sizeof c) : -1;
+  if (id < 0) disown(c.name, NULL);
+  return id;
 }
 
 int sw_spec_add_probe(swSpec *s, const swProbeDesc *p) {
   swProbeDesc c = *p;
   if (!own(&c.name, &c.rods, c.nrods, "probe")) return -1;
   swEnvSpec *e = env_of(s);
-  if (!e || !grow((void **)&e->probe, &e->capprobe, e->nprobe, sizeof c)) {
-    disown(c.name, c.rods);
-    return -1;
-  }
-  e->probe[e->nprobe] = c;
-  return e->nprobe++;
+  int id = e ? push((void **)&e->probe, &e->nprobe, &e->capprobe, &c, sizeof c) : -1;
+  if (id < 0) disown(c.name, c.rods);
+  return id;
 }
 
 void sw_env_spec_free(swEnvSpec *e) {
@@ -181,15 +163,7 @@ void sw_env_spec_free(swEnvSpec *e) {
 
 /* ---- checks ---- */
 
-static int fail(char *err, size_t errlen, const char *fmt, ...) {
-  if (err && errlen) {
-    va_list ap;
-    va_start(ap, fmt);
-    vsnprintf(err, errlen, fmt, ap);
-    va_end(ap);
-  }
-  return 0;
-}
+
 
 static int nonneg(double x) { return isfinite(x) && x >= 0; }
 static int positive(double x) { return isfinite(x) && x > 0; }
@@ -198,10 +172,10 @@ static int finite3(const double v[3]) { return isfinite(v[0]) && isfinite(v[1]) 
 static int check_rods(const char *what, const char *name, int nrods, const int *rods, int nrod,
                       char *err, size_t errlen) {
   if (nrods < 0 || (nrods > 0 && !rods))
-    return fail(err, errlen, "%s '%s': bad rod list (%d rods)", what, name, nrods);
+    return sw_fail(err, errlen, "%s '%s': bad rod list (%d rods)", what, name, nrods);
   for (int k = 0; k < nrods; k++)
     if (rods[k] < 0 || rods[k] >= nrod)
-      return fail(err, errlen, "%s '%s': rod %d does not exist (the scene has %d)", what, name,
+      return sw_fail(err, errlen, "%s '%s': rod %d does not exist (the scene has %d)", what, name,
                   rods[k], nrod);
   return 1;
 }
@@ -212,7 +186,7 @@ static int check_mu(const char *name, const char *which, const double mu[3], cha
   static const char *const dir[3] = {"forward", "backward", "sideways"};
   for (int k = 0; k < 3; k++)
     if (!nonneg(mu[k]))
-      return fail(err, errlen, "ground '%s': %s friction coefficient %s is %g, must be >= 0", name,
+      return sw_fail(err, errlen, "ground '%s': %s friction coefficient %s is %g, must be >= 0", name,
                   which, dir[k], mu[k]);
   return 1;
 }
@@ -221,20 +195,20 @@ static int check_ground(const swGroundDesc *g, int nrod, char *err, size_t errle
   const char *nm = g->name;
   if (!check_rods("ground", nm, g->nrods, g->rods, nrod, err, errlen)) return 0;
   if (!g->height) {
-    if (!finite3(g->origin)) return fail(err, errlen, "ground '%s': origin is not finite", nm);
+    if (!finite3(g->origin)) return sw_fail(err, errlen, "ground '%s': origin is not finite", nm);
     if (!finite3(g->normal) || !(sw_v3_norm(g->normal) > 0))
-      return fail(err, errlen, "ground '%s': normal must be a nonzero vector", nm);
+      return sw_fail(err, errlen, "ground '%s': normal must be a nonzero vector", nm);
   }
-  if (!nonneg(g->stiffness)) return fail(err, errlen, "ground '%s': stiffness must be >= 0", nm);
-  if (!nonneg(g->damping)) return fail(err, errlen, "ground '%s': damping must be >= 0", nm);
+  if (!nonneg(g->stiffness)) return sw_fail(err, errlen, "ground '%s': stiffness must be >= 0", nm);
+  if (!nonneg(g->damping)) return sw_fail(err, errlen, "ground '%s': damping must be >= 0", nm);
   if (!check_mu(nm, "kinetic", g->mu_kinetic, err, errlen)) return 0;
   if (!check_mu(nm, "static", g->mu_static, err, errlen)) return 0;
   if (!nonneg(g->mu_rolling))
-    return fail(err, errlen, "ground '%s': rolling friction coefficient must be >= 0", nm);
+    return sw_fail(err, errlen, "ground '%s': rolling friction coefficient must be >= 0", nm);
   if (!positive(g->slip_velocity))
-    return fail(err, errlen, "ground '%s': slip velocity tolerance must be > 0", nm);
+    return sw_fail(err, errlen, "ground '%s': slip velocity tolerance must be > 0", nm);
   if (!nonneg(g->contact_tolerance))
-    return fail(err, errlen, "ground '%s': contact tolerance must be >= 0", nm);
+    return sw_fail(err, errlen, "ground '%s': contact tolerance must be >= 0", nm);
   return 1;
 }
 
@@ -242,51 +216,51 @@ static int check_fluid(const swFluidDesc *f, int nrod, char *err, size_t errlen)
   const char *nm = f->name;
   if (!check_rods("fluid", nm, f->nrods, f->rods, nrod, err, errlen)) return 0;
   if (f->model != SW_FLUID_STOKES && f->model != SW_FLUID_QUADRATIC)
-    return fail(err, errlen, "fluid '%s': unknown model %d", nm, (int)f->model);
+    return sw_fail(err, errlen, "fluid '%s': unknown model %d", nm, (int)f->model);
   if (f->model == SW_FLUID_STOKES && !positive(f->viscosity))
-    return fail(err, errlen, "fluid '%s': Stokes drag needs a viscosity > 0", nm);
+    return sw_fail(err, errlen, "fluid '%s': Stokes drag needs a viscosity > 0", nm);
   if (f->model == SW_FLUID_QUADRATIC && !positive(f->density))
-    return fail(err, errlen, "fluid '%s': quadratic drag needs a density > 0", nm);
+    return sw_fail(err, errlen, "fluid '%s': quadratic drag needs a density > 0", nm);
   if (f->model == SW_FLUID_QUADRATIC && !positive(f->drag_coefficient))
-    return fail(err, errlen, "fluid '%s': quadratic drag needs a drag coefficient > 0", nm);
+    return sw_fail(err, errlen, "fluid '%s': quadratic drag needs a drag coefficient > 0", nm);
   if (f->buoyancy && !positive(f->density))
-    return fail(err, errlen, "fluid '%s': buoyancy needs a density > 0", nm);
+    return sw_fail(err, errlen, "fluid '%s': buoyancy needs a density > 0", nm);
   if (!nonneg(f->viscosity) || !nonneg(f->density) || !nonneg(f->drag_coefficient))
-    return fail(err, errlen, "fluid '%s': viscosity, density and drag coefficient must be >= 0", nm);
-  if (!nonneg(f->body_length)) return fail(err, errlen, "fluid '%s': body length must be >= 0", nm);
-  if (!finite3(f->velocity)) return fail(err, errlen, "fluid '%s': flow velocity is not finite", nm);
+    return sw_fail(err, errlen, "fluid '%s': viscosity, density and drag coefficient must be >= 0", nm);
+  if (!nonneg(f->body_length)) return sw_fail(err, errlen, "fluid '%s': body length must be >= 0", nm);
+  if (!finite3(f->velocity)) return sw_fail(err, errlen, "fluid '%s': flow velocity is not finite", nm);
   return 1;
 }
 
 static int check_contact(const swContactDesc *c, int nrod, char *err, size_t errlen) {
   const char *nm = c->name;
   if (!check_rods("contact", nm, c->nrods, c->rods, nrod, err, errlen)) return 0;
-  if (!positive(c->stiffness)) return fail(err, errlen, "contact '%s': stiffness must be > 0", nm);
-  if (!nonneg(c->damping)) return fail(err, errlen, "contact '%s': damping must be >= 0", nm);
+  if (!positive(c->stiffness)) return sw_fail(err, errlen, "contact '%s': stiffness must be > 0", nm);
+  if (!nonneg(c->damping)) return sw_fail(err, errlen, "contact '%s': damping must be >= 0", nm);
   if (c->self != 0 && c->self != 1)
-    return fail(err, errlen, "contact '%s': self must be 0 or 1, got %d", nm, c->self);
+    return sw_fail(err, errlen, "contact '%s': self must be 0 or 1, got %d", nm, c->self);
   if (!c->self && c->nrods == 1)
-    return fail(err, errlen, "contact '%s': one rod and no self-contact: nothing can touch", nm);
+    return sw_fail(err, errlen, "contact '%s': one rod and no self-contact: nothing can touch", nm);
   return 1;
 }
 
 static int check_wave(const swWaveDesc *w, int nrod, char *err, size_t errlen) {
   const char *nm = w->name;
   if (w->rod < 0 || w->rod >= nrod)
-    return fail(err, errlen, "torque wave '%s': rod %d does not exist (the scene has %d)", nm,
+    return sw_fail(err, errlen, "torque wave '%s': rod %d does not exist (the scene has %d)", nm,
                 w->rod, nrod);
   if (w->ncoef < 4 || w->ncoef > SW_WAVE_MAXCOEF)
-    return fail(err, errlen, "torque wave '%s': %d B-spline coefficients; a cubic B-spline needs "
+    return sw_fail(err, errlen, "torque wave '%s': %d B-spline coefficients; a cubic B-spline needs "
                 "4 to %d", nm, w->ncoef, SW_WAVE_MAXCOEF);
   for (int k = 0; k < w->ncoef; k++)
     if (!isfinite(w->coef[k]))
-      return fail(err, errlen, "torque wave '%s': coefficient %d is not finite", nm, k);
-  if (!positive(w->wavelength)) return fail(err, errlen, "torque wave '%s': wavelength must be > 0", nm);
-  if (!positive(w->period)) return fail(err, errlen, "torque wave '%s': period must be > 0", nm);
-  if (!isfinite(w->phase)) return fail(err, errlen, "torque wave '%s': phase is not finite", nm);
-  if (!nonneg(w->ramp)) return fail(err, errlen, "torque wave '%s': ramp time must be >= 0", nm);
+      return sw_fail(err, errlen, "torque wave '%s': coefficient %d is not finite", nm, k);
+  if (!positive(w->wavelength)) return sw_fail(err, errlen, "torque wave '%s': wavelength must be > 0", nm);
+  if (!positive(w->period)) return sw_fail(err, errlen, "torque wave '%s': period must be > 0", nm);
+  if (!isfinite(w->phase)) return sw_fail(err, errlen, "torque wave '%s': phase is not finite", nm);
+  if (!nonneg(w->ramp)) return sw_fail(err, errlen, "torque wave '%s': ramp time must be >= 0", nm);
   if (!finite3(w->direction) || !(sw_v3_norm(w->direction) > 0))
-    return fail(err, errlen, "torque wave '%s': direction must be a nonzero vector", nm);
+    return sw_fail(err, errlen, "torque wave '%s': direction must be a nonzero vector", nm);
   return 1;
 }
 
@@ -294,14 +268,14 @@ static int check_probe(const swProbeDesc *p, int nrod, char *err, size_t errlen)
   const char *nm = p->name;
   if (p->kind == SW_PROBE_NODE) {
     if (p->rod < 0 || p->rod >= nrod)
-      return fail(err, errlen, "probe '%s': rod %d does not exist (the scene has %d)", nm, p->rod,
+      return sw_fail(err, errlen, "probe '%s': rod %d does not exist (the scene has %d)", nm, p->rod,
                   nrod);
     return 1;
   }
   if (p->kind != SW_PROBE_COM && p->kind != SW_PROBE_COM_VELOCITY &&
       p->kind != SW_PROBE_MEAN_VELOCITY)
-    return fail(err, errlen, "probe '%s': unknown kind %d", nm, (int)p->kind);
-  if (!nonneg(p->window)) return fail(err, errlen, "probe '%s': window must be >= 0", nm);
+    return sw_fail(err, errlen, "probe '%s': unknown kind %d", nm, (int)p->kind);
+  if (!nonneg(p->window)) return sw_fail(err, errlen, "probe '%s': window must be >= 0", nm);
   return check_rods("probe", nm, p->nrods, p->rods, nrod, err, errlen);
 }
 
@@ -378,7 +352,7 @@ int sw_env_setup(swModel *m, const swEnvSpec *e, char *err, size_t errlen) {
     if (m->probe[k].kind == SW_PROBE_NODE) {
       const int n = m->rod_nelem[m->probe[k].rod], node = m->probe[k].node;
       if (node < -1 || node > n)
-        return fail(err, errlen, "probe '%s': node %d out of range for rod '%s' (nodes 0..%d, "
+        return sw_fail(err, errlen, "probe '%s': node %d out of range for rod '%s' (nodes 0..%d, "
                     "-1 = last)", m->probe[k].name, node, m->rod_name[m->probe[k].rod], n);
       if (node < 0) m->probe[k].node = n;
     }
@@ -390,7 +364,7 @@ int sw_env_setup(swModel *m, const swEnvSpec *e, char *err, size_t errlen) {
   if (!sw_contact_setup(m)) goto oom;
   return 1;
 oom:
-  return fail(err, errlen, "out of memory while building the environments");
+  return sw_fail(err, errlen, "out of memory while building the environments");
 }
 
 void sw_env_free(swModel *m) {

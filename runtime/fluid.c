@@ -76,7 +76,6 @@
  * air, C_d = 1.2) that speed is 2 / (611 h) m/s, 3 km/s at h = 1 us.
  */
 #include <math.h>
-#include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 
@@ -84,15 +83,7 @@
 #include "vec.h"
 #include "internal.h"
 
-static int fail(char *err, size_t errlen, const char *fmt, ...) {
-  if (err && errlen) {
-    va_list ap;
-    va_start(ap, fmt);
-    vsnprintf(err, errlen, fmt, ap);
-    va_end(ap);
-  }
-  return 0;
-}
+
 
 /* The scheme's limit on h c for a pure damper dv/dt = -c v: the damped
  * oscillator's limit on h w times 2 zeta, at a damping ratio so large that
@@ -121,7 +112,7 @@ int sw_fluid_setup(swModel *m, char *err, size_t errlen) {
   if (!m->fluid_row_adr || !m->fluid_elem || !m->fluid_node || !m->fluid_stokes ||
       !m->fluid_cap || !m->fluid_displaced || !rate) {
     free(rate);
-    return fail(err, errlen, "out of memory while building the fluids");
+    return sw_fail(err, errlen, "out of memory while building the fluids");
   }
   int row = 0;
   for (int k = 0; k < m->nfluid; k++) {
@@ -141,7 +132,7 @@ int sw_fluid_setup(swModel *m, char *err, size_t errlen) {
           /* Zhang 2019, Suppl. eq. 1: c = 4 pi mu / ln(L / r) */
           if (!(L > rad)) {
             free(rate);
-            return fail(err, errlen,
+            return sw_fail(err, errlen,
                         "fluid '%s': slender-body drag on rod '%s' needs the body length "
                         "(%g m) to exceed the radius of element %d (%g m)",
                         f->name, m->rod_name[r], L, i, rad);

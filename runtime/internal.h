@@ -4,6 +4,10 @@
 #define SW_INTERNAL_H
 #include "sinew.h"
 
+/* Shared helpers (model.c): grow an array to hold n+1 items (0: out of
+ * memory); write a message into err and return 0. */
+int sw_grow(void **p, int *cap, int n, size_t item);
+int sw_fail(char *err, size_t errlen, const char *fmt, ...) __attribute__((format(printf, 3, 4)));
 void sw_bc_kick(const swModel *m, swData *d, double h, double t);     /* boundary.c  */
 void sw_bc_loads(const swModel *m, swData *d);                        /* boundary.c  */
 double sw_bc_energy(const swModel *m, const swData *d);               /* boundary.c  */

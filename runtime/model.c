@@ -84,8 +84,8 @@ void sw_rod_desc_init(swRodDesc *r) {
   r->twist_hardening = 1.0;
 }
 
-/* Grow an array to hold at least n+1 items. */
-static int grow(void **p, int *cap, int n, size_t item) {
+/* Grow an array to hold at least n+1 items (0: out of memory). */
+int sw_grow(void **p, int *cap, int n, size_t item) {
   if (n < *cap) return 1;
   int nc = *cap ? 2 * *cap : 8;
   void *q = realloc(*p, (size_t)nc * item);
@@ -97,12 +97,12 @@ static int grow(void **p, int *cap, int n, size_t item) {
 
 int sw_spec_add_rod(swSpec *s, const swRodDesc *r) {
   int cap = s->caprod;
-  if (!grow((void **)&s->rod, &cap, s->nrod, sizeof *s->rod)) return -1;
+  if (!sw_grow((void **)&s->rod, &cap, s->nrod, sizeof *s->rod)) return -1;
   cap = s->caprod;
-  if (!grow((void **)&s->rod_name, &cap, s->nrod, sizeof *s->rod_name)) return -1;
+  if (!sw_grow((void **)&s->rod_name, &cap, s->nrod, sizeof *s->rod_name)) return -1;
   cap = s->caprod;
-  if (!grow((void **)&s->rest_x, &cap, s->nrod, sizeof *s->rest_x)) return -1;
-  if (!grow((void **)&s->rest_Q, &s->caprod, s->nrod, sizeof *s->rest_Q)) return -1;
+  if (!sw_grow((void **)&s->rest_x, &cap, s->nrod, sizeof *s->rest_x)) return -1;
+  if (!sw_grow((void **)&s->rest_Q, &s->caprod, s->nrod, sizeof *s->rest_Q)) return -1;
   int id = s->nrod++;
   s->rod[id] = *r;
   s->rod_name[id] = strdup(r->name ? r->name : "rod");
@@ -112,21 +112,21 @@ int sw_spec_add_rod(swSpec *s, const swRodDesc *r) {
 }
 
 int sw_spec_add_load(swSpec *s, const swLoadDesc *l) {
-  if (!grow((void **)&s->load, &s->capload, s->nload, sizeof *s->load)) return -1;
+  if (!sw_grow((void **)&s->load, &s->capload, s->nload, sizeof *s->load)) return -1;
   s->load[s->nload] = *l;
   return s->nload++;
 }
 
 int sw_spec_add_bc(swSpec *s, const swBCDesc *b) {
-  if (!grow((void **)&s->bc, &s->capbc, s->nbc, sizeof *s->bc)) return -1;
+  if (!sw_grow((void **)&s->bc, &s->capbc, s->nbc, sizeof *s->bc)) return -1;
   s->bc[s->nbc] = *b;
   return s->nbc++;
 }
 
 int sw_spec_add_joint(swSpec *s, const swJointDesc *j) {
   int cap = s->capjoint;
-  if (!grow((void **)&s->joint, &cap, s->njoint, sizeof *s->joint)) return -1;
-  if (!grow((void **)&s->joint_name, &s->capjoint, s->njoint, sizeof *s->joint_name)) return -1;
+  if (!sw_grow((void **)&s->joint, &cap, s->njoint, sizeof *s->joint)) return -1;
+  if (!sw_grow((void **)&s->joint_name, &s->capjoint, s->njoint, sizeof *s->joint_name)) return -1;
   char *name = strdup(j->name ? j->name : "joint");
   if (!name) return -1;
   int id = s->njoint++;
@@ -157,7 +157,9 @@ int sw_spec_set_rest_shape(swSpec *s, int rod, const double *x, const double *Q)
 
 /* ---- compilation ---- */
 
-static int fail(char *err, size_t errlen, const char *fmt, ...) {
+/* A message into err (when given); returns 0, so checks can `return
+ * sw_fail(...)`. */
+int sw_fail(char *err, size_t errlen, const char *fmt, ...) {
   if (err && errlen) {
     va_list ap;
     va_start(ap, fmt);
@@ -172,32 +174,32 @@ static int finite_pos(double x) { return isfinite(x) && x > 0; }
 static int check_rod(const swRodDesc *r, char *err, size_t errlen) {
   const char *nm = r->name;
   if (r->nelem < 2)
-    return fail(err, errlen, "rod '%s': needs at least 2 elements, has %d", nm, r->nelem);
+    return sw_fail(err, errlen, "rod '%s': needs at least 2 elements, has %d", nm, r->nelem);
   if (r->nelem > 10000000)
-    return fail(err, errlen, "rod '%s': %d elements is more than this build supports", nm, r->nelem);
-  if (!finite_pos(r->length)) return fail(err, errlen, "rod '%s': length must be > 0", nm);
+    return sw_fail(err, errlen, "rod '%s': %d elements is more than this build supports", nm, r->nelem);
+  if (!finite_pos(r->length)) return sw_fail(err, errlen, "rod '%s': length must be > 0", nm);
   if (!finite_pos(r->radius_start) || !finite_pos(r->radius_end))
-    return fail(err, errlen, "rod '%s': radius must be > 0", nm);
-  if (!finite_pos(r->density)) return fail(err, errlen, "rod '%s': density must be > 0", nm);
-  if (!finite_pos(r->youngs)) return fail(err, errlen, "rod '%s': Young's modulus must be > 0", nm);
+    return sw_fail(err, errlen, "rod '%s': radius must be > 0", nm);
+  if (!finite_pos(r->density)) return sw_fail(err, errlen, "rod '%s': density must be > 0", nm);
+  if (!finite_pos(r->youngs)) return sw_fail(err, errlen, "rod '%s': Young's modulus must be > 0", nm);
   if (r->shear_modulus == 0 && !(r->poisson > -1.0 && r->poisson <= 0.5))
-    return fail(err, errlen, "rod '%s': Poisson ratio %g outside (-1, 0.5]", nm, r->poisson);
+    return sw_fail(err, errlen, "rod '%s': Poisson ratio %g outside (-1, 0.5]", nm, r->poisson);
   if (r->shear_modulus != 0 && !finite_pos(r->shear_modulus))
-    return fail(err, errlen, "rod '%s': shear modulus must be > 0", nm);
+    return sw_fail(err, errlen, "rod '%s': shear modulus must be > 0", nm);
   if (!finite_pos(r->shear_hardening) || !finite_pos(r->twist_hardening))
-    return fail(err, errlen, "rod '%s': hardening factors must be > 0", nm);
+    return sw_fail(err, errlen, "rod '%s': hardening factors must be > 0", nm);
   if (!(r->gamma >= 0) || !isfinite(r->gamma))
-    return fail(err, errlen, "rod '%s': dissipation constant must be >= 0", nm);
+    return sw_fail(err, errlen, "rod '%s': dissipation constant must be >= 0", nm);
   if (r->damping != SW_DAMP_NONE && r->damping != SW_DAMP_LINEAR && r->damping != SW_DAMP_ANALYTIC)
-    return fail(err, errlen, "rod '%s': unknown damping kind %d", nm, (int)r->damping);
+    return sw_fail(err, errlen, "rod '%s': unknown damping kind %d", nm, (int)r->damping);
   if (r->rigid != 0 && r->rigid != 1)
-    return fail(err, errlen, "rod '%s': rigid must be 0 or 1, got %d", nm, r->rigid);
+    return sw_fail(err, errlen, "rod '%s': rigid must be 0 or 1, got %d", nm, r->rigid);
   if (r->rigid && r->damping == SW_DAMP_ANALYTIC && r->gamma > 0)
-    return fail(err, errlen, "rod '%s': analytic damping is not supported on a rigid rod "
+    return sw_fail(err, errlen, "rod '%s': analytic damping is not supported on a rigid rod "
                 "(use linear damping)", nm);
   double Q[9];
   if (!sw_frame_from(Q, r->direction, r->normal))
-    return fail(err, errlen, "rod '%s': direction is zero or parallel to normal", nm);
+    return sw_fail(err, errlen, "rod '%s': direction is zero or parallel to normal", nm);
   return 1;
 }
 
@@ -280,32 +282,32 @@ static void place_rod(const swSpec *s, int r, double *x, double *Q) {
 static int check_signal(const swSignal *g, char *err, size_t errlen, const char *what, int k,
                         const char *rod) {
   if (g->kind < SW_SIG_CONST || g->kind > SW_SIG_BSPLINE)
-    return fail(err, errlen, "%s %d on rod '%s': unknown signal kind %d", what, k, rod, (int)g->kind);
+    return sw_fail(err, errlen, "%s %d on rod '%s': unknown signal kind %d", what, k, rod, (int)g->kind);
   if (!(g->period >= 0) || !isfinite(g->period))
-    return fail(err, errlen, "%s %d on rod '%s': signal period must be >= 0 (0: not periodic), "
+    return sw_fail(err, errlen, "%s %d on rod '%s': signal period must be >= 0 (0: not periodic), "
                 "got %g", what, k, rod, g->period);
   if (g->kind == SW_SIG_BSPLINE) {
     if (g->npts < 4 || g->npts > SW_SIGNAL_MAXPTS)
-      return fail(err, errlen, "%s %d on rod '%s': B-spline signal needs 4..%d coefficients, "
+      return sw_fail(err, errlen, "%s %d on rod '%s': B-spline signal needs 4..%d coefficients, "
                   "has %d", what, k, rod, SW_SIGNAL_MAXPTS, g->npts);
     if (!(g->T > 0) || !isfinite(g->T))
-      return fail(err, errlen, "%s %d on rod '%s': B-spline signal duration must be > 0", what, k,
+      return sw_fail(err, errlen, "%s %d on rod '%s': B-spline signal duration must be > 0", what, k,
                   rod);
     for (int i = 0; i < g->npts; i++)
       if (!isfinite(g->values[i]))
-        return fail(err, errlen, "%s %d on rod '%s': B-spline coefficient %d is not finite", what,
+        return sw_fail(err, errlen, "%s %d on rod '%s': B-spline coefficient %d is not finite", what,
                     k, rod, i);
     return 1;
   }
   if (g->kind != SW_SIG_TABLE) return 1;
   if (g->npts < 1 || g->npts > SW_SIGNAL_MAXPTS)
-    return fail(err, errlen, "%s %d on rod '%s': table signal needs 1..%d points, has %d", what, k,
+    return sw_fail(err, errlen, "%s %d on rod '%s': table signal needs 1..%d points, has %d", what, k,
                 rod, SW_SIGNAL_MAXPTS, g->npts);
   for (int i = 0; i < g->npts; i++) {
     if (!isfinite(g->times[i]) || !isfinite(g->values[i]))
-      return fail(err, errlen, "%s %d on rod '%s': table point %d is not finite", what, k, rod, i);
+      return sw_fail(err, errlen, "%s %d on rod '%s': table point %d is not finite", what, k, rod, i);
     if (i > 0 && !(g->times[i] > g->times[i - 1]))
-      return fail(err, errlen, "%s %d on rod '%s': table times must increase (point %d)", what, k,
+      return sw_fail(err, errlen, "%s %d on rod '%s': table times must increase (point %d)", what, k,
                   rod, i);
   }
   return 1;
@@ -315,33 +317,33 @@ static int check_loads_bcs(const swSpec *s, char *err, size_t errlen) {
   for (int k = 0; k < s->nload; k++) {
     const swLoadDesc *l = &s->load[k];
     if (l->rod < 0 || l->rod >= s->nrod)
-      return fail(err, errlen, "load %d: rod index %d out of range", k, l->rod);
+      return sw_fail(err, errlen, "load %d: rod index %d out of range", k, l->rod);
     const char *nm = s->rod[l->rod].name;
     if (l->kind != SW_LOAD_FORCE && l->kind != SW_LOAD_TORQUE)
-      return fail(err, errlen, "load %d on rod '%s': unknown kind %d", k, nm, (int)l->kind);
+      return sw_fail(err, errlen, "load %d on rod '%s': unknown kind %d", k, nm, (int)l->kind);
     int n = s->rod[l->rod].nelem, lim = l->kind == SW_LOAD_FORCE ? n + 1 : n;
     if (l->index < -1 || l->index >= lim)
-      return fail(err, errlen, "load %d on rod '%s': %s index %d out of range [0, %d)", k, nm,
+      return sw_fail(err, errlen, "load %d on rod '%s': %s index %d out of range [0, %d)", k, nm,
                   l->kind == SW_LOAD_FORCE ? "node" : "element", l->index, lim);
     if (!isfinite(l->vec[0]) || !isfinite(l->vec[1]) || !isfinite(l->vec[2]))
-      return fail(err, errlen, "load %d on rod '%s': vector is not finite", k, nm);
+      return sw_fail(err, errlen, "load %d on rod '%s': vector is not finite", k, nm);
     if (!check_signal(&l->signal, err, errlen, "load", k, nm)) return 0;
   }
   for (int k = 0; k < s->nbc; k++) {
     const swBCDesc *b = &s->bc[k];
     if (b->rod < 0 || b->rod >= s->nrod)
-      return fail(err, errlen, "boundary condition %d: rod index %d out of range", k, b->rod);
+      return sw_fail(err, errlen, "boundary condition %d: rod index %d out of range", k, b->rod);
     const char *nm = s->rod[b->rod].name;
     if (b->end != 0 && b->end != 1)
-      return fail(err, errlen, "boundary condition %d on rod '%s': end must be 0 (start) or 1 (end)",
+      return sw_fail(err, errlen, "boundary condition %d on rod '%s': end must be 0 (start) or 1 (end)",
                   k, nm);
     if (b->kind < SW_BC_CLAMP || b->kind > SW_BC_OMEGA)
-      return fail(err, errlen, "boundary condition %d on rod '%s': unknown kind %d", k, nm, (int)b->kind);
+      return sw_fail(err, errlen, "boundary condition %d on rod '%s': unknown kind %d", k, nm, (int)b->kind);
     if (!isfinite(b->vec[0]) || !isfinite(b->vec[1]) || !isfinite(b->vec[2]))
-      return fail(err, errlen, "boundary condition %d on rod '%s': vector is not finite", k, nm);
+      return sw_fail(err, errlen, "boundary condition %d on rod '%s': vector is not finite", k, nm);
     if (!check_signal(&b->signal, err, errlen, "boundary condition", k, nm)) return 0;
     if (s->rod[b->rod].rigid && b->kind != SW_BC_CLAMP)
-      return fail(err, errlen, "boundary condition %d on rod '%s': a prescribed %s is not "
+      return sw_fail(err, errlen, "boundary condition %d on rod '%s': a prescribed %s is not "
                   "supported on a rigid rod (clamp it, or hold it with a joint)", k, nm,
                   b->kind == SW_BC_VELOCITY ? "velocity" : "angular velocity");
   }
@@ -352,7 +354,7 @@ static int check_loads_bcs(const swSpec *s, char *err, size_t errlen) {
 static int check_joint_coef(const swJointDesc *j, double v, const char *what, char *err,
                             size_t errlen) {
   if (isfinite(v) && v >= 0) return 1;
-  return fail(err, errlen, "joint '%s': %s must be finite and >= 0 (0 = automatic), got %g",
+  return sw_fail(err, errlen, "joint '%s': %s must be finite and >= 0 (0 = automatic), got %g",
               j->name, what, v);
 }
 
@@ -361,7 +363,7 @@ static int check_joint_node(const swSpec *s, const swJointDesc *j, int rod, int 
                             const char *end, char *err, size_t errlen) {
   int n = s->rod[rod].nelem;
   if (node >= -1 && node <= n) return 1;
-  return fail(err, errlen, "joint '%s': %s %d out of range for rod '%s' (nodes 0..%d, -1 = last)",
+  return sw_fail(err, errlen, "joint '%s': %s %d out of range for rod '%s' (nodes 0..%d, -1 = last)",
               j->name, end, node, s->rod[rod].name, n);
 }
 
@@ -371,14 +373,14 @@ static int check_joints(const swSpec *s, char *err, size_t errlen) {
     const char *nm = j->name;
     for (int i = 0; i < k; i++)
       if (!strcmp(s->joint[i].name, nm))
-        return fail(err, errlen, "joint '%s': name already used by joint %d", nm, i);
+        return sw_fail(err, errlen, "joint '%s': name already used by joint %d", nm, i);
     if (j->kind != SW_JOINT_SPHERICAL && j->kind != SW_JOINT_HINGE && j->kind != SW_JOINT_FIXED)
-      return fail(err, errlen, "joint '%s': unknown kind %d", nm, (int)j->kind);
+      return sw_fail(err, errlen, "joint '%s': unknown kind %d", nm, (int)j->kind);
     if (j->rod_a < 0 || j->rod_a >= s->nrod)
-      return fail(err, errlen, "joint '%s': rod_a index %d out of range [0, %d)", nm, j->rod_a,
+      return sw_fail(err, errlen, "joint '%s': rod_a index %d out of range [0, %d)", nm, j->rod_a,
                   s->nrod);
     if (j->rod_b < -1 || j->rod_b >= s->nrod)
-      return fail(err, errlen, "joint '%s': rod_b index %d out of range [0, %d) (-1 = anchored)",
+      return sw_fail(err, errlen, "joint '%s': rod_b index %d out of range [0, %d) (-1 = anchored)",
                   nm, j->rod_b, s->nrod);
     if (!check_joint_node(s, j, j->rod_a, j->node_a, "node_a", err, errlen)) return 0;
     if (j->rod_b >= 0) {
@@ -386,15 +388,15 @@ static int check_joints(const swSpec *s, char *err, size_t errlen) {
       int n = s->rod[j->rod_a].nelem;
       int na = j->node_a < 0 ? n : j->node_a, nb = j->node_b < 0 ? n : j->node_b;
       if (j->rod_b == j->rod_a && na == nb)
-        return fail(err, errlen, "joint '%s': joins node %d of rod '%s' to itself", nm, na,
+        return sw_fail(err, errlen, "joint '%s': joins node %d of rod '%s' to itself", nm, na,
                     s->rod[j->rod_a].name);
     } else if (!isfinite(j->anchor[0]) || !isfinite(j->anchor[1]) || !isfinite(j->anchor[2])) {
-      return fail(err, errlen, "joint '%s': anchor is not finite", nm);
+      return sw_fail(err, errlen, "joint '%s': anchor is not finite", nm);
     }
     if (j->kind == SW_JOINT_HINGE) {
       double a2 = j->axis[0] * j->axis[0] + j->axis[1] * j->axis[1] + j->axis[2] * j->axis[2];
       if (!isfinite(a2) || !(a2 > 0))
-        return fail(err, errlen, "joint '%s': hinge axis must be finite and nonzero", nm);
+        return sw_fail(err, errlen, "joint '%s': hinge axis must be finite and nonzero", nm);
     }
     if (!check_joint_coef(j, j->stiffness, "stiffness", err, errlen) ||
         !check_joint_coef(j, j->damping, "damping", err, errlen) ||
@@ -402,7 +404,7 @@ static int check_joints(const swSpec *s, char *err, size_t errlen) {
         !check_joint_coef(j, j->rot_damping, "rotational damping", err, errlen))
       return 0;
     if (j->undamped && (j->damping != 0 || j->rot_damping != 0))
-      return fail(err, errlen, "joint '%s': declared undamped but damping is given", nm);
+      return sw_fail(err, errlen, "joint '%s': declared undamped but damping is given", nm);
   }
   return 1;
 }
@@ -410,15 +412,15 @@ static int check_joints(const swSpec *s, char *err, size_t errlen) {
 swModel *sw_compile(const swSpec *s, char *err, size_t errlen) {
   if (s && !sw_muscle_check(s->muscles, s->nrod, err, errlen)) return NULL;
   if (!s || s->nrod < 1) {
-    fail(err, errlen, "the scene has no rods");
+    sw_fail(err, errlen, "the scene has no rods");
     return NULL;
   }
   if (!finite_pos(s->dt)) {
-    fail(err, errlen, "time step must be > 0, got %g", s->dt);
+    sw_fail(err, errlen, "time step must be > 0, got %g", s->dt);
     return NULL;
   }
   if (s->integrator != SW_VERLET && s->integrator != SW_PEFRL) {
-    fail(err, errlen, "unknown integrator %d", (int)s->integrator);
+    sw_fail(err, errlen, "unknown integrator %d", (int)s->integrator);
     return NULL;
   }
   for (int r = 0; r < s->nrod; r++)
@@ -486,7 +488,7 @@ swModel *sw_compile(const swSpec *s, char *err, size_t errlen) {
       double l = sw_v3_norm(dx);
       if (!(l > 0)) {
         free(bend_elem);
-        fail(err, errlen, "rod '%s': element %d has zero rest length", rd->name, i);
+        sw_fail(err, errlen, "rod '%s': element %d has zero rest length", rd->name, i);
         sw_model_free(m);
         return NULL;
       }
@@ -604,7 +606,7 @@ swModel *sw_compile(const swSpec *s, char *err, size_t errlen) {
   return m;
 
 oom:
-  fail(err, errlen, "out of memory while building the model");
+  sw_fail(err, errlen, "out of memory while building the model");
   sw_model_free(m);
   return NULL;
 }
