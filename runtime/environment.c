@@ -173,10 +173,14 @@ static int check_rods(const char *what, const char *name, int nrods, const int *
                       char *err, size_t errlen) {
   if (nrods < 0 || (nrods > 0 && !rods))
     return sw_fail(err, errlen, "%s '%s': bad rod list (%d rods)", what, name, nrods);
-  for (int k = 0; k < nrods; k++)
+  for (int k = 0; k < nrods; k++) {
     if (rods[k] < 0 || rods[k] >= nrod)
       return sw_fail(err, errlen, "%s '%s': rod %d does not exist (the scene has %d)", what, name,
                   rods[k], nrod);
+    for (int j = 0; j < k; j++) /* a rod twice would feel a fluid or ground twice */
+      if (rods[j] == rods[k])
+        return sw_fail(err, errlen, "%s '%s': rod %d is listed twice", what, name, rods[k]);
+  }
   return 1;
 }
 

@@ -555,6 +555,11 @@ static void test_validation(void **state) {
   f.nrods = 1;
   f.rods = bad;
   expect_error(&f, 0.1, "fluid 'water': rod 3 does not exist (the scene has 1)");
+  /* a rod listed twice would be dragged twice */
+  const int twice[2] = {0, 0};
+  f.nrods = 2;
+  f.rods = twice;
+  expect_error(&f, 0.1, "fluid 'water': rod 0 is listed twice");
 }
 
 int main(void) {
