@@ -14,10 +14,11 @@
  * Asserted: the walker walks forward, that is, the centre of mass moves +x
  * over the three whole periods by more than it oscillates within any one of
  * them (the largest departure of x(t) from the straight line between the
- * period's two ends), and sideways by less than half of that (it heads forward); the muscle
- * contracts.  Printed: the step of each period, the speed beside the
- * published one, and the muscle's contraction beside the strain measured by
- * Pagan-Diaz et al. (eps = 0.134, quoted after Zhang 2019's Table 8).
+ * period's two ends), and sideways by less than half of that (it heads
+ * forward); the muscle contracts.  Printed: the step of each period, the
+ * speed beside the published one, and the muscle's contraction beside the
+ * strain measured by Pagan-Diaz et al. (eps = 0.134, quoted after Zhang
+ * 2019's Table 8).
  *
  * The published speed.  Pagan-Diaz 2018's own figure is not in the sources
  * this project can reach; the one printed is that of the group's earlier
