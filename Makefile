@@ -96,9 +96,10 @@ LANG_TESTS = $(wildcard tests/lang/test_*.sh)
 # End-to-end tests compile models with the sanitizer build of sinewc, run the
 # simulators and check their HDF5 output against closed forms.
 # test_elbow runs the arm scenes of issue 4 with the optimised bin/sinewc (long);
-# test_snake and test_swimmer likewise run their example scenes with it.
-E2E_BIN  = build/tests/test_e2e build/tests/test_elbow build/tests/test_snake build/tests/test_swimmer
-build/tests/test_e2e build/tests/test_elbow build/tests/test_snake build/tests/test_swimmer: build/tests/test_%: tests/e2e/test_%.c tests/e2e/e2e.h tests/runtime/h5read.h | build/tests
+# test_snake, test_swimmer and test_walker likewise run their example scenes with it.
+E2E_BIN  = build/tests/test_e2e build/tests/test_elbow build/tests/test_snake \
+           build/tests/test_swimmer build/tests/test_walker
+$(E2E_BIN): build/tests/test_%: tests/e2e/test_%.c tests/e2e/e2e.h tests/runtime/h5read.h | build/tests
 	$(CC) $(ALL_CFLAGS) -Itests/runtime -Itests/e2e $< -o $@ $(LIBS) -lcmocka
 check: $(TEST_BIN) $(TEST_SBIN) $(E2E_BIN) build/libsinewrt.a bin/sinewc build/asan/sinewc
 	@mkdir -p build/validation   # measured tables the validation tests leave for `make plots`
