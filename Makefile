@@ -115,12 +115,12 @@ build/bench/bench_rod: bench/bench_rod.c build/libsinewrt.a | build/bench
 # bench_rigid (one bone elastic vs rigid) replaces its own section at the end
 # of the report bench_rod has just written.
 BENCH_RIGID = build/bench/bench_rigid
-build/bench/bench_rigid: bench/bench_rigid.c build/libsinewrt.a | build/bench
+build/bench/bench_rigid: bench/bench_rigid.c bench/bench_util.h build/libsinewrt.a | build/bench
 	$(CC) $(ALL_CFLAGS) $< -o $@ build/libsinewrt.a $(LIBS)
 # bench_contact (rod-rod contact: grid vs brute force against rod count)
 # replaces or appends its own section.
 BENCH_CONTACT = build/bench/bench_contact
-build/bench/bench_contact: bench/bench_contact.c build/libsinewrt.a | build/bench
+build/bench/bench_contact: bench/bench_contact.c bench/bench_util.h build/libsinewrt.a | build/bench
 	$(CC) $(ALL_CFLAGS) $< -o $@ build/libsinewrt.a $(LIBS)
 bench: deps
 	@$(MAKE) --no-print-directory $(BENCH_BIN) $(BENCH_RIGID) $(BENCH_CONTACT) bin/sinewc

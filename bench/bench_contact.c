@@ -22,6 +22,7 @@
 #include <string.h>
 #include <time.h>
 #include "sinew.h"
+#include "bench_util.h"
 #include "internal.h"
 
 enum { NREP = 7, NSCENE = 5, NELEM = 20 };
@@ -33,22 +34,6 @@ static const char SECTION[] = "## Rod-rod contact";
 static void die(const char *msg, const char *detail) {
   fprintf(stderr, "bench_contact: %s%s%s\n", msg, detail ? ": " : "", detail ? detail : "");
   exit(1);
-}
-
-static double wall_seconds(void) {
-  struct timespec ts;
-  clock_gettime(CLOCK_MONOTONIC, &ts);
-  return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
-}
-
-static int cmp_double(const void *a, const void *b) {
-  double x = *(const double *)a, y = *(const double *)b;
-  return (x > y) - (x < y);
-}
-
-static double median(double *v, int n) {
-  qsort(v, (size_t)n, sizeof *v, cmp_double);
-  return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
 }
 
 static unsigned long long rng_state = 0x9E3779B97F4A7C15ull;

@@ -26,6 +26,7 @@
 #include <string.h>
 #include <time.h>
 #include "sinew.h"
+#include "bench_util.h"
 
 enum { NREP = 9, NVAR = 4 };
 static const double BATCH_SECONDS = 0.2;   /* minimum wall time of a timed batch, s */
@@ -35,22 +36,6 @@ static const char SECTION[] = "## Rigid rods";
 static void die(const char *msg, const char *detail) {
   fprintf(stderr, "bench_rigid: %s%s%s\n", msg, detail ? ": " : "", detail ? detail : "");
   exit(1);
-}
-
-static double wall_seconds(void) {
-  struct timespec ts;
-  clock_gettime(CLOCK_MONOTONIC, &ts);
-  return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
-}
-
-static int cmp_double(const void *a, const void *b) {
-  double x = *(const double *)a, y = *(const double *)b;
-  return (x > y) - (x < y);
-}
-
-static double median(double *v, int n) {
-  qsort(v, (size_t)n, sizeof *v, cmp_double);
-  return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
 }
 
 /* ---- the scene ---- */
