@@ -118,8 +118,7 @@ static void measure(Variant *v, int rep) {
   double t0 = wall_seconds();
   steps_or_die(v, v->sim_steps);
   v->wall_sim[rep] = wall_seconds() - t0;
-  const double *tip = v->d->x + 3 * v->m->rod_nelem[0];
-  memcpy(v->tip, tip, sizeof v->tip);
+  sw_get3(v->m, v->d->x, v->m->node_adr[0] + v->m->rod_nelem[0], v->tip);
   double spent = 0;
   long steps = 0;
   while (spent < BATCH_SECONDS) {
@@ -168,7 +167,8 @@ static void write_section(FILE *f, Variant *v, const double *ns, const double *w
   for (int i = 0; i < NVAR; i++) {
     const Variant *e = &v[i & ~1]; /* the elastic twin */
     char est[32], dt[32], w[32], tipdiff[32];
-    const double *x0 = v[i].m->x0 + 3 * v[i].m->rod_nelem[0];
+    double x0[3];
+    sw_get3(v[i].m, v[i].m->x0, v[i].m->node_adr[0] + v[i].m->rod_nelem[0], x0);
     double moved = 0, diff = 0;
     for (int k = 0; k < 3; k++) {
       moved += (v[i].tip[k] - x0[k]) * (v[i].tip[k] - x0[k]);

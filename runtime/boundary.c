@@ -47,9 +47,10 @@ static int bc_target(const swModel *m, const swData *d, const swBCDesc *b, doubl
     return 1;
   }
   case SW_BC_OMEGA: {
-    double g = sw_signal_eval(&b->signal, t), wl[3];
+    double g = sw_signal_eval(&b->signal, t), wl[3], Q[9];
     sw_v3_scale(wl, b->vec, g);
-    sw_mat_vec(welem, d->Q + 9 * *elem, wl);
+    sw_getQ(m, d->Q, *elem, Q);
+    sw_mat_vec(welem, Q, wl);
     return 2;
   }
   }
@@ -62,8 +63,8 @@ void sw_apply_bc_velocity(const swModel *m, swData *d, double t) {
     int node, elem;
     double vn[3], we[3];
     int what = bc_target(m, d, &m->bc[k], t, &node, &elem, vn, we);
-    if (what & 1) memcpy(d->v + 3 * node, vn, sizeof vn);
-    if (what & 2) memcpy(d->omega + 3 * elem, we, sizeof we);
+    if (what & 1) sw_set3(m, d->v, node, vn);
+    if (what & 2) sw_set3(m, d->omega, elem, we);
   }
 }
 
@@ -80,24 +81,24 @@ void sw_bc_kick(const swModel *m, swData *d, double h, double t) {
      * h f . (v_old + v_free) / 2; rebook it with the prescribed one and add
      * the constraint force's, h f_c = m (v_new - v_free). */
     if (what & 1) {
-      double *v = d->v + 3 * node, mass = m->mass[node];
-      const double *F = d->force + 3 * node, *ef = d->ext_force + 3 * node;
+      double mass = m->mass[node];
       for (int c = 0; c < 3; c++) {
-        double v_free = v[c], v_old = v_free - h * F[c] * m->inv_mass[node];
-        d->work -= 0.5 * h * ef[c] * (v_old + v_free);
-        d->work += 0.5 * (h * ef[c] + mass * (vn[c] - v_free)) * (v_old + vn[c]);
-        v[c] = vn[c];
+        const double F = SW_AT(m, d->force, node, c), ef = SW_AT(m, d->ext_force, node, c);
+        double v_free = SW_AT(m, d->v, node, c), v_old = v_free - h * F * m->inv_mass[node];
+        d->work -= 0.5 * h * ef * (v_old + v_free);
+        d->work += 0.5 * (h * ef + mass * (vn[c] - v_free)) * (v_old + vn[c]);
+        SW_AT(m, d->v, node, c) = vn[c];
       }
     }
     if (what & 2) {
-      double *w = d->omega + 3 * elem, e = d->dilatation[elem];
-      const double *T = d->torque + 3 * elem, *et = d->ext_torque + 3 * elem;
+      double e = d->dilatation[elem];
       for (int c = 0; c < 3; c++) {
-        double Je = m->inertia[3 * elem + c] / e;
-        double w_free = w[c], w_old = w_free - h * T[c] / Je;
-        d->work -= 0.5 * h * et[c] * (w_old + w_free);
-        d->work += 0.5 * (h * et[c] + Je * (we[c] - w_free)) * (w_old + we[c]);
-        w[c] = we[c];
+        const double T = SW_AT(m, d->torque, elem, c), et = SW_AT(m, d->ext_torque, elem, c);
+        double Je = SW_AT(m, m->inertia, elem, c) / e;
+        double w_free = SW_AT(m, d->omega, elem, c), w_old = w_free - h * T / Je;
+        d->work -= 0.5 * h * et * (w_old + w_free);
+        d->work += 0.5 * (h * et + Je * (we[c] - w_free)) * (w_old + we[c]);
+        SW_AT(m, d->omega, elem, c) = we[c];
       }
     }
   }
@@ -110,8 +111,9 @@ static int clamp_domain(const swModel *m, const swData *d, const swBCDesc *b,
                         double kappa[3], double couple[3], double *D) {
   int n = m->rod_nelem[b->rod];
   int e = m->elem_adr[b->rod] + (b->end ? n - 1 : 0);
-  const double *Qc = m->Q0 + 9 * e, *Qe = d->Q + 9 * e;
-  double phi[3];
+  double Qc[9], Qe[9], phi[3];
+  sw_getQ(m, m->Q0, e, Qc);
+  sw_getQ(m, d->Q, e, Qe);
   /* the domain lies clamp -> element at the start, element -> clamp at the end */
   if (b->end) sw_frame_log(phi, Qe, Qc); else sw_frame_log(phi, Qc, Qe);
   *D = 0.5 * m->rest_len[e];
@@ -119,7 +121,7 @@ static int clamp_domain(const swModel *m, const swData *d, const swBCDesc *b,
   double eps = d->dilatation[e], inv_eps3 = 1.0 / (eps * eps * eps);
   for (int k = 0; k < 3; k++) {
     kappa[k] = phi[k] / *D;
-    couple[k] = m->clamp_bend[3 * e + k] * kappa[k] * inv_eps3;
+    couple[k] = SW_AT(m, m->clamp_bend, e, k) * kappa[k] * inv_eps3;
   }
   return e;
 }
@@ -134,7 +136,7 @@ void sw_bc_loads(const swModel *m, swData *d) {
     /* as in rod.c: the element before the domain gets +c, the one after -c,
      * and each gets half of kappa x c D^ (the clamp's half is not needed) */
     double sgn = b->end ? 1.0 : -1.0;
-    for (int i = 0; i < 3; i++) d->torque[3 * e + i] += sgn * c[i] + 0.5 * h[i] * D;
+    for (int i = 0; i < 3; i++) SW_AT(m, d->torque, e, i) += sgn * c[i] + 0.5 * h[i] * D;
   }
 }
 
@@ -145,7 +147,7 @@ double sw_bc_energy(const swModel *m, const swData *d) {
     if (b->kind != SW_BC_CLAMP) continue;
     double kappa[3], c[3], D;
     int e = clamp_domain(m, d, b, kappa, c, &D);
-    for (int i = 0; i < 3; i++) u += 0.5 * D * m->clamp_bend[3 * e + i] * kappa[i] * kappa[i];
+    for (int i = 0; i < 3; i++) u += 0.5 * D * SW_AT(m, m->clamp_bend, e, i) * kappa[i] * kappa[i];
   }
   return u;
 }

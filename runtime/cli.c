@@ -463,12 +463,15 @@ static char *params_string(const swCli *c) {
 /* ---- --info ---- */
 
 /* Approximate bytes of the model's and the state's arrays (sinew.h lists
- * them with their shapes: per node, element, Voronoi domain and joint). */
+ * them with their shapes: per slot, joint, filament, body).  A per-slot
+ * array is planar (sinew.h, "Layout"): one plane of m->stride doubles per
+ * scalar, three per vector, nine per frame, whatever the slot holds. */
 static double model_bytes(const swModel *m) {
   double b = sizeof *m;
   b += (double)m->nrod * (sizeof(char *) + 4 * sizeof(int) + sizeof(double) + sizeof(swDampingKind));
   for (int r = 0; r < m->nrod; r++) b += m->rod_name[r] ? (double)strlen(m->rod_name[r]) + 1 : 0;
-  b += sizeof(double) * (8.0 * m->nnode + 36.0 * m->nelem + 7.0 * m->nvor);
+  /* planes of the node (8), element (36) and Voronoi (7) arrays */
+  b += sizeof(double) * ((8.0 + 36.0 + 7.0) * m->stride);
   b += (double)m->nload * sizeof(swLoadDesc) + (double)m->nbc * sizeof(swBCDesc);
   /* per joint: description, name, 4 indices, axes (2x3), rest rotation (9),
    * initial angle and stable dt */
@@ -489,7 +492,8 @@ static double model_bytes(const swModel *m) {
 }
 
 static double data_bytes(const swModel *m) {
-  return sizeof(swData) + sizeof(double) * (12.0 * m->nnode + 26.0 * m->nelem + 7.0 * m->nvor +
+  /* planes of the node (12), element (26) and Voronoi (7) arrays */
+  return sizeof(swData) + sizeof(double) * ((12.0 + 26.0 + 7.0) * m->stride +
                                             4.0 * m->njoint + 4.0 * m->nfil + 21.0 * m->nrigid) +
          (double)m->nprobe * (4.0 * SW_PROBE_RING * sizeof(double) + 2 * sizeof(int));
 }

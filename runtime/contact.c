@@ -215,12 +215,16 @@ static void pair_contact(const swModel *m, const swData *d, const swContactDesc 
   const int ia = m->node_adr[rod_a] + (ea - m->elem_adr[rod_a]);
   const int ib = m->node_adr[rod_b] + (eb - m->elem_adr[rod_b]);
   const double rsum = m->radius[ea] + m->radius[eb];
-  const double *a0 = d->x + 3 * ia, *a1 = a0 + 3, *b0 = d->x + 3 * ib, *b1 = b0 + 3;
   if (rod_a == rod_b) {
     double gap = ra < rb ? m->contact_arc[rb] - m->contact_arc[ra] - m->rest_len[ea]
                          : m->contact_arc[ra] - m->contact_arc[rb] - m->rest_len[eb];
     if (!cd->self || gap < 0.5 * SW_PI * rsum) return;
   }
+  double a0[3], a1[3], b0[3], b1[3];
+  sw_get3(m, d->x, ia, a0);
+  sw_get3(m, d->x, ia + 1, a1);
+  sw_get3(m, d->x, ib, b0);
+  sw_get3(m, d->x, ib + 1, b1);
   double da[3], db[3], pq[3], n[3], s, t;
   sw_v3_sub(da, a1, a0);
   sw_v3_sub(db, b1, b0);
@@ -239,7 +243,11 @@ static void pair_contact(const swModel *m, const swData *d, const swContactDesc 
   if (delta > sum->max_overlap) sum->max_overlap = delta;
   if (!sum->force) return;
   /* approach speed of the contact points, > 0 when they close in */
-  const double *va0 = d->v + 3 * ia, *va1 = va0 + 3, *vb0 = d->v + 3 * ib, *vb1 = vb0 + 3;
+  double va0[3], va1[3], vb0[3], vb1[3];
+  sw_get3(m, d->v, ia, va0);
+  sw_get3(m, d->v, ia + 1, va1);
+  sw_get3(m, d->v, ib, vb0);
+  sw_get3(m, d->v, ib + 1, vb1);
   double approach = 0;
   for (int k = 0; k < 3; k++)
     approach -= ((1 - s) * va0[k] + s * va1[k] - (1 - t) * vb0[k] - t * vb1[k]) * n[k];
@@ -249,8 +257,8 @@ static void pair_contact(const swModel *m, const swData *d, const swContactDesc 
   const int node[4] = {ia, ia + 1, ib, ib + 1};
   for (int j = 0; j < 4; j++)
     for (int k = 0; k < 3; k++) {
-      sum->force[3 * node[j] + k] += w[j] * (spring + damper) * n[k];
-      sum->ext_force[3 * node[j] + k] += w[j] * damper * n[k];
+      SW_AT(m, sum->force, node[j], k) += w[j] * (spring + damper) * n[k];
+      SW_AT(m, sum->ext_force, node[j], k) += w[j] * damper * n[k];
     }
 }
 
@@ -282,9 +290,11 @@ static void grid_pairs(const swModel *m, const swData *d, int c, Sums *sum) {
   double longest2 = 0, widest = 0; /* from the positions: valid whoever calls */
   for (int i = 0; i < nrow; i++) {
     int row = r0 + i, e = m->contact_elem[row], rod = m->contact_rod[row];
-    const double *x = d->x + 3 * (m->node_adr[rod] + (e - m->elem_adr[rod]));
-    double dx[3];
-    sw_v3_sub(dx, x + 3, x);
+    const int a = m->node_adr[rod] + (e - m->elem_adr[rod]);
+    double xa[3], xb[3], dx[3];
+    sw_get3(m, d->x, a, xa);
+    sw_get3(m, d->x, a + 1, xb);
+    sw_v3_sub(dx, xb, xa);
     longest2 = fmax(longest2, sw_v3_dot(dx, dx));
     widest = fmax(widest, m->radius[e]);
   }
@@ -299,8 +309,9 @@ static void grid_pairs(const swModel *m, const swData *d, int c, Sums *sum) {
   memset(occupied, 0, sizeof(unsigned long long) * ((size_t)nb / 64 + 1));
   for (int i = 0; i < nrow; i++) {
     int row = r0 + i, e = m->contact_elem[row], rod = m->contact_rod[row];
-    const double *x = d->x + 3 * (m->node_adr[rod] + (e - m->elem_adr[rod]));
-    for (int k = 0; k < 3; k++) cell[3 * i + k] = cell_of(0.5 * (x[k] + x[k + 3]), inv_h);
+    const int a = m->node_adr[rod] + (e - m->elem_adr[rod]);
+    for (int k = 0; k < 3; k++)
+      cell[3 * i + k] = cell_of(0.5 * (SW_AT(m, d->x, a, k) + SW_AT(m, d->x, a + 1, k)), inv_h);
     bucket[i] = bucket_of(cell + 3 * i, mask);
     start[bucket[i] + 1]++;
     occupied[bucket[i] >> 6] |= (unsigned long long)1 << (bucket[i] & 63);
@@ -380,7 +391,8 @@ double sw_contact_stable_dt(const swModel *m) {
           int first = m->elem_adr[rod], last = first + m->rod_nelem[rod];
           for (int q = e - 1 + side; q <= e + side; q++) { /* the node's elements */
             if (q < first || q >= last) continue;
-            ksum += fmax(m->shear_stiff[3 * q + 2], m->shear_stiff[3 * q]) * m->inv_rest_len[q];
+            ksum += fmax(SW_AT(m, m->shear_stiff, q, 2), SW_AT(m, m->shear_stiff, q, 0)) *
+                    m->inv_rest_len[q];
           }
         }
         double w = sqrt((2 * ksum + 6 * cd->stiffness) * m->inv_mass[node]);

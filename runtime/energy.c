@@ -19,18 +19,29 @@
 void sw_energy(const swModel *m, swData *d, double out[3]) {
   sw_internal_loads(m, d); /* refresh strains; force/torque are scratch */
   double kin = 0, ela = 0;
-  for (int i = 0; i < m->nnode; i++) kin += 0.5 * m->mass[i] * sw_v3_dot(d->v + 3 * i, d->v + 3 * i);
-  for (int e = 0; e < m->nelem; e++)
-    for (int k = 0; k < 3; k++) {
-      double w = d->omega[3 * e + k], ds = d->sigma[3 * e + k] - m->rest_sigma[3 * e + k];
-      kin += 0.5 * m->inertia[3 * e + k] / d->dilatation[e] * w * w;
-      ela += 0.5 * m->rest_len[e] * m->shear_stiff[3 * e + k] * ds * ds;
+  /* rod by rod over the real nodes, elements and domains (no ghosts), in
+   * rod order r = 0, 1, ...: the order of the sums is that of the global
+   * indices before slots were grouped (sinew.h, "Layout") */
+  for (int r = 0; r < m->nrod; r++)
+    for (int i = m->node_adr[r]; i <= m->node_adr[r] + m->rod_nelem[r]; i++) {
+      double v[3];
+      sw_get3(m, d->v, i, v);
+      kin += 0.5 * m->mass[i] * sw_v3_dot(v, v);
     }
-  for (int j = 0; j < m->nvor; j++)
-    for (int k = 0; k < 3; k++) {
-      double dk = d->kappa[3 * j + k] - m->rest_kappa[3 * j + k];
-      ela += 0.5 * m->rest_vor_len[j] * m->bend_stiff[3 * j + k] * dk * dk;
-    }
+  for (int r = 0; r < m->nrod; r++)
+    for (int e = m->elem_adr[r]; e < m->elem_adr[r] + m->rod_nelem[r]; e++)
+      for (int k = 0; k < 3; k++) {
+        double w = SW_AT(m, d->omega, e, k);
+        double ds = SW_AT(m, d->sigma, e, k) - SW_AT(m, m->rest_sigma, e, k);
+        kin += 0.5 * SW_AT(m, m->inertia, e, k) / d->dilatation[e] * w * w;
+        ela += 0.5 * m->rest_len[e] * SW_AT(m, m->shear_stiff, e, k) * ds * ds;
+      }
+  for (int r = 0; r < m->nrod; r++)
+    for (int j = m->vor_adr[r]; j < m->vor_adr[r] + m->rod_nelem[r] - 1; j++)
+      for (int k = 0; k < 3; k++) {
+        double dk = SW_AT(m, d->kappa, j, k) - SW_AT(m, m->rest_kappa, j, k);
+        ela += 0.5 * m->rest_vor_len[j] * SW_AT(m, m->bend_stiff, j, k) * dk * dk;
+      }
   ela += sw_bc_energy(m, d); /* clamp domains */
   if (m->njoint) ela += sw_joint_energy(m, d);
   if (sw_has_env(m)) ela += sw_env_energy(m, d);

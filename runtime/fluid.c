@@ -108,7 +108,7 @@ int sw_fluid_setup(swModel *m, char *err, size_t errlen) {
   m->fluid_stokes = calloc(R, sizeof(double));
   m->fluid_cap = calloc(R, sizeof(double));
   m->fluid_displaced = calloc(R, sizeof(double));
-  double *rate = calloc((size_t)m->nnode, sizeof(double)); /* Stokes damping rate per node */
+  double *rate = calloc((size_t)m->nslot, sizeof(double)); /* Stokes damping rate per node slot */
   if (!m->fluid_row_adr || !m->fluid_elem || !m->fluid_node || !m->fluid_stokes ||
       !m->fluid_cap || !m->fluid_displaced || !rate) {
     free(rate);
@@ -188,12 +188,13 @@ void sw_fluid_loads(const swModel *m, swData *d) {
     const double half_rho_cd = 0.5 * fl->density * fl->drag_coefficient;
     for (int row = m->fluid_row_adr[k]; row < m->fluid_row_adr[k + 1]; row++) {
       const int a = m->fluid_node[row], e = m->fluid_elem[row];
-      const double *xa = x + 3 * a, *va = v + 3 * a;
-      double t[3], w[3], load[3];
-      sw_v3_sub(t, xa + 3, xa);
+      double xa[3], xb[3], t[3], w[3], load[3];
+      sw_get3(m, x, a, xa);
+      sw_get3(m, x, a + 1, xb);
+      sw_v3_sub(t, xb, xa);
       const double l = sw_v3_norm(t);
       sw_v3_scale(t, t, 1.0 / l);
-      for (int q = 0; q < 3; q++) w[q] = 0.5 * (va[q] + va[3 + q]) - u[q];
+      for (int q = 0; q < 3; q++) w[q] = 0.5 * (SW_AT(m, v, a, q) + SW_AT(m, v, a + 1, q)) - u[q];
       const double wt = sw_v3_dot(w, t);
       if (stokes) {
         /* -c l (I - t t^T / 2) w  (Suppl. eq. 1 over the element) */
@@ -210,10 +211,10 @@ void sw_fluid_loads(const swModel *m, swData *d) {
       for (int q = 0; q < 3; q++) load[q] -= dm * m->gravity[q];
       for (int q = 0; q < 3; q++) {
         const double h = 0.5 * load[q];
-        ef[3 * a + q] += h;
-        ef[3 * a + 3 + q] += h;
-        F[3 * a + q] += h;
-        F[3 * a + 3 + q] += h;
+        SW_AT(m, ef, a, q) += h;
+        SW_AT(m, ef, a + 1, q) += h;
+        SW_AT(m, F, a, q) += h;
+        SW_AT(m, F, a + 1, q) += h;
       }
     }
   }

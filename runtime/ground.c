@@ -125,11 +125,12 @@ static double coulomb(double u, double speed, double T, double N, double v_eps, 
 static int ground_element(const swModel *m, swData *d, const swGroundDesc *g, int e, int ia,
                           double wa, double wb, double carry[3]) {
   const int ib = ia + 1;
-  const double *xa = d->x + 3 * ia, *xb = d->x + 3 * ib;
-  double c[3], vc[3], n[3];
+  double xa[3], xb[3], c[3], vc[3], n[3];
+  sw_get3(m, d->x, ia, xa);
+  sw_get3(m, d->x, ib, xb);
   for (int k = 0; k < 3; k++) {
     c[k] = 0.5 * (xa[k] + xb[k]);
-    vc[k] = 0.5 * (d->v[3 * ia + k] + d->v[3 * ib + k]);
+    vc[k] = 0.5 * (SW_AT(m, d->v, ia, k) + SW_AT(m, d->v, ib, k));
   }
   const double r = m->radius[e];
   const double pen = r - surface_gap(g, c, n);
@@ -139,7 +140,7 @@ static int ground_element(const swModel *m, swData *d, const swGroundDesc *g, in
   /* the element's share of its other loads (Gazzola 2018, eq. 4.8: F_perp) */
   double F[3];
   for (int k = 0; k < 3; k++)
-    F[k] = wa * (d->force[3 * ia + k] - carry[k]) + wb * d->force[3 * ib + k];
+    F[k] = wa * (SW_AT(m, d->force, ia, k) - carry[k]) + wb * SW_AT(m, d->force, ib, k);
   const double Fn = sw_v3_dot(F, n), vn = sw_v3_dot(vc, n);
   const double balance = fmax(0.0, -Fn), spring = g->stiffness * fmax(pen, 0.0);
   const double normal_ext = fmax(balance - g->damping * vn, -spring); /* never pulls */
@@ -168,10 +169,12 @@ static int ground_element(const swModel *m, swData *d, const swGroundDesc *g, in
     for (int k = 0; k < 3; k++) friction[k] = fa * a[k] + fb * b[k];
     if (g->mu_rolling > 0) {
       /* rolling resistance about a (design note) */
-      const double *Q = d->Q + 9 * e;
-      double wl[3], tl[3];
-      sw_matT_vec(wl, Q, d->omega + 3 * e);
-      sw_matT_vec(tl, Q, d->torque + 3 * e);
+      double Q[9], w[3], tau[3], wl[3], tl[3];
+      sw_getQ(m, d->Q, e, Q);
+      sw_get3(m, d->omega, e, w);
+      sw_get3(m, d->torque, e, tau);
+      sw_matT_vec(wl, Q, w);
+      sw_matT_vec(tl, Q, tau);
       double wa_rate = sw_v3_dot(wl, a);
       double mr = g->mu_rolling * r;
       double ca = coulomb(r * wa_rate, fabs(r * wa_rate), sw_v3_dot(tl, a), N, ve, mr, mr, mr, mr);
@@ -197,13 +200,13 @@ static int ground_element(const swModel *m, swData *d, const swGroundDesc *g, in
   for (int k = 0; k < 3; k++) {
     double ext = normal_ext * n[k] + friction[k];
     double half = 0.5 * (ext + spring * n[k]);
-    d->ext_force[3 * ia + k] += 0.5 * ext;
-    d->ext_force[3 * ib + k] += 0.5 * ext;
-    d->force[3 * ia + k] += half;
-    d->force[3 * ib + k] += half;
+    SW_AT(m, d->ext_force, ia, k) += 0.5 * ext;
+    SW_AT(m, d->ext_force, ib, k) += 0.5 * ext;
+    SW_AT(m, d->force, ia, k) += half;
+    SW_AT(m, d->force, ib, k) += half;
     carry[k] = half;
-    d->ext_torque[3 * e + k] += couple[k];
-    d->torque[3 * e + k] += couple[k];
+    SW_AT(m, d->ext_torque, e, k) += couple[k];
+    SW_AT(m, d->torque, e, k) += couple[k];
   }
   return 1;
 }
@@ -232,7 +235,8 @@ double sw_ground_energy(const swModel *m, const swData *d) {
       const int r = g->rods[j], n = m->rod_nelem[r], na = m->node_adr[r], ea = m->elem_adr[r];
       for (int i = 0; i < n; i++) {
         double c[3], nrm[3];
-        for (int k = 0; k < 3; k++) c[k] = 0.5 * (d->x[3 * (na + i) + k] + d->x[3 * (na + i + 1) + k]);
+        for (int k = 0; k < 3; k++)
+          c[k] = 0.5 * (SW_AT(m, d->x, na + i, k) + SW_AT(m, d->x, na + i + 1, k));
         double pen = m->radius[ea + i] - surface_gap(g, c, nrm);
         if (pen > 0) energy += 0.5 * g->stiffness * pen * pen;
       }

@@ -59,19 +59,23 @@ static void compute_loads(const swModel *m, swData *d) {
  * as an explicit couple in the kick would cap both schemes at first order. */
 static void drift(const swModel *m, swData *d, double h) {
   const int simpson = m->integrator == SW_PEFRL;
+  const size_t S = (size_t)m->stride;
   for (int r = 0; r < m->nrod; r++) {
     if (sw_rod_is_rigid(m, r)) continue;
-    const int n = m->rod_nelem[r], na = m->node_adr[r], ea = m->elem_adr[r];
-    double *restrict x = d->x + 3 * na;
-    const double *restrict v = d->v + 3 * na;
-    double *restrict w = d->omega + 3 * ea, *restrict Q = d->Q + 9 * ea;
-    double *restrict dil = d->dilatation + ea;
-    const double *restrict irl = m->inv_rest_len + ea;
-    for (int i = 0; i < 3 * (n + 1); i++) x[i] += h * v[i];
+    const int n = m->rod_nelem[r], a = m->node_adr[r];
+    double *restrict x = d->x + a;
+    const double *restrict v = d->v + a;
+    double *restrict w = d->omega + a, *restrict Qs = d->Q + a;
+    double *restrict dil = d->dilatation + a;
+    const double *restrict irl = m->inv_rest_len + a;
+    for (int k = 0; k < 3; k++)
+      for (int i = 0; i <= n; i++) x[k * S + i] += h * v[k * S + i];
     for (int i = 0; i < n; i++) {
       double dx[3], dv[3];
-      sw_v3_sub(dx, x + 3 * (i + 1), x + 3 * i);
-      sw_v3_sub(dv, v + 3 * (i + 1), v + 3 * i);
+      for (int k = 0; k < 3; k++) {
+        dx[k] = x[k * S + i + 1] - x[k * S + i];
+        dv[k] = v[k * S + i + 1] - v[k * S + i];
+      }
       const double inv_e_old = 1.0 / dil[i], e_new = sw_v3_norm(dx) * irl[i];
       const double ratio = e_new * inv_e_old;
       double mean; /* (1/h) integral of e dt over the drift, in units of e_old */
@@ -81,11 +85,13 @@ static void drift(const swModel *m, swData *d, double h) {
       } else {
         mean = 0.5 * (1.0 + ratio);
       }
-      double *wi = w + 3 * i;
       const double hm = h * mean;
-      double phi[3] = {hm * wi[0], hm * wi[1], hm * wi[2]};
-      sw_rotate_frame(Q + 9 * i, phi);
-      sw_v3_scale(wi, wi, ratio);
+      double phi[3], Q[9];
+      for (int k = 0; k < 3; k++) phi[k] = hm * w[k * S + i];
+      for (int k = 0; k < 9; k++) Q[k] = Qs[k * S + i];
+      sw_rotate_frame(Q, phi);
+      for (int k = 0; k < 9; k++) Qs[k * S + i] = Q[k];
+      for (int k = 0; k < 3; k++) w[k * S + i] *= ratio;
       dil[i] = e_new;
     }
   }
@@ -105,6 +111,7 @@ static void kick(const swModel *m, swData *d, double h, double span) {
   const double *restrict ef = d->ext_force, *restrict et = d->ext_torque;
   const double *restrict im = m->inv_mass, *restrict iJ = m->inv_inertia;
   const double *restrict e = d->dilatation;
+  const size_t S = (size_t)m->stride;
   double work = 0, exact_work = 0;
   for (int r = 0; r < m->nrod; r++) {
     if (sw_rod_is_rigid(m, r)) continue;
@@ -116,14 +123,14 @@ static void kick(const swModel *m, swData *d, double h, double span) {
        * velocity */
       for (int i = n0; i < n1; i++)
         for (int k = 0; k < 3; k++) {
-          int q = 3 * i + k;
+          size_t q = k * S + i;
           double vo = v[q], vn = vo * m->node_decay[i] + F[q] * im[i] * m->node_kick[i];
           exact_work += (m->mass[i] * (vn - vo) - h * (F[q] - ef[q])) * (vo + vn);
           v[q] = vn;
         }
       for (int i = e0; i < e1; i++)
         for (int k = 0; k < 3; k++) {
-          int q = 3 * i + k;
+          size_t q = k * S + i;
           double Je = m->inertia[q] / e[i];
           double wo = w[q], wn = wo * m->elem_decay[q] + T[q] * iJ[q] * e[i] * m->elem_kick[q];
           exact_work += (Je * (wn - wo) - h * (T[q] - et[q])) * (wo + wn);
@@ -133,7 +140,7 @@ static void kick(const swModel *m, swData *d, double h, double span) {
     }
     for (int i = n0; i < n1; i++)
       for (int k = 0; k < 3; k++) {
-        int q = 3 * i + k;
+        size_t q = k * S + i;
         double vo = v[q], vn = vo + h * F[q] * im[i];
         work += ef[q] * (vo + vn);
         v[q] = vn;
@@ -142,7 +149,7 @@ static void kick(const swModel *m, swData *d, double h, double span) {
      * without the dilatation-rate term, which the drift integrates) */
     for (int i = e0; i < e1; i++)
       for (int k = 0; k < 3; k++) {
-        int q = 3 * i + k;
+        size_t q = k * S + i;
         double wo = w[q], wn = wo + h * T[q] * iJ[q] * e[i];
         work += et[q] * (wo + wn);
         w[q] = wn;
@@ -160,16 +167,18 @@ static void analytic_decay(const swModel *m, swData *d) {
     if (m->rod_damping[r] != SW_DAMP_ANALYTIC || sw_rod_is_rigid(m, r)) continue;
     int na = m->node_adr[r], ea = m->elem_adr[r], n = m->rod_nelem[r];
     for (int i = na; i <= na + n; i++) {
-      double v2 = sw_v3_dot(d->v + 3 * i, d->v + 3 * i), f = m->node_decay[i];
-      sw_v3_scale(d->v + 3 * i, d->v + 3 * i, f);
+      double vi[3], f = m->node_decay[i];
+      sw_get3(m, d->v, i, vi);
+      double v2 = sw_v3_dot(vi, vi);
+      sw_v3_scale(vi, vi, f);
+      sw_set3(m, d->v, i, vi);
       lost += 0.5 * m->mass[i] * v2 * (1 - f * f);
     }
     for (int e = ea; e < ea + n; e++)
       for (int k = 0; k < 3; k++) {
-        int q = 3 * e + k;
-        double w = d->omega[q], f = m->elem_decay[q];
-        d->omega[q] = f * w;
-        lost += 0.5 * m->inertia[q] / d->dilatation[e] * w * w * (1 - f * f);
+        double w = SW_AT(m, d->omega, e, k), f = SW_AT(m, m->elem_decay, e, k);
+        SW_AT(m, d->omega, e, k) = f * w;
+        lost += 0.5 * SW_AT(m, m->inertia, e, k) / d->dilatation[e] * w * w * (1 - f * f);
       }
   }
   d->work -= lost;

@@ -128,9 +128,9 @@ void sw_joint_setup(swModel *m) {
     m->joint_elem_b[j] = eb;
 
     /* defaults (see the top of the file) */
-    double axial_a = m->shear_stiff[3 * ea + 2] * m->inv_rest_len[ea];
+    double axial_a = SW_AT(m, m->shear_stiff, ea, 2) * m->inv_rest_len[ea];
     double axial = anchored ? axial_a
-                            : fmin(axial_a, m->shear_stiff[3 * eb + 2] * m->inv_rest_len[eb]);
+                            : fmin(axial_a, SW_AT(m, m->shear_stiff, eb, 2) * m->inv_rest_len[eb]);
     double mu = anchored ? m->mass[na] : m->mass[na] * m->mass[nb] / (m->mass[na] + m->mass[nb]);
     if (jd->stiffness == 0) jd->stiffness = 0.5 * axial;
     if (jd->damping == 0 && !jd->undamped)
@@ -138,17 +138,20 @@ void sw_joint_setup(swModel *m) {
     if (jd->kind == SW_JOINT_SPHERICAL) {
       jd->rot_stiffness = jd->rot_damping = 0;
     } else {
-      double bend = anchored ? m->clamp_bend[3 * ea] : fmin(m->clamp_bend[3 * ea], m->clamp_bend[3 * eb]);
+      double bend = anchored ? SW_AT(m, m->clamp_bend, ea, 0)
+                             : fmin(SW_AT(m, m->clamp_bend, ea, 0), SW_AT(m, m->clamp_bend, eb, 0));
       double D = 0.5 * m->rest_len[ea] + (anchored ? 0.0 : 0.5 * m->rest_len[eb]);
-      double Ja = m->inertia[3 * ea];
-      double Jmu = anchored ? Ja : Ja * m->inertia[3 * eb] / (Ja + m->inertia[3 * eb]);
+      double Ja = SW_AT(m, m->inertia, ea, 0);
+      double Jmu = anchored ? Ja : Ja * SW_AT(m, m->inertia, eb, 0) / (Ja + SW_AT(m, m->inertia, eb, 0));
       if (jd->rot_stiffness == 0) jd->rot_stiffness = bend / D;
       if (jd->rot_damping == 0 && !jd->undamped)
         jd->rot_damping = SW_JOINT_ZETA * 2.0 * sqrt(jd->rot_stiffness * Jmu);
     }
 
     /* rest geometry */
-    const double *Qa0 = m->Q0 + 9 * ea, *Qb0 = anchored ? NULL : m->Q0 + 9 * eb;
+    double Qa0[9], Qb0[9];
+    sw_getQ(m, m->Q0, ea, Qa0);
+    if (!anchored) sw_getQ(m, m->Q0, eb, Qb0);
     double *rest = m->joint_rest_rot + 9 * j;
     if (anchored) {
       memset(rest, 0, 9 * sizeof *rest);
@@ -194,20 +197,36 @@ static void joint_eval(const swModel *m, const swData *d, int j, swJointEval *o)
   memset(o, 0, sizeof *o);
 
   /* position */
-  const double *xb = nb >= 0 ? d->x + 3 * nb : jd->anchor, *vb = nb >= 0 ? d->v + 3 * nb : zero;
+  double xa[3], va[3], xb[3], vb[3];
+  sw_get3(m, d->x, na, xa);
+  sw_get3(m, d->v, na, va);
+  if (nb >= 0) {
+    sw_get3(m, d->x, nb, xb);
+    sw_get3(m, d->v, nb, vb);
+  } else {
+    memcpy(xb, jd->anchor, sizeof xb);
+    memcpy(vb, zero, sizeof vb);
+  }
   double g[3], dv[3];
-  sw_v3_sub(g, xb, d->x + 3 * na);
-  sw_v3_sub(dv, vb, d->v + 3 * na);
+  sw_v3_sub(g, xb, xa);
+  sw_v3_sub(dv, vb, va);
   sw_v3_scale(o->force, g, jd->stiffness);
   sw_v3_scale(o->force_damp, dv, jd->damping);
   o->energy = 0.5 * jd->stiffness * sw_v3_dot(g, g);
   if (jd->kind == SW_JOINT_SPHERICAL) return;
 
   /* relative angular velocity w_b - w_a, lab */
-  const double *Qa = d->Q + 9 * ea, *Qb = eb >= 0 ? d->Q + 9 * eb : NULL;
+  double Qa_[9], Qb_[9], om[3];
+  const double *Qa = Qa_, *Qb = eb >= 0 ? Qb_ : NULL;
+  sw_getQ(m, d->Q, ea, Qa_);
+  if (Qb) sw_getQ(m, d->Q, eb, Qb_);
   double wa[3], wb[3] = {0, 0, 0}, dw[3];
-  sw_matT_vec(wa, Qa, d->omega + 3 * ea);
-  if (Qb) sw_matT_vec(wb, Qb, d->omega + 3 * eb);
+  sw_get3(m, d->omega, ea, om);
+  sw_matT_vec(wa, Qa, om);
+  if (Qb) {
+    sw_get3(m, d->omega, eb, om);
+    sw_matT_vec(wb, Qb, om);
+  }
   sw_v3_sub(dw, wb, wa);
 
   /* relative rotation Phi (lab) of side b from where it would be had it
@@ -218,7 +237,9 @@ static void joint_eval(const swModel *m, const swData *d, int j, swJointEval *o)
     sw_frame_log(phi, target, Qb);
     sw_matT_vec(Phi, Qb, phi);
   } else {
-    sw_frame_log(phi, m->Q0 + 9 * ea, Qa);
+    double Qa0[9];
+    sw_getQ(m, m->Q0, ea, Qa0);
+    sw_frame_log(phi, Qa0, Qa);
     sw_matT_vec(Phi, Qa, phi);
   }
 
@@ -267,29 +288,31 @@ void sw_joint_loads(const swModel *m, swData *d) {
     const int ea = m->joint_elem_a[j], eb = m->joint_elem_b[j];
     for (int k = 0; k < 3; k++) {
       double f = o.force[k] + o.force_damp[k];
-      d->force[3 * na + k] += f;
-      d->ext_force[3 * na + k] += o.force_damp[k];
+      SW_AT(m, d->force, na, k) += f;
+      SW_AT(m, d->ext_force, na, k) += o.force_damp[k];
       if (nb >= 0) {
-        d->force[3 * nb + k] -= f;
-        d->ext_force[3 * nb + k] -= o.force_damp[k];
+        SW_AT(m, d->force, nb, k) -= f;
+        SW_AT(m, d->ext_force, nb, k) -= o.force_damp[k];
       }
     }
     if (m->joint[j].kind == SW_JOINT_SPHERICAL) continue;
     /* couples act in the material frame of each element (loads.c) */
-    double c[3], cm[3], cdm[3];
+    double c[3], cm[3], cdm[3], Q[9];
     sw_v3_add(c, o.couple, o.couple_damp);
-    sw_mat_vec(cm, d->Q + 9 * ea, c);
-    sw_mat_vec(cdm, d->Q + 9 * ea, o.couple_damp);
+    sw_getQ(m, d->Q, ea, Q);
+    sw_mat_vec(cm, Q, c);
+    sw_mat_vec(cdm, Q, o.couple_damp);
     for (int k = 0; k < 3; k++) {
-      d->torque[3 * ea + k] += cm[k];
-      d->ext_torque[3 * ea + k] += cdm[k];
+      SW_AT(m, d->torque, ea, k) += cm[k];
+      SW_AT(m, d->ext_torque, ea, k) += cdm[k];
     }
     if (eb >= 0) {
-      sw_mat_vec(cm, d->Q + 9 * eb, c);
-      sw_mat_vec(cdm, d->Q + 9 * eb, o.couple_damp);
+      sw_getQ(m, d->Q, eb, Q);
+      sw_mat_vec(cm, Q, c);
+      sw_mat_vec(cdm, Q, o.couple_damp);
       for (int k = 0; k < 3; k++) {
-        d->torque[3 * eb + k] -= cm[k];
-        d->ext_torque[3 * eb + k] -= cdm[k];
+        SW_AT(m, d->torque, eb, k) -= cm[k];
+        SW_AT(m, d->ext_torque, eb, k) -= cdm[k];
       }
     }
   }

@@ -127,26 +127,31 @@ double sw_signal_eval(const swSignal *s, double t) {
 }
 
 void sw_external_loads(const swModel *m, swData *d) {
-  const size_t N = (size_t)m->nnode, E = (size_t)m->nelem;
+  /* all three planes, ghosts and padding included, so those stay zero */
+  const size_t S = (size_t)m->stride, NS = (size_t)m->nslot;
   double *restrict ef = d->ext_force, *restrict et = d->ext_torque;
   if (m->has_gravity) {
-    for (size_t i = 0; i < N; i++)
-      for (int k = 0; k < 3; k++) ef[3 * i + k] = m->mass[i] * m->gravity[k];
+    for (int k = 0; k < 3; k++) {
+      double *restrict efk = ef + (size_t)k * S;
+      for (size_t i = 0; i < NS; i++) efk[i] = m->mass[i] * m->gravity[k];
+      for (size_t i = NS; i < S; i++) efk[i] = 0.0;
+    }
   } else {
-    memset(ef, 0, sizeof(double) * 3 * N);
+    memset(ef, 0, sizeof(double) * 3 * S);
   }
-  memset(et, 0, sizeof(double) * 3 * E);
+  memset(et, 0, sizeof(double) * 3 * S);
   for (int l = 0; l < m->nload; l++) {
     const swLoadDesc *ld = &m->load[l];
     double g = sw_signal_eval(&ld->signal, d->time);
     if (ld->kind == SW_LOAD_FORCE) {
-      double *f = ef + 3 * (m->node_adr[ld->rod] + ld->index);
-      for (int k = 0; k < 3; k++) f[k] += g * ld->vec[k];
+      int i = m->node_adr[ld->rod] + ld->index;
+      for (int k = 0; k < 3; k++) SW_AT(m, ef, i, k) += g * ld->vec[k];
     } else {
       int e = m->elem_adr[ld->rod] + ld->index;
-      double tl[3] = {g * ld->vec[0], g * ld->vec[1], g * ld->vec[2]}, tm[3];
-      sw_mat_vec(tm, d->Q + 9 * e, tl); /* couples act in the material frame */
-      for (int k = 0; k < 3; k++) et[3 * e + k] += tm[k];
+      double tl[3] = {g * ld->vec[0], g * ld->vec[1], g * ld->vec[2]}, tm[3], Q[9];
+      sw_getQ(m, d->Q, e, Q);
+      sw_mat_vec(tm, Q, tl); /* couples act in the material frame */
+      for (int k = 0; k < 3; k++) SW_AT(m, et, e, k) += tm[k];
     }
   }
   if (m->has_damping) {
@@ -154,11 +159,13 @@ void sw_external_loads(const swModel *m, swData *d) {
       if (m->rod_damping[r] != SW_DAMP_LINEAR) continue;
       int na = m->node_adr[r], ea = m->elem_adr[r], n = m->rod_nelem[r];
       for (int i = na; i <= na + n; i++)
-        for (int k = 0; k < 3; k++) ef[3 * i + k] -= m->node_gamma[i] * d->v[3 * i + k];
+        for (int k = 0; k < 3; k++) SW_AT(m, ef, i, k) -= m->node_gamma[i] * SW_AT(m, d->v, i, k);
       for (int e = ea; e < ea + n; e++)
-        for (int k = 0; k < 3; k++) et[3 * e + k] -= m->elem_gamma[3 * e + k] * d->omega[3 * e + k];
+        for (int k = 0; k < 3; k++)
+          SW_AT(m, et, e, k) -= SW_AT(m, m->elem_gamma, e, k) * SW_AT(m, d->omega, e, k);
     }
   }
-  for (size_t i = 0; i < 3 * N; i++) d->force[i] += ef[i];
-  for (size_t i = 0; i < 3 * E; i++) d->torque[i] += et[i];
+  /* planes are contiguous: one pass over all slots (ghosts and padding add 0) */
+  for (size_t i = 0; i < 3 * S; i++) d->force[i] += ef[i];
+  for (size_t i = 0; i < 3 * S; i++) d->torque[i] += et[i];
 }

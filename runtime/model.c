@@ -205,6 +205,15 @@ static int check_rod(const swRodDesc *r, char *err, size_t errlen) {
 
 static double *dalloc(size_t n) { return calloc(n ? n : 1, sizeof(double)); }
 
+/* `planes` planes of m->stride doubles, zeroed and 64-byte aligned (the
+ * per-slot arrays; sinew.h, "Layout"). */
+static double *palloc(const swModel *m, int planes) {
+  size_t bytes = sizeof(double) * (size_t)planes * (size_t)m->stride;
+  double *p = aligned_alloc(64, bytes); /* stride is a multiple of 8 doubles */
+  if (p) memset(p, 0, bytes);
+  return p;
+}
+
 /* Rigid rods (rigid.c fills these): which rod is which body, and room for
  * each body's nodes and elements in the body frame. */
 static int rigid_alloc(swModel *m, const swSpec *s) {
@@ -447,47 +456,68 @@ swModel *sw_compile(const swSpec *s, char *err, size_t errlen) {
   if (!m->rod_name || !m->rod_nelem || !m->node_adr || !m->elem_adr || !m->vor_adr ||
       !m->rod_damping || !m->rod_wave_dt)
     goto oom;
-  for (int r = 0; r < nr; r++) {
-    int n = s->rod[r].nelem;
-    m->rod_name[r] = strdup(s->rod[r].name);
-    if (!m->rod_name[r]) goto oom;
-    m->rod_nelem[r] = n;
-    m->node_adr[r] = m->nnode;
-    m->elem_adr[r] = m->nelem;
-    m->vor_adr[r] = m->nvor;
-    m->nnode += n + 1;
-    m->nelem += n;
-    m->nvor += n - 1;
-    m->rod_damping[r] = s->rod[r].gamma > 0 ? s->rod[r].damping : SW_DAMP_NONE;
-    if (m->rod_damping[r] != SW_DAMP_NONE) m->has_damping = 1;
-  }
-  size_t N = (size_t)m->nnode, E = (size_t)m->nelem, V = (size_t)m->nvor;
-  m->mass = dalloc(N); m->inv_mass = dalloc(N); m->node_gamma = dalloc(N); m->node_decay = dalloc(N); m->node_kick = dalloc(N); m->x0 = dalloc(3 * N);
-  m->rest_len = dalloc(E); m->inv_rest_len = dalloc(E); m->radius = dalloc(E); m->shear_stiff = dalloc(3 * E);
-  m->inertia = dalloc(3 * E); m->inv_inertia = dalloc(3 * E); m->rest_sigma = dalloc(3 * E);
-  m->elem_gamma = dalloc(3 * E); m->elem_decay = dalloc(3 * E); m->elem_kick = dalloc(3 * E); m->Q0 = dalloc(9 * E); m->clamp_bend = dalloc(3 * E);
-  m->rest_vor_len = dalloc(V); m->bend_stiff = dalloc(3 * V); m->rest_kappa = dalloc(3 * V);
+  /* Slots: elastic rods first, in rod order, then rigid ones, so the rod
+   * kernels run one loop over [0, nslot_elastic) (sinew.h, "Layout"). */
+  for (int pass = 0; pass < 2; pass++)
+    for (int r = 0; r < nr; r++) {
+      if ((s->rod[r].rigid != 0) != pass) continue;
+      int n = s->rod[r].nelem;
+      m->rod_name[r] = strdup(s->rod[r].name);
+      if (!m->rod_name[r]) goto oom;
+      m->rod_nelem[r] = n;
+      m->node_adr[r] = m->elem_adr[r] = m->vor_adr[r] = m->nslot;
+      m->nslot += n + 1;
+      if (!pass) m->nslot_elastic = m->nslot;
+      m->nnode += n + 1;
+      m->nelem += n;
+      m->nvor += n - 1;
+      m->rod_damping[r] = s->rod[r].gamma > 0 ? s->rod[r].damping : SW_DAMP_NONE;
+      if (m->rod_damping[r] != SW_DAMP_NONE) m->has_damping = 1;
+    }
+  m->stride = (m->nslot + 1 + 7) / 8 * 8;
+  m->mass = palloc(m, 1); m->inv_mass = palloc(m, 1); m->node_gamma = palloc(m, 1); m->node_decay = palloc(m, 1); m->node_kick = palloc(m, 1); m->x0 = palloc(m, 3);
+  m->rest_len = palloc(m, 1); m->inv_rest_len = palloc(m, 1); m->radius = palloc(m, 1); m->shear_stiff = palloc(m, 3);
+  m->inertia = palloc(m, 3); m->inv_inertia = palloc(m, 3); m->rest_sigma = palloc(m, 3);
+  m->elem_gamma = palloc(m, 3); m->elem_decay = palloc(m, 3); m->elem_kick = palloc(m, 3); m->Q0 = palloc(m, 9); m->clamp_bend = palloc(m, 3);
+  m->rest_vor_len = palloc(m, 1); m->bend_stiff = palloc(m, 3); m->rest_kappa = palloc(m, 3);
   if (!m->mass || !m->inv_mass || !m->node_gamma || !m->node_decay || !m->elem_decay || !m->node_kick || !m->elem_kick || !m->x0 || !m->rest_len || !m->inv_rest_len || !m->radius ||
       !m->shear_stiff || !m->inertia || !m->inv_inertia || !m->rest_sigma || !m->elem_gamma ||
       !m->Q0 || !m->clamp_bend || !m->rest_vor_len || !m->bend_stiff || !m->rest_kappa)
     goto oom;
+  /* Neutral values in every slot, so ghosts and padding divide by nothing
+   * and carry no stiffness, mass or load: unit rest lengths, identity
+   * frames, no decay; the rods overwrite their own slots below. */
+  for (int i = 0; i < m->stride; i++) {
+    m->rest_len[i] = m->inv_rest_len[i] = m->rest_vor_len[i] = 1.0;
+    m->node_decay[i] = 1.0;
+    for (int k = 0; k < 3; k++) {
+      SW_AT(m, m->Q0, i, 4 * k) = 1.0;
+      SW_AT(m, m->elem_decay, i, k) = 1.0;
+    }
+  }
 
   for (int r = 0; r < nr; r++) {
     const swRodDesc *rd = &s->rod[r];
     int n = rd->nelem, na = m->node_adr[r], ea = m->elem_adr[r], va = m->vor_adr[r];
-    double *x = m->x0 + 3 * na, *Q = m->Q0 + 9 * ea;
+    /* the rod's rest shape, row by row, then into the planes */
+    double *x = dalloc(3 * (size_t)(n + 1)), *Q = dalloc(9 * (size_t)n);
+    double *bend_elem = dalloc(3 * (size_t)n); /* element B^ before Voronoi averaging */
+    if (!x || !Q || !bend_elem) {
+      free(x); free(Q); free(bend_elem);
+      goto oom;
+    }
     place_rod(s, r, x, Q);
+    for (int i = 0; i <= n; i++) sw_set3(m, m->x0, na + i, x + 3 * i);
+    for (int i = 0; i < n; i++) sw_setQ(m, m->Q0, ea + i, Q + 9 * i);
     double G = rd->shear_modulus > 0 ? rd->shear_modulus : rd->youngs / (2.0 * (1.0 + rd->poisson));
     double Gs = G * rd->shear_hardening, Gt = G * rd->twist_hardening;
-    double *bend_elem = dalloc(3 * (size_t)n); /* element B^ before Voronoi averaging */
-    if (!bend_elem) goto oom;
     for (int i = 0; i < n; i++) {
       int e = ea + i;
       double dx[3];
       sw_v3_sub(dx, x + 3 * (i + 1), x + 3 * i);
       double l = sw_v3_norm(dx);
       if (!(l > 0)) {
-        free(bend_elem);
+        free(x); free(Q); free(bend_elem);
         sw_fail(err, errlen, "rod '%s': element %d has zero rest length", rd->name, i);
         sw_model_free(m);
         return NULL;
@@ -499,22 +529,22 @@ swModel *sw_compile(const swSpec *s, char *err, size_t errlen) {
       m->rest_len[e] = l;
       m->inv_rest_len[e] = 1.0 / l;
       m->radius[e] = rad;
-      m->shear_stiff[3 * e + 0] = SW_ALPHA_SHEAR * Gs * A;
-      m->shear_stiff[3 * e + 1] = SW_ALPHA_SHEAR * Gs * A;
-      m->shear_stiff[3 * e + 2] = rd->youngs * A;
+      SW_AT(m, m->shear_stiff, e, 0) = SW_ALPHA_SHEAR * Gs * A;
+      SW_AT(m, m->shear_stiff, e, 1) = SW_ALPHA_SHEAR * Gs * A;
+      SW_AT(m, m->shear_stiff, e, 2) = rd->youngs * A;
       double Ik[3] = {I1, I1, 2.0 * I1};
       for (int k = 0; k < 3; k++) {
-        m->inertia[3 * e + k] = rd->density * l * Ik[k];
-        m->inv_inertia[3 * e + k] = 1.0 / m->inertia[3 * e + k];
-        m->rest_sigma[3 * e + k] = rd->rest_sigma[k];
+        SW_AT(m, m->inertia, e, k) = rd->density * l * Ik[k];
+        SW_AT(m, m->inv_inertia, e, k) = 1.0 / SW_AT(m, m->inertia, e, k);
+        SW_AT(m, m->rest_sigma, e, k) = rd->rest_sigma[k];
         /* rotational dissipation: gamma I_k / A per unit length, so that
          * rotation and translation decay at the same rate gamma/(rho A) */
-        m->elem_gamma[3 * e + k] = rd->gamma * l * Ik[k] / A;
+        SW_AT(m, m->elem_gamma, e, k) = rd->gamma * l * Ik[k] / A;
       }
       bend_elem[3 * i + 0] = rd->youngs * I1;
       bend_elem[3 * i + 1] = rd->youngs * I1;
       bend_elem[3 * i + 2] = Gt * 2.0 * I1;
-      for (int k = 0; k < 3; k++) m->clamp_bend[3 * e + k] = bend_elem[3 * i + k];
+      for (int k = 0; k < 3; k++) SW_AT(m, m->clamp_bend, e, k) = bend_elem[3 * i + k];
       /* lumped mass: half of each element to each of its nodes */
       double me = rd->density * A * l;
       m->mass[na + i] += 0.5 * me;
@@ -527,17 +557,17 @@ swModel *sw_compile(const swSpec *s, char *err, size_t errlen) {
       double la = m->rest_len[e], lb = m->rest_len[e + 1];
       m->rest_vor_len[v] = 0.5 * (la + lb);
       for (int k = 0; k < 3; k++) {
-        m->bend_stiff[3 * v + k] = (bend_elem[3 * j + k] * la + bend_elem[3 * (j + 1) + k] * lb) / (la + lb);
-        m->rest_kappa[3 * v + k] = rd->rest_kappa[k];
+        SW_AT(m, m->bend_stiff, v, k) = (bend_elem[3 * j + k] * la + bend_elem[3 * (j + 1) + k] * lb) / (la + lb);
+        SW_AT(m, m->rest_kappa, v, k) = rd->rest_kappa[k];
       }
       /* A given rest shape fixes the rest curvature unless one is given. */
       if (s->rest_Q[r] && rd->rest_kappa[0] == 0 && rd->rest_kappa[1] == 0 && rd->rest_kappa[2] == 0) {
         double phi[3];
         sw_frame_log(phi, Q + 9 * j, Q + 9 * (j + 1));
-        for (int k = 0; k < 3; k++) m->rest_kappa[3 * v + k] = phi[k] / m->rest_vor_len[v];
+        for (int k = 0; k < 3; k++) SW_AT(m, m->rest_kappa, v, k) = phi[k] / m->rest_vor_len[v];
       }
     }
-    free(bend_elem);
+    free(x); free(Q); free(bend_elem);
     for (int i = 0; i <= n; i++) m->inv_mass[na + i] = 1.0 / m->mass[na + i];
     /* Analytic damping.  Position Verlet: the kick integrates
      * dv/dt = a - c v exactly over the step with a held constant,
@@ -558,10 +588,10 @@ swModel *sw_compile(const swSpec *s, char *err, size_t errlen) {
     }
     for (int i = 0; i < n; i++)
       for (int k = 0; k < 3; k++) {
-        int q = 3 * (ea + i) + k;
-        double c = analytic ? m->elem_gamma[q] * m->inv_inertia[q] : 0.0;
-        m->elem_decay[q] = exp(-span * c);
-        m->elem_kick[q] = c * s->dt > 1e-8 ? -expm1(-s->dt * c) / c : s->dt;
+        int e = ea + i;
+        double c = analytic ? SW_AT(m, m->elem_gamma, e, k) * SW_AT(m, m->inv_inertia, e, k) : 0.0;
+        SW_AT(m, m->elem_decay, e, k) = exp(-span * c);
+        SW_AT(m, m->elem_kick, e, k) = c * s->dt > 1e-8 ? -expm1(-s->dt * c) / c : s->dt;
       }
   }
 
@@ -630,13 +660,12 @@ void sw_data_free(swData *d) {
 swData *sw_data_new(const swModel *m) {
   swData *d = calloc(1, sizeof *d);
   if (!d) return NULL;
-  size_t N = (size_t)m->nnode, E = (size_t)m->nelem, V = (size_t)m->nvor;
-  d->x = dalloc(3 * N); d->v = dalloc(3 * N); d->Q = dalloc(9 * E); d->omega = dalloc(3 * E);
-  d->length = dalloc(E); d->dilatation = dalloc(E);
-  d->sigma = dalloc(3 * E); d->stress = dalloc(3 * E);
-  d->vor_dilatation = dalloc(V); d->kappa = dalloc(3 * V); d->couple = dalloc(3 * V);
-  d->force = dalloc(3 * N); d->torque = dalloc(3 * E);
-  d->ext_force = dalloc(3 * N); d->ext_torque = dalloc(3 * E);
+  d->x = palloc(m, 3); d->v = palloc(m, 3); d->Q = palloc(m, 9); d->omega = palloc(m, 3);
+  d->length = palloc(m, 1); d->dilatation = palloc(m, 1);
+  d->sigma = palloc(m, 3); d->stress = palloc(m, 3);
+  d->vor_dilatation = palloc(m, 1); d->kappa = palloc(m, 3); d->couple = palloc(m, 3);
+  d->force = palloc(m, 3); d->torque = palloc(m, 3);
+  d->ext_force = palloc(m, 3); d->ext_torque = palloc(m, 3);
   d->joint_force = dalloc(3 * (size_t)m->njoint); d->joint_angle = dalloc((size_t)m->njoint);
   size_t F = (size_t)m->nfil;
   d->fil_activation = dalloc(F); d->fil_stretch = dalloc(F); d->fil_rate = dalloc(F);
@@ -667,10 +696,12 @@ void sw_reset(const swModel *m, swData *d) {
   d->step = 0;
   d->work = 0;
   d->error[0] = 0;
-  memcpy(d->x, m->x0, sizeof(double) * 3 * (size_t)m->nnode);
-  memcpy(d->Q, m->Q0, sizeof(double) * 9 * (size_t)m->nelem);
-  memset(d->v, 0, sizeof(double) * 3 * (size_t)m->nnode);
-  memset(d->omega, 0, sizeof(double) * 3 * (size_t)m->nelem);
+  const size_t plane = sizeof(double) * (size_t)m->stride;
+  memcpy(d->x, m->x0, 3 * plane);
+  memcpy(d->Q, m->Q0, 9 * plane);
+  memset(d->v, 0, 3 * plane);
+  memset(d->omega, 0, 3 * plane);
+  for (int i = 0; i < m->stride; i++) d->dilatation[i] = d->vor_dilatation[i] = 1.0;
   if (m->nrigid) sw_rigid_reset(m, d);
   sw_probe_reset(m, d);
   d->contact_pairs = 0; /* contact.c's figures are those of the last evaluation */

@@ -418,12 +418,16 @@ void sw_muscle_loads(const swModel *m, swData *d) {
     for (int f = m->muscle_fil_adr[i]; f < m->muscle_fil_adr[i + 1]; f++) {
       const int r = m->fil_rod[f], n = m->rod_nelem[r];
       const int na = m->node_adr[r], ea = m->elem_adr[r];
-      const double *x = d->x + 3 * na, *v = d->v + 3 * na, *len = d->length + ea;
+      const double *len = d->length + ea;
       double l = 0, ldot = 0;
       for (int e = 0; e < n; e++) {
-        double dx[3], dv[3];
-        sw_v3_sub(dx, x + 3 * (e + 1), x + 3 * e);
-        sw_v3_sub(dv, v + 3 * (e + 1), v + 3 * e);
+        double x0[3], x1[3], v0[3], v1[3], dx[3], dv[3];
+        sw_get3(m, d->x, na + e, x0);
+        sw_get3(m, d->x, na + e + 1, x1);
+        sw_get3(m, d->v, na + e, v0);
+        sw_get3(m, d->v, na + e + 1, v1);
+        sw_v3_sub(dx, x1, x0);
+        sw_v3_sub(dv, v1, v0);
         l += len[e];
         ldot += sw_v3_dot(dx, dv) / len[e];
       }
@@ -434,17 +438,18 @@ void sw_muscle_loads(const swModel *m, swData *d) {
       d->fil_stretch[f] = eta;
       d->fil_rate[f] = edot;
       d->fil_tension[f] = T;
-      double *F = d->force + 3 * na, *EF = d->ext_force + 3 * na;
       for (int e = 0; e < n; e++) {
-        double dx[3];
-        sw_v3_sub(dx, x + 3 * (e + 1), x + 3 * e);
+        double x0[3], x1[3], dx[3];
+        sw_get3(m, d->x, na + e, x0);
+        sw_get3(m, d->x, na + e + 1, x1);
+        sw_v3_sub(dx, x1, x0);
         const double s = T / len[e];
         for (int c = 0; c < 3; c++) {
           const double fc = s * dx[c];
-          F[3 * e + c] += fc;
-          F[3 * (e + 1) + c] -= fc;
-          EF[3 * e + c] += fc;
-          EF[3 * (e + 1) + c] -= fc;
+          SW_AT(m, d->force, na + e, c) += fc;
+          SW_AT(m, d->force, na + e + 1, c) -= fc;
+          SW_AT(m, d->ext_force, na + e, c) += fc;
+          SW_AT(m, d->ext_force, na + e + 1, c) -= fc;
         }
       }
     }

@@ -66,20 +66,29 @@ static void fill_energy(const swModel *m, swData *d, int rod, double *frame) {
   sw_energy(m, d, frame);
 }
 
+/* Slots [first, first + count) of a planar array of `planes` planes
+ * (sinew.h, "Layout") as a row-major [count][planes] frame: row i holds
+ * component k of slot first + i at column k. */
+static void gather_rows(const swModel *m, const double *a, int first, int count, int planes,
+                        double *frame) {
+  for (int i = 0; i < count; i++)
+    for (int k = 0; k < planes; k++)
+      frame[(size_t)planes * (size_t)i + (size_t)k] = SW_AT(m, a, first + i, k);
+}
+
 static void fill_position(const swModel *m, swData *d, int rod, double *frame) {
-  memcpy(frame, d->x + 3 * (size_t)m->node_adr[rod],
-         3 * (size_t)(m->rod_nelem[rod] + 1) * sizeof *frame);
+  gather_rows(m, d->x, m->node_adr[rod], m->rod_nelem[rod] + 1, 3, frame);
 }
 
 static void fill_velocity(const swModel *m, swData *d, int rod, double *frame) {
-  memcpy(frame, d->v + 3 * (size_t)m->node_adr[rod],
-         3 * (size_t)(m->rod_nelem[rod] + 1) * sizeof *frame);
+  gather_rows(m, d->v, m->node_adr[rod], m->rod_nelem[rod] + 1, 3, frame);
 }
 
-/* Rows d1, d2, d3 of each element's frame, lab components (sinew.h). */
+/* Rows d1, d2, d3 of each element's frame, lab components (sinew.h): the
+ * nine planes of Q are the row-major entries, so each element's row of the
+ * frame is its matrix in row-major order. */
 static void fill_directors(const swModel *m, swData *d, int rod, double *frame) {
-  memcpy(frame, d->Q + 9 * (size_t)m->elem_adr[rod],
-         9 * (size_t)m->rod_nelem[rod] * sizeof *frame);
+  gather_rows(m, d->Q, m->elem_adr[rod], m->rod_nelem[rod], 9, frame);
 }
 
 /* Joint force on rod a (lab) and hinge angle, of the state being written
@@ -110,7 +119,9 @@ static void fill_muscle_stretch(const swModel *m, swData *d, int mu, double *fra
   double s = 0, w = 0;
   for (int f = m->muscle_fil_adr[mu]; f < m->muscle_fil_adr[mu + 1]; f++) {
     const int r = m->fil_rod[f];
-    const double *a = d->x + 3 * m->node_adr[r], *b = a + 3 * m->rod_nelem[r];
+    double a[3], b[3];
+    sw_get3(m, d->x, m->node_adr[r], a);
+    sw_get3(m, d->x, m->node_adr[r] + m->rod_nelem[r], b);
     const double dx[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]};
     s += m->fil_area[f] * sqrt(dx[0] * dx[0] + dx[1] * dx[1] + dx[2] * dx[2]) / m->fil_l0[f];
     w += m->fil_area[f];

@@ -20,7 +20,6 @@
  * is nothing to difference, it is the centre of mass's velocity.
  */
 #include <stdlib.h>
-#include <string.h>
 
 #include "sinew.h"
 #include "vec.h"
@@ -50,7 +49,7 @@ static void mass_mean(const swModel *m, const swProbeDesc *p, const double *fiel
   for (int k = 0; k < p->nrods; k++) {
     const int r = p->rods[k], na = m->node_adr[r], nn = m->rod_nelem[r] + 1;
     for (int i = na; i < na + nn; i++) {
-      for (int q = 0; q < 3; q++) sum[q] += m->mass[i] * field[3 * i + q];
+      for (int q = 0; q < 3; q++) sum[q] += m->mass[i] * SW_AT(m, field, i, q);
       mass += m->mass[i];
     }
   }
@@ -109,7 +108,7 @@ void sw_probe_measure(const swModel *m, swData *d, int p, double out[3]) {
   case SW_PROBE_COM_VELOCITY: mass_mean(m, pd, d->v, out); return;
   case SW_PROBE_MEAN_VELOCITY: mean_velocity(m, d, p, out); return;
   case SW_PROBE_NODE:
-    memcpy(out, d->x + 3 * (size_t)(m->node_adr[pd->rod] + pd->node), 3 * sizeof *out);
+    sw_get3(m, d->x, m->node_adr[pd->rod] + pd->node, out);
     return;
   }
   out[0] = out[1] = out[2] = 0;

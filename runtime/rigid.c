@@ -1,7 +1,8 @@
 /* rigid.c — rigid rods: a rod that moves as one rigid body (a bone whose
  * deformation the scene does not need).
  *
- * Design.  A rigid rod keeps its nodes and elements in the flat arrays, so
+ * Design.  A rigid rod keeps its nodes and elements in the per-slot arrays
+ * (its slots come after all elastic rods'; sinew.h, "Layout"), so
  * loads, gravity, joints and the output see an ordinary rod, but its motion is
  * that of one body b: centre of mass X, velocity V, rotation R (body frame ->
  * lab) and angular momentum L about X (lab).  Node i sits at X + R p_i and
@@ -194,22 +195,30 @@ static void body_to_rod(const swModel *m, swData *d, int b, int place) {
   const double *p = m->rigid_p + 3 * m->rigid_node_adr[b];
   const double *B = m->rigid_B + 9 * m->rigid_elem_adr[b];
   for (int i = 0; i <= n; i++) {
-    double *x = d->x + 3 * (na + i), *v = d->v + 3 * (na + i), rel[3], wr[3];
+    double x[3], v[3], rel[3], wr[3];
     if (place) {
       sw_mat_vec(rel, R, p + 3 * i);
       sw_v3_add(x, X, rel);
+      sw_set3(m, d->x, na + i, x);
     } else {
+      sw_get3(m, d->x, na + i, x);
       sw_v3_sub(rel, x, X);
     }
     sw_v3_cross(wr, w, rel);
     sw_v3_add(v, V, wr);
+    sw_set3(m, d->v, na + i, v);
   }
   for (int e = 0; e < n; e++) {
-    double *Q = d->Q + 9 * (ea + e);
-    if (place) /* Q = B R^T: Q_jk = B_j . R_k (rows) */
+    double Q[9], om[3];
+    if (place) { /* Q = B R^T: Q_jk = B_j . R_k (rows) */
       for (int j = 0; j < 3; j++)
         for (int k = 0; k < 3; k++) Q[3 * j + k] = sw_v3_dot(B + 9 * e + 3 * j, R + 3 * k);
-    sw_mat_vec(d->omega + 3 * (ea + e), Q, w);
+      sw_setQ(m, d->Q, ea + e, Q);
+    } else {
+      sw_getQ(m, d->Q, ea + e, Q);
+    }
+    sw_mat_vec(om, Q, w);
+    sw_set3(m, d->omega, ea + e, om);
   }
 }
 
@@ -222,20 +231,23 @@ void sw_rigid_setup(swModel *m) {
     double M = 0, X[3] = {0, 0, 0}, I[9] = {0};
     for (int i = na; i <= na + n; i++) {
       M += m->mass[i];
-      for (int k = 0; k < 3; k++) X[k] += m->mass[i] * m->x0[3 * i + k];
+      for (int k = 0; k < 3; k++) X[k] += m->mass[i] * SW_AT(m, m->x0, i, k);
     }
     sw_v3_scale(X, X, 1 / M);
     /* parallel-axis sum of the node masses, m (|r|^2 1 - r r^T) */
     for (int i = na; i <= na + n; i++) {
-      double rel[3];
-      sw_v3_sub(rel, m->x0 + 3 * i, X);
+      double rel[3], xi[3];
+      sw_get3(m, m->x0, i, xi);
+      sw_v3_sub(rel, xi, X);
       double r2 = sw_v3_dot(rel, rel);
       for (int j = 0; j < 3; j++)
         for (int k = 0; k < 3; k++) I[3 * j + k] += m->mass[i] * ((j == k) * r2 - rel[j] * rel[k]);
     }
     /* the elements' own rotational inertia, Q^T diag(J^) Q (lab) */
     for (int e = ea; e < ea + n; e++) {
-      const double *Q = m->Q0 + 9 * e, *J = m->inertia + 3 * e;
+      double Q[9], J[3];
+      sw_getQ(m, m->Q0, e, Q);
+      sw_get3(m, m->inertia, e, J);
       for (int j = 0; j < 3; j++)
         for (int k = 0; k < 3; k++)
           for (int c = 0; c < 3; c++) I[3 * j + k] += Q[3 * c + j] * J[c] * Q[3 * c + k];
@@ -250,12 +262,17 @@ void sw_rigid_setup(swModel *m) {
     memcpy(m->rigid_X0 + 3 * b, X, sizeof X);
     double *p = m->rigid_p + 3 * m->rigid_node_adr[b];
     for (int i = 0; i <= n; i++) {
-      double rel[3];
-      sw_v3_sub(rel, m->x0 + 3 * (na + i), X);
+      double rel[3], xi[3];
+      sw_get3(m, m->x0, na + i, xi);
+      sw_v3_sub(rel, xi, X);
       sw_matT_vec(p + 3 * i, R0, rel);
     }
     double *B = m->rigid_B + 9 * m->rigid_elem_adr[b];
-    for (int e = 0; e < n; e++) sw_mat_mul(B + 9 * e, m->Q0 + 9 * (ea + e), R0);
+    for (int e = 0; e < n; e++) {
+      double Q[9];
+      sw_getQ(m, m->Q0, ea + e, Q);
+      sw_mat_mul(B + 9 * e, Q, R0);
+    }
     m->rigid_fixed[b] = 0;
     for (int k = 0; k < m->nbc; k++)
       if (m->bc[k].rod == r && m->bc[k].kind == SW_BC_CLAMP) m->rigid_fixed[b] = 1;
@@ -296,15 +313,19 @@ int sw_rigid_set_motion(const swModel *m, swData *d, int rod, const double V[3],
  * sees the rest geometry, which is the rod's real geometry. */
 void sw_rigid_internal(const swModel *m, swData *d, int r) {
   const int n = m->rod_nelem[r], na = m->node_adr[r], ea = m->elem_adr[r], va = m->vor_adr[r];
-  memset(d->force + 3 * na, 0, 3 * (size_t)(n + 1) * sizeof(double));
-  memset(d->torque + 3 * ea, 0, 3 * (size_t)n * sizeof(double));
-  memset(d->stress + 3 * ea, 0, 3 * (size_t)n * sizeof(double));
-  memcpy(d->sigma + 3 * ea, m->rest_sigma + 3 * ea, 3 * (size_t)n * sizeof(double));
+  for (int k = 0; k < 3; k++) { /* plane by plane (sinew.h, "Layout") */
+    memset(&SW_AT(m, d->force, na, k), 0, (size_t)(n + 1) * sizeof(double));
+    memset(&SW_AT(m, d->torque, ea, k), 0, (size_t)n * sizeof(double));
+    memset(&SW_AT(m, d->stress, ea, k), 0, (size_t)n * sizeof(double));
+    memcpy(&SW_AT(m, d->sigma, ea, k), &SW_AT(m, m->rest_sigma, ea, k), (size_t)n * sizeof(double));
+  }
   memcpy(d->length + ea, m->rest_len + ea, (size_t)n * sizeof(double));
   for (int e = ea; e < ea + n; e++) d->dilatation[e] = 1.0;
   if (n > 1) {
-    memset(d->couple + 3 * va, 0, 3 * (size_t)(n - 1) * sizeof(double));
-    memcpy(d->kappa + 3 * va, m->rest_kappa + 3 * va, 3 * (size_t)(n - 1) * sizeof(double));
+    for (int k = 0; k < 3; k++) {
+      memset(&SW_AT(m, d->couple, va, k), 0, (size_t)(n - 1) * sizeof(double));
+      memcpy(&SW_AT(m, d->kappa, va, k), &SW_AT(m, m->rest_kappa, va, k), (size_t)(n - 1) * sizeof(double));
+    }
     for (int j = va; j < va + n - 1; j++) d->vor_dilatation[j] = 1.0;
   }
 }
@@ -337,16 +358,19 @@ void sw_rigid_kick(const swModel *m, swData *d, double h) {
     const double *X = d->rigid_X + 3 * b;
     double F[3] = {0, 0, 0}, tau[3] = {0, 0, 0};
     for (int i = na; i <= na + n; i++) {
-      const double *f = d->force + 3 * i;
-      double rel[3], mom[3];
-      sw_v3_sub(rel, d->x + 3 * i, X);
+      double f[3], xi[3], rel[3], mom[3];
+      sw_get3(m, d->force, i, f);
+      sw_get3(m, d->x, i, xi);
+      sw_v3_sub(rel, xi, X);
       sw_v3_cross(mom, rel, f);
       sw_v3_add(F, F, f);
       sw_v3_add(tau, tau, mom);
     }
     for (int e = ea; e < ea + n; e++) {
-      double c[3];
-      sw_matT_vec(c, d->Q + 9 * e, d->torque + 3 * e);
+      double c[3], Q[9], t[3];
+      sw_getQ(m, d->Q, e, Q);
+      sw_get3(m, d->torque, e, t);
+      sw_matT_vec(c, Q, t);
       sw_v3_add(tau, tau, c);
     }
     const double hM = h / m->rigid_mass[b];
@@ -359,17 +383,22 @@ void sw_rigid_kick(const swModel *m, swData *d, double h) {
      * midpoint rule, as integrate.c books it for elastic rods */
     double vold[3], wold[3];
     for (int i = na; i <= na + n; i++) {
-      memcpy(vold, d->v + 3 * i, sizeof vold);
-      double rel[3], wr[3];
-      sw_v3_sub(rel, d->x + 3 * i, X);
+      sw_get3(m, d->v, i, vold);
+      double xi[3], vi[3], rel[3], wr[3];
+      sw_get3(m, d->x, i, xi);
+      sw_v3_sub(rel, xi, X);
       sw_v3_cross(wr, w, rel);
-      sw_v3_add(d->v + 3 * i, V, wr);
-      for (int k = 0; k < 3; k++) work += d->ext_force[3 * i + k] * (vold[k] + d->v[3 * i + k]);
+      sw_v3_add(vi, V, wr);
+      sw_set3(m, d->v, i, vi);
+      for (int k = 0; k < 3; k++) work += SW_AT(m, d->ext_force, i, k) * (vold[k] + vi[k]);
     }
     for (int e = ea; e < ea + n; e++) {
-      memcpy(wold, d->omega + 3 * e, sizeof wold);
-      sw_mat_vec(d->omega + 3 * e, d->Q + 9 * e, w);
-      for (int k = 0; k < 3; k++) work += d->ext_torque[3 * e + k] * (wold[k] + d->omega[3 * e + k]);
+      double Q[9], we[3];
+      sw_get3(m, d->omega, e, wold);
+      sw_getQ(m, d->Q, e, Q);
+      sw_mat_vec(we, Q, w);
+      sw_set3(m, d->omega, e, we);
+      for (int k = 0; k < 3; k++) work += SW_AT(m, d->ext_torque, e, k) * (wold[k] + we[k]);
     }
   }
   d->work += 0.5 * h * work;
@@ -395,7 +424,9 @@ static double damping_rate(const swModel *m, int b) {
   const int n = m->rod_nelem[r], na = m->node_adr[r], ea = m->elem_adr[r];
   double c = 0;
   for (int i = na; i <= na + n; i++) c = fmax(c, m->node_gamma[i] * m->inv_mass[i]);
-  for (int q = 3 * ea; q < 3 * (ea + n); q++) c = fmax(c, m->elem_gamma[q] * m->inv_inertia[q]);
+  for (int e = ea; e < ea + n; e++)
+    for (int k = 0; k < 3; k++)
+      c = fmax(c, SW_AT(m, m->elem_gamma, e, k) * SW_AT(m, m->inv_inertia, e, k));
   return c;
 }
 

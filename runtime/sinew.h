@@ -5,11 +5,24 @@
  * (flat arrays sized once, every derived constant precomputed), and simulated
  * in a mutable swData (positions, directors, velocities, time, scratch).  Every
  * kernel has the shape  f(const swModel *m, swData *d)  and nothing allocates
- * inside a step.  Rods are stored back to back in flat arrays: rod r owns nodes
- * [node_adr[r], node_adr[r]+nelem[r]], elements [elem_adr[r], +nelem[r]) and
- * Voronoi domains [vor_adr[r], +nelem[r]-1).  Vectors are double[3], director
- * frames are row-major 3x3 matrices Q whose rows are d1, d2, d3 in the lab frame
- * (Gazzola et al. 2018, sec. 2), so Q maps lab components to material ones.
+ * inside a step.
+ *
+ * Layout (docs/runtime.md, "Layout").  Nodes, elements and Voronoi domains of
+ * all rods share one index space of slots, rods back to back (elastic rods
+ * first, then rigid ones): rod r of n elements owns the n + 1 slots
+ * [node_adr[r], node_adr[r] + n]; node i is slot node_adr[r] + i, element i is
+ * slot elem_adr[r] + i and Voronoi domain j is slot vor_adr[r] + j, with
+ * node_adr[r] == elem_adr[r] == vor_adr[r].  The last slot of a rod is a ghost
+ * element and its last two slots ghost domains: they hold neutral values
+ * (zero stiffness and load, unit lengths, identity frames) so that a kernel
+ * can run one loop over all slots, as PyElastica's block layout does.  Arrays
+ * are structure-of-arrays: a per-slot vector is three planes of m->stride
+ * doubles and a frame nine, so component k of slot i is a[k * stride + i]
+ * (SW_AT below) and entry (row a, column b) of a frame is plane 3a + b.
+ * Vectors are 3-vectors, director frames are 3x3 matrices Q whose rows are
+ * d1, d2, d3 in the lab frame (Gazzola et al. 2018, sec. 2), so Q maps lab
+ * components to material ones; sw_get3/sw_getQ gather one slot's into a
+ * plain double[3] or row-major double[9].
  *
  * This header is all that the compiler's generated C may include.
  */
@@ -350,8 +363,13 @@ int sw_spec_add_probe(swSpec *s, const swProbeDesc *p);
 
 /* ---- the compiled model (immutable) ---- */
 typedef struct {
-  /* sizes */
+  /* sizes: nnode, nelem and nvor count real nodes, elements and domains;
+   * arrays are sized by stride (see Layout at the top) */
   int nrod, nnode, nelem, nvor, nload, nbc, njoint;
+  int nslot;                 /* slots of all rods (= nnode)                  */
+  int nslot_elastic;         /* slots [0, nslot_elastic) are elastic rods'   */
+  int stride;                /* doubles per plane: nslot + 1 rounded up to a
+                                multiple of 8 (64-byte rows)               */
   /* options */
   double dt;                 /* time step, s                                 */
   swIntegrator integrator;
@@ -364,30 +382,30 @@ typedef struct {
   int *vor_adr;              /* first Voronoi domain                         */
   double *rod_wave_dt;       /* stable dt estimate of each rod, s            */
   swDampingKind *rod_damping;
-  /* per node (nnode) */
-  double *mass;              /* (nnode)    lumped node mass, kg              */
-  double *inv_mass;          /* (nnode)                                      */
-  double *node_gamma;        /* (nnode)    gamma * Voronoi rest length, kg/s */
-  double *node_decay;        /* (nnode)    analytic damping decay factor     */
-  double *node_kick;         /* (nnode)    analytic damping kick length, s   */
-  double *x0;                /* (nnode*3)  initial positions                 */
-  /* per element (nelem) */
-  double *rest_len;          /* (nelem)    l^, m                             */
-  double *inv_rest_len;      /* (nelem)    1 / l^                            */
-  double *radius;            /* (nelem)    m                                 */
-  double *shear_stiff;       /* (nelem*3)  S^ = diag(4GA/3, 4GA/3, EA), N    */
-  double *inertia;           /* (nelem*3)  J^ = rho l^ diag(I1, I2, I3)      */
-  double *inv_inertia;       /* (nelem*3)                                    */
-  double *rest_sigma;        /* (nelem*3)  rest shear/stretch strain         */
-  double *elem_gamma;        /* (nelem*3)  rotational dissipation, kg m^2/s  */
-  double *elem_decay;        /* (nelem*3)  analytic damping decay factor     */
-  double *elem_kick;         /* (nelem*3)  analytic damping kick length, s   */
-  double *Q0;                /* (nelem*9)  initial directors                 */
-  double *clamp_bend;        /* (nelem*3)  B^ of the element, for clamps     */
-  /* per Voronoi domain (nvor) */
-  double *rest_vor_len;      /* (nvor)     D^, m                             */
-  double *bend_stiff;        /* (nvor*3)   B^ = diag(EI1, EI2, GJ), N m^2    */
-  double *rest_kappa;        /* (nvor*3)   1/m                               */
+  /* per node slot; (3) marks three planes of stride */
+  double *mass;              /* lumped node mass, kg                         */
+  double *inv_mass;          /* (0 in ghost-free padding)                    */
+  double *node_gamma;        /* gamma * Voronoi rest length, kg/s            */
+  double *node_decay;        /* analytic damping decay factor                */
+  double *node_kick;         /* analytic damping kick length, s              */
+  double *x0;                /* (3) initial positions                        */
+  /* per element slot (ghost elements: rest lengths 1, stiffness 0) */
+  double *rest_len;          /* l^, m                                        */
+  double *inv_rest_len;      /* 1 / l^                                       */
+  double *radius;            /* m                                            */
+  double *shear_stiff;       /* (3) S^ = diag(4GA/3, 4GA/3, EA), N           */
+  double *inertia;           /* (3) J^ = rho l^ diag(I1, I2, I3)             */
+  double *inv_inertia;       /* (3)                                          */
+  double *rest_sigma;        /* (3) rest shear/stretch strain                */
+  double *elem_gamma;        /* (3) rotational dissipation, kg m^2/s         */
+  double *elem_decay;        /* (3) analytic damping decay factor            */
+  double *elem_kick;         /* (3) analytic damping kick length, s          */
+  double *Q0;                /* (9) initial directors                        */
+  double *clamp_bend;        /* (3) B^ of the element, for clamps            */
+  /* per Voronoi slot (ghost domains: rest length 1, stiffness 0) */
+  double *rest_vor_len;      /* D^, m                                        */
+  double *bend_stiff;        /* (3) B^ = diag(EI1, EI2, GJ), N m^2           */
+  double *rest_kappa;        /* (3) 1/m                                      */
   /* loads and boundary conditions */
   swLoadDesc *load;          /* (nload)                                      */
   swBCDesc *bc;              /* (nbc)                                        */
@@ -483,22 +501,23 @@ typedef struct {
   long step;
   double work;               /* work done on the rods by loads, boundaries
                                 and dissipation since t = 0, J            */
-  /* state (nnode*3, nelem*9, nelem*3) */
+  /* state, per slot in the layout of the model: x, v (3 planes, node
+   * slots), Q (9 planes), omega (3 planes, element slots) */
   double *x, *v, *Q, *omega;
-  /* derived per element (computed each force evaluation) */
-  double *length;            /* (nelem)   current length l                   */
-  double *dilatation;        /* (nelem)   e = l / l^                          */
-  double *sigma;             /* (nelem*3) shear/stretch strain, material     */
-  double *stress;            /* (nelem*3) internal force n = S^ (s-s0) / e   */
-  /* derived per Voronoi domain */
-  double *vor_dilatation;    /* (nvor)                                       */
-  double *kappa;             /* (nvor*3)  curvature/twist, material frame    */
-  double *couple;            /* (nvor*3)  B^ (k - k0) / eps^3                */
+  /* derived per element slot (computed each force evaluation) */
+  double *length;            /* current length l                             */
+  double *dilatation;        /* e = l / l^ (1 at ghosts)                     */
+  double *sigma;             /* (3) shear/stretch strain, material           */
+  double *stress;            /* (3) internal force n = S^ (s-s0) / e         */
+  /* derived per Voronoi slot */
+  double *vor_dilatation;
+  double *kappa;             /* (3) curvature/twist, material frame          */
+  double *couple;            /* (3) B^ (k - k0) / eps^3                      */
   /* accumulated loads */
-  double *force;             /* (nnode*3) total force on nodes, lab          */
-  double *torque;            /* (nelem*3) total couple, material frame       */
-  double *ext_force;         /* (nnode*3) external force, lab                */
-  double *ext_torque;        /* (nelem*3) external couple, material frame    */
+  double *force;             /* (3) total force on nodes, lab                */
+  double *torque;            /* (3) total couple on elements, material frame */
+  double *ext_force;         /* (3) external force, lab                      */
+  double *ext_torque;        /* (3) external couple, material frame          */
   /* joints, updated with each force evaluation */
   double *joint_force;       /* (njoint*3) force of the joint on rod a, lab, N */
   double *joint_angle;       /* (njoint)  hinge angle, rad (0 for others)     */
@@ -532,6 +551,26 @@ typedef struct {
   /* instability report, filled when sw_step returns SW_EUNSTABLE */
   char error[512];
 } swData;
+
+/* ---- access to the planar arrays (see Layout at the top) ---- */
+/* Component k of slot i of a per-slot array with planes of m->stride. */
+#define SW_AT(m, a, i, k) ((a)[(size_t)(k) * (size_t)(m)->stride + (size_t)(i)])
+static inline void sw_get3(const swModel *m, const double *a, int i, double out[3]) {
+  out[0] = SW_AT(m, a, i, 0); out[1] = SW_AT(m, a, i, 1); out[2] = SW_AT(m, a, i, 2);
+}
+static inline void sw_set3(const swModel *m, double *a, int i, const double in[3]) {
+  SW_AT(m, a, i, 0) = in[0]; SW_AT(m, a, i, 1) = in[1]; SW_AT(m, a, i, 2) = in[2];
+}
+static inline void sw_add3(const swModel *m, double *a, int i, const double in[3]) {
+  SW_AT(m, a, i, 0) += in[0]; SW_AT(m, a, i, 1) += in[1]; SW_AT(m, a, i, 2) += in[2];
+}
+/* Frame of slot i as a row-major 3x3 matrix (rows d1, d2, d3). */
+static inline void sw_getQ(const swModel *m, const double *Q, int i, double out[9]) {
+  for (int k = 0; k < 9; k++) out[k] = SW_AT(m, Q, i, k);
+}
+static inline void sw_setQ(const swModel *m, double *Q, int i, const double in[9]) {
+  for (int k = 0; k < 9; k++) SW_AT(m, Q, i, k) = in[k];
+}
 
 swModel *sw_compile(const swSpec *s, char *err, size_t errlen);
 void sw_model_free(swModel *m);

@@ -109,16 +109,16 @@ double sw_stable_dt_rod(const swModel *m, int r) {
     int e = ea + i;
     double l = m->rest_len[e], rad = m->radius[e];
     double A = SW_PI * rad * rad;
-    double rhoA = m->inertia[3 * e + 0] / (l * rad * rad / 4.0) ; /* rho A from J^ = rho l A r^2/4 */
+    double rhoA = SW_AT(m, m->inertia, e, 0) / (l * rad * rad / 4.0) ; /* rho A from J^ = rho l A r^2/4 */
     double rho = rhoA / A;
-    double E = m->shear_stiff[3 * e + 2] / A;
-    double Gs = m->shear_stiff[3 * e + 0] / (A * 4.0 / 3.0);
+    double E = SW_AT(m, m->shear_stiff, e, 2) / A;
+    double Gs = SW_AT(m, m->shear_stiff, e, 0) / (A * 4.0 / 3.0);
     /* the Voronoi domains on either side (or the element itself at the ends) */
     double D = l, Gt = Gs;
     if (i > 0) D = fmin(D, m->rest_vor_len[va + i - 1]);
     if (i < n - 1) D = fmin(D, m->rest_vor_len[va + i]);
     int v = va + (i < n - 1 ? i : i - 1);
-    if (n > 1) Gt = m->bend_stiff[3 * v + 2] / (2.0 * m->bend_stiff[3 * v + 0]) * E;
+    if (n > 1) Gt = SW_AT(m, m->bend_stiff, v, 2) / (2.0 * SW_AT(m, m->bend_stiff, v, 0)) * E;
     double w2_axial = 4 * E / (rho * l * l);
     double w2_shear = 16.0 / 3.0 * Gs / rho * (1 / (l * l) + 1 / (rad * rad)) + 4 * E / (rho * l * D);
     double w2_twist = 4 * Gt / (rho * l * D);
@@ -139,11 +139,13 @@ double sw_stable_dt_rod(const swModel *m, int r) {
   return dt;
 }
 
-/* The rod of global element e. */
+/* The rod of element slot e (a real element).  Rods' slots are not in rod
+ * order (elastic rods come first, sinew.h "Layout"), so each rod's range is
+ * tested. */
 static int rod_of_elem(const swModel *m, int e) {
-  int r = 0;
-  while (r + 1 < m->nrod && m->elem_adr[r + 1] <= e) r++;
-  return r;
+  for (int r = 0; r < m->nrod; r++)
+    if (m->elem_adr[r] <= e && e < m->elem_adr[r] + m->rod_nelem[r]) return r;
+  return 0;
 }
 
 /* Node i's side of joint j: the joint spring k is one more spring on the
@@ -161,7 +163,7 @@ static double joint_node_dt(const swModel *m, const swJointDesc *jd, int i, int 
   for (int q = i - 1; q <= i; q++) { /* elements q = i-1 and i of node i */
     if (q < first || q >= last) continue;
     int el = m->elem_adr[r] + (q - first);
-    ksum += fmax(m->shear_stiff[3 * el + 2], m->shear_stiff[3 * el]) * m->inv_rest_len[el];
+    ksum += fmax(SW_AT(m, m->shear_stiff, el, 2), SW_AT(m, m->shear_stiff, el, 0)) * m->inv_rest_len[el];
   }
   double w = sqrt((2 * ksum + s * jd->stiffness) * m->inv_mass[i]);
   double c = s * jd->damping * m->inv_mass[i];
@@ -177,16 +179,16 @@ static double joint_node_dt(const swModel *m, const swJointDesc *jd, int i, int 
 static double joint_elem_dt(const swModel *m, const swJointDesc *jd, int e, int s) {
   int r = rod_of_elem(m, e), i = e - m->elem_adr[r], n = m->rod_nelem[r], va = m->vor_adr[r];
   double l = m->rest_len[e], rad = m->radius[e], A = SW_PI * rad * rad;
-  double rho = m->inertia[3 * e] / (l * A * rad * rad / 4.0);
-  double Gs = m->shear_stiff[3 * e] / (A * 4.0 / 3.0);
-  double J = m->inertia[3 * e], bend = 0;
-  if (i > 0) bend += m->bend_stiff[3 * (va + i - 1)] / m->rest_vor_len[va + i - 1];
-  if (i < n - 1) bend += m->bend_stiff[3 * (va + i)] / m->rest_vor_len[va + i];
+  double rho = SW_AT(m, m->inertia, e, 0) / (l * A * rad * rad / 4.0);
+  double Gs = SW_AT(m, m->shear_stiff, e, 0) / (A * 4.0 / 3.0);
+  double J = SW_AT(m, m->inertia, e, 0), bend = 0;
+  if (i > 0) bend += SW_AT(m, m->bend_stiff, va + i - 1, 0) / m->rest_vor_len[va + i - 1];
+  if (i < n - 1) bend += SW_AT(m, m->bend_stiff, va + i, 0) / m->rest_vor_len[va + i];
   double w2 = 16.0 / 3.0 * Gs / rho * (1 / (l * l) + 1 / (rad * rad)) +
               (2 * bend + s * jd->rot_stiffness) / J;
   double w = sqrt(w2);
   double c = s * jd->rot_damping / J;
-  if (m->rod_damping[r] == SW_DAMP_LINEAR) c += m->elem_gamma[3 * e] / J;
+  if (m->rod_damping[r] == SW_DAMP_LINEAR) c += SW_AT(m, m->elem_gamma, e, 0) / J;
   return 0.95 * sw_integrator_stability_limit(m->integrator, c / (2 * w)) / w;
 }
 
@@ -229,13 +231,16 @@ int sw_check_finite(const swModel *m, swData *d) {
     const char *what = "";
     double val = 0;
     for (int i = na; i <= na + n && bad < 0; i++) {
-      const double *x = d->x + 3 * i, *v = d->v + 3 * i;
+      double x[3], v[3];
+      sw_get3(m, d->x, i, x);
+      sw_get3(m, d->v, i, v);
       if (!isfinite(x[0] + x[1] + x[2] + v[0] + v[1] + v[2])) {
         bad = i - na;
         what = "position or velocity is not finite";
       } else if (i < na + n && !sw_rod_is_rigid(m, r)) { /* rigid: the turn check below */
-        double dv[3];
-        sw_v3_sub(dv, v + 3, v);
+        double v1[3], dv[3];
+        sw_get3(m, d->v, i + 1, v1);
+        sw_v3_sub(dv, v1, v);
         double lim = 0.5 * m->rest_len[ea + i - na] / dt, dv2 = sw_v3_dot(dv, dv);
         if (!(dv2 <= lim * lim)) {
           bad = i - na;
@@ -245,7 +250,8 @@ int sw_check_finite(const swModel *m, swData *d) {
       }
     }
     for (int e = ea; e < ea + n && bad < 0; e++) {
-      const double *w = d->omega + 3 * e;
+      double w[3];
+      sw_get3(m, d->omega, e, w);
       double w2 = sw_v3_dot(w, w);
       if (!(w2 <= wmax2)) {
         bad = e - ea;

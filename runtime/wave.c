@@ -130,9 +130,11 @@ void sw_wave_free(swModel *m) {
 /* The body-fixed axis of element e in the lab frame: `direction` as the
  * element saw it at t = 0 (Q0 direction, material), turned with it (Q^T). */
 static void body_axis(double out[3], const swModel *m, const swData *d, int e, const double dir[3]) {
-  double a[3];
-  sw_mat_vec(a, m->Q0 + 9 * (size_t)e, dir);
-  sw_matT_vec(out, d->Q + 9 * (size_t)e, a);
+  double Q0[9], Q[9], a[3];
+  sw_getQ(m, m->Q0, e, Q0);
+  sw_getQ(m, d->Q, e, Q);
+  sw_mat_vec(a, Q0, dir);
+  sw_matT_vec(out, Q, a);
 }
 
 /* The moment at every node of each wave's rod, and the couple it makes on
@@ -162,13 +164,11 @@ void sw_wave_loads(const swModel *m, swData *d) {
       }
       double lab[3], c[3];
       for (int q = 0; q < 3; q++) lab[q] = tau_start * m_start[q] - tau_end * m_end[q];
-      const double *Q = d->Q + 9 * (size_t)(ea + i);
+      double Q[9];
+      sw_getQ(m, d->Q, ea + i, Q);
       sw_mat_vec(c, Q, lab); /* lab -> material frame of the element */
-      double *et = d->ext_torque + 3 * (size_t)(ea + i), *T = d->torque + 3 * (size_t)(ea + i);
-      for (int q = 0; q < 3; q++) {
-        et[q] += c[q];
-        T[q] += c[q];
-      }
+      sw_add3(m, d->ext_torque, ea + i, c);
+      sw_add3(m, d->torque, ea + i, c);
       tau_start = tau_end;
       for (int q = 0; q < 3; q++) {
         m_start[q] = m_end[q];

@@ -66,14 +66,14 @@ static void rod_com_velocity(const swModel *m, const swData *d, int r, double V[
   V[0] = V[1] = V[2] = 0;
   for (int i = m->node_adr[r]; i <= m->node_adr[r] + m->rod_nelem[r]; i++) {
     M += m->mass[i];
-    for (int k = 0; k < 3; k++) V[k] += m->mass[i] * d->v[3 * i + k];
+    for (int k = 0; k < 3; k++) V[k] += m->mass[i] * SW_AT(m, d->v, i, k);
   }
   for (int k = 0; k < 3; k++) V[k] /= M;
 }
 
 static void set_rod_velocity(const swModel *m, swData *d, int r, const double v[3]) {
   for (int i = m->node_adr[r]; i <= m->node_adr[r] + m->rod_nelem[r]; i++)
-    for (int k = 0; k < 3; k++) d->v[3 * i + k] = v[k];
+    sw_set3(m, d->v, i, v);
 }
 
 static double total_energy(const swModel *m, swData *d) {
@@ -153,7 +153,7 @@ static void throw_start(const swModel *m, swData *d, const Throw *t) {
     set_rod_velocity(m, d, r, v);
     /* a bending velocity, the same for both rods, for the energy test */
     for (int i = 0; i <= NT; i++)
-      d->v[3 * (m->node_adr[r] + i) + 1] += t->bend * sin(M_PI * i / NT);
+      SW_AT(m, d->v, m->node_adr[r] + i, 1) += t->bend * sin(M_PI * i / NT);
   }
 }
 
@@ -200,8 +200,8 @@ static Outcome throw_run(const swModel *m, const Throw *t, double duration, int 
   o.pairs_end = d->contact_pairs;
   double ya = 0, yb = 0;
   for (int i = 0; i <= NT; i++) {
-    ya += d->x[3 * (m->node_adr[0] + i) + 1] / (NT + 1);
-    yb += d->x[3 * (m->node_adr[1] + i) + 1] / (NT + 1);
+    ya += SW_AT(m, d->x, m->node_adr[0] + i, 1) / (NT + 1);
+    yb += SW_AT(m, d->x, m->node_adr[1] + i, 1) / (NT + 1);
   }
   o.gap_end = yb - ya - 2 * RR;
   sw_data_free(d);
@@ -408,11 +408,13 @@ static int hairpin(swSpec *s, double R, double radius, int n, double youngs) {
 /* Contact loads alone of the state's configuration; returns the largest
  * |force| over the nodes. */
 static double contact_force_only(const swModel *m, swData *d) {
-  memset(d->force, 0, sizeof(double) * 3 * (size_t)m->nnode);
-  memset(d->ext_force, 0, sizeof(double) * 3 * (size_t)m->nnode);
+  memset(d->force, 0, sizeof(double) * 3 * (size_t)m->stride);
+  memset(d->ext_force, 0, sizeof(double) * 3 * (size_t)m->stride);
   sw_contact_loads(m, d);
   double worst = 0;
-  for (int i = 0; i < 3 * m->nnode; i++) worst = fmax(worst, fabs(d->force[i]));
+  for (int r = 0; r < m->nrod; r++)
+    for (int i = m->node_adr[r]; i <= m->node_adr[r] + m->rod_nelem[r]; i++)
+      for (int k = 0; k < 3; k++) worst = fmax(worst, fabs(SW_AT(m, d->force, i, k)));
   return worst;
 }
 
@@ -484,15 +486,16 @@ static void test_self_hairpin_throw(void **state) {
     sw_spec_free(s);
     swData *d = sw_data_new(m);
     /* the legs' nodes (outside the bend) move towards y = 0 */
-    for (int i = 0; i <= n; i++) {
-      double y = d->x[3 * i + 1], xx = d->x[3 * i];
-      if (xx > 0) d->v[3 * i + 1] = y < 0 ? VS : -VS;
+    for (int i = m->node_adr[0]; i <= m->node_adr[0] + n; i++) {
+      double y = SW_AT(m, d->x, i, 1), xx = SW_AT(m, d->x, i, 0);
+      if (xx > 0) SW_AT(m, d->v, i, 1) = y < 0 ? VS : -VS;
     }
     double closest = INFINITY, deepest = 0;
     const double duration = 0.05;
     while (d->time < duration) {
       assert_int_equal(sw_step(m, d), SW_OK);
-      closest = fmin(closest, d->x[3 * n + 1] - d->x[1]); /* tip b - tip a, along y */
+      closest = fmin(closest, SW_AT(m, d->x, m->node_adr[0] + n, 1) -
+                                  SW_AT(m, d->x, m->node_adr[0], 1)); /* tip b - tip a, along y */
       deepest = fmax(deepest, d->contact_max_overlap);
     }
     fprintf(stderr, "# %s: self-contact %s: closest approach of the tips %.4e m (2 r = %.1e m), "
@@ -545,12 +548,14 @@ static void test_broad_vs_brute(void **state) {
   sw_spec_free(s);
   free(third);
   swData *d = sw_data_new(m);
-  for (int i = 0; i < m->nnode; i++)
-    for (int k = 0; k < 3; k++) {
-      d->x[3 * i + k] += 0.004 * (uniform() - 0.5);
-      d->v[3 * i + k] = uniform() - 0.5;
-    }
-  const size_t N3 = 3 * (size_t)m->nnode;
+  for (int r = 0; r < m->nrod; r++)
+    for (int i = m->node_adr[r]; i <= m->node_adr[r] + m->rod_nelem[r]; i++)
+      for (int k = 0; k < 3; k++) {
+        SW_AT(m, d->x, i, k) += 0.004 * (uniform() - 0.5);
+        SW_AT(m, d->v, i, k) = uniform() - 0.5;
+      }
+  /* whole planar arrays: grid holds force, then ext_force, in their layout */
+  const size_t N3 = 3 * (size_t)m->stride;
   double *grid = malloc(2 * N3 * sizeof(double));
   for (int phase = 0; phase < 2; phase++) {
     memset(d->force, 0, N3 * sizeof(double));
@@ -563,11 +568,13 @@ static void test_broad_vs_brute(void **state) {
   }
   int pairs_brute = d->contact_pairs;
   double scale = 0, diff = 0;
-  for (size_t q = 0; q < N3; q++) {
-    scale = fmax(scale, fabs(d->force[q]));
-    diff = fmax(diff, fabs(grid[q] - d->force[q]));
-    diff = fmax(diff, fabs(grid[N3 + q] - d->ext_force[q]));
-  }
+  for (int r = 0; r < m->nrod; r++)
+    for (int i = m->node_adr[r]; i <= m->node_adr[r] + m->rod_nelem[r]; i++)
+      for (int k = 0; k < 3; k++) {
+        scale = fmax(scale, fabs(SW_AT(m, d->force, i, k)));
+        diff = fmax(diff, fabs(SW_AT(m, grid, i, k) - SW_AT(m, d->force, i, k)));
+        diff = fmax(diff, fabs(SW_AT(m, grid + N3, i, k) - SW_AT(m, d->ext_force, i, k)));
+      }
   sw_contact_loads_with(m, d, SW_CONTACT_GRID);
   fprintf(stderr, "# %s: %d rods, %d elements: %d pairs in contact by both (grid %d); largest "
                   "force difference %.3e N of %.3e N (%.1e); contact energy %.6e J\n",
@@ -619,7 +626,9 @@ static int pressed_run(double frac, double *estimate, double *t_fail) {
   swModel *m = sw_test_compile(s);
   sw_spec_free(s);
   swData *d = sw_data_new(m);
-  for (int i = 0; i < m->nnode; i++) d->v[3 * i + 1] = 1e-3 * ((i * 7919) % 13 - 6); /* a kick */
+  for (int r = 0; r < m->nrod; r++) /* a kick */
+    for (int i = m->node_adr[r]; i <= m->node_adr[r] + m->rod_nelem[r]; i++)
+      SW_AT(m, d->v, i, 1) = 1e-3 * ((i * 7919) % 13 - 6);
   const long nstep = sw_test_sanitized() ? 5000 : 20000;
   int rc = sw_steps(m, d, nstep);
   *t_fail = rc == SW_OK ? INFINITY : d->time;

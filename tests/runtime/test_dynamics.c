@@ -42,7 +42,8 @@ static swModel *vibrating_rod(int n, swIntegrator integ, double dt_frac, double 
   swModel *m = sw_test_compile_at(s, dt_frac);
   sw_spec_free(s);
   swData *d = sw_data_new(m);
-  for (int i = 1; i <= n; i++) d->v[3 * i + 1] = v0 * mode1(VL * i / n) / mode1(VL);
+  for (int i = 1; i <= n; i++)
+    SW_AT(m, d->v, m->node_adr[id] + i, 1) = v0 * mode1(VL * i / n) / mode1(VL);
   *dout = d;
   return m;
 }
@@ -52,7 +53,7 @@ static void test_first_bending_frequency(void **state) {
   int n = 50;
   swData *d;
   swModel *m = vibrating_rod(n, SW_VERLET, 0.9, 1e-3, &d);
-  const double *tip = d->x + 3 * n + 1;
+  const double *tip = &SW_AT(m, d->x, m->node_adr[0] + n, 1);
   /* times of upward zero crossings of the tip, linearly interpolated */
   double crossings[8];
   int nc = 0, want = sw_test_sanitized() ? 2 : 4;
@@ -94,7 +95,7 @@ static void test_energy_conservation(void **state) {
       if (dev > worst) worst = dev;
     }
   }
-  double tipmax = fabs(d->x[3 * n + 1]);
+  double tipmax = fabs(SW_AT(m, d->x, m->node_adr[0] + n, 1));
   fprintf(stderr, "# %s: %ld steps, %.3g s simulated, energy %.6g J, tip y at end %.3g m\n", __func__,
           nsteps, d->time, e0, tipmax);
   SW_EXPECT_ABS("max relative energy drift", worst, 0.0, 5e-3);
@@ -134,7 +135,7 @@ static void swing(swIntegrator integ, double dt, double t_end, double tip[3]) {
   swData *d = sw_data_new(m);
   long steps = lround(t_end / dt);
   for (long k = 0; k < steps; k++) assert_int_equal(sw_step(m, d), SW_OK);
-  for (int k = 0; k < 3; k++) tip[k] = d->x[3 * n + k];
+  sw_get3(m, d->x, m->node_adr[id] + n, tip);
   sw_data_free(d);
   sw_model_free(m);
   sw_spec_free(s);

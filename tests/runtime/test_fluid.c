@@ -78,7 +78,7 @@ static void com_velocity(const swModel *m, const swData *d, int r, double out[3]
   out[0] = out[1] = out[2] = 0;
   for (int i = m->node_adr[r]; i <= m->node_adr[r] + m->rod_nelem[r]; i++) {
     M += m->mass[i];
-    for (int k = 0; k < 3; k++) out[k] += m->mass[i] * d->v[3 * i + k];
+    for (int k = 0; k < 3; k++) out[k] += m->mass[i] * SW_AT(m, d->v, i, k);
   }
   for (int k = 0; k < 3; k++) out[k] /= M;
 }
@@ -88,7 +88,7 @@ static double com_height(const swModel *m, const swData *d, int r) {
   double M = 0, z = 0;
   for (int i = m->node_adr[r]; i <= m->node_adr[r] + m->rod_nelem[r]; i++) {
     M += m->mass[i];
-    z += m->mass[i] * d->x[3 * i + 2];
+    z += m->mass[i] * SW_AT(m, d->x, i, 2);
   }
   return z / M;
 }
@@ -98,7 +98,8 @@ static double velocity_spread(const swModel *m, const swData *d, int r) {
   double V[3], worst = 0;
   com_velocity(m, d, r, V);
   for (int i = m->node_adr[r]; i <= m->node_adr[r] + m->rod_nelem[r]; i++) {
-    double dv[3] = {d->v[3 * i] - V[0], d->v[3 * i + 1] - V[1], d->v[3 * i + 2] - V[2]};
+    double dv[3] = {SW_AT(m, d->v, i, 0) - V[0], SW_AT(m, d->v, i, 1) - V[1],
+                    SW_AT(m, d->v, i, 2) - V[2]};
     worst = fmax(worst, norm3(dv));
   }
   return worst;
@@ -230,7 +231,7 @@ static void test_quadratic_instability_reported(void **state) {
   /* rate rho_f C_d 2 r |v| / (rho pi r^2) (fluid.c) times dt = 10 */
   const double rate_per_speed = 1000 * 1.2 * 2 * SR / (1100 * M_PI * SR * SR);
   const double v0 = 10.0 / (m->dt * rate_per_speed);
-  for (int i = 0; i <= SN; i++) d->v[3 * i + 2] = v0;
+  for (int i = 0; i <= SN; i++) SW_AT(m, d->v, m->node_adr[0] + i, 2) = v0;
   int rc = sw_steps(m, d, 200);
   fprintf(stderr, "# %s: v0 = %.3g m/s, dt = %.3g s: %s\n", __func__, v0, m->dt, d->error);
   assert_int_equal(rc, SW_EUNSTABLE);
@@ -259,7 +260,10 @@ static void test_buoyancy(void **state) {
   const double T = 20 * SRHOF * A / c;
   sw_test_run_to(m, d, T);
   double moved = 0;
-  for (int i = 0; i < 3 * m->nnode; i++) moved = fmax(moved, fabs(d->x[i] - m->x0[i]));
+  for (int r = 0; r < m->nrod; r++)
+    for (int i = m->node_adr[r]; i <= m->node_adr[r] + m->rod_nelem[r]; i++)
+      for (int k = 0; k < 3; k++)
+        moved = fmax(moved, fabs(SW_AT(m, d->x, i, k) - SW_AT(m, m->x0, i, k)));
   const double bound = 1e-10 * SRHOF * A * GRAV / c * T;
   fprintf(stderr, "# %s: neutral rod over %.3g s (%ld steps): largest displacement %.3e m, "
           "bound %.3e m\n", __func__, T, d->step, moved, bound);
@@ -397,7 +401,7 @@ static double energy_drift(swFluidModel model, swIntegrator integ, double frac, 
   sw_spec_set_integrator(s, integ);
   swModel *m = sw_test_compile_at(s, frac);
   swData *d = sw_data_new(m);
-  for (int i = 0; i <= SN; i++) d->v[3 * i + 2] = 0.2 * sin(M_PI * i / SN);
+  for (int i = 0; i <= SN; i++) SW_AT(m, d->v, m->node_adr[0] + i, 2) = 0.2 * sin(M_PI * i / SN);
   double e0[3], e1[3], drift = 0;
   sw_energy(m, d, e0);
   const double z0 = com_height(m, d, 0);
@@ -413,7 +417,7 @@ static double energy_drift(swFluidModel model, swIntegrator integ, double frac, 
   /* the work of weight and buoyancy is the net weight times the drop of the
    * centre of mass; the rest is the drag's */
   double M = 0;
-  for (int i = 0; i <= SN; i++) M += m->mass[i];
+  for (int i = 0; i <= SN; i++) M += m->mass[m->node_adr[0] + i];
   *fluid_work = (e1[2] - e0[2]) - M * (1 - SRHOF / rho) * GRAV * (z0 - z1);
   fprintf(stderr, "#   dt = %.3g s, %ld steps: kinetic %.4e -> %.4e J, elastic %.3e J, "
           "drag work %.4e J, largest balance drift %.3e J\n", m->dt, d->step, e0[0], e1[0], e1[1],

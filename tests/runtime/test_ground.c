@@ -63,13 +63,15 @@ static swGroundDesc ground_of(double kw, double gw, const double mu_k[3], const 
   return g;
 }
 
+/* Mass-weighted mean of a per-node field (x or v) over all rods. */
 static void com(const swModel *m, const double *field, double out[3]) {
   double M = 0;
   out[0] = out[1] = out[2] = 0;
-  for (int i = 0; i < m->nnode; i++) {
-    M += m->mass[i];
-    for (int k = 0; k < 3; k++) out[k] += m->mass[i] * field[3 * i + k];
-  }
+  for (int r = 0; r < m->nrod; r++)
+    for (int i = m->node_adr[r]; i <= m->node_adr[r] + m->rod_nelem[r]; i++) {
+      M += m->mass[i];
+      for (int k = 0; k < 3; k++) out[k] += m->mass[i] * SW_AT(m, field, i, k);
+    }
   for (int k = 0; k < 3; k++) out[k] /= M;
 }
 
@@ -209,10 +211,12 @@ static void test_terrain_plane(void **state) {
   sw_test_run_to(mp, dp, T);
   sw_test_run_to(mt, dt, T);
   double diff = 0, travel = 0;
-  for (int i = 0; i < 3 * mp->nnode; i++) {
-    diff = fmax(diff, fabs(dp->x[i] - dt->x[i]));
-    travel = fmax(travel, fabs(dp->x[i] - mp->x0[i]));
-  }
+  for (int r = 0; r < mp->nrod; r++)
+    for (int i = mp->node_adr[r]; i <= mp->node_adr[r] + mp->rod_nelem[r]; i++)
+      for (int k = 0; k < 3; k++) {
+        diff = fmax(diff, fabs(SW_AT(mp, dp->x, i, k) - SW_AT(mt, dt->x, i, k)));
+        travel = fmax(travel, fabs(SW_AT(mp, dp->x, i, k) - SW_AT(mp, mp->x0, i, k)));
+      }
   fprintf(stderr, "# %s: travel %.3f m in %.2f s\n", __func__, travel, T);
   SW_EXPECT_ABS("largest node position difference, terrain vs plane (m)", diff, 0.0, 1e-12);
   sw_data_free(dp);
@@ -343,10 +347,14 @@ static void test_rest_penetration(void **state) {
   double deepest = 0;
   while (d->time < T) {
     assert_int_equal(sw_step(m, d), SW_OK);
-    for (int i = 0; i < m->nnode; i++) deepest = fmax(deepest, RR - d->x[3 * i + 2]);
+    for (int rod = 0; rod < m->nrod; rod++)
+      for (int i = m->node_adr[rod]; i <= m->node_adr[rod] + m->rod_nelem[rod]; i++)
+        deepest = fmax(deepest, RR - SW_AT(m, d->x, i, 2));
   }
   double pen = 0;
-  for (int i = 0; i < m->nnode; i++) pen = fmax(pen, fabs(RR - d->x[3 * i + 2]));
+  for (int rod = 0; rod < m->nrod; rod++)
+    for (int i = m->node_adr[rod]; i <= m->node_adr[rod] + m->rod_nelem[rod]; i++)
+      pen = fmax(pen, fabs(RR - SW_AT(m, d->x, i, 2)));
   double me = RHO * M_PI * RR * RR * RL / RN;
   fprintf(stderr, "# %s: deepest penetration of the impact %.3e m; pure penalty m_e g / k_w = %.3e m\n",
           __func__, deepest, me * GRAV / KW);
@@ -396,7 +404,8 @@ static double bounce_drift(double frac, double T, double tilt_deg, int rigid, in
     assert_int_equal(sw_step(m, d), SW_OK);
     sw_energy(m, d, e);
     drift = fmax(drift, fabs(e[0] + e[1] - e[2] - E0) / scale);
-    int now = d->x[2] < RR; /* the first node is below its touching height */
+    /* the first node is below its touching height */
+    int now = SW_AT(m, d->x, m->node_adr[0], 2) < RR;
     if (now && !contact) (*bounces)++;
     contact = now;
   }
@@ -448,15 +457,16 @@ static void test_rolling_resistance(void **state) {
   sw_spec_set_gravity(s, grav);
   swModel *m = sw_test_compile_at(s, 0.5);
   swData *d = sw_data_new(m);
-  for (int e = 0; e < m->nelem; e++) d->omega[3 * e + 2] = w0;
+  for (int e = 0; e < m->rod_nelem[0]; e++) SW_AT(m, d->omega, m->elem_adr[0] + e, 2) = w0;
   sw_test_run_to(m, d, 0.05);
-  double wa = d->omega[3 * (RN / 2) + 2], ta = d->time;
+  double wa = SW_AT(m, d->omega, m->elem_adr[0] + RN / 2, 2), ta = d->time;
   sw_test_run_to(m, d, 0.15);
-  double wb = d->omega[3 * (RN / 2) + 2], tb = d->time;
+  double wb = SW_AT(m, d->omega, m->elem_adr[0] + RN / 2, 2), tb = d->time;
   SW_EXPECT_REL("spin-down rate (rad/s^2)", (wa - wb) / (tb - ta), 2 * mu_r * GRAV / RR, 1e-2);
   sw_test_run_to(m, d, 0.4);
   double wmax = 0;
-  for (int e = 0; e < m->nelem; e++) wmax = fmax(wmax, fabs(d->omega[3 * e + 2]));
+  for (int e = 0; e < m->rod_nelem[0]; e++)
+    wmax = fmax(wmax, fabs(SW_AT(m, d->omega, m->elem_adr[0] + e, 2)));
   fprintf(stderr, "# %s: contact-point speed after stopping %.3e m/s (v_eps %.0e)\n", __func__,
           wmax * RR, g.slip_velocity);
   assert_true(wmax * RR <= g.slip_velocity);
@@ -484,8 +494,8 @@ static void test_kinetic_on_element_velocity(void **state) {
   sw_spec_set_gravity(s, grav);
   swModel *m = sw_test_compile_at(s, 0.5);
   swData *d = sw_data_new(m);
-  for (int i = 0; i < m->nnode; i++) d->v[3 * i + 1] = v0;
-  for (int e = 0; e < m->nelem; e++) d->omega[3 * e + 2] = w0;
+  for (int i = 0; i <= m->rod_nelem[0]; i++) SW_AT(m, d->v, m->node_adr[0] + i, 1) = v0;
+  for (int e = 0; e < m->rod_nelem[0]; e++) SW_AT(m, d->omega, m->elem_adr[0] + e, 2) = w0;
   double v[3];
   sw_test_run_to(m, d, 0.02);
   com(m, d->v, v);
@@ -494,7 +504,8 @@ static void test_kinetic_on_element_velocity(void **state) {
   com(m, d->v, v);
   double vb = v[1], tb = d->time;
   SW_EXPECT_REL("sideways deceleration (m/s^2)", (va - vb) / (tb - ta), mu_k[2] * GRAV, 1e-2);
-  SW_EXPECT_REL("spin after 0.08 s (rad/s)", d->omega[3 * (RN / 2) + 2], w0, 1e-9);
+  SW_EXPECT_REL("spin after 0.08 s (rad/s)", SW_AT(m, d->omega, m->elem_adr[0] + RN / 2, 2), w0,
+                1e-9);
   sw_data_free(d);
   sw_model_free(m);
   sw_spec_free(s);
@@ -521,9 +532,9 @@ static void test_kinetic_follows_slip_direction(void **state) {
   sw_spec_set_gravity(s, grav);
   swModel *m = sw_test_compile_at(s, 0.5);
   swData *d = sw_data_new(m);
-  for (int i = 0; i < m->nnode; i++) {
-    d->v[3 * i] = v0 * cos(theta);
-    d->v[3 * i + 1] = v0 * sin(theta);
+  for (int i = m->node_adr[0]; i <= m->node_adr[0] + m->rod_nelem[0]; i++) {
+    SW_AT(m, d->v, i, 0) = v0 * cos(theta);
+    SW_AT(m, d->v, i, 1) = v0 * sin(theta);
   }
   double va[3], vb[3];
   com(m, d->v, va);
@@ -611,33 +622,36 @@ static void test_roll_on_curved_terrain(void **state) {
     for (int it = 0; it < 50; it++) /* Newton on the arc length */
       xi -= (valley_arc(xi) - target) / sqrt(1 + xi * xi / (VALLEY_R * VALLEY_R));
     double gr[2], h = valley(xi, 0, gr, NULL), sc = sqrt(1 + gr[0] * gr[0]);
-    d->x[3 * i] = xi - (R - PEN0) * gr[0] / sc;
-    d->x[3 * i + 1] = 0;
-    d->x[3 * i + 2] = h + (R - PEN0) / sc;
+    const int ni = m->node_adr[0] + i;
+    SW_AT(m, d->x, ni, 0) = xi - (R - PEN0) * gr[0] / sc;
+    SW_AT(m, d->x, ni, 1) = 0;
+    SW_AT(m, d->x, ni, 2) = h + (R - PEN0) / sc;
   }
+  const int e0 = m->elem_adr[0], i0 = m->node_adr[0];
   for (int e = 0; e < n; e++) {
-    double *Q = d->Q + 9 * e, t[3];
-    for (int k = 0; k < 3; k++) t[k] = d->x[3 * (e + 1) + k] - d->x[3 * e + k];
+    double t[3];
+    for (int k = 0; k < 3; k++) t[k] = SW_AT(m, d->x, i0 + e + 1, k) - SW_AT(m, d->x, i0 + e, k);
     const double len = sqrt(dot3(t, t));
     const double row[9] = {-t[2] / len, 0, t[0] / len, 0, -1, 0, t[0] / len, 0, t[2] / len};
-    for (int k = 0; k < 9; k++) Q[k] = row[k];
+    sw_setQ(m, d->Q, e0 + e, row);
   }
   double bound = 0; /* D on the draped rod: the interior nodes carry tau */
   for (int e = 1; e < n; e++) {
     double turn[3];
-    for (int k = 0; k < 3; k++) turn[k] = d->Q[9 * e + 6 + k] - d->Q[9 * (e - 1) + 6 + k];
+    for (int k = 0; k < 3; k++)
+      turn[k] = SW_AT(m, d->Q, e0 + e, 6 + k) - SW_AT(m, d->Q, e0 + e - 1, 6 + k);
     bound += tau * sqrt(dot3(turn, turn));
   }
   /* the lab-fixed drive, sum_i tau z . (d3_i - d3_{i-1}) = tau z . (d3_last - d3_first) */
-  const double drive = tau * (d->Q[9 * (n - 1) + 8] - d->Q[8]);
+  const double drive = tau * (SW_AT(m, d->Q, e0 + n - 1, 8) - SW_AT(m, d->Q, e0, 8));
   const double T = sw_test_sanitized() ? 0.5 : 1.0;
   double roll_max = 0, w_max = 0;
   while (d->time < T) {
     sw_test_run_to(m, d, d->time + 0.005);
     double roll = 0;
     for (int e = 0; e < n; e++) {
-      const double w3 = d->omega[3 * e + 2];
-      roll += 0.5 * m->inertia[3 * e + 2] / d->dilatation[e] * w3 * w3;
+      const double w3 = SW_AT(m, d->omega, e0 + e, 2);
+      roll += 0.5 * SW_AT(m, m->inertia, e0 + e, 2) / d->dilatation[e0 + e] * w3 * w3;
       w_max = fmax(w_max, fabs(w3));
     }
     roll_max = fmax(roll_max, roll);
@@ -646,7 +660,7 @@ static void test_roll_on_curved_terrain(void **state) {
    * drive (T - ramp / 2) / J by T */
   fprintf(stderr, "# %s: D = %.3g N m; largest roll rate %.3g rad/s, against %.3g rad/s by %.2f s "
           "for a lab-fixed moment\n", __func__, bound, w_max,
-          drive * (T - 0.5 * w.ramp) / (n * m->inertia[2]), T);
+          drive * (T - 0.5 * w.ramp) / (n * SW_AT(m, m->inertia, e0, 2)), T);
   SW_EXPECT_ABS("largest kinetic energy of the roll / D", roll_max / bound, 0.0, 1.0);
   sw_data_free(d);
   sw_model_free(m);

@@ -136,8 +136,8 @@ static double pendulum_period(void) { return pendulum_period_n(0); }
  * any node and the hinge angle at the first crossing. */
 static double swing_crossings(const swModel *m, swData *d, int want, double *max_y,
                               double *angle_at_crossing) {
-  const int n = m->rod_nelem[0];
-  const double *tipx = d->x + 3 * n;
+  const int n = m->rod_nelem[0], i0 = m->node_adr[0];
+  const double *tipx = &SW_AT(m, d->x, i0 + n, 0);
   double t[8], prev = *tipx, tprev = d->time, aprev = d->joint_angle[0];
   int nc = 0;
   *max_y = 0;
@@ -151,7 +151,7 @@ static double swing_crossings(const swModel *m, swData *d, int want, double *max
       if (nc == 0) *angle_at_crossing = aprev + f * (a - aprev);
       nc++;
     }
-    for (int i = 0; i <= n; i++) *max_y = fmax(*max_y, fabs(d->x[3 * i + 1]));
+    for (int i = 0; i <= n; i++) *max_y = fmax(*max_y, fabs(SW_AT(m, d->x, i0 + i, 1)));
     prev = *tipx;
     tprev = d->time;
     aprev = a;
@@ -214,14 +214,16 @@ static void test_pendulum_spherical(void **state) {
   const double M = FRHO * M_PI * FR * FR * FL, d_cm = FL / 2;
   const double I_pivot = M * (FL * FL / 3 + FR * FR / 4);
   const double T0 = 2 * M_PI * sqrt(I_pivot / (M * GRAV * d_cm));
-  const double *tip = d->x + 3 * n;
-  double along = tip[0] * e[0] + tip[1] * e[1], t_prev = 0, t[8], off_plane = 0;
+  const int i0 = m->node_adr[0];
+  const double *tip_x = &SW_AT(m, d->x, i0 + n, 0), *tip_y = &SW_AT(m, d->x, i0 + n, 1);
+  double along = *tip_x * e[0] + *tip_y * e[1], t_prev = 0, t[8], off_plane = 0;
   int nc = 0;
   while (nc < want && d->time < 2.0 * T0 * want) {
     assert_int_equal(sw_step(m, d), SW_OK);
-    double a = tip[0] * e[0] + tip[1] * e[1];
+    double a = *tip_x * e[0] + *tip_y * e[1];
     for (int i = 0; i <= n; i++)
-      off_plane = fmax(off_plane, fabs(e[0] * d->x[3 * i + 1] - e[1] * d->x[3 * i]));
+      off_plane = fmax(off_plane, fabs(e[0] * SW_AT(m, d->x, i0 + i, 1) -
+                                       e[1] * SW_AT(m, d->x, i0 + i, 0)));
     if ((along > 0) != (a > 0)) t[nc++] = t_prev + along / (along - a) * (d->time - t_prev);
     along = a;
     t_prev = d->time;
@@ -283,7 +285,7 @@ static void test_hinge_free_about_axis(void **state) {
   fprintf(stderr, "# %s: t = %.4g s, %ld steps\n", __func__, d->time, d->step);
   SW_EXPECT_REL("hinge angle (rad)", d->joint_angle[0], ref, 1e-2);
   int n = m->rod_nelem[0];
-  SW_EXPECT_REL("tip z / L (rad)", d->x[3 * n + 2] / PL, -ref, 1e-2);
+  SW_EXPECT_REL("tip z / L (rad)", SW_AT(m, d->x, m->node_adr[0] + n, 2) / PL, -ref, 1e-2);
   sw_data_free(d);
   sw_model_free(m);
   sw_spec_free(s);
@@ -302,7 +304,7 @@ static void test_hinge_stiff_across_axis(void **state) {
   swSpec *s;
   swModel *m = hinged_beam(n, F, 2 * w1 * 7800 * A, &s);
   swData *d = sw_data_new(m);
-  double y = sw_test_relax(m, d, d->x + 3 * n + 1, 20 / w1, 400 / w1, 1e-7);
+  double y = sw_test_relax(m, d, &SW_AT(m, d->x, m->node_adr[0] + n, 1), 20 / w1, 400 / w1, 1e-7);
   double ref = F[1] * pow(PL, 3) / (3 * E * I) + F[1] * PL / (4.0 / 3.0 * G * A) +
                F[1] / m->joint[0].stiffness;
   SW_EXPECT_REL("out-of-plane tip deflection (m)", y, ref, 2e-2);
@@ -353,8 +355,8 @@ static double forearm_off_axis(double t_rise, double T, double tau_perp, swHinge
   out->max_at = 0;
   while (d->time < T - 0.5 * m->dt) {
     assert_int_equal(sw_step(m, d), SW_OK);
-    const double *Q = d->Q + 9 * m->joint_elem_a[0];
-    double aa[3], c[3];
+    double Q[9], aa[3], c[3];
+    sw_getQ(m, d->Q, m->joint_elem_a[0], Q);
     for (int k = 0; k < 3; k++) aa[k] = Q[k] * alpha[0] + Q[3 + k] * alpha[1] + Q[6 + k] * alpha[2];
     c[0] = aa[1] * u[2] - aa[2] * u[1];
     c[1] = aa[2] * u[0] - aa[0] * u[2];
@@ -365,7 +367,9 @@ static double forearm_off_axis(double t_rise, double T, double tau_perp, swHinge
   /* the bone's own elastic rotation from the elbow's element to the hand's,
    * acos((tr(Q_hand Q_elbow^T) - 1) / 2): it bends and twists far more than
    * the hinge gives */
-  const double *Qe = d->Q + 9 * m->joint_elem_a[0], *Qh = d->Q + 9 * (n - 1);
+  double Qe[9], Qh[9];
+  sw_getQ(m, d->Q, m->joint_elem_a[0], Qe);
+  sw_getQ(m, d->Q, m->elem_adr[0] + n - 1, Qh);
   double tr = 0;
   for (int k = 0; k < 9; k++) tr += Qh[k] * Qe[k];
   out->bone_rotation = acos(fmin(1.0, 0.5 * (tr - 1.0)));
@@ -480,7 +484,7 @@ static double cantilever_tip(const swBeam *b, int n_each, int joined, double k) 
   swModel *m = sw_test_compile_at(s, 0.8);
   swData *d = sw_data_new(m);
   int tip = m->node_adr[nr - 1] + m->rod_nelem[nr - 1];
-  double y = sw_test_relax(m, d, d->x + 3 * tip + 1, b->chunk, b->tmax, 1e-9);
+  double y = sw_test_relax(m, d, &SW_AT(m, d->x, tip, 1), b->chunk, b->tmax, 1e-9);
   if (joined)
     fprintf(stderr, "#   weld: k = %.4g N/m, k_t = %.4g N m/rad\n", m->joint[0].stiffness,
             m->joint[0].rot_stiffness);
@@ -572,7 +576,7 @@ static void test_spherical_carries_weight(void **state) {
    * slowest mode) */
   int tip_b = m->node_adr[1] + m->rod_nelem[1];
   const int san = sw_test_sanitized();
-  sw_test_relax(m, d, d->x + 3 * tip_b, 2 / wp, 200 / wp, san ? 1e-8 : 1e-11);
+  sw_test_relax(m, d, &SW_AT(m, d->x, tip_b, 0), 2 / wp, 200 / wp, san ? 1e-8 : 1e-11);
   const double tol = san ? 1e-5 : 1e-6;
   double weight = rho * M_PI * rb * rb * Lb * GRAV;
   SW_EXPECT_REL("vertical joint force on the arm (N)", -d->joint_force[2], weight, tol);
@@ -580,8 +584,9 @@ static void test_spherical_carries_weight(void **state) {
                 0.0, tol);
   /* the gap carries it: |g| = weight / k */
   int na = m->joint_node_a[0], nb = m->joint_node_b[0];
-  double gap[3] = {d->x[3 * nb] - d->x[3 * na], d->x[3 * nb + 1] - d->x[3 * na + 1],
-                   d->x[3 * nb + 2] - d->x[3 * na + 2]};
+  double gap[3] = {SW_AT(m, d->x, nb, 0) - SW_AT(m, d->x, na, 0),
+                   SW_AT(m, d->x, nb, 1) - SW_AT(m, d->x, na, 1),
+                   SW_AT(m, d->x, nb, 2) - SW_AT(m, d->x, na, 2)};
   SW_EXPECT_REL("gap (m)", norm3(gap), weight / m->joint[0].stiffness, 10 * tol);
   sw_data_free(d);
   sw_model_free(m);
@@ -667,21 +672,27 @@ static void test_energy_damped(void **state) {
 static void momenta(const swModel *m, const swData *d, double p[3], double L[3]) {
   memset(p, 0, 3 * sizeof *p);
   memset(L, 0, 3 * sizeof *L);
-  for (int i = 0; i < m->nnode; i++) {
-    const double *x = d->x + 3 * i, *v = d->v + 3 * i;
-    double mass = m->mass[i];
-    for (int k = 0; k < 3; k++) p[k] += mass * v[k];
-    L[0] += mass * (x[1] * v[2] - x[2] * v[1]);
-    L[1] += mass * (x[2] * v[0] - x[0] * v[2]);
-    L[2] += mass * (x[0] * v[1] - x[1] * v[0]);
-  }
-  for (int e = 0; e < m->nelem; e++) {
-    const double *Q = d->Q + 9 * e, *w = d->omega + 3 * e;
-    for (int a = 0; a < 3; a++) {
-      double h = m->inertia[3 * e + a] * w[a] / d->dilatation[e];
-      for (int k = 0; k < 3; k++) L[k] += Q[3 * a + k] * h;
+  for (int r = 0; r < m->nrod; r++)
+    for (int i = m->node_adr[r]; i <= m->node_adr[r] + m->rod_nelem[r]; i++) {
+      double x[3], v[3];
+      sw_get3(m, d->x, i, x);
+      sw_get3(m, d->v, i, v);
+      double mass = m->mass[i];
+      for (int k = 0; k < 3; k++) p[k] += mass * v[k];
+      L[0] += mass * (x[1] * v[2] - x[2] * v[1]);
+      L[1] += mass * (x[2] * v[0] - x[0] * v[2]);
+      L[2] += mass * (x[0] * v[1] - x[1] * v[0]);
     }
-  }
+  for (int r = 0; r < m->nrod; r++)
+    for (int e = m->elem_adr[r]; e < m->elem_adr[r] + m->rod_nelem[r]; e++) {
+      double Q[9], w[3];
+      sw_getQ(m, d->Q, e, Q);
+      sw_get3(m, d->omega, e, w);
+      for (int a = 0; a < 3; a++) {
+        double h = SW_AT(m, m->inertia, e, a) * w[a] / d->dilatation[e];
+        for (int k = 0; k < 3; k++) L[k] += Q[3 * a + k] * h;
+      }
+    }
 }
 
 /* The chain without its anchor, floating free and tumbling for a time T at
@@ -694,19 +705,24 @@ static void free_chain_drift(double dt_frac, double T, double *dp, double *dL) {
   /* rigid rotation about an oblique axis, plus a sideways push of the middle
    * rod that bends the hinge and the weld */
   const double spin[3] = {1.0, -2.0, 0.5};
-  for (int i = 0; i < m->nnode; i++) {
-    const double *x = d->x + 3 * i;
-    double *v = d->v + 3 * i;
-    v[0] = spin[1] * x[2] - spin[2] * x[1];
-    v[1] = spin[2] * x[0] - spin[0] * x[2];
-    v[2] = spin[0] * x[1] - spin[1] * x[0];
-  }
-  for (int i = m->node_adr[1]; i <= m->node_adr[1] + m->rod_nelem[1]; i++) d->v[3 * i + 1] += 0.05;
-  for (int e = 0; e < m->nelem; e++) /* w = Q spin, material frame */
-    for (int a = 0; a < 3; a++) {
-      const double *da = d->Q + 9 * e + 3 * a;
-      d->omega[3 * e + a] = da[0] * spin[0] + da[1] * spin[1] + da[2] * spin[2];
+  for (int r = 0; r < m->nrod; r++)
+    for (int i = m->node_adr[r]; i <= m->node_adr[r] + m->rod_nelem[r]; i++) {
+      double x[3], v[3];
+      sw_get3(m, d->x, i, x);
+      v[0] = spin[1] * x[2] - spin[2] * x[1];
+      v[1] = spin[2] * x[0] - spin[0] * x[2];
+      v[2] = spin[0] * x[1] - spin[1] * x[0];
+      sw_set3(m, d->v, i, v);
     }
+  for (int i = m->node_adr[1]; i <= m->node_adr[1] + m->rod_nelem[1]; i++)
+    SW_AT(m, d->v, i, 1) += 0.05;
+  for (int r = 0; r < m->nrod; r++) /* w = Q spin, material frame */
+    for (int e = m->elem_adr[r]; e < m->elem_adr[r] + m->rod_nelem[r]; e++)
+      for (int a = 0; a < 3; a++) {
+        double da[3];
+        for (int k = 0; k < 3; k++) da[k] = SW_AT(m, d->Q, e, 3 * a + k);
+        SW_AT(m, d->omega, e, a) = da[0] * spin[0] + da[1] * spin[1] + da[2] * spin[2];
+      }
   double p0[3], L0[3], p[3], L[3];
   momenta(m, d, p0, L0);
   *dp = *dL = 0;
@@ -764,10 +780,13 @@ static int anchored_rod_stable(double k, double dt_frac, long steps, double *dt_
   m = sw_test_compile(s);
   swData *d = sw_data_new(m);
   unsigned long long seed = 12345;
-  for (int i = 0; i < 3 * m->nnode; i++) {
-    seed = seed * 6364136223846793005ULL + 1442695040888963407ULL;
-    d->v[i] = 1e-6 * ((double)(seed >> 11) / 9007199254740992.0 - 0.5);
-  }
+  /* node by node, component by component (the order of the draws) */
+  for (int rod = 0; rod < m->nrod; rod++)
+    for (int i = m->node_adr[rod]; i <= m->node_adr[rod] + m->rod_nelem[rod]; i++)
+      for (int c = 0; c < 3; c++) {
+        seed = seed * 6364136223846793005ULL + 1442695040888963407ULL;
+        SW_AT(m, d->v, i, c) = 1e-6 * ((double)(seed >> 11) / 9007199254740992.0 - 0.5);
+      }
   int rc = sw_steps(m, d, steps);
   sw_data_free(d);
   sw_model_free(m);
@@ -826,10 +845,10 @@ static void test_defaults(void **state) {
   const swJointDesc *r = &m->joint[0];
   assert_string_equal(r->name, "weld");
   assert_int_equal(r->node_a, 10);
-  assert_int_equal(m->joint_node_a[0], 10);
-  assert_int_equal(m->joint_node_b[0], 11);
-  assert_int_equal(m->joint_elem_a[0], 9);
-  assert_int_equal(m->joint_elem_b[0], 10);
+  assert_int_equal(m->joint_node_a[0], m->node_adr[0] + 10);
+  assert_int_equal(m->joint_node_b[0], m->node_adr[1]);
+  assert_int_equal(m->joint_elem_a[0], m->elem_adr[0] + 9);
+  assert_int_equal(m->joint_elem_b[0], m->elem_adr[1]);
   double la = 0.05, lb = 0.08, Aa = M_PI * 1e-4, Ab = M_PI * 4e-4;
   double k = 0.5 * fmin(1e9 * Aa / la, 1e6 * Ab / lb);
   SW_EXPECT_REL("k = min(EA/l)/2 (N/m)", r->stiffness, k, 1e-12);

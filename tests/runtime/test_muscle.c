@@ -68,7 +68,7 @@ static double end_pull(const swModel *m, const swData *d) {
   double F = 0;
   for (int f = 0; f < m->nfil; f++) {
     int r = m->fil_rod[f], node = m->node_adr[r] + m->rod_nelem[r];
-    F -= d->force[3 * node + 2];
+    F -= SW_AT(m, d->force, node, 2);
   }
   return F;
 }

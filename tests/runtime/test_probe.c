@@ -92,8 +92,9 @@ static void test_center_of_mass(void **state) {
 
 /* Every node of every rod moving with V. */
 static void set_uniform_motion(const swModel *m, swData *d, const double V[3]) {
-  for (int i = 0; i < m->nnode; i++)
-    for (int q = 0; q < 3; q++) d->v[3 * i + q] = V[q];
+  for (int r = 0; r < m->nrod; r++)
+    for (int i = m->node_adr[r]; i <= m->node_adr[r] + m->rod_nelem[r]; i++)
+      sw_set3(m, d->v, i, V);
 }
 
 static void test_uniform_motion(void **state) {

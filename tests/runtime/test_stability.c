@@ -41,14 +41,20 @@ static int runs_stable(const Case *c, double dt_factor, int steps) {
   swModel *m = make_rod(c, dt_factor);
   swData *d = sw_data_new(m);
   unsigned seed = 12345;
-  for (int i = 0; i < 3 * m->nnode; i++) {
-    seed = seed * 1103515245u + 12345u;
-    d->v[i] = 1e-6 * ((double)(seed >> 8) / (1u << 24) - 0.5);
-  }
-  for (int i = 0; i < 3 * m->nelem; i++) {
-    seed = seed * 1103515245u + 12345u;
-    d->omega[i] = 1e-4 * ((double)(seed >> 8) / (1u << 24) - 0.5);
-  }
+  /* node by node, component by component (the order of the draws) */
+  for (int rod = 0; rod < m->nrod; rod++)
+    for (int i = 0; i <= m->rod_nelem[rod]; i++)
+      for (int k = 0; k < 3; k++) {
+        seed = seed * 1103515245u + 12345u;
+        SW_AT(m, d->v, m->node_adr[rod] + i, k) = 1e-6 * ((double)(seed >> 8) / (1u << 24) - 0.5);
+      }
+  for (int rod = 0; rod < m->nrod; rod++)
+    for (int i = 0; i < m->rod_nelem[rod]; i++)
+      for (int k = 0; k < 3; k++) {
+        seed = seed * 1103515245u + 12345u;
+        SW_AT(m, d->omega, m->elem_adr[rod] + i, k) =
+            1e-4 * ((double)(seed >> 8) / (1u << 24) - 0.5);
+      }
   double e[3];
   sw_energy(m, d, e);
   double e0 = e[0] + e[1];
@@ -114,7 +120,7 @@ static void test_instability_is_reported(void **state) {
   Case c = {"", 0.01, 1.0, 1.0, 30, SW_VERLET};
   swModel *m = make_rod(&c, 3.0);
   swData *d = sw_data_new(m);
-  d->v[3 * 15 + 1] = 1e-6;
+  SW_AT(m, d->v, m->node_adr[0] + 15, 1) = 1e-6;
   int rc = SW_OK;
   for (int k = 0; k < 100000 && rc == SW_OK; k++) rc = sw_step(m, d);
   fprintf(stderr, "# %s: after %ld steps: %s\n", __func__, d->step, d->error);

@@ -41,7 +41,7 @@ static double timoshenko_tip(int n) {
   sw_spec_add_load(s, &f);
   swModel *m = sw_test_compile_at(s, 0.8);
   swData *d = sw_data_new(m);
-  const double *tip_y = d->x + 3 * n + 1;
+  const double *tip_y = &SW_AT(m, d->x, m->node_adr[id] + n, 1);
   double y = sw_test_relax(m, d, tip_y, 2.0, 400.0, 1e-9);
   sw_data_free(d);
   sw_model_free(m);
@@ -99,7 +99,7 @@ static void test_axial_stretch(void **state) {
   sw_spec_add_load(s, &f);
   swModel *m = sw_test_compile_at(s, 0.8);
   swData *d = sw_data_new(m);
-  double z = sw_test_relax(m, d, d->x + 3 * (int)n + 2, 0.05, 20.0, 1e-12);
+  double z = sw_test_relax(m, d, &SW_AT(m, d->x, m->node_adr[id] + (int)n, 2), 0.05, 20.0, 1e-12);
   SW_EXPECT_REL("extension (m)", z - L, F * L / (E * A), 1e-3);
   sw_data_free(d);
   sw_model_free(m);
@@ -137,7 +137,8 @@ static void test_pure_torsion(void **state) {
   double angle = 0, prev = -1;
   while (d->time < 50.0) {
     sw_test_run_to(m, d, d->time + 0.05);
-    const double *Q = d->Q + 9 * (n - 1);
+    double Q[9];
+    sw_getQ(m, d->Q, m->elem_adr[id] + n - 1, Q);
     angle = fabs(atan2(Q[1], Q[0])); /* d1 turns about the axis z from x */
     if (fabs(angle - prev) <= 1e-10 * angle) break;
     prev = angle;

@@ -66,6 +66,16 @@ static double tau_closed(const swWaveDesc *w, int n, double L, int i, double t) 
          sin(2 * M_PI * t / w->period - 2 * M_PI * s / w->wavelength + w->phase);
 }
 
+/* kappa_z: the curvature of Voronoi domain j of rod 0 about the lab z axis,
+ * taken with the frame of element j (rows d1 d2 d3: the axis in its material
+ * frame is (Q[2], Q[5], Q[8])). */
+static double kappa_z(const swModel *m, const swData *d, int j) {
+  double k[3], Q[9];
+  sw_get3(m, d->kappa, m->vor_adr[0] + j, k);
+  sw_getQ(m, d->Q, m->elem_adr[0] + j, Q);
+  return k[0] * Q[2] + k[1] * Q[5] + k[2] * Q[8];
+}
+
 /* ---- the couples of one force evaluation ---- */
 
 static void check_field(int reverse, double ramp, double phase) {
@@ -90,14 +100,15 @@ static void check_field(int reverse, double ramp, double phase) {
   double worst = 0, scale = 0, net[3] = {0, 0, 0};
   for (int e = 0; e < n; e++) {
     const double c = tau_closed(&w, n, L, e, t) - tau_closed(&w, n, L, e + 1, t);
-    const double *Q = m->Q0 + 9 * e;
+    double Q[9], tq[3];
+    sw_getQ(m, m->Q0, m->elem_adr[0] + e, Q);
+    sw_get3(m, d->ext_torque, m->elem_adr[0] + e, tq);
     for (int k = 0; k < 3; k++) {
       const double axis = Q[3 * k] * axis_lab[0] + Q[3 * k + 1] * axis_lab[1] + Q[3 * k + 2] * axis_lab[2];
-      worst = fmax(worst, fabs(d->ext_torque[3 * e + k] - c * axis));
+      worst = fmax(worst, fabs(tq[k] - c * axis));
       scale = fmax(scale, fabs(c));
       /* lab components of the couple: Q^T tau */
-      net[k] += Q[k] * d->ext_torque[3 * e] + Q[3 + k] * d->ext_torque[3 * e + 1] +
-                Q[6 + k] * d->ext_torque[3 * e + 2];
+      net[k] += Q[k] * tq[0] + Q[3 + k] * tq[1] + Q[6 + k] * tq[2];
     }
   }
   fprintf(stderr, "# reverse %d, ramp %g s, phase %g: largest couple %.4g N m at t = %g s\n",
@@ -177,23 +188,28 @@ static void test_static_curvature(void **state) {
   sw_spec_add_wave(s, &w);
   swModel *m = sw_test_compile_at(s, 0.5);
   swData *d = sw_data_new(m);
-  const double *tip = d->x + 3 * n + 1;
+  const double *tip = &SW_AT(m, d->x, m->node_adr[0] + n, 1);
   sw_test_relax(m, d, tip, 0.1, 20.0, 1e-7);
   double worst = 0, kmax = 0;
   for (int j = 0; j < n - 1; j++) {
-    const double *Q = d->Q + 9 * j; /* the axis (lab z) in the material frame of element j */
-    const double kz = d->kappa[3 * j] * Q[2] + d->kappa[3 * j + 1] * Q[5] + d->kappa[3 * j + 2] * Q[8];
-    const double ref = gsl_beta(coef, 6, L, L * (j + 1) / n) / m->bend_stiff[3 * j];
+    const double kz = kappa_z(m, d, j);
+    const double ref =
+        gsl_beta(coef, 6, L, L * (j + 1) / n) / SW_AT(m, m->bend_stiff, m->vor_adr[0] + j, 0);
     worst = fmax(worst, fabs(kz - ref));
     kmax = fmax(kmax, fabs(ref));
   }
   SW_EXPECT_ABS("max |kappa - beta / EI| / max kappa", worst / kmax, 0.0, 1e-4);
   /* positive moments about +z turn the tangent anticlockwise seen from +z */
-  const double *a = d->x, *b = d->x + 3, *y = d->x + 3 * (n - 1), *z = d->x + 3 * n;
+  double a[3], b[3], y[3], z[3];
+  sw_get3(m, d->x, m->node_adr[0], a);
+  sw_get3(m, d->x, m->node_adr[0] + 1, b);
+  sw_get3(m, d->x, m->node_adr[0] + n - 1, y);
+  sw_get3(m, d->x, m->node_adr[0] + n, z);
   const double turn = atan2((b[0] - a[0]) * (z[1] - y[1]) - (b[1] - a[1]) * (z[0] - y[0]),
                             (b[0] - a[0]) * (z[0] - y[0]) + (b[1] - a[1]) * (z[1] - y[1]));
   double integral = 0;
-  for (int j = 0; j < n - 1; j++) integral += m->rest_vor_len[j] * gsl_beta(coef, 6, L, L * (j + 1) / n) / EI;
+  for (int j = 0; j < n - 1; j++)
+    integral += m->rest_vor_len[m->vor_adr[0] + j] * gsl_beta(coef, 6, L, L * (j + 1) / n) / EI;
   SW_EXPECT_REL("turning of the tangent from first to last element, rad", turn, integral, 1e-3);
   sw_data_free(d);
   sw_model_free(m);
@@ -207,15 +223,11 @@ static void test_static_curvature(void **state) {
 static double crossing_near(const swModel *m, const swData *d, int n, double L, double s_near) {
   double best = NAN;
   for (int j = 0; j + 1 < n - 1; j++) {
-    const double *Qa = d->Q + 9 * j, *Qb = d->Q + 9 * (j + 1);
-    const double ka = d->kappa[3 * j] * Qa[2] + d->kappa[3 * j + 1] * Qa[5] + d->kappa[3 * j + 2] * Qa[8];
-    const double kb = d->kappa[3 * (j + 1)] * Qb[2] + d->kappa[3 * (j + 1) + 1] * Qb[5] +
-                      d->kappa[3 * (j + 1) + 2] * Qb[8];
+    const double ka = kappa_z(m, d, j), kb = kappa_z(m, d, j + 1);
     if (!(ka > 0 && kb <= 0)) continue;
     const double sa = L * (j + 1) / n, sc = sa + (L / n) * ka / (ka - kb);
     if (isnan(best) || fabs(sc - s_near) < fabs(best - s_near)) best = sc;
   }
-  (void)m;
   return best;
 }
 
@@ -239,10 +251,7 @@ static void check_travel(int reverse) {
   sw_test_run_to(m, d, t1);
   const double s1 = crossing_near(m, d, n, L, 0.5);
   double kmax = 0;
-  for (int j = n / 4; j < 3 * n / 4; j++) {
-    const double *Q = d->Q + 9 * j;
-    kmax = fmax(kmax, fabs(d->kappa[3 * j] * Q[2] + d->kappa[3 * j + 1] * Q[5] + d->kappa[3 * j + 2] * Q[8]));
-  }
+  for (int j = n / 4; j < 3 * n / 4; j++) kmax = fmax(kmax, fabs(kappa_z(m, d, j)));
   sw_test_run_to(m, d, t1 + dt);
   const double s2 = crossing_near(m, d, n, L, s1);
   const double moved = s2 - s1, expect = (reverse ? -1 : 1) * lambda * dt / T;
