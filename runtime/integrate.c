@@ -47,6 +47,107 @@ static void compute_loads(const swModel *m, swData *d) {
   if (sw_has_env(m)) sw_env_loads(m, d); /* last: the ground balances the rest */
 }
 
+/* Nodes move with their velocities: x += h v over slots [lo, hi). */
+static void drift_nodes(const swModel *m, swData *d, double h, int lo, int hi) {
+  const size_t S = (size_t)m->stride;
+  for (int k = 0; k < 3; k++) {
+    double *restrict x = d->x + k * S;
+    const double *restrict v = d->v + k * S;
+#pragma omp simd
+    for (int i = lo; i < hi; i++) x[i] += h * v[i];
+  }
+}
+
+/* Frames turn with the angular momentum held (see drift()) over the element
+ * slots [lo, hi), after the nodes have moved.  The loop turns them with the
+ * small-angle series of Rodrigues' formula (vec.h); the few that turn by
+ * more in one drift (|phi| > 0.1 rad) are turned after it with the exact
+ * formula, so every frame gets the bits of sw_rotate_frame. */
+static inline __attribute__((always_inline)) void drift_frames(const swModel *m, swData *d, double h,
+                                                             int lo, int hi, const int simpson) {
+  const size_t S = (size_t)m->stride;
+  const double *restrict x = d->x, *restrict v = d->v;
+  double *restrict w = d->omega, *restrict Q = d->Q, *restrict dil = d->dilatation;
+  const double *restrict irl = m->inv_rest_len, *restrict ghost = m->elem_ghost;
+  double *restrict rot = d->scratch_phi, *restrict flag = d->scratch_flag;
+  int turned = 0; /* frames past the series */
+#pragma omp simd reduction(+ : turned)
+  for (int i = lo; i < hi; i++) {
+    const sw3 dx = sw3_sub(sw3_load(x, S, i + 1), sw3_load(x, S, i));
+    const sw3 dv = sw3_sub(sw3_load(v, S, i + 1), sw3_load(v, S, i));
+    const double inv_e_old = 1.0 / dil[i];
+    const double e_new = ghost[i] != 0.0 ? 1.0 : sqrt(sw3_dot(dx, dx)) * irl[i];
+    const double ratio = e_new * inv_e_old;
+    /* (1/h) integral of e dt over the drift, in units of e_old: Simpson's
+     * rule (PEFRL) or the trapezoidal rule (Verlet) */
+    const sw3 mid = {dx.x - 0.5 * h * dv.x, dx.y - 0.5 * h * dv.y, dx.z - 0.5 * h * dv.z};
+    const double mean = simpson ? (1.0 + 4.0 * sqrt(sw3_dot(mid, mid)) * irl[i] * inv_e_old + ratio) * (1.0 / 6.0)
+                                : 0.5 * (1.0 + ratio);
+    const sw3 wi = sw3_load(w, S, i), phi = sw3_scale(wi, h * mean);
+    const swFrame Qo = sw_frame_load(Q, S, i);
+    const int small = sw_frame_small_turn(phi);
+    const swFrame Qn = sw_frame_rotate_small(Qo, phi);
+    /* a frame turning by more than the series allows keeps its old value
+     * here and is turned after the loop */
+    sw_frame_store(Q, S, i, (swFrame){small ? Qn.d1 : Qo.d1, small ? Qn.d2 : Qo.d2,
+                                      small ? Qn.d3 : Qo.d3});
+    sw3_store(rot, S, i, phi);
+    flag[i] = !small;
+    turned += !small;
+    sw3_store(w, S, i, sw3_scale(wi, ratio));
+    dil[i] = e_new;
+  }
+  if (!turned) return;
+  for (int i = lo; i < hi; i++) {
+    if (flag[i] == 0.0) continue;
+    double Qe[9], phi[3];
+    sw_getQ(m, d->Q, i, Qe);
+    sw_get3(m, rot, i, phi);
+    sw_rotate_frame(Qe, phi);
+    sw_setQ(m, d->Q, i, Qe);
+  }
+}
+
+/* Velocities of the elastic slots [lo, hi) under the loads; returns the work
+ * booked over the kick (see kick()). */
+static double kick_slots(const swModel *m, swData *d, double h, int lo, int hi) {
+  const size_t S = (size_t)m->stride;
+  const double *restrict im = m->inv_mass, *restrict mass = m->mass;
+  const double *restrict ndec = m->node_decay, *restrict nkick = m->node_kick;
+  const double *restrict exact = m->kick_exact, *restrict e = d->dilatation;
+  double work = 0, exact_work = 0;
+  for (int k = 0; k < 3; k++) {
+    double *restrict v = d->v + k * S, *restrict w = d->omega + k * S;
+    const double *restrict F = d->force + k * S, *restrict T = d->torque + k * S;
+    const double *restrict ef = d->ext_force + k * S, *restrict et = d->ext_torque + k * S;
+    const double *restrict iJ = m->inv_inertia + k * S, *restrict J = m->inertia + k * S;
+    const double *restrict edec = m->elem_decay + k * S, *restrict ekick = m->elem_kick + k * S;
+#pragma omp simd reduction(+ : work, exact_work)
+    for (int i = lo; i < hi; i++) {
+      /* nodes: m dv/dt = F; analytically damped rods (Verlet) integrate
+       * dv/dt = a - c v exactly with a held (model.c), and book the work of
+       * loads and dissipation together as the non-internal impulse times
+       * the mean velocity */
+      const double vo = v[i];
+      const double vd = vo * ndec[i] + F[i] * im[i] * nkick[i], vp = vo + h * F[i] * im[i];
+      const double vn = exact[i] != 0.0 ? vd : vp;
+      exact_work += exact[i] != 0.0 ? (mass[i] * (vn - vo) - h * (F[i] - ef[i])) * (vo + vn) : 0.0;
+      work += exact[i] != 0.0 ? 0.0 : ef[i] * (vo + vn);
+      v[i] = vn;
+      /* elements: (J^/e) dw/dt = tau (Gazzola 2018, eq. 3.7b, the couples
+       * of rod.c without the dilatation-rate term, which the drift
+       * integrates) */
+      const double wo = w[i];
+      const double wd = wo * edec[i] + T[i] * iJ[i] * e[i] * ekick[i], wp = wo + h * T[i] * iJ[i] * e[i];
+      const double wn = exact[i] != 0.0 ? wd : wp;
+      exact_work += exact[i] != 0.0 ? (J[i] / e[i] * (wn - wo) - h * (T[i] - et[i])) * (wo + wn) : 0.0;
+      work += exact[i] != 0.0 ? 0.0 : et[i] * (wo + wn);
+      w[i] = wn;
+    }
+  }
+  return 0.5 * h * work + 0.5 * exact_work;
+}
+
 /* Positions and frames move with the current velocities for a time h.
  * What a drift holds constant is the momentum: v for nodes and the angular
  * momentum L = J^ w / e for elements (Gazzola 2018, eq. 2.12: d/dt(J^ w / e)
@@ -58,43 +159,11 @@ static void compute_loads(const swModel *m, swData *d) {
  * (J^ w / e) de/dt / e of the rotational balance is integrated: keeping it
  * as an explicit couple in the kick would cap both schemes at first order. */
 static void drift(const swModel *m, swData *d, double h) {
-  const int simpson = m->integrator == SW_PEFRL;
-  const size_t S = (size_t)m->stride;
-  for (int r = 0; r < m->nrod; r++) {
-    if (sw_rod_is_rigid(m, r)) continue;
-    const int n = m->rod_nelem[r], a = m->node_adr[r];
-    double *restrict x = d->x + a;
-    const double *restrict v = d->v + a;
-    double *restrict w = d->omega + a, *restrict Qs = d->Q + a;
-    double *restrict dil = d->dilatation + a;
-    const double *restrict irl = m->inv_rest_len + a;
-    for (int k = 0; k < 3; k++)
-      for (int i = 0; i <= n; i++) x[k * S + i] += h * v[k * S + i];
-    for (int i = 0; i < n; i++) {
-      double dx[3], dv[3];
-      for (int k = 0; k < 3; k++) {
-        dx[k] = x[k * S + i + 1] - x[k * S + i];
-        dv[k] = v[k * S + i + 1] - v[k * S + i];
-      }
-      const double inv_e_old = 1.0 / dil[i], e_new = sw_v3_norm(dx) * irl[i];
-      const double ratio = e_new * inv_e_old;
-      double mean; /* (1/h) integral of e dt over the drift, in units of e_old */
-      if (simpson) {
-        double mid[3] = {dx[0] - 0.5 * h * dv[0], dx[1] - 0.5 * h * dv[1], dx[2] - 0.5 * h * dv[2]};
-        mean = (1.0 + 4.0 * sw_v3_norm(mid) * irl[i] * inv_e_old + ratio) * (1.0 / 6.0);
-      } else {
-        mean = 0.5 * (1.0 + ratio);
-      }
-      const double hm = h * mean;
-      double phi[3], Q[9];
-      for (int k = 0; k < 3; k++) phi[k] = hm * w[k * S + i];
-      for (int k = 0; k < 9; k++) Q[k] = Qs[k * S + i];
-      sw_rotate_frame(Q, phi);
-      for (int k = 0; k < 9; k++) Qs[k * S + i] = Q[k];
-      for (int k = 0; k < 3; k++) w[k * S + i] *= ratio;
-      dil[i] = e_new;
-    }
-  }
+  drift_nodes(m, d, h, 0, m->nslot_elastic);
+  if (m->integrator == SW_PEFRL) /* one loop per scheme: Simpson's rule or not */
+    drift_frames(m, d, h, 0, m->nslot_elastic, 1);
+  else
+    drift_frames(m, d, h, 0, m->nslot_elastic, 0);
   if (m->nrigid) sw_rigid_drift(m, d, h);
   d->time += h;
 }
@@ -106,56 +175,7 @@ static void drift(const swModel *m, swData *d, double h) {
  * (position Verlet's v_{n+1} is the velocity at t_{n+1} = t_kick + h/2). */
 static void kick(const swModel *m, swData *d, double h, double span) {
   compute_loads(m, d);
-  double *restrict v = d->v, *restrict w = d->omega;
-  const double *restrict F = d->force, *restrict T = d->torque;
-  const double *restrict ef = d->ext_force, *restrict et = d->ext_torque;
-  const double *restrict im = m->inv_mass, *restrict iJ = m->inv_inertia;
-  const double *restrict e = d->dilatation;
-  const size_t S = (size_t)m->stride;
-  double work = 0, exact_work = 0;
-  for (int r = 0; r < m->nrod; r++) {
-    if (sw_rod_is_rigid(m, r)) continue;
-    const int n0 = m->node_adr[r], n1 = n0 + m->rod_nelem[r] + 1;
-    const int e0 = m->elem_adr[r], e1 = e0 + m->rod_nelem[r];
-    if (m->rod_damping[r] == SW_DAMP_ANALYTIC && m->integrator == SW_VERLET) {
-      /* exact for dv/dt = a - c v (model.c); the work of loads and
-       * dissipation together is the non-internal impulse times the mean
-       * velocity */
-      for (int i = n0; i < n1; i++)
-        for (int k = 0; k < 3; k++) {
-          size_t q = k * S + i;
-          double vo = v[q], vn = vo * m->node_decay[i] + F[q] * im[i] * m->node_kick[i];
-          exact_work += (m->mass[i] * (vn - vo) - h * (F[q] - ef[q])) * (vo + vn);
-          v[q] = vn;
-        }
-      for (int i = e0; i < e1; i++)
-        for (int k = 0; k < 3; k++) {
-          size_t q = k * S + i;
-          double Je = m->inertia[q] / e[i];
-          double wo = w[q], wn = wo * m->elem_decay[q] + T[q] * iJ[q] * e[i] * m->elem_kick[q];
-          exact_work += (Je * (wn - wo) - h * (T[q] - et[q])) * (wo + wn);
-          w[q] = wn;
-        }
-      continue;
-    }
-    for (int i = n0; i < n1; i++)
-      for (int k = 0; k < 3; k++) {
-        size_t q = k * S + i;
-        double vo = v[q], vn = vo + h * F[q] * im[i];
-        work += ef[q] * (vo + vn);
-        v[q] = vn;
-      }
-    /* (J^/e) dw/dt = tau  (Gazzola 2018, eq. 3.7b, the couples of rod.c
-     * without the dilatation-rate term, which the drift integrates) */
-    for (int i = e0; i < e1; i++)
-      for (int k = 0; k < 3; k++) {
-        size_t q = k * S + i;
-        double wo = w[q], wn = wo + h * T[q] * iJ[q] * e[i];
-        work += et[q] * (wo + wn);
-        w[q] = wn;
-      }
-  }
-  d->work += 0.5 * h * work + 0.5 * exact_work;
+  d->work += kick_slots(m, d, h, 0, m->nslot_elastic);
   if (m->nrigid) sw_rigid_kick(m, d, h);
   if (m->nbc) sw_bc_kick(m, d, h, d->time + 0.5 * span);
 }

@@ -8,6 +8,10 @@
  * memory); write a message into err and return 0. */
 int sw_grow(void **p, int *cap, int n, size_t item);
 int sw_fail(char *err, size_t errlen, const char *fmt, ...) __attribute__((format(printf, 3, 4)));
+/* The rod kernels over a range of elastic slots [lo, hi) (rod.c): the
+ * element and Voronoi pass, then the gather of their neighbours' terms. */
+void sw_rod_pass(const swModel *m, swData *d, int lo, int hi);
+void sw_rod_gather(const swModel *m, swData *d, int lo, int hi);
 void sw_bc_kick(const swModel *m, swData *d, double h, double t);     /* boundary.c  */
 void sw_bc_loads(const swModel *m, swData *d);                        /* boundary.c  */
 double sw_bc_energy(const swModel *m, const swData *d);               /* boundary.c  */

@@ -1,15 +1,26 @@
 /* rod.c — strains, internal forces and internal couples of Cosserat rods.
  *
- * Design.  One pass over the elements of a rod computes the shear/stretch
- * strain, the internal force n and everything that lives on an element; one
- * pass over the Voronoi domains computes curvature and the bending couple and
- * scatters it to the two neighbouring elements.  The difference operator
- * Delta^h and the averaging operator A^h of the discretisation (Gazzola et al.
- * 2018, eqs. 3.1-3.4, with zero padding at both ends) are done in the same
- * passes by carrying the previous element's or domain's value, so no extra
- * array or pass is needed.  Results: d->force (lab frame, per node) and
- * d->torque (material frame, per element), both overwritten.  Arrays are
- * planar (sinew.h, "Layout"): component k of slot i is a[k * stride + i].
+ * Design.  The rods' slots are one block (sinew.h, "Layout"): elastic rods
+ * back to back in [0, nslot_elastic), each followed by its ghost element and
+ * ghost domains, which hold zero stiffness and unit lengths.  So every kernel
+ * here is a plain loop over a range of slots with no branch on where a rod
+ * starts or ends, and the compiler vectorizes it (`#pragma omp simd`; the
+ * large-angle branch of the frame logarithm calls atan2, which a vector loop
+ * takes from glibc's vector math library, libmvec).  Two passes:
+ *   sw_rod_pass    element i and Voronoi domain i of every slot: strain,
+ *                  internal force n and its lab-frame image f_i = Q_i^T n_i,
+ *                  the element's own couples; curvature, bending couple c_i
+ *                  and the half transport term;
+ *   sw_rod_gather  the difference and averaging operators Delta^h and A^h of
+ *                  the discretisation (Gazzola et al. 2018, eqs. 3.1-3.4)
+ *                  applied to those: F_i = f_i - f_{i-1} on nodes, and the
+ *                  couples of domains i-1 and i on element i.
+ * A ghost contributes exact zeros to its neighbours, which is the zero
+ * padding of Delta^h and A^h at both ends of a rod.  The two passes read each
+ * other's neighbours, so a threaded run puts a barrier between them; within
+ * a pass slots are independent and any split of the range gives the same
+ * bits.  Results: d->force (lab frame, per node) and d->torque (material
+ * frame, per element), both overwritten on the elastic slots.
  *
  * Discrete equations (Gazzola 2018, eq. 3.7, with the notation of sinew.h):
  *   sigma_i  = Q_i (x_{i+1} - x_i) / l^_i - d3               shear/stretch strain
@@ -30,109 +41,138 @@
 #include "vec.h"
 #include "internal.h"
 
-/* Element pass: strains, internal force, shear couple and the two inertial
- * couples.  Writes force on nodes 0..n (node n last) and torque on elements. */
-static void rod_elements(const swModel *m, swData *d, int r) {
-  const int n = m->rod_nelem[r], a = m->elem_adr[r];
-  const size_t S_ = (size_t)m->stride;
-  const double *restrict x = d->x + a;
-  const double *restrict Qs = d->Q + a;
-  const double *restrict w = d->omega + a;
-  const double *restrict rl = m->rest_len + a, *restrict irl = m->inv_rest_len + a;
-  const double *restrict S = m->shear_stiff + a;
-  const double *restrict s0 = m->rest_sigma + a;
-  const double *restrict J = m->inertia + a;
-  double *restrict F = d->force + a;
-  double *restrict T = d->torque + a;
-  double *restrict len = d->length + a, *restrict dil = d->dilatation + a;
-  double *restrict sig = d->sigma + a, *restrict str = d->stress + a;
-  double fprev[3] = {0, 0, 0};
-  for (int i = 0; i < n; i++) {
-    double Q[9];
-    for (int k = 0; k < 9; k++) Q[k] = Qs[k * S_ + i];
-    double dx[3];
-    for (int k = 0; k < 3; k++) dx[k] = x[k * S_ + i + 1] - x[k * S_ + i];
-    const double l = sw_v3_norm(dx), inv_l = 1.0 / l, inv_rl = irl[i];
-    const double e = l * inv_rl, inv_e = rl[i] * inv_l;
-    double Qdx[3], nm[3], f[3];
-    sw_mat_vec(Qdx, Q, dx);
-    for (int k = 0; k < 3; k++) {
-      sig[k * S_ + i] = Qdx[k] * inv_rl - (k == 2);
-      nm[k] = S[k * S_ + i] * (sig[k * S_ + i] - s0[k * S_ + i]) * inv_e;
-      str[k * S_ + i] = nm[k];
-    }
-    len[i] = l;
-    dil[i] = e;
-    /* node force: Delta^h(Q^T n) */
-    sw_matT_vec(f, Q, nm);
-    for (int k = 0; k < 3; k++) {
-      F[k * S_ + i] = f[k] - fprev[k];
-      fprev[k] = f[k];
-    }
-    /* shear couple (Q dx) x n, inertial couples of the rotating element */
-    double sc[3], Jw[3], tr[3], wi[3];
-    sw_v3_cross(sc, Qdx, nm);
-    for (int k = 0; k < 3; k++) wi[k] = w[k * S_ + i];
-    for (int k = 0; k < 3; k++) Jw[k] = J[k * S_ + i] * wi[k] * inv_e;
-    sw_v3_cross(tr, Jw, wi);
-    /* The dilatation-rate couple (J^ w / e) de/dt / e is integrated by the
-     * drift (integrate.c), which keeps J^ w / e constant while e changes. */
-    for (int k = 0; k < 3; k++) T[k * S_ + i] = sc[k] + tr[k];
-  }
-  for (int k = 0; k < 3; k++) F[k * S_ + n] = -fprev[k];
+/* The arrays of the Voronoi pass, as restrict pointers so that the
+ * compiler knows the stores of a slot do not feed the loads of another. */
+typedef struct {
+  const double *restrict x, *restrict ghost, *restrict D, *restrict iD, *restrict B, *restrict k0;
+  double *restrict kap, *restrict cpl, *restrict vdil, *restrict hh;
+} vorArrays;
+
+/* Length of element i for the passes: a ghost's two nodes belong to two
+ * rods and may coincide, so it counts as unit length. */
+static inline double elem_length(vorArrays a, size_t S, int i) {
+  const sw3 dx = sw3_sub(sw3_load(a.x, S, i + 1), sw3_load(a.x, S, i));
+  return a.ghost[i] != 0.0 ? 1.0 : sqrt(sw3_dot(dx, dx));
 }
 
-/* Voronoi pass: curvature, bending couple, and its scatter to the elements.
- * Domain j lies between elements j and j+1; with Q_{j+1} = exp(-D^ [k]x) Q_j,
- * Delta^h(c) gives +c_j to element j and -c_j to element j+1 (the derivative
- * of the bending energy with respect to each frame's rotation), and
- * A^h(kappa x c D^) gives half of h_j = kappa_j x c_j D^_j to each. */
-static void rod_voronoi(const swModel *m, swData *d, int r) {
-  const int n = m->rod_nelem[r], a = m->elem_adr[r];
-  const size_t S_ = (size_t)m->stride;
-  const double *restrict Qs = d->Q + a;
-  const double *restrict len = d->length + a;
-  const double *restrict D = m->rest_vor_len + a;
-  const double *restrict B = m->bend_stiff + a;
-  const double *restrict k0 = m->rest_kappa + a;
-  double *restrict kap = d->kappa + a, *restrict cpl = d->couple + a;
-  double *restrict vdil = d->vor_dilatation + a;
-  double *restrict T = d->torque + a;
-  double Qa[9], Qb[9];
-  for (int k = 0; k < 9; k++) Qb[k] = Qs[k * S_];
-  for (int j = 0; j < n - 1; j++) {
-    for (int k = 0; k < 9; k++) {
-      Qa[k] = Qb[k];
-      Qb[k] = Qs[k * S_ + j + 1];
-    }
-    const double inv_D = 1.0 / D[j];
-    const double eps = 0.5 * (len[j] + len[j + 1]) * inv_D;
-    const double inv_eps3 = 1.0 / (eps * eps * eps);
-    double phi[3], c[3], h[3], kj[3];
+/* Domain i from its curvature kv = kappa (1/m) and the lengths l, l1 of its
+ * two elements: c = B^ (kappa - kappa0) / eps^3 with eps = (l + l1) / (2 D^),
+ * and half the transport couple kappa x c D^ / 2. */
+static inline void domain_couple(vorArrays a, size_t S, int i, sw3 kv, double l, double l1) {
+  const double inv_D = a.iD[i];
+  const double eps = 0.5 * (l + l1) * inv_D;
+  const double inv_eps3 = 1.0 / (eps * eps * eps);
+  const sw3 Bi = sw3_load(a.B, S, i), kv0 = sw3_load(a.k0, S, i);
+  const sw3 c = {Bi.x * (kv.x - kv0.x) * inv_eps3, Bi.y * (kv.y - kv0.y) * inv_eps3,
+                 Bi.z * (kv.z - kv0.z) * inv_eps3};
+  sw3_store(a.kap, S, i, kv);
+  sw3_store(a.cpl, S, i, c);
+  a.vdil[i] = eps;
+  const sw3 h = sw3_cross(kv, c);
+  sw3_store(a.hh, S, i, (sw3){0.5 * h.x * a.D[i], 0.5 * h.y * a.D[i], 0.5 * h.z * a.D[i]});
+}
+
+/* Element pass and Voronoi pass over slots [lo, hi): element i, then the
+ * domain between elements i and i+1.  Loop bodies hold vectors and frames
+ * as values (vec.h, sw3 and swFrame), so that the loop vectorizes.  The
+ * curvature is taken from the small-angle series of the frame logarithm;
+ * the real domains bent by more than that allows (sin theta > 0.1, about
+ * 5.7 degrees between neighbouring frames) are counted and redone after the
+ * loop with the exact logarithm, which gives every domain the bits of
+ * vec.h's sw_frame_log. */
+void sw_rod_pass(const swModel *m, swData *d, int lo, int hi) {
+  const size_t S = (size_t)m->stride;
+  const double *restrict x = d->x, *restrict Q = d->Q, *restrict w = d->omega;
+  const double *restrict rl = m->rest_len, *restrict irl = m->inv_rest_len;
+  const double *restrict ghost = m->elem_ghost;
+  const double *restrict Sh = m->shear_stiff, *restrict s0 = m->rest_sigma, *restrict J = m->inertia;
+  const double *restrict D = m->rest_vor_len;
+  double *restrict len = d->length, *restrict dil = d->dilatation;
+  double *restrict sig = d->sigma, *restrict str = d->stress, *restrict T = d->torque;
+  double *restrict fl = d->scratch_f; /* Q^T n, lab */
+  double *restrict flag = d->scratch_flag; /* 1: redo domain i exactly */
+  const vorArrays va = {x, ghost, D, m->inv_rest_vor_len, m->bend_stiff, m->rest_kappa,
+                        d->kappa, d->couple, d->vor_dilatation, d->scratch_h};
+  int bent = 0;                             /* how many */
+#pragma omp simd reduction(+ : bent)
+  for (int i = lo; i < hi; i++) {
+    /* ---- element i ---- */
+    const sw3 dx = sw3_sub(sw3_load(x, S, i + 1), sw3_load(x, S, i));
+    const double l = ghost[i] != 0.0 ? 1.0 : sqrt(sw3_dot(dx, dx));
+    const double inv_l = 1.0 / l, inv_rl = irl[i];
+    const double e = l * inv_rl, inv_e = rl[i] * inv_l;
+    const swFrame Qi = sw_frame_load(Q, S, i);
+    const sw3 Qdx = sw_frame_apply(Qi, dx);
+    /* sigma = Q dx / l^ - d3,  n = S^ (sigma - sigma0) / e */
+    const sw3 sg = {Qdx.x * inv_rl, Qdx.y * inv_rl, Qdx.z * inv_rl - 1.0};
+    const sw3 S_ = sw3_load(Sh, S, i), sg0 = sw3_load(s0, S, i);
+    const sw3 nm = {S_.x * (sg.x - sg0.x) * inv_e, S_.y * (sg.y - sg0.y) * inv_e,
+                    S_.z * (sg.z - sg0.z) * inv_e};
+    sw3_store(sig, S, i, sg);
+    sw3_store(str, S, i, nm);
+    len[i] = l;
+    dil[i] = e;
+    sw3_store(fl, S, i, sw_frame_apply_t(Qi, nm));
+    /* shear couple (Q dx) x n and inertial couple (J^ w / e) x w; the
+     * dilatation-rate couple (J^ w / e) de/dt / e is integrated by the
+     * drift (integrate.c), which keeps J^ w / e constant while e changes */
+    const sw3 wi = sw3_load(w, S, i), Ji = sw3_load(J, S, i);
+    const sw3 Jw = {Ji.x * wi.x * inv_e, Ji.y * wi.y * inv_e, Ji.z * wi.z * inv_e};
+    const sw3 sc = sw3_cross(Qdx, nm), tr = sw3_cross(Jw, wi);
+    sw3_store(T, S, i, (sw3){sc.x + tr.x, sc.y + tr.y, sc.z + tr.z});
+
+    /* ---- Voronoi domain i, between elements i and i+1 ----
+     * kappa = log(Q_{i+1} Q_i^T) / D^ (a ghost domain's is never used: its
+     * stiffness is zero) */
+    const swSmallLog lg = sw_frame_log_small(Qi, sw_frame_load(Q, S, i + 1));
+    const sw3 kv = sw3_scale(lg.phi, m->inv_rest_vor_len[i]);
+    const int redo = (lg.small == 0) & (ghost[i] == 0.0) & (ghost[i + 1] == 0.0);
+    flag[i] = redo;
+    bent += redo;
+    domain_couple(va, S, i, kv, l, elem_length(va, S, i + 1));
+  }
+  if (!bent) return;
+  for (int i = lo; i < hi; i++) {
+    if (flag[i] == 0.0) continue;
+    double Qa[9], Qb[9], phi[3];
+    sw_getQ(m, d->Q, i, Qa);
+    sw_getQ(m, d->Q, i + 1, Qb);
     sw_frame_log(phi, Qa, Qb);
+    const double inv_D = m->inv_rest_vor_len[i];
+    const sw3 kv = {phi[0] * inv_D, phi[1] * inv_D, phi[2] * inv_D};
+    domain_couple(va, S, i, kv, len[i], elem_length(va, S, i + 1));
+  }
+}
+
+/* Delta^h and A^h over slots [lo, hi): node force F_i = f_i - f_{i-1} and
+ * element couple tau_i += (-c_{i-1} + h_{i-1}) + (c_i + h_i), in this order
+ * (the order the couples of domains i-1 and i were once added in); slot -1
+ * counts as a ghost. */
+void sw_rod_gather(const swModel *m, swData *d, int lo, int hi) {
+  const size_t S = (size_t)m->stride;
+  const double *restrict fl = d->scratch_f, *restrict c = d->couple, *restrict hh = d->scratch_h;
+  double *restrict F = d->force, *restrict T = d->torque;
+  if (lo == 0 && hi > 0) {
     for (int k = 0; k < 3; k++) {
-      kj[k] = phi[k] * inv_D;
-      kap[k * S_ + j] = kj[k];
-      c[k] = B[k * S_ + j] * (kj[k] - k0[k * S_ + j]) * inv_eps3;
-      cpl[k * S_ + j] = c[k];
+      F[k * S] = fl[k * S] - 0.0;
+      T[k * S] = (T[k * S] + (-0.0 + 0.0)) + (c[k * S] + hh[k * S]);
     }
-    vdil[j] = eps;
-    sw_v3_cross(h, kj, c);
-    for (int k = 0; k < 3; k++) {
-      const double half_h = 0.5 * h[k] * D[j];
-      T[k * S_ + j] += c[k] + half_h;
-      T[k * S_ + j + 1] += -c[k] + half_h;
+    lo = 1;
+  }
+  for (int k = 0; k < 3; k++) {
+    const double *restrict fk = fl + k * S, *restrict ck = c + k * S, *restrict hk = hh + k * S;
+    double *restrict Fk = F + k * S, *restrict Tk = T + k * S;
+#pragma omp simd
+    for (int i = lo; i < hi; i++) {
+      Fk[i] = fk[i] - fk[i - 1];
+      Tk[i] = (Tk[i] + (-ck[i - 1] + hk[i - 1])) + (ck[i] + hk[i]);
     }
   }
 }
 
 void sw_internal_loads(const swModel *m, swData *d) {
-  for (int r = 0; r < m->nrod; r++) {
-    if (sw_rod_is_rigid(m, r)) { /* no deformation, no internal loads (rigid.c) */
-      sw_rigid_internal(m, d, r);
-      continue;
-    }
-    rod_elements(m, d, r);
-    rod_voronoi(m, d, r);
-  }
+  sw_rod_pass(m, d, 0, m->nslot_elastic);
+  sw_rod_gather(m, d, 0, m->nslot_elastic);
+  for (int b = 0; b < m->nrigid; b++) /* no deformation, no internal loads (rigid.c) */
+    sw_rigid_internal(m, d, m->rigid_rod[b]);
 }

@@ -368,8 +368,9 @@ typedef struct {
   int nrod, nnode, nelem, nvor, nload, nbc, njoint;
   int nslot;                 /* slots of all rods (= nnode)                  */
   int nslot_elastic;         /* slots [0, nslot_elastic) are elastic rods'   */
-  int stride;                /* doubles per plane: nslot + 1 rounded up to a
-                                multiple of 8 (64-byte rows)               */
+  int stride;                /* doubles per plane: nslot + 2 rounded up to a
+                                multiple of 8 (64-byte rows; a kernel at the
+                                last slot reads two past it)               */
   /* options */
   double dt;                 /* time step, s                                 */
   swIntegrator integrator;
@@ -402,8 +403,12 @@ typedef struct {
   double *elem_kick;         /* (3) analytic damping kick length, s          */
   double *Q0;                /* (9) initial directors                        */
   double *clamp_bend;        /* (3) B^ of the element, for clamps            */
+  double *elem_ghost;        /* 1 at ghost element slots and padding, else 0  */
+  double *kick_exact;        /* 1 where the kick integrates analytic damping
+                                exactly (Verlet, SW_DAMP_ANALYTIC), else 0   */
   /* per Voronoi slot (ghost domains: rest length 1, stiffness 0) */
   double *rest_vor_len;      /* D^, m                                        */
+  double *inv_rest_vor_len;  /* 1 / D^                                       */
   double *bend_stiff;        /* (3) B^ = diag(EI1, EI2, GJ), N m^2           */
   double *rest_kappa;        /* (3) 1/m                                      */
   /* loads and boundary conditions */
@@ -518,6 +523,12 @@ typedef struct {
   double *torque;            /* (3) total couple on elements, material frame */
   double *ext_force;         /* (3) external force, lab                      */
   double *ext_torque;        /* (3) external couple, material frame          */
+  /* rod.c's scratch between its two passes: Q^T n of each element (lab) and
+   * half the transport couple kappa x c D^ of each domain (3 planes each) */
+  double *scratch_f, *scratch_h;
+  /* scratch of the rod kernels' slow paths (rod.c, integrate.c): a flag per
+   * slot (1 plane) and a rotation vector per slot (3 planes) */
+  double *scratch_flag, *scratch_phi;
   /* joints, updated with each force evaluation */
   double *joint_force;       /* (njoint*3) force of the joint on rod a, lab, N */
   double *joint_angle;       /* (njoint)  hinge angle, rad (0 for others)     */

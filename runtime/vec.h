@@ -66,13 +66,21 @@ static inline void sw_mat_mul(double *C, const double *A, const double *B) {
 
 /* Coefficients of Rodrigues' formula, R = I - a [u]x + b [u]x^2 with the
  * unnormalised axis u = theta * n:  a = sin(theta)/theta,
- * b = (1 - cos(theta))/theta^2.  Below theta^2 = 1e-2 the series through
- * theta^8 leaves a truncation error under 3e-18. */
+ * b = (1 - cos(theta))/theta^2.  Below theta^2 = 1e-2 their Taylor series
+ * through theta^8 (Horner's rule in t = theta^2, with the reciprocal
+ * factorials as constants, so no division) leaves a truncation error under
+ * 3e-18. */
+typedef struct { double a, b; } swRodrigues;
+static inline swRodrigues sw_rodrigues_series(double t) {
+  return (swRodrigues){
+      1.0 + t * (-1.0 / 6 + t * (1.0 / 120 + t * (-1.0 / 5040 + t * (1.0 / 362880)))),
+      0.5 + t * (-1.0 / 24 + t * (1.0 / 720 + t * (-1.0 / 40320 + t * (1.0 / 3628800))))};
+}
 static inline void sw_rodrigues_coeffs(double theta2, double *a, double *b) {
   if (theta2 < 1e-2) {
-    const double t = theta2;
-    *a = 1.0 - t / 6.0 * (1.0 - t / 20.0 * (1.0 - t / 42.0 * (1.0 - t / 72.0)));
-    *b = 0.5 * (1.0 - t / 12.0 * (1.0 - t / 30.0 * (1.0 - t / 56.0 * (1.0 - t / 90.0))));
+    const swRodrigues c = sw_rodrigues_series(theta2);
+    *a = c.a;
+    *b = c.b;
   } else {
     const double theta = sqrt(theta2), sh = sin(0.5 * theta);
     *a = sin(theta) / theta;
@@ -146,6 +154,82 @@ static inline int sw_frame_from(double *Q, const double *dir, const double *norm
   sw_v3_cross(d1, d2, d3);
   for (int k = 0; k < 3; k++) { Q[k] = d1[k]; Q[3 + k] = d2[k]; Q[6 + k] = d3[k]; }
   return 1;
+}
+
+/* Values for the loop bodies: a 3-vector and a director frame (rows d1, d2,
+ * d3) as small structs passed by value.  Unlike the double[3] arrays above,
+ * which a loop body would have to keep in memory per vector lane, these live
+ * in registers, so a loop written with them vectorizes.  Each operation
+ * rounds exactly as its array form above does (same products, same order of
+ * sums). */
+typedef struct { double x, y, z; } sw3;
+typedef struct { sw3 d1, d2, d3; } swFrame;
+
+static inline sw3 sw3_sub(sw3 a, sw3 b) { return (sw3){a.x - b.x, a.y - b.y, a.z - b.z}; }
+static inline sw3 sw3_scale(sw3 a, double s) { return (sw3){a.x * s, a.y * s, a.z * s}; }
+static inline double sw3_dot(sw3 a, sw3 b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
+static inline sw3 sw3_cross(sw3 a, sw3 b) {
+  return (sw3){a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
+}
+/* Q a (lab -> material) and Q^T a (material -> lab) */
+static inline sw3 sw_frame_apply(swFrame Q, sw3 a) {
+  return (sw3){sw3_dot(Q.d1, a), sw3_dot(Q.d2, a), sw3_dot(Q.d3, a)};
+}
+static inline sw3 sw_frame_apply_t(swFrame Q, sw3 a) {
+  return (sw3){Q.d1.x * a.x + Q.d2.x * a.y + Q.d3.x * a.z, Q.d1.y * a.x + Q.d2.y * a.y + Q.d3.y * a.z,
+               Q.d1.z * a.x + Q.d2.z * a.y + Q.d3.z * a.z};
+}
+/* slot i of a planar array (sinew.h, "Layout") with planes of S doubles */
+static inline sw3 sw3_load(const double *a, size_t S, int i) {
+  return (sw3){a[i], a[S + i], a[2 * S + i]};
+}
+static inline void sw3_store(double *a, size_t S, int i, sw3 v) {
+  a[i] = v.x; a[S + i] = v.y; a[2 * S + i] = v.z;
+}
+static inline swFrame sw_frame_load(const double *Q, size_t S, int i) {
+  return (swFrame){sw3_load(Q, S, i), sw3_load(Q + 3 * S, S, i), sw3_load(Q + 6 * S, S, i)};
+}
+static inline void sw_frame_store(double *Q, size_t S, int i, swFrame F) {
+  sw3_store(Q, S, i, F.d1); sw3_store(Q + 3 * S, S, i, F.d2); sw3_store(Q + 6 * S, S, i, F.d3);
+}
+
+/* The small-angle side of sw_frame_log on frames held as values: kappa D^ =
+ * log(Qb Qa^T) where sin^2 theta < 1e-2 and cos theta > 0, which `small`
+ * reports (1 or 0).  A loop over slots uses it and redoes the few slots
+ * where it is 0 with sw_frame_log (rod.c): a vector loop cannot branch per
+ * slot, and calling atan2 on every lane to keep a few would cost more than
+ * the rest of the loop's arithmetic.  Where it is 1 it gives the bits
+ * sw_frame_log gives.  (The tests are combined with & rather than &&, which
+ * would be a branch the vectorizer sees as control flow.) */
+typedef struct { sw3 phi; int small; } swSmallLog;
+static inline swSmallLog sw_frame_log_small(swFrame a, swFrame b) {
+  const double w0 = sw3_dot(b.d2, a.d3) - sw3_dot(b.d3, a.d2);
+  const double w1 = sw3_dot(b.d3, a.d1) - sw3_dot(b.d1, a.d3);
+  const double w2 = sw3_dot(b.d1, a.d2) - sw3_dot(b.d2, a.d1);
+  const double tr = sw3_dot(b.d1, a.d1) + sw3_dot(b.d2, a.d2) + sw3_dot(b.d3, a.d3);
+  const double t = 0.25 * (w0 * w0 + w1 * w1 + w2 * w2), c = 0.5 * (tr - 1.0);
+  const double f = 0.5 * (1.0 + t * (1.0 / 6 + t * (3.0 / 40 + t * (5.0 / 112 + t * (35.0 / 1152 +
+                   t * (63.0 / 2816 + t * (231.0 / 13312 + t * (143.0 / 10240))))))));
+  return (swSmallLog){{f * w0, f * w1, f * w2}, (t < 1e-2) & (c > 0.0)};
+}
+
+static inline sw3 sw_rodrigues_column(sw3 c, sw3 phi, double a, double b) {
+  const sw3 pc = sw3_cross(phi, c), ppc = sw3_cross(phi, pc);
+  return (sw3){c.x - a * pc.x + b * ppc.x, c.y - a * pc.y + b * ppc.y, c.z - a * pc.z + b * ppc.z};
+}
+
+/* The small-angle side of sw_rotate_frame on a frame held as a value:
+ * exp(-[phi]x) Q, exact where |phi|^2 < 1e-2 (sw_frame_small_turn); the
+ * caller redoes the others with sw_rotate_frame (integrate.c). */
+static inline int sw_frame_small_turn(sw3 phi) { return sw3_dot(phi, phi) < 1e-2; }
+static inline swFrame sw_frame_rotate_small(swFrame Q, sw3 phi) {
+  const swRodrigues r = sw_rodrigues_series(sw3_dot(phi, phi));
+  const double a = r.a, b = r.b;
+  /* each column c of Q: c - a phi x c + b phi x (phi x c) */
+  const sw3 cx = sw_rodrigues_column((sw3){Q.d1.x, Q.d2.x, Q.d3.x}, phi, a, b);
+  const sw3 cy = sw_rodrigues_column((sw3){Q.d1.y, Q.d2.y, Q.d3.y}, phi, a, b);
+  const sw3 cz = sw_rodrigues_column((sw3){Q.d1.z, Q.d2.z, Q.d3.z}, phi, a, b);
+  return (swFrame){{cx.x, cy.x, cz.x}, {cx.y, cy.y, cz.y}, {cx.z, cy.z, cz.z}};
 }
 
 #endif
