@@ -51,6 +51,9 @@ static void usage(FILE *out) {
           "  -o FILE      output file (the simulator, or the C file with --emit-c)\n"
           "  --emit-c     write C instead of compiling it\n"
           "  --check      report diagnostics and write nothing\n"
+          "  --portable   build a simulator for any x86-64 machine (-O2, the baseline\n"
+          "               instruction set, libsinewrt-portable.a); without it the\n"
+          "               simulator is built at -O3 for this machine's CPU\n"
           "  -Werror      treat warnings as errors\n"
           "  --eval-height  check, then print each terrain's height and gradient at\n"
           "               the points \"x y\" (m) read from stdin: \"k x y h dh/dx dh/dy\"\n"
@@ -106,7 +109,11 @@ static int split_flags(char *s, char **argv, int max) {
   return n;
 }
 
-static int run_cc(const char *csrc, const char *out) {
+/* Builds the simulator: for this machine's CPU (-O3 -march=native, with the
+ * runtime library `make` built the same way), or, with `portable`, for any
+ * x86-64 machine (-O2, the compiler's baseline instruction set, and
+ * libsinewrt-portable.a).  docs/benchmarks.md has what each costs. */
+static int run_cc(const char *csrc, const char *out, int portable) {
   char inc[PATH_MAX], lib[PATH_MAX];
   if (!find_runtime(inc, lib, sizeof inc)) {
     fprintf(stderr, "%s: cannot find the runtime (sinew.h and libsinewrt.a) next to this "
@@ -117,7 +124,12 @@ static int run_cc(const char *csrc, const char *out) {
   if (!cc || !*cc) cc = "cc";
   char incflag[PATH_MAX + 4], libpath[PATH_MAX + 32];
   snprintf(incflag, sizeof incflag, "-I%s", inc);
-  snprintf(libpath, sizeof libpath, "%s/libsinewrt.a", lib);
+  snprintf(libpath, sizeof libpath, "%s/%s", lib, portable ? "libsinewrt-portable.a" : "libsinewrt.a");
+  if (!exists(libpath)) {
+    fprintf(stderr, "%s: cannot find the runtime library '%s'%s\n", progname, libpath,
+            portable ? " (built by `make` beside libsinewrt.a)" : "");
+    return 4;
+  }
   char cflags[1024], libs[1024];
   snprintf(cflags, sizeof cflags, "%s", SW_RT_CFLAGS);
   snprintf(libs, sizeof libs, "%s", SW_RT_LIBS);
@@ -125,7 +137,12 @@ static int run_cc(const char *csrc, const char *out) {
   int n = 0;
   argv[n++] = (char *)cc;
   argv[n++] = "-std=c11";
-  argv[n++] = "-O2";
+  if (portable) {
+    argv[n++] = "-O2";
+  } else {
+    argv[n++] = "-O3";
+    argv[n++] = "-march=native";
+  }
   argv[n++] = "-fno-math-errno";
   argv[n++] = incflag;
   n += split_flags(cflags, argv + n, 32);
@@ -174,7 +191,7 @@ static void print_heights(const swScene *sc) {
 
 int main(int argc, char **argv) {
   const char *model = NULL, *out = NULL;
-  int emit_c = 0, check = 0, werror = 0, eval_height = 0;
+  int emit_c = 0, check = 0, werror = 0, eval_height = 0, portable = 0;
   for (int i = 1; i < argc; i++) {
     const char *a = argv[i];
     if (!strcmp(a, "-o")) {
@@ -185,6 +202,7 @@ int main(int argc, char **argv) {
       out = argv[i];
     } else if (!strcmp(a, "--emit-c")) emit_c = 1;
     else if (!strcmp(a, "--check")) check = 1;
+    else if (!strcmp(a, "--portable")) portable = 1;
     else if (!strcmp(a, "--eval-height")) check = eval_height = 1;
     else if (!strcmp(a, "-Werror")) werror = 1;
     else if (!strcmp(a, "--help") || !strcmp(a, "-h")) {
@@ -195,8 +213,8 @@ int main(int argc, char **argv) {
       return 0;
     } else if (a[0] == '-' && a[1]) {
       static const char *const opts[] = {"-o", "--emit-c", "--check", "-Werror", "--help",
-                                         "--version", "--eval-height"};
-      const char *near = diag_suggest(a, opts, 7);
+                                         "--version", "--eval-height", "--portable"};
+      const char *near = diag_suggest(a, opts, 8);
       fprintf(stderr, "%s: unknown option '%s'%s%s%s\n", progname, a, near ? "; did you mean '" : "",
               near ? near : "", near ? "'?" : "");
       return 2;
@@ -273,7 +291,7 @@ int main(int argc, char **argv) {
     if (fclose(f) != 0 || bad) {
       fprintf(stderr, "%s: cannot write '%s'\n", progname, cpath);
       rc = 4;
-    } else if (!emit_c) rc = run_cc(cpath, out);
+    } else if (!emit_c) rc = run_cc(cpath, out, portable);
     if (!emit_c) unlink(cpath);
   }
 done:

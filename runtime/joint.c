@@ -149,7 +149,7 @@ void sw_joint_setup(swModel *m) {
     }
 
     /* rest geometry */
-    double Qa0[9], Qb0[9];
+    double Qa0[9], Qb0[9] = {0}; /* Qb0 is read only when not anchored */
     sw_getQ(m, m->Q0, ea, Qa0);
     if (!anchored) sw_getQ(m, m->Q0, eb, Qb0);
     double *rest = m->joint_rest_rot + 9 * j;

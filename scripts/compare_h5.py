@@ -1,12 +1,15 @@
 #!/usr/bin/python3
-"""compare_h5.py A.h5 B.h5 — how two sinew outputs of the same scene differ.
+"""compare_h5.py A.h5 B.h5 [--except PREFIX]... — how two sinew outputs of the
+same scene differ.
 
 Compares every dataset the two files share (attributes that record the run,
 such as wall time, are left out): prints one line per file pair, "bitwise" when
 every dataset is byte-for-byte equal, else the largest absolute difference and
 the largest difference relative to the dataset's largest magnitude, with the
 dataset where it occurs.  Exit status 0 if bitwise equal, 1 if not, 2 if the
-files do not hold the same datasets.  Used by bench/compare_outputs.sh to say
+files do not hold the same datasets.  --except leaves out the datasets whose
+path starts with PREFIX (say, diagnostics/energy, whose work sum depends on
+the vector width).  Used by bench/compare_outputs.sh to say
 how a change of the runtime moves results (docs/benchmarks.md)."""
 import sys
 import h5py
@@ -20,8 +23,16 @@ def datasets(f):
 
 
 def main():
-    a, b = h5py.File(sys.argv[1], "r"), h5py.File(sys.argv[2], "r")
-    da, db = datasets(a), datasets(b)
+    args, skip = [], []
+    it = iter(sys.argv[1:])
+    for x in it:
+        if x == "--except":
+            skip.append(next(it))
+        else:
+            args.append(x)
+    a, b = h5py.File(args[0], "r"), h5py.File(args[1], "r")
+    keep = lambda d: {k: v for k, v in d.items() if not any(k.startswith(p) for p in skip)}
+    da, db = keep(datasets(a)), keep(datasets(b))
     if set(da) != set(db):
         print("different datasets:", sorted(set(da) ^ set(db)))
         return 2
