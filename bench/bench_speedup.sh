@@ -60,8 +60,7 @@ section=$(mktemp)
 awk -v f="$section" '
   /^## Speed-up on the elbow/ { skip = 1; while ((getline l < f) > 0) print l; print ""; next }
   skip && /^## / { skip = 0 }
-  !skip { print }
-  END { if (!done) {} }' "$out" > "$tmp/md"
+  !skip { print }' "$out" > "$tmp/md"
 grep -q '^## Speed-up on the elbow' "$out" || { echo; cat "$section"; } >> "$tmp/md"
 cp "$tmp/md" "$out"
 cat "$section"

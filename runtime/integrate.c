@@ -128,20 +128,21 @@ static double kick_slots(const swModel *m, swData *d, double h, int lo, int hi) 
        * dv/dt = a - c v exactly with a held (model.c), and book the work of
        * loads and dissipation together as the non-internal impulse times
        * the mean velocity */
+      const int ex = exact[i] != 0.0;
       const double vo = v[i];
       const double vd = vo * ndec[i] + F[i] * im[i] * nkick[i], vp = vo + h * F[i] * im[i];
-      const double vn = exact[i] != 0.0 ? vd : vp;
-      exact_work += exact[i] != 0.0 ? (mass[i] * (vn - vo) - h * (F[i] - ef[i])) * (vo + vn) : 0.0;
-      work += exact[i] != 0.0 ? 0.0 : ef[i] * (vo + vn);
+      const double vn = ex ? vd : vp;
+      exact_work += ex ? (mass[i] * (vn - vo) - h * (F[i] - ef[i])) * (vo + vn) : 0.0;
+      work += ex ? 0.0 : ef[i] * (vo + vn);
       v[i] = vn;
       /* elements: (J^/e) dw/dt = tau (Gazzola 2018, eq. 3.7b, the couples
        * of rod.c without the dilatation-rate term, which the drift
        * integrates) */
       const double wo = w[i];
       const double wd = wo * edec[i] + T[i] * iJ[i] * e[i] * ekick[i], wp = wo + h * T[i] * iJ[i] * e[i];
-      const double wn = exact[i] != 0.0 ? wd : wp;
-      exact_work += exact[i] != 0.0 ? (J[i] / e[i] * (wn - wo) - h * (T[i] - et[i])) * (wo + wn) : 0.0;
-      work += exact[i] != 0.0 ? 0.0 : et[i] * (wo + wn);
+      const double wn = ex ? wd : wp;
+      exact_work += ex ? (J[i] / e[i] * (wn - wo) - h * (T[i] - et[i])) * (wo + wn) : 0.0;
+      work += ex ? 0.0 : et[i] * (wo + wn);
       w[i] = wn;
     }
   }
