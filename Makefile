@@ -16,12 +16,13 @@ PKG_LIBS   = $(shell pkg-config --libs $(PKGS) 2>/dev/null)
 WARN     = -Wall -Wextra -Wshadow -Wstrict-prototypes -Wmissing-prototypes
 STD      = -std=c11 -D_DEFAULT_SOURCE
 # The runtime is built for the CPU of the machine `make` runs on, like the
-# simulators sinewc builds (docs/benchmarks.md); -fopenmp-simd honours the
-# kernels' `#pragma omp simd` without linking an OpenMP runtime.
-OPT      = -O3 -march=native -fno-math-errno -fopenmp-simd -g
-PORTABLE = -O2 -fno-math-errno -ftree-vectorize -fopenmp-simd -g
+# simulators sinewc builds (docs/benchmarks.md); -fopenmp: the kernels'
+# `#pragma omp simd` loops and the threads of a step (libgomp, which comes
+# with GCC).
+OPT      = -O3 -march=native -fno-math-errno -fopenmp -g
+PORTABLE = -O2 -fno-math-errno -ftree-vectorize -fopenmp -g
 CFLAGS  ?= $(OPT)
-SAN      = -O1 -g -fopenmp-simd -fno-omit-frame-pointer -fsanitize=address,undefined -fno-sanitize-recover=all
+SAN      = -O1 -g -fopenmp -fno-omit-frame-pointer -fsanitize=address,undefined -fno-sanitize-recover=all
 ALL_CFLAGS = $(STD) $(WARN) $(CFLAGS) -Iruntime $(PKG_CFLAGS)
 SAN_CFLAGS = $(STD) $(WARN) $(SAN) -Iruntime $(PKG_CFLAGS)
 LIBS     = $(PKG_LIBS) -lm
@@ -133,11 +134,17 @@ build/bench/bench_rigid: bench/bench_rigid.c bench/bench_util.h build/libsinewrt
 BENCH_CONTACT = build/bench/bench_contact
 build/bench/bench_contact: bench/bench_contact.c bench/bench_util.h build/libsinewrt.a | build/bench
 	$(CC) $(ALL_CFLAGS) $< -o $@ build/libsinewrt.a $(LIBS)
+# bench_scaling (10^2 to 10^6 elements, one rod or many, 1 and 2 threads,
+# memory per element) replaces or appends its own section.
+BENCH_SCALING = build/bench/bench_scaling
+build/bench/bench_scaling: bench/bench_scaling.c bench/bench_util.h build/libsinewrt.a | build/bench
+	$(CC) $(ALL_CFLAGS) $< -o $@ build/libsinewrt.a $(LIBS)
 bench: deps
-	@$(MAKE) --no-print-directory $(BENCH_BIN) $(BENCH_RIGID) $(BENCH_CONTACT) bin/sinewc
+	@$(MAKE) --no-print-directory $(BENCH_BIN) $(BENCH_RIGID) $(BENCH_CONTACT) $(BENCH_SCALING) bin/sinewc
 	@./$(BENCH_BIN) docs/benchmarks.md
 	@./$(BENCH_RIGID) docs/benchmarks.md
 	@./$(BENCH_CONTACT) docs/benchmarks.md
+	@./$(BENCH_SCALING) docs/benchmarks.md   # ~2 min
 	@sh bench/bench_speedup.sh      # the elbow, before issue 10 and now, side by side (~2 min)
 	@sh bench/bench_elbow.sh        # the elbow at 50 ns and at the stable dt (~20 min)
 	@sh bench/bench_snake.sh        # the snake scenes in full (~3 min)

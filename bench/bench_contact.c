@@ -180,49 +180,16 @@ static void write_section(FILE *f, const Scene *sc) {
              "column). tests/runtime/test_contact.c checks that both find the same forces.\n");
 }
 
-/* Replaces the section in the file at path (from its heading to the next
- * "## " heading or the end), or appends it. */
+/* Replaces the section in the report at path, or appends it. */
 static void write_report(const char *path, const Scene *sc) {
-  char *old = NULL;
-  size_t len = 0, tail = 0;
-  FILE *f = fopen(path, "r");
-  if (f) {
-    fseek(f, 0, SEEK_END);
-    long size = ftell(f);
-    fseek(f, 0, SEEK_SET);
-    old = calloc((size_t)(size > 0 ? size : 0) + 1, 1);
-    if (!old) die("out of memory", NULL);
-    len = fread(old, 1, (size_t)(size > 0 ? size : 0), f);
-    old[len] = 0;
-    fclose(f);
-  }
-  size_t head = len;
-  if (old) {
-    char key[64];
-    snprintf(key, sizeof key, "\n%s", SECTION);
-    char *at = strstr(old, key);
-    if (at) {
-      head = (size_t)(at - old) + 1;
-      char *next = strstr(at + 1, "\n## ");
-      tail = next ? (size_t)(next - old) + 1 : len;
-    } else {
-      tail = len;
-    }
-    while (head > 0 && old[head - 1] == '\n') head--;
-  }
-  f = fopen(path, "w");
-  if (!f) die("cannot write the report", path);
-  if (head) {
-    fwrite(old, 1, head, f);
-    fputs("\n\n", f);
-  }
+  char *text = NULL;
+  size_t size = 0;
+  FILE *f = open_memstream(&text, &size);
+  if (!f) die("out of memory", NULL);
   write_section(f, sc);
-  if (old && tail < len) {
-    fputs("\n", f);
-    fwrite(old + tail, 1, len - tail, f);
-  }
-  if (fclose(f) != 0) die("cannot write the report", path);
-  free(old);
+  fclose(f);
+  if (bench_replace_section(path, SECTION, text) != 0) die("cannot write the report", path);
+  free(text);
   fprintf(stderr, "bench_contact: wrote %s\n", path);
 }
 

@@ -23,19 +23,20 @@ trap 'rm -rf "$tmp"' EXIT
 "$dir/bin/sinewc" examples/elbow_flexion.sinew -o "$tmp/old"
 bin/sinewc examples/elbow_flexion.sinew -o "$tmp/new"
 bin/sinewc --portable examples/elbow_flexion.sinew -o "$tmp/portable"
-wall() { # seconds of wall time of one run
+wall() { # seconds of wall time of one run: wall SIMULATOR [THREADS]
   s=$(date +%s.%N)
-  "$1" --quiet --dt "$DT" --duration "$SIMT" --every "$SIMT" --out "$tmp/o.h5" >/dev/null
+  "$1" --quiet --threads "${2:-1}" --dt "$DT" --duration "$SIMT" --every "$SIMT" --out "$tmp/o.h5" >/dev/null
   e=$(date +%s.%N)
   echo "$s $e" | awk '{ printf "%.6f\n", $2 - $1 }'
 }
 i=0
 while [ $i -lt "$RUNS" ]; do
   for v in old new portable; do wall "$tmp/$v" >> "$tmp/$v.t"; done
+  wall "$tmp/new" 2 >> "$tmp/new2.t"
   i=$((i + 1))
 done
 med() { sort -g "$1" | awk '{ a[NR] = $1 } END { print (NR % 2) ? a[(NR + 1) / 2] : (a[NR / 2] + a[NR / 2 + 1]) / 2 }'; }
-mo=$(med "$tmp/old.t"); mn=$(med "$tmp/new.t"); mp=$(med "$tmp/portable.t")
+mo=$(med "$tmp/old.t"); mn=$(med "$tmp/new.t"); mp=$(med "$tmp/portable.t"); m2=$(med "$tmp/new2.t")
 section=$(mktemp)
 {
   echo "## Speed-up on the elbow (issue 10)"
@@ -51,9 +52,10 @@ section=$(mktemp)
   echo
   echo "| build | wall s per simulated s (median) | x before |"
   echo "|---|--:|--:|"
-  awk -v o="$mo" -v n="$mn" -v p="$mp" -v t="$SIMT" 'BEGIN {
+  awk -v o="$mo" -v n="$mn" -v p="$mp" -v n2="$m2" -v t="$SIMT" 'BEGIN {
     printf "| before issue 10 | %.1f | 1.00 |\n", o / t
     printf "| this tree, native | %.1f | %.2f |\n", n / t, o / n
+    printf "| this tree, native, --threads 2 | %.1f | %.2f |\n", n2 / t, o / n2
     printf "| this tree, --portable | %.1f | %.2f |\n", p / t, o / p }'
 } > "$section"
 # replace the section if it is there, else append it

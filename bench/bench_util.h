@@ -1,8 +1,10 @@
-/* bench_util.h — the clock and the median shared by the benchmarks
- * (bench_rigid.c, bench_contact.c); each includes it once. */
+/* bench_util.h — the clock, the median and the report splicing shared by the
+ * benchmarks (bench_rigid.c, bench_contact.c, bench_scaling.c). */
 #ifndef SW_BENCH_UTIL_H
 #define SW_BENCH_UTIL_H
+#include <stdio.h>
 #include <stdlib.h>
+#include <string.h>
 #include <time.h>
 
 static inline double wall_seconds(void) {
@@ -20,5 +22,51 @@ static inline int cmp_double(const void *a, const void *b) {
 static inline double median(double *v, int n) {
   qsort(v, (size_t)n, sizeof *v, cmp_double);
   return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
+
+/* Replaces the section of the Markdown file at path that starts with the
+ * line `heading` (up to the next "## " heading, or the end) by `text`, or
+ * appends it; so running a benchmark twice leaves one section.  0 on
+ * success, -1 when the file cannot be written. */
+static inline int bench_replace_section(const char *path, const char *heading, const char *text) {
+  char *old = NULL;
+  size_t len = 0, head = 0, tail = 0;
+  FILE *f = fopen(path, "r");
+  if (f) {
+    fseek(f, 0, SEEK_END);
+    long size = ftell(f);
+    fseek(f, 0, SEEK_SET);
+    old = calloc((size_t)(size > 0 ? size : 0) + 1, 1);
+    if (!old) {
+      fclose(f);
+      return -1;
+    }
+    len = fread(old, 1, (size_t)(size > 0 ? size : 0), f);
+    old[len] = 0;
+    fclose(f);
+    char key[128];
+    snprintf(key, sizeof key, "\n%s", heading);
+    char *at = strstr(old, key);
+    head = at ? (size_t)(at - old) + 1 : len;
+    char *next = at ? strstr(at + 1, "\n## ") : NULL;
+    tail = next ? (size_t)(next - old) + 1 : len;
+    while (head > 0 && old[head - 1] == '\n') head--;
+  }
+  f = fopen(path, "w");
+  if (!f) {
+    free(old);
+    return -1;
+  }
+  if (head) {
+    fwrite(old, 1, head, f);
+    fputs("\n\n", f);
+  }
+  fputs(text, f);
+  if (old && tail < len) {
+    fputs("\n", f);
+    fwrite(old + tail, 1, len - tail, f);
+  }
+  free(old);
+  return fclose(f) == 0 ? 0 : -1;
 }
 #endif

@@ -144,6 +144,7 @@ static int run_cc(const char *csrc, const char *out, int portable) {
     argv[n++] = "-march=native";
   }
   argv[n++] = "-fno-math-errno";
+  argv[n++] = "-fopenmp"; /* the runtime's threads (libgomp) */
   argv[n++] = incflag;
   n += split_flags(cflags, argv + n, 32);
   argv[n++] = "-x";

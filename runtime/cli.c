@@ -17,11 +17,14 @@
  * estimate is conservative and the user may know better.  --info prints the
  * compiled scene and stops; otherwise the run writes HDF5 through output.c,
  * closes the file with a status that says how the run ended, prints a one-line
- * summary and returns sw_run()'s code as the exit code.  The runtime is
- * single-threaded: --threads is accepted and checked so that scripts written
- * for a threaded build keep working, and a request for more than one thread is
- * noted once. */
+ * summary and returns sw_run()'s code as the exit code.  --threads N runs each
+ * step on N OpenMP threads ("auto": one per processor this process may use);
+ * the default is 1, because most simulators run beside others (a sweep, an
+ * optimiser, the test suite), where one process per core beats threads that
+ * meet at a barrier several times a step, and because the results are the
+ * same bits for any N, so asking for more is only ever a question of speed. */
 #include <ctype.h>
+#include <omp.h>
 #include <errno.h>
 #include <limits.h>
 #include <math.h>
@@ -53,7 +56,7 @@ static const swOption options[] = {
   {OPT_DT, "--dt", "DT", "time step"},
   {OPT_EVERY, "--every", "T", "simulated time between frames, 0 = every step"},
   {OPT_SET, "--set", "NAME=VALUE", "override a param, VALUE with its unit (repeatable)"},
-  {OPT_THREADS, "--threads", "N", "threads to use"},
+  {OPT_THREADS, "--threads", "N", "threads of each step, or 'auto': one per processor"},
   {OPT_QUIET, "--quiet", NULL, "no progress line, notes or summary"},
   {OPT_INFO, "--info", NULL, "print the compiled scene and exit"},
   {OPT_HELP, "--help", NULL, "print this help and exit"},
@@ -71,6 +74,7 @@ typedef struct {
   double duration, every, dt;
   int dt_given;              /* --dt was given                              */
   long threads;
+  int threads_set;           /* given on the command line */
   int quiet, info, help;
   double *P;                 /* (nparam) param values, SI                   */
   char *overridden;          /* (nparam) set by --set                       */
@@ -193,12 +197,20 @@ static int read_time(const swCli *c, const char *opt, const char *value, int pos
   return SW_OK;
 }
 
+#define MAX_THREADS 256
+
 static int read_threads(swCli *c, const char *value) {
+  if (!strcmp(value, "auto")) {
+    c->threads = omp_get_num_procs();
+    return SW_OK;
+  }
   char *end;
   errno = 0;
   long n = strtol(value, &end, 10);
-  if (!isdigit((unsigned char)value[0]) || *end || errno || n < 1 || n > INT_MAX)
-    return complain(c, "--threads: expected a positive integer, got '%s'", value);
+  if (!isdigit((unsigned char)value[0]) || *end || errno || n < 1)
+    return complain(c, "--threads: expected a positive integer or 'auto', got '%s'", value);
+  if (n > MAX_THREADS)
+    return complain(c, "--threads: at most %d, got '%s'", MAX_THREADS, value);
   c->threads = n;
   return SW_OK;
 }
@@ -311,7 +323,7 @@ static int parse_args(swCli *c, int argc, char **argv) {
       break;
     case OPT_EVERY: rc = read_time(c, opt->name, value, 0, &c->every); break;
     case OPT_SET: rc = read_set(c, value); break;
-    case OPT_THREADS: rc = read_threads(c, value); break;
+    case OPT_THREADS: rc = read_threads(c, value); c->threads_set = 1; break;
     case OPT_QUIET: c->quiet = 1; break;
     case OPT_INFO: c->info = 1; break;
     case OPT_HELP: c->help = 1; break;
@@ -342,7 +354,7 @@ static void print_help(const swCli *c, const char *default_out) {
       break;
     case OPT_EVERY: def = p->every > 0 ? format_time(buf, sizeof buf, p->every) : "every step";
       break;
-    case OPT_THREADS: def = "1; this runtime is single-threaded"; break;
+    case OPT_THREADS: def = "1; the results are the same for any N"; break;
     default: break;
     }
     printf("  %-18s %s", head, o->help);
@@ -661,8 +673,9 @@ static void print_info(const swCli *c, const swModel *m, double stable, const ch
   double mb = model_bytes(m), db = data_bytes(m);
   printf("memory: about %s (model %s, state %s)\n", format_bytes(a, sizeof a, mb + db),
          format_bytes(b, sizeof b, mb), format_bytes(e, sizeof e, db));
-  printf("threads: 1 (the runtime is single-threaded%s)\n",
-         c->threads > 1 ? "; --threads is ignored" : "");
+  printf("threads: %ld (%s; %d processor%s available; results do not depend on it)\n",
+         c->threads, c->threads_set ? "--threads" : "default", omp_get_num_procs(),
+         omp_get_num_procs() == 1 ? "" : "s");
   if (p->nparam) {
     printf("params:\n");
     for (int i = 0; i < p->nparam; i++) {
@@ -683,6 +696,7 @@ static int run(const swCli *c, const swModel *m, const char *out) {
   const swProgram *p = c->p;
   char err[512] = "";
   swData *d = sw_data_new(m);
+  if (d) sw_set_threads(d, (int)c->threads);
   char *params = params_string(c);
   if (!d || !params) {
     complain(c, "out of memory");
@@ -780,9 +794,10 @@ int sw_main(const swProgram *p, int argc, char **argv) {
   if (rc == SW_OK && c.help) {
     print_help(&c, p->out && p->out[0] ? p->out : default_out);
   } else if (rc == SW_OK) {
-    if (c.threads > 1 && !c.quiet && !c.info) {
-      fprintf(stderr, "%s: note: this runtime is single-threaded; running on 1 thread, not %ld\n",
-              c.prog, c.threads);
+    if (c.threads > omp_get_num_procs() && !c.quiet && !c.info) {
+      fprintf(stderr, "%s: note: %ld threads on %d processors: threads that wait for a "
+              "processor slow every step down; --threads auto uses %d\n", c.prog, c.threads,
+              omp_get_num_procs(), omp_get_num_procs());
       fflush(stderr);
     }
     double stable = 0;

@@ -28,6 +28,7 @@
  * kick ends with rigid.c's, which moves them as rigid bodies.
  */
 #include <math.h>
+#include <sched.h>
 #include <string.h>
 #include "sinew.h"
 #include "vec.h"
@@ -40,11 +41,17 @@
  * advance once a step, before its first kick (sw_muscle_advance). */
 static void compute_loads(const swModel *m, swData *d) {
   sw_internal_loads(m, d);
-  if (m->nbc) sw_bc_loads(m, d);
+  if (m->nbc) {
+    if (sw_team_leader()) sw_bc_loads(m, d);
+    sw_team_barrier(d);
+  }
   sw_external_loads(m, d);
   if (m->njoint) sw_joint_loads(m, d);
   if (m->nmuscle) sw_muscle_loads(m, d);
-  if (sw_has_env(m)) sw_env_loads(m, d); /* last: the ground balances the rest */
+  if (sw_has_env(m)) { /* last: the ground balances the rest */
+    if (sw_team_leader()) sw_env_loads(m, d);
+    sw_team_barrier(d);
+  }
 }
 
 /* Nodes move with their velocities: x += h v over slots [lo, hi). */
@@ -160,13 +167,20 @@ static double kick_slots(const swModel *m, swData *d, double h, int lo, int hi) 
  * (J^ w / e) de/dt / e of the rotational balance is integrated: keeping it
  * as an explicit couple in the kick would cap both schemes at first order. */
 static void drift(const swModel *m, swData *d, double h) {
-  drift_nodes(m, d, h, 0, m->nslot_elastic);
-  if (m->integrator == SW_PEFRL) /* one loop per scheme: Simpson's rule or not */
-    drift_frames(m, d, h, 0, m->nslot_elastic, 1);
-  else
-    drift_frames(m, d, h, 0, m->nslot_elastic, 0);
-  if (m->nrigid) sw_rigid_drift(m, d, h);
-  d->time += h;
+  const int n = m->nslot_elastic;
+  SW_FOR_CHUNKS(m, c, n) drift_nodes(m, d, h, sw_chunk_lo(m, c), sw_chunk_hi(m, c, n));
+  sw_team_barrier(d); /* a frame reads the node after its element's */
+  if (m->integrator == SW_PEFRL) { /* one loop per scheme: Simpson's rule or not */
+    SW_FOR_CHUNKS(m, c, n) drift_frames(m, d, h, sw_chunk_lo(m, c), sw_chunk_hi(m, c, n), 1);
+  } else {
+    SW_FOR_CHUNKS(m, c, n) drift_frames(m, d, h, sw_chunk_lo(m, c), sw_chunk_hi(m, c, n), 0);
+  }
+  sw_team_barrier(d); /* the last elastic slot read the first rigid node */
+  if (sw_team_leader()) {
+    if (m->nrigid) sw_rigid_drift(m, d, h);
+    d->time += h;
+  }
+  sw_team_barrier(d);
 }
 
 /* Velocities change under the loads of the current configuration.  `span`
@@ -175,14 +189,20 @@ static void drift(const swModel *m, swData *d, double h) {
  * a prescribed end moves by the midpoint rule's integral of its profile
  * (position Verlet's v_{n+1} is the velocity at t_{n+1} = t_kick + h/2). */
 static void kick(const swModel *m, swData *d, double h, double span) {
+  const int n = m->nslot_elastic;
   compute_loads(m, d);
-  d->work += kick_slots(m, d, h, 0, m->nslot_elastic);
-  if (m->nrigid) sw_rigid_kick(m, d, h);
-  if (m->nbc) sw_bc_kick(m, d, h, d->time + 0.5 * span);
+  SW_FOR_CHUNKS(m, c, n) d->chunk_sum[c] = kick_slots(m, d, h, sw_chunk_lo(m, c), sw_chunk_hi(m, c, n));
+  sw_team_barrier(d);
+  if (sw_team_leader()) {
+    for (int c = 0; c < sw_nchunk(m, n); c++) d->work += d->chunk_sum[c]; /* in chunk order */
+    if (m->nrigid) sw_rigid_kick(m, d, h);
+    if (m->nbc) sw_bc_kick(m, d, h, d->time + 0.5 * span);
+  }
+  sw_team_barrier(d);
 }
 
 /* Exact decay of the analytically damped rods over half a step (PEFRL). */
-static void analytic_decay(const swModel *m, swData *d) {
+static void analytic_decay_serial(const swModel *m, swData *d) {
   double lost = 0;
   for (int r = 0; r < m->nrod; r++) {
     if (m->rod_damping[r] != SW_DAMP_ANALYTIC || sw_rod_is_rigid(m, r)) continue;
@@ -203,6 +223,11 @@ static void analytic_decay(const swModel *m, swData *d) {
       }
   }
   d->work -= lost;
+}
+
+static void analytic_decay(const swModel *m, swData *d) {
+  if (sw_team_leader()) analytic_decay_serial(m, d);
+  sw_team_barrier(d);
 }
 
 /* PEFRL coefficients, Omelyan et al. 2002, eq. 20. */
@@ -232,37 +257,96 @@ static void pefrl_step(const swModel *m, swData *d) {
   if (m->has_damping) analytic_decay(m, d);
 }
 
+/* The end of a step: its count and time (at the whole step, or, between
+ * fused Verlet steps, half a step on; recomputed from the count, so no
+ * round-off accumulates in t), on the leader; and when the check is `due`
+ * (every 8 steps), the stability check: each thread counts the suspect slots
+ * of its chunks, and the full check, which names the rod, runs only when one
+ * is found (or for rigid bodies, which it alone covers).  SW_EUNSTABLE goes
+ * into *rc, which every thread reads after the barrier, so the whole team
+ * leaves the loop together.  Then, if `more` steps follow, the muscles'
+ * activations for the next one. */
+static void end_step(const swModel *m, swData *d, int whole, int due, int more, int *rc) {
+  const int n = m->nslot_elastic;
+  if (due) {
+    SW_FOR_CHUNKS(m, c, n) d->chunk_sum[c] = sw_check_slots(m, d, sw_chunk_lo(m, c), sw_chunk_hi(m, c, n));
+    sw_team_barrier(d);
+  }
+  if (sw_team_leader()) {
+    d->step++;
+    d->time = ((double)d->step + (whole ? 0.0 : 0.5)) * m->dt;
+    double suspect = m->nrigid;
+    if (due)
+      for (int c = 0; c < sw_nchunk(m, n); c++) suspect += d->chunk_sum[c];
+    if (due && suspect > 0 && sw_check_finite(m, d) != SW_OK) *rc = SW_EUNSTABLE;
+    if (more && *rc == SW_OK && m->nmuscle)
+      sw_muscle_advance(m, d, (double)d->step * m->dt, m->dt);
+  }
+  sw_team_barrier(d);
+}
+
 /* k steps.  Position Verlet is drift h/2, kick h, drift h/2 (with analytic
  * damping inside the kick); the last half drift of a step and the first of the next are
  * fused into one drift h, which is the same flow (the director rotation and
  * the angular-momentum rescaling of two half drifts compose to that of one
  * drift to the scheme's order), so k steps cost k kicks and k + 1 drifts.
  * Between fused steps the state sits at the half step, t = (step + 1/2) h;
- * it is at a whole step when sw_steps returns. */
-int sw_steps(const swModel *m, swData *d, long k) {
+ * it is at a whole step when sw_steps returns.  Run by every thread of the
+ * team (or by the caller alone); *rc is shared. */
+static void steps(const swModel *m, swData *d, long k, int *rc) {
   const double h = m->dt;
-  if (k <= 0) return SW_OK;
+  const long step0 = d->step; /* read by all before the leader moves it */
+  if (m->nmuscle) { /* activations of the first step (end_step does the rest) */
+    if (sw_team_leader()) sw_muscle_advance(m, d, (double)step0 * h, h);
+    sw_team_barrier(d);
+  }
   if (m->integrator == SW_PEFRL) {
-    for (long i = 0; i < k; i++) {
-      if (m->nmuscle) sw_muscle_advance(m, d, (double)d->step * h, h);
+    for (long i = 0; i < k && *rc == SW_OK; i++) {
       pefrl_step(m, d);
-      d->step++;
-      d->time = (double)d->step * h; /* no accumulated round-off in t */
-      if (check_due(d->step) && sw_check_finite(m, d) != SW_OK) return SW_EUNSTABLE;
+      end_step(m, d, 1, check_due(step0 + i + 1), i < k - 1, rc);
     }
-    return SW_OK;
+    return;
   }
   drift(m, d, 0.5 * h);
-  for (long i = 0; i < k; i++) {
-    if (m->nmuscle) sw_muscle_advance(m, d, (double)d->step * h, h);
+  for (long i = 0; i < k && *rc == SW_OK; i++) {
     kick(m, d, h, h);
-    d->step++;
     const int last = i == k - 1;
     drift(m, d, last ? 0.5 * h : h);
-    d->time = ((double)d->step + (last ? 0.0 : 0.5)) * h;
-    if (check_due(d->step) && sw_check_finite(m, d) != SW_OK) return SW_EUNSTABLE;
+    end_step(m, d, last, check_due(step0 + i + 1), !last, rc);
   }
-  return SW_OK;
+}
+
+int sw_steps(const swModel *m, swData *d, long k) {
+  if (k <= 0) return SW_OK;
+  int rc = SW_OK;
+#pragma omp parallel num_threads(d->threads) if (d->threads > 1)
+  steps(m, d, k, &rc);
+  return rc;
 }
 
 int sw_step(const swModel *m, swData *d) { return sw_steps(m, d, 1); }
+
+/* A spin-wait hint to the processor (x86 PAUSE; nothing elsewhere). */
+static inline void sw_cpu_relax(void) {
+#if defined(__x86_64__) || defined(__i386__)
+  __builtin_ia32_pause();
+#endif
+}
+
+void sw_team_wait(swTeam *t, int size) {
+  const int g = atomic_load_explicit(&t->generation, memory_order_acquire);
+  if (atomic_fetch_add_explicit(&t->count, 1, memory_order_acq_rel) == size - 1) {
+    atomic_store_explicit(&t->count, 0, memory_order_relaxed);
+    atomic_store_explicit(&t->generation, g + 1, memory_order_release);
+    return;
+  }
+  for (long spins = 0; atomic_load_explicit(&t->generation, memory_order_acquire) == g; spins++) {
+    if (spins < 256) sw_cpu_relax();
+    else sched_yield();
+  }
+}
+
+int sw_set_threads(swData *d, int n) {
+  d->threads = n < 1 ? 1 : n;
+  return d->threads;
+}

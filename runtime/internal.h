@@ -2,12 +2,68 @@
  * public interface (generated code never sees them). */
 #ifndef SW_INTERNAL_H
 #define SW_INTERNAL_H
+#include <omp.h>
+#include <stdatomic.h>
 #include "sinew.h"
 
 /* Shared helpers (model.c): grow an array to hold n+1 items (0: out of
  * memory); write a message into err and return 0. */
 int sw_grow(void **p, int *cap, int n, size_t item);
 int sw_fail(char *err, size_t errlen, const char *fmt, ...) __attribute__((format(printf, 3, 4)));
+/* Threads (integrate.c).  A step on more than one thread runs inside one
+ * OpenMP parallel region that sw_steps opens, and every function of the step
+ * is entered by all threads of the team.  Loops over slots are cut into the
+ * model's chunks of m->chunk slots; SW_FOR_CHUNKS runs this thread's share of
+ * them (contiguous, by rank), and sw_team_barrier() is where a phase waits for
+ * the others.  Parts that are not split run on the leader (rank 0) and end in
+ * a barrier.  Outside a parallel region the team is the caller alone: all
+ * chunks are its share, the barrier costs one call, and no OpenMP construct
+ * runs, so a one-thread run pays nothing for the threads (the same code also
+ * serves the set-up and the diagnostics).  Chunks depend on the model only,
+ * and so does every partial sum: results are the same bits for any team. */
+/* The team's barrier (d->team): a counter and a generation, each on its own
+ * cache line.  The last thread to arrive resets the counter and opens the
+ * next generation; the others spin on the generation, with a pause, and
+ * after a while also yield the processor, so a team larger than the machine
+ * still makes progress.  It costs about a fifth of libgomp's barrier on this
+ * machine's two cores (docs/performance.md), which matters at a dozen
+ * barriers in a step of a few microseconds. */
+typedef struct {
+  _Alignas(64) atomic_int count;
+  _Alignas(64) atomic_int generation;
+} swTeam;
+void sw_team_wait(swTeam *t, int size); /* integrate.c */
+static inline int sw_team_size(void) { return omp_get_num_threads(); }
+static inline int sw_team_leader(void) { return omp_get_thread_num() == 0; }
+static inline void sw_team_barrier(swData *d) {
+  const int size = omp_get_num_threads();
+  if (size > 1) sw_team_wait((swTeam *)d->team, size);
+}
+/* First and end of this thread's share of n items. */
+static inline int sw_share_lo(int n) { return (int)((long)n * omp_get_thread_num() / omp_get_num_threads()); }
+static inline int sw_share_hi(int n) { return (int)((long)n * (omp_get_thread_num() + 1) / omp_get_num_threads()); }
+static inline int sw_nchunk(const swModel *m, int n) { return (n + m->chunk - 1) / m->chunk; }
+static inline int sw_chunk_lo(const swModel *m, int c) { return c * m->chunk; }
+static inline int sw_chunk_hi(const swModel *m, int c, int n) {
+  const int hi = (c + 1) * m->chunk;
+  return hi < n ? hi : n;
+}
+/* The slots this thread owns: its share of the chunks of the elastic slots,
+ * the last thread also the rigid slots and the padding.  Loads that land on
+ * scattered slots (joints, muscles) are added by the owner of each slot, so
+ * a slot's cache lines stay with one core and no slot has two writers. */
+static inline void sw_owned_slots(const swModel *m, int *lo, int *hi) {
+  const int n = m->nslot_elastic, nc = sw_nchunk(m, n);
+  const int c0 = sw_share_lo(nc), c1 = sw_share_hi(nc);
+  *lo = omp_get_thread_num() == 0 ? 0 : sw_chunk_lo(m, c0);
+  *hi = omp_get_thread_num() == omp_get_num_threads() - 1 ? m->stride : c1 > c0 ? sw_chunk_hi(m, c1 - 1, n) : *lo;
+}
+/* for (c in this thread's chunks of slots [0, n)) */
+#define SW_FOR_CHUNKS(m, c, n) \
+  for (int c##_all = sw_nchunk(m, n), c = sw_share_lo(c##_all), c##_end = sw_share_hi(c##_all); \
+       c < c##_end; c++)
+/* doubles per joint in d->joint_scratch (joint.c) */
+#define SW_JOINT_ROW 18
 /* The rod kernels over a range of elastic slots [lo, hi) (rod.c): the
  * element and Voronoi pass, then the gather of their neighbours' terms. */
 void sw_rod_pass(const swModel *m, swData *d, int lo, int hi);
@@ -18,6 +74,8 @@ double sw_bc_energy(const swModel *m, const swData *d);               /* boundar
 /* Largest h * omega for which the integrator is stable on the damped
  * oscillator x'' = -omega^2 x - c x', as a function of zeta = c / (2 omega). */
 double sw_integrator_stability_limit(swIntegrator integ, double zeta); /* stability.c */
+/* How many elastic slots of [lo, hi) sw_check_finite would flag. */
+int sw_check_slots(const swModel *m, const swData *d, int lo, int hi);  /* stability.c */
 /* Joints (joint.c).  sw_joint_setup resolves the defaults and the rest
  * geometry of m->joint into the joint_* arrays (called by sw_compile after the
  * rods are built); sw_joint_loads adds the joint loads to d->force/d->torque

@@ -279,43 +279,67 @@ void sw_joint_measure(const swModel *m, swData *d, int j) {
   record(m, d, j, &o);
 }
 
-void sw_joint_loads(const swModel *m, swData *d) {
-  for (int j = 0; j < m->njoint; j++) {
-    swJointEval o;
-    joint_eval(m, d, j, &o);
-    record(m, d, j, &o);
-    const int na = m->joint_node_a[j], nb = m->joint_node_b[j];
-    const int ea = m->joint_elem_a[j], eb = m->joint_elem_b[j];
-    for (int k = 0; k < 3; k++) {
-      double f = o.force[k] + o.force_damp[k];
-      SW_AT(m, d->force, na, k) += f;
-      SW_AT(m, d->ext_force, na, k) += o.force_damp[k];
-      if (nb >= 0) {
-        SW_AT(m, d->force, nb, k) -= f;
-        SW_AT(m, d->ext_force, nb, k) -= o.force_damp[k];
-      }
-    }
-    if (m->joint[j].kind == SW_JOINT_SPHERICAL) continue;
-    /* couples act in the material frame of each element (loads.c) */
-    double c[3], cm[3], cdm[3], Q[9];
-    sw_v3_add(c, o.couple, o.couple_damp);
-    sw_getQ(m, d->Q, ea, Q);
-    sw_mat_vec(cm, Q, c);
-    sw_mat_vec(cdm, Q, o.couple_damp);
-    for (int k = 0; k < 3; k++) {
-      SW_AT(m, d->torque, ea, k) += cm[k];
-      SW_AT(m, d->ext_torque, ea, k) += cdm[k];
-    }
-    if (eb >= 0) {
-      sw_getQ(m, d->Q, eb, Q);
-      sw_mat_vec(cm, Q, c);
-      sw_mat_vec(cdm, Q, o.couple_damp);
-      for (int k = 0; k < 3; k++) {
-        SW_AT(m, d->torque, eb, k) -= cm[k];
-        SW_AT(m, d->ext_torque, eb, k) -= cdm[k];
-      }
-    }
+/* Joint j's loads, ready to add (row of SW_JOINT_ROW doubles): the force on
+ * node a and its damping part (lab), then the couple on element a and its
+ * damping part, and those on element b, in each element's material frame
+ * (loads.c).  Reads the state only, so joints are evaluated in parallel. */
+enum { ROW_F = 0, ROW_FD = 3, ROW_CA = 6, ROW_CDA = 9, ROW_CB = 12, ROW_CDB = 15 };
+static void joint_row(const swModel *m, swData *d, int j, double *row) {
+  swJointEval o;
+  joint_eval(m, d, j, &o);
+  record(m, d, j, &o);
+  sw_v3_add(row + ROW_F, o.force, o.force_damp);
+  memcpy(row + ROW_FD, o.force_damp, sizeof o.force_damp);
+  if (m->joint[j].kind == SW_JOINT_SPHERICAL) return;
+  const int ea = m->joint_elem_a[j], eb = m->joint_elem_b[j];
+  double c[3], Q[9];
+  sw_v3_add(c, o.couple, o.couple_damp);
+  sw_getQ(m, d->Q, ea, Q);
+  sw_mat_vec(row + ROW_CA, Q, c);
+  sw_mat_vec(row + ROW_CDA, Q, o.couple_damp);
+  if (eb >= 0) {
+    sw_getQ(m, d->Q, eb, Q);
+    sw_mat_vec(row + ROW_CB, Q, c);
+    sw_mat_vec(row + ROW_CDB, Q, o.couple_damp);
   }
+}
+
+/* Joint j's row into the loads of the slots [lo, hi) (this thread's).  Each
+ * thread goes through all joints in joint order, so every slot gets its
+ * joints' loads in the same order for any number of threads. */
+static inline void add_to(const swModel *m, double *a, int i, int lo, int hi, const double *v, double sign) {
+  if (i < lo || i >= hi) return;
+  for (int k = 0; k < 3; k++) SW_AT(m, a, i, k) += sign * v[k];
+}
+static void apply_row(const swModel *m, swData *d, int j, const double *row, int lo, int hi) {
+  const int na = m->joint_node_a[j], nb = m->joint_node_b[j];
+  const int ea = m->joint_elem_a[j], eb = m->joint_elem_b[j];
+  add_to(m, d->force, na, lo, hi, row + ROW_F, 1.0);
+  add_to(m, d->ext_force, na, lo, hi, row + ROW_FD, 1.0);
+  if (nb >= 0) {
+    add_to(m, d->force, nb, lo, hi, row + ROW_F, -1.0);
+    add_to(m, d->ext_force, nb, lo, hi, row + ROW_FD, -1.0);
+  }
+  if (m->joint[j].kind == SW_JOINT_SPHERICAL) return;
+  add_to(m, d->torque, ea, lo, hi, row + ROW_CA, 1.0);
+  add_to(m, d->ext_torque, ea, lo, hi, row + ROW_CDA, 1.0);
+  if (eb >= 0) {
+    add_to(m, d->torque, eb, lo, hi, row + ROW_CB, -1.0);
+    add_to(m, d->ext_torque, eb, lo, hi, row + ROW_CDB, -1.0);
+  }
+}
+
+/* Rows by the owner of node a (whose state they mostly read), then every
+ * thread adds them to its own slots. */
+void sw_joint_loads(const swModel *m, swData *d) {
+  int lo, hi;
+  sw_owned_slots(m, &lo, &hi);
+  for (int j = 0; j < m->njoint; j++)
+    if (m->joint_node_a[j] >= lo && m->joint_node_a[j] < hi)
+      joint_row(m, d, j, d->joint_scratch + SW_JOINT_ROW * j);
+  sw_team_barrier(d);
+  for (int j = 0; j < m->njoint; j++) apply_row(m, d, j, d->joint_scratch + SW_JOINT_ROW * j, lo, hi);
+  sw_team_barrier(d);
 }
 
 double sw_joint_energy(const swModel *m, const swData *d) {

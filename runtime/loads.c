@@ -16,6 +16,7 @@
 #include <math.h>
 #include "sinew.h"
 #include "vec.h"
+#include "internal.h"
 
 swSignal sw_signal_const(double value) {
   swSignal s;
@@ -126,46 +127,76 @@ double sw_signal_eval(const swSignal *s, double t) {
   return 0.0;
 }
 
-void sw_external_loads(const swModel *m, swData *d) {
-  /* all three planes, ghosts and padding included, so those stay zero */
-  const size_t S = (size_t)m->stride, NS = (size_t)m->nslot;
-  double *restrict ef = d->ext_force, *restrict et = d->ext_torque;
-  if (m->has_gravity) {
-    for (int k = 0; k < 3; k++) {
-      double *restrict efk = ef + (size_t)k * S;
-      for (size_t i = 0; i < NS; i++) efk[i] = m->mass[i] * m->gravity[k];
-      for (size_t i = NS; i < S; i++) efk[i] = 0.0;
+/* Gravity into ext_force and zero into ext_torque over slots [lo, hi) of the
+ * planes (padding included, where both stay zero). */
+static void base_loads(const swModel *m, swData *d, int lo, int hi) {
+  const size_t S = (size_t)m->stride;
+  const int NS = m->nslot;
+  const double *restrict mass = m->mass;
+  for (int k = 0; k < 3; k++) {
+    double *restrict ef = d->ext_force + k * S, *restrict et = d->ext_torque + k * S;
+    const double g = m->has_gravity ? m->gravity[k] : 0.0;
+#pragma omp simd
+    for (int i = lo; i < hi; i++) {
+      ef[i] = m->has_gravity && i < NS ? mass[i] * g : 0.0;
+      et[i] = 0.0;
     }
-  } else {
-    memset(ef, 0, sizeof(double) * 3 * S);
   }
-  memset(et, 0, sizeof(double) * 3 * S);
+}
+
+/* Point forces and couples of the scene (few; on one thread). */
+static void point_loads(const swModel *m, swData *d) {
   for (int l = 0; l < m->nload; l++) {
     const swLoadDesc *ld = &m->load[l];
     double g = sw_signal_eval(&ld->signal, d->time);
     if (ld->kind == SW_LOAD_FORCE) {
       int i = m->node_adr[ld->rod] + ld->index;
-      for (int k = 0; k < 3; k++) SW_AT(m, ef, i, k) += g * ld->vec[k];
+      for (int k = 0; k < 3; k++) SW_AT(m, d->ext_force, i, k) += g * ld->vec[k];
     } else {
       int e = m->elem_adr[ld->rod] + ld->index;
       double tl[3] = {g * ld->vec[0], g * ld->vec[1], g * ld->vec[2]}, tm[3], Q[9];
       sw_getQ(m, d->Q, e, Q);
       sw_mat_vec(tm, Q, tl); /* couples act in the material frame */
-      for (int k = 0; k < 3; k++) SW_AT(m, et, e, k) += tm[k];
+      for (int k = 0; k < 3; k++) SW_AT(m, d->ext_torque, e, k) += tm[k];
     }
   }
-  if (m->has_damping) {
-    for (int r = 0; r < m->nrod; r++) {
-      if (m->rod_damping[r] != SW_DAMP_LINEAR) continue;
-      int na = m->node_adr[r], ea = m->elem_adr[r], n = m->rod_nelem[r];
-      for (int i = na; i <= na + n; i++)
-        for (int k = 0; k < 3; k++) SW_AT(m, ef, i, k) -= m->node_gamma[i] * SW_AT(m, d->v, i, k);
-      for (int e = ea; e < ea + n; e++)
-        for (int k = 0; k < 3; k++)
-          SW_AT(m, et, e, k) -= SW_AT(m, m->elem_gamma, e, k) * SW_AT(m, d->omega, e, k);
+}
+
+/* Linear dissipation on the rods that have it (nodes, and elements but not
+ * ghosts), then the external loads into the totals, slots [lo, hi). */
+static void finish_loads(const swModel *m, swData *d, int lo, int hi) {
+  const size_t S = (size_t)m->stride;
+  const double *restrict lin = m->damp_linear, *restrict ghost = m->elem_ghost;
+  const double *restrict ng = m->node_gamma;
+  for (int k = 0; k < 3; k++) {
+    double *restrict ef = d->ext_force + k * S, *restrict et = d->ext_torque + k * S;
+    double *restrict F = d->force + k * S, *restrict T = d->torque + k * S;
+    const double *restrict v = d->v + k * S, *restrict w = d->omega + k * S;
+    const double *restrict eg = m->elem_gamma + k * S;
+    if (m->has_damping) {
+#pragma omp simd
+      for (int i = lo; i < hi; i++) {
+        const int node = lin[i] != 0.0, elem = (lin[i] != 0.0) & (ghost[i] == 0.0);
+        ef[i] = node ? ef[i] - ng[i] * v[i] : ef[i];
+        et[i] = elem ? et[i] - eg[i] * w[i] : et[i];
+      }
+    }
+#pragma omp simd
+    for (int i = lo; i < hi; i++) {
+      F[i] += ef[i];
+      T[i] += et[i];
     }
   }
-  /* planes are contiguous: one pass over all slots (ghosts and padding add 0) */
-  for (size_t i = 0; i < 3 * S; i++) d->force[i] += ef[i];
-  for (size_t i = 0; i < 3 * S; i++) d->torque[i] += et[i];
+}
+
+void sw_external_loads(const swModel *m, swData *d) {
+  const int S = m->stride;
+  SW_FOR_CHUNKS(m, c, S) base_loads(m, d, sw_chunk_lo(m, c), sw_chunk_hi(m, c, S));
+  if (m->nload) { /* onto the base loads, before the damping reads them */
+    sw_team_barrier(d);
+    if (sw_team_leader()) point_loads(m, d);
+    sw_team_barrier(d);
+  }
+  SW_FOR_CHUNKS(m, c, S) finish_loads(m, d, sw_chunk_lo(m, c), sw_chunk_hi(m, c, S));
+  sw_team_barrier(d);
 }

@@ -258,7 +258,7 @@ void sw_model_free(swModel *m) {
   free(m->rest_len); free(m->inv_rest_len); free(m->radius); free(m->shear_stiff); free(m->inertia);
   free(m->inv_inertia); free(m->rest_sigma); free(m->elem_gamma); free(m->Q0); free(m->clamp_bend);
   free(m->rest_vor_len); free(m->bend_stiff); free(m->rest_kappa);
-  free(m->elem_ghost); free(m->kick_exact); free(m->inv_rest_vor_len);
+  free(m->elem_ghost); free(m->kick_exact); free(m->damp_linear); free(m->inv_rest_vor_len);
   free(m->load); free(m->bc);
   for (int j = 0; j < m->njoint; j++) free(m->joint_name[j]);
   free(m->joint); free(m->joint_name); free(m->joint_node_a); free(m->joint_node_b);
@@ -476,13 +476,18 @@ swModel *sw_compile(const swSpec *s, char *err, size_t errlen) {
       if (m->rod_damping[r] != SW_DAMP_NONE) m->has_damping = 1;
     }
   m->stride = (m->nslot + 2 + 7) / 8 * 8;
+  /* Chunks of the threaded kernels (internal.h): at most 32 over the elastic
+   * slots, so two to a few threads share them evenly, and at least 64 slots,
+   * so the set-up of each vector loop is paid on enough slots. */
+  m->chunk = ((m->nslot_elastic + 31) / 32 + 7) / 8 * 8;
+  if (m->chunk < 64) m->chunk = 64;
   m->mass = palloc(m, 1); m->inv_mass = palloc(m, 1); m->node_gamma = palloc(m, 1); m->node_decay = palloc(m, 1); m->node_kick = palloc(m, 1); m->x0 = palloc(m, 3);
   m->rest_len = palloc(m, 1); m->inv_rest_len = palloc(m, 1); m->radius = palloc(m, 1); m->shear_stiff = palloc(m, 3);
   m->inertia = palloc(m, 3); m->inv_inertia = palloc(m, 3); m->rest_sigma = palloc(m, 3);
   m->elem_gamma = palloc(m, 3); m->elem_decay = palloc(m, 3); m->elem_kick = palloc(m, 3); m->Q0 = palloc(m, 9); m->clamp_bend = palloc(m, 3);
   m->rest_vor_len = palloc(m, 1); m->bend_stiff = palloc(m, 3); m->rest_kappa = palloc(m, 3);
-  m->elem_ghost = palloc(m, 1); m->kick_exact = palloc(m, 1); m->inv_rest_vor_len = palloc(m, 1);
-  if (!m->elem_ghost || !m->kick_exact || !m->inv_rest_vor_len ||!m->mass || !m->inv_mass || !m->node_gamma || !m->node_decay || !m->elem_decay || !m->node_kick || !m->elem_kick || !m->x0 || !m->rest_len || !m->inv_rest_len || !m->radius ||
+  m->elem_ghost = palloc(m, 1); m->kick_exact = palloc(m, 1); m->damp_linear = palloc(m, 1); m->inv_rest_vor_len = palloc(m, 1);
+  if (!m->elem_ghost || !m->kick_exact || !m->damp_linear || !m->inv_rest_vor_len ||!m->mass || !m->inv_mass || !m->node_gamma || !m->node_decay || !m->elem_decay || !m->node_kick || !m->elem_kick || !m->x0 || !m->rest_len || !m->inv_rest_len || !m->radius ||
       !m->shear_stiff || !m->inertia || !m->inv_inertia || !m->rest_sigma || !m->elem_gamma ||
       !m->Q0 || !m->clamp_bend || !m->rest_vor_len || !m->bend_stiff || !m->rest_kappa)
     goto oom;
@@ -587,6 +592,7 @@ swModel *sw_compile(const swSpec *s, char *err, size_t errlen) {
     int analytic = m->rod_damping[r] == SW_DAMP_ANALYTIC;
     double span = s->integrator == SW_VERLET ? s->dt : 0.5 * s->dt;
     for (int i = 0; i <= n; i++) m->kick_exact[na + i] = analytic && s->integrator == SW_VERLET;
+    for (int i = 0; i <= n; i++) m->damp_linear[na + i] = m->rod_damping[r] == SW_DAMP_LINEAR;
     for (int i = 0; i <= n; i++) {
       double c = analytic ? m->node_gamma[na + i] * m->inv_mass[na + i] : 0.0;
       m->node_decay[na + i] = exp(-span * c);
@@ -656,6 +662,7 @@ void sw_data_free(swData *d) {
   free(d->sigma); free(d->stress); free(d->vor_dilatation); free(d->kappa); free(d->couple);
   free(d->force); free(d->torque); free(d->ext_force); free(d->ext_torque);
   free(d->scratch_f); free(d->scratch_h); free(d->scratch_flag); free(d->scratch_phi);
+  free(d->chunk_sum); free(d->joint_scratch); free(d->team);
   free(d->joint_force); free(d->joint_angle);
   free(d->fil_activation); free(d->fil_stretch); free(d->fil_rate); free(d->fil_tension);
   free(d->rigid_X); free(d->rigid_V); free(d->rigid_R); free(d->rigid_L); free(d->rigid_omega);
@@ -675,6 +682,11 @@ swData *sw_data_new(const swModel *m) {
   d->ext_force = palloc(m, 3); d->ext_torque = palloc(m, 3);
   d->scratch_f = palloc(m, 3); d->scratch_h = palloc(m, 3);
   d->scratch_flag = palloc(m, 1); d->scratch_phi = palloc(m, 3);
+  d->chunk_sum = dalloc((size_t)sw_nchunk(m, m->stride));
+  d->joint_scratch = dalloc(SW_JOINT_ROW * (size_t)m->njoint);
+  d->threads = 1;
+  d->team = aligned_alloc(64, sizeof(swTeam));
+  if (d->team) memset(d->team, 0, sizeof(swTeam));
   d->joint_force = dalloc(3 * (size_t)m->njoint); d->joint_angle = dalloc((size_t)m->njoint);
   size_t F = (size_t)m->nfil;
   d->fil_activation = dalloc(F); d->fil_stretch = dalloc(F); d->fil_rate = dalloc(F);
@@ -683,7 +695,7 @@ swData *sw_data_new(const swModel *m) {
       !d->sigma || !d->stress || !d->vor_dilatation || !d->kappa ||
       !d->couple || !d->force || !d->torque || !d->ext_force || !d->ext_torque ||
       !d->scratch_f || !d->scratch_h || !d->scratch_flag || !d->scratch_phi ||
-      !d->joint_force || !d->joint_angle || !d->fil_activation || !d->fil_stretch ||
+      !d->chunk_sum || !d->joint_scratch || !d->team || !d->joint_force || !d->joint_angle || !d->fil_activation || !d->fil_stretch ||
       !d->fil_rate || !d->fil_tension) {
     sw_data_free(d);
     return NULL;

@@ -412,48 +412,79 @@ double sw_muscle_tension(const swModel *m, int f, double eta, double edot, doubl
   return Fqs * g;
 }
 
-void sw_muscle_loads(const swModel *m, swData *d) {
-  for (int i = 0; i < m->nmuscle; i++) {
-    const double u = muscle_input(m, i, d->time);
-    for (int f = m->muscle_fil_adr[i]; f < m->muscle_fil_adr[i + 1]; f++) {
-      const int r = m->fil_rod[f], n = m->rod_nelem[r];
-      const int na = m->node_adr[r], ea = m->elem_adr[r];
-      const double *len = d->length + ea;
-      double l = 0, ldot = 0;
-      for (int e = 0; e < n; e++) {
-        double x0[3], x1[3], v0[3], v1[3], dx[3], dv[3];
-        sw_get3(m, d->x, na + e, x0);
-        sw_get3(m, d->x, na + e + 1, x1);
-        sw_get3(m, d->v, na + e, v0);
-        sw_get3(m, d->v, na + e + 1, v1);
-        sw_v3_sub(dx, x1, x0);
-        sw_v3_sub(dv, v1, v0);
-        l += len[e];
-        ldot += sw_v3_dot(dx, dv) / len[e];
-      }
-      if (!(m->fil_tau[f] > 0)) d->fil_activation[f] = drive(m, f, u);
-      const double inv_l0 = 1.0 / m->fil_l0[f];
-      const double eta = l * inv_l0, edot = ldot * inv_l0;
-      const double T = sw_muscle_tension(m, f, eta, edot, d->fil_activation[f]);
-      d->fil_stretch[f] = eta;
-      d->fil_rate[f] = edot;
-      d->fil_tension[f] = T;
-      for (int e = 0; e < n; e++) {
-        double x0[3], x1[3], dx[3];
-        sw_get3(m, d->x, na + e, x0);
-        sw_get3(m, d->x, na + e + 1, x1);
-        sw_v3_sub(dx, x1, x0);
-        const double s = T / len[e];
-        for (int c = 0; c < 3; c++) {
-          const double fc = s * dx[c];
-          SW_AT(m, d->force, na + e, c) += fc;
-          SW_AT(m, d->force, na + e + 1, c) -= fc;
-          SW_AT(m, d->ext_force, na + e, c) += fc;
-          SW_AT(m, d->ext_force, na + e + 1, c) -= fc;
-        }
-      }
+/* Filament f's pull: its stretch, strain rate and tension T, and the central
+ * pair +T t_i on node i, -T t_i on node i+1 of every element i (the header),
+ * added to d->force and d->ext_force.  The filament's nodes are its own rod's,
+ * so filaments run in parallel.  Each loop over the filament's slots is a
+ * vector loop; d->scratch_phi, the drift's scratch, holds the per-element
+ * terms between them.  The sums run in element order and each node gets
+ * -T t_{i-1} before +T t_i, so the result does not depend on the split. */
+static void filament_loads(const swModel *m, swData *d, int f, double u) {
+  const size_t S = (size_t)m->stride;
+  const int r = m->fil_rod[f], lo = m->node_adr[r], hi = lo + m->rod_nelem[r]; /* elements [lo, hi) */
+  const double *restrict x = d->x, *restrict v = d->v, *restrict len = d->length;
+  double *restrict sc = d->scratch_phi; /* q_e, then the pairs T t_e */
+  /* l = sum of l_i, dl/dt = sum of t_i . (v_{i+1} - v_i) */
+#pragma omp simd
+  for (int e = lo; e < hi; e++) {
+    const sw3 dx = sw3_sub(sw3_load(x, S, e + 1), sw3_load(x, S, e));
+    const sw3 dv = sw3_sub(sw3_load(v, S, e + 1), sw3_load(v, S, e));
+    sc[e] = sw3_dot(dx, dv) / len[e];
+  }
+  double l = 0, ldot = 0;
+  for (int e = lo; e < hi; e++) {
+    l += len[e];
+    ldot += sc[e];
+  }
+  if (!(m->fil_tau[f] > 0)) d->fil_activation[f] = drive(m, f, u);
+  const double inv_l0 = 1.0 / m->fil_l0[f];
+  const double eta = l * inv_l0, edot = ldot * inv_l0;
+  const double T = sw_muscle_tension(m, f, eta, edot, d->fil_activation[f]);
+  d->fil_stretch[f] = eta;
+  d->fil_rate[f] = edot;
+  d->fil_tension[f] = T;
+  /* the pair of element e: T t_e = (T / l_e) (x_{e+1} - x_e) */
+#pragma omp simd
+  for (int e = lo; e < hi; e++) {
+    const sw3 dx = sw3_sub(sw3_load(x, S, e + 1), sw3_load(x, S, e));
+    const double s = T / len[e];
+    sw3_store(sc, S, e, (sw3){s * dx.x, s * dx.y, s * dx.z});
+  }
+  for (int k = 0; k < 3; k++) {
+    const double *restrict fk = sc + k * S;
+    double *restrict F = d->force + k * S, *restrict ef = d->ext_force + k * S;
+#pragma omp simd
+    for (int i = lo; i <= hi; i++) { /* nodes */
+      const double before = i > lo ? fk[i - 1] : 0.0, after = i < hi ? fk[i] : 0.0;
+      const double Fi = i > lo ? F[i] - before : F[i], efi = i > lo ? ef[i] - before : ef[i];
+      F[i] = i < hi ? Fi + after : Fi;
+      ef[i] = i < hi ? efi + after : efi;
     }
   }
+}
+
+/* The muscle whose filaments include f. */
+static int muscle_of(const swModel *m, int f) {
+  int i = 0;
+  while (m->muscle_fil_adr[i + 1] <= f) i++;
+  return i;
+}
+
+/* Each filament by the thread that owns its first node (internal.h). */
+void sw_muscle_loads(const swModel *m, swData *d) {
+  int lo, hi, muscle = -1;
+  double u = 0;
+  sw_owned_slots(m, &lo, &hi);
+  for (int f = 0; f < m->nfil; f++) {
+    const int first = m->node_adr[m->fil_rod[f]];
+    if (first < lo || first >= hi) continue;
+    if (muscle_of(m, f) != muscle) { /* filaments come muscle by muscle */
+      muscle = muscle_of(m, f);
+      u = muscle_input(m, muscle, d->time);
+    }
+    filament_loads(m, d, f, u);
+  }
+  sw_team_barrier(d);
 }
 
 /* Largest stable step for the Hill damping of filament f: the dashpot

@@ -371,6 +371,10 @@ typedef struct {
   int stride;                /* doubles per plane: nslot + 2 rounded up to a
                                 multiple of 8 (64-byte rows; a kernel at the
                                 last slot reads two past it)               */
+  int chunk;                 /* slots per chunk of the threaded kernels: a
+                                multiple of 8 fixed by the model alone, so
+                                that any thread count splits every loop and
+                                every sum the same way (docs/performance.md) */
   /* options */
   double dt;                 /* time step, s                                 */
   swIntegrator integrator;
@@ -404,6 +408,8 @@ typedef struct {
   double *Q0;                /* (9) initial directors                        */
   double *clamp_bend;        /* (3) B^ of the element, for clamps            */
   double *elem_ghost;        /* 1 at ghost element slots and padding, else 0  */
+  double *damp_linear;       /* 1 on the slots of rods with linear damping
+                                (loads.c)                                  */
   double *kick_exact;        /* 1 where the kick integrates analytic damping
                                 exactly (Verlet, SW_DAMP_ANALYTIC), else 0   */
   /* per Voronoi slot (ghost domains: rest length 1, stiffness 0) */
@@ -504,6 +510,8 @@ typedef struct {
 typedef struct {
   double time;
   long step;
+  int threads;               /* OpenMP threads of a step (sw_set_threads; 1) */
+  void *team;                /* their barrier (integrate.c)                  */
   double work;               /* work done on the rods by loads, boundaries
                                 and dissipation since t = 0, J            */
   /* state, per slot in the layout of the model: x, v (3 planes, node
@@ -527,8 +535,14 @@ typedef struct {
    * half the transport couple kappa x c D^ of each domain (3 planes each) */
   double *scratch_f, *scratch_h;
   /* scratch of the rod kernels' slow paths (rod.c, integrate.c): a flag per
-   * slot (1 plane) and a rotation vector per slot (3 planes) */
+   * slot (1 plane) and a rotation vector per slot (3 planes, which muscle.c
+   * borrows while the loads are evaluated) */
   double *scratch_flag, *scratch_phi;
+  /* one partial sum per chunk (the kick's work), added in chunk order */
+  double *chunk_sum;
+  /* joint.c: each joint's loads, evaluated in parallel and applied in joint
+   * order (SW_JOINT_ROW doubles per joint) */
+  double *joint_scratch;
   /* joints, updated with each force evaluation */
   double *joint_force;       /* (njoint*3) force of the joint on rod a, lab, N */
   double *joint_angle;       /* (njoint)  hinge angle, rad (0 for others)     */
@@ -595,6 +609,10 @@ void sw_external_loads(const swModel *m, swData *d);   /* loads.c       */
 void sw_apply_bc_velocity(const swModel *m, swData *d, double t); /* boundary.c */
 int sw_step(const swModel *m, swData *d);              /* integrate.c   */
 int sw_steps(const swModel *m, swData *d, long k);     /* k steps, fused */
+/* Threads a step runs on (OpenMP; 1 by default).  The result does not depend
+ * on n: the kernels split their loops into the model's fixed chunks and add
+ * partial sums in chunk order.  Returns the count set (n < 1 counts as 1). */
+int sw_set_threads(swData *d, int n);                  /* integrate.c   */
 int sw_check_finite(const swModel *m, swData *d);      /* stability.c   */
 /* Sets the motion of rigid rod `rod` (rigid.c): centre-of-mass velocity V and
  * angular velocity omega, lab frame; node and element velocities follow.

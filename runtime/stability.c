@@ -219,6 +219,30 @@ double sw_stable_dt(const swModel *m) {
   return dt;
 }
 
+/* How many elastic slots in [lo, hi) sw_check_finite would object to: the
+ * same tests with the same arithmetic, as one vector loop, so that a threaded
+ * step checks its own chunks and calls the full check (which finds the rod
+ * and writes the message) only when something is wrong. */
+int sw_check_slots(const swModel *m, const swData *d, int lo, int hi) {
+  const size_t S = (size_t)m->stride;
+  const double dt = m->dt, wmax2 = 0.25 / (dt * dt);
+  const double *restrict x = d->x, *restrict v = d->v, *restrict w = d->omega;
+  const double *restrict rl = m->rest_len, *restrict ghost = m->elem_ghost;
+  int bad = 0;
+#pragma omp simd reduction(+ : bad)
+  for (int i = lo; i < hi; i++) {
+    const sw3 xi = sw3_load(x, S, i), vi = sw3_load(v, S, i);
+    const double sum = xi.x + xi.y + xi.z + vi.x + vi.y + vi.z;
+    const int real = ghost[i] == 0.0;
+    const sw3 dv = sw3_sub(sw3_load(v, S, i + 1), vi);
+    const double lim = 0.5 * rl[i] / dt, dv2 = sw3_dot(dv, dv);
+    const sw3 wi = sw3_load(w, S, i);
+    const double w2 = sw3_dot(wi, wi);
+    bad += (!(sum - sum == 0.0)) | (real & (!(dv2 <= lim * lim))) | (real & (!(w2 <= wmax2)));
+  }
+  return bad;
+}
+
 int sw_check_finite(const swModel *m, swData *d) {
   const double dt = m->dt;
   for (int r = 0; r < m->nrod; r++) {

@@ -1,0 +1,206 @@
+/* test_threads.c — a step on any number of threads gives the same bits
+ * (issue 10).
+ *
+ * One scene exercises every part of the step that threads touch: eight
+ * elastic rods (about 700 slots, so eleven chunks) and a rigid one, a
+ * clamp, a prescribed end velocity, a point force and a point couple, linear
+ * and analytic damping, gravity, and spherical, hinge and fixed joints, one of
+ * them anchored.  It runs for the same number of steps on 1, 2, 3 and 4
+ * threads with position Verlet and with PEFRL, and every state array (all
+ * planes of x, v, Q, omega and the derived strains and loads), the joint
+ * records, the time and the work are compared bit for bit.  A run made
+ * unstable on purpose must stop at the same step with the same message on
+ * any number of threads. */
+#include "testutil.h"
+
+static const double UP[3] = {0, 0, 1}, ALONG[3] = {1, 0, 0};
+
+static swRodDesc rod(const char *name, int n, double x, double y, const double dir[3]) {
+  swRodDesc r;
+  sw_rod_desc_init(&r);
+  r.name = name;
+  r.nelem = n;
+  r.length = 0.5;
+  r.radius_start = 0.01;
+  r.radius_end = 0.008;
+  r.density = 1100;
+  r.youngs = 2e6;
+  r.start[0] = x;
+  r.start[1] = y;
+  for (int k = 0; k < 3; k++) r.direction[k] = dir[k];
+  r.normal[0] = 0, r.normal[1] = dir[1] != 0 ? 0 : 1, r.normal[2] = dir[1] != 0 ? 1 : 0;
+  return r;
+}
+
+static swJointDesc joint(const char *name, swJointKind kind, int ra, int na, int rb, int nb) {
+  swJointDesc j;
+  sw_joint_desc_init(&j);
+  j.name = name;
+  j.kind = kind;
+  j.rod_a = ra, j.node_a = na, j.rod_b = rb, j.node_b = nb;
+  for (int k = 0; k < 3; k++) j.axis[k] = UP[k];
+  return j;
+}
+
+static swSpec *scene(swIntegrator integ) {
+  swSpec *s = sw_spec_new();
+  char names[9][8];
+  for (int r = 0; r < 8; r++) {
+    snprintf(names[r], sizeof names[r], "r%d", r);
+    /* chains: r1 -> r2 (ball), r3 -> r5 (hinge) -> body (weld) */
+    const double x = r == 2 || r == 5 ? 0.5 : 0.0, y = r == 2 ? 0.1 : r == 5 ? 0.3 : 0.1 * r;
+    swRodDesc d = rod(names[r], r == 5 ? 260 : 50 + 7 * r, x, y, ALONG);
+    if (r == 2) d.damping = SW_DAMP_LINEAR, d.gamma = 0.05;
+    if (r == 3) d.damping = SW_DAMP_ANALYTIC, d.gamma = 0.2;
+    sw_spec_add_rod(s, &d);
+  }
+  swRodDesc b = rod("body", 12, 1.0, 0.3, ALONG);
+  b.rigid = 1;
+  sw_spec_add_rod(s, &b);
+  const double g[3] = {0, 0, -9.81};
+  sw_spec_set_gravity(s, g);
+  sw_spec_set_integrator(s, integ);
+  swBCDesc c = {.kind = SW_BC_CLAMP, .rod = 0, .end = 0, .signal = sw_signal_const(1)};
+  sw_spec_add_bc(s, &c);
+  swBCDesc v = {.kind = SW_BC_VELOCITY, .rod = 4, .end = 1, .vec = {0, 0.05, 0.02},
+                .signal = sw_signal_sine(0, 1, 40, 0, 0)};
+  sw_spec_add_bc(s, &v);
+  swLoadDesc f = {.kind = SW_LOAD_FORCE, .rod = 1, .index = -1, .vec = {0, 0, 0.02},
+                  .signal = sw_signal_ramp(0, 1, 0, 1e-3)};
+  sw_spec_add_load(s, &f);
+  swLoadDesc t = {.kind = SW_LOAD_TORQUE, .rod = 6, .index = 3, .vec = {1e-4, 0, 2e-4},
+                  .signal = sw_signal_const(1)};
+  sw_spec_add_load(s, &t);
+  swJointDesc j[] = {joint("ball", SW_JOINT_SPHERICAL, 1, -1, 2, 0),
+                     joint("hinge", SW_JOINT_HINGE, 3, -1, 5, 0),
+                     joint("weld", SW_JOINT_FIXED, 5, -1, 8, 0),
+                     joint("pin", SW_JOINT_HINGE, 7, 0, -1, 0),
+                     joint("mid", SW_JOINT_SPHERICAL, 6, 20, 7, 30)};
+  for (int k = 0; k < 5; k++) {
+    if (k == 3) for (int q = 0; q < 3; q++) j[k].anchor[q] = q == 1 ? 0.7 : 0.0;
+    if (k == 4) { /* two interior nodes 0.1 m apart: a soft stretched spring */
+      j[k].stiffness = 0.5;
+      j[k].damping = 1e-3;
+    }
+    sw_spec_add_joint(s, &j[k]);
+  }
+  return s;
+}
+
+typedef struct {
+  double time, work;
+  long step;
+  int rc;
+  char error[512];
+  double *planes; /* all per-slot arrays the step writes, back to back */
+  double *joints;
+} snapshot;
+
+/* Every array of swData that a step writes, at its full stride. */
+static double **arrays(swData *d, int *planes) {
+  static double *a[16];
+  static const int np[] = {3, 3, 9, 3, 1, 1, 3, 3, 1, 3, 3, 3, 3, 3, 3};
+  double *p[] = {d->x, d->v, d->Q, d->omega, d->length, d->dilatation, d->sigma, d->stress,
+                 d->vor_dilatation, d->kappa, d->couple, d->force, d->torque, d->ext_force,
+                 d->ext_torque};
+  for (int k = 0; k < 15; k++) a[k] = p[k], planes[k] = np[k];
+  a[15] = NULL;
+  return a;
+}
+
+static snapshot run(const swModel *m, int threads, long steps) {
+  swData *d = sw_data_new(m);
+  assert_non_null(d);
+  assert_int_equal(sw_set_threads(d, threads), threads);
+  snapshot s = {0};
+  s.rc = sw_steps(m, d, steps / 2);
+  if (s.rc == SW_OK) s.rc = sw_steps(m, d, steps - steps / 2); /* two calls: the regions meet */
+  s.time = d->time, s.work = d->work, s.step = d->step;
+  memcpy(s.error, d->error, sizeof s.error);
+  int np[16];
+  double **a = arrays(d, np);
+  size_t total = 0;
+  for (int k = 0; a[k]; k++) total += (size_t)np[k] * (size_t)m->stride;
+  s.planes = malloc(total * sizeof(double));
+  s.joints = malloc(4 * (size_t)m->njoint * sizeof(double));
+  assert_non_null(s.planes);
+  assert_non_null(s.joints);
+  size_t at = 0;
+  for (int k = 0; a[k]; k++) {
+    const size_t n = (size_t)np[k] * (size_t)m->stride;
+    memcpy(s.planes + at, a[k], n * sizeof(double));
+    at += n;
+  }
+  memcpy(s.joints, d->joint_force, 3 * (size_t)m->njoint * sizeof(double));
+  memcpy(s.joints + 3 * m->njoint, d->joint_angle, (size_t)m->njoint * sizeof(double));
+  sw_data_free(d);
+  return s;
+}
+
+static size_t snapshot_doubles(const swModel *m) {
+  int np[16];
+  swData *d = sw_data_new(m);
+  double **a = arrays(d, np);
+  size_t total = 0;
+  for (int k = 0; a[k]; k++) total += (size_t)np[k] * (size_t)m->stride;
+  sw_data_free(d);
+  return total;
+}
+
+static void same_bits(const swModel *m, const snapshot *a, const snapshot *b, int threads) {
+  const size_t n = snapshot_doubles(m);
+  size_t differ = 0;
+  for (size_t i = 0; i < n; i++) differ += memcmp(&a->planes[i], &b->planes[i], sizeof(double)) != 0;
+  fprintf(stderr, "# %d threads: %zu of %zu state doubles differ from 1 thread; work %.17g vs %.17g\n",
+          threads, differ, n, b->work, a->work);
+  assert_int_equal(differ, 0);
+  assert_memory_equal(a->joints, b->joints, 4 * (size_t)m->njoint * sizeof(double));
+  assert_memory_equal(&a->work, &b->work, sizeof a->work);
+  assert_memory_equal(&a->time, &b->time, sizeof a->time);
+  assert_int_equal(a->step, b->step);
+  assert_int_equal(a->rc, b->rc);
+  assert_string_equal(a->error, b->error);
+}
+
+static void compare(swIntegrator integ, double dt_frac, long steps, int want_rc) {
+  swSpec *s = scene(integ);
+  swModel *m = sw_test_compile_at(s, dt_frac);
+  assert_true((m->nslot_elastic + m->chunk - 1) / m->chunk > 4); /* several chunks a thread */
+  snapshot one = run(m, 1, steps);
+  assert_int_equal(one.rc, want_rc);
+  for (int t = 2; t <= 4; t++) {
+    snapshot more = run(m, t, steps);
+    same_bits(m, &one, &more, t);
+    free(more.planes);
+    free(more.joints);
+  }
+  if (want_rc != SW_OK) fprintf(stderr, "# unstable on every team: %s\n", one.error);
+  free(one.planes);
+  free(one.joints);
+  sw_model_free(m);
+  sw_spec_free(s);
+}
+
+static void test_verlet(void **state) {
+  (void)state;
+  compare(SW_VERLET, 0.5, 600, SW_OK);
+}
+
+static void test_pefrl(void **state) {
+  (void)state;
+  compare(SW_PEFRL, 0.5, 300, SW_OK);
+}
+
+static void test_unstable(void **state) {
+  (void)state;
+  compare(SW_VERLET, 3.0, 600, SW_EUNSTABLE);
+}
+
+int main(void) {
+  const struct CMUnitTest tests[] = {
+      cmocka_unit_test(test_verlet),
+      cmocka_unit_test(test_pefrl),
+      cmocka_unit_test(test_unstable),
+  };
+  return cmocka_run_group_tests_name("threads", tests, NULL, NULL);
+}
