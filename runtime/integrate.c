@@ -115,21 +115,21 @@ static inline __attribute__((always_inline)) void drift_frames(const swModel *m,
   }
 }
 
-/* Velocities of the elastic slots [lo, hi) under the loads; returns the work
- * booked over the kick (see kick()). */
-static double kick_slots(const swModel *m, swData *d, double h, int lo, int hi) {
+/* Velocities of the elastic slots [lo, hi) under the loads, and the work
+ * booked over the kick (see kick()) slot by slot into `work` (summed by
+ * chunk in kick(), so that the sum does not depend on the threads). */
+static void kick_slots(const swModel *m, swData *d, double h, int lo, int hi, double *restrict work) {
   const size_t S = (size_t)m->stride;
   const double *restrict im = m->inv_mass, *restrict mass = m->mass;
   const double *restrict ndec = m->node_decay, *restrict nkick = m->node_kick;
   const double *restrict exact = m->kick_exact, *restrict e = d->dilatation;
-  double work = 0, exact_work = 0;
   for (int k = 0; k < 3; k++) {
     double *restrict v = d->v + k * S, *restrict w = d->omega + k * S;
     const double *restrict F = d->force + k * S, *restrict T = d->torque + k * S;
     const double *restrict ef = d->ext_force + k * S, *restrict et = d->ext_torque + k * S;
     const double *restrict iJ = m->inv_inertia + k * S, *restrict J = m->inertia + k * S;
     const double *restrict edec = m->elem_decay + k * S, *restrict ekick = m->elem_kick + k * S;
-#pragma omp simd reduction(+ : work, exact_work)
+#pragma omp simd
     for (int i = lo; i < hi; i++) {
       /* nodes: m dv/dt = F; analytically damped rods (Verlet) integrate
        * dv/dt = a - c v exactly with a held (model.c), and book the work of
@@ -139,8 +139,6 @@ static double kick_slots(const swModel *m, swData *d, double h, int lo, int hi) 
       const double vo = v[i];
       const double vd = vo * ndec[i] + F[i] * im[i] * nkick[i], vp = vo + h * F[i] * im[i];
       const double vn = ex ? vd : vp;
-      exact_work += ex ? (mass[i] * (vn - vo) - h * (F[i] - ef[i])) * (vo + vn) : 0.0;
-      work += ex ? 0.0 : ef[i] * (vo + vn);
       v[i] = vn;
       /* elements: (J^/e) dw/dt = tau (Gazzola 2018, eq. 3.7b, the couples
        * of rod.c without the dilatation-rate term, which the drift
@@ -148,12 +146,22 @@ static double kick_slots(const swModel *m, swData *d, double h, int lo, int hi) 
       const double wo = w[i];
       const double wd = wo * edec[i] + T[i] * iJ[i] * e[i] * ekick[i], wp = wo + h * T[i] * iJ[i] * e[i];
       const double wn = ex ? wd : wp;
-      exact_work += ex ? (J[i] / e[i] * (wn - wo) - h * (T[i] - et[i])) * (wo + wn) : 0.0;
-      work += ex ? 0.0 : et[i] * (wo + wn);
       w[i] = wn;
+      /* the midpoint rule, h F . (v_old + v_new) / 2 */
+      const double booked = ex ? 0.5 * ((mass[i] * (vn - vo) - h * (F[i] - ef[i])) * (vo + vn) +
+                                        (J[i] / e[i] * (wn - wo) - h * (T[i] - et[i])) * (wo + wn))
+                               : 0.5 * h * (ef[i] * (vo + vn) + et[i] * (wo + wn));
+      work[i] = k ? work[i] + booked : booked;
     }
   }
-  return 0.5 * h * work + 0.5 * exact_work;
+}
+
+/* Sum of work[lo, hi). */
+static double chunk_work(const double *restrict work, int lo, int hi) {
+  double sum = 0;
+#pragma omp simd reduction(+ : sum)
+  for (int i = lo; i < hi; i++) sum += work[i];
+  return sum;
 }
 
 /* Positions and frames move with the current velocities for a time h.
@@ -167,14 +175,14 @@ static double kick_slots(const swModel *m, swData *d, double h, int lo, int hi) 
  * (J^ w / e) de/dt / e of the rotational balance is integrated: keeping it
  * as an explicit couple in the kick would cap both schemes at first order. */
 static void drift(const swModel *m, swData *d, double h) {
-  const int n = m->nslot_elastic;
-  SW_FOR_CHUNKS(m, c, n) drift_nodes(m, d, h, sw_chunk_lo(m, c), sw_chunk_hi(m, c, n));
+  int lo, hi;
+  sw_share_slots(m, m->nslot_elastic, &lo, &hi);
+  drift_nodes(m, d, h, lo, hi);
   sw_team_barrier(d); /* a frame reads the node after its element's */
-  if (m->integrator == SW_PEFRL) { /* one loop per scheme: Simpson's rule or not */
-    SW_FOR_CHUNKS(m, c, n) drift_frames(m, d, h, sw_chunk_lo(m, c), sw_chunk_hi(m, c, n), 1);
-  } else {
-    SW_FOR_CHUNKS(m, c, n) drift_frames(m, d, h, sw_chunk_lo(m, c), sw_chunk_hi(m, c, n), 0);
-  }
+  if (m->integrator == SW_PEFRL) /* one loop per scheme: Simpson's rule or not */
+    drift_frames(m, d, h, lo, hi, 1);
+  else
+    drift_frames(m, d, h, lo, hi, 0);
   sw_team_barrier(d); /* the last elastic slot read the first rigid node */
   if (sw_team_leader()) {
     if (m->nrigid) sw_rigid_drift(m, d, h);
@@ -191,7 +199,10 @@ static void drift(const swModel *m, swData *d, double h) {
 static void kick(const swModel *m, swData *d, double h, double span) {
   const int n = m->nslot_elastic;
   compute_loads(m, d);
-  SW_FOR_CHUNKS(m, c, n) d->chunk_sum[c] = kick_slots(m, d, h, sw_chunk_lo(m, c), sw_chunk_hi(m, c, n));
+  int lo, hi;
+  sw_share_slots(m, n, &lo, &hi);
+  kick_slots(m, d, h, lo, hi, d->scratch_flag); /* the flags are free between the passes */
+  SW_FOR_CHUNKS(m, c, n) d->chunk_sum[c] = chunk_work(d->scratch_flag, sw_chunk_lo(m, c), sw_chunk_hi(m, c, n));
   sw_team_barrier(d);
   if (sw_team_leader()) {
     for (int c = 0; c < sw_nchunk(m, n); c++) d->work += d->chunk_sum[c]; /* in chunk order */
@@ -268,8 +279,10 @@ static void pefrl_step(const swModel *m, swData *d) {
  * activations for the next one. */
 static void end_step(const swModel *m, swData *d, int whole, int due, int more, int *rc) {
   const int n = m->nslot_elastic;
-  if (due) {
-    SW_FOR_CHUNKS(m, c, n) d->chunk_sum[c] = sw_check_slots(m, d, sw_chunk_lo(m, c), sw_chunk_hi(m, c, n));
+  if (due) { /* a count: any cut gives the same; one per thread, in its first chunk */
+    int lo, hi;
+    sw_share_slots(m, n, &lo, &hi);
+    SW_FOR_CHUNKS(m, c, n) d->chunk_sum[c] = c == c_end - 1 ? sw_check_slots(m, d, lo, hi) : 0;
     sw_team_barrier(d);
   }
   if (sw_team_leader()) {

@@ -58,7 +58,16 @@ static inline void sw_owned_slots(const swModel *m, int *lo, int *hi) {
   *lo = omp_get_thread_num() == 0 ? 0 : sw_chunk_lo(m, c0);
   *hi = omp_get_thread_num() == omp_get_num_threads() - 1 ? m->stride : c1 > c0 ? sw_chunk_hi(m, c1 - 1, n) : *lo;
 }
-/* for (c in this thread's chunks of slots [0, n)) */
+/* This thread's share of the slots [0, n), the chunks of its share as one
+ * range (empty when lo == hi): kernels whose results do not depend on how
+ * the range is cut (no sums) take it in one call, which saves the set-up of
+ * their vector loops per chunk. */
+static inline void sw_share_slots(const swModel *m, int n, int *lo, int *hi) {
+  const int nc = sw_nchunk(m, n), c0 = sw_share_lo(nc), c1 = sw_share_hi(nc);
+  *lo = c1 > c0 ? sw_chunk_lo(m, c0) : 0;
+  *hi = c1 > c0 ? sw_chunk_hi(m, c1 - 1, n) : 0;
+}
+/* for (c in this thread's chunks of slots [0, n)): kernels with sums */
 #define SW_FOR_CHUNKS(m, c, n) \
   for (int c##_all = sw_nchunk(m, n), c = sw_share_lo(c##_all), c##_end = sw_share_hi(c##_all); \
        c < c##_end; c++)

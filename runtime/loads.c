@@ -190,13 +190,14 @@ static void finish_loads(const swModel *m, swData *d, int lo, int hi) {
 }
 
 void sw_external_loads(const swModel *m, swData *d) {
-  const int S = m->stride;
-  SW_FOR_CHUNKS(m, c, S) base_loads(m, d, sw_chunk_lo(m, c), sw_chunk_hi(m, c, S));
+  int lo, hi;
+  sw_share_slots(m, m->stride, &lo, &hi);
+  base_loads(m, d, lo, hi);
   if (m->nload) { /* onto the base loads, before the damping reads them */
     sw_team_barrier(d);
     if (sw_team_leader()) point_loads(m, d);
     sw_team_barrier(d);
   }
-  SW_FOR_CHUNKS(m, c, S) finish_loads(m, d, sw_chunk_lo(m, c), sw_chunk_hi(m, c, S));
+  finish_loads(m, d, lo, hi);
   sw_team_barrier(d);
 }

@@ -289,7 +289,7 @@ void sw_muscle_free(swModel *m) {
   free(m->muscle_name); free(m->muscle_fil_adr); free(m->muscle_activation);
   free(m->fil_rod); free(m->fil_passive); free(m->fil_area); free(m->fil_fmax);
   free(m->fil_l0); free(m->fil_tau); free(m->fil_recruit); free(m->fil_hill_a);
-  free(m->fil_v_max); free(m->fil_fibres);
+  free(m->fil_v_max); free(m->fil_fibres); free(m->fil_elem);
 }
 
 int sw_muscle_check(const swMuscleSpec *ms, int nrod, char *err, size_t errlen) {
@@ -363,6 +363,17 @@ int sw_muscle_setup(swModel *m, const swMuscleSpec *ms, char *err, size_t errlen
   }
   m->muscle_fil_adr[ms->n] = f;
   for (int g = 0; g < nf; g++) m->rod_wave_dt[m->fil_rod[g]] = sw_stable_dt_rod(m, m->fil_rod[g]);
+  /* which element slots pull (sw_muscle_loads' slot loops) */
+  const size_t plane = sizeof(double) * (size_t)m->stride;
+  if (!(m->fil_elem = aligned_alloc(64, plane))) {
+    snprintf(err, errlen, "out of memory");
+    return 0;
+  }
+  memset(m->fil_elem, 0, plane);
+  for (int g = 0; g < nf; g++) {
+    const int r = m->fil_rod[g];
+    for (int e = m->elem_adr[r]; e < m->elem_adr[r] + m->rod_nelem[r]; e++) m->fil_elem[e] = 1.0;
+  }
   return 1;
 }
 
@@ -412,29 +423,43 @@ double sw_muscle_tension(const swModel *m, int f, double eta, double edot, doubl
   return Fqs * g;
 }
 
-/* Filament f's pull: its stretch, strain rate and tension T, and the central
- * pair +T t_i on node i, -T t_i on node i+1 of every element i (the header),
- * added to d->force and d->ext_force.  The filament's nodes are its own rod's,
- * so filaments run in parallel.  Each loop over the filament's slots is a
- * vector loop; d->scratch_phi, the drift's scratch, holds the per-element
- * terms between them.  The sums run in element order and each node gets
- * -T t_{i-1} before +T t_i, so the result does not depend on the split. */
-static void filament_loads(const swModel *m, swData *d, int f, double u) {
+/* The filaments' pull, in three parts, each over a thread's own slots
+ * (internal.h, sw_owned_slots):
+ *   1. every filament element e: q_e = t_e . (v_{e+1} - v_e), one vector loop
+ *      over the slots (m->fil_elem marks the elements that pull);
+ *   2. every filament (by the owner of its first node): l = sum of l_e and
+ *      dl/dt = sum of q_e in element order, the stretch, strain rate and
+ *      tension T (the header), and T on each of its element slots;
+ *   3. every node i: -T t_{i-1} from the element before it, then +T t_i from
+ *      its own (T t_e = (T / l_e)(x_{e+1} - x_e)), into d->force and
+ *      d->ext_force, one vector loop over the slots.
+ * Slot loops instead of one loop per filament: the filaments are short (14
+ * elements in the elbow), and a loop that short spends more on its set-up
+ * than on its elements.  d->scratch_phi, the drift's scratch, holds q_e
+ * (plane 0) and T (plane 1) between the parts.  The order of every sum and
+ * of the two terms of each node is fixed, so the result is the same bits for
+ * any split, as it was for the loop per filament. */
+static void filament_rates(const swModel *m, swData *d, int lo, int hi) {
   const size_t S = (size_t)m->stride;
-  const int r = m->fil_rod[f], lo = m->node_adr[r], hi = lo + m->rod_nelem[r]; /* elements [lo, hi) */
   const double *restrict x = d->x, *restrict v = d->v, *restrict len = d->length;
-  double *restrict sc = d->scratch_phi; /* q_e, then the pairs T t_e */
-  /* l = sum of l_i, dl/dt = sum of t_i . (v_{i+1} - v_i) */
+  const double *restrict pull = m->fil_elem;
+  double *restrict q = d->scratch_phi;
 #pragma omp simd
   for (int e = lo; e < hi; e++) {
     const sw3 dx = sw3_sub(sw3_load(x, S, e + 1), sw3_load(x, S, e));
     const sw3 dv = sw3_sub(sw3_load(v, S, e + 1), sw3_load(v, S, e));
-    sc[e] = sw3_dot(dx, dv) / len[e];
+    q[e] = pull[e] != 0.0 ? sw3_dot(dx, dv) / len[e] : 0.0;
   }
+}
+
+static void filament_tension(const swModel *m, swData *d, int f, double u) {
+  const int r = m->fil_rod[f], lo = m->elem_adr[r], hi = lo + m->rod_nelem[r];
+  const double *len = d->length, *q = d->scratch_phi;
+  double *T_e = d->scratch_phi + m->stride;
   double l = 0, ldot = 0;
   for (int e = lo; e < hi; e++) {
     l += len[e];
-    ldot += sc[e];
+    ldot += q[e];
   }
   if (!(m->fil_tau[f] > 0)) d->fil_activation[f] = drive(m, f, u);
   const double inv_l0 = 1.0 / m->fil_l0[f];
@@ -443,22 +468,31 @@ static void filament_loads(const swModel *m, swData *d, int f, double u) {
   d->fil_stretch[f] = eta;
   d->fil_rate[f] = edot;
   d->fil_tension[f] = T;
-  /* the pair of element e: T t_e = (T / l_e) (x_{e+1} - x_e) */
-#pragma omp simd
-  for (int e = lo; e < hi; e++) {
-    const sw3 dx = sw3_sub(sw3_load(x, S, e + 1), sw3_load(x, S, e));
-    const double s = T / len[e];
-    sw3_store(sc, S, e, (sw3){s * dx.x, s * dx.y, s * dx.z});
-  }
+  for (int e = lo; e < hi; e++) T_e[e] = T;
+}
+
+static void filament_pull(const swModel *m, swData *d, int lo, int hi) {
+  const size_t S = (size_t)m->stride;
+  const double *restrict x = d->x, *restrict len = d->length, *restrict pull = m->fil_elem;
+  const double *restrict T_e = d->scratch_phi + S;
   for (int k = 0; k < 3; k++) {
-    const double *restrict fk = sc + k * S;
+    const double *restrict xk = x + k * S;
     double *restrict F = d->force + k * S, *restrict ef = d->ext_force + k * S;
+    /* slot 0 has no element before it */
+    const int start = lo > 0 ? lo : 1;
+    if (lo == 0 && hi > 0 && pull[0] != 0.0) {
+      const double after = T_e[0] / len[0] * (xk[1] - xk[0]);
+      F[0] += after;
+      ef[0] += after;
+    }
 #pragma omp simd
-    for (int i = lo; i <= hi; i++) { /* nodes */
-      const double before = i > lo ? fk[i - 1] : 0.0, after = i < hi ? fk[i] : 0.0;
-      const double Fi = i > lo ? F[i] - before : F[i], efi = i > lo ? ef[i] - before : ef[i];
-      F[i] = i < hi ? Fi + after : Fi;
-      ef[i] = i < hi ? efi + after : efi;
+    for (int i = start; i < hi; i++) {
+      const int before_pulls = pull[i - 1] != 0.0, own_pulls = pull[i] != 0.0;
+      const double before = T_e[i - 1] / len[i - 1] * (xk[i] - xk[i - 1]);
+      const double after = T_e[i] / len[i] * (xk[i + 1] - xk[i]);
+      const double Fi = before_pulls ? F[i] - before : F[i], efi = before_pulls ? ef[i] - before : ef[i];
+      F[i] = own_pulls ? Fi + after : Fi;
+      ef[i] = own_pulls ? efi + after : efi;
     }
   }
 }
@@ -470,11 +504,13 @@ static int muscle_of(const swModel *m, int f) {
   return i;
 }
 
-/* Each filament by the thread that owns its first node (internal.h). */
 void sw_muscle_loads(const swModel *m, swData *d) {
   int lo, hi, muscle = -1;
   double u = 0;
   sw_owned_slots(m, &lo, &hi);
+  const int elastic_hi = hi < m->nslot_elastic ? hi : m->nslot_elastic;
+  if (lo < elastic_hi) filament_rates(m, d, lo, elastic_hi);
+  sw_team_barrier(d);
   for (int f = 0; f < m->nfil; f++) {
     const int first = m->node_adr[m->fil_rod[f]];
     if (first < lo || first >= hi) continue;
@@ -482,8 +518,10 @@ void sw_muscle_loads(const swModel *m, swData *d) {
       muscle = muscle_of(m, f);
       u = muscle_input(m, muscle, d->time);
     }
-    filament_loads(m, d, f, u);
+    filament_tension(m, d, f, u);
   }
+  sw_team_barrier(d);
+  if (lo < elastic_hi) filament_pull(m, d, lo, elastic_hi);
   sw_team_barrier(d);
 }
 

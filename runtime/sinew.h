@@ -465,6 +465,7 @@ typedef struct {
   double *fil_hill_a;        /* (nfil)     Hill a / F_qs                     */
   double *fil_v_max;         /* (nfil)     v0 / l0, 1/s                      */
   double *fil_fibres;        /* (nfil)     muscle fibres in the filament     */
+  double *fil_elem;          /* (1 plane)  1 at the element slots of filaments */
   /* environments (environment.c): resolved copies of the descriptions, in
    * the order added; rod lists owned by the model (every rod listed when the
    * description said 0) */
