@@ -5,7 +5,7 @@
 # Layout of build outputs (never committed):
 #   build/libsinewrt.a          optimised runtime, for this machine's CPU
 #                               (-O3 -march=native; what sinewc links)
-#   build/libsinewrt-portable.a for any x86-64 (-O2; sinewc --portable)
+#   build/libsinewrt-portable.a for any x86-64 (-O3, baseline ISA; sinewc --portable)
 #   build/asan/libsinewrt.a     runtime under AddressSanitizer + UBSan
 #   build/tests/test_*          optimised test binaries (cmocka, TAP output)
 #   build/asan/tests/test_*     sanitizer test binaries
@@ -20,7 +20,7 @@ STD      = -std=c11 -D_DEFAULT_SOURCE
 # `#pragma omp simd` loops and the threads of a step (libgomp, which comes
 # with GCC).
 OPT      = -O3 -march=native -fno-math-errno -fopenmp -g
-PORTABLE = -O2 -fno-math-errno -ftree-vectorize -fopenmp -g
+PORTABLE = -O3 -fno-math-errno -fopenmp -g
 CFLAGS  ?= $(OPT)
 SAN      = -O1 -g -fopenmp -fno-omit-frame-pointer -fsanitize=address,undefined -fno-sanitize-recover=all
 ALL_CFLAGS = $(STD) $(WARN) $(CFLAGS) -Iruntime $(PKG_CFLAGS)

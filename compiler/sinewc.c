@@ -51,7 +51,7 @@ static void usage(FILE *out) {
           "  -o FILE      output file (the simulator, or the C file with --emit-c)\n"
           "  --emit-c     write C instead of compiling it\n"
           "  --check      report diagnostics and write nothing\n"
-          "  --portable   build a simulator for any x86-64 machine (-O2, the baseline\n"
+          "  --portable   build a simulator for any x86-64 machine (-O3, the baseline\n"
           "               instruction set, libsinewrt-portable.a); without it the\n"
           "               simulator is built at -O3 for this machine's CPU\n"
           "  -Werror      treat warnings as errors\n"
@@ -111,7 +111,7 @@ static int split_flags(char *s, char **argv, int max) {
 
 /* Builds the simulator: for this machine's CPU (-O3 -march=native, with the
  * runtime library `make` built the same way), or, with `portable`, for any
- * x86-64 machine (-O2, the compiler's baseline instruction set, and
+ * x86-64 machine (-O3, the compiler's baseline instruction set, and
  * libsinewrt-portable.a).  docs/benchmarks.md has what each costs. */
 static int run_cc(const char *csrc, const char *out, int portable) {
   char inc[PATH_MAX], lib[PATH_MAX];
@@ -137,12 +137,8 @@ static int run_cc(const char *csrc, const char *out, int portable) {
   int n = 0;
   argv[n++] = (char *)cc;
   argv[n++] = "-std=c11";
-  if (portable) {
-    argv[n++] = "-O2";
-  } else {
-    argv[n++] = "-O3";
-    argv[n++] = "-march=native";
-  }
+  argv[n++] = "-O3";
+  if (!portable) argv[n++] = "-march=native";
   argv[n++] = "-fno-math-errno";
   argv[n++] = "-fopenmp"; /* the runtime's threads (libgomp) */
   argv[n++] = incflag;
