@@ -70,23 +70,27 @@ void sw_apply_bc_velocity(const swModel *m, swData *d, double t) {
 
 /* Called right after a free kick of size h: v_free = v_old + h F / m.  The
  * prescribed values are those of time t (the integrator passes the
- * midpoint of the drift the new velocities will be used for). */
-void sw_bc_kick(const swModel *m, swData *d, double h, double t) {
+ * midpoint of the drift the new velocities will be used for).  Only the
+ * conditions whose end node is in [lo, hi) (a thread's slots), each booking
+ * its work in work[k], which the integrator adds up in condition order. */
+void sw_bc_kick(const swModel *m, swData *d, double h, double t, int lo, int hi, double *work) {
   for (int k = 0; k < m->nbc; k++) {
     if (sw_rod_is_rigid(m, m->bc[k].rod)) continue; /* a clamp holds the body (rigid.c) */
     int node, elem;
     double vn[3], we[3];
     int what = bc_target(m, d, &m->bc[k], t, &node, &elem, vn, we);
+    if (node < lo || node >= hi) continue;
     /* The kick booked the external load's work with the free velocity,
      * h f . (v_old + v_free) / 2; rebook it with the prescribed one and add
      * the constraint force's, h f_c = m (v_new - v_free). */
+    double w = 0;
     if (what & 1) {
       double mass = m->mass[node];
       for (int c = 0; c < 3; c++) {
         const double F = SW_AT(m, d->force, node, c), ef = SW_AT(m, d->ext_force, node, c);
         double v_free = SW_AT(m, d->v, node, c), v_old = v_free - h * F * m->inv_mass[node];
-        d->work -= 0.5 * h * ef * (v_old + v_free);
-        d->work += 0.5 * (h * ef + mass * (vn[c] - v_free)) * (v_old + vn[c]);
+        w -= 0.5 * h * ef * (v_old + v_free);
+        w += 0.5 * (h * ef + mass * (vn[c] - v_free)) * (v_old + vn[c]);
         SW_AT(m, d->v, node, c) = vn[c];
       }
     }
@@ -96,11 +100,12 @@ void sw_bc_kick(const swModel *m, swData *d, double h, double t) {
         const double T = SW_AT(m, d->torque, elem, c), et = SW_AT(m, d->ext_torque, elem, c);
         double Je = SW_AT(m, m->inertia, elem, c) / e;
         double w_free = SW_AT(m, d->omega, elem, c), w_old = w_free - h * T / Je;
-        d->work -= 0.5 * h * et * (w_old + w_free);
-        d->work += 0.5 * (h * et + Je * (we[c] - w_free)) * (w_old + we[c]);
+        w -= 0.5 * h * et * (w_old + w_free);
+        w += 0.5 * (h * et + Je * (we[c] - w_free)) * (w_old + we[c]);
         SW_AT(m, d->omega, elem, c) = we[c];
       }
     }
+    work[k] = w;
   }
 }
 
@@ -126,10 +131,13 @@ static int clamp_domain(const swModel *m, const swData *d, const swBCDesc *b,
   return e;
 }
 
-void sw_bc_loads(const swModel *m, swData *d) {
+/* The clamp couples on the end elements in [lo, hi) (a thread's slots). */
+void sw_bc_loads(const swModel *m, swData *d, int lo, int hi) {
   for (int k = 0; k < m->nbc; k++) {
     const swBCDesc *b = &m->bc[k];
     if (b->kind != SW_BC_CLAMP) continue;
+    const int end = m->elem_adr[b->rod] + (b->end ? m->rod_nelem[b->rod] - 1 : 0);
+    if (end < lo || end >= hi) continue;
     double kappa[3], c[3], h[3], D;
     int e = clamp_domain(m, d, b, kappa, c, &D);
     sw_v3_cross(h, kappa, c);

@@ -42,7 +42,9 @@
 static void compute_loads(const swModel *m, swData *d) {
   sw_internal_loads(m, d);
   if (m->nbc) {
-    if (sw_team_leader()) sw_bc_loads(m, d);
+    int lo, hi;
+    sw_owned_slots(m, &lo, &hi);
+    sw_bc_loads(m, d, lo, hi);
     sw_team_barrier(d);
   }
   sw_external_loads(m, d);
@@ -203,11 +205,17 @@ static void kick(const swModel *m, swData *d, double h, double span) {
   sw_share_slots(m, n, &lo, &hi);
   kick_slots(m, d, h, lo, hi, d->scratch_flag); /* the flags are free between the passes */
   SW_FOR_CHUNKS(m, c, n) d->chunk_sum[c] = chunk_work(d->scratch_flag, sw_chunk_lo(m, c), sw_chunk_hi(m, c, n));
+  if (m->nbc) { /* the prescribed ends, after every free kick (an end's node and
+                  element may have been kicked by two threads) */
+    sw_team_barrier(d);
+    sw_owned_slots(m, &lo, &hi);
+    sw_bc_kick(m, d, h, d->time + 0.5 * span, lo, hi, d->bc_work);
+  }
   sw_team_barrier(d);
-  if (sw_team_leader()) {
-    for (int c = 0; c < sw_nchunk(m, n); c++) d->work += d->chunk_sum[c]; /* in chunk order */
+  if (sw_team_leader()) { /* the work, in chunk order, then condition order */
+    for (int c = 0; c < sw_nchunk(m, n); c++) d->work += d->chunk_sum[c];
+    for (int k = 0; k < m->nbc; k++) d->work += d->bc_work[k];
     if (m->nrigid) sw_rigid_kick(m, d, h);
-    if (m->nbc) sw_bc_kick(m, d, h, d->time + 0.5 * span);
   }
   sw_team_barrier(d);
 }

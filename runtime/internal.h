@@ -77,8 +77,10 @@ static inline void sw_share_slots(const swModel *m, int n, int *lo, int *hi) {
  * element and Voronoi pass, then the gather of their neighbours' terms. */
 void sw_rod_pass(const swModel *m, swData *d, int lo, int hi);
 void sw_rod_gather(const swModel *m, swData *d, int lo, int hi);
-void sw_bc_kick(const swModel *m, swData *d, double h, double t);     /* boundary.c  */
-void sw_bc_loads(const swModel *m, swData *d);                        /* boundary.c  */
+/* Boundary conditions (boundary.c), each applied by the thread that owns
+ * its end (slots [lo, hi)); the kick's work of condition k into work[k]. */
+void sw_bc_kick(const swModel *m, swData *d, double h, double t, int lo, int hi, double *work);
+void sw_bc_loads(const swModel *m, swData *d, int lo, int hi);
 double sw_bc_energy(const swModel *m, const swData *d);               /* boundary.c  */
 /* Largest h * omega for which the integrator is stable on the damped
  * oscillator x'' = -omega^2 x - c x', as a function of zeta = c / (2 omega). */

@@ -662,7 +662,7 @@ void sw_data_free(swData *d) {
   free(d->sigma); free(d->stress); free(d->vor_dilatation); free(d->kappa); free(d->couple);
   free(d->force); free(d->torque); free(d->ext_force); free(d->ext_torque);
   free(d->scratch_f); free(d->scratch_h); free(d->scratch_flag); free(d->scratch_phi);
-  free(d->chunk_sum); free(d->joint_scratch); free(d->team);
+  free(d->chunk_sum); free(d->bc_work); free(d->joint_scratch); free(d->team);
   free(d->joint_force); free(d->joint_angle);
   free(d->fil_activation); free(d->fil_stretch); free(d->fil_rate); free(d->fil_tension);
   free(d->rigid_X); free(d->rigid_V); free(d->rigid_R); free(d->rigid_L); free(d->rigid_omega);
@@ -683,6 +683,7 @@ swData *sw_data_new(const swModel *m) {
   d->scratch_f = palloc(m, 3); d->scratch_h = palloc(m, 3);
   d->scratch_flag = palloc(m, 1); d->scratch_phi = palloc(m, 3);
   d->chunk_sum = dalloc((size_t)sw_nchunk(m, m->stride));
+  d->bc_work = dalloc((size_t)m->nbc);
   d->joint_scratch = dalloc(SW_JOINT_ROW * (size_t)m->njoint);
   d->threads = 1;
   d->team = aligned_alloc(64, sizeof(swTeam));
@@ -695,7 +696,7 @@ swData *sw_data_new(const swModel *m) {
       !d->sigma || !d->stress || !d->vor_dilatation || !d->kappa ||
       !d->couple || !d->force || !d->torque || !d->ext_force || !d->ext_torque ||
       !d->scratch_f || !d->scratch_h || !d->scratch_flag || !d->scratch_phi ||
-      !d->chunk_sum || !d->joint_scratch || !d->team || !d->joint_force || !d->joint_angle || !d->fil_activation || !d->fil_stretch ||
+      !d->chunk_sum || !d->bc_work || !d->joint_scratch || !d->team || !d->joint_force || !d->joint_angle || !d->fil_activation || !d->fil_stretch ||
       !d->fil_rate || !d->fil_tension) {
     sw_data_free(d);
     return NULL;

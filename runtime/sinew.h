@@ -539,8 +539,9 @@ typedef struct {
    * slot (1 plane) and a rotation vector per slot (3 planes, which muscle.c
    * borrows while the loads are evaluated) */
   double *scratch_flag, *scratch_phi;
-  /* one partial sum per chunk (the kick's work), added in chunk order */
-  double *chunk_sum;
+  /* one partial sum per chunk (the kick's work), added in chunk order, and
+   * the work of each boundary condition in a kick (nbc) */
+  double *chunk_sum, *bc_work;
   /* joint.c: each joint's loads, evaluated in parallel and applied in joint
    * order (SW_JOINT_ROW doubles per joint) */
   double *joint_scratch;
