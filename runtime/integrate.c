@@ -119,8 +119,12 @@ static inline __attribute__((always_inline)) void drift_frames(const swModel *m,
 
 /* Velocities of the elastic slots [lo, hi) under the loads, and the work
  * booked over the kick (see kick()) slot by slot into `work` (summed by
- * chunk in kick(), so that the sum does not depend on the threads). */
-static void kick_slots(const swModel *m, swData *d, double h, int lo, int hi, double *restrict work) {
+ * chunk in kick(), so that the sum does not depend on the threads).  One
+ * loop per kind of model: with `exact` 0 (no rod integrates its damping
+ * exactly, the common case) the loop carries no exact path at all. */
+static inline __attribute__((always_inline)) void kick_slots(const swModel *m, swData *d, double h,
+                                                           int lo, int hi, double *restrict work,
+                                                           const int exact_any) {
   const size_t S = (size_t)m->stride;
   const double *restrict im = m->inv_mass, *restrict mass = m->mass;
   const double *restrict ndec = m->node_decay, *restrict nkick = m->node_kick;
@@ -137,7 +141,7 @@ static void kick_slots(const swModel *m, swData *d, double h, int lo, int hi, do
        * dv/dt = a - c v exactly with a held (model.c), and book the work of
        * loads and dissipation together as the non-internal impulse times
        * the mean velocity */
-      const int ex = exact[i] != 0.0;
+      const int ex = exact_any && exact[i] != 0.0;
       const double vo = v[i];
       const double vd = vo * ndec[i] + F[i] * im[i] * nkick[i], vp = vo + h * F[i] * im[i];
       const double vn = ex ? vd : vp;
@@ -203,7 +207,10 @@ static void kick(const swModel *m, swData *d, double h, double span) {
   compute_loads(m, d);
   int lo, hi;
   sw_share_slots(m, n, &lo, &hi);
-  kick_slots(m, d, h, lo, hi, d->scratch_flag); /* the flags are free between the passes */
+  if (m->has_exact_kick) /* the flags are free between the passes */
+    kick_slots(m, d, h, lo, hi, d->scratch_flag, 1);
+  else
+    kick_slots(m, d, h, lo, hi, d->scratch_flag, 0);
   SW_FOR_CHUNKS(m, c, n) d->chunk_sum[c] = chunk_work(d->scratch_flag, sw_chunk_lo(m, c), sw_chunk_hi(m, c, n));
   if (m->nbc) { /* the prescribed ends, after every free kick (an end's node and
                   element may have been kicked by two threads) */

@@ -592,6 +592,7 @@ swModel *sw_compile(const swSpec *s, char *err, size_t errlen) {
     int analytic = m->rod_damping[r] == SW_DAMP_ANALYTIC;
     double span = s->integrator == SW_VERLET ? s->dt : 0.5 * s->dt;
     for (int i = 0; i <= n; i++) m->kick_exact[na + i] = analytic && s->integrator == SW_VERLET;
+    if (analytic && s->integrator == SW_VERLET) m->has_exact_kick = 1;
     for (int i = 0; i <= n; i++) m->damp_linear[na + i] = m->rod_damping[r] == SW_DAMP_LINEAR;
     for (int i = 0; i <= n; i++) {
       double c = analytic ? m->node_gamma[na + i] * m->inv_mass[na + i] : 0.0;

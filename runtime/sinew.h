@@ -505,6 +505,7 @@ typedef struct {
   int contact_nbucket;       /* hash grid buckets, a power of two            */
   int has_gravity;
   int has_damping;
+  int has_exact_kick;        /* some rod's kick integrates its damping exactly */
 } swModel;
 
 /* ---- the state (mutable) ---- */
