@@ -55,7 +55,8 @@ static const double BATCH_SECONDS = 0.2;       /* minimum wall time of a batch, 
 static const double BATCH_MIN_ELEM_STEPS = 1e6;
 static const double WARMUP_SECONDS = 0.1;      /* calibration doubles as the warm-up  */
 static const double SEGMENT_SECONDS = 1.0;     /* simulated time between resets, s    */
-static const double TARGET_NS = 40.0;          /* ns per element-step, one thread     */
+static const double TARGET_NS = 30.0;          /* ns per element-step, one thread     */
+static const double GOAL_NS = 15.0;            /* and the goal beyond it (issue 10)   */
 static const int TARGET_MIN_N = 100;           /* the target applies from this n on   */
 
 static const int VERLET_N[] = {25, 50, 100, 200, 400, 800};
@@ -517,7 +518,7 @@ static void write_report(FILE *f, const Machine *mc, const Cost *verlet, const C
 
   fprintf(f, "## Target\n\n");
   fprintf(f, "Target: at most %.0f ns per element-step for n >= %d, one thread (median of the\n"
-             "batches, whole step).\n\n", TARGET_NS, TARGET_MIN_N);
+             "batches, whole step); the goal is %.0f ns.\n\n", TARGET_NS, TARGET_MIN_N, GOAL_NS);
   int judged = 0, met = 0;
   for (int i = 0; i < NVERLET; i++) {
     target_line(f, "Verlet", verlet + i);

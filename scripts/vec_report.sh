@@ -1,15 +1,15 @@
 #!/bin/sh
-# vec_report.sh — what GCC's vectorizer did with the hot loops of the rod
-# kernels (runtime/rod.c, runtime/integrate.c) at the flags of `make`: each
+# vec_report.sh — what GCC's vectorizer did with the hot loops of the step
+# (rod.c, integrate.c, loads.c, muscle.c, stability.c) at the flags of `make`: each
 # loop of those files that it vectorized, with the vector width, as
 # -fopt-info-vec-optimized reports it.  Printed as Markdown for
 # docs/performance.md ("What the vectorizer did").
 set -eu
 cc=${CC:-cc}
-flags="-std=c11 -D_DEFAULT_SOURCE -O3 -march=native -fno-math-errno -fopenmp-simd"
+flags="-std=c11 -D_DEFAULT_SOURCE -O3 -march=native -fno-math-errno -fopenmp"
 echo "Compiler: $($cc --version | head -1); flags: \`$flags\`; CPU: $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 's/^ *//')."
 echo
-for f in runtime/rod.c runtime/integrate.c; do
+for f in runtime/rod.c runtime/integrate.c runtime/loads.c runtime/muscle.c runtime/stability.c; do
   echo "\`$f\`:"
   echo
   echo '```'
