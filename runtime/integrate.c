@@ -43,7 +43,7 @@ static void compute_loads(const swModel *m, swData *d) {
   sw_internal_loads(m, d);
   if (m->nbc) {
     int lo, hi;
-    sw_owned_slots(m, &lo, &hi);
+    sw_owned_slots(m, d, &lo, &hi);
     sw_bc_loads(m, d, lo, hi);
     sw_team_barrier(d);
   }
@@ -51,7 +51,7 @@ static void compute_loads(const swModel *m, swData *d) {
   if (m->njoint) sw_joint_loads(m, d);
   if (m->nmuscle) sw_muscle_loads(m, d);
   if (sw_has_env(m)) { /* last: the ground balances the rest */
-    if (sw_team_leader()) sw_env_loads(m, d);
+    if (sw_team_leader(d)) sw_env_loads(m, d);
     sw_team_barrier(d);
   }
 }
@@ -182,7 +182,7 @@ static double chunk_work(const double *restrict work, int lo, int hi) {
  * as an explicit couple in the kick would cap both schemes at first order. */
 static void drift(const swModel *m, swData *d, double h) {
   int lo, hi;
-  sw_share_slots(m, m->nslot_elastic, &lo, &hi);
+  sw_share_slots(m, d, m->nslot_elastic, &lo, &hi);
   drift_nodes(m, d, h, lo, hi);
   sw_team_barrier(d); /* a frame reads the node after its element's */
   if (m->integrator == SW_PEFRL) /* one loop per scheme: Simpson's rule or not */
@@ -190,7 +190,7 @@ static void drift(const swModel *m, swData *d, double h) {
   else
     drift_frames(m, d, h, lo, hi, 0);
   sw_team_barrier(d); /* the last elastic slot read the first rigid node */
-  if (sw_team_leader()) {
+  if (sw_team_leader(d)) {
     if (m->nrigid) sw_rigid_drift(m, d, h);
     d->time += h;
   }
@@ -206,20 +206,20 @@ static void kick(const swModel *m, swData *d, double h, double span) {
   const int n = m->nslot_elastic;
   compute_loads(m, d);
   int lo, hi;
-  sw_share_slots(m, n, &lo, &hi);
+  sw_share_slots(m, d, n, &lo, &hi);
   if (m->has_exact_kick) /* the flags are free between the passes */
     kick_slots(m, d, h, lo, hi, d->scratch_flag, 1);
   else
     kick_slots(m, d, h, lo, hi, d->scratch_flag, 0);
-  SW_FOR_CHUNKS(m, c, n) d->chunk_sum[c] = chunk_work(d->scratch_flag, sw_chunk_lo(m, c), sw_chunk_hi(m, c, n));
+  SW_FOR_CHUNKS(m, d, c, n) d->chunk_sum[c] = chunk_work(d->scratch_flag, sw_chunk_lo(m, c), sw_chunk_hi(m, c, n));
   if (m->nbc) { /* the prescribed ends, after every free kick (an end's node and
                   element may have been kicked by two threads) */
     sw_team_barrier(d);
-    sw_owned_slots(m, &lo, &hi);
+    sw_owned_slots(m, d, &lo, &hi);
     sw_bc_kick(m, d, h, d->time + 0.5 * span, lo, hi, d->bc_work);
   }
   sw_team_barrier(d);
-  if (sw_team_leader()) { /* the work, in chunk order, then condition order */
+  if (sw_team_leader(d)) { /* the work, in chunk order, then condition order */
     for (int c = 0; c < sw_nchunk(m, n); c++) d->work += d->chunk_sum[c];
     for (int k = 0; k < m->nbc; k++) d->work += d->bc_work[k];
     if (m->nrigid) sw_rigid_kick(m, d, h);
@@ -252,7 +252,7 @@ static void analytic_decay_serial(const swModel *m, swData *d) {
 }
 
 static void analytic_decay(const swModel *m, swData *d) {
-  if (sw_team_leader()) analytic_decay_serial(m, d);
+  if (sw_team_leader(d)) analytic_decay_serial(m, d);
   sw_team_barrier(d);
 }
 
@@ -296,11 +296,11 @@ static void end_step(const swModel *m, swData *d, int whole, int due, int more, 
   const int n = m->nslot_elastic;
   if (due) { /* a count: any cut gives the same; one per thread, in its first chunk */
     int lo, hi;
-    sw_share_slots(m, n, &lo, &hi);
-    SW_FOR_CHUNKS(m, c, n) d->chunk_sum[c] = c == c_end - 1 ? sw_check_slots(m, d, lo, hi) : 0;
+    sw_share_slots(m, d, n, &lo, &hi);
+    SW_FOR_CHUNKS(m, d, c, n) d->chunk_sum[c] = c == c_end - 1 ? sw_check_slots(m, d, lo, hi) : 0;
     sw_team_barrier(d);
   }
-  if (sw_team_leader()) {
+  if (sw_team_leader(d)) {
     d->step++;
     d->time = ((double)d->step + (whole ? 0.0 : 0.5)) * m->dt;
     double suspect = m->nrigid;
@@ -325,7 +325,7 @@ static void steps(const swModel *m, swData *d, long k, int *rc) {
   const double h = m->dt;
   const long step0 = d->step; /* read by all before the leader moves it */
   if (m->nmuscle) { /* activations of the first step (end_step does the rest) */
-    if (sw_team_leader()) sw_muscle_advance(m, d, (double)step0 * h, h);
+    if (sw_team_leader(d)) sw_muscle_advance(m, d, (double)step0 * h, h);
     sw_team_barrier(d);
   }
   if (m->integrator == SW_PEFRL) {
@@ -347,8 +347,17 @@ static void steps(const swModel *m, swData *d, long k, int *rc) {
 int sw_steps(const swModel *m, swData *d, long k) {
   if (k <= 0) return SW_OK;
   int rc = SW_OK;
-#pragma omp parallel num_threads(d->threads) if (d->threads > 1)
-  steps(m, d, k, &rc);
+  if (d->threads <= 1) {
+    steps(m, d, k, &rc);
+    return rc;
+  }
+#pragma omp parallel num_threads(d->threads)
+  {
+#pragma omp single
+    d->team_size = omp_get_num_threads(); /* the runtime may give fewer */
+    steps(m, d, k, &rc);
+  }
+  d->team_size = 1;
   return rc;
 }
 

@@ -17,8 +17,8 @@ int sw_fail(char *err, size_t errlen, const char *fmt, ...) __attribute__((forma
  * them (contiguous, by rank), and sw_team_barrier() is where a phase waits for
  * the others.  Parts that are not split run on the leader (rank 0) and end in
  * a barrier.  Outside a parallel region the team is the caller alone: all
- * chunks are its share, the barrier costs one call, and no OpenMP construct
- * runs, so a one-thread run pays nothing for the threads (the same code also
+ * chunks are its share, the barrier is a test of d->team_size, and no OpenMP
+ * construct runs, so a one-thread run pays nothing for the threads (the same code also
  * serves the set-up and the diagnostics).  Chunks depend on the model only,
  * and so does every partial sum: results are the same bits for any team. */
 /* The team's barrier (d->team): a counter and a generation, each on its own
@@ -33,15 +33,18 @@ typedef struct {
   _Alignas(64) atomic_int generation;
 } swTeam;
 void sw_team_wait(swTeam *t, int size); /* integrate.c */
-static inline int sw_team_size(void) { return omp_get_num_threads(); }
-static inline int sw_team_leader(void) { return omp_get_thread_num() == 0; }
+static inline int sw_team_rank(const swData *d) { return d->team_size > 1 ? omp_get_thread_num() : 0; }
+static inline int sw_team_leader(const swData *d) { return sw_team_rank(d) == 0; }
 static inline void sw_team_barrier(swData *d) {
-  const int size = omp_get_num_threads();
-  if (size > 1) sw_team_wait((swTeam *)d->team, size);
+  if (d->team_size > 1) sw_team_wait((swTeam *)d->team, d->team_size);
 }
 /* First and end of this thread's share of n items. */
-static inline int sw_share_lo(int n) { return (int)((long)n * omp_get_thread_num() / omp_get_num_threads()); }
-static inline int sw_share_hi(int n) { return (int)((long)n * (omp_get_thread_num() + 1) / omp_get_num_threads()); }
+static inline int sw_share_lo(const swData *d, int n) {
+  return d->team_size > 1 ? (int)((long)n * sw_team_rank(d) / d->team_size) : 0;
+}
+static inline int sw_share_hi(const swData *d, int n) {
+  return d->team_size > 1 ? (int)((long)n * (sw_team_rank(d) + 1) / d->team_size) : n;
+}
 static inline int sw_nchunk(const swModel *m, int n) { return (n + m->chunk - 1) / m->chunk; }
 static inline int sw_chunk_lo(const swModel *m, int c) { return c * m->chunk; }
 static inline int sw_chunk_hi(const swModel *m, int c, int n) {
@@ -52,24 +55,28 @@ static inline int sw_chunk_hi(const swModel *m, int c, int n) {
  * the last thread also the rigid slots and the padding.  Loads that land on
  * scattered slots (joints, muscles) are added by the owner of each slot, so
  * a slot's cache lines stay with one core and no slot has two writers. */
-static inline void sw_owned_slots(const swModel *m, int *lo, int *hi) {
-  const int n = m->nslot_elastic, nc = sw_nchunk(m, n);
-  const int c0 = sw_share_lo(nc), c1 = sw_share_hi(nc);
-  *lo = omp_get_thread_num() == 0 ? 0 : sw_chunk_lo(m, c0);
-  *hi = omp_get_thread_num() == omp_get_num_threads() - 1 ? m->stride : c1 > c0 ? sw_chunk_hi(m, c1 - 1, n) : *lo;
+static inline void sw_owned_slots(const swModel *m, const swData *d, int *lo, int *hi) {
+  if (d->team_size <= 1) {
+    *lo = 0, *hi = m->stride;
+    return;
+  }
+  const int n = m->nslot_elastic, nc = sw_nchunk(m, n), rank = sw_team_rank(d);
+  const int c0 = sw_share_lo(d, nc), c1 = sw_share_hi(d, nc);
+  *lo = rank == 0 ? 0 : sw_chunk_lo(m, c0);
+  *hi = rank == d->team_size - 1 ? m->stride : c1 > c0 ? sw_chunk_hi(m, c1 - 1, n) : *lo;
 }
 /* This thread's share of the slots [0, n), the chunks of its share as one
  * range (empty when lo == hi): kernels whose results do not depend on how
  * the range is cut (no sums) take it in one call, which saves the set-up of
  * their vector loops per chunk. */
-static inline void sw_share_slots(const swModel *m, int n, int *lo, int *hi) {
-  const int nc = sw_nchunk(m, n), c0 = sw_share_lo(nc), c1 = sw_share_hi(nc);
+static inline void sw_share_slots(const swModel *m, const swData *d, int n, int *lo, int *hi) {
+  const int nc = sw_nchunk(m, n), c0 = sw_share_lo(d, nc), c1 = sw_share_hi(d, nc);
   *lo = c1 > c0 ? sw_chunk_lo(m, c0) : 0;
   *hi = c1 > c0 ? sw_chunk_hi(m, c1 - 1, n) : 0;
 }
 /* for (c in this thread's chunks of slots [0, n)): kernels with sums */
-#define SW_FOR_CHUNKS(m, c, n) \
-  for (int c##_all = sw_nchunk(m, n), c = sw_share_lo(c##_all), c##_end = sw_share_hi(c##_all); \
+#define SW_FOR_CHUNKS(m, d, c, n) \
+  for (int c##_all = sw_nchunk(m, n), c = sw_share_lo(d, c##_all), c##_end = sw_share_hi(d, c##_all); \
        c < c##_end; c++)
 /* doubles per joint in d->joint_scratch (joint.c) */
 #define SW_JOINT_ROW 18

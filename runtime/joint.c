@@ -333,7 +333,7 @@ static void apply_row(const swModel *m, swData *d, int j, const double *row, int
  * thread adds them to its own slots. */
 void sw_joint_loads(const swModel *m, swData *d) {
   int lo, hi;
-  sw_owned_slots(m, &lo, &hi);
+  sw_owned_slots(m, d, &lo, &hi);
   for (int j = 0; j < m->njoint; j++)
     if (m->joint_node_a[j] >= lo && m->joint_node_a[j] < hi)
       joint_row(m, d, j, d->joint_scratch + SW_JOINT_ROW * j);

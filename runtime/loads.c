@@ -191,11 +191,11 @@ static void finish_loads(const swModel *m, swData *d, int lo, int hi) {
 
 void sw_external_loads(const swModel *m, swData *d) {
   int lo, hi;
-  sw_share_slots(m, m->stride, &lo, &hi);
+  sw_share_slots(m, d, m->stride, &lo, &hi);
   base_loads(m, d, lo, hi);
   if (m->nload) { /* onto the base loads, before the damping reads them */
     sw_team_barrier(d);
-    if (sw_team_leader()) point_loads(m, d);
+    if (sw_team_leader(d)) point_loads(m, d);
     sw_team_barrier(d);
   }
   finish_loads(m, d, lo, hi);

@@ -687,6 +687,7 @@ swData *sw_data_new(const swModel *m) {
   d->bc_work = dalloc((size_t)m->nbc);
   d->joint_scratch = dalloc(SW_JOINT_ROW * (size_t)m->njoint);
   d->threads = 1;
+  d->team_size = 1;
   d->team = aligned_alloc(64, sizeof(swTeam));
   if (d->team) memset(d->team, 0, sizeof(swTeam));
   d->joint_force = dalloc(3 * (size_t)m->njoint); d->joint_angle = dalloc((size_t)m->njoint);

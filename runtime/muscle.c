@@ -507,7 +507,7 @@ static int muscle_of(const swModel *m, int f) {
 void sw_muscle_loads(const swModel *m, swData *d) {
   int lo, hi, muscle = -1;
   double u = 0;
-  sw_owned_slots(m, &lo, &hi);
+  sw_owned_slots(m, d, &lo, &hi);
   const int elastic_hi = hi < m->nslot_elastic ? hi : m->nslot_elastic;
   if (lo < elastic_hi) filament_rates(m, d, lo, elastic_hi);
   sw_team_barrier(d);

@@ -172,11 +172,11 @@ void sw_rod_gather(const swModel *m, swData *d, int lo, int hi) {
 
 void sw_internal_loads(const swModel *m, swData *d) {
   int lo, hi;
-  sw_share_slots(m, m->nslot_elastic, &lo, &hi);
+  sw_share_slots(m, d, m->nslot_elastic, &lo, &hi);
   sw_rod_pass(m, d, lo, hi);
   sw_team_barrier(d); /* the gather reads the pass of the slot before */
   sw_rod_gather(m, d, lo, hi);
-  if (m->nrigid && sw_team_leader()) /* rigid slots: no thread's chunks touch them */
+  if (m->nrigid && sw_team_leader(d)) /* rigid slots: no thread's chunks touch them */
     for (int b = 0; b < m->nrigid; b++) /* no deformation, no internal loads (rigid.c) */
       sw_rigid_internal(m, d, m->rigid_rod[b]);
   sw_team_barrier(d);

@@ -514,6 +514,7 @@ typedef struct {
   long step;
   int threads;               /* OpenMP threads of a step (sw_set_threads; 1) */
   void *team;                /* their barrier (integrate.c)                  */
+  int team_size;             /* threads of the step running now (1 outside)  */
   double work;               /* work done on the rods by loads, boundaries
                                 and dissipation since t = 0, J            */
   /* state, per slot in the layout of the model: x, v (3 planes, node
