@@ -389,10 +389,18 @@ void sw_env_free(swModel *m) {
 
 /* Loads of the environments, after every other load of this evaluation. */
 void sw_env_loads(const swModel *m, swData *d) {
-  if (m->nwave) sw_wave_loads(m, d);
-  if (m->nfluid) sw_fluid_loads(m, d);
-  if (m->ncontact) sw_contact_loads(m, d);
-  if (m->nground) sw_ground_loads(m, d); /* last: the ground balances the rest */
+  /* each rod's waves, drag and ground by the thread that owns the rod (its
+   * first slot; internal.h), contact, which couples rods, on the leader */
+  int lo, hi;
+  sw_owned_slots(m, d, &lo, &hi);
+  if (m->nwave) sw_wave_loads(m, d, lo, hi);
+  if (m->nfluid) sw_fluid_loads(m, d, lo, hi);
+  if (m->ncontact) {
+    sw_team_barrier(d);
+    if (sw_team_leader(d)) sw_contact_loads(m, d);
+    sw_team_barrier(d);
+  }
+  if (m->nground) sw_ground_loads(m, d, lo, hi); /* last: the ground balances the rest */
 }
 
 /* Energy stored in environment springs (contact and ground penalties), J. */

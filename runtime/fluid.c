@@ -105,11 +105,12 @@ int sw_fluid_setup(swModel *m, char *err, size_t errlen) {
   m->fluid_row_adr = calloc((size_t)m->nfluid + 1, sizeof(int));
   m->fluid_elem = calloc(R, sizeof(int));
   m->fluid_node = calloc(R, sizeof(int));
+  m->fluid_first = calloc(R, sizeof(int));
   m->fluid_stokes = calloc(R, sizeof(double));
   m->fluid_cap = calloc(R, sizeof(double));
   m->fluid_displaced = calloc(R, sizeof(double));
   double *rate = calloc((size_t)m->nslot, sizeof(double)); /* Stokes damping rate per node slot */
-  if (!m->fluid_row_adr || !m->fluid_elem || !m->fluid_node || !m->fluid_stokes ||
+  if (!m->fluid_row_adr || !m->fluid_elem || !m->fluid_node || !m->fluid_first || !m->fluid_stokes ||
       !m->fluid_cap || !m->fluid_displaced || !rate) {
     free(rate);
     return sw_fail(err, errlen, "out of memory while building the fluids");
@@ -128,6 +129,7 @@ int sw_fluid_setup(swModel *m, char *err, size_t errlen) {
         const double rad = m->radius[e], area = SW_PI * rad * rad;
         m->fluid_elem[row] = e;
         m->fluid_node[row] = na + i;
+        m->fluid_first[row] = na;
         if (f->model == SW_FLUID_STOKES) {
           /* Zhang 2019, Suppl. eq. 1: c = 4 pi mu / ln(L / r) */
           if (!(L > rad)) {
@@ -169,16 +171,16 @@ int sw_fluid_setup(swModel *m, char *err, size_t errlen) {
 }
 
 void sw_fluid_free(swModel *m) {
-  free(m->fluid_row_adr); free(m->fluid_elem); free(m->fluid_node);
+  free(m->fluid_row_adr); free(m->fluid_elem); free(m->fluid_node); free(m->fluid_first);
   free(m->fluid_stokes); free(m->fluid_cap); free(m->fluid_displaced);
-  m->fluid_row_adr = NULL; m->fluid_elem = NULL; m->fluid_node = NULL;
+  m->fluid_row_adr = NULL; m->fluid_elem = NULL; m->fluid_node = NULL; m->fluid_first = NULL;
   m->fluid_stokes = NULL; m->fluid_cap = NULL; m->fluid_displaced = NULL;
   m->nfluidrow = 0;
 }
 
 double sw_fluid_stable_dt(const swModel *m) { return m->nfluid ? m->fluid_dt : INFINITY; }
 
-void sw_fluid_loads(const swModel *m, swData *d) {
+void sw_fluid_loads(const swModel *m, swData *d, int lo, int hi) {
   const double *restrict x = d->x, *restrict v = d->v;
   double *restrict ef = d->ext_force, *restrict F = d->force;
   for (int k = 0; k < m->nfluid; k++) {
@@ -187,6 +189,7 @@ void sw_fluid_loads(const swModel *m, swData *d) {
     const int stokes = fl->model == SW_FLUID_STOKES;
     const double half_rho_cd = 0.5 * fl->density * fl->drag_coefficient;
     for (int row = m->fluid_row_adr[k]; row < m->fluid_row_adr[k + 1]; row++) {
+      if (m->fluid_first[row] < lo || m->fluid_first[row] >= hi) continue; /* another thread's rod */
       const int a = m->fluid_node[row], e = m->fluid_elem[row];
       double xa[3], xb[3], t[3], w[3], load[3];
       sw_get3(m, x, a, xa);

@@ -211,11 +211,12 @@ static int ground_element(const swModel *m, swData *d, const swGroundDesc *g, in
   return 1;
 }
 
-void sw_ground_loads(const swModel *m, swData *d) {
+void sw_ground_loads(const swModel *m, swData *d, int lo, int hi) {
   for (int q = 0; q < m->nground; q++) {
     const swGroundDesc *g = &m->ground[q];
     for (int j = 0; j < g->nrods; j++) {
       const int r = g->rods[j], n = m->rod_nelem[r], na = m->node_adr[r], ea = m->elem_adr[r];
+      if (na < lo || na >= hi) continue; /* another thread's rod */
       double carry[3] = {0, 0, 0};
       for (int i = 0; i < n; i++) {
         double wa = i == 0 ? 1.0 : 0.5, wb = i == n - 1 ? 1.0 : 0.5;

@@ -51,7 +51,7 @@ static void compute_loads(const swModel *m, swData *d) {
   if (m->njoint) sw_joint_loads(m, d);
   if (m->nmuscle) sw_muscle_loads(m, d);
   if (sw_has_env(m)) { /* last: the ground balances the rest */
-    if (sw_team_leader(d)) sw_env_loads(m, d);
+    sw_env_loads(m, d);
     sw_team_barrier(d);
   }
 }

@@ -145,7 +145,8 @@ double sw_rigid_joint_dt(const swModel *m, int b);
 /* Environments (environment.c).  The swSpec keeps them in an opaque slot
  * (sw_spec_env); sw_env_check validates them in sw_compile, sw_env_setup
  * puts resolved copies and each kind's derived data in the model, sw_env_free
- * releases them; sw_env_loads adds their loads after all others (integrate.c),
+ * releases them; sw_env_loads adds their loads after all others (integrate.c;
+ * entered by every thread of a step: each rod's by the thread that owns it),
  * sw_env_energy is their stored energy, sw_env_stable_dt their step limit. */
 typedef struct swEnvSpec swEnvSpec;
 swEnvSpec **sw_spec_env(swSpec *s);                                   /* model.c */
@@ -166,7 +167,7 @@ double sw_env_stable_dt(const swModel *m);
  * d->ext_force and d->force; sw_fluid_stable_dt is the step limit. */
 int sw_fluid_setup(swModel *m, char *err, size_t errlen);
 void sw_fluid_free(swModel *m);
-void sw_fluid_loads(const swModel *m, swData *d);
+void sw_fluid_loads(const swModel *m, swData *d, int lo, int hi);
 double sw_fluid_stable_dt(const swModel *m);
 /* Grounds and terrains (ground.c).  sw_ground_setup normalises the planes'
  * normals (from sw_env_setup); sw_ground_loads adds the normal response and
@@ -174,7 +175,7 @@ double sw_fluid_stable_dt(const swModel *m);
  * ext_force/ext_torque), called last by sw_env_loads; sw_ground_energy is the
  * energy of the ground penalties; sw_ground_stable_dt their step limit. */
 void sw_ground_setup(swModel *m);
-void sw_ground_loads(const swModel *m, swData *d);
+void sw_ground_loads(const swModel *m, swData *d, int lo, int hi);
 double sw_ground_energy(const swModel *m, const swData *d);
 double sw_ground_stable_dt(const swModel *m);
 /* Torque waves (wave.c): sw_wave_setup fills the wave_* arrays of the model
@@ -183,7 +184,7 @@ double sw_ground_stable_dt(const swModel *m);
  * d->torque, called by sw_env_loads. */
 int sw_wave_setup(swModel *m);
 void sw_wave_free(swModel *m);
-void sw_wave_loads(const swModel *m, swData *d);
+void sw_wave_loads(const swModel *m, swData *d, int lo, int hi);
 /* Probes (probe.c): their samples live in swData (sw_data_new, sw_data_free
  * and sw_reset call these); kind names and units for output and --info. */
 int sw_probe_data_new(const swModel *m, swData *d);

@@ -481,6 +481,8 @@ typedef struct {
   int *fluid_row_adr;        /* (nfluid+1) first row of each fluid           */
   int *fluid_elem;           /* (nfluidrow) global element of the row         */
   int *fluid_node;           /* (nfluidrow) its first node (second: +1)       */
+  int *fluid_first;          /* (nfluidrow) first node of its rod (the thread
+                                that owns it applies the row)                */
   double *fluid_stokes;      /* (nfluidrow) 4 pi mu / ln(L/r), Pa s (Stokes)  */
   double *fluid_cap;         /* (nfluidrow) exposed end-cap silhouette, m^2:
                                 pi r^2 / 2 per rod end on it (quadratic)     */

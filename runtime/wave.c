@@ -139,10 +139,11 @@ static void body_axis(double out[3], const swModel *m, const swData *d, int e, c
 
 /* The moment at every node of each wave's rod, and the couple it makes on
  * each element (sinew.h, "travelling muscle-torque wave"). */
-void sw_wave_loads(const swModel *m, swData *d) {
+void sw_wave_loads(const swModel *m, swData *d, int lo, int hi) {
   const double t = d->time;
   for (int k = 0; k < m->nwave; k++) {
     const swWaveDesc *w = &m->wave[k];
+    if (m->node_adr[w->rod] < lo || m->node_adr[w->rod] >= hi) continue; /* another thread's rod */
     const double ramp = w->ramp > 0 && t < w->ramp ? (t > 0 ? t / w->ramp : 0.0) : 1.0;
     const double wt = 2.0 * SW_PI * t / w->period;
     const double sin_wt = ramp * sin(wt), cos_wt = ramp * cos(wt);

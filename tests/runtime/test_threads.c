@@ -2,10 +2,11 @@
  * (issue 10).
  *
  * One scene exercises every part of the step that threads touch: eight
- * elastic rods (about 700 slots, so eleven chunks) and a rigid one, a
+ * elastic rods (about 780 slots, so thirteen chunks) and a rigid one, a
  * clamp, a prescribed end velocity, a point force and a point couple, linear
- * and analytic damping, gravity, and spherical, hinge and fixed joints, one of
- * them anchored.  It runs for the same number of steps on 1, 2, 3 and 4
+ * and analytic damping, gravity, spherical, hinge and fixed joints, one of
+ * them anchored, a ground with friction under all rods, water around two of
+ * them and contact among all.  It runs for the same number of steps on 1, 2, 3 and 4
  * threads with position Verlet and with PEFRL, and every state array (all
  * planes of x, v, Q, omega and the derived strains and loads), the joint
  * records, the time and the work are compared bit for bit.  A run made
@@ -84,13 +85,35 @@ static swSpec *scene(swIntegrator integ) {
     }
     sw_spec_add_joint(s, &j[k]);
   }
+  swGroundDesc gr;
+  sw_ground_desc_init(&gr);
+  gr.origin[2] = -0.012; /* just below the rods: the sagging ones touch it */
+  gr.stiffness = 2e3;
+  gr.damping = 1.0;
+  for (int k = 0; k < 3; k++) gr.mu_kinetic[k] = k == 2 ? 0.6 : 0.3, gr.mu_static[k] = 0.5;
+  sw_spec_add_ground(s, &gr);
+  static const int wet[] = {6, 7};
+  swFluidDesc fl;
+  sw_fluid_desc_init(&fl);
+  fl.model = SW_FLUID_QUADRATIC;
+  fl.density = 1000;
+  fl.drag_coefficient = 1.0;
+  fl.buoyancy = 1;
+  fl.nrods = 2;
+  fl.rods = wet;
+  sw_spec_add_fluid(s, &fl);
+  swContactDesc ct;
+  sw_contact_desc_init(&ct);
+  ct.stiffness = 1e3;
+  ct.damping = 0.1;
+  sw_spec_add_contact(s, &ct);
   return s;
 }
 
 typedef struct {
   double time, work;
   long step;
-  int rc;
+  int rc, pairs;
   char error[512];
   double *planes; /* all per-slot arrays the step writes, back to back */
   double *joints;
@@ -115,7 +138,7 @@ static snapshot run(const swModel *m, int threads, long steps) {
   snapshot s = {0};
   s.rc = sw_steps(m, d, steps / 2);
   if (s.rc == SW_OK) s.rc = sw_steps(m, d, steps - steps / 2); /* two calls: the regions meet */
-  s.time = d->time, s.work = d->work, s.step = d->step;
+  s.time = d->time, s.work = d->work, s.step = d->step, s.pairs = d->contact_pairs;
   memcpy(s.error, d->error, sizeof s.error);
   int np[16];
   double **a = arrays(d, np);
@@ -159,6 +182,7 @@ static void same_bits(const swModel *m, const snapshot *a, const snapshot *b, in
   assert_memory_equal(&a->time, &b->time, sizeof a->time);
   assert_int_equal(a->step, b->step);
   assert_int_equal(a->rc, b->rc);
+  assert_int_equal(a->pairs, b->pairs);
   assert_string_equal(a->error, b->error);
 }
 
@@ -168,6 +192,8 @@ static void compare(swIntegrator integ, double dt_frac, long steps, int want_rc)
   assert_true((m->nslot_elastic + m->chunk - 1) / m->chunk > 4); /* several chunks a thread */
   snapshot one = run(m, 1, steps);
   assert_int_equal(one.rc, want_rc);
+  fprintf(stderr, "# %s: %ld steps, %d element pairs in contact at the end\n",
+          integ == SW_PEFRL ? "PEFRL" : "Verlet", one.step, one.pairs);
   for (int t = 2; t <= 4; t++) {
     snapshot more = run(m, t, steps);
     same_bits(m, &one, &more, t);
