@@ -124,7 +124,7 @@ BENCH_BIN = build/bench/bench_rod
 BENCH_FLAGS = -DSW_BENCH_CFLAGS='"$(CC) $(STD) $(CFLAGS)"'
 build/bench/bench_rod: bench/bench_rod.c build/libsinewrt.a | build/bench
 	$(CC) $(ALL_CFLAGS) $(BENCH_FLAGS) $< -o $@ build/libsinewrt.a $(LIBS)
-# bench_rigid (one bone elastic vs rigid) replaces its own section at the end
+# bench_rigid (one bone elastic vs rigid) replaces or appends its own section
 # of the report bench_rod has just written.
 BENCH_RIGID = build/bench/bench_rigid
 build/bench/bench_rigid: bench/bench_rigid.c bench/bench_util.h build/libsinewrt.a | build/bench

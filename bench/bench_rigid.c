@@ -16,9 +16,8 @@
  * SIM_SECONDS of physical time is the median of NREP runs from sw_reset();
  * the variants run in the same process, interleaved repeat by repeat, so the
  * ratios compare like with like.  The section goes to stdout and into the
- * report named by argv[1] (bench_rod writes the rest of that file first):
- * everything from the line "## Rigid rods" on is replaced, so running it
- * twice leaves one section.
+ * report named by argv[1]: its own section (from "## Rigid rods" to the next
+ * heading) is replaced, or appended, so running it twice leaves one section.
  */
 #include <math.h>
 #include <stdio.h>
@@ -197,36 +196,16 @@ static void write_section(FILE *f, Variant *v, const double *ns, const double *w
              "tip by the fraction in the last column.\n");
 }
 
-/* Replaces everything from the line SECTION on in the file at path (or
- * creates it) with the section. */
+/* Replaces the section in the report at path (bench_util.h), or appends it. */
 static void write_report(const char *path, Variant *v, const double *ns, const double *wall) {
-  char *old = NULL;
-  size_t len = 0;
-  FILE *f = fopen(path, "r");
-  if (f) {
-    fseek(f, 0, SEEK_END);
-    long size = ftell(f);
-    fseek(f, 0, SEEK_SET);
-    old = calloc((size_t)(size > 0 ? size : 0) + 1, 1);
-    if (!old) die("out of memory", NULL);
-    len = fread(old, 1, (size_t)(size > 0 ? size : 0), f);
-    old[len] = 0;
-    fclose(f);
-    char key[64];
-    snprintf(key, sizeof key, "\n%s", SECTION);
-    char *at = strstr(old, key);
-    if (at) len = (size_t)(at - old) + 1;
-    while (len > 0 && old[len - 1] == '\n') len--; /* one blank line before the section */
-  }
-  f = fopen(path, "w");
-  if (!f) die("cannot write the report", path);
-  if (len) {
-    fwrite(old, 1, len, f);
-    fputs("\n\n", f);
-  }
+  char *text = NULL;
+  size_t size = 0;
+  FILE *f = open_memstream(&text, &size);
+  if (!f) die("out of memory", NULL);
   write_section(f, v, ns, wall);
-  if (fclose(f) != 0) die("cannot write the report", path);
-  free(old);
+  fclose(f);
+  if (bench_replace_section(path, SECTION, text) != 0) die("cannot write the report", path);
+  free(text);
   fprintf(stderr, "bench_rigid: wrote %s\n", path);
 }
 

@@ -8,7 +8,7 @@
 set -eu
 BASE=${SW_BENCH_BASE:-d25e385}      # last commit before the layout of issue 10
 SIMT=${SW_BENCH_SIMT:-0.02}         # simulated seconds per run
-RUNS=${SW_BENCH_RUNS:-5}
+RUNS=${SW_BENCH_RUNS:-9}
 DT=${SW_BENCH_DT:-668ns}            # the scene's own dt (half its stable estimate)
 out=docs/benchmarks.md
 dir=build/bench/base
@@ -47,7 +47,8 @@ section=$(mktemp)
   echo "runtime and simulator at -O2 for the x86-64 baseline) and by this tree (git"
   echo "$(git rev-parse --short HEAD), runtime and simulator at -O3 -march=native; and with"
   echo "\`sinewc --portable\`), each run $RUNS times for $SIMT s of simulated time at dt = $DT on"
-  echo "one thread, the three interleaved run by run. Wall time includes start-up and"
+  echo "one thread (the native build also on two, --threads 2), the four interleaved run by"
+  echo "run. Wall time includes start-up and"
   echo "writing two frames. Machine: $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 's/^ *//'), $(date -u '+%Y-%m-%d %H:%M UTC')."
   echo
   echo "| build | wall s per simulated s (median) | x before |"

@@ -26,6 +26,12 @@
  *
  * Rigid rods are skipped by the node and element loops here: each drift and
  * kick ends with rigid.c's, which moves them as rigid bodies.
+ *
+ * Threads (internal.h, "Threads"): sw_steps runs its k steps in one OpenMP
+ * parallel region when d->threads > 1.  Every thread runs the functions
+ * below; the slot loops take the thread's share of the model's chunks, the
+ * parts that are not shared run on the leader, and the phases meet at
+ * sw_team_wait, a barrier of our own (docs/performance.md says why).
  */
 #include <math.h>
 #include <sched.h>
@@ -120,7 +126,7 @@ static inline __attribute__((always_inline)) void drift_frames(const swModel *m,
 /* Velocities of the elastic slots [lo, hi) under the loads, and the work
  * booked over the kick (see kick()) slot by slot into `work` (summed by
  * chunk in kick(), so that the sum does not depend on the threads).  One
- * loop per kind of model: with `exact` 0 (no rod integrates its damping
+ * loop per kind of model: with `exact_any` 0 (no rod integrates its damping
  * exactly, the common case) the loop carries no exact path at all. */
 static inline __attribute__((always_inline)) void kick_slots(const swModel *m, swData *d, double h,
                                                            int lo, int hi, double *restrict work,
@@ -294,7 +300,7 @@ static void pefrl_step(const swModel *m, swData *d) {
  * activations for the next one. */
 static void end_step(const swModel *m, swData *d, int whole, int due, int more, int *rc) {
   const int n = m->nslot_elastic;
-  if (due) { /* a count: any cut gives the same; one per thread, in its first chunk */
+  if (due) { /* a count: any cut gives the same; one per thread, in its last chunk */
     int lo, hi;
     sw_share_slots(m, d, n, &lo, &hi);
     SW_FOR_CHUNKS(m, d, c, n) d->chunk_sum[c] = c == c_end - 1 ? sw_check_slots(m, d, lo, hi) : 0;

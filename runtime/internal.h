@@ -18,8 +18,8 @@ int sw_fail(char *err, size_t errlen, const char *fmt, ...) __attribute__((forma
  * the others.  Parts that are not split run on the leader (rank 0) and end in
  * a barrier.  Outside a parallel region the team is the caller alone: all
  * chunks are its share, the barrier is a test of d->team_size, and no OpenMP
- * construct runs, so a one-thread run pays nothing for the threads (the same code also
- * serves the set-up and the diagnostics).  Chunks depend on the model only,
+ * construct runs, so a one-thread run pays nothing for the threads (the
+ * same code also serves the set-up and the diagnostics).  Chunks depend on the model only,
  * and so does every partial sum: results are the same bits for any team. */
 /* The team's barrier (d->team): a counter and a generation, each on its own
  * cache line.  The last thread to arrive resets the counter and opens the
@@ -53,8 +53,10 @@ static inline int sw_chunk_hi(const swModel *m, int c, int n) {
 }
 /* The slots this thread owns: its share of the chunks of the elastic slots,
  * the last thread also the rigid slots and the padding.  Loads that land on
- * scattered slots (joints, muscles) are added by the owner of each slot, so
- * a slot's cache lines stay with one core and no slot has two writers. */
+ * scattered slots (joints, boundary conditions, muscles, each rod's waves,
+ * drag and ground) are added by the owner of each slot (or of the rod's first
+ * slot), so no slot has two writers and each slot gets its loads in the
+ * order of the one-thread code. */
 static inline void sw_owned_slots(const swModel *m, const swData *d, int *lo, int *hi) {
   if (d->team_size <= 1) {
     *lo = 0, *hi = m->stride;

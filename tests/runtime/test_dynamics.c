@@ -22,13 +22,11 @@ static double mode1(double s) {
   return cosh(b * s) - cos(b * s) - sg * (sinh(b * s) - sin(b * s));
 }
 
-/* A cantilever along x, clamped at its start, given the mode-1 velocity
- * profile (amplitude v0 at the tip) along y. */
-static swModel *vibrating_rod(int n, swIntegrator integ, double dt_frac, double v0, swData **dout) {
-  swSpec *s = sw_spec_new();
+/* The slender rod of these tests, n elements along x (d1 along z). */
+static swRodDesc slender_rod(const char *name, int n) {
   swRodDesc r;
   sw_rod_desc_init(&r);
-  r.name = "reed";
+  r.name = name;
   r.nelem = n;
   r.direction[0] = 1; r.direction[1] = 0; r.direction[2] = 0;
   r.normal[0] = 0; r.normal[1] = 0; r.normal[2] = 1;
@@ -36,6 +34,14 @@ static swModel *vibrating_rod(int n, swIntegrator integ, double dt_frac, double 
   r.radius_start = r.radius_end = VR;
   r.density = VRHO;
   r.youngs = VE;
+  return r;
+}
+
+/* A cantilever along x, clamped at its start, given the mode-1 velocity
+ * profile (amplitude v0 at the tip) along y. */
+static swModel *vibrating_rod(int n, swIntegrator integ, double dt_frac, double v0, swData **dout) {
+  swSpec *s = sw_spec_new();
+  swRodDesc r = slender_rod("reed", n);
   int id = sw_spec_add_rod(s, &r);
   swBCDesc c = sw_test_clamp(id, 0);
   sw_spec_add_bc(s, &c);
@@ -179,16 +185,7 @@ static void test_time_order_pefrl(void **state) {
 static void test_fast_spin(void **state) {
   (void)state;
   swSpec *s = sw_spec_new();
-  swRodDesc r;
-  sw_rod_desc_init(&r);
-  r.name = "spinner";
-  r.nelem = 20;
-  r.direction[0] = 1; r.direction[1] = 0; r.direction[2] = 0;
-  r.normal[0] = 0; r.normal[1] = 0; r.normal[2] = 1;
-  r.length = VL;
-  r.radius_start = r.radius_end = VR;
-  r.density = VRHO;
-  r.youngs = VE;
+  swRodDesc r = slender_rod("spinner", 20);
   sw_spec_add_rod(s, &r);
   swModel *m = sw_test_compile_at(s, 0.5);
   sw_spec_free(s);
