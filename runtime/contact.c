@@ -127,15 +127,6 @@ int sw_contact_data_new(const swModel *m, swData *d) {
          d->contact_occupied && d->contact_sorted_cell;
 }
 
-void sw_contact_data_free(swData *d) {
-  free(d->contact_cell);
-  free(d->contact_bucket);
-  free(d->contact_sorted);
-  free(d->contact_start);
-  free(d->contact_occupied);
-  free(d->contact_sorted_cell);
-}
-
 /* ---- narrow phase ---- */
 
 static double clamp01(double x) { return x < 0 ? 0 : (x > 1 ? 1 : x); }

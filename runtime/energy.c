@@ -44,7 +44,7 @@ void sw_energy(const swModel *m, swData *d, double out[3]) {
       }
   ela += sw_bc_energy(m, d); /* clamp domains */
   if (m->njoint) ela += sw_joint_energy(m, d);
-  if (sw_has_env(m)) ela += sw_env_energy(m, d);
+  if (sw_has_env(m)) ela += sw_env_ops(m)->energy(m, d);
   out[0] = kin;
   out[1] = ela;
   out[2] = d->work;

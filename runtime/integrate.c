@@ -55,9 +55,9 @@ static void compute_loads(const swModel *m, swData *d) {
   }
   sw_external_loads(m, d);
   if (m->njoint) sw_joint_loads(m, d);
-  if (m->nmuscle) sw_muscle_loads(m, d);
+  if (m->nmuscle) sw_muscle_ops(m)->loads(m, d);
   if (sw_has_env(m)) { /* last: the ground balances the rest */
-    sw_env_loads(m, d);
+    sw_env_ops(m)->loads(m, d);
     sw_team_barrier(d);
   }
 }
@@ -314,7 +314,7 @@ static void end_step(const swModel *m, swData *d, int whole, int due, int more, 
       for (int c = 0; c < sw_nchunk(m, n); c++) suspect += d->chunk_sum[c];
     if (due && suspect > 0 && sw_check_finite(m, d) != SW_OK) *rc = SW_EUNSTABLE;
     if (more && *rc == SW_OK && m->nmuscle)
-      sw_muscle_advance(m, d, (double)d->step * m->dt, m->dt);
+      sw_muscle_ops(m)->advance(m, d, (double)d->step * m->dt, m->dt);
   }
   sw_team_barrier(d);
 }
@@ -331,7 +331,7 @@ static void steps(const swModel *m, swData *d, long k, int *rc) {
   const double h = m->dt;
   const long step0 = d->step; /* read by all before the leader moves it */
   if (m->nmuscle) { /* activations of the first step (end_step does the rest) */
-    if (sw_team_leader(d)) sw_muscle_advance(m, d, (double)step0 * h, h);
+    if (sw_team_leader(d)) sw_muscle_ops(m)->advance(m, d, (double)step0 * h, h);
     sw_team_barrier(d);
   }
   if (m->integrator == SW_PEFRL) {

@@ -115,7 +115,25 @@ double sw_joint_energy(const swModel *m, const swData *d);
  * filament tensions to d->force and d->ext_force; sw_stable_dt_filament is the
  * step limit of filament f's Hill damping. */
 typedef struct swMuscleSpec swMuscleSpec;
+/* What the rest of the runtime calls of muscle.c, reached through the spec
+ * (set by sw_spec_add_muscle) and the model (m->muscle_ops), never by name:
+ * a static simulator then links muscle.o only when its scene adds a muscle,
+ * so a scene without muscles carries no muscle code. */
+typedef struct {
+  int (*check)(const swMuscleSpec *ms, int nrod, char *err, size_t errlen);
+  int (*setup)(swModel *m, const swMuscleSpec *ms, char *err, size_t errlen);
+  void (*free_model)(swModel *m);
+  void (*free_spec)(swMuscleSpec *ms);
+  void (*reset)(const swModel *m, swData *d);
+  void (*advance)(const swModel *m, swData *d, double t, double h);
+  void (*loads)(const swModel *m, swData *d);
+  double (*stable_dt_filament)(const swModel *m, int f);
+} swMuscleOps;
+static inline const swMuscleOps *sw_muscle_ops(const swModel *m) {
+  return (const swMuscleOps *)m->muscle_ops;
+}
 swMuscleSpec **sw_spec_muscles(swSpec *s);                            /* model.c */
+const swMuscleOps **sw_spec_muscle_ops(swSpec *s);                    /* model.c */
 int sw_spec_nrod(const swSpec *s);                                    /* model.c */
 void sw_muscle_spec_free(swMuscleSpec *ms);
 int sw_muscle_check(const swMuscleSpec *ms, int nrod, char *err, size_t errlen);
@@ -151,7 +169,23 @@ double sw_rigid_joint_dt(const swModel *m, int b);
  * entered by every thread of a step: each rod's by the thread that owns it),
  * sw_env_energy is their stored energy, sw_env_stable_dt their step limit. */
 typedef struct swEnvSpec swEnvSpec;
+/* What the rest of the runtime calls of the environments, reached through
+ * the spec (set by the first sw_spec_add_ground, _fluid, _contact, _wave or
+ * _probe) and the model (m->env_ops), as for muscles: a scene without any
+ * links none of environment.c, ground.c, fluid.c, contact.c and wave.c. */
+typedef struct {
+  int (*check)(const swEnvSpec *e, int nrod, char *err, size_t errlen);
+  int (*setup)(swModel *m, const swEnvSpec *e, char *err, size_t errlen);
+  void (*free_model)(swModel *m);
+  void (*free_spec)(swEnvSpec *e);
+  void (*loads)(const swModel *m, swData *d);
+  double (*energy)(const swModel *m, const swData *d);
+  double (*stable_dt)(const swModel *m);
+  int (*data_new)(const swModel *m, swData *d); /* the contact grid's scratch */
+} swEnvOps;
+static inline const swEnvOps *sw_env_ops(const swModel *m) { return (const swEnvOps *)m->env_ops; }
 swEnvSpec **sw_spec_env(swSpec *s);                                   /* model.c */
+const swEnvOps **sw_spec_env_ops(swSpec *s);                          /* model.c */
 void sw_env_spec_free(swEnvSpec *e);
 int sw_env_check(const swEnvSpec *e, int nrod, char *err, size_t errlen);
 int sw_env_setup(swModel *m, const swEnvSpec *e, char *err, size_t errlen);
@@ -205,7 +239,6 @@ typedef enum { SW_CONTACT_GRID = 0, SW_CONTACT_BRUTE = 1 } swContactPhase;
 int sw_contact_setup(swModel *m);
 void sw_contact_free(swModel *m);
 int sw_contact_data_new(const swModel *m, swData *d);
-void sw_contact_data_free(swData *d);
 void sw_contact_loads(const swModel *m, swData *d);
 void sw_contact_loads_with(const swModel *m, swData *d, swContactPhase phase);
 double sw_contact_energy(const swModel *m, const swData *d);

@@ -39,11 +39,15 @@ struct swSpec {
   double dt;
   swIntegrator integrator;
   swMuscleSpec *muscles;         /* owned by muscle.c */
+  const swMuscleOps *muscle_ops; /* set by muscle.c with the first muscle */
   swEnvSpec *env;                /* owned by environment.c */
+  const swEnvOps *env_ops;       /* set by environment.c with the first */
 };
 
 swMuscleSpec **sw_spec_muscles(swSpec *s) { return &s->muscles; }
+const swMuscleOps **sw_spec_muscle_ops(swSpec *s) { return &s->muscle_ops; }
 swEnvSpec **sw_spec_env(swSpec *s) { return &s->env; }
+const swEnvOps **sw_spec_env_ops(swSpec *s) { return &s->env_ops; }
 int sw_spec_nrod(const swSpec *s) { return s->nrod; }
 
 static const double SW_ALPHA_SHEAR = 4.0 / 3.0; /* circular section */
@@ -64,8 +68,8 @@ void sw_spec_free(swSpec *s) {
   free(s->rod); free(s->rod_name); free(s->rest_x); free(s->rest_Q);
   for (int k = 0; k < s->njoint; k++) free(s->joint_name[k]);
   free(s->load); free(s->bc); free(s->joint); free(s->joint_name);
-  sw_muscle_spec_free(s->muscles);
-  sw_env_spec_free(s->env);
+  if (s->muscle_ops) s->muscle_ops->free_spec(s->muscles);
+  if (s->env_ops) s->env_ops->free_spec(s->env);
   free(s);
 }
 
@@ -264,8 +268,8 @@ void sw_model_free(swModel *m) {
   free(m->joint); free(m->joint_name); free(m->joint_node_a); free(m->joint_node_b);
   free(m->joint_elem_a); free(m->joint_elem_b); free(m->joint_axis_a); free(m->joint_axis_b);
   free(m->joint_rest_rot); free(m->joint_angle0); free(m->joint_wave_dt);
-  sw_muscle_free(m);
-  sw_env_free(m);
+  if (sw_muscle_ops(m)) sw_muscle_ops(m)->free_model(m);
+  if (sw_env_ops(m)) sw_env_ops(m)->free_model(m);
   rigid_free(m);
   free(m);
 }
@@ -420,7 +424,7 @@ static int check_joints(const swSpec *s, char *err, size_t errlen) {
 }
 
 swModel *sw_compile(const swSpec *s, char *err, size_t errlen) {
-  if (s && !sw_muscle_check(s->muscles, s->nrod, err, errlen)) return NULL;
+  if (s && s->muscle_ops && !s->muscle_ops->check(s->muscles, s->nrod, err, errlen)) return NULL;
   if (!s || s->nrod < 1) {
     sw_fail(err, errlen, "the scene has no rods");
     return NULL;
@@ -437,7 +441,7 @@ swModel *sw_compile(const swSpec *s, char *err, size_t errlen) {
     if (!check_rod(&s->rod[r], err, errlen)) return NULL;
   if (!check_loads_bcs(s, err, errlen)) return NULL;
   if (!check_joints(s, err, errlen)) return NULL;
-  if (!sw_env_check(s->env, s->nrod, err, errlen)) return NULL;
+  if (s && s->env_ops && !s->env_ops->check(s->env, s->nrod, err, errlen)) return NULL;
 
   swModel *m = calloc(1, sizeof *m);
   if (!m) return NULL;
@@ -642,7 +646,10 @@ swModel *sw_compile(const swSpec *s, char *err, size_t errlen) {
   }
   sw_joint_setup(m);
   for (int j = 0; j < m->njoint; j++) m->joint_wave_dt[j] = sw_stable_dt_joint(m, j);
-  if (!sw_muscle_setup(m, s->muscles, err, errlen) || !sw_env_setup(m, s->env, err, errlen)) {
+  m->muscle_ops = s->muscle_ops;
+  m->env_ops = s->env_ops;
+  if ((s->muscle_ops && !s->muscle_ops->setup(m, s->muscles, err, errlen)) ||
+      (s->env_ops && !s->env_ops->setup(m, s->env, err, errlen))) {
     sw_model_free(m);
     return NULL;
   }
@@ -668,7 +675,9 @@ void sw_data_free(swData *d) {
   free(d->fil_activation); free(d->fil_stretch); free(d->fil_rate); free(d->fil_tension);
   free(d->rigid_X); free(d->rigid_V); free(d->rigid_R); free(d->rigid_L); free(d->rigid_omega);
   sw_probe_data_free(d);
-  sw_contact_data_free(d);
+  /* the contact grid's scratch (contact.c, through the environment's data_new) */
+  free(d->contact_cell); free(d->contact_bucket); free(d->contact_sorted);
+  free(d->contact_start); free(d->contact_occupied); free(d->contact_sorted_cell);
   free(d);
 }
 
@@ -708,7 +717,7 @@ swData *sw_data_new(const swModel *m) {
   d->rigid_L = dalloc(3 * B); d->rigid_omega = dalloc(3 * B);
   if (!d->rigid_X || !d->rigid_V || !d->rigid_R || !d->rigid_L || !d->rigid_omega ||
       !sw_probe_data_new(m, d) ||
-      !sw_contact_data_new(m, d)) { /* the contact grid's scratch */
+      (sw_env_ops(m) && !sw_env_ops(m)->data_new(m, d))) { /* the contact grid's scratch */
     sw_data_free(d);
     return NULL;
   }
@@ -734,8 +743,8 @@ void sw_reset(const swModel *m, swData *d) {
   sw_apply_bc_velocity(m, d, 0.0);
   sw_internal_loads(m, d); /* strains of the initial state */
   if (m->nmuscle) {
-    sw_muscle_reset(m, d);
-    sw_muscle_loads(m, d); /* stretch and tension of the initial state */
+    sw_muscle_ops(m)->reset(m, d);
+    sw_muscle_ops(m)->loads(m, d); /* stretch and tension of the initial state */
   }
   for (int j = 0; j < m->njoint; j++) {
     d->joint_angle[j] = m->joint_angle0[j]; /* the reference of the unwrapping */

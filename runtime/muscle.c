@@ -147,7 +147,12 @@ static void filament_areas(int N, double A, double ratio, double *out) {
 
 static int check_item(const swMuscleItem *it, int nrod, char *err, size_t errlen);
 
+static const swMuscleOps muscle_ops = {sw_muscle_check,  sw_muscle_setup,   sw_muscle_free,
+                                       sw_muscle_spec_free, sw_muscle_reset, sw_muscle_advance,
+                                       sw_muscle_loads,  sw_stable_dt_filament};
+
 int sw_spec_add_muscle(swSpec *s, const swMuscleDesc *md) {
+  *sw_spec_muscle_ops(s) = &muscle_ops; /* the step reaches muscle.c through these */
   swMuscleSpec **slot = sw_spec_muscles(s);
   if (!*slot && !(*slot = calloc(1, sizeof **slot))) return -1;
   swMuscleSpec *ms = *slot;

@@ -455,6 +455,8 @@ typedef struct {
   char **muscle_name;        /* (nmuscle)                                    */
   int *muscle_fil_adr;       /* (nmuscle+1) first filament of each muscle    */
   swSignal *muscle_activation; /* (nmuscle)                                  */
+  const void *muscle_ops;    /* muscle.c's functions (NULL: no muscles)      */
+  const void *env_ops;       /* environment.c's (NULL: no environment)       */
   int *fil_rod;              /* (nfil)     rod of each filament              */
   int *fil_passive;          /* (nfil)     1: never contracts                */
   double *fil_area;          /* (nfil)     rest cross-section A_k, m^2       */

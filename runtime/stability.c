@@ -135,7 +135,7 @@ double sw_stable_dt_rod(const swModel *m, int r) {
   }
   /* a muscle filament's Hill damping (muscle.c) */
   for (int f = 0; f < m->nfil; f++)
-    if (m->fil_rod[f] == r) dt = fmin(dt, 0.95 * sw_stable_dt_filament(m, f));
+    if (m->fil_rod[f] == r) dt = fmin(dt, 0.95 * sw_muscle_ops(m)->stable_dt_filament(m, f));
   return dt;
 }
 
@@ -215,7 +215,7 @@ double sw_stable_dt(const swModel *m) {
   double dt = INFINITY;
   for (int r = 0; r < m->nrod; r++) dt = fmin(dt, m->rod_wave_dt[r]);
   for (int j = 0; j < m->njoint; j++) dt = fmin(dt, m->joint_wave_dt[j]);
-  if (sw_has_env(m)) dt = fmin(dt, sw_env_stable_dt(m));
+  if (sw_has_env(m)) dt = fmin(dt, sw_env_ops(m)->stable_dt(m));
   return dt;
 }
 
