@@ -5,9 +5,10 @@
  * ghost domains, which hold zero stiffness and unit lengths.  So every kernel
  * here is a plain loop over a range of slots with no branch on where a rod
  * starts or ends, and the compiler vectorizes it (`#pragma omp simd`; the
- * large-angle branch of the frame logarithm calls atan2, which a vector loop
- * takes from glibc's vector math library, libmvec).  Two passes:
- *   sw_rod_pass    element i and Voronoi domain i of every slot: strain,
+ * frame logarithm takes its small-angle series in the loop, and the few
+ * domains past it are redone after the loop with the exact one).  Two passes:
+ *   sw_rod_pass    element i and Voronoi domain i of every slot, block by
+ *                  block (an element loop, then a Voronoi loop): strain,
  *                  internal force n and its lab-frame image f_i = Q_i^T n_i,
  *                  the element's own couples; curvature, bending couple c_i
  *                  and the half transport term;
