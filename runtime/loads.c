@@ -191,7 +191,7 @@ static void finish_loads(const swModel *m, swData *d, int lo, int hi) {
 
 void sw_external_loads(const swModel *m, swData *d) {
   int lo, hi;
-  sw_share_slots(m, d, m->stride, &lo, &hi);
+  sw_owned_slots(m, d, &lo, &hi); /* [0, stride): padding and rigid slots too */
   base_loads(m, d, lo, hi);
   if (m->nload) { /* onto the base loads, before the damping reads them */
     sw_team_barrier(d);
