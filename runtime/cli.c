@@ -18,7 +18,8 @@
  * compiled scene and stops; otherwise the run writes HDF5 through output.c,
  * closes the file with a status that says how the run ended, prints a one-line
  * summary and returns sw_run()'s code as the exit code.  --threads N runs each
- * step on N OpenMP threads ("auto": one per processor this process may use);
+ * step on N OpenMP threads ("auto": one per 8192 elastic slots of the model,
+ * up to the processors this process may use);
  * the default is 1, because most simulators run beside others (a sweep, an
  * optimiser, the test suite), where one process per core beats threads that
  * meet at a barrier several times a step, and because the results are the
@@ -56,7 +57,7 @@ static const swOption options[] = {
   {OPT_DT, "--dt", "DT", "time step"},
   {OPT_EVERY, "--every", "T", "simulated time between frames, 0 = every step"},
   {OPT_SET, "--set", "NAME=VALUE", "override a param, VALUE with its unit (repeatable)"},
-  {OPT_THREADS, "--threads", "N", "threads of each step, or 'auto': one per processor"},
+  {OPT_THREADS, "--threads", "N", "threads of each step, or 'auto' (by the model's size)"},
   {OPT_QUIET, "--quiet", NULL, "no progress line, notes or summary"},
   {OPT_INFO, "--info", NULL, "print the compiled scene and exit"},
   {OPT_HELP, "--help", NULL, "print this help and exit"},
@@ -75,6 +76,7 @@ typedef struct {
   int dt_given;              /* --dt was given                              */
   long threads;
   int threads_set;           /* given on the command line */
+  int threads_auto;          /* --threads auto: chosen for the model */
   int quiet, info, help;
   double *P;                 /* (nparam) param values, SI                   */
   char *overridden;          /* (nparam) set by --set                       */
@@ -198,10 +200,24 @@ static int read_time(const swCli *c, const char *opt, const char *value, int pos
 }
 
 #define MAX_THREADS 256
+/* --threads auto: a thread per AUTO_SLOTS elastic slots, up to the
+ * processors: below about 10^4 elements a second thread does not pay on a
+ * two-core machine (docs/performance.md, "Threads"). */
+#define AUTO_SLOTS 8192
+
+static long auto_threads(const swModel *m) {
+  long n = m->nslot_elastic / AUTO_SLOTS;
+  if (n > omp_get_num_procs()) n = omp_get_num_procs();
+  return n < 1 ? 1 : n;
+}
+
+static long threads_for(const swCli *c, const swModel *m) {
+  return c->threads_auto ? auto_threads(m) : c->threads;
+}
 
 static int read_threads(swCli *c, const char *value) {
   if (!strcmp(value, "auto")) {
-    c->threads = omp_get_num_procs();
+    c->threads_auto = 1;
     return SW_OK;
   }
   char *end;
@@ -212,6 +228,7 @@ static int read_threads(swCli *c, const char *value) {
   if (n > MAX_THREADS)
     return complain(c, "--threads: at most %d, got '%s'", MAX_THREADS, value);
   c->threads = n;
+  c->threads_auto = 0;
   return SW_OK;
 }
 
@@ -674,8 +691,9 @@ static void print_info(const swCli *c, const swModel *m, double stable, const ch
   printf("memory: about %s (model %s, state %s)\n", format_bytes(a, sizeof a, mb + db),
          format_bytes(b, sizeof b, mb), format_bytes(e, sizeof e, db));
   printf("threads: %ld (%s; %d processor%s available; results do not depend on it)\n",
-         c->threads, c->threads_set ? "--threads" : "default", omp_get_num_procs(),
-         omp_get_num_procs() == 1 ? "" : "s");
+         threads_for(c, m), c->threads_auto ? "--threads auto: one per 8192 slots, up to the processors"
+                            : c->threads_set ? "--threads" : "default",
+         omp_get_num_procs(), omp_get_num_procs() == 1 ? "" : "s");
   if (p->nparam) {
     printf("params:\n");
     for (int i = 0; i < p->nparam; i++) {
@@ -696,7 +714,7 @@ static int run(const swCli *c, const swModel *m, const char *out) {
   const swProgram *p = c->p;
   char err[512] = "";
   swData *d = sw_data_new(m);
-  if (d) sw_set_threads(d, (int)c->threads);
+  if (d) sw_set_threads(d, (int)threads_for(c, m));
   char *params = params_string(c);
   if (!d || !params) {
     complain(c, "out of memory");
@@ -796,8 +814,7 @@ int sw_main(const swProgram *p, int argc, char **argv) {
   } else if (rc == SW_OK) {
     if (c.threads > omp_get_num_procs() && !c.quiet && !c.info) {
       fprintf(stderr, "%s: note: %ld threads on %d processors: threads that wait for a "
-              "processor slow every step down; --threads auto uses %d\n", c.prog, c.threads,
-              omp_get_num_procs(), omp_get_num_procs());
+              "processor slow every step down\n", c.prog, c.threads, omp_get_num_procs());
       fflush(stderr);
     }
     double stable = 0;
