@@ -43,20 +43,47 @@
 /* All loads of the current configuration: internal, clamp couples, external,
  * joints (whose damping joint.c adds to the external loads, so that the kick
  * books its work, and whose springs count as elastic energy), muscles (active:
- * their tensions count as external loads, muscle.c).  Muscle activations
- * advance once a step, before its first kick (sw_muscle_advance). */
+ * their tensions count as external loads, muscle.c), environments.  Muscle
+ * activations advance once a step, before its first kick (sw_muscle_advance).
+ *
+ * In phases, each on a thread's own slots, with a barrier only where a phase
+ * reads what another thread wrote: (A) from the state alone, the rod pass,
+ * the joints' rows and the muscles' rates; (B) the gather, the clamp
+ * couples, the external loads, the joints' rows added and the filaments'
+ * tensions; (C, in kick()) the muscles' pull, then the environments.  Every
+ * slot gets its loads in the same order as on one thread. */
 static void compute_loads(const swModel *m, swData *d) {
-  sw_internal_loads(m, d);
-  if (m->nbc) {
-    int lo, hi;
-    sw_owned_slots(m, d, &lo, &hi);
-    sw_bc_loads(m, d, lo, hi);
+  const swMuscleOps *mu = sw_muscle_ops(m);
+  int lo, hi;
+  sw_share_slots(m, d, m->nslot_elastic, &lo, &hi);
+  sw_rod_pass(m, d, lo, hi); /* (A) */
+  if (m->njoint) sw_joint_rows(m, d);
+  if (m->nmuscle) mu->rates(m, d);
+  sw_team_barrier(d);
+  sw_rod_gather(m, d, lo, hi); /* (B) */
+  if (m->nrigid) { /* no deformation, no internal loads (rigid.c) */
+    if (sw_team_leader(d))
+      for (int b = 0; b < m->nrigid; b++) sw_rigid_internal(m, d, m->rigid_rod[b]);
     sw_team_barrier(d);
   }
-  sw_external_loads(m, d);
-  if (m->njoint) sw_joint_loads(m, d);
-  if (m->nmuscle) sw_muscle_ops(m)->loads(m, d);
+  if (m->nbc) {
+    int olo, ohi;
+    sw_owned_slots(m, d, &olo, &ohi);
+    sw_bc_loads(m, d, olo, ohi);
+  }
+  sw_external_base(m, d);
+  if (m->nload) { /* onto the base loads, before the damping reads them */
+    sw_team_barrier(d);
+    if (sw_team_leader(d)) sw_point_loads(m, d);
+    sw_team_barrier(d);
+  }
+  sw_external_finish(m, d);
+  if (m->njoint) sw_joint_apply(m, d);
+  if (m->nmuscle) mu->tensions(m, d);
+  sw_team_barrier(d);
+  if (m->nmuscle) mu->pull(m, d); /* (C) */
   if (sw_has_env(m)) { /* last: the ground balances the rest */
+    sw_team_barrier(d);
     sw_env_ops(m)->loads(m, d);
     sw_team_barrier(d);
   }
@@ -176,6 +203,17 @@ static double chunk_work(const double *restrict work, int lo, int hi) {
   return sum;
 }
 
+/* On the leader, at the drift after a kick: the kick's work, in chunk order,
+ * then condition order, and the rigid bodies' kick. */
+static void finish_kick(const swModel *m, swData *d) {
+  if (!d->kick_pending) return;
+  const int n = m->nslot_elastic;
+  for (int c = 0; c < sw_nchunk(m, n); c++) d->work += d->chunk_sum[c];
+  for (int k = 0; k < m->nbc; k++) d->work += d->bc_work[k];
+  if (m->nrigid) sw_rigid_kick(m, d, d->kick_h);
+  d->kick_pending = 0;
+}
+
 /* Positions and frames move with the current velocities for a time h.
  * What a drift holds constant is the momentum: v for nodes and the angular
  * momentum L = J^ w / e for elements (Gazzola 2018, eq. 2.12: d/dt(J^ w / e)
@@ -197,6 +235,7 @@ static void drift(const swModel *m, swData *d, double h) {
     drift_frames(m, d, h, lo, hi, 0);
   sw_team_barrier(d); /* the last elastic slot read the first rigid node */
   if (sw_team_leader(d)) {
+    finish_kick(m, d);
     if (m->nrigid) sw_rigid_drift(m, d, h);
     d->time += h;
   }
@@ -224,13 +263,12 @@ static void kick(const swModel *m, swData *d, double h, double span) {
     sw_owned_slots(m, d, &lo, &hi);
     sw_bc_kick(m, d, h, d->time + 0.5 * span, lo, hi, d->bc_work);
   }
-  sw_team_barrier(d);
-  if (sw_team_leader(d)) { /* the work, in chunk order, then condition order */
-    for (int c = 0; c < sw_nchunk(m, n); c++) d->work += d->chunk_sum[c];
-    for (int k = 0; k < m->nbc; k++) d->work += d->bc_work[k];
-    if (m->nrigid) sw_rigid_kick(m, d, h);
+  /* the work and the rigid bodies' kick are the next drift's leader's; the
+   * nodes of the drift are this thread's own, so no barrier here */
+  if (sw_team_leader(d)) {
+    d->kick_pending = 1;
+    d->kick_h = h;
   }
-  sw_team_barrier(d);
 }
 
 /* Exact decay of the analytically damped rods over half a step (PEFRL). */

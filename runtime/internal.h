@@ -86,6 +86,12 @@ static inline void sw_share_slots(const swModel *m, const swData *d, int n, int 
  * element and Voronoi pass, then the gather of their neighbours' terms. */
 void sw_rod_pass(const swModel *m, swData *d, int lo, int hi);
 void sw_rod_gather(const swModel *m, swData *d, int lo, int hi);
+/* External loads (loads.c) in the parts a threaded step runs in its phases:
+ * gravity and zero couples, the scene's point loads (on one thread), then
+ * linear damping and the sum into the totals; each on this thread's slots. */
+void sw_external_base(const swModel *m, swData *d);
+void sw_point_loads(const swModel *m, swData *d);
+void sw_external_finish(const swModel *m, swData *d);
 /* Boundary conditions (boundary.c), each applied by the thread that owns
  * its end (slots [lo, hi)); the kick's work of condition k into work[k]. */
 void sw_bc_kick(const swModel *m, swData *d, double h, double t, int lo, int hi, double *work);
@@ -98,12 +104,13 @@ double sw_integrator_stability_limit(swIntegrator integ, double zeta); /* stabil
 int sw_check_slots(const swModel *m, const swData *d, int lo, int hi);  /* stability.c */
 /* Joints (joint.c).  sw_joint_setup resolves the defaults and the rest
  * geometry of m->joint into the joint_* arrays (called by sw_compile after the
- * rods are built); sw_joint_loads adds the joint loads to d->force/d->torque
+ * rods are built); sw_joint_rows and sw_joint_apply add the joint loads to d->force/d->torque
  * (damping also to ext_force/ext_torque, whose work the kick books);
  * sw_joint_measure refreshes d->joint_force[j] and d->joint_angle[j] for the
  * current state; sw_joint_energy is the energy stored in the joint springs. */
 void sw_joint_setup(swModel *m);
-void sw_joint_loads(const swModel *m, swData *d);
+void sw_joint_rows(const swModel *m, swData *d);  /* each joint's loads, from the state */
+void sw_joint_apply(const swModel *m, swData *d); /* the rows into this thread's slots */
 void sw_joint_measure(const swModel *m, swData *d, int j);
 double sw_joint_energy(const swModel *m, const swData *d);
 /* Muscles (muscle.c).  The swSpec keeps its muscles in an opaque list that
@@ -126,9 +133,13 @@ typedef struct {
   void (*free_spec)(swMuscleSpec *ms);
   void (*reset)(const swModel *m, swData *d);
   void (*advance)(const swModel *m, swData *d, double t, double h);
-  void (*loads)(const swModel *m, swData *d);
+  void (*loads)(const swModel *m, swData *d); /* the three parts, with barriers */
+  void (*rates)(const swModel *m, swData *d);    /* the parts, on a thread's slots: */
+  void (*tensions)(const swModel *m, swData *d); /*   after the rod pass, then after */
+  void (*pull)(const swModel *m, swData *d);     /*   a barrier each               */
   double (*stable_dt_filament)(const swModel *m, int f);
 } swMuscleOps;
+const swMuscleOps *sw_muscle_ops_table(void);                          /* muscle.c */
 static inline const swMuscleOps *sw_muscle_ops(const swModel *m) {
   return (const swMuscleOps *)m->muscle_ops;
 }

@@ -329,17 +329,21 @@ static void apply_row(const swModel *m, swData *d, int j, const double *row, int
   }
 }
 
-/* Rows by the owner of node a (whose state they mostly read), then every
- * thread adds them to its own slots. */
-void sw_joint_loads(const swModel *m, swData *d) {
+/* The joints' rows, each by the owner of its node a (whose state it mostly
+ * reads); from the state alone, so they run beside the rod pass. */
+void sw_joint_rows(const swModel *m, swData *d) {
   int lo, hi;
   sw_owned_slots(m, d, &lo, &hi);
   for (int j = 0; j < m->njoint; j++)
     if (m->joint_node_a[j] >= lo && m->joint_node_a[j] < hi)
       joint_row(m, d, j, d->joint_scratch + SW_JOINT_ROW * j);
-  sw_team_barrier(d);
+}
+
+/* Every thread adds the rows to its own slots (after the rows are made). */
+void sw_joint_apply(const swModel *m, swData *d) {
+  int lo, hi;
+  sw_owned_slots(m, d, &lo, &hi);
   for (int j = 0; j < m->njoint; j++) apply_row(m, d, j, d->joint_scratch + SW_JOINT_ROW * j, lo, hi);
-  sw_team_barrier(d);
 }
 
 double sw_joint_energy(const swModel *m, const swData *d) {

@@ -145,7 +145,7 @@ static void base_loads(const swModel *m, swData *d, int lo, int hi) {
 }
 
 /* Point forces and couples of the scene (few; on one thread). */
-static void point_loads(const swModel *m, swData *d) {
+void sw_point_loads(const swModel *m, swData *d) {
   for (int l = 0; l < m->nload; l++) {
     const swLoadDesc *ld = &m->load[l];
     double g = sw_signal_eval(&ld->signal, d->time);
@@ -189,15 +189,25 @@ static void finish_loads(const swModel *m, swData *d, int lo, int hi) {
   }
 }
 
-void sw_external_loads(const swModel *m, swData *d) {
+void sw_external_base(const swModel *m, swData *d) {
   int lo, hi;
   sw_owned_slots(m, d, &lo, &hi); /* [0, stride): padding and rigid slots too */
   base_loads(m, d, lo, hi);
+}
+
+void sw_external_finish(const swModel *m, swData *d) {
+  int lo, hi;
+  sw_owned_slots(m, d, &lo, &hi);
+  finish_loads(m, d, lo, hi);
+}
+
+void sw_external_loads(const swModel *m, swData *d) {
+  sw_external_base(m, d);
   if (m->nload) { /* onto the base loads, before the damping reads them */
     sw_team_barrier(d);
-    if (sw_team_leader(d)) point_loads(m, d);
+    if (sw_team_leader(d)) sw_point_loads(m, d);
     sw_team_barrier(d);
   }
-  finish_loads(m, d, lo, hi);
+  sw_external_finish(m, d);
   sw_team_barrier(d);
 }

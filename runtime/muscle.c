@@ -147,12 +147,10 @@ static void filament_areas(int N, double A, double ratio, double *out) {
 
 static int check_item(const swMuscleItem *it, int nrod, char *err, size_t errlen);
 
-static const swMuscleOps muscle_ops = {sw_muscle_check,  sw_muscle_setup,   sw_muscle_free,
-                                       sw_muscle_spec_free, sw_muscle_reset, sw_muscle_advance,
-                                       sw_muscle_loads,  sw_stable_dt_filament};
+
 
 int sw_spec_add_muscle(swSpec *s, const swMuscleDesc *md) {
-  *sw_spec_muscle_ops(s) = &muscle_ops; /* the step reaches muscle.c through these */
+  *sw_spec_muscle_ops(s) = sw_muscle_ops_table(); /* the step reaches muscle.c through these */
   swMuscleSpec **slot = sw_spec_muscles(s);
   if (!*slot && !(*slot = calloc(1, sizeof **slot))) return -1;
   swMuscleSpec *ms = *slot;
@@ -509,13 +507,19 @@ static int muscle_of(const swModel *m, int f) {
   return i;
 }
 
-void sw_muscle_loads(const swModel *m, swData *d) {
+/* The three parts of the pull (above), each on this thread's slots; the
+ * step puts a barrier between them (integrate.c). */
+static void muscle_rates(const swModel *m, swData *d) {
+  int lo, hi;
+  sw_owned_slots(m, d, &lo, &hi);
+  if (hi > m->nslot_elastic) hi = m->nslot_elastic;
+  if (lo < hi) filament_rates(m, d, lo, hi);
+}
+
+static void muscle_tensions(const swModel *m, swData *d) {
   int lo, hi, muscle = -1;
   double u = 0;
   sw_owned_slots(m, d, &lo, &hi);
-  const int elastic_hi = hi < m->nslot_elastic ? hi : m->nslot_elastic;
-  if (lo < elastic_hi) filament_rates(m, d, lo, elastic_hi);
-  sw_team_barrier(d);
   for (int f = 0; f < m->nfil; f++) {
     const int first = m->node_adr[m->fil_rod[f]];
     if (first < lo || first >= hi) continue;
@@ -525,8 +529,21 @@ void sw_muscle_loads(const swModel *m, swData *d) {
     }
     filament_tension(m, d, f, u);
   }
+}
+
+static void muscle_pull(const swModel *m, swData *d) {
+  int lo, hi;
+  sw_owned_slots(m, d, &lo, &hi);
+  if (hi > m->nslot_elastic) hi = m->nslot_elastic;
+  if (lo < hi) filament_pull(m, d, lo, hi);
+}
+
+void sw_muscle_loads(const swModel *m, swData *d) {
+  muscle_rates(m, d);
   sw_team_barrier(d);
-  if (lo < elastic_hi) filament_pull(m, d, lo, elastic_hi);
+  muscle_tensions(m, d);
+  sw_team_barrier(d);
+  muscle_pull(m, d);
   sw_team_barrier(d);
 }
 
@@ -547,3 +564,11 @@ double sw_stable_dt_filament(const swModel *m, int f) {
   double mass = fmin(m->mass[na], m->mass[na + m->rod_nelem[r]]);
   return c > 0 ? 2.0 * (0.5 * mass) / c : INFINITY;
 }
+
+static const swMuscleOps muscle_ops = {sw_muscle_check,  sw_muscle_setup,     sw_muscle_free,
+                                       sw_muscle_spec_free, sw_muscle_reset, sw_muscle_advance,
+                                       sw_muscle_loads,  muscle_rates,        muscle_tensions,
+                                       muscle_pull,      sw_stable_dt_filament};
+
+/* The step reaches this file through the table (internal.h, swMuscleOps). */
+const swMuscleOps *sw_muscle_ops_table(void) { return &muscle_ops; }

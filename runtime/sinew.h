@@ -548,6 +548,8 @@ typedef struct {
   /* one partial sum per chunk (the kick's work), added in chunk order, and
    * the work of each boundary condition in a kick (nbc) */
   double *chunk_sum, *bc_work;
+  int kick_pending;          /* integrate.c: a kick whose work and rigid part */
+  double kick_h;             /* the next drift's leader adds (its h)          */
   /* joint.c: each joint's loads, evaluated in parallel and applied in joint
    * order (SW_JOINT_ROW doubles per joint) */
   double *joint_scratch;
