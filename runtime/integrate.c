@@ -71,13 +71,7 @@ static void compute_loads(const swModel *m, swData *d) {
     sw_owned_slots(m, d, &olo, &ohi);
     sw_bc_loads(m, d, olo, ohi);
   }
-  sw_external_base(m, d);
-  if (m->nload) { /* onto the base loads, before the damping reads them */
-    sw_team_barrier(d);
-    if (sw_team_leader(d)) sw_point_loads(m, d);
-    sw_team_barrier(d);
-  }
-  sw_external_finish(m, d);
+  sw_external_loads(m, d); /* on this thread's slots, no barrier inside */
   if (m->njoint) sw_joint_apply(m, d);
   if (m->nmuscle) mu->tensions(m, d);
   sw_team_barrier(d);

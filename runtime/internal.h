@@ -86,12 +86,6 @@ static inline void sw_share_slots(const swModel *m, const swData *d, int n, int 
  * element and Voronoi pass, then the gather of their neighbours' terms. */
 void sw_rod_pass(const swModel *m, swData *d, int lo, int hi);
 void sw_rod_gather(const swModel *m, swData *d, int lo, int hi);
-/* External loads (loads.c) in the parts a threaded step runs in its phases:
- * gravity and zero couples, the scene's point loads (on one thread), then
- * linear damping and the sum into the totals; each on this thread's slots. */
-void sw_external_base(const swModel *m, swData *d);
-void sw_point_loads(const swModel *m, swData *d);
-void sw_external_finish(const swModel *m, swData *d);
 /* Boundary conditions (boundary.c), each applied by the thread that owns
  * its end (slots [lo, hi)); the kick's work of condition k into work[k]. */
 void sw_bc_kick(const swModel *m, swData *d, double h, double t, int lo, int hi, double *work);

@@ -144,16 +144,20 @@ static void base_loads(const swModel *m, swData *d, int lo, int hi) {
   }
 }
 
-/* Point forces and couples of the scene (few; on one thread). */
-void sw_point_loads(const swModel *m, swData *d) {
+/* Point forces and couples of the scene on this thread's slots, in load
+ * order (each by the owner of its slot, so the base loads of that slot are
+ * already there). */
+static void point_loads(const swModel *m, swData *d, int lo, int hi) {
   for (int l = 0; l < m->nload; l++) {
     const swLoadDesc *ld = &m->load[l];
+    const int slot = (ld->kind == SW_LOAD_FORCE ? m->node_adr[ld->rod] : m->elem_adr[ld->rod]) + ld->index;
+    if (slot < lo || slot >= hi) continue;
     double g = sw_signal_eval(&ld->signal, d->time);
     if (ld->kind == SW_LOAD_FORCE) {
-      int i = m->node_adr[ld->rod] + ld->index;
+      int i = slot;
       for (int k = 0; k < 3; k++) SW_AT(m, d->ext_force, i, k) += g * ld->vec[k];
     } else {
-      int e = m->elem_adr[ld->rod] + ld->index;
+      int e = slot;
       double tl[3] = {g * ld->vec[0], g * ld->vec[1], g * ld->vec[2]}, tm[3], Q[9];
       sw_getQ(m, d->Q, e, Q);
       sw_mat_vec(tm, Q, tl); /* couples act in the material frame */
@@ -189,25 +193,12 @@ static void finish_loads(const swModel *m, swData *d, int lo, int hi) {
   }
 }
 
-void sw_external_base(const swModel *m, swData *d) {
+/* Gravity, the point loads, linear damping and the sum into the totals, on
+ * this thread's slots: no slot needs another thread's, so no barrier. */
+void sw_external_loads(const swModel *m, swData *d) {
   int lo, hi;
   sw_owned_slots(m, d, &lo, &hi); /* [0, stride): padding and rigid slots too */
   base_loads(m, d, lo, hi);
-}
-
-void sw_external_finish(const swModel *m, swData *d) {
-  int lo, hi;
-  sw_owned_slots(m, d, &lo, &hi);
+  if (m->nload) point_loads(m, d, lo, hi); /* onto the base loads, before the damping reads them */
   finish_loads(m, d, lo, hi);
-}
-
-void sw_external_loads(const swModel *m, swData *d) {
-  sw_external_base(m, d);
-  if (m->nload) { /* onto the base loads, before the damping reads them */
-    sw_team_barrier(d);
-    if (sw_team_leader(d)) sw_point_loads(m, d);
-    sw_team_barrier(d);
-  }
-  sw_external_finish(m, d);
-  sw_team_barrier(d);
 }
