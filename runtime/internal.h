@@ -133,7 +133,6 @@ typedef struct {
   void (*pull)(const swModel *m, swData *d);     /*   a barrier each               */
   double (*stable_dt_filament)(const swModel *m, int f);
 } swMuscleOps;
-const swMuscleOps *sw_muscle_ops_table(void);                          /* muscle.c */
 static inline const swMuscleOps *sw_muscle_ops(const swModel *m) {
   return (const swMuscleOps *)m->muscle_ops;
 }

@@ -149,8 +149,17 @@ static int check_item(const swMuscleItem *it, int nrod, char *err, size_t errlen
 
 
 
+/* The step reaches this file through this table (internal.h, swMuscleOps). */
+static void muscle_rates(const swModel *m, swData *d);
+static void muscle_tensions(const swModel *m, swData *d);
+static void muscle_pull(const swModel *m, swData *d);
+static const swMuscleOps muscle_ops = {sw_muscle_check,  sw_muscle_setup,     sw_muscle_free,
+                                       sw_muscle_spec_free, sw_muscle_reset, sw_muscle_advance,
+                                       sw_muscle_loads,  muscle_rates,        muscle_tensions,
+                                       muscle_pull,      sw_stable_dt_filament};
+
 int sw_spec_add_muscle(swSpec *s, const swMuscleDesc *md) {
-  *sw_spec_muscle_ops(s) = sw_muscle_ops_table(); /* the step reaches muscle.c through these */
+  *sw_spec_muscle_ops(s) = &muscle_ops;
   swMuscleSpec **slot = sw_spec_muscles(s);
   if (!*slot && !(*slot = calloc(1, sizeof **slot))) return -1;
   swMuscleSpec *ms = *slot;
@@ -564,11 +573,3 @@ double sw_stable_dt_filament(const swModel *m, int f) {
   double mass = fmin(m->mass[na], m->mass[na + m->rod_nelem[r]]);
   return c > 0 ? 2.0 * (0.5 * mass) / c : INFINITY;
 }
-
-static const swMuscleOps muscle_ops = {sw_muscle_check,  sw_muscle_setup,     sw_muscle_free,
-                                       sw_muscle_spec_free, sw_muscle_reset, sw_muscle_advance,
-                                       sw_muscle_loads,  muscle_rates,        muscle_tensions,
-                                       muscle_pull,      sw_stable_dt_filament};
-
-/* The step reaches this file through the table (internal.h, swMuscleOps). */
-const swMuscleOps *sw_muscle_ops_table(void) { return &muscle_ops; }
