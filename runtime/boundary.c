@@ -71,15 +71,33 @@ void sw_apply_bc_velocity(const swModel *m, swData *d, double t) {
 /* Called right after a free kick of size h: v_free = v_old + h F / m.  The
  * prescribed values are those of time t (the integrator passes the
  * midpoint of the drift the new velocities will be used for).  Only the
- * conditions whose end node is in [lo, hi) (a thread's slots), each booking
- * its work in work[k], which the integrator adds up in condition order. */
-void sw_bc_kick(const swModel *m, swData *d, double h, double t, int lo, int hi, double *work) {
-  for (int k = 0; k < m->nbc; k++) {
+ * conditions whose end node is in [lo, hi) (a thread's slots, or a block of
+ * the fused sweep, whose loads are at i - so: internal.h, "Scratch
+ * windows"), each booking its work in work[k], which the integrator adds
+ * up in condition order. */
+/* The first condition that may hold a node at slot `lo` or later: when the
+ * conditions are in slot order (as the compiler emits them, rod by rod),
+ * a block of the fused sweep looks only at its own, not at all of them. */
+static int first_bc(const swModel *m, int lo) {
+  if (!m->bc_slot_order) return 0;
+  int a = 0, z = m->nbc; /* bisection: the first k with node >= lo */
+  while (a < z) {
+    const int mid = (a + z) / 2;
+    if (sw_bc_node(m, &m->bc[mid]) < lo) a = mid + 1; else z = mid;
+  }
+  return a;
+}
+
+void sw_bc_kick(const swModel *m, swData *d, double h, double t, int lo, int hi, int so, double *work) {
+  for (int k = first_bc(m, lo); k < m->nbc; k++) {
     if (sw_rod_is_rigid(m, m->bc[k].rod)) continue; /* a clamp holds the body (rigid.c) */
+    const swBCDesc *b = &m->bc[k];
+    const int end_node = sw_bc_node(m, b);
+    if (end_node >= hi && m->bc_slot_order) break;
+    if (end_node < lo || end_node >= hi) continue; /* before the signal is evaluated */
     int node, elem;
     double vn[3], we[3];
-    int what = bc_target(m, d, &m->bc[k], t, &node, &elem, vn, we);
-    if (node < lo || node >= hi) continue;
+    int what = bc_target(m, d, b, t, &node, &elem, vn, we);
     /* The kick booked the external load's work with the free velocity,
      * h f . (v_old + v_free) / 2; rebook it with the prescribed one and add
      * the constraint force's, h f_c = m (v_new - v_free). */
@@ -87,7 +105,7 @@ void sw_bc_kick(const swModel *m, swData *d, double h, double t, int lo, int hi,
     if (what & 1) {
       double mass = m->mass[node];
       for (int c = 0; c < 3; c++) {
-        const double F = SW_AT(m, d->force, node, c), ef = SW_AT(m, d->ext_force, node, c);
+        const double F = SW_AT(m, d->force, node - so, c), ef = SW_AT(m, d->ext_force, node - so, c);
         double v_free = SW_AT(m, d->v, node, c), v_old = v_free - h * F * m->inv_mass[node];
         w -= 0.5 * h * ef * (v_old + v_free);
         w += 0.5 * (h * ef + mass * (vn[c] - v_free)) * (v_old + vn[c]);
@@ -97,7 +115,7 @@ void sw_bc_kick(const swModel *m, swData *d, double h, double t, int lo, int hi,
     if (what & 2) {
       double e = d->dilatation[elem];
       for (int c = 0; c < 3; c++) {
-        const double T = SW_AT(m, d->torque, elem, c), et = SW_AT(m, d->ext_torque, elem, c);
+        const double T = SW_AT(m, d->torque, elem - so, c), et = SW_AT(m, d->ext_torque, elem - so, c);
         double Je = SW_AT(m, m->inertia, elem, c) / e;
         double w_free = SW_AT(m, d->omega, elem, c), w_old = w_free - h * T / Je;
         w -= 0.5 * h * et * (w_old + w_free);
@@ -131,10 +149,12 @@ static int clamp_domain(const swModel *m, const swData *d, const swBCDesc *b,
   return e;
 }
 
-/* The clamp couples on the end elements in [lo, hi) (a thread's slots). */
-void sw_bc_loads(const swModel *m, swData *d, int lo, int hi) {
-  for (int k = 0; k < m->nbc; k++) {
+/* The clamp couples on the end elements in [lo, hi) (a thread's slots, or a
+ * block of the fused sweep: couples at i - so). */
+void sw_bc_loads(const swModel *m, swData *d, int lo, int hi, int so) {
+  for (int k = first_bc(m, lo); k < m->nbc; k++) { /* the end element is the node's slot or the one before */
     const swBCDesc *b = &m->bc[k];
+    if (sw_bc_node(m, b) > hi && m->bc_slot_order) break;
     if (b->kind != SW_BC_CLAMP) continue;
     const int end = m->elem_adr[b->rod] + (b->end ? m->rod_nelem[b->rod] - 1 : 0);
     if (end < lo || end >= hi) continue;
@@ -144,7 +164,7 @@ void sw_bc_loads(const swModel *m, swData *d, int lo, int hi) {
     /* as in rod.c: the element before the domain gets +c, the one after -c,
      * and each gets half of kappa x c D^ (the clamp's half is not needed) */
     double sgn = b->end ? 1.0 : -1.0;
-    for (int i = 0; i < 3; i++) SW_AT(m, d->torque, e, i) += sgn * c[i] + 0.5 * h[i] * D;
+    for (int i = 0; i < 3; i++) SW_AT(m, d->torque, e - so, i) += sgn * c[i] + 0.5 * h[i] * D;
   }
 }
 

@@ -56,11 +56,11 @@ static void compute_loads(const swModel *m, swData *d) {
   const swMuscleOps *mu = sw_muscle_ops(m);
   int lo, hi;
   sw_share_slots(m, d, m->nslot_elastic, &lo, &hi);
-  sw_rod_pass(m, d, lo, hi); /* (A) */
+  sw_rod_pass(m, d, lo, hi, 0, d->scratch_flag); /* (A) */
   if (m->njoint) sw_joint_rows(m, d);
   if (m->nmuscle) mu->rates(m, d);
   sw_team_barrier(d);
-  sw_rod_gather(m, d, lo, hi); /* (B) */
+  sw_rod_gather(m, d, lo, hi, 0); /* (B) */
   if (m->nrigid) { /* no deformation, no internal loads (rigid.c) */
     if (sw_team_leader(d))
       for (int b = 0; b < m->nrigid; b++) sw_rigid_internal(m, d, m->rigid_rod[b]);
@@ -69,7 +69,7 @@ static void compute_loads(const swModel *m, swData *d) {
   if (m->nbc) {
     int olo, ohi;
     sw_owned_slots(m, d, &olo, &ohi);
-    sw_bc_loads(m, d, olo, ohi);
+    sw_bc_loads(m, d, olo, ohi, 0);
   }
   sw_external_loads(m, d); /* on this thread's slots, no barrier inside */
   if (m->njoint) sw_joint_apply(m, d);
@@ -98,14 +98,15 @@ static void drift_nodes(const swModel *m, swData *d, double h, int lo, int hi) {
  * slots [lo, hi), after the nodes have moved.  The loop turns them with the
  * small-angle series of Rodrigues' formula (vec.h); the few that turn by
  * more in one drift (|phi| > 0.1 rad) are turned after it with the exact
- * formula, so every frame gets the bits of sw_rotate_frame. */
+ * formula, so every frame gets the bits of sw_rotate_frame.  The rotations
+ * are scratch, at i - so (internal.h, "Scratch windows"). */
 static inline __attribute__((always_inline)) void drift_frames(const swModel *m, swData *d, double h,
-                                                             int lo, int hi, const int simpson) {
+                                                             int lo, int hi, int so, const int simpson) {
   const size_t S = (size_t)m->stride;
   const double *restrict x = d->x, *restrict v = d->v;
   double *restrict w = d->omega, *restrict Q = d->Q, *restrict dil = d->dilatation;
   const double *restrict irl = m->inv_rest_len, *restrict ghost = m->elem_ghost;
-  double *restrict rot = d->scratch_phi, *restrict flag = d->scratch_flag;
+  double *restrict rot = d->scratch_phi;
   int turned = 0; /* frames past the series */
 #pragma omp simd reduction(+ : turned)
   for (int i = lo; i < hi; i++) {
@@ -127,30 +128,30 @@ static inline __attribute__((always_inline)) void drift_frames(const swModel *m,
      * here and is turned after the loop */
     sw_frame_store(Q, S, i, (swFrame){small ? Qn.d1 : Qo.d1, small ? Qn.d2 : Qo.d2,
                                       small ? Qn.d3 : Qo.d3});
-    sw3_store(rot, S, i, phi);
-    flag[i] = !small;
+    sw3_store(rot, S, i - so, phi);
     turned += !small;
     sw3_store(w, S, i, sw3_scale(wi, ratio));
     dil[i] = e_new;
   }
   if (!turned) return;
   for (int i = lo; i < hi; i++) {
-    if (flag[i] == 0.0) continue;
+    if (sw_frame_small_turn(sw3_load(rot, S, i - so))) continue;
     double Qe[9], phi[3];
     sw_getQ(m, d->Q, i, Qe);
-    sw_get3(m, rot, i, phi);
+    sw_get3(m, rot, i - so, phi);
     sw_rotate_frame(Qe, phi);
     sw_setQ(m, d->Q, i, Qe);
   }
 }
 
-/* Velocities of the elastic slots [lo, hi) under the loads, and the work
- * booked over the kick (see kick()) slot by slot into `work` (summed by
- * chunk in kick(), so that the sum does not depend on the threads).  One
- * loop per kind of model: with `exact_any` 0 (no rod integrates its damping
- * exactly, the common case) the loop carries no exact path at all. */
+/* Velocities of the elastic slots [lo, hi) under the loads (scratch, at
+ * i - so), and the work booked over the kick (see kick()) slot by slot into
+ * work[i] (summed by chunk in kick(), so that the sum does not depend on
+ * the threads).  One loop per kind of model: with `exact_any` 0 (no rod
+ * integrates its damping exactly, the common case) the loop carries no
+ * exact path at all. */
 static inline __attribute__((always_inline)) void kick_slots(const swModel *m, swData *d, double h,
-                                                           int lo, int hi, double *restrict work,
+                                                           int lo, int hi, int so, double *restrict work,
                                                            const int exact_any) {
   const size_t S = (size_t)m->stride;
   const double *restrict im = m->inv_mass, *restrict mass = m->mass;
@@ -169,21 +170,22 @@ static inline __attribute__((always_inline)) void kick_slots(const swModel *m, s
        * loads and dissipation together as the non-internal impulse times
        * the mean velocity */
       const int ex = exact_any && exact[i] != 0.0;
+      const double Fi = F[i - so], Ti = T[i - so], efi = ef[i - so], eti = et[i - so];
       const double vo = v[i];
-      const double vd = vo * ndec[i] + F[i] * im[i] * nkick[i], vp = vo + h * F[i] * im[i];
+      const double vd = vo * ndec[i] + Fi * im[i] * nkick[i], vp = vo + h * Fi * im[i];
       const double vn = ex ? vd : vp;
       v[i] = vn;
       /* elements: (J^/e) dw/dt = tau (Gazzola 2018, eq. 3.7b, the couples
        * of rod.c without the dilatation-rate term, which the drift
        * integrates) */
       const double wo = w[i];
-      const double wd = wo * edec[i] + T[i] * iJ[i] * e[i] * ekick[i], wp = wo + h * T[i] * iJ[i] * e[i];
+      const double wd = wo * edec[i] + Ti * iJ[i] * e[i] * ekick[i], wp = wo + h * Ti * iJ[i] * e[i];
       const double wn = ex ? wd : wp;
       w[i] = wn;
       /* the midpoint rule, h F . (v_old + v_new) / 2 */
-      const double booked = ex ? 0.5 * ((mass[i] * (vn - vo) - h * (F[i] - ef[i])) * (vo + vn) +
-                                        (J[i] / e[i] * (wn - wo) - h * (T[i] - et[i])) * (wo + wn))
-                               : 0.5 * h * (ef[i] * (vo + vn) + et[i] * (wo + wn));
+      const double booked = ex ? 0.5 * ((mass[i] * (vn - vo) - h * (Fi - efi)) * (vo + vn) +
+                                        (J[i] / e[i] * (wn - wo) - h * (Ti - eti)) * (wo + wn))
+                               : 0.5 * h * (efi * (vo + vn) + eti * (wo + wn));
       work[i] = k ? work[i] + booked : booked;
     }
   }
@@ -224,9 +226,9 @@ static void drift(const swModel *m, swData *d, double h) {
   drift_nodes(m, d, h, lo, hi);
   sw_team_barrier(d); /* a frame reads the node after its element's */
   if (m->integrator == SW_PEFRL) /* one loop per scheme: Simpson's rule or not */
-    drift_frames(m, d, h, lo, hi, 1);
+    drift_frames(m, d, h, lo, hi, 0, 1);
   else
-    drift_frames(m, d, h, lo, hi, 0);
+    drift_frames(m, d, h, lo, hi, 0, 0);
   sw_team_barrier(d); /* the last elastic slot read the first rigid node */
   if (sw_team_leader(d)) {
     finish_kick(m, d);
@@ -247,15 +249,15 @@ static void kick(const swModel *m, swData *d, double h, double span) {
   int lo, hi;
   sw_share_slots(m, d, n, &lo, &hi);
   if (m->has_exact_kick) /* the flags are free between the passes */
-    kick_slots(m, d, h, lo, hi, d->scratch_flag, 1);
+    kick_slots(m, d, h, lo, hi, 0, d->scratch_flag, 1);
   else
-    kick_slots(m, d, h, lo, hi, d->scratch_flag, 0);
+    kick_slots(m, d, h, lo, hi, 0, d->scratch_flag, 0);
   SW_FOR_CHUNKS(m, d, c, n) d->chunk_sum[c] = chunk_work(d->scratch_flag, sw_chunk_lo(m, c), sw_chunk_hi(m, c, n));
   if (m->nbc) { /* the prescribed ends, after every free kick (an end's node and
                   element may have been kicked by two threads) */
     sw_team_barrier(d);
     sw_owned_slots(m, d, &lo, &hi);
-    sw_bc_kick(m, d, h, d->time + 0.5 * span, lo, hi, d->bc_work);
+    sw_bc_kick(m, d, h, d->time + 0.5 * span, lo, hi, 0, d->bc_work);
   }
   /* the work and the rigid bodies' kick are the next drift's leader's; the
    * nodes of the drift are this thread's own, so no barrier here */
@@ -263,6 +265,71 @@ static void kick(const swModel *m, swData *d, double h, double span) {
     d->kick_pending = 1;
     d->kick_h = h;
   }
+}
+
+/* The fused sweep's block of slots.  Its scratch windows take the first
+ * SWEEP_BLOCK + 1 entries of each scratch plane. */
+#define SWEEP_BLOCK 512
+
+int sw_sweep_fits(const swModel *m) {
+  return m->integrator != SW_PEFRL && m->nslot_elastic > SWEEP_BLOCK && !m->njoint && !m->nmuscle &&
+         !m->nrigid && !sw_has_env(m);
+}
+
+/* The window's last entries (the block's last slot) become its entry 0 (the
+ * slot before the next block): what the gather and the boundary kick of
+ * the next block read of the slot before theirs. */
+static void carry_window(const swModel *m, swData *d) {
+  const size_t S = (size_t)m->stride;
+  double *const planes[] = {d->scratch_f, d->couple, d->scratch_h, d->torque, d->ext_torque};
+  for (size_t p = 0; p < sizeof planes / sizeof *planes; p++)
+    for (int k = 0; k < 3; k++) planes[p][k * S] = planes[p][k * S + SWEEP_BLOCK];
+}
+
+/* kick(h, span) then drift(hd) as one pass over the slots, block by block,
+ * each stage on the block its inputs are ready for: the loads and the kick
+ * of block j (they read the element and the frame after the block, not yet
+ * moved), the drift of its nodes, and the drift of the frames of block j-1
+ * (they read the first node of block j, moved).  Every slot gets the
+ * operations of kick() and drift() in their order, so the bits are those
+ * of the phased step; what changes is the memory traffic.  The scratch
+ * arrays live in windows (internal.h, "Scratch windows") that stay in the
+ * cache, and the state and model are read once a step instead of once per
+ * phase.  The kick's work goes slot by slot into the whole of scratch_flag
+ * (the rod pass flags its bent domains in a window of scratch_phi), and
+ * each chunk is summed, as kick() sums it, once all its slots are kicked. */
+static inline __attribute__((always_inline)) void sweep_slots(const swModel *m, swData *d, double h,
+                                                            double span, double hd, const int exact_any) {
+  const int n = m->nslot_elastic, nc = sw_nchunk(m, n);
+  int c = 0; /* the next chunk to sum */
+  for (int b = 0; b < n + SWEEP_BLOCK; b += SWEEP_BLOCK) {
+    const int e = b + SWEEP_BLOCK < n ? b + SWEEP_BLOCK : n, so = b - 1;
+    if (b < n) {
+      sw_rod_pass(m, d, b, e, so, d->scratch_phi);
+      sw_rod_gather(m, d, b, e, so);
+      if (m->nbc) sw_bc_loads(m, d, b, e, so);
+      sw_external_loads_slots(m, d, b, e, so);
+      kick_slots(m, d, h, b, e, so, d->scratch_flag, exact_any);
+      for (; c < nc && sw_chunk_hi(m, c, n) <= e; c++)
+        d->chunk_sum[c] = chunk_work(d->scratch_flag, sw_chunk_lo(m, c), sw_chunk_hi(m, c, n));
+      if (m->nbc) sw_bc_kick(m, d, h, d->time + 0.5 * span, b, e, so, d->bc_work);
+      drift_nodes(m, d, hd, b, e);
+    }
+    if (b > 0) drift_frames(m, d, hd, b - SWEEP_BLOCK, b < n ? b : n, b - SWEEP_BLOCK - 1, 0);
+    carry_window(m, d);
+  }
+  sw_external_loads_slots(m, d, n, m->stride, 0); /* the padding's, as kick() does */
+  d->kick_pending = 1;
+  d->kick_h = h;
+  finish_kick(m, d);
+  d->time += hd;
+}
+
+static void sweep(const swModel *m, swData *d, double h, double span, double hd) {
+  if (m->has_exact_kick)
+    sweep_slots(m, d, h, span, hd, 1);
+  else
+    sweep_slots(m, d, h, span, hd, 0);
 }
 
 /* Exact decay of the analytically damped rods over half a step (PEFRL). */
@@ -374,10 +441,15 @@ static void steps(const swModel *m, swData *d, long k, int *rc) {
     return;
   }
   drift(m, d, 0.5 * h);
+  const int fused = d->team_size <= 1 && sw_sweep_fits(m);
   for (long i = 0; i < k && *rc == SW_OK; i++) {
-    kick(m, d, h, h);
     const int last = i == k - 1;
-    drift(m, d, last ? 0.5 * h : h);
+    if (fused) {
+      sweep(m, d, h, h, last ? 0.5 * h : h);
+    } else {
+      kick(m, d, h, h);
+      drift(m, d, last ? 0.5 * h : h);
+    }
     end_step(m, d, last, check_due(step0 + i + 1), !last, rc);
   }
 }

@@ -82,14 +82,36 @@ static inline void sw_share_slots(const swModel *m, const swData *d, int n, int 
        c < c##_end; c++)
 /* doubles per joint in d->joint_scratch (joint.c) */
 #define SW_JOINT_ROW 18
+/* Scratch windows.  The step's scratch arrays (the strains, couples and
+ * flags of rod.c, the loads, the drift's rotations) are planes of m->stride
+ * like the state.  The kernels below that take `so` (scratch origin) find
+ * slot i of a scratch plane at index i - so, and of a state or model plane
+ * at i.  The phased step and the diagnostics pass so = 0 and use the planes
+ * whole.  The fused sweep (integrate.c) passes so = b - 1 for its block of
+ * slots [b, e), so that every block reuses the first entries of the
+ * scratch planes, which stay in the cache, instead of streaming whole
+ * planes through memory (index 0 holds the slot before the block). */
 /* The rod kernels over a range of elastic slots [lo, hi) (rod.c): the
- * element and Voronoi pass, then the gather of their neighbours' terms. */
-void sw_rod_pass(const swModel *m, swData *d, int lo, int hi);
-void sw_rod_gather(const swModel *m, swData *d, int lo, int hi);
+ * element and Voronoi pass (bent domains flagged in flag[i - so]), then the
+ * gather of their neighbours' terms. */
+void sw_rod_pass(const swModel *m, swData *d, int lo, int hi, int so, double *flag);
+void sw_rod_gather(const swModel *m, swData *d, int lo, int hi, int so);
+/* Whether a one-thread Verlet step of the model runs its kick and drift as
+ * one sweep over the slots (integrate.c): more slots than a block, and no
+ * load that reaches beyond a slot's neighbours (joints, muscles,
+ * environments) or off the slots (rigid bodies). */
+int sw_sweep_fits(const swModel *m);
+/* Gravity, point loads and linear damping on slots [lo, hi), added into the
+ * totals (loads.c; sw_external_loads takes the thread's owned slots). */
+void sw_external_loads_slots(const swModel *m, swData *d, int lo, int hi, int so);
 /* Boundary conditions (boundary.c), each applied by the thread that owns
  * its end (slots [lo, hi)); the kick's work of condition k into work[k]. */
-void sw_bc_kick(const swModel *m, swData *d, double h, double t, int lo, int hi, double *work);
-void sw_bc_loads(const swModel *m, swData *d, int lo, int hi);
+void sw_bc_kick(const swModel *m, swData *d, double h, double t, int lo, int hi, int so, double *work);
+void sw_bc_loads(const swModel *m, swData *d, int lo, int hi, int so);
+/* The slot of the end node a condition holds. */
+static inline int sw_bc_node(const swModel *m, const swBCDesc *b) {
+  return m->node_adr[b->rod] + (b->end ? m->rod_nelem[b->rod] : 0);
+}
 double sw_bc_energy(const swModel *m, const swData *d);               /* boundary.c  */
 /* Largest h * omega for which the integrator is stable on the damped
  * oscillator x'' = -omega^2 x - c x', as a function of zeta = c / (2 omega). */

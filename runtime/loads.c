@@ -128,8 +128,9 @@ double sw_signal_eval(const swSignal *s, double t) {
 }
 
 /* Gravity into ext_force and zero into ext_torque over slots [lo, hi) of the
- * planes (padding included, where both stay zero). */
-static void base_loads(const swModel *m, swData *d, int lo, int hi) {
+ * planes (padding included, where both stay zero); the loads are scratch, at
+ * i - so (internal.h, "Scratch windows"). */
+static void base_loads(const swModel *m, swData *d, int lo, int hi, int so) {
   const size_t S = (size_t)m->stride;
   const int NS = m->nslot;
   const double *restrict mass = m->mass;
@@ -138,8 +139,8 @@ static void base_loads(const swModel *m, swData *d, int lo, int hi) {
     const double g = m->has_gravity ? m->gravity[k] : 0.0;
 #pragma omp simd
     for (int i = lo; i < hi; i++) {
-      ef[i] = m->has_gravity && i < NS ? mass[i] * g : 0.0;
-      et[i] = 0.0;
+      ef[i - so] = m->has_gravity && i < NS ? mass[i] * g : 0.0;
+      et[i - so] = 0.0;
     }
   }
 }
@@ -147,7 +148,7 @@ static void base_loads(const swModel *m, swData *d, int lo, int hi) {
 /* Point forces and couples of the scene on this thread's slots, in load
  * order (each by the owner of its slot, so the base loads of that slot are
  * already there). */
-static void point_loads(const swModel *m, swData *d, int lo, int hi) {
+static void point_loads(const swModel *m, swData *d, int lo, int hi, int so) {
   for (int l = 0; l < m->nload; l++) {
     const swLoadDesc *ld = &m->load[l];
     const int slot = (ld->kind == SW_LOAD_FORCE ? m->node_adr[ld->rod] : m->elem_adr[ld->rod]) + ld->index;
@@ -155,20 +156,20 @@ static void point_loads(const swModel *m, swData *d, int lo, int hi) {
     double g = sw_signal_eval(&ld->signal, d->time);
     if (ld->kind == SW_LOAD_FORCE) {
       int i = slot;
-      for (int k = 0; k < 3; k++) SW_AT(m, d->ext_force, i, k) += g * ld->vec[k];
+      for (int k = 0; k < 3; k++) SW_AT(m, d->ext_force, i - so, k) += g * ld->vec[k];
     } else {
       int e = slot;
       double tl[3] = {g * ld->vec[0], g * ld->vec[1], g * ld->vec[2]}, tm[3], Q[9];
       sw_getQ(m, d->Q, e, Q);
       sw_mat_vec(tm, Q, tl); /* couples act in the material frame */
-      for (int k = 0; k < 3; k++) SW_AT(m, d->ext_torque, e, k) += tm[k];
+      for (int k = 0; k < 3; k++) SW_AT(m, d->ext_torque, e - so, k) += tm[k];
     }
   }
 }
 
 /* Linear dissipation on the rods that have it (nodes, and elements but not
  * ghosts), then the external loads into the totals, slots [lo, hi). */
-static void finish_loads(const swModel *m, swData *d, int lo, int hi) {
+static void finish_loads(const swModel *m, swData *d, int lo, int hi, int so) {
   const size_t S = (size_t)m->stride;
   const double *restrict lin = m->damp_linear, *restrict ghost = m->elem_ghost;
   const double *restrict ng = m->node_gamma;
@@ -181,14 +182,14 @@ static void finish_loads(const swModel *m, swData *d, int lo, int hi) {
 #pragma omp simd
       for (int i = lo; i < hi; i++) {
         const int node = lin[i] != 0.0, elem = (lin[i] != 0.0) & (ghost[i] == 0.0);
-        ef[i] = node ? ef[i] - ng[i] * v[i] : ef[i];
-        et[i] = elem ? et[i] - eg[i] * w[i] : et[i];
+        ef[i - so] = node ? ef[i - so] - ng[i] * v[i] : ef[i - so];
+        et[i - so] = elem ? et[i - so] - eg[i] * w[i] : et[i - so];
       }
     }
 #pragma omp simd
     for (int i = lo; i < hi; i++) {
-      F[i] += ef[i];
-      T[i] += et[i];
+      F[i - so] += ef[i - so];
+      T[i - so] += et[i - so];
     }
   }
 }
@@ -198,7 +199,11 @@ static void finish_loads(const swModel *m, swData *d, int lo, int hi) {
 void sw_external_loads(const swModel *m, swData *d) {
   int lo, hi;
   sw_owned_slots(m, d, &lo, &hi); /* [0, stride): padding and rigid slots too */
-  base_loads(m, d, lo, hi);
-  if (m->nload) point_loads(m, d, lo, hi); /* onto the base loads, before the damping reads them */
-  finish_loads(m, d, lo, hi);
+  sw_external_loads_slots(m, d, lo, hi, 0);
+}
+
+void sw_external_loads_slots(const swModel *m, swData *d, int lo, int hi, int so) {
+  base_loads(m, d, lo, hi, so);
+  if (m->nload) point_loads(m, d, lo, hi, so); /* onto the base loads, before the damping reads them */
+  finish_loads(m, d, lo, hi, so);
 }

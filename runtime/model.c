@@ -619,6 +619,9 @@ swModel *sw_compile(const swSpec *s, char *err, size_t errlen) {
   if (!m->load || !m->bc) goto oom;
   if (s->nload) memcpy(m->load, s->load, sizeof *m->load * (size_t)s->nload);
   if (s->nbc) memcpy(m->bc, s->bc, sizeof *m->bc * (size_t)s->nbc);
+  m->bc_slot_order = 1; /* boundary.c looks only near a call's slots then */
+  for (int k = 1; k < m->nbc; k++)
+    if (sw_bc_node(m, &m->bc[k]) < sw_bc_node(m, &m->bc[k - 1])) m->bc_slot_order = 0;
   for (int k = 0; k < m->nload; k++)
     if (m->load[k].index == -1)
       m->load[k].index = m->rod_nelem[m->load[k].rod] - (m->load[k].kind == SW_LOAD_TORQUE);

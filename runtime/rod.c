@@ -46,7 +46,8 @@
  * compiler knows the stores of a slot do not feed the loads of another. */
 typedef struct {
   const double *restrict x, *restrict ghost, *restrict D, *restrict iD, *restrict B, *restrict k0;
-  double *restrict kap, *restrict cpl, *restrict vdil, *restrict hh;
+  double *restrict kap, *restrict cpl, *restrict vdil, *restrict hh; /* scratch, at i - so */
+  int so;
 } vorArrays;
 
 /* Length of element i for the passes: a ghost's two nodes belong to two
@@ -66,11 +67,12 @@ static inline void domain_couple(vorArrays a, size_t S, int i, sw3 kv, double l,
   const sw3 Bi = sw3_load(a.B, S, i), kv0 = sw3_load(a.k0, S, i);
   const sw3 c = {Bi.x * (kv.x - kv0.x) * inv_eps3, Bi.y * (kv.y - kv0.y) * inv_eps3,
                  Bi.z * (kv.z - kv0.z) * inv_eps3};
-  sw3_store(a.kap, S, i, kv);
-  sw3_store(a.cpl, S, i, c);
-  a.vdil[i] = eps;
+  const int j = i - a.so; /* scratch */
+  sw3_store(a.kap, S, j, kv);
+  sw3_store(a.cpl, S, j, c);
+  a.vdil[j] = eps;
   const sw3 h = sw3_cross(kv, c);
-  sw3_store(a.hh, S, i, (sw3){0.5 * h.x * a.D[i], 0.5 * h.y * a.D[i], 0.5 * h.z * a.D[i]});
+  sw3_store(a.hh, S, j, (sw3){0.5 * h.x * a.D[i], 0.5 * h.y * a.D[i], 0.5 * h.z * a.D[i]});
 }
 
 /* Element pass and Voronoi pass over slots [lo, hi): element i, then the
@@ -82,8 +84,8 @@ static inline void domain_couple(vorArrays a, size_t S, int i, sw3 kv, double l,
  * loop with the exact logarithm, which gives every domain the bits of
  * vec.h's sw_frame_log. */
 /* Element pass over slots [lo, hi): strain, internal force, Q^T n, the
- * element's own couples. */
-static void element_pass(const swModel *m, swData *d, int lo, int hi) {
+ * element's own couples (scratch at i - so, internal.h "Scratch windows"). */
+static void element_pass(const swModel *m, swData *d, int lo, int hi, int so) {
   const size_t S = (size_t)m->stride;
   const double *restrict x = d->x, *restrict Q = d->Q, *restrict w = d->omega;
   const double *restrict rl = m->rest_len, *restrict irl = m->inv_rest_len;
@@ -105,40 +107,41 @@ static void element_pass(const swModel *m, swData *d, int lo, int hi) {
     const sw3 S_ = sw3_load(Sh, S, i), sg0 = sw3_load(s0, S, i);
     const sw3 nm = {S_.x * (sg.x - sg0.x) * inv_e, S_.y * (sg.y - sg0.y) * inv_e,
                     S_.z * (sg.z - sg0.z) * inv_e};
-    sw3_store(sig, S, i, sg);
-    sw3_store(str, S, i, nm);
-    len[i] = l;
+    const int j = i - so;
+    sw3_store(sig, S, j, sg);
+    sw3_store(str, S, j, nm);
+    len[j] = l;
     dil[i] = e;
-    sw3_store(fl, S, i, sw_frame_apply_t(Qi, nm));
+    sw3_store(fl, S, j, sw_frame_apply_t(Qi, nm));
     /* shear couple (Q dx) x n and inertial couple (J^ w / e) x w; the
      * dilatation-rate couple (J^ w / e) de/dt / e is integrated by the
      * drift (integrate.c), which keeps J^ w / e constant while e changes */
     const sw3 wi = sw3_load(w, S, i), Ji = sw3_load(J, S, i);
     const sw3 Jw = {Ji.x * wi.x * inv_e, Ji.y * wi.y * inv_e, Ji.z * wi.z * inv_e};
     const sw3 sc = sw3_cross(Qdx, nm), tr = sw3_cross(Jw, wi);
-    sw3_store(T, S, i, (sw3){sc.x + tr.x, sc.y + tr.y, sc.z + tr.z});
+    sw3_store(T, S, j, (sw3){sc.x + tr.x, sc.y + tr.y, sc.z + tr.z});
   }
 }
 
 /* Voronoi pass over slots [lo, hi), after the element pass of [lo, hi):
  * kappa = log(Q_{i+1} Q_i^T) / D^ (a ghost domain's is never used: its
  * stiffness is zero), the bending couple and the transport term; returns
- * how many real domains were bent past the logarithm's series (flagged). */
-static int voronoi_pass(const swModel *m, swData *d, int lo, int hi) {
+ * how many real domains were bent past the logarithm's series (flagged in
+ * flag[i - so]). */
+static int voronoi_pass(const swModel *m, swData *d, int lo, int hi, int so, double *restrict flag) {
   const size_t S = (size_t)m->stride;
   const double *restrict Q = d->Q, *restrict ghost = m->elem_ghost, *restrict len = d->length;
-  double *restrict flag = d->scratch_flag; /* 1: redo domain i exactly */
   const vorArrays va = {d->x, ghost, m->rest_vor_len, m->inv_rest_vor_len, m->bend_stiff, m->rest_kappa,
-                        d->kappa, d->couple, d->vor_dilatation, d->scratch_h};
+                        d->kappa, d->couple, d->vor_dilatation, d->scratch_h, so};
   int bent = 0;
 #pragma omp simd reduction(+ : bent)
   for (int i = lo; i < hi; i++) {
     const swSmallLog lg = sw_frame_log_small(sw_frame_load(Q, S, i), sw_frame_load(Q, S, i + 1));
     const sw3 kv = sw3_scale(lg.phi, m->inv_rest_vor_len[i]);
     const int redo = (lg.small == 0) & (ghost[i] == 0.0) & (ghost[i + 1] == 0.0);
-    flag[i] = redo;
+    flag[i - so] = redo;
     bent += redo;
-    domain_couple(va, S, i, kv, len[i], elem_length(va, S, i + 1));
+    domain_couple(va, S, i, kv, len[i - so], elem_length(va, S, i + 1));
   }
   return bent;
 }
@@ -152,27 +155,27 @@ static int voronoi_pass(const swModel *m, swData *d, int lo, int hi) {
  * loop with the exact logarithm, which gives every domain the bits of
  * vec.h's sw_frame_log. */
 #define ROD_BLOCK 512
-void sw_rod_pass(const swModel *m, swData *d, int lo, int hi) {
+void sw_rod_pass(const swModel *m, swData *d, int lo, int hi, int so, double *flag) {
   int bent = 0;
   for (int b = lo; b < hi; b += ROD_BLOCK) {
     const int e = b + ROD_BLOCK < hi ? b + ROD_BLOCK : hi;
-    element_pass(m, d, b, e);
-    bent += voronoi_pass(m, d, b, e);
+    element_pass(m, d, b, e, so);
+    bent += voronoi_pass(m, d, b, e, so, flag);
   }
   if (!bent) return;
   const size_t S = (size_t)m->stride;
-  const double *restrict flag = d->scratch_flag, *restrict len = d->length;
+  const double *restrict len = d->length;
   const vorArrays va = {d->x, m->elem_ghost, m->rest_vor_len, m->inv_rest_vor_len, m->bend_stiff, m->rest_kappa,
-                        d->kappa, d->couple, d->vor_dilatation, d->scratch_h};
+                        d->kappa, d->couple, d->vor_dilatation, d->scratch_h, so};
   for (int i = lo; i < hi; i++) {
-    if (flag[i] == 0.0) continue;
+    if (flag[i - so] == 0.0) continue;
     double Qa[9], Qb[9], phi[3];
     sw_getQ(m, d->Q, i, Qa);
     sw_getQ(m, d->Q, i + 1, Qb);
     sw_frame_log(phi, Qa, Qb);
     const double inv_D = m->inv_rest_vor_len[i];
     const sw3 kv = {phi[0] * inv_D, phi[1] * inv_D, phi[2] * inv_D};
-    domain_couple(va, S, i, kv, len[i], elem_length(va, S, i + 1));
+    domain_couple(va, S, i, kv, len[i - so], elem_length(va, S, i + 1));
   }
 }
 
@@ -180,24 +183,26 @@ void sw_rod_pass(const swModel *m, swData *d, int lo, int hi) {
  * element couple tau_i += (-c_{i-1} + h_{i-1}) + (c_i + h_i), in this order
  * (the order the couples of domains i-1 and i were once added in); slot -1
  * counts as a ghost. */
-void sw_rod_gather(const swModel *m, swData *d, int lo, int hi) {
+void sw_rod_gather(const swModel *m, swData *d, int lo, int hi, int so) {
   const size_t S = (size_t)m->stride;
   const double *restrict fl = d->scratch_f, *restrict c = d->couple, *restrict hh = d->scratch_h;
   double *restrict F = d->force, *restrict T = d->torque;
   if (lo == 0 && hi > 0) {
+    const int j = -so; /* slot 0 */
     for (int k = 0; k < 3; k++) {
-      F[k * S] = fl[k * S] - 0.0;
-      T[k * S] = (T[k * S] + (-0.0 + 0.0)) + (c[k * S] + hh[k * S]);
+      F[k * S + j] = fl[k * S + j] - 0.0;
+      T[k * S + j] = (T[k * S + j] + (-0.0 + 0.0)) + (c[k * S + j] + hh[k * S + j]);
     }
     lo = 1;
   }
+  /* only scratch here: slot i at j = i - so */
   for (int k = 0; k < 3; k++) {
     const double *restrict fk = fl + k * S, *restrict ck = c + k * S, *restrict hk = hh + k * S;
     double *restrict Fk = F + k * S, *restrict Tk = T + k * S;
 #pragma omp simd
-    for (int i = lo; i < hi; i++) {
-      Fk[i] = fk[i] - fk[i - 1];
-      Tk[i] = (Tk[i] + (-ck[i - 1] + hk[i - 1])) + (ck[i] + hk[i]);
+    for (int j = lo - so; j < hi - so; j++) {
+      Fk[j] = fk[j] - fk[j - 1];
+      Tk[j] = (Tk[j] + (-ck[j - 1] + hk[j - 1])) + (ck[j] + hk[j]);
     }
   }
 }
@@ -205,9 +210,9 @@ void sw_rod_gather(const swModel *m, swData *d, int lo, int hi) {
 void sw_internal_loads(const swModel *m, swData *d) {
   int lo, hi;
   sw_share_slots(m, d, m->nslot_elastic, &lo, &hi);
-  sw_rod_pass(m, d, lo, hi);
+  sw_rod_pass(m, d, lo, hi, 0, d->scratch_flag);
   sw_team_barrier(d); /* the gather reads the pass of the slot before */
-  sw_rod_gather(m, d, lo, hi);
+  sw_rod_gather(m, d, lo, hi, 0);
   if (m->nrigid && sw_team_leader(d)) /* rigid slots: no thread's chunks touch them */
     for (int b = 0; b < m->nrigid; b++) /* no deformation, no internal loads (rigid.c) */
       sw_rigid_internal(m, d, m->rigid_rod[b]);

@@ -420,6 +420,7 @@ typedef struct {
   /* loads and boundary conditions */
   swLoadDesc *load;          /* (nload)                                      */
   swBCDesc *bc;              /* (nbc)                                        */
+  int bc_slot_order;         /* 1: the conditions' end nodes are in slot order */
   swJointDesc *joint;        /* (njoint), names owned by the model, nodes,
                                 stiffness and damping resolved (joint.c)    */
   char **joint_name;         /* (njoint)                                     */
