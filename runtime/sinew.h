@@ -525,9 +525,15 @@ typedef struct {
   /* state, per slot in the layout of the model: x, v (3 planes, node
    * slots), Q (9 planes), omega (3 planes, element slots) */
   double *x, *v, *Q, *omega;
-  /* derived per element slot (computed each force evaluation) */
-  double *length;            /* current length l                             */
+  /* Derived and accumulated per slot.  The dilatation is kept with the
+   * state (the drift and the kick use it); the others are scratch of the
+   * step: they hold the current state's values after sw_internal_loads()
+   * (which sw_energy and sw_data_new call), not after sw_steps(), since a
+   * one-thread step may keep only a window of them (integrate.c, the fused
+   * sweep). */
   double *dilatation;        /* e = l / l^ (1 at ghosts)                     */
+  /* derived per element slot */
+  double *length;            /* current length l                             */
   double *sigma;             /* (3) shear/stretch strain, material           */
   double *stress;            /* (3) internal force n = S^ (s-s0) / e         */
   /* derived per Voronoi slot */
