@@ -68,13 +68,6 @@ void sw_apply_bc_velocity(const swModel *m, swData *d, double t) {
   }
 }
 
-/* Called right after a free kick of size h: v_free = v_old + h F / m.  The
- * prescribed values are those of time t (the integrator passes the
- * midpoint of the drift the new velocities will be used for).  Only the
- * conditions whose end node is in [lo, hi) (a thread's slots, or a block of
- * the fused sweep, whose loads are at i - so: internal.h, "Scratch
- * windows"), each booking its work in work[k], which the integrator adds
- * up in condition order. */
 /* The first condition that may hold a node at slot `lo` or later: when the
  * conditions are in slot order (as the compiler emits them, rod by rod),
  * a block of the fused sweep looks only at its own, not at all of them. */
@@ -88,6 +81,13 @@ static int first_bc(const swModel *m, int lo) {
   return a;
 }
 
+/* Called right after a free kick of size h: v_free = v_old + h F / m.  The
+ * prescribed values are those of time t (the integrator passes the
+ * midpoint of the drift the new velocities will be used for).  Only the
+ * conditions whose end node is in [lo, hi) (a thread's slots, or a block of
+ * the fused sweep, whose loads are at i - so: internal.h, "Scratch
+ * windows"), each booking its work in work[k], which the integrator adds
+ * up in condition order. */
 void sw_bc_kick(const swModel *m, swData *d, double h, double t, int lo, int hi, int so, double *work) {
   for (int k = first_bc(m, lo); k < m->nbc; k++) {
     if (sw_rod_is_rigid(m, m->bc[k].rod)) continue; /* a clamp holds the body (rigid.c) */

@@ -132,6 +132,23 @@ static double **arrays(swData *d, int *planes) {
   return a;
 }
 
+/* A copy of every array of arrays(), back to back. */
+static double *copy_planes(const swModel *m, swData *d) {
+  int np[16];
+  double **a = arrays(d, np);
+  size_t total = 0;
+  for (int k = 0; a[k]; k++) total += (size_t)np[k] * (size_t)m->stride;
+  double *planes = malloc(total * sizeof(double));
+  assert_non_null(planes);
+  size_t at = 0;
+  for (int k = 0; a[k]; k++) {
+    const size_t n = (size_t)np[k] * (size_t)m->stride;
+    memcpy(planes + at, a[k], n * sizeof(double));
+    at += n;
+  }
+  return planes;
+}
+
 static snapshot run(const swModel *m, int threads, long steps) {
   swData *d = sw_data_new(m);
   assert_non_null(d);
@@ -141,20 +158,9 @@ static snapshot run(const swModel *m, int threads, long steps) {
   if (s.rc == SW_OK) s.rc = sw_steps(m, d, steps - steps / 2); /* two calls: the regions meet */
   s.time = d->time, s.work = d->work, s.step = d->step, s.pairs = d->contact_pairs;
   memcpy(s.error, d->error, sizeof s.error);
-  int np[16];
-  double **a = arrays(d, np);
-  size_t total = 0;
-  for (int k = 0; a[k]; k++) total += (size_t)np[k] * (size_t)m->stride;
-  s.planes = malloc(total * sizeof(double));
+  s.planes = copy_planes(m, d);
   s.joints = malloc(4 * (size_t)m->njoint * sizeof(double));
-  assert_non_null(s.planes);
   assert_non_null(s.joints);
-  size_t at = 0;
-  for (int k = 0; a[k]; k++) {
-    const size_t n = (size_t)np[k] * (size_t)m->stride;
-    memcpy(s.planes + at, a[k], n * sizeof(double));
-    at += n;
-  }
   memcpy(s.joints, d->joint_force, 3 * (size_t)m->njoint * sizeof(double));
   memcpy(s.joints + 3 * m->njoint, d->joint_angle, (size_t)m->njoint * sizeof(double));
   sw_data_free(d);
@@ -229,14 +235,17 @@ static void test_unstable(void **state) {
  * slots, block by block, with the scratch arrays in windows (integrate.c);
  * two or more threads run the phased step.  The scene below puts an end
  * with a prescribed angular velocity on the first slot of a block, with its
- * element on the block before; coils one rod so tightly (0.3 rad from element to
- * element) that every one of its domains takes the exact logarithm; and
+ * element on the block before; coils one rod so tightly (0.3 rad from
+ * element to element) that every one of its domains takes the exact
+ * logarithm; and
  * spins another about its axis fast enough (0.15 rad a step) that its
  * frames take the exact rotation in every drift.  The state, the time, the
  * work, and the strains and energies recomputed from the final state must
- * have the same bits on 1, 2 and 3 threads.  (The loads and strains the
- * step leaves behind are scratch, and the sweep keeps only windows of
- * them, so those are compared after sw_energy recomputes them.) */
+ * have the same bits on 1, 2 and 3 threads, with the boundary conditions
+ * declared in slot order (looked up by slot) and out of it (all scanned).
+ * (The loads and strains the step leaves behind are scratch, and the sweep
+ * keeps only windows of them, so those are compared after sw_energy
+ * recomputes them.) */
 enum { COIL = 400, SPUN = 3 };
 
 static void coil_shape(int n, double *x, double *Q) {
@@ -258,7 +267,7 @@ static void coil_shape(int n, double *x, double *Q) {
   }
 }
 
-static swSpec *sweep_scene(void) {
+static swSpec *sweep_scene(int unsorted) {
   swSpec *s = sw_spec_new();
   static const char *names[] = {"turned", "loaded", "coil", "spun"};
   static const int nelem[] = {512, 300, COIL, 200};
@@ -279,7 +288,7 @@ static swSpec *sweep_scene(void) {
                    {.kind = SW_BC_OMEGA, .rod = 0, .end = 1, .vec = {0, 1, 3}, .signal = sw_signal_sine(0, 1, 40, 0, 0)},
                    {.kind = SW_BC_CLAMP, .rod = 2, .end = 0, .signal = sw_signal_const(1)},
                    {.kind = SW_BC_VELOCITY, .rod = 2, .end = 1, .vec = {0, 0.05, 0.02}, .signal = sw_signal_const(1)}};
-  for (int k = 0; k < 4; k++) sw_spec_add_bc(s, &bc[k]);
+  for (int k = 0; k < 4; k++) sw_spec_add_bc(s, &bc[unsorted ? (k + 1) % 4 : k]);
   swLoadDesc f = {.kind = SW_LOAD_FORCE, .rod = 1, .index = -1, .vec = {0, 0, 0.02},
                   .signal = sw_signal_ramp(0, 1, 0, 1e-3)};
   sw_spec_add_load(s, &f);
@@ -304,34 +313,23 @@ static snapshot sweep_run(const swModel *m, int threads, long steps, double ener
   sw_energy(m, d, energy);
   s.time = d->time, s.work = d->work, s.step = d->step;
   memcpy(s.error, d->error, sizeof s.error);
-  int np[16];
-  double **a = arrays(d, np);
-  size_t total = 0;
-  for (int k = 0; a[k]; k++) total += (size_t)np[k] * (size_t)m->stride;
-  s.planes = malloc(total * sizeof(double));
-  assert_non_null(s.planes);
-  size_t at = 0;
-  for (int k = 0; a[k]; k++) {
-    const size_t n = (size_t)np[k] * (size_t)m->stride;
-    memcpy(s.planes + at, a[k], n * sizeof(double));
-    at += n;
-  }
+  s.planes = copy_planes(m, d);
   sw_data_free(d);
   return s;
 }
 
-static void test_sweep(void **state) {
-  (void)state;
-  swSpec *s = sweep_scene();
+static void sweep_case(int unsorted) {
+  swSpec *s = sweep_scene(unsorted);
   swModel *m = sw_test_compile_at(s, 0.5);
   assert_true(sw_sweep_fits(m));
+  assert_int_equal(m->bc_slot_order, !unsorted); /* conditions looked up by slot, or all scanned */
   /* the turned end: its node on the first slot of block 1, its element on the last of block 0 */
   assert_int_equal(m->node_adr[0] + m->rod_nelem[0], 512);
   double e1[3], en[3];
   snapshot one = sweep_run(m, 1, 400, e1);
   assert_int_equal(one.rc, SW_OK);
-  fprintf(stderr, "# sweep: %d slots, %ld steps; energies %.6g %.6g %.6g J\n", m->nslot_elastic, one.step,
-          e1[0], e1[1], e1[2]);
+  fprintf(stderr, "# sweep (conditions %s): %d slots, %ld steps; energies %.6g %.6g %.6g J\n",
+          unsorted ? "out of slot order" : "in slot order", m->nslot_elastic, one.step, e1[0], e1[1], e1[2]);
   for (int t = 2; t <= 3; t++) {
     snapshot more = sweep_run(m, t, 400, en);
     /* all but the external loads, which sw_energy does not recompute */
@@ -349,6 +347,12 @@ static void test_sweep(void **state) {
   free(one.planes);
   sw_model_free(m);
   sw_spec_free(s);
+}
+
+static void test_sweep(void **state) {
+  (void)state;
+  sweep_case(0);
+  sweep_case(1);
 }
 
 int main(void) {
