@@ -548,9 +548,11 @@ typedef struct {
   /* rod.c's scratch between its two passes: Q^T n of each element (lab) and
    * half the transport couple kappa x c D^ of each domain (3 planes each) */
   double *scratch_f, *scratch_h;
-  /* scratch of the rod kernels' slow paths (rod.c, integrate.c): a flag per
-   * slot (1 plane) and a rotation vector per slot (3 planes, which muscle.c
-   * borrows while the loads are evaluated) */
+  /* per-slot scratch of integrate.c and rod.c: scratch_flag (1 plane) holds
+   * the rod pass's bent-domain flags, then the kick's work per slot;
+   * scratch_phi (3 planes) the drift's rotation vectors, which muscle.c
+   * borrows while the loads are evaluated and the one-thread sweep uses for
+   * its bent-domain flags */
   double *scratch_flag, *scratch_phi;
   /* one partial sum per chunk (the kick's work), added in chunk order, and
    * the work of each boundary condition in a kick (nbc) */
