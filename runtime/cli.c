@@ -74,6 +74,7 @@ typedef struct {
   const char *out;           /* output path                                 */
   double duration, every, dt;
   int dt_given;              /* --dt was given                              */
+  int duration_given;        /* --duration was given                        */
   long threads;
   int threads_set;           /* given on the command line */
   int threads_auto;          /* --threads auto: chosen for the model */
@@ -333,7 +334,10 @@ static int parse_args(swCli *c, int argc, char **argv) {
       if (!value[0]) rc = complain(c, "--out: empty file name");
       c->out = value;
       break;
-    case OPT_DURATION: rc = read_time(c, opt->name, value, 0, &c->duration); break;
+    case OPT_DURATION:
+      rc = read_time(c, opt->name, value, 0, &c->duration);
+      c->duration_given = 1;
+      break;
     case OPT_DT:
       rc = read_time(c, opt->name, value, 1, &c->dt);
       c->dt_given = 1;
@@ -463,6 +467,15 @@ static swModel *build_model(const swCli *c, double *stable, const char **dt_sour
     complain(c, "%s", err);
     return NULL;
   }
+  long nsteps;
+  char why[256];
+  if (sw_step_count(c->duration, m->dt, &nsteps, why, sizeof why) != SW_OK) {
+    complain(c, "no run: %s (dt: %s; duration: %s)", why, *dt_source,
+             c->duration_given ? "--duration" : "from the model");
+    sw_model_free(m);
+    *rc = SW_EUSAGE;
+    return NULL;
+  }
   if (m->dt > *stable) {
     char dt_text[32], stable_text[32];
     fprintf(stderr, "%s: warning: dt = %s is above the stable estimate %s; the run may "
@@ -527,12 +540,12 @@ static double data_bytes(const swModel *m) {
          (double)m->nprobe * (4.0 * SW_PROBE_RING * sizeof(double) + 2 * sizeof(int));
 }
 
-/* Frames a run of this length writes (run.c: step 0, every k steps, the last). */
-static long frame_count(double duration, double every, double dt, long *nsteps) {
-  *nsteps = duration > 0 ? (long)llround(duration / dt) : 0;
-  long k = every > 0 ? (long)llround(every / dt) : 1;
+/* Frames a run of nsteps steps writes (run.c: step 0, every k steps, the last). */
+static long frame_count(long nsteps, double every, double dt) {
+  const double k_steps = every > 0 ? round(every / dt) : 1;
+  long k = k_steps > (double)nsteps ? nsteps + 1 : (long)k_steps;
   if (k < 1) k = 1;
-  return 1 + *nsteps / k + (*nsteps % k != 0);
+  return 1 + nsteps / k + (nsteps % k != 0);
 }
 
 static const char *joint_kind_name(swJointKind kind) {
@@ -681,7 +694,10 @@ static void print_info(const swCli *c, const swModel *m, double stable, const ch
   printf("integrator: %s\n", m->integrator == SW_PEFRL ? "PEFRL" : "position Verlet");
   printf("dt: %s (%s; stable estimate %s)\n", format_time(a, sizeof a, m->dt), dt_source,
          format_time(b, sizeof b, stable));
-  long nsteps, frames = frame_count(c->duration, c->every, m->dt, &nsteps);
+  long nsteps = 0;
+  char why[256];
+  sw_step_count(c->duration, m->dt, &nsteps, why, sizeof why); /* checked by build_model */
+  long frames = frame_count(nsteps, c->every, m->dt);
   printf("duration: %s, %ld steps; a frame every %s: %ld frames\n",
          format_time(a, sizeof a, c->duration), nsteps,
          c->every > 0 ? format_time(b, sizeof b, c->every) : "step", frames);

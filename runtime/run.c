@@ -90,6 +90,31 @@ static int write_frame(const swModel *m, swData *d, swOutput *out, swProgress *p
   return SW_EIO;
 }
 
+int sw_step_count(double duration, double dt, long *nsteps, char *err, size_t errlen) {
+  *nsteps = 0;
+  if (!(dt > 0) || !isfinite(dt)) {
+    snprintf(err, errlen, "dt = %g s: the time step must be positive and finite", dt);
+    return SW_EUSAGE;
+  }
+  if (!(duration >= 0) || !isfinite(duration)) {
+    snprintf(err, errlen, "duration = %g s: must be zero or positive, and finite", duration);
+    return SW_EUSAGE;
+  }
+  const double steps = round(duration / dt);
+  if (duration > 0 && !(steps >= 1)) {
+    snprintf(err, errlen, "dt = %g s is longer than twice the duration %g s: not one step "
+             "would be taken", dt, duration);
+    return SW_EUSAGE;
+  }
+  if (!(steps <= SW_MAX_STEPS)) {
+    snprintf(err, errlen, "a duration of %g s at dt = %g s is %.3g steps, more than the %.0e "
+             "a run may take", duration, dt, duration / dt, SW_MAX_STEPS);
+    return SW_EUSAGE;
+  }
+  *nsteps = (long)steps;
+  return SW_OK;
+}
+
 int sw_run(const swModel *m, swData *d, swOutput *out, const swRunOptions *ro) {
   FILE *log = ro && ro->log ? ro->log : stderr;
   if (!m || !d || !ro) {
@@ -104,8 +129,15 @@ int sw_run(const swModel *m, swData *d, swOutput *out, const swRunOptions *ro) {
   }
   /* Counted from the present state, so a resumed run ends at `duration`. */
   double remaining = ro->duration - d->time;
-  long nsteps = remaining > 0 ? (long)llround(remaining / m->dt) : 0;
-  long every = ro->every > 0 ? (long)llround(ro->every / m->dt) : 1;
+  long nsteps = 0;
+  char why[256];
+  if (remaining > 0 && sw_step_count(remaining, m->dt, &nsteps, why, sizeof why) != SW_OK) {
+    fprintf(log, "sinew: %s\n", why);
+    return SW_EUSAGE;
+  }
+  /* a frame interval longer than the run: the first and last frames only */
+  double every_steps = ro->every > 0 ? round(ro->every / m->dt) : 1;
+  long every = every_steps > (double)nsteps ? nsteps + 1 : (long)every_steps;
   if (every < 1) every = 1;
 
   swProgress p = {log, ro->quiet, nsteps, ro->duration, 0, 0, 1, 0};

@@ -684,6 +684,15 @@ typedef struct {
 
 int sw_run(const swModel *m, swData *d, swOutput *out, const swRunOptions *ro);
 
+/* The number of steps of dt that span `duration` (rounded to the nearest),
+ * into *nsteps.  SW_EUSAGE, with the reason in err, when the run is absurd:
+ * dt or duration not finite or not positive (a duration of 0 is 0 steps),
+ * a positive duration shorter than half a step (no step would be taken),
+ * or more than SW_MAX_STEPS steps (beyond what any machine runs, and beyond
+ * where a step count in a double stays exact). */
+#define SW_MAX_STEPS 1e13
+int sw_step_count(double duration, double dt, long *nsteps, char *err, size_t errlen);
+
 /* Parse a duration with optional unit ("50ns", "0.5 s", "2ms", "1e-3").
  * Returns 0 on success. */
 int sw_parse_time(const char *text, double *seconds);

@@ -268,6 +268,19 @@ static void test_usage_errors(void **state) {
     {{"--set", "strength=30 deg"},
      "sim: --set strength: expected dimensionless, got angle (rad) in '30 deg'"},
     {{"--set=length=1 parsec"}, "sim: --set length: unknown unit 'parsec' in '1 parsec'"},
+    /* runs no machine would finish, or that take no step: refused before
+     * anything is written (the step count once overflowed to 0 steps and
+     * the run "completed") */
+    {{"--duration", "1e20 s", "--dt", "1 us"},
+     "sim: no run: a duration of 1e+20 s at dt = 1e-06 s is 1e+26 steps, more than the 1e+13 a "
+     "run may take (dt: --dt; duration: --duration)"},
+    {{"--dt", "1e-300 s"},
+     "sim: no run: a duration of 0.002 s at dt = 1e-300 s is 2e+297 steps, more than the 1e+13 "
+     "a run may take (dt: --dt; duration: from the model)"},
+    {{"--dt", "1 s", "--info"},
+     "sim: no run: dt = 1 s is longer than twice the duration 0.002 s: not one step would be "
+     "taken (dt: --dt; duration: from the model)"},
+    {{"--duration", "1e400 s"}, "sim: --duration: number out of range in '1e400 s'"},
     /* an error after a valid --set still fails */
     {{"--set", "length=1 m", "--every", "x"}, "sim: --every: expected a number in 'x'"},
   };
