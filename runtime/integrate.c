@@ -95,11 +95,25 @@ static void drift_nodes(const swModel *m, swData *d, double h, int lo, int hi) {
 }
 
 /* Frames turn with the angular momentum held (see drift()) over the element
- * slots [lo, hi), after the nodes have moved.  The loop turns them with the
+ * slots [lo, hi), after the nodes have moved.  The drift is the exact free
+ * rotation of each element, an axisymmetric body (J^ = J1 (1, 1, 2), a
+ * circular section; model.c): its kinetic energy splits as
+ *   T = e |L|^2 / (2 J1) + e (1/J3 - 1/J1) L3^2 / 2,
+ * two flows that commute (|L|^2 is a Casimir; the splitting of the rigid
+ * bodies, docs/physics.md): the frame turns about L by the body rotation
+ * s a, a = L e / J1 = (w1, w2, 2 w3), then about its own d3 by
+ * psi = s (1 - J3/J1) w3 = -s w3, while L turns about d3 by psi as well
+ * (Euler's equations: (w1, w2) precess at w3), with s the drift's integral
+ * of e dt over e_old.  This is the inertial couple (J^ w / e) x w of
+ * Gazzola 2018 eq. 2.12 integrated exactly: kept as a couple in the kick,
+ * it made a spinning rod's energy grow without bound near the stable step
+ * (docs/physics.md, "Inertial couple").  The loop turns frames with the
  * small-angle series of Rodrigues' formula (vec.h); the few that turn by
- * more in one drift (|phi| > 0.1 rad) are turned after it with the exact
- * formula, so every frame gets the bits of sw_rotate_frame.  The rotations
- * are scratch, at i - so (internal.h, "Scratch windows"). */
+ * more in one drift (|s a| > 0.1 rad) keep their frame and w and are turned
+ * after it with the exact formulas, so every frame gets the bits of
+ * sw_rotate_frame.  The rotations s a are scratch, at i - so (internal.h,
+ * "Scratch windows"); psi = -(s a)_3 / 2 is recovered from them.  The
+ * round-off of the two turns is taken out every few steps (end_step). */
 static inline __attribute__((always_inline)) void drift_frames(const swModel *m, swData *d, double h,
                                                              int lo, int hi, int so, const int simpson) {
   const size_t S = (size_t)m->stride;
@@ -120,17 +134,25 @@ static inline __attribute__((always_inline)) void drift_frames(const swModel *m,
     const sw3 mid = {dx.x - 0.5 * h * dv.x, dx.y - 0.5 * h * dv.y, dx.z - 0.5 * h * dv.z};
     const double mean = simpson ? (1.0 + 4.0 * sqrt(sw3_dot(mid, mid)) * irl[i] * inv_e_old + ratio) * (1.0 / 6.0)
                                 : 0.5 * (1.0 + ratio);
-    const sw3 wi = sw3_load(w, S, i), phi = sw3_scale(wi, h * mean);
+    const double sh = h * mean;
+    const sw3 wi = sw3_load(w, S, i), phi = {sh * wi.x, sh * wi.y, 2.0 * sh * wi.z};
+    const double psi = -sh * wi.z; /* |psi| <= |phi| / 2: small with phi */
     const swFrame Qo = sw_frame_load(Q, S, i);
     const int small = sw_frame_small_turn(phi);
-    const swFrame Qn = sw_frame_rotate_small(Qo, phi);
+    const swFrame Qa = sw_frame_rotate_small(Qo, phi);
+    const swRodrigues r = sw_rodrigues_series(psi * psi);
+    const double c = 1.0 - r.b * psi * psi, sn = r.a * psi; /* cos, sin psi */
+    /* then about d3: d1 <- c d1 + sn d2, d2 <- c d2 - sn d1 */
+    const swFrame Qn = {sw3_add(sw3_scale(Qa.d1, c), sw3_scale(Qa.d2, sn)),
+                        sw3_sub(sw3_scale(Qa.d2, c), sw3_scale(Qa.d1, sn)), Qa.d3};
     /* a frame turning by more than the series allows keeps its old value
-     * here and is turned after the loop */
+     * (and its w unturned) here and is turned after the loop */
     sw_frame_store(Q, S, i, (swFrame){small ? Qn.d1 : Qo.d1, small ? Qn.d2 : Qo.d2,
                                       small ? Qn.d3 : Qo.d3});
     sw3_store(rot, S, i - so, phi);
     turned += !small;
-    sw3_store(w, S, i, sw3_scale(wi, ratio));
+    const double cw = small ? c : 1.0, sw = small ? sn : 0.0;
+    sw3_store(w, S, i, sw3_scale((sw3){cw * wi.x + sw * wi.y, cw * wi.y - sw * wi.x, wi.z}, ratio));
     dil[i] = e_new;
   }
   if (!turned) return;
@@ -140,7 +162,16 @@ static inline __attribute__((always_inline)) void drift_frames(const swModel *m,
     sw_getQ(m, d->Q, i, Qe);
     sw_get3(m, rot, i - so, phi);
     sw_rotate_frame(Qe, phi);
+    const double psi = -0.5 * phi[2], c = cos(psi), sn = sin(psi);
+    for (int k = 0; k < 3; k++) {
+      const double d1 = Qe[k], d2 = Qe[3 + k];
+      Qe[k] = c * d1 + sn * d2;
+      Qe[3 + k] = c * d2 - sn * d1;
+    }
     sw_setQ(m, d->Q, i, Qe);
+    const double w1 = SW_AT(m, d->omega, i, 0), w2 = SW_AT(m, d->omega, i, 1);
+    SW_AT(m, d->omega, i, 0) = c * w1 + sn * w2;
+    SW_AT(m, d->omega, i, 1) = c * w2 - sn * w1;
   }
 }
 
@@ -369,6 +400,19 @@ static const double PEFRL_CHI = -0.06626458266981849;
 /* The stability check runs every 8 steps and on each of the first 8. */
 static int check_due(long step) { return (step & 7) == 0 || step < 8; }
 
+/* The frames of slots [lo, hi) one Newton step nearer to rotations (vec.h,
+ * sw_frame_orthonormalize), when the check is due (every 8 steps): the two
+ * turns of each drift leave an error of order 1e-16 in Q Q^T - I, which
+ * would add up over millions of steps (4.7e-12 after 10^7); this keeps it at
+ * round-off (2e-16).  Cheaper every 8 steps than in every drift (3-8 ns per
+ * element-step there on rods of 100-1000 elements). */
+static void orthonormalize_frames(const swModel *m, swData *d, int lo, int hi) {
+  const size_t S = (size_t)m->stride;
+  double *restrict Q = d->Q;
+#pragma omp simd
+  for (int i = lo; i < hi; i++) sw_frame_store(Q, S, i, sw_frame_orthonormalize(sw_frame_load(Q, S, i)));
+}
+
 /* PEFRL step (with analytic damping around it). */
 static void pefrl_step(const swModel *m, swData *d) {
   const double h = m->dt;
@@ -402,6 +446,7 @@ static void end_step(const swModel *m, swData *d, int whole, int due, int more, 
   if (due) { /* a count: any cut gives the same; one per thread, in its last chunk */
     int lo, hi;
     sw_share_slots(m, d, n, &lo, &hi);
+    orthonormalize_frames(m, d, lo, hi);
     SW_FOR_CHUNKS(m, d, c, n) d->chunk_sum[c] = c == c_end - 1 ? sw_check_slots(m, d, lo, hi) : 0;
     sw_team_barrier(d);
   }

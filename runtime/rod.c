@@ -87,10 +87,10 @@ static inline void domain_couple(vorArrays a, size_t S, int i, sw3 kv, double l,
  * element's own couples (scratch at i - so, internal.h "Scratch windows"). */
 static void element_pass(const swModel *m, swData *d, int lo, int hi, int so) {
   const size_t S = (size_t)m->stride;
-  const double *restrict x = d->x, *restrict Q = d->Q, *restrict w = d->omega;
+  const double *restrict x = d->x, *restrict Q = d->Q;
   const double *restrict rl = m->rest_len, *restrict irl = m->inv_rest_len;
   const double *restrict ghost = m->elem_ghost;
-  const double *restrict Sh = m->shear_stiff, *restrict s0 = m->rest_sigma, *restrict J = m->inertia;
+  const double *restrict Sh = m->shear_stiff, *restrict s0 = m->rest_sigma;
   double *restrict len = d->length, *restrict dil = d->dilatation;
   double *restrict sig = d->sigma, *restrict str = d->stress, *restrict T = d->torque;
   double *restrict fl = d->scratch_f; /* Q^T n, lab */
@@ -113,13 +113,10 @@ static void element_pass(const swModel *m, swData *d, int lo, int hi, int so) {
     len[j] = l;
     dil[i] = e;
     sw3_store(fl, S, j, sw_frame_apply_t(Qi, nm));
-    /* shear couple (Q dx) x n and inertial couple (J^ w / e) x w; the
-     * dilatation-rate couple (J^ w / e) de/dt / e is integrated by the
-     * drift (integrate.c), which keeps J^ w / e constant while e changes */
-    const sw3 wi = sw3_load(w, S, i), Ji = sw3_load(J, S, i);
-    const sw3 Jw = {Ji.x * wi.x * inv_e, Ji.y * wi.y * inv_e, Ji.z * wi.z * inv_e};
-    const sw3 sc = sw3_cross(Qdx, nm), tr = sw3_cross(Jw, wi);
-    sw3_store(T, S, j, (sw3){sc.x + tr.x, sc.y + tr.y, sc.z + tr.z});
+    /* shear couple (Q dx) x n.  The inertial couple (J^ w / e) x w and the
+     * dilatation-rate couple (J^ w / e) de/dt / e are integrated by the
+     * drift (integrate.c), as the exact free rotation of the element */
+    sw3_store(T, S, j, sw3_cross(Qdx, nm));
   }
 }
 

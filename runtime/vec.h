@@ -165,6 +165,7 @@ static inline int sw_frame_from(double *Q, const double *dir, const double *norm
 typedef struct { double x, y, z; } sw3;
 typedef struct { sw3 d1, d2, d3; } swFrame;
 
+static inline sw3 sw3_add(sw3 a, sw3 b) { return (sw3){a.x + b.x, a.y + b.y, a.z + b.z}; }
 static inline sw3 sw3_sub(sw3 a, sw3 b) { return (sw3){a.x - b.x, a.y - b.y, a.z - b.z}; }
 static inline sw3 sw3_scale(sw3 a, double s) { return (sw3){a.x * s, a.y * s, a.z * s}; }
 static inline double sw3_dot(sw3 a, sw3 b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
@@ -221,6 +222,24 @@ static inline sw3 sw_rodrigues_column(sw3 c, sw3 phi, double a, double b) {
 /* The small-angle side of sw_rotate_frame on a frame held as a value:
  * exp(-[phi]x) Q, exact where |phi|^2 < 1e-2 (sw_frame_small_turn); the
  * caller redoes the others with sw_rotate_frame (integrate.c). */
+/* One Newton step of the polar decomposition towards the nearest rotation,
+ * Q <- (3 I - Q Q^T) Q / 2, written as d_i += E_ij d_j / 2 with the small
+ * E = I - Q Q^T (E_ij = delta_ij - d_i . d_j): it takes an error eps in
+ * orthonormality to O(eps^2), so round-off cannot accumulate in the frames
+ * over a long run (the rigid bodies' drift does the same, rigid.c). */
+static inline swFrame sw_frame_orthonormalize(swFrame Q) {
+  const double e11 = 0.5 * (1.0 - sw3_dot(Q.d1, Q.d1)), e22 = 0.5 * (1.0 - sw3_dot(Q.d2, Q.d2));
+  const double e33 = 0.5 * (1.0 - sw3_dot(Q.d3, Q.d3)), e12 = -0.5 * sw3_dot(Q.d1, Q.d2);
+  const double e13 = -0.5 * sw3_dot(Q.d1, Q.d3), e23 = -0.5 * sw3_dot(Q.d2, Q.d3);
+  const sw3 a = Q.d1, b = Q.d2, c = Q.d3;
+  return (swFrame){{a.x + e11 * a.x + e12 * b.x + e13 * c.x, a.y + e11 * a.y + e12 * b.y + e13 * c.y,
+                    a.z + e11 * a.z + e12 * b.z + e13 * c.z},
+                   {b.x + e12 * a.x + e22 * b.x + e23 * c.x, b.y + e12 * a.y + e22 * b.y + e23 * c.y,
+                    b.z + e12 * a.z + e22 * b.z + e23 * c.z},
+                   {c.x + e13 * a.x + e23 * b.x + e33 * c.x, c.y + e13 * a.y + e23 * b.y + e33 * c.y,
+                    c.z + e13 * a.z + e23 * b.z + e33 * c.z}};
+}
+
 static inline int sw_frame_small_turn(sw3 phi) { return sw3_dot(phi, phi) < 1e-2; }
 static inline swFrame sw_frame_rotate_small(swFrame Q, sw3 phi) {
   const swRodrigues r = sw_rodrigues_series(sw3_dot(phi, phi));

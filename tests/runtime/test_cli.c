@@ -423,6 +423,56 @@ static void test_unstable_dt(void **state) {
   expect_contains(r.out, "dt: 1 ms (--dt; stable estimate ");
 }
 
+/* dt at 0.5x and 0.9x the stable estimate runs clean; at 2x the run is
+ * caught: exit 3, the message naming the rod, the time and the stable dt,
+ * and an HDF5 file that opens and holds the frames written before, with the
+ * status saying why it ended. */
+static void test_dt_ladder(void **state) {
+  (void)state;
+  swSpec *s = sw_spec_new();
+  char err[256];
+  const double P[2] = {0.5, 1};
+  assert_int_equal(build_cantilever(s, P, err, sizeof err), SW_OK);
+  swModel *m = sw_test_compile(s);
+  const double stable = sw_stable_dt(m);
+  sw_model_free(m);
+  sw_spec_free(s);
+  const double fracs[] = {0.5, 0.9, 2.0};
+  for (int f = 0; f < 3; f++) {
+    char path[128], dt[64];
+    temp_file(path, sizeof path, "ladder.h5");
+    snprintf(dt, sizeof dt, "%.17g s", fracs[f] * stable);
+    swCliResult r;
+    run_cli(&r, (const char *[]){"--out", path, "--dt", dt, "--duration", "0.5 s", "--every", "10 ms",
+                                 NULL});
+    hid_t file = H5Fopen(path, H5F_ACC_RDONLY, H5P_DEFAULT);
+    assert_true(file >= 0);
+    char *status = read_root_string(file, "status");
+    double tip_x0;
+    long frames = read_frames(file, &tip_x0);
+    fprintf(stderr, "# %s: dt = %.2f x the estimate: exit %d, %ld frames, status \"%.60s\"\n", __func__,
+            fracs[f], r.rc, frames, status);
+    if (fracs[f] < 1) {
+      assert_int_equal(r.rc, SW_OK);
+      assert_string_equal(status, "complete");
+      const long k = llround(0.01 / (fracs[f] * stable)), n = llround(0.5 / (fracs[f] * stable));
+      assert_int_equal(frames, 1 + n / k + (n % k != 0)); /* frames every k steps, and the last */
+    } else {
+      assert_int_equal(r.rc, SW_EUNSTABLE);
+      expect_contains(r.err, "rod 'beam' became unstable at element ");
+      expect_contains(r.err, ", t = ");
+      expect_contains(r.err, "stable dt estimate");
+      expect_contains(r.err, "sim: unstable: ");
+      assert_true(strncmp(status, "unstable: rod 'beam'", 20) == 0);
+      assert_true(frames >= 1 && frames < 50);
+      SW_EXPECT_ABS("first frame, tip x (m)", tip_x0, 0.5, 1e-15);
+    }
+    free(status);
+    H5Fclose(file);
+    unlink(path);
+  }
+}
+
 static void test_unwritable_output(void **state) {
   (void)state;
   swCliResult r;
@@ -451,6 +501,7 @@ int main(void) {
     cmocka_unit_test(test_run_writes_file),
     cmocka_unit_test(test_automatic_dt),
     cmocka_unit_test(test_unstable_dt),
+    cmocka_unit_test(test_dt_ladder),
     cmocka_unit_test(test_unwritable_output),
   };
   return cmocka_run_group_tests(tests, make_tmpdir, remove_tmpdir);

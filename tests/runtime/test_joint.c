@@ -742,11 +742,14 @@ static void free_chain_drift(double dt_frac, double T, double *dp, double *dL) {
   sw_spec_free(s);
 }
 
-/* The joint forces and couples come in equal and opposite pairs, so linear
- * momentum is conserved to round-off and angular momentum (the undamped
- * joints' forces lying along the gap) up to the integrator's own error, which
- * a free rod shows too and which falls with dt, where a couple imbalance
- * would not. */
+/* The joint forces and couples come in equal and opposite pairs, and the
+ * undamped joints' forces lie along the gap, so linear and angular momentum
+ * are both conserved to round-off: the drift turns each element by its exact
+ * free rotation (integrate.c), so the integrator adds no error of its own to
+ * L.  (When the inertial couple was a couple in the kick, L drifted by about
+ * 2.1e-9 at 0.9 of the stable step, 9.0e-10 at 0.45.)  A couple
+ * imbalance would show as a drift that does not depend on dt either, but
+ * far above round-off (the 28,000 steps at the smaller dt allow some 1e-12). */
 static void test_momentum_free_chain(void **state) {
   (void)state;
   const double T = sw_test_sanitized() ? 0.05 : 0.5;
@@ -754,8 +757,7 @@ static void test_momentum_free_chain(void **state) {
   free_chain_drift(0.9, T, &dp1, &dL1);
   free_chain_drift(0.45, T, &dp2, &dL2);
   SW_EXPECT_ABS("largest |p - p0| / |p0|", fmax(dp1, dp2), 0.0, 1e-12);
-  SW_EXPECT_ABS("largest |L - L0| / |L0| at 0.9 of the stable step", dL1, 0.0, 1e-8);
-  SW_EXPECT_REL("angular momentum drift ratio for dt halved", dL1 / dL2, 2.0, 0.35);
+  SW_EXPECT_ABS("largest |L - L0| / |L0|, 0.9 and 0.45 of the stable step", fmax(dL1, dL2), 0.0, 1e-11);
 }
 
 /* ---- 6. stable time step ---- */
