@@ -123,8 +123,8 @@ static void build_rod(swSpec *s, const void *arg) {
   sw_spec_add_rod(s, &r);
 }
 
-/* Radii from 10 um to 10 cm (slender to stubby: l/r from 5000 to 0.05),
- * and 2 to 2000 elements, 1 m long, E = 1 MPa. */
+/* Radii from 10 um to 10 cm and 2 to 2000 elements (element length over
+ * radius from 1e4 to 0.001), 0.2 m long, E = 1 MPa. */
 static void test_sizes(void **state) {
   (void)state;
   const double radii[] = {1e-5, 1e-3, 1e-1};
