@@ -360,17 +360,23 @@ static void test_run_writes_file(void **state) {
 /* Without --dt (and none in the model) the step is at most half the stable
  * estimate, shortened so that a whole number of steps spans the frame
  * interval (1 ms here): frames fall exactly on multiples of it. */
-static void test_automatic_dt(void **state) {
-  (void)state;
+/* The stable dt estimate of the simulator's scene at its default params. */
+static double cantilever_stable_dt(void) {
   swSpec *s = sw_spec_new();
   char err[256];
   const double P[2] = {0.5, 1};
   assert_int_equal(build_cantilever(s, P, err, sizeof err), SW_OK);
   swModel *m = sw_test_compile(s);
-  double half = 0.5 * sw_stable_dt(m);
-  double expected = 1e-3 / ceil(1e-3 / half - 1e-9);
+  const double stable = sw_stable_dt(m);
   sw_model_free(m);
   sw_spec_free(s);
+  return stable;
+}
+
+static void test_automatic_dt(void **state) {
+  (void)state;
+  double half = 0.5 * cantilever_stable_dt();
+  double expected = 1e-3 / ceil(1e-3 / half - 1e-9);
 
   char path[128];
   temp_file(path, sizeof path, "auto.h5");
@@ -429,14 +435,7 @@ static void test_unstable_dt(void **state) {
  * status saying why it ended. */
 static void test_dt_ladder(void **state) {
   (void)state;
-  swSpec *s = sw_spec_new();
-  char err[256];
-  const double P[2] = {0.5, 1};
-  assert_int_equal(build_cantilever(s, P, err, sizeof err), SW_OK);
-  swModel *m = sw_test_compile(s);
-  const double stable = sw_stable_dt(m);
-  sw_model_free(m);
-  sw_spec_free(s);
+  const double stable = cantilever_stable_dt();
   const double fracs[] = {0.5, 0.9, 2.0};
   for (int f = 0; f < 3; f++) {
     char path[128], dt[64];

@@ -212,6 +212,20 @@ static void test_overwhelming_damping(void **state) {
   }
 }
 
+/* Largest |Q Q^T - I| over the rod's elements. */
+static double orthonormality(const swModel *m, const swData *d) {
+  double worst = 0;
+  for (int e = 0; e < m->rod_nelem[0]; e++) {
+    double Q[9];
+    sw_getQ(m, d->Q, e, Q);
+    for (int i = 0; i < 3; i++)
+      for (int j = 0; j < 3; j++)
+        worst = fmax(worst, fabs(Q[3 * i] * Q[3 * j] + Q[3 * i + 1] * Q[3 * j + 1] +
+                                 Q[3 * i + 2] * Q[3 * j + 2] - (i == j)));
+  }
+  return worst;
+}
+
 /* 10^7 steps of an undamped free rod (10^6 under the sanitizers): the
  * energy stays bounded with no trend (position Verlet is symplectic). */
 static void test_long_run(void **state) {
@@ -226,15 +240,7 @@ static void test_long_run(void **state) {
   swData *d = sw_data_new(m);
   perturb(m, d, 1e-3, 1e-2);
   Outcome o = run_watch(m, d, steps, 1000);
-  double ortho = 0;
-  for (int e = 0; e < m->rod_nelem[0]; e++) {
-    double Q[9];
-    sw_getQ(m, d->Q, e, Q);
-    for (int i = 0; i < 3; i++)
-      for (int j = 0; j < 3; j++)
-        ortho = fmax(ortho, fabs(Q[3 * i] * Q[3 * j] + Q[3 * i + 1] * Q[3 * j + 1] +
-                                 Q[3 * i + 2] * Q[3 * j + 2] - (i == j)));
-  }
+  const double ortho = orthonormality(m, d);
   fprintf(stderr, "# %s: %ld steps at 0.9x the estimate: largest relative energy deviation %.3e "
           "in the first quarter, %.3e in the last (tol: at most 2x the first, and 0.05); "
           "directors orthonormal to %.2e\n", __func__, o.steps, o.first, o.last, ortho);
@@ -243,20 +249,6 @@ static void test_long_run(void **state) {
   assert_true(ortho < 1e-12);
   sw_data_free(d);
   sw_model_free(m);
-}
-
-/* Largest |Q Q^T - I| over the rod's elements. */
-static double orthonormality(const swModel *m, const swData *d) {
-  double worst = 0;
-  for (int e = 0; e < m->rod_nelem[0]; e++) {
-    double Q[9];
-    sw_getQ(m, d->Q, e, Q);
-    for (int i = 0; i < 3; i++)
-      for (int j = 0; j < 3; j++)
-        worst = fmax(worst, fabs(Q[3 * i] * Q[3 * j] + Q[3 * i + 1] * Q[3 * j + 1] +
-                                 Q[3 * i + 2] * Q[3 * j + 2] - (i == j)));
-  }
-  return worst;
 }
 
 /* A rod spinning about its own axis at 1000 rad/s (a principal axis, so no
