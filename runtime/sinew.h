@@ -688,8 +688,8 @@ int sw_run(const swModel *m, swData *d, swOutput *out, const swRunOptions *ro);
  * into *nsteps.  SW_EUSAGE, with the reason in err, when the run is absurd:
  * dt or duration not finite or not positive (a duration of 0 is 0 steps),
  * a positive duration shorter than half a step (no step would be taken),
- * or more than SW_MAX_STEPS steps (beyond what any machine runs, and beyond
- * where a step count in a double stays exact). */
+ * or more than SW_MAX_STEPS steps (10^13: at a microsecond a step, four
+ * months of wall time; beyond what any run here is for). */
 #define SW_MAX_STEPS 1e13
 int sw_step_count(double duration, double dt, long *nsteps, char *err, size_t errlen);
 
