@@ -94,6 +94,13 @@ static void drift_nodes(const swModel *m, swData *d, double h, int lo, int hi) {
   }
 }
 
+/* The frame turned about its own d3 by the angle whose cosine and sine are
+ * c and sn: d1 <- c d1 + sn d2, d2 <- c d2 - sn d1 (drift_frames). */
+static inline swFrame turn_about_d3(swFrame Q, double c, double sn) {
+  return (swFrame){sw3_add(sw3_scale(Q.d1, c), sw3_scale(Q.d2, sn)),
+                   sw3_sub(sw3_scale(Q.d2, c), sw3_scale(Q.d1, sn)), Q.d3};
+}
+
 /* Frames turn with the angular momentum held (see drift()) over the element
  * slots [lo, hi), after the nodes have moved.  The drift is the exact free
  * rotation of each element, an axisymmetric body (J^ = J1 (1, 1, 2), a
@@ -142,9 +149,7 @@ static inline __attribute__((always_inline)) void drift_frames(const swModel *m,
     const swFrame Qa = sw_frame_rotate_small(Qo, phi);
     const swRodrigues r = sw_rodrigues_series(psi * psi);
     const double c = 1.0 - r.b * psi * psi, sn = r.a * psi; /* cos, sin psi */
-    /* then about d3: d1 <- c d1 + sn d2, d2 <- c d2 - sn d1 */
-    const swFrame Qn = {sw3_add(sw3_scale(Qa.d1, c), sw3_scale(Qa.d2, sn)),
-                        sw3_sub(sw3_scale(Qa.d2, c), sw3_scale(Qa.d1, sn)), Qa.d3};
+    const swFrame Qn = turn_about_d3(Qa, c, sn);
     /* a frame turning by more than the series allows keeps its old value
      * (and its w unturned) here and is turned after the loop */
     sw_frame_store(Q, S, i, (swFrame){small ? Qn.d1 : Qo.d1, small ? Qn.d2 : Qo.d2,
@@ -162,13 +167,9 @@ static inline __attribute__((always_inline)) void drift_frames(const swModel *m,
     sw_getQ(m, d->Q, i, Qe);
     sw_get3(m, rot, i - so, phi);
     sw_rotate_frame(Qe, phi);
-    const double psi = -0.5 * phi[2], c = cos(psi), sn = sin(psi);
-    for (int k = 0; k < 3; k++) {
-      const double d1 = Qe[k], d2 = Qe[3 + k];
-      Qe[k] = c * d1 + sn * d2;
-      Qe[3 + k] = c * d2 - sn * d1;
-    }
     sw_setQ(m, d->Q, i, Qe);
+    const double psi = -0.5 * phi[2], c = cos(psi), sn = sin(psi);
+    sw_frame_store(d->Q, S, i, turn_about_d3(sw_frame_load(d->Q, S, i), c, sn));
     const double w1 = SW_AT(m, d->omega, i, 0), w2 = SW_AT(m, d->omega, i, 1);
     SW_AT(m, d->omega, i, 0) = c * w1 + sn * w2;
     SW_AT(m, d->omega, i, 1) = c * w2 - sn * w1;
