@@ -45,7 +45,10 @@ enum {
   SW_EINTERRUPT = 130 /* stopped by SIGINT; output is valid up to the last frame */
 };
 
-typedef enum { SW_VERLET = 0, SW_PEFRL = 1 } swIntegrator;
+/* SW_IMEX: position Verlet with the stiff terms linearly implicit (integrate.c):
+ * the muscle filaments' Hill damping, solved per filament in closed form, so
+ * it sets no stable-dt limit.  The rest of the loads stay explicit. */
+typedef enum { SW_VERLET = 0, SW_PEFRL = 1, SW_IMEX = 2 } swIntegrator;
 typedef enum { SW_DAMP_NONE = 0, SW_DAMP_LINEAR = 1, SW_DAMP_ANALYTIC = 2 } swDampingKind;
 
 /* ---- time signals: scalar functions of time that scale loads and BCs ---- */
