@@ -41,7 +41,7 @@
 /* ---- the options ---- */
 
 typedef enum {
-  OPT_OUT, OPT_DURATION, OPT_DT, OPT_EVERY, OPT_SET, OPT_THREADS, OPT_QUIET, OPT_INFO, OPT_HELP
+  OPT_OUT, OPT_DURATION, OPT_DT, OPT_INTEGRATOR, OPT_EVERY, OPT_SET, OPT_THREADS, OPT_QUIET, OPT_INFO, OPT_HELP
 } swOptionId;
 
 typedef struct {
@@ -55,6 +55,7 @@ static const swOption options[] = {
   {OPT_OUT, "--out", "FILE", "HDF5 file to write"},
   {OPT_DURATION, "--duration", "T", "simulated time"},
   {OPT_DT, "--dt", "DT", "time step"},
+  {OPT_INTEGRATOR, "--integrator", "NAME", "verlet, pefrl or imex (Verlet, stiff terms implicit)"},
   {OPT_EVERY, "--every", "T", "simulated time between frames, 0 = every step"},
   {OPT_SET, "--set", "NAME=VALUE", "override a param, VALUE with its unit (repeatable)"},
   {OPT_THREADS, "--threads", "N", "threads of each step, or 'auto' (by the model's size)"},
@@ -75,6 +76,7 @@ typedef struct {
   double duration, every, dt;
   int dt_given;              /* --dt was given                              */
   int duration_given;        /* --duration was given                        */
+  int integrator;            /* --integrator, or -1: the model's            */
   long threads;
   int threads_set;           /* given on the command line */
   int threads_auto;          /* --threads auto: chosen for the model */
@@ -233,6 +235,23 @@ static int read_threads(swCli *c, const char *value) {
   return SW_OK;
 }
 
+/* The integrators by the names the language gives them. */
+static const char *const integrator_names[] = {"verlet", "pefrl", "imex"};
+
+/* --integrator NAME. */
+static int read_integrator(swCli *c, const char *value) {
+  for (int k = 0; k < 3; k++)
+    if (!strcmp(value, integrator_names[k])) {
+      c->integrator = k;
+      return SW_OK;
+    }
+  for (int k = 0; k < 3; k++)
+    if (close_enough(sw_edit_distance(value, strlen(value), integrator_names[k]), strlen(value)))
+      return complain(c, "--integrator: unknown integrator '%s' (did you mean '%s'?)", value,
+                      integrator_names[k]);
+  return complain(c, "--integrator: unknown integrator '%s' (verlet, pefrl or imex)", value);
+}
+
 /* --set NAME=VALUE: VALUE must have the param's dimension. */
 static int read_set(swCli *c, const char *value) {
   const swProgram *p = c->p;
@@ -342,6 +361,7 @@ static int parse_args(swCli *c, int argc, char **argv) {
       rc = read_time(c, opt->name, value, 1, &c->dt);
       c->dt_given = 1;
       break;
+    case OPT_INTEGRATOR: rc = read_integrator(c, value); break;
     case OPT_EVERY: rc = read_time(c, opt->name, value, 0, &c->every); break;
     case OPT_SET: rc = read_set(c, value); break;
     case OPT_THREADS: rc = read_threads(c, value); c->threads_set = 1; break;
@@ -376,6 +396,7 @@ static void print_help(const swCli *c, const char *default_out) {
     case OPT_EVERY: def = p->every > 0 ? format_time(buf, sizeof buf, p->every) : "every step";
       break;
     case OPT_THREADS: def = "1; the results are the same for any N"; break;
+    case OPT_INTEGRATOR: def = "the model's"; break;
     default: break;
     }
     printf("  %-18s %s", head, o->help);
@@ -437,6 +458,7 @@ static swModel *build_model(const swCli *c, double *stable, const char **dt_sour
     *rc = built > 0 ? built : SW_EMODEL;
     return NULL;
   }
+  if (c->integrator >= 0) sw_spec_set_integrator(s, (swIntegrator)c->integrator);
   double dt = c->dt_given ? c->dt : p->dt;
   *dt_source = c->dt_given ? "--dt" : p->dt > 0 ? "from the model" : "half the stable estimate";
   if (dt > 0) sw_spec_set_dt(s, dt);
@@ -691,7 +713,9 @@ static void print_info(const swCli *c, const swModel *m, double stable, const ch
          m->nmuscle ? ", muscles" : "", m->nwave ? ", torque waves" : "",
          m->nground ? ", ground contact and friction" : "", m->nfluid ? ", fluid" : "",
          m->ncontact ? ", rod-rod contact" : "", m->has_damping ? ", damping" : "");
-  printf("integrator: %s\n", m->integrator == SW_PEFRL ? "PEFRL" : "position Verlet");
+  printf("integrator: %s\n", m->integrator == SW_PEFRL ? "PEFRL"
+                             : m->integrator == SW_IMEX ? "position Verlet, stiff terms linearly implicit (imex)"
+                                                        : "position Verlet");
   printf("dt: %s (%s; stable estimate %s)\n", format_time(a, sizeof a, m->dt), dt_source,
          format_time(b, sizeof b, stable));
   long nsteps = 0;
@@ -809,6 +833,7 @@ int sw_main(const swProgram *p, int argc, char **argv) {
   c.duration = p->duration;
   c.every = p->every;
   c.threads = 1;
+  c.integrator = -1;
 
   /* default output: the model's, or NAME.h5 */
   char default_out[256];

@@ -433,7 +433,7 @@ swModel *sw_compile(const swSpec *s, char *err, size_t errlen) {
     sw_fail(err, errlen, "time step must be > 0, got %g", s->dt);
     return NULL;
   }
-  if (s->integrator != SW_VERLET && s->integrator != SW_PEFRL) {
+  if (s->integrator != SW_VERLET && s->integrator != SW_PEFRL && s->integrator != SW_IMEX) {
     sw_fail(err, errlen, "unknown integrator %d", (int)s->integrator);
     return NULL;
   }
@@ -594,9 +594,10 @@ swModel *sw_compile(const swSpec *s, char *err, size_t errlen) {
      * c = gamma D^ / m for nodes and elem_gamma / J^ for elements (the
      * dilatation taken as 1 in the rate). */
     int analytic = m->rod_damping[r] == SW_DAMP_ANALYTIC;
-    double span = s->integrator == SW_VERLET ? s->dt : 0.5 * s->dt;
-    for (int i = 0; i <= n; i++) m->kick_exact[na + i] = analytic && s->integrator == SW_VERLET;
-    if (analytic && s->integrator == SW_VERLET) m->has_exact_kick = 1;
+    const int verlet_kick = s->integrator != SW_PEFRL; /* Verlet and IMEX */
+    double span = verlet_kick ? s->dt : 0.5 * s->dt;
+    for (int i = 0; i <= n; i++) m->kick_exact[na + i] = analytic && verlet_kick;
+    if (analytic && verlet_kick) m->has_exact_kick = 1;
     for (int i = 0; i <= n; i++) m->damp_linear[na + i] = m->rod_damping[r] == SW_DAMP_LINEAR;
     for (int i = 0; i <= n; i++) {
       double c = analytic ? m->node_gamma[na + i] * m->inv_mass[na + i] : 0.0;

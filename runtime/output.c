@@ -446,7 +446,8 @@ static int write_root_attrs(swOutput *o, const swModel *m, const swOutputOptions
     rc = attr_scalar(&t, "duration", H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, &opt->duration);
   if (rc == SW_OK)
     rc = attr_string(&t, "integrator",
-                     m->integrator == SW_PEFRL ? "pefrl" : "position-verlet");
+                     m->integrator == SW_PEFRL ? "pefrl"
+                     : m->integrator == SW_IMEX ? "imex" : "position-verlet");
   if (rc == SW_OK) rc = attr_string(&t, "params", opt->params);
   if (rc == SW_OK) rc = attr_scalar(&t, "n_rods", H5T_STD_I32LE, H5T_NATIVE_INT, &n_rods);
   /* Replaced by sw_output_close(); a file that still says this was not closed. */
