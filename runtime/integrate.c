@@ -51,8 +51,10 @@
  * the joints' rows and the muscles' rates; (B) the gather, the clamp
  * couples, the external loads, the joints' rows added and the filaments'
  * tensions; (C, in kick()) the muscles' pull, then the environments.  Every
- * slot gets its loads in the same order as on one thread. */
-static void compute_loads(const swModel *m, swData *d) {
+ * slot gets its loads in the same order as on one thread.  h is the kick
+ * they are for: an implicit filament's tension depends on it (SW_IMEX,
+ * muscle.c). */
+static void compute_loads(const swModel *m, swData *d, double h) {
   const swMuscleOps *mu = sw_muscle_ops(m);
   int lo, hi;
   sw_share_slots(m, d, m->nslot_elastic, &lo, &hi);
@@ -73,7 +75,11 @@ static void compute_loads(const swModel *m, swData *d) {
   }
   sw_external_loads(m, d); /* on this thread's slots, no barrier inside */
   if (m->njoint) sw_joint_apply(m, d);
-  if (m->nmuscle) mu->tensions(m, d);
+  if (m->nmuscle) {
+    /* an implicit filament reads the loads on all its nodes (muscle.c) */
+    if (m->muscle_implicit) sw_team_barrier(d);
+    mu->tensions(m, d, h);
+  }
   sw_team_barrier(d);
   if (m->nmuscle) mu->pull(m, d); /* (C) */
   if (sw_has_env(m)) { /* last: the ground balances the rest */
@@ -277,7 +283,7 @@ static void drift(const swModel *m, swData *d, double h) {
  * (position Verlet's v_{n+1} is the velocity at t_{n+1} = t_kick + h/2). */
 static void kick(const swModel *m, swData *d, double h, double span) {
   const int n = m->nslot_elastic;
-  compute_loads(m, d);
+  compute_loads(m, d, h);
   int lo, hi;
   sw_share_slots(m, d, n, &lo, &hi);
   if (m->has_exact_kick) /* the flags are free between the passes */

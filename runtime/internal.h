@@ -151,7 +151,7 @@ typedef struct {
   void (*advance)(const swModel *m, swData *d, double t, double h);
   void (*loads)(const swModel *m, swData *d); /* the three parts, with barriers */
   void (*rates)(const swModel *m, swData *d);    /* the parts, on a thread's slots: */
-  void (*tensions)(const swModel *m, swData *d); /*   after the rod pass, then after */
+  void (*tensions)(const swModel *m, swData *d, double h); /* after the rod pass, then after */
   void (*pull)(const swModel *m, swData *d);     /*   a barrier each               */
   double (*stable_dt_filament)(const swModel *m, int f);
 } swMuscleOps;
@@ -169,6 +169,7 @@ void sw_muscle_reset(const swModel *m, swData *d);
 void sw_muscle_advance(const swModel *m, swData *d, double t, double h);
 void sw_muscle_loads(const swModel *m, swData *d);
 double sw_muscle_tension(const swModel *m, int f, double eta, double edot, double a);
+double sw_muscle_tension_slope(const swModel *m, int f, double eta, double edot, double a);
 double sw_stable_dt_filament(const swModel *m, int f);
 /* Rigid rods (rigid.c).  sw_rigid_setup fills the rigid_* arrays of the
  * model (mass, principal inertia, body-frame nodes and element frames; called

@@ -41,6 +41,25 @@
  *
  * The muscle's forces are active: they enter ext_force as well, so the kick
  * books their work as work done on the rods (energy diagnostic).
+ *
+ * Implicit Hill damping (SW_IMEX).  The slope c = dT/d(dl/dt) of the law is
+ * a dashpot across the whole filament, stiff at the small end masses of a
+ * filament (it limits the elbow's explicit step to 1.34 us), and it is rank
+ * one: dl/dt = b . v with b_i = t_{i-1} - t_i at node i, and the pull is
+ * -T b.  So the kick of length h can take the tension at the velocities it
+ * produces, linearised about the old ones (Rosenbrock-Euler, the linearly
+ * implicit Euler method: Hairer & Wanner, Solving ODEs II, sec. IV.7):
+ *   T* = T0 + c b . dv,   dv = h M^-1 (F - T* b)
+ *   =>  T* = (T0 + c h p) / (1 + c h s),  p = b . M^-1 F,  s = b . M^-1 b,
+ * F the filament nodes' other loads, summed before the pull.  This is
+ * Sherman-Morrison on (M + h c b b^T) solved for the one unknown that
+ * matters, so it costs two sums over the filament's nodes.  The damper's
+ * amplification is 1 / (1 + c h s): L-stable, so the step no longer sees the
+ * damping (sw_stable_dt_filament), and at c h s << 1 it is the explicit
+ * tension to O(h).  T* is floored at 0 (the law never pushes).  A clamped
+ * end node counts as an infinite mass (dv = 0); filaments with a prescribed
+ * end velocity, with analytic damping, or rigid stay explicit (their kick is
+ * not dv = h M^-1 F).
  */
 #include <math.h>
 #include <stdio.h>
@@ -151,7 +170,7 @@ static int check_item(const swMuscleItem *it, int nrod, char *err, size_t errlen
 
 /* The step reaches this file through this table (internal.h, swMuscleOps). */
 static void muscle_rates(const swModel *m, swData *d);
-static void muscle_tensions(const swModel *m, swData *d);
+static void muscle_tensions(const swModel *m, swData *d, double h);
 static void muscle_pull(const swModel *m, swData *d);
 static const swMuscleOps muscle_ops = {sw_muscle_check,  sw_muscle_setup,     sw_muscle_free,
                                        sw_muscle_spec_free, sw_muscle_reset, sw_muscle_advance,
@@ -301,13 +320,29 @@ void sw_muscle_free(swModel *m) {
   free(m->muscle_name); free(m->muscle_fil_adr); free(m->muscle_activation);
   free(m->fil_rod); free(m->fil_passive); free(m->fil_area); free(m->fil_fmax);
   free(m->fil_l0); free(m->fil_tau); free(m->fil_recruit); free(m->fil_hill_a);
-  free(m->fil_v_max); free(m->fil_fibres); free(m->fil_elem);
+  free(m->fil_v_max); free(m->fil_fibres); free(m->fil_elem); free(m->fil_implicit);
 }
 
 int sw_muscle_check(const swMuscleSpec *ms, int nrod, char *err, size_t errlen) {
   for (int i = 0; ms && i < ms->n; i++)
     if (!check_item(&ms->item[i], nrod, err, errlen)) return 0;
   return 1;
+}
+
+/* Whether filament rod r takes the implicit tension (the header), as the
+ * bits of m->fil_implicit: the scheme is SW_IMEX and every node of r is
+ * kicked by dv = h F / m, or held by a clamp (dv = 0: an infinite mass). */
+static int filament_implicit_bits(const swModel *m, int r) {
+  if (m->integrator != SW_IMEX || sw_rod_is_rigid(m, r)) return 0;
+  int bits = SW_FIL_IMPLICIT;
+  for (int k = 0; k < m->nbc; k++) {
+    if (m->bc[k].rod != r || m->bc[k].kind == SW_BC_OMEGA) continue; /* OMEGA: frames only */
+    if (m->bc[k].kind != SW_BC_CLAMP) return 0;                      /* a prescribed dv */
+    bits |= m->bc[k].end ? SW_FIL_HELD_END : SW_FIL_HELD_START;
+  }
+  for (int i = m->node_adr[r]; i <= m->node_adr[r] + m->rod_nelem[r]; i++)
+    if (m->kick_exact[i] != 0.0) return 0;
+  return bits;
 }
 
 int sw_muscle_setup(swModel *m, const swMuscleSpec *ms, char *err, size_t errlen) {
@@ -331,7 +366,8 @@ int sw_muscle_setup(swModel *m, const swMuscleSpec *ms, char *err, size_t errlen
   m->fil_hill_a = calloc(F, sizeof(double));
   m->fil_v_max = calloc(F, sizeof(double));
   m->fil_fibres = calloc(F, sizeof(double));
-  if (!m->muscle_name || !m->muscle_fil_adr || !m->muscle_activation || !m->fil_rod ||
+  m->fil_implicit = calloc(F, sizeof(int));
+  if (!m->fil_implicit || !m->muscle_name || !m->muscle_fil_adr || !m->muscle_activation || !m->fil_rod ||
       !m->fil_passive || !m->fil_area || !m->fil_fmax || !m->fil_l0 || !m->fil_tau ||
       !m->fil_recruit || !m->fil_hill_a || !m->fil_v_max || !m->fil_fibres) {
     snprintf(err, errlen, "out of memory");
@@ -374,6 +410,8 @@ int sw_muscle_setup(swModel *m, const swMuscleSpec *ms, char *err, size_t errlen
     }
   }
   m->muscle_fil_adr[ms->n] = f;
+  for (int g = 0; g < nf; g++)
+    if ((m->fil_implicit[g] = filament_implicit_bits(m, m->fil_rod[g]))) m->muscle_implicit = 1;
   for (int g = 0; g < nf; g++) m->rod_wave_dt[m->fil_rod[g]] = sw_stable_dt_rod(m, m->fil_rod[g]);
   /* which element slots pull (sw_muscle_loads' slot loops) */
   const size_t plane = sizeof(double) * (size_t)m->stride;
@@ -435,6 +473,17 @@ double sw_muscle_tension(const swModel *m, int f, double eta, double edot, doubl
   return Fqs * g;
 }
 
+/* dT/d(edot) of sw_muscle_tension (1/s -> N s): F_qs g'(u) du/d(edot), with
+ * u = -edot, so -F_qs g'(u); 0 beyond u0, constant when lengthening. */
+double sw_muscle_tension_slope(const swModel *m, int f, double eta, double edot, double a) {
+  const double Fmax = m->fil_fmax[f];
+  const double Fqs = a * sw_muscle_f_act(eta) * Fmax + Fmax * sw_muscle_f_pass(eta);
+  const double k = m->fil_hill_a[f], u0 = m->fil_v_max[f], u = -edot;
+  if (u >= u0) return 0;
+  if (u >= 0) return Fqs * (1.0 + k) * k * u0 / ((u + k * u0) * (u + k * u0));
+  return Fqs * (1.0 + k) / (k * u0);
+}
+
 /* The filaments' pull, in three parts, each over a thread's own slots
  * (internal.h, sw_owned_slots):
  *   1. every filament element e: q_e = t_e . (v_{e+1} - v_e), one vector loop
@@ -464,7 +513,36 @@ static void filament_rates(const swModel *m, swData *d, int lo, int hi) {
   }
 }
 
-static void filament_tension(const swModel *m, swData *d, int f, double u) {
+/* The implicit tension of filament f over a kick h (the header):
+ * (T0 + c h p) / (1 + c h s), c = dT/d(dl/dt), floored at 0. */
+static double implicit_tension(const swModel *m, const swData *d, int f, double T0, double eta,
+                               double edot, double h) {
+  const int r = m->fil_rod[f], lo = m->elem_adr[r], n = m->rod_nelem[r], bits = m->fil_implicit[f];
+  const double c = sw_muscle_tension_slope(m, f, eta, edot, d->fil_activation[f]) / m->fil_l0[f];
+  if (!(c > 0)) return T0;
+  double p = 0, s = 0, t_before[3] = {0, 0, 0};
+  for (int i = 0; i <= n; i++) { /* node lo + i: b_i = t_{i-1} - t_i */
+    double t[3] = {0, 0, 0}, b[3], F[3];
+    if (i < n) {
+      sw_get3(m, d->x, lo + i + 1, t);
+      double xi[3];
+      sw_get3(m, d->x, lo + i, xi);
+      sw_v3_sub(t, t, xi);
+      sw_v3_scale(t, t, 1.0 / d->length[lo + i]);
+    }
+    sw_v3_sub(b, t_before, t);
+    sw_get3(m, d->force, lo + i, F);
+    const int held = (i == 0 && (bits & SW_FIL_HELD_START)) || (i == n && (bits & SW_FIL_HELD_END));
+    const double im = held ? 0.0 : m->inv_mass[lo + i];
+    p += im * sw_v3_dot(b, F);
+    s += im * sw_v3_dot(b, b);
+    memcpy(t_before, t, sizeof t);
+  }
+  const double T = (T0 + c * h * p) / (1.0 + c * h * s);
+  return T > 0 ? T : 0;
+}
+
+static void filament_tension(const swModel *m, swData *d, int f, double u, double h) {
   const int r = m->fil_rod[f], lo = m->elem_adr[r], hi = lo + m->rod_nelem[r];
   const double *len = d->length, *q = d->scratch_phi;
   double *T_e = d->scratch_phi + m->stride;
@@ -476,7 +554,8 @@ static void filament_tension(const swModel *m, swData *d, int f, double u) {
   if (!(m->fil_tau[f] > 0)) d->fil_activation[f] = drive(m, f, u);
   const double inv_l0 = 1.0 / m->fil_l0[f];
   const double eta = l * inv_l0, edot = ldot * inv_l0;
-  const double T = sw_muscle_tension(m, f, eta, edot, d->fil_activation[f]);
+  double T = sw_muscle_tension(m, f, eta, edot, d->fil_activation[f]);
+  if (h > 0 && m->fil_implicit[f]) T = implicit_tension(m, d, f, T, eta, edot, h);
   d->fil_stretch[f] = eta;
   d->fil_rate[f] = edot;
   d->fil_tension[f] = T;
@@ -525,7 +604,7 @@ static void muscle_rates(const swModel *m, swData *d) {
   if (lo < hi) filament_rates(m, d, lo, hi);
 }
 
-static void muscle_tensions(const swModel *m, swData *d) {
+static void muscle_tensions(const swModel *m, swData *d, double h) {
   int lo, hi, muscle = -1;
   double u = 0;
   sw_owned_slots(m, d, &lo, &hi);
@@ -536,7 +615,7 @@ static void muscle_tensions(const swModel *m, swData *d) {
       muscle = muscle_of(m, f);
       u = muscle_input(m, muscle, d->time);
     }
-    filament_tension(m, d, f, u);
+    filament_tension(m, d, f, u, h);
   }
 }
 
@@ -550,7 +629,7 @@ static void muscle_pull(const swModel *m, swData *d) {
 void sw_muscle_loads(const swModel *m, swData *d) {
   muscle_rates(m, d);
   sw_team_barrier(d);
-  muscle_tensions(m, d);
+  muscle_tensions(m, d, 0.0); /* no kick: the explicit tension */
   sw_team_barrier(d);
   muscle_pull(m, d);
   sw_team_barrier(d);
@@ -562,6 +641,7 @@ void sw_muscle_loads(const swModel *m, swData *d) {
  * nodes (reduced mass m_end / 2); the explicit kick of a damper of rate c / mu
  * is stable for h c / mu < 2. */
 double sw_stable_dt_filament(const swModel *m, int f) {
+  if (m->fil_implicit && m->fil_implicit[f]) return INFINITY; /* L-stable (the header) */
   double peak = 0; /* max of f_act + p over the fitted range */
   for (int s = 0; s <= 120; s++) {
     double eta = 0.4 + 0.01 * s, q = sw_muscle_f_act(eta) + sw_muscle_f_pass(eta);

@@ -49,6 +49,7 @@ enum {
  * the muscle filaments' Hill damping, solved per filament in closed form, so
  * it sets no stable-dt limit.  The rest of the loads stay explicit. */
 typedef enum { SW_VERLET = 0, SW_PEFRL = 1, SW_IMEX = 2 } swIntegrator;
+enum { SW_FIL_IMPLICIT = 1, SW_FIL_HELD_START = 2, SW_FIL_HELD_END = 4 }; /* swModel.fil_implicit */
 typedef enum { SW_DAMP_NONE = 0, SW_DAMP_LINEAR = 1, SW_DAMP_ANALYTIC = 2 } swDampingKind;
 
 /* ---- time signals: scalar functions of time that scale loads and BCs ---- */
@@ -472,6 +473,9 @@ typedef struct {
   double *fil_v_max;         /* (nfil)     v0 / l0, 1/s                      */
   double *fil_fibres;        /* (nfil)     muscle fibres in the filament     */
   double *fil_elem;          /* (1 plane)  1 at the element slots of filaments */
+  int *fil_implicit;         /* (nfil)     SW_FIL_* bits: Hill damping linearly
+                                           implicit (SW_IMEX), end nodes held */
+  int muscle_implicit;       /* some filament is implicit                    */
   /* environments (environment.c): resolved copies of the descriptions, in
    * the order added; rod lists owned by the model (every rod listed when the
    * description said 0) */
