@@ -640,6 +640,52 @@ static void print_environments(const swModel *m) {
   }
 }
 
+/* What the scheme treats apart from the explicit kick: rods held rigid and
+ * (imex) the implicit terms; filaments a scene could make implicit but whose
+ * scheme keeps explicit are named with the step they cost. */
+static void print_stiff_parts(const swModel *m) {
+  char a[64];
+  int nrigid = 0, nimplicit = 0;
+  for (int r = 0; r < m->nrod; r++) nrigid += m->nrigid && m->rod_rigid[r] >= 0;
+  for (int f = 0; f < m->nfil; f++) nimplicit += (m->fil_implicit[f] & SW_FIL_IMPLICIT) != 0;
+  if (nrigid) {
+    printf("  held rigid (one body each, no elastic waves): %d rod%s:", nrigid, nrigid == 1 ? "" : "s");
+    for (int r = 0, k = 0; r < m->nrod && k < 8; r++)
+      if (m->rod_rigid[r] >= 0) printf("%s %s", k++ ? "," : "", m->rod_name[r]);
+    printf("%s\n", nrigid > 8 ? ", ..." : "");
+  }
+  if (nimplicit)
+    printf("  linearly implicit: the Hill damping of %d of %d muscle filaments\n", nimplicit, m->nfil);
+  if (m->nfil > nimplicit) {
+    double worst = INFINITY;
+    for (int f = 0; f < m->nfil; f++)
+      if (!(m->fil_implicit[f] & SW_FIL_IMPLICIT))
+        worst = fmin(worst, 0.95 * sw_muscle_ops(m)->stable_dt_filament(m, f));
+    printf("  explicit: the Hill damping of %d muscle filament%s (alone it limits dt to %s%s)\n",
+           m->nfil - nimplicit, m->nfil - nimplicit == 1 ? "" : "s", format_time(a, sizeof a, worst),
+           m->integrator == SW_IMEX ? "; a prescribed velocity or analytic damping keeps it explicit"
+                                    : "; integrator = imex makes it implicit");
+  }
+}
+
+/* The part whose bound is the stable estimate: a rod, a joint, or the
+ * environments. */
+static void print_step_limit(const swModel *m, double stable) {
+  char a[64];
+  if (!isfinite(stable)) return;
+  for (int r = 0; r < m->nrod; r++)
+    if (m->rod_wave_dt[r] == stable) {
+      printf("  set by rod %s (%s)\n", m->rod_name[r], format_time(a, sizeof a, stable));
+      return;
+    }
+  for (int j = 0; j < m->njoint; j++)
+    if (m->joint_wave_dt[j] == stable) {
+      printf("  set by joint %s (%s)\n", m->joint_name[j], format_time(a, sizeof a, stable));
+      return;
+    }
+  printf("  set by the environments (%s)\n", format_time(a, sizeof a, stable));
+}
+
 static void print_info(const swCli *c, const swModel *m, double stable, const char *dt_source,
                        const char *out) {
   const swProgram *p = c->p;
@@ -716,8 +762,10 @@ static void print_info(const swCli *c, const swModel *m, double stable, const ch
   printf("integrator: %s\n", m->integrator == SW_PEFRL ? "PEFRL"
                              : m->integrator == SW_IMEX ? "position Verlet, stiff terms linearly implicit (imex)"
                                                         : "position Verlet");
+  print_stiff_parts(m);
   printf("dt: %s (%s; stable estimate %s)\n", format_time(a, sizeof a, m->dt), dt_source,
          format_time(b, sizeof b, stable));
+  print_step_limit(m, stable);
   long nsteps = 0;
   char why[256];
   sw_step_count(c->duration, m->dt, &nsteps, why, sizeof why); /* checked by build_model */
