@@ -71,7 +71,7 @@ void sema_report_unknown(swSema *S, swScope *scope, const char *name, swLoc loc,
   else diag_error(loc, "unknown %s '%s'", what, name);
 }
 
-static const char *sym_noun(swSymKind k) {
+const char *sema_sym_noun(swSymKind k) {
   static const char *nouns[] = {"param", "let", "component parameter", "material", "rod",
                                 "joint", "component", "instance", "muscle", "environment"};
   return nouns[k];
@@ -82,11 +82,12 @@ static swSymbol *declare(swSema *S, swScope *scope, swSymKind kind, const char *
   swSymbol *old = sema_lookup_local(scope, name);
   if (old) {
     char where[256];
-    diag_error(loc, "'%s' is already defined (as a %s at %s)", name, sym_noun(old->kind),
+    diag_error(loc, "'%s' is already defined (as a %s at %s)", name, sema_sym_noun(old->kind),
                diag_where(old->loc, where, sizeof where));
     return NULL;
   }
-  if (!strcmp(name, "pi") || !strcmp(name, "all")) {
+  if (!strcmp(name, "pi") || !strcmp(name, "all") || !strcmp(name, "true") ||
+      !strcmp(name, "false")) {
     diag_error(loc, "'%s' is a reserved name", name);
     return NULL;
   }
@@ -389,7 +390,7 @@ static void instantiate(swSema *S, swScope *scope, const swAst *it) {
   }
   comp->used = 1;
   if (comp->kind != SYM_COMPONENT) {
-    diag_error(it->loc, "'%s' is a %s, not a component", it->text, sym_noun(comp->kind));
+    diag_error(it->loc, "'%s' is a %s, not a component", it->text, sema_sym_noun(comp->kind));
     return;
   }
   /* a component whose body uses itself, directly or through others, would
@@ -547,17 +548,89 @@ static void warn_unused(swSema *S) {
     if (s->used || !s->main_file) continue;
     if (s->kind == SYM_PARAM || s->kind == SYM_LET || s->kind == SYM_MATERIAL ||
         s->kind == SYM_COMPONENT)
-      diag_warning(s->loc, "%s '%s' is defined but never used", sym_noun(s->kind), s->name);
+      diag_warning(s->loc, "%s '%s' is defined but never used", sema_sym_noun(s->kind), s->name);
+  }
+}
+
+/* An override of sinewc --let that met no top-level let of the main file:
+ * what the name is instead, or the nearest let's name, or the lets there are. */
+static void let_not_found(swSema *S, swLetOverride *o) {
+  const char *main_path = diag_file(S->main_file)->path;
+  char msg[1024], where[256];
+  swSymbol *g = sema_lookup_local(S->global, o->name), *inner = NULL;
+  for (int i = 0; i < S->nall && !g && !inner; i++)
+    if ((S->all[i]->kind == SYM_LET || S->all[i]->kind == SYM_FORMAL) &&
+        !strcmp(S->all[i]->name, o->name))
+      inner = S->all[i];
+  if (g && g->kind == SYM_PARAM)
+    snprintf(msg, sizeof msg, "--let %s: '%s' is a param, not a let: the simulator sets it when "
+             "it runs (SIM --set %s=VALUE)", o->name, o->name, o->name);
+  else if (g)
+    snprintf(msg, sizeof msg, "--let %s: '%s' is a %s of %s, not a top-level let of %s",
+             o->name, o->name, sema_sym_noun(g->kind), diag_where(g->loc, where, sizeof where),
+             main_path);
+  else if (inner)
+    snprintf(msg, sizeof msg, "--let %s: '%s' is a %s inside component instance '%.*s' (%s), "
+             "not a top-level let of %s", o->name, o->name, sema_sym_noun(inner->kind),
+             (int)strlen(inner->scope->prefix) - 1, inner->scope->prefix,
+             diag_where(inner->loc, where, sizeof where), main_path);
+  else {
+    enum { MAXC = 512 };
+    const char *cands[MAXC];
+    int n = 0;
+    for (int i = 0; i < S->global->n && n < MAXC; i++)
+      if (S->global->sym[i]->kind == SYM_LET && S->global->sym[i]->main_file)
+        cands[n++] = S->global->sym[i]->name;
+    const char *near = diag_suggest(o->name, cands, n);
+    if (near)
+      snprintf(msg, sizeof msg, "--let: unknown let '%s' (did you mean '%s'?)", o->name, near);
+    else if (!n)
+      snprintf(msg, sizeof msg, "--let: unknown let '%s' (%s has no top-level lets)", o->name,
+               main_path);
+    else {
+      char list[512] = "";
+      for (int i = 0; i < n; i++) {
+        if (strlen(list) + strlen(cands[i]) + 8 > sizeof list) {
+          strcat(list, ", ...");
+          break;
+        }
+        if (i) strcat(list, ", ");
+        strcat(list, cands[i]);
+      }
+      snprintf(msg, sizeof msg, "--let: unknown let '%s' (the lets of %s: %s)", o->name,
+               main_path, list);
+    }
+  }
+  o->error = ast_strdup(S->a, msg, strlen(msg));
+}
+
+/* The model source records the overrides after the files, so the output's
+ * model_source (and model_sha256, its hash) tell what was compiled. */
+static void record_lets(swSema *S) {
+  char line[1024];
+  int n = snprintf(line, sizeof line, "\n# ---- sinewc --let: lets of %s given on the command "
+                   "line ----\n", diag_file(S->main_file)->path);
+  append_source(S, line, (size_t)n);
+  for (int i = 0; i < S->nlets; i++) {
+    n = snprintf(line, sizeof line, "# --let %s (in place of the let at line %d)\n",
+                 S->lets[i].text, S->lets[i].let_loc.line);
+    append_source(S, line, (size_t)n);
   }
 }
 
 int sema_check(swArena *arena, int file, swScene *scene) {
+  return sema_check_lets(arena, file, NULL, 0, scene);
+}
+
+int sema_check_lets(swArena *arena, int file, swLetOverride *lets, int nlets, swScene *scene) {
   swSema S;
   memset(&S, 0, sizeof S);
   memset(scene, 0, sizeof *scene);
   S.a = arena;
   S.scene = scene;
   S.main_file = file;
+  S.lets = lets;
+  S.nlets = nlets;
   S.global = scope_new(&S, NULL, "");
   scene->integrator = SW_VERLET;
   scene->gravity = val_error();
@@ -573,6 +646,17 @@ int sema_check(swArena *arena, int file, swScene *scene) {
   int before = diag_errors();
   check_file(&S, file);
   warn_unused(&S);
+  int lets_ok = 1;
+  for (int i = 0; i < nlets; i++) {
+    /* after the model's own errors a let may not have been reached */
+    if (!lets[i].applied && !lets[i].error && diag_errors() == before) let_not_found(&S, &lets[i]);
+    if (!lets[i].applied || lets[i].error) lets_ok = 0;
+  }
+  if (nlets && lets_ok) {
+    record_lets(&S);
+    scene->let = lets;
+    scene->nlet = nlets;
+  }
   scene->source = S.src;
   sha256_hex(S.src ? S.src : "", S.srclen, scene->sha256);
   for (int i = 0; i < S.ndone; i++) free(S.done_paths[i]);

@@ -3,7 +3,7 @@
  *
  * Design.  The checker evaluates every expression of the model to a swValue:
  * a kind (number, vector, point on a rod, time signal, reference to a
- * definition, bare word), a dimension, the numbers it has with every param at
+ * definition, the word true or false, bare word), a dimension, the numbers it has with every param at
  * its default, and -- only when it depends on a param -- the C expression that
  * recomputes it at run time from the param array P.  So constants are folded
  * by construction and a param default appears in the generated C exactly
@@ -31,7 +31,9 @@ typedef enum {
   VAL_POINT,      /* a node of a rod: position (3) + rod + node            */
   VAL_SIGNAL,     /* a time signal times a scale (number or vector)        */
   VAL_REF,        /* a definition: material, rod, joint, component, ...    */
-  VAL_WORD        /* an identifier with no definition (all, pefrl, ...)    */
+  VAL_WORD,       /* an identifier with no definition (all, pefrl, ...)    */
+  VAL_TRUTH       /* true or false (word): a switch fixed when compiling;
+                     it flows through lets and component parameters        */
 } swValKind;
 
 struct swSymbol;
@@ -49,7 +51,7 @@ typedef struct swValue {
   int rod, node;
   /* VAL_SIGNAL */
   struct swSignalVal *sig;
-  /* VAL_REF, VAL_WORD */
+  /* VAL_REF, VAL_WORD, VAL_TRUTH ("true" or "false") */
   struct swSymbol *ref;
   const char *word;
 } swValue;
@@ -280,14 +282,35 @@ typedef struct {
   int has_dt, has_duration;
   const char *out;            /* output path                               */
   int velocity, directors;
+  const struct swLetOverride *let;   /* (nlet) sinewc --let, applied      */
+  int nlet;
   const char *model_name;     /* stem of the main file                     */
   char *source;               /* main file and imports, inlined (malloc)   */
   char sha256[65];
 } swScene;
 
+/* sinewc --let NAME=VALUE: a top-level let of the main file that takes the
+ * value given on the command line instead of its own (like cc -D).  The
+ * value must be of the let's own kind: a number of the same dimension, or
+ * true or false. */
+typedef struct swLetOverride {
+  const char *name;           /* NAME                                      */
+  const char *text;           /* "NAME=VALUE" as given                     */
+  int truth;                  /* 1 true, 0 false, -1 a number              */
+  double value;               /* the number, SI                            */
+  swDim dim;
+  /* set by the checker */
+  int applied;                /* it replaced a let of the main file        */
+  swLoc let_loc;              /* that let                                  */
+  const char *error;          /* why it cannot apply (a usage error), or NULL */
+} swLetOverride;
+
 /* Check the model in file `file` (registered with diag) and build its scene.
  * Returns the number of errors (also counted by diag). */
 int sema_check(swArena *arena, int file, swScene *scene);
+/* The same with the overrides of sinewc --let: each one applied, or its
+ * `error` set (an unknown name only when the model itself checked clean). */
+int sema_check_lets(swArena *arena, int file, swLetOverride *lets, int nlets, swScene *scene);
 void sema_scene_free(swScene *scene);
 char *sema_read_file(const char *path, size_t *len, const char **why, int *not_text);
 
@@ -302,6 +325,9 @@ swValue val_neg(swArena *a, swValue x, swLoc loc);
 swValue val_pow(swArena *a, swValue x, double p, swLoc loc);
 swValue val_func(swArena *a, const char *fn, swValue x, swLoc loc);   /* sqrt, sin, cos, tan, exp */
 swValue val_norm(swArena *a, swValue x, swLoc loc);
+swValue val_truth(int truth, swLoc loc);                 /* VAL_TRUTH        */
+/* "a number", "a vector", "true or false", ... for messages */
+const char *val_kind_noun(const swValue *v);
 
 /* ---- dimensions (units_dim.c) ---- */
 extern const swDim DIM_NONE, DIM_LENGTH, DIM_TIME, DIM_MASS, DIM_ANGLE, DIM_PRESSURE, DIM_DENSITY;

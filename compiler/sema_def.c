@@ -102,6 +102,12 @@ static void eval_param(swSema *S, swSymbol *sym) {
     sema_report_unknown(S, sym->scope, v.word, v.loc, "name");
     v = val_error();
   }
+  if (v.kind == VAL_TRUTH) {
+    diag_error(def->kid[0]->loc, "a param is a number the simulator can change when it runs "
+               "(--set); %s is fixed when the model is compiled: make '%s' a let (sinewc --let "
+               "changes it)", v.word, sym->name);
+    v = val_error();
+  }
   if (v.kind != VAL_ERROR && v.kind != VAL_NUM) {
     diag_error(def->kid[0]->loc, "a param must be a number (with a unit or without)");
     v = val_error();
@@ -154,6 +160,51 @@ static void eval_param(swSema *S, swSymbol *sym) {
   sym->value.c = ast_alloc(S->a, sizeof *sym->value.c);
   sym->value.c[0] = ast_strdup(S->a, buf, strlen(buf));
   sym->value.param = sym->full;
+}
+
+/* sinewc --let NAME=VALUE on the top-level let `sym` of the main file,
+ * just evaluated: the given value replaces the let's own when it is of the
+ * same kind (true or false, or a number of the same dimension); otherwise
+ * the override's error says why, and the let keeps its value. */
+static void let_override(swSema *S, swSymbol *sym) {
+  swLetOverride *o = NULL;
+  for (int i = 0; i < S->nlets && !o; i++)
+    if (!strcmp(S->lets[i].name, sym->name)) o = &S->lets[i];
+  if (!o) return;
+  o->applied = 1;
+  o->let_loc = sym->loc;
+  const swValue *own = &sym->value;
+  if (own->kind == VAL_ERROR) return;   /* the model's own error, reported */
+  char where[256], msg[512];
+  diag_where(sym->loc, where, sizeof where);
+  const char *value = strchr(o->text, '=') + 1;
+  msg[0] = 0;
+  if (own->kind == VAL_TRUTH) {
+    if (o->truth < 0)
+      snprintf(msg, sizeof msg, "--let %s: the let at %s is true or false, not a number "
+               "('%s')", o->name, where, value);
+  } else if (own->kind != VAL_NUM) {
+    snprintf(msg, sizeof msg, "--let %s: the let at %s is %s; --let gives a let a number or "
+             "true or false", o->name, where, val_kind_noun(own));
+  } else if (o->truth >= 0) {
+    snprintf(msg, sizeof msg, "--let %s: the let at %s is a number (%s), not true or false",
+             o->name, where, dim_describe(S->a, own->dim));
+  } else if (!dim_eq(own->dim, o->dim)) {
+    /* as the simulator's --set words it */
+    if (dim_is_none(o->dim))
+      snprintf(msg, sizeof msg, "--let %s: expected %s, as the let at %s, got a number without "
+               "a unit in '%s'", o->name, dim_describe(S->a, own->dim), where, value);
+    else
+      snprintf(msg, sizeof msg, "--let %s: expected %s, as the let at %s, got %s in '%s'",
+               o->name, dim_describe(S->a, own->dim), where, dim_describe(S->a, o->dim), value);
+  }
+  if (msg[0]) {
+    o->error = ast_strdup(S->a, msg, strlen(msg));
+    return;
+  }
+  /* the value stands where the let's own was written */
+  swLoc at = own->loc;
+  sym->value = o->truth >= 0 ? val_truth(o->truth, at) : val_num(S->a, o->value, o->dim, at);
 }
 
 /* ---- materials ---- */
@@ -460,24 +511,14 @@ static void eval_rod(swSema *S, swSymbol *sym) {
     ok = 0;
   }
   r.damping = sema_damping_kind(S, sc, &f, NULL);
-  /* rigid = true: the runtime moves the rod as one rigid body; the language
-   * has no booleans, so true and false are words, as damping_model's are */
+  /* rigid = true: the runtime moves the rod as one rigid body.  It changes
+   * the layout the runtime builds, so it is fixed when compiling: the word
+   * itself, or a let or component parameter holding it, never a param. */
   const swAst *rg = sema_field(&f, "rigid");
   if (rg) {
-    static const char *const truth[] = {"true", "false"};
-    if (rg->kind == AST_NAME && (!strcmp(rg->name, "true") || !strcmp(rg->name, "false"))) {
-      r.rigid = !strcmp(rg->name, "true");
-    } else {
-      const char *near = rg->kind == AST_NAME ? diag_suggest(rg->name, truth, 2) : NULL;
-      if (near)
-        diag_error(rg->loc, "'rigid' is true or false, not '%s'; did you mean '%s'?", rg->name,
-                   near);
-      else if (rg->kind == AST_NAME)
-        diag_error(rg->loc, "'rigid' is true or false, not '%s'", rg->name);
-      else
-        diag_error(rg->loc, "'rigid' takes the word true or false");
-      ok = 0;
-    }
+    int t = sema_truth(S, sc, rg, "'rigid'");
+    if (t < 0) ok = 0;
+    else r.rigid = t;
   }
   const swValue *all[] = {&r.youngs, &r.density, &r.shear_modulus, &r.poisson, &r.start,
                           &r.direction, &r.normal, &r.length, &r.radius_start, &r.radius_end,
@@ -520,6 +561,7 @@ void sema_eval_symbol(swSema *S, swSymbol *sym) {
       v = val_error();
     }
     sym->value = v;
+    if (S->nlets && sym->scope == S->global && sym->main_file) let_override(S, sym);
     break;
   }
   case SYM_MATERIAL:

@@ -52,18 +52,6 @@ static void *append(void **arr, int *n, int *cap, size_t item) {
   return slot;
 }
 
-int sema_truth(swSema *S, const swAst *e, const char *what) {
-  (void)S;
-  static const char *const truth[] = {"true", "false"};
-  if (e->kind == AST_NAME && (!strcmp(e->name, "true") || !strcmp(e->name, "false")))
-    return !strcmp(e->name, "true");
-  const char *near = e->kind == AST_NAME ? diag_suggest(e->name, truth, 2) : NULL;
-  if (near) diag_error(e->loc, "%s is true or false, not '%s'; did you mean '%s'?", what, e->name, near);
-  else if (e->kind == AST_NAME) diag_error(e->loc, "%s is true or false, not '%s'", what, e->name);
-  else diag_error(e->loc, "%s takes the word true or false", what);
-  return -1;
-}
-
 /* ---- rod lists ---- */
 
 /* One entry of a rod list: a rod or a muscle (its filaments).  Appends to
@@ -305,7 +293,7 @@ static void fluid(swSema *S, swScope *sc, const swAst *it, const char *name, con
     if (sema_field(&f, keys[i]) && vals[i]->kind == VAL_ERROR) ok = 0;
   const swAst *b = sema_field(&f, "buoyancy");
   if (b) {
-    int t = sema_truth(S, b, "'buoyancy'");
+    int t = sema_truth(S, sc, b, "'buoyancy'");
     if (t < 0) ok = 0;
     else fl.buoyancy = t;
   }
@@ -357,7 +345,7 @@ static void contact(swSema *S, swScope *sc, const swAst *it, const char *name, c
   if (sema_field(&f, "damping") && c.damping.kind == VAL_ERROR) ok = 0;
   const swAst *self = sema_field(&f, "self");
   if (self) {
-    int t = sema_truth(S, self, "'self'");
+    int t = sema_truth(S, sc, self, "'self'");
     if (t < 0) ok = 0;
     else c.self = t;
   }
@@ -446,7 +434,7 @@ static void wave(swSema *S, swScope *sc, const swAst *it, const char *name, cons
     if (sema_field(&f, keys[i]) && vals[i]->kind == VAL_ERROR) ok = 0;
   const swAst *rv = sema_field(&f, "reverse");
   if (rv) {
-    int t = sema_truth(S, rv, "'reverse'");
+    int t = sema_truth(S, sc, rv, "'reverse'");
     if (t < 0) ok = 0;
     else w.reverse = t;
   }

@@ -7,7 +7,10 @@
  * message.  A name is looked up through the enclosing scopes; a name with no
  * definition evaluates to a bare word (VAL_WORD), which only the few places
  * that take a word (integrator = pefrl, velocity all) accept -- everywhere
- * else it is reported as unknown, with the nearest defined name.  Time
+ * else it is reported as unknown, with the nearest defined name.  The words
+ * true and false are values of their own (VAL_TRUTH): a let or a component
+ * parameter may hold one and pass it on to a switch such as rigid
+ * (sema_truth); arithmetic refuses them.  Time
  * signals are the runtime's (constant, ramp, sine, step, table) with their
  * arguments checked by dimension; a signal may only be scaled.
  */
@@ -29,6 +32,7 @@ static const char *describe_value(swSema *S, const swValue *v) {
   case VAL_SIGNAL: return "a time signal";
   case VAL_REF: return "a definition";
   case VAL_WORD: return "a name";
+  case VAL_TRUTH: return "true or false";
   case VAL_VEC: {
     char buf[160];
     snprintf(buf, sizeof buf, "a %d-component vector of %s", v->n, dim_describe(S->a, v->dim));
@@ -54,6 +58,13 @@ static swValue operand(swSema *S, swScope *scope, const swAst *e) {
                : v.ref->kind == SYM_JOINT ? "joint" : v.ref->kind == SYM_COMPONENT ? "component"
                : v.ref->kind == SYM_MUSCLE ? "muscle" : v.ref->kind == SYM_ENV ? "environment"
                : "instance");
+    return val_error();
+  }
+  if (v.kind == VAL_TRUTH) {
+    if (e->kind == AST_NAME && strcmp(e->name, v.word))
+      diag_error(e->loc, "'%s' is %s, a switch fixed when compiling, not a number", e->name,
+                 v.word);
+    else diag_error(e->loc, "%s is a switch fixed when compiling, not a number", v.word);
     return val_error();
   }
   return v;
@@ -138,6 +149,53 @@ const char *sema_word(swSema *S, swScope *scope, const swAst *e, const char *wha
     diag_error(e->loc, "unknown %s '%s' (expected %s)", what, e->name, list);
   }
   return NULL;
+}
+
+/* The words a switch takes, then the names that could hold one. */
+static const char *truth_suggestion(swSema *S, swScope *scope, const char *word) {
+  static const char *const truth[] = {"true", "false"};
+  const char *near = diag_suggest(word, truth, 2);
+  if (near) return near;
+  enum { MAXC = 512 };
+  const char *cands[MAXC];
+  int n = 0;
+  for (swScope *sc = scope; sc; sc = sc->parent)
+    for (int i = 0; i < sc->n && n < MAXC; i++)
+      if (sc->sym[i]->kind == SYM_LET || sc->sym[i]->kind == SYM_FORMAL) cands[n++] = sc->sym[i]->name;
+  near = diag_suggest(word, cands, n);
+  if (near) sema_lookup(S, scope, near)->used = 1;   /* what was meant: not "unused" */
+  return near;
+}
+
+int sema_truth(swSema *S, swScope *scope, const swAst *e, const char *what) {
+  swValue v = sema_eval(S, scope, e);
+  if (v.kind == VAL_TRUTH) return !strcmp(v.word, "true");
+  if (v.kind == VAL_ERROR) return -1;
+  if (v.kind == VAL_WORD) {
+    const char *near = truth_suggestion(S, scope, v.word);
+    if (near) diag_error(e->loc, "%s is true or false, not '%s'; did you mean '%s'?", what, v.word, near);
+    else diag_error(e->loc, "%s is true or false, not '%s'", what, v.word);
+    return -1;
+  }
+  /* a switch changes what is compiled (rigid: the layout of the rods), so
+   * it cannot wait for the run's values */
+  if (v.param) {
+    diag_error(e->loc, "%s is fixed when the model is compiled, but param '%s' is a run-time "
+               "value (SIM --set changes it); give true or false through a let or a component "
+               "parameter", what, v.param);
+    return -1;
+  }
+  const swSymbol *sym = e->kind == AST_NAME ? sema_lookup(S, scope, e->name) : NULL;
+  char where[256];
+  if (sym && (sym->kind == SYM_LET || sym->kind == SYM_FORMAL))
+    diag_error(e->loc, "%s is true or false, but %s '%s' is %s (its value is at %s)", what,
+               sema_sym_noun(sym->kind), sym->name, val_kind_noun(&sym->value),
+               diag_where(sym->value.loc, where, sizeof where));
+  else if (sym)
+    diag_error(e->loc, "%s is true or false, but '%s' is a %s", what, sym->name,
+               sema_sym_noun(sym->kind));
+  else diag_error(e->loc, "%s is true or false, not %s", what, val_kind_noun(&v));
+  return -1;
 }
 
 /* ---- calls ---- */
@@ -623,6 +681,8 @@ swValue sema_eval(swSema *S, swScope *scope, const swAst *e) {
     swSymbol *sym = sema_lookup(S, scope, e->name);
     if (sym) return symbol_value(S, sym, e->loc);
     if (!strcmp(e->name, "pi")) return val_num(S->a, PI, DIM_NONE, e->loc);
+    if (!strcmp(e->name, "true") || !strcmp(e->name, "false"))
+      return val_truth(e->name[0] == 't', e->loc);
     swValue w = val_error();
     w.kind = VAL_WORD;
     w.word = e->name;

@@ -37,6 +37,9 @@ typedef struct {
   /* source text with imports, for model_source */
   char *src;
   size_t srclen, srccap;
+  /* sinewc --let: overrides of the main file's top-level lets */
+  swLetOverride *lets;
+  int nlets;
   /* items met once per scene */
   swLoc simulate_loc, output_loc;
   int has_simulate, has_output;
@@ -47,6 +50,7 @@ swSymbol *sema_lookup(swSema *S, swScope *scope, const char *name);
 swSymbol *sema_lookup_local(swScope *scope, const char *name);
 void sema_report_unknown(swSema *S, swScope *scope, const char *name, swLoc loc,
                          const char *what);
+const char *sema_sym_noun(swSymKind kind);   /* "let", "component parameter", ... */
 void sema_items(swSema *S, swScope *scope, const swAst *items, int first);
 
 /* sema_expr.c */
@@ -60,6 +64,10 @@ int sema_const_int(swSema *S, swValue v, const char *what, long lo, long hi, lon
 int sema_require_const(swSema *S, const swValue *v, const char *what);
 const char *sema_word(swSema *S, swScope *scope, const swAst *e, const char *what,
                       const char *const *choices, int nchoices);
+/* A switch: true or false, written as the word or held by a let or a
+ * component parameter; 1 or 0, -1 after an error (reported, naming `what`
+ * and, for a name holding something else, where its value was written). */
+int sema_truth(swSema *S, swScope *scope, const swAst *e, const char *what);
 
 /* sema_def.c */
 void sema_eval_symbol(swSema *S, swSymbol *sym);
@@ -85,8 +93,6 @@ void sema_output(swSema *S, swScope *scope, const swAst *item);
 int sema_is_env_kind(const char *kind);
 void sema_env(swSema *S, swScope *scope, const swAst *item);
 void sema_probe(swSema *S, swScope *scope, const swAst *field);
-/* true or false (the language's words for them); -1 after an error */
-int sema_truth(swSema *S, const swAst *e, const char *what);
 /* a rod list: NAME, (NAME, NAME, ...), all; muscles stand for their filaments */
 int sema_rod_list(swSema *S, swScope *scope, const swAst *e, const char *what, swRodList *out);
 

@@ -26,6 +26,14 @@ swValue val_error(void) {
   return v;
 }
 
+swValue val_truth(int truth, swLoc loc) {
+  swValue v = val_error();
+  v.kind = VAL_TRUTH;
+  v.word = truth ? "true" : "false";
+  v.loc = loc;
+  return v;
+}
+
 swValue val_vec(swArena *a, int n, const double *x, swDim dim, swLoc loc) {
   swValue v = val_error();
   v.kind = n == 1 ? VAL_NUM : VAL_VEC;
@@ -130,8 +138,9 @@ static const char *op_verb(int op) {
   }
 }
 
-static const char *kind_noun(const swValue *v) {
+const char *val_kind_noun(const swValue *v) {
   switch (v->kind) {
+  case VAL_TRUTH: return "true or false";
   case VAL_POINT: return "a point on a rod";
   case VAL_SIGNAL: return "a time signal";
   case VAL_REF: return "a definition";
@@ -172,12 +181,12 @@ swValue val_binop(swArena *a, int op, swValue x, swValue y, swLoc loc) {
     return scale_signal(a, '/', x, y, loc);
   if (x.kind == VAL_SIGNAL || y.kind == VAL_SIGNAL) {
     diag_error(loc, "cannot %s %s and %s: a time signal can only be multiplied or divided by a "
-               "constant", op_verb(op), kind_noun(&x), kind_noun(&y));
+               "constant", op_verb(op), val_kind_noun(&x), val_kind_noun(&y));
     return val_error();
   }
   if ((x.kind != VAL_NUM && x.kind != VAL_VEC) || (y.kind != VAL_NUM && y.kind != VAL_VEC)) {
     diag_error(loc, "cannot %s %s and %s", op_verb(op),
-               kind_noun(&x), kind_noun(&y));
+               val_kind_noun(&x), val_kind_noun(&y));
     return val_error();
   }
   swDim dim;
@@ -249,7 +258,7 @@ swValue val_neg(swArena *a, swValue x, swLoc loc) {
     return val_binop(a, '*', x, m1, loc);
   }
   if (x.kind != VAL_NUM && x.kind != VAL_VEC) {
-    if (x.kind != VAL_ERROR) diag_error(loc, "cannot negate %s", kind_noun(&x));
+    if (x.kind != VAL_ERROR) diag_error(loc, "cannot negate %s", val_kind_noun(&x));
     return val_error();
   }
   swValue m1 = val_num(a, -1, DIM_NONE, loc);
@@ -259,7 +268,7 @@ swValue val_neg(swArena *a, swValue x, swLoc loc) {
 swValue val_pow(swArena *a, swValue x, double p, swLoc loc) {
   if (x.kind == VAL_ERROR) return x;
   if (x.kind != VAL_NUM) {
-    diag_error(loc, "cannot raise %s to a power", kind_noun(&x));
+    diag_error(loc, "cannot raise %s to a power", val_kind_noun(&x));
     return val_error();
   }
   swDim dim;
@@ -290,7 +299,7 @@ swValue val_pow(swArena *a, swValue x, double p, swLoc loc) {
 swValue val_func(swArena *a, const char *fn, swValue x, swLoc loc) {
   if (x.kind == VAL_ERROR) return x;
   if (x.kind != VAL_NUM) {
-    diag_error(loc, "%s() takes a number, not %s", fn, kind_noun(&x));
+    diag_error(loc, "%s() takes a number, not %s", fn, val_kind_noun(&x));
     return val_error();
   }
   swDim dim = DIM_NONE;

@@ -189,6 +189,13 @@ void sw_rigid_drift(const swModel *m, swData *d, double h);
 void sw_rigid_kick(const swModel *m, swData *d, double h);
 double sw_rigid_stable_dt(const swModel *m, int b);
 double sw_rigid_joint_dt(const swModel *m, int b);
+/* Joints between rigid bodies under SW_IMEX (rigid_joint.c): setup marks
+ * them (joint_implicit) and numbers their bodies (rigid_block); the kick
+ * turns the bodies' loads into those of the trapezoidal step. */
+int sw_rigid_joints_setup(swModel *m);
+void sw_rigid_joints_free(swModel *m);
+size_t sw_rigid_joints_scratch(const swModel *m);
+int sw_rigid_joints_kick(const swModel *m, swData *d, double h, double *load);
 /* Environments (environment.c).  The swSpec keeps them in an opaque slot
  * (sw_spec_env); sw_env_check validates them in sw_compile, sw_env_setup
  * puts resolved copies and each kind's derived data in the model, sw_env_free

@@ -268,6 +268,7 @@ void sw_model_free(swModel *m) {
   free(m->joint); free(m->joint_name); free(m->joint_node_a); free(m->joint_node_b);
   free(m->joint_elem_a); free(m->joint_elem_b); free(m->joint_axis_a); free(m->joint_axis_b);
   free(m->joint_rest_rot); free(m->joint_angle0); free(m->joint_wave_dt);
+  sw_rigid_joints_free(m);
   if (sw_muscle_ops(m)) sw_muscle_ops(m)->free_model(m);
   if (sw_env_ops(m)) sw_env_ops(m)->free_model(m);
   rigid_free(m);
@@ -649,6 +650,7 @@ swModel *sw_compile(const swSpec *s, char *err, size_t errlen) {
     m->joint[j].name = m->joint_name[j];
   }
   sw_joint_setup(m);
+  if (!sw_rigid_joints_setup(m)) goto oom;
   for (int j = 0; j < m->njoint; j++) m->joint_wave_dt[j] = sw_stable_dt_joint(m, j);
   m->muscle_ops = s->muscle_ops;
   m->env_ops = s->env_ops;
@@ -678,6 +680,7 @@ void sw_data_free(swData *d) {
   free(d->joint_force); free(d->joint_angle);
   free(d->fil_activation); free(d->fil_stretch); free(d->fil_rate); free(d->fil_tension);
   free(d->rigid_X); free(d->rigid_V); free(d->rigid_R); free(d->rigid_L); free(d->rigid_omega);
+  free(d->rigid_load); free(d->rigid_sys);
   sw_probe_data_free(d);
   /* the contact grid's scratch (contact.c, through the environment's data_new) */
   free(d->contact_cell); free(d->contact_bucket); free(d->contact_sorted);
@@ -718,8 +721,10 @@ swData *sw_data_new(const swModel *m) {
   }
   size_t B = (size_t)m->nrigid;
   d->rigid_X = dalloc(3 * B); d->rigid_V = dalloc(3 * B); d->rigid_R = dalloc(9 * B);
-  d->rigid_L = dalloc(3 * B); d->rigid_omega = dalloc(3 * B);
+  d->rigid_L = dalloc(3 * B); d->rigid_omega = dalloc(3 * B); d->rigid_load = dalloc(6 * B);
+  d->rigid_sys = dalloc(sw_rigid_joints_scratch(m));
   if (!d->rigid_X || !d->rigid_V || !d->rigid_R || !d->rigid_L || !d->rigid_omega ||
+      !d->rigid_load || !d->rigid_sys ||
       !sw_probe_data_new(m, d) ||
       (sw_env_ops(m) && !sw_env_ops(m)->data_new(m, d))) { /* the contact grid's scratch */
     sw_data_free(d);

@@ -348,31 +348,46 @@ void sw_rigid_drift(const swModel *m, swData *d, double h) {
   }
 }
 
+/* The loads on body b: F = sum of the node forces, tau = their moments about
+ * X plus the element couples (in the lab), into load[0..5]. */
+static void body_loads(const swModel *m, const swData *d, int b, double *load) {
+  const int r = m->rigid_rod[b], n = m->rod_nelem[r];
+  const int na = m->node_adr[r], ea = m->elem_adr[r];
+  const double *X = d->rigid_X + 3 * b;
+  double *F = load, *tau = load + 3;
+  memset(load, 0, 6 * sizeof(double));
+  for (int i = na; i <= na + n; i++) {
+    double f[3], xi[3], rel[3], mom[3];
+    sw_get3(m, d->force, i, f);
+    sw_get3(m, d->x, i, xi);
+    sw_v3_sub(rel, xi, X);
+    sw_v3_cross(mom, rel, f);
+    sw_v3_add(F, F, f);
+    sw_v3_add(tau, tau, mom);
+  }
+  for (int e = ea; e < ea + n; e++) {
+    double c[3], Q[9], t[3];
+    sw_getQ(m, d->Q, e, Q);
+    sw_get3(m, d->torque, e, t);
+    sw_matT_vec(c, Q, t);
+    sw_v3_add(tau, tau, c);
+  }
+}
+
 void sw_rigid_kick(const swModel *m, swData *d, double h) {
+  for (int b = 0; b < m->nrigid; b++)
+    if (!m->rigid_fixed[b]) body_loads(m, d, b, d->rigid_load + 6 * b);
+  /* imex: the loads that give the trapezoidal step of the stiff joints; a
+   * system that cannot be factored has a non-finite state, which the
+   * step's check reports, so the explicit loads stand */
+  if (m->nrigid_block) sw_rigid_joints_kick(m, d, h, d->rigid_load);
   double work = 0;
   for (int b = 0; b < m->nrigid; b++) {
     if (m->rigid_fixed[b]) continue;
     const int r = m->rigid_rod[b], n = m->rod_nelem[r];
     const int na = m->node_adr[r], ea = m->elem_adr[r];
     double *V = d->rigid_V + 3 * b, *L = d->rigid_L + 3 * b, *w = d->rigid_omega + 3 * b;
-    const double *X = d->rigid_X + 3 * b;
-    double F[3] = {0, 0, 0}, tau[3] = {0, 0, 0};
-    for (int i = na; i <= na + n; i++) {
-      double f[3], xi[3], rel[3], mom[3];
-      sw_get3(m, d->force, i, f);
-      sw_get3(m, d->x, i, xi);
-      sw_v3_sub(rel, xi, X);
-      sw_v3_cross(mom, rel, f);
-      sw_v3_add(F, F, f);
-      sw_v3_add(tau, tau, mom);
-    }
-    for (int e = ea; e < ea + n; e++) {
-      double c[3], Q[9], t[3];
-      sw_getQ(m, d->Q, e, Q);
-      sw_get3(m, d->torque, e, t);
-      sw_matT_vec(c, Q, t);
-      sw_v3_add(tau, tau, c);
-    }
+    const double *X = d->rigid_X + 3 * b, *F = d->rigid_load + 6 * b, *tau = F + 3;
     const double hM = h / m->rigid_mass[b];
     for (int k = 0; k < 3; k++) {
       V[k] += hM * F[k];
@@ -475,6 +490,7 @@ double sw_rigid_joint_dt(const swModel *m, int b) {
   const double Imin = m->rigid_inertia[3 * b];
   double w2 = 0, c = damping_rate(m, b);
   for (int j = 0; j < m->njoint; j++) {
+    if (m->joint_implicit[j]) continue; /* rigid_joint.c: no step limit */
     const swJointDesc *jd = &m->joint[j];
     const int s = jd->rod_b >= 0 ? 2 : 1;
     for (int side = 0; side < 2; side++) {

@@ -437,6 +437,10 @@ typedef struct {
   double *joint_rest_rot;    /* (njoint*9) Q_b Q_a^T at t = 0 (two rods)      */
   double *joint_angle0;      /* (njoint)   hinge angle at t = 0, rad         */
   double *joint_wave_dt;     /* (njoint)   stable dt estimate of each joint  */
+  int *joint_implicit;       /* (njoint)   1: between rigid bodies, linearly
+                                           implicit (SW_IMEX, rigid_joint.c) */
+  int *rigid_block;          /* (nrigid)   the body's block in that system, -1 */
+  int nrigid_block;          /* bodies in it                                 */
   /* rigid rods (rigid.c).  A rod with swRodDesc.rigid keeps its nodes and
    * elements in the arrays above and moves as one rigid body b: node
    * x_i = X + R p_i, element frame Q_e = B_e R^T, with R the rotation from the
@@ -578,6 +582,8 @@ typedef struct {
   double *rigid_V;           /* (nrigid*3) its velocity, m/s                   */
   double *rigid_R;           /* (nrigid*9) rotation body -> lab, row-major     */
   double *rigid_L;           /* (nrigid*3) angular momentum about X, lab, kg m^2/s */
+  double *rigid_load;        /* (nrigid*6) a kick's force and torque on each body */
+  double *rigid_sys;         /* the implicit joints' system (rigid_joint.c)    */
   double *rigid_omega;       /* (nrigid*3) angular velocity, lab, rad/s        */
   /* muscles, updated with each force evaluation (activation once a step) */
   double *fil_activation;    /* (nfil)    a_k in [0, 1]                        */

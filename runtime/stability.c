@@ -33,7 +33,8 @@
  * A rigid rod (rigid.c) has no elastic waves: its own bound is its linear
  * damping's alone, and a joint side on it is bounded by the body's effective
  * mass and inertia at the joint, all the body's joints summed
- * (sw_rigid_joint_dt).
+ * (sw_rigid_joint_dt).  A joint between rigid bodies under SW_IMEX is
+ * integrated by the trapezoidal rule (rigid_joint.c) and bounds nothing.
  *
  * The estimate is the oscillator limit times 0.95: the zig-zag analysis
  * ignores the half-mass end nodes, and a shear-hardened rod was measured to
@@ -203,6 +204,7 @@ static double joint_side_dt(const swModel *m, const swJointDesc *jd, int rod, in
 }
 
 double sw_stable_dt_joint(const swModel *m, int j) {
+  if (m->joint_implicit[j]) return INFINITY; /* trapezoidal (rigid_joint.c) */
   const swJointDesc *jd = &m->joint[j];
   int s = m->joint_node_b[j] >= 0 ? 2 : 1;
   double dt = joint_side_dt(m, jd, jd->rod_a, m->joint_node_a[j], m->joint_elem_a[j], s);

@@ -1,0 +1,223 @@
+/* rigid_joint.c — joints between rigid bodies, linearly implicit (SW_IMEX).
+ *
+ * Design.  A joint is a penalty spring-damper (joint.c).  Between two bones
+ * held rigid (rigid.c), or a rigid bone and space, a stiff one (the snake
+ * robot of Zhang et al. 2019, Suppl. Table 9: k = 5e9 N/m) sets a stable
+ * step of h w < 2 with w^2 ~ k / m_eff, nanoseconds for small bones.  Under
+ * integrator = imex those joints are integrated with the trapezoidal rule
+ * instead, inside position Verlet's kick: with u = (V_b, w_b) the bodies'
+ * velocities, M their mass and lab inertia, K and C the joints' tangent
+ * stiffness and damping in u, and F the loads of the kick (the joints'
+ * included, evaluated at the midpoint configuration x_{1/2}),
+ *   (M + h/2 C + h^2/4 K) du = h F.
+ * For a linear spring this is exactly the implicit midpoint rule
+ * (x_{1/2} + h/4 du is the mean of the step's end positions when
+ * x_{1/2} = x_0 + h/2 u_0), which is unconditionally stable, second order
+ * and symplectic; the step no longer sees the joints' frequencies
+ * (stability.c), only what the rest of the scene needs.
+ *
+ * The tangent is the Gauss-Newton part of each joint's loads (the terms
+ * with the load itself times a lever's turn are dropped: they are the load
+ * over the stiffness smaller):
+ *   position spring, gap rate  g' = J_b u_b - J_a u_a,  J = [I, -[r]x],
+ *     r the lever from the body's centre of mass to the joint node:
+ *     K += k J^T J,  C += nu J^T J (signed blocks for the two sides);
+ *   hinge (k_t about the two directions normal to the axis a) and fixed
+ *   (about all three), relative rotation rate w_b - w_a:
+ *     K += k_t P,  C += c_t P,  P = I - a a^T (hinge) or I (fixed).
+ * The system couples the bodies the joints connect; it is symmetric
+ * positive definite, 6 unknowns per body, and is solved by a dense
+ * Cholesky factorisation each kick (a chain of 10 bones: 60 unknowns, about
+ * 7e4 flops).  The bodies' new velocities replace the loads they would have
+ * had (F_eff = M dV / h, tau_eff = I dw / h) and rigid.c's kick goes on as
+ * before.  A joint that touches an elastic rod stays explicit.
+ */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+#include "sinew.h"
+#include "vec.h"
+#include "internal.h"
+
+/* The rigid body on a joint's side (rod, -1 for space), or -1 when that
+ * side is space or a body that never moves. */
+static int moving_body(const swModel *m, int rod) {
+  if (rod < 0 || !sw_rod_is_rigid(m, rod)) return -1;
+  const int b = m->rod_rigid[rod];
+  return m->rigid_fixed[b] ? -1 : b;
+}
+
+/* A side that is space or a fixed body holds still. */
+static int holds_still(const swModel *m, int rod) {
+  return rod < 0 || (sw_rod_is_rigid(m, rod) && m->rigid_fixed[m->rod_rigid[rod]]);
+}
+
+int sw_rigid_joints_setup(swModel *m) {
+  const size_t J = (size_t)(m->njoint ? m->njoint : 1), B = (size_t)(m->nrigid ? m->nrigid : 1);
+  m->joint_implicit = calloc(J, sizeof(int));
+  m->rigid_block = malloc(B * sizeof(int));
+  if (!m->joint_implicit || !m->rigid_block) return 0;
+  for (int b = 0; b < m->nrigid; b++) m->rigid_block[b] = -1;
+  m->nrigid_block = 0;
+  if (m->integrator != SW_IMEX) return 1;
+  for (int j = 0; j < m->njoint; j++) {
+    const swJointDesc *jd = &m->joint[j];
+    const int ba = moving_body(m, jd->rod_a), bb = moving_body(m, jd->rod_b);
+    const int a_ok = ba >= 0 || holds_still(m, jd->rod_a), b_ok = bb >= 0 || holds_still(m, jd->rod_b);
+    if (!a_ok || !b_ok || (ba < 0 && bb < 0)) continue; /* an elastic side, or nothing moves */
+    m->joint_implicit[j] = 1;
+    if (ba >= 0 && m->rigid_block[ba] < 0) m->rigid_block[ba] = m->nrigid_block++;
+    if (bb >= 0 && m->rigid_block[bb] < 0) m->rigid_block[bb] = m->nrigid_block++;
+  }
+  return 1;
+}
+
+void sw_rigid_joints_free(swModel *m) {
+  free(m->joint_implicit);
+  free(m->rigid_block);
+}
+
+/* Doubles of swData's workspace: the matrix and the right-hand side. */
+size_t sw_rigid_joints_scratch(const swModel *m) {
+  const size_t n = 6 * (size_t)m->nrigid_block;
+  return n * n + n;
+}
+
+/* A[rows of s, cols of t] += w * Ms^T Mt, with Ms, Mt 3x6 (row-major). */
+static void add_block(double *A, int n, int s, int t, double w, const double *Ms, const double *Mt) {
+  for (int i = 0; i < 6; i++)
+    for (int k = 0; k < 6; k++) {
+      double sum = 0;
+      for (int c = 0; c < 3; c++) sum += Ms[6 * c + i] * Mt[6 * c + k];
+      A[(size_t)(6 * s + i) * (size_t)n + (size_t)(6 * t + k)] += w * sum;
+    }
+}
+
+/* The side's 3x6 rate maps: position, the node's velocity J = [I, -[r]x];
+ * rotation, the element's angular velocity [0, P]. */
+static void side_maps(const double *r, const double *P, double *Jpos, double *Jrot) {
+  memset(Jpos, 0, 18 * sizeof(double));
+  memset(Jrot, 0, 18 * sizeof(double));
+  for (int c = 0; c < 3; c++) {
+    Jpos[6 * c + c] = 1;
+    for (int k = 0; k < 3; k++) Jrot[6 * c + 3 + k] = P[3 * c + k];
+  }
+  /* -[r]x w = w x r: row c of -[r]x */
+  Jpos[6 * 0 + 4] = r[2], Jpos[6 * 0 + 5] = -r[1];
+  Jpos[6 * 1 + 3] = -r[2], Jpos[6 * 1 + 5] = r[0];
+  Jpos[6 * 2 + 3] = r[1], Jpos[6 * 2 + 4] = -r[0];
+}
+
+/* The joint's lever on a side (node minus the body's centre of mass). */
+static void lever(const swModel *m, const swData *d, int b, int node, double *r) {
+  double x[3];
+  sw_get3(m, d->x, node, x);
+  sw_v3_sub(r, x, d->rigid_X + 3 * b);
+}
+
+/* In place: A = L L^T (lower triangle), then A x = rhs solved into rhs.
+ * Returns 0 if A is not positive definite. */
+static int cholesky_solve(double *A, int n, double *rhs) {
+  for (int j = 0; j < n; j++) {
+    double djj = A[(size_t)j * n + j];
+    for (int k = 0; k < j; k++) djj -= A[(size_t)j * n + k] * A[(size_t)j * n + k];
+    if (!(djj > 0)) return 0;
+    const double ljj = sqrt(djj);
+    A[(size_t)j * n + j] = ljj;
+    for (int i = j + 1; i < n; i++) {
+      double s = A[(size_t)i * n + j];
+      for (int k = 0; k < j; k++) s -= A[(size_t)i * n + k] * A[(size_t)j * n + k];
+      A[(size_t)i * n + j] = s / ljj;
+    }
+  }
+  for (int i = 0; i < n; i++) { /* L y = rhs */
+    double s = rhs[i];
+    for (int k = 0; k < i; k++) s -= A[(size_t)i * n + k] * rhs[k];
+    rhs[i] = s / A[(size_t)i * n + i];
+  }
+  for (int i = n - 1; i >= 0; i--) { /* L^T x = y */
+    double s = rhs[i];
+    for (int k = i + 1; k < n; k++) s -= A[(size_t)k * n + i] * rhs[k];
+    rhs[i] = s / A[(size_t)i * n + i];
+  }
+  return 1;
+}
+
+/* The lab inertia R diag(I) R^T of body b. */
+static void lab_inertia(const swModel *m, const swData *d, int b, double *Il) {
+  const double *R = d->rigid_R + 9 * b, *I = m->rigid_inertia + 3 * b;
+  for (int i = 0; i < 3; i++)
+    for (int k = 0; k < 3; k++)
+      Il[3 * i + k] = R[3 * i] * I[0] * R[3 * k] + R[3 * i + 1] * I[1] * R[3 * k + 1] +
+                      R[3 * i + 2] * I[2] * R[3 * k + 2];
+}
+
+/* load[6 b .. 6 b + 5] = (F, tau) of every moving body, on entry the kick's
+ * loads; on return, for the bodies of the system, the loads that give the
+ * trapezoidal velocities (the header).  Returns 0 if the system could not
+ * be factored (not positive definite: a non-finite state). */
+int sw_rigid_joints_kick(const swModel *m, swData *d, double h, double *load) {
+  const int nb = m->nrigid_block, n = 6 * nb;
+  if (!nb) return 1;
+  double *A = d->rigid_sys, *rhs = d->rigid_sys + (size_t)n * n;
+  memset(A, 0, (size_t)n * n * sizeof(double));
+  for (int b = 0; b < m->nrigid; b++) { /* mass, and the right-hand side h F */
+    const int s = m->rigid_block[b];
+    if (s < 0) continue;
+    double Il[9];
+    lab_inertia(m, d, b, Il);
+    for (int i = 0; i < 3; i++) {
+      A[(size_t)(6 * s + i) * n + 6 * s + i] = m->rigid_mass[b];
+      for (int k = 0; k < 3; k++) A[(size_t)(6 * s + 3 + i) * n + 6 * s + 3 + k] = Il[3 * i + k];
+    }
+    for (int i = 0; i < 6; i++) rhs[6 * s + i] = h * load[6 * b + i];
+  }
+  static const double I3[9] = {1, 0, 0, 0, 1, 0, 0, 0, 1};
+  for (int j = 0; j < m->njoint; j++) {
+    if (!m->joint_implicit[j]) continue;
+    const swJointDesc *jd = &m->joint[j];
+    const int body[2] = {moving_body(m, jd->rod_a), moving_body(m, jd->rod_b)};
+    const int node[2] = {m->joint_node_a[j], m->joint_node_b[j]};
+    /* the rotation's projector: the hinge's axis carried by side a */
+    double P[9];
+    memcpy(P, I3, sizeof P);
+    if (jd->kind == SW_JOINT_HINGE) {
+      double Q[9], ax[3];
+      sw_getQ(m, d->Q, m->joint_elem_a[j], Q);
+      sw_matT_vec(ax, Q, m->joint_axis_a + 3 * j);
+      for (int i = 0; i < 3; i++)
+        for (int k = 0; k < 3; k++) P[3 * i + k] -= ax[i] * ax[k];
+    }
+    const double wpos = 0.25 * h * h * jd->stiffness + 0.5 * h * jd->damping;
+    const double wrot = jd->kind == SW_JOINT_SPHERICAL
+                            ? 0.0 : 0.25 * h * h * jd->rot_stiffness + 0.5 * h * jd->rot_damping;
+    double Jp[2][18], Jr[2][18];
+    for (int side = 0; side < 2; side++) {
+      if (body[side] < 0) continue;
+      double r[3];
+      lever(m, d, body[side], node[side], r);
+      side_maps(r, P, Jp[side], Jr[side]);
+    }
+    for (int s = 0; s < 2; s++)
+      for (int t = 0; t < 2; t++) {
+        if (body[s] < 0 || body[t] < 0) continue;
+        const double sign = s == t ? 1.0 : -1.0; /* rates are side b minus side a */
+        const int bs = m->rigid_block[body[s]], bt = m->rigid_block[body[t]];
+        add_block(A, n, bs, bt, sign * wpos, Jp[s], Jp[t]);
+        if (wrot > 0) add_block(A, n, bs, bt, sign * wrot, Jr[s], Jr[t]);
+      }
+  }
+  if (!cholesky_solve(A, n, rhs)) return 0;
+  for (int b = 0; b < m->nrigid; b++) { /* the loads that give du */
+    const int s = m->rigid_block[b];
+    if (s < 0) continue;
+    double Il[9], dL[3];
+    lab_inertia(m, d, b, Il);
+    sw_mat_vec(dL, Il, rhs + 6 * s + 3);
+    for (int i = 0; i < 3; i++) {
+      load[6 * b + i] = m->rigid_mass[b] * rhs[6 * s + i] / h;
+      load[6 * b + 3 + i] = dL[i] / h;
+    }
+  }
+  return 1;
+}
