@@ -641,7 +641,8 @@ static void print_environments(const swModel *m) {
 }
 
 /* What the scheme treats apart from the explicit kick: rods held rigid and
- * (imex) the implicit terms; filaments a scene could make implicit but whose
+ * (imex) the implicit terms, the filaments' Hill damping and the joints
+ * between rigid bodies; filaments a scene could make implicit but whose
  * scheme keeps explicit are named with the step they cost. */
 static void print_stiff_parts(const swModel *m) {
   char a[64];
@@ -656,6 +657,11 @@ static void print_stiff_parts(const swModel *m) {
   }
   if (nimplicit)
     printf("  linearly implicit: the Hill damping of %d of %d muscle filaments\n", nimplicit, m->nfil);
+  int njimplicit = 0;
+  for (int j = 0; j < m->njoint; j++) njimplicit += m->joint_implicit[j];
+  if (njimplicit)
+    printf("  trapezoidal (implicit): %d of %d joints, those between rigid bodies (%d bodies)\n",
+           njimplicit, m->njoint, m->nrigid_block);
   if (m->nfil > nimplicit) {
     double worst = INFINITY;
     for (int f = 0; f < m->nfil; f++)
