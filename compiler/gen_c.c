@@ -240,8 +240,8 @@ static void emit_build(FILE *out, swArena *a, const swScene *sc) {
     fprintf(out, "  {\n    const double g[3] = {%s, %s, %s};\n    sw_spec_set_gravity(s, g);\n  }\n",
             val_c(a, &sc->gravity, 0), val_c(a, &sc->gravity, 1), val_c(a, &sc->gravity, 2));
   }
-  fprintf(out, "\n  sw_spec_set_integrator(s, %s);\n",
-          sc->integrator == SW_PEFRL ? "SW_PEFRL" : "SW_VERLET");
+  static const char *integrators[] = {"SW_VERLET", "SW_PEFRL", "SW_IMEX"};
+  fprintf(out, "\n  sw_spec_set_integrator(s, %s);\n", integrators[sc->integrator]);
   fputs("  if (!ok) {\n    snprintf(err, errlen, \"out of memory while building the scene\");\n"
         "    return SW_EMODEL;\n  }\n  return SW_OK;\n}\n", out);
 }
@@ -269,8 +269,21 @@ int gen_c(FILE *out, swArena *a, const swScene *sc, const swGenOptions *opt) {
   fputs(" from ", out);
   if (main_src) gen_c_comment(out, main_src->path, strlen(main_src->path));
   fputs(".\n * Do not edit: change the model and compile it again.  Each block of\n"
-        " * build() starts with the model line it comes from. */\n"
-        "#include \"sinew.h\"\n\n", out);
+        " * build() starts with the model line it comes from.", out);
+  if (sc->nlet) {
+    fputs("\n *\n * Compiled with sinewc --let: these lets of the model take the values given\n"
+          " * instead of their own (model_source ends with the same list):", out);
+    for (int i = 0; i < sc->nlet; i++) {
+      char where[512];
+      fputs("\n *   --let ", out);
+      gen_c_comment(out, sc->let[i].text, strlen(sc->let[i].text));
+      fputs("   (the let at ", out);
+      diag_where(sc->let[i].let_loc, where, sizeof where);
+      gen_c_comment(out, where, strlen(where));
+      fputc(')', out);
+    }
+  }
+  fputs(" */\n#include \"sinew.h\"\n\n", out);
   emit_source(out, sc->source ? sc->source : "");
   if (sc->nparam) {
     fputs("/* Params, overridable with --set NAME=VALUE; defaults in SI units.\n"

@@ -130,9 +130,14 @@ const char *sema_word(swSema *S, swScope *scope, const swAst *e, const char *wha
                       const char *const *choices, int nchoices) {
   (void)S;
   (void)scope;
+  /* "verlet, pefrl or imex" */
+  char list[256] = "";
+  for (int i = 0; i < nchoices; i++) {
+    strncat(list, !i ? "" : i + 1 < nchoices ? ", " : " or ", sizeof list - strlen(list) - 1);
+    strncat(list, choices[i], sizeof list - strlen(list) - 1);
+  }
   if (e->kind != AST_NAME) {
-    diag_error(e->loc, "%s expects one of the words %s%s%s", what, choices[0],
-               nchoices > 1 ? " or " : "", nchoices > 1 ? choices[1] : "");
+    diag_error(e->loc, "%s expects one of the words %s", what, list);
     return NULL;
   }
   for (int i = 0; i < nchoices; i++)
@@ -140,14 +145,8 @@ const char *sema_word(swSema *S, swScope *scope, const swAst *e, const char *wha
   const char *near = diag_suggest(e->name, choices, nchoices);
   if (near)
     diag_error(e->loc, "unknown %s '%s'; did you mean '%s'?", what, e->name, near);
-  else {
-    char list[256] = "";
-    for (int i = 0; i < nchoices; i++) {
-      strncat(list, i ? ", " : "", sizeof list - strlen(list) - 1);
-      strncat(list, choices[i], sizeof list - strlen(list) - 1);
-    }
+  else
     diag_error(e->loc, "unknown %s '%s' (expected %s)", what, e->name, list);
-  }
   return NULL;
 }
 

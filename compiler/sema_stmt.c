@@ -297,9 +297,11 @@ void sema_simulate(swSema *S, swScope *scope, const swAst *it) {
   }
   const swAst *integ = sema_field(&f, "integrator");
   if (integ) {
-    static const char *const names[] = {"verlet", "pefrl"};
-    const char *w = sema_word(S, scope, integ, "integrator", names, 2);
-    if (w) sc->integrator = !strcmp(w, "pefrl") ? SW_PEFRL : SW_VERLET;
+    /* in the order of swIntegrator */
+    static const char *const names[] = {"verlet", "pefrl", "imex"};
+    const char *w = sema_word(S, scope, integ, "integrator", names, 3);
+    for (int k = 0; w && k < 3; k++)
+      if (!strcmp(w, names[k])) sc->integrator = (swIntegrator)k;
   }
 }
 

@@ -3,6 +3,9 @@
  *   sinewc MODEL.sinew -o SIM           compile to a standalone simulator
  *   sinewc MODEL.sinew --emit-c -o F.c  write the generated C only
  *   sinewc --check MODEL.sinew          parse and check; diagnostics only
+ *   sinewc ... --let NAME=VALUE         a top-level let of the model takes
+ *                                       VALUE (a number with its unit, or
+ *                                       true or false) instead of its own
  *   sinewc --eval-height MODEL.sinew    the compiler's own height and gradient of
  *                                       each terrain at "x y" lines of stdin
  *
@@ -17,8 +20,10 @@
  * directory holding sinew.h and libsinewrt.a.  Exit codes follow SPEC.md:
  * 0 ok, 1 model error, 2 usage error, 4 I/O error.
  */
+#include <ctype.h>
 #include <errno.h>
 #include <limits.h>
+#include <math.h>
 #include <spawn.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -55,6 +60,11 @@ static void usage(FILE *out) {
           "               instruction set, libsinewrt-portable.a); without it the\n"
           "               simulator is built at -O3 for this machine's CPU\n"
           "  -Werror      treat warnings as errors\n"
+          "  --let NAME=VALUE  give the top-level let NAME of the model this value\n"
+          "               instead of its own, when compiling (repeatable): a number\n"
+          "               with its unit in the let's dimension (--let n=10,\n"
+          "               --let x=3cm), or true or false for a let that holds one;\n"
+          "               recorded in the generated C and in model_source\n"
           "  --eval-height  check, then print each terrain's height and gradient at\n"
           "               the points \"x y\" (m) read from stdin: \"k x y h dh/dx dh/dy\"\n"
           "               (the compiler's evaluator; tests compare it with the C)\n"
@@ -186,22 +196,81 @@ static void print_heights(const swScene *sc) {
     }
 }
 
-int main(int argc, char **argv) {
-  const char *model = NULL, *out = NULL;
-  int emit_c = 0, check = 0, werror = 0, eval_height = 0, portable = 0;
+/* --let NAME=VALUE into o: VALUE a number with its unit, read with the
+ * runtime's parser of quantities (the one --set uses), or true or false.
+ * Returns 0, or 2 after a one-line message. */
+static int read_let(const char *arg, const swLetOverride *given, int ngiven, swLetOverride *o) {
+  const char *eq = arg ? strchr(arg, '=') : NULL;
+  if (!eq || eq == arg) {
+    fprintf(stderr, "%s: --let: expected NAME=VALUE, got '%s'\n", progname, arg ? arg : "");
+    return 2;
+  }
+  size_t len = (size_t)(eq - arg);
+  int name_ok = arg[0] == '_' || (arg[0] >= 'a' && arg[0] <= 'z') || (arg[0] >= 'A' && arg[0] <= 'Z');
+  for (size_t i = 1; i < len; i++)
+    name_ok &= arg[i] == '_' || (arg[i] >= 'a' && arg[i] <= 'z') || (arg[i] >= 'A' && arg[i] <= 'Z') ||
+               (arg[i] >= '0' && arg[i] <= '9');
+  if (!name_ok) {
+    fprintf(stderr, "%s: --let: '%.*s' is not a name (letters, digits and _)\n", progname,
+            (int)len, arg);
+    return 2;
+  }
+  memset(o, 0, sizeof *o);
+  o->name = strndup(arg, len);
+  o->text = arg;
+  if (!o->name) abort();
+  for (int i = 0; i < ngiven; i++)
+    if (!strcmp(given[i].name, o->name)) {
+      fprintf(stderr, "%s: --let %s is given twice ('%s' and '%s')\n", progname, o->name,
+              given[i].text, arg);
+      return 2;
+    }
+  const char *value = eq + 1;
+  o->truth = !strcmp(value, "true") ? 1 : !strcmp(value, "false") ? 0 : -1;
+  if (o->truth >= 0) return 0;
+  char err[256];
+  if (sw_parse_quantity(value, &o->value, o->dim.e, err, sizeof err) == 0 && isfinite(o->value))
+    return 0;
+  if (isalpha((unsigned char)value[0])) {   /* a word, not a number */
+    static const char *const truth[] = {"true", "false"};
+    const char *near = diag_suggest(value, truth, 2);
+    fprintf(stderr, "%s: --let %s: expected a number with its unit, or true or false, got "
+            "'%s'%s%s%s\n", progname, o->name, value, near ? " (did you mean '" : "",
+            near ? near : "", near ? "'?)" : "");
+  } else if (!err[0])
+    fprintf(stderr, "%s: --let %s: '%s' is out of range\n", progname, o->name, value);
+  else fprintf(stderr, "%s: --let %s: %s\n", progname, o->name, err);
+  return 2;
+}
+
+/* What the command line asks for. */
+typedef struct {
+  const char *model, *out;
+  int emit_c, check, werror, eval_height, portable;
+  swLetOverride *lets;        /* (nlets) --let, in the order given          */
+  int nlets;
+} swOptions;
+
+/* The command line into o.  Returns -1 to go on, or the exit code: 0 after
+ * --help or --version, 2 after a usage error (its message printed). */
+static int parse_args(int argc, char **argv, swOptions *o) {
   for (int i = 1; i < argc; i++) {
     const char *a = argv[i];
-    if (!strcmp(a, "-o")) {
+    if (!strcmp(a, "--let")) {
+      int rc = read_let(++i < argc ? argv[i] : NULL, o->lets, o->nlets, &o->lets[o->nlets]);
+      if (o->lets[o->nlets].name) o->nlets++;
+      if (rc) return rc;
+    } else if (!strcmp(a, "-o")) {
       if (++i >= argc) {
         fprintf(stderr, "%s: -o needs a file name\n", progname);
         return 2;
       }
-      out = argv[i];
-    } else if (!strcmp(a, "--emit-c")) emit_c = 1;
-    else if (!strcmp(a, "--check")) check = 1;
-    else if (!strcmp(a, "--portable")) portable = 1;
-    else if (!strcmp(a, "--eval-height")) check = eval_height = 1;
-    else if (!strcmp(a, "-Werror")) werror = 1;
+      o->out = argv[i];
+    } else if (!strcmp(a, "--emit-c")) o->emit_c = 1;
+    else if (!strcmp(a, "--check")) o->check = 1;
+    else if (!strcmp(a, "--portable")) o->portable = 1;
+    else if (!strcmp(a, "--eval-height")) o->check = o->eval_height = 1;
+    else if (!strcmp(a, "-Werror")) o->werror = 1;
     else if (!strcmp(a, "--help") || !strcmp(a, "-h")) {
       usage(stdout);
       return 0;
@@ -210,30 +279,47 @@ int main(int argc, char **argv) {
       return 0;
     } else if (a[0] == '-' && a[1]) {
       static const char *const opts[] = {"-o", "--emit-c", "--check", "-Werror", "--help",
-                                         "--version", "--eval-height", "--portable"};
-      const char *near = diag_suggest(a, opts, 8);
+                                         "--version", "--eval-height", "--portable", "--let"};
+      const char *near = diag_suggest(a, opts, 9);
       fprintf(stderr, "%s: unknown option '%s'%s%s%s\n", progname, a, near ? "; did you mean '" : "",
               near ? near : "", near ? "'?" : "");
       return 2;
-    } else if (model) {
-      fprintf(stderr, "%s: one model at a time ('%s' and '%s')\n", progname, model, a);
+    } else if (o->model) {
+      fprintf(stderr, "%s: one model at a time ('%s' and '%s')\n", progname, o->model, a);
       return 2;
-    } else model = a;
+    } else o->model = a;
   }
-  if (!model) {
+  if (!o->model) {
     usage(stderr);
     return 2;
   }
-  if (!check && !out) {
+  if (!o->check && !o->out) {
     fprintf(stderr, "%s: say where to write: -o SIM (or --check to check only)\n", progname);
     return 2;
   }
-  if (check && (out || emit_c)) {
+  if (o->check && (o->out || o->emit_c)) {
     fprintf(stderr, "%s: --check writes nothing; drop -o and --emit-c\n", progname);
     return 2;
   }
+  return -1;
+}
+
+/* The --let overrides that could not apply, one line each; their count. */
+static int report_lets(const swOptions *o) {
+  int n = 0;
+  for (int i = 0; i < o->nlets; i++)
+    if (o->lets[i].error) {
+      fprintf(stderr, "%s: %s\n", progname, o->lets[i].error);
+      n++;
+    }
+  return n;
+}
+
+/* Check the model, then write the C or build the simulator; the exit code. */
+static int compile(const swOptions *o) {
+  const char *model = o->model, *out = o->out;
   diag_reset(stderr);
-  diag_set_werror(werror);
+  diag_set_werror(o->werror);
   size_t len;
   const char *why;
   int not_text;
@@ -246,10 +332,12 @@ int main(int argc, char **argv) {
   free(text);
   swArena *arena = ast_arena_new();
   swScene scene;
-  sema_check(arena, file, &scene);
+  sema_check_lets(arena, file, o->lets, o->nlets, &scene);
+  /* a --let that cannot apply is a usage error: said first, in one line */
+  int bad_lets = report_lets(o);
   /* a library file (materials, components, no rods) has nothing to run */
-  if (!diag_errors() && scene.nrodid > 0) gen_check(&scene);
-  if (!diag_errors() && scene.nrodid == 0 && !check)
+  if (!diag_errors() && !bad_lets && scene.nrodid > 0) gen_check(&scene);
+  if (!diag_errors() && !bad_lets && scene.nrodid == 0 && !o->check)
     fprintf(stderr, "%s: warning: '%s' defines no rods; the simulator will have nothing to "
             "simulate\n", progname, model);
   int rc = 0;
@@ -258,12 +346,15 @@ int main(int argc, char **argv) {
     fprintf(stderr, "%s: %d error%s, %d warning%s\n", progname, diag_errors(),
             diag_errors() == 1 ? "" : "s", diag_warnings(), diag_warnings() == 1 ? "" : "s");
     rc = 1;
-  } else if (eval_height) {
+  }
+  if (bad_lets) rc = 2;
+  if (rc) goto done;
+  if (o->eval_height) {
     print_heights(&scene);
-  } else if (!check) {
+  } else if (!o->check) {
     char tmp[PATH_MAX];
     const char *cpath = out;
-    if (!emit_c) {
+    if (!o->emit_c) {
       const char *dir = getenv("TMPDIR");
       snprintf(tmp, sizeof tmp, "%s/sinewc-XXXXXX.c", dir && *dir ? dir : "/tmp");
       int fd = mkstemps(tmp, 2);
@@ -288,12 +379,24 @@ int main(int argc, char **argv) {
     if (fclose(f) != 0 || bad) {
       fprintf(stderr, "%s: cannot write '%s'\n", progname, cpath);
       rc = 4;
-    } else if (!emit_c) rc = run_cc(cpath, out, portable);
-    if (!emit_c) unlink(cpath);
+    } else if (!o->emit_c) rc = run_cc(cpath, out, o->portable);
+    if (!o->emit_c) unlink(cpath);
   }
 done:
   sema_scene_free(&scene);
   ast_arena_free(arena);
   diag_reset(NULL);
+  return rc;
+}
+
+int main(int argc, char **argv) {
+  swOptions o;
+  memset(&o, 0, sizeof o);
+  o.lets = calloc((size_t)argc, sizeof *o.lets);
+  if (!o.lets) abort();
+  int rc = parse_args(argc, argv, &o);
+  if (rc < 0) rc = compile(&o);
+  for (int i = 0; i < argc; i++) free((char *)o.lets[i].name);
+  free(o.lets);
   return rc;
 }

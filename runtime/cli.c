@@ -770,7 +770,7 @@ static void print_info(const swCli *c, const swModel *m, double stable, const ch
                                                         : "position Verlet");
   print_stiff_parts(m);
   printf("dt: %s (%s; stable estimate %s)\n", format_time(a, sizeof a, m->dt), dt_source,
-         format_time(b, sizeof b, stable));
+         isfinite(stable) ? format_time(b, sizeof b, stable) : "none: nothing in the scene bounds it");
   print_step_limit(m, stable);
   long nsteps = 0;
   char why[256];
