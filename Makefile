@@ -148,6 +148,7 @@ bench: deps
 	@sh bench/bench_speedup.sh      # the elbow, before issue 10 and now, side by side (~2 min)
 	@sh bench/bench_elbow.sh        # the elbow at 50 ns and at the stable dt (~20 min)
 	@sh bench/bench_snake.sh        # the snake scenes in full (~3 min)
+	@sh bench/bench_stiff.sh        # imex on the elbow and the bone chain (~5 min)
 
 # `make demo`: compile the elbow flexion with sinewc, run it (about a minute),
 # show what the file holds and plot the elbow angle.

@@ -61,6 +61,11 @@ void sema_report_unknown(swSema *S, swScope *scope, const char *name, swLoc loc,
   int n = 0;
   for (swScope *sc = scope; sc; sc = sc->parent)
     for (int i = 0; i < sc->n && n < MAXC; i++) cands[n++] = sc->sym[i]->name;
+  /* a value may also be one of the words that are values of their own */
+  if (!strcmp(what, "name") && n + 2 <= MAXC) {
+    cands[n++] = "true";
+    cands[n++] = "false";
+  }
   const char *near = diag_suggest(name, cands, n);
   /* the suggested definition is what the user meant: do not also call it unused */
   if (near) {

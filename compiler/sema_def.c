@@ -516,9 +516,9 @@ static void eval_rod(swSema *S, swSymbol *sym) {
    * itself, or a let or component parameter holding it, never a param. */
   const swAst *rg = sema_field(&f, "rigid");
   if (rg) {
-    int t = sema_truth(S, sc, rg, "'rigid'");
-    if (t < 0) ok = 0;
-    else r.rigid = t;
+    int truth = sema_truth(S, sc, rg, "'rigid'");
+    if (truth < 0) ok = 0;
+    else r.rigid = truth;
   }
   const swValue *all[] = {&r.youngs, &r.density, &r.shear_modulus, &r.poisson, &r.start,
                           &r.direction, &r.normal, &r.length, &r.radius_start, &r.radius_end,
