@@ -200,9 +200,13 @@ static void print_heights(const swScene *sc) {
  * runtime's parser of quantities (the one --set uses), or true or false.
  * Returns 0, or 2 after a one-line message. */
 static int read_let(const char *arg, const swLetOverride *given, int ngiven, swLetOverride *o) {
-  const char *eq = arg ? strchr(arg, '=') : NULL;
+  if (!arg) {
+    fprintf(stderr, "%s: --let needs NAME=VALUE\n", progname);
+    return 2;
+  }
+  const char *eq = strchr(arg, '=');
   if (!eq || eq == arg) {
-    fprintf(stderr, "%s: --let: expected NAME=VALUE, got '%s'\n", progname, arg ? arg : "");
+    fprintf(stderr, "%s: --let: expected NAME=VALUE, got '%s'\n", progname, arg);
     return 2;
   }
   size_t len = (size_t)(eq - arg);

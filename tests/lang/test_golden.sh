@@ -4,10 +4,13 @@
 #
 #   tests/lang/errors/NAME.sinew     a model with mistakes (its first line, a
 #                                    comment, says which)
+#   tests/lang/errors/NAME.args      optional: more words for the command line
+#                                    (split at blanks), e.g. --let n=3cm
 #   tests/lang/errors/NAME.expected  the exact stderr of
-#                                        cd tests/lang/errors && sinewc --check NAME.sinew
+#                                        cd tests/lang/errors && sinewc --check NAME.sinew ARGS
 #                                    followed by one line "exit: N" with the
-#                                    exit code (1 for errors, 0 for warnings only)
+#                                    exit code (1 for errors, 2 for usage errors,
+#                                    0 for warnings only)
 #   tests/lang/errors/lib/           imported helper files, not cases themselves
 #
 # Each case runs the sanitizer build ($SINEWC_ASAN), so a case also fails on
@@ -32,7 +35,10 @@ trap 'rm -rf "$TMP"' EXIT INT TERM
 
 for src in "$DIR"/*.sinew; do
   name=$(basename "$src" .sinew)
-  (cd "$DIR" && exec timeout 60 "$CHECKER" --check "$name.sinew") >"$TMP/out" 2>"$TMP/got"
+  args=
+  [ -f "$DIR/$name.args" ] && args=$(cat "$DIR/$name.args")
+  # shellcheck disable=SC2086 # the words of NAME.args, split at blanks
+  (cd "$DIR" && set -f && exec timeout 60 "$CHECKER" --check "$name.sinew" $args) >"$TMP/out" 2>"$TMP/got"
   rc=$?
   echo "exit: $rc" >>"$TMP/got"
   if [ -s "$TMP/out" ]; then
