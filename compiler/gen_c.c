@@ -282,6 +282,7 @@ int gen_c(FILE *out, swArena *a, const swScene *sc, const swGenOptions *opt) {
       gen_c_comment(out, where, strlen(where));
       fputc(')', out);
     }
+    fputs("\n", out);
   }
   fputs(" */\n#include \"sinew.h\"\n\n", out);
   emit_source(out, sc->source ? sc->source : "");
