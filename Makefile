@@ -168,6 +168,17 @@ demo: deps
 plots: deps
 	@sh scripts/plots.sh
 
+# `make tradeoff`: speed against accuracy, measured (docs/tradeoff.md): runs
+# scripts/sinew-study over the cantilever, the elbow (four compile-time
+# variants, 0.5 s against Verlet at 50 ns) and the snake, and rewrites the
+# tables of docs/tradeoff.md and docs/img/tradeoff_*.png (~15-20 min; like
+# `make bench`, never part of `make test`).  ELBOW_DURATION=0.1s for a
+# shorter elbow; SCENES="cantilever snake_continuum" for a subset.
+.PHONY: tradeoff
+tradeoff: deps
+	@$(MAKE) --no-print-directory bin/sinewc
+	@sh scripts/tradeoff.sh
+
 # `make install PREFIX=...`: compiler, runtime library and header, models,
 # and the plot tool.
 PREFIX ?= /usr/local
