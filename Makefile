@@ -108,9 +108,9 @@ LANG_TESTS = $(wildcard tests/lang/test_*.sh)
 # End-to-end tests compile models with the sanitizer build of sinewc, run the
 # simulators and check their HDF5 output against closed forms.
 # test_elbow runs the arm scenes of issue 4 with the optimised bin/sinewc (long);
-# test_snake, test_swimmer and test_walker likewise run their example scenes with it.
+# test_snake, test_swimmer, test_walker and test_chain likewise run their example scenes with it.
 E2E_BIN  = build/tests/test_e2e build/tests/test_elbow build/tests/test_snake \
-           build/tests/test_swimmer build/tests/test_walker
+           build/tests/test_swimmer build/tests/test_walker build/tests/test_chain
 $(E2E_BIN): build/tests/test_%: tests/e2e/test_%.c tests/e2e/e2e.h tests/runtime/h5read.h | build/tests
 	$(CC) $(ALL_CFLAGS) -Itests/runtime -Itests/e2e $< -o $@ $(LIBS) -lcmocka
 check: $(TEST_BIN) $(TEST_SBIN) $(E2E_BIN) build/libsinewrt.a build/libsinewrt-portable.a bin/sinewc build/asan/sinewc
@@ -149,6 +149,29 @@ bench: deps
 	@sh bench/bench_elbow.sh        # the elbow at 50 ns and at the stable dt (~20 min)
 	@sh bench/bench_snake.sh        # the snake scenes in full (~3 min)
 	@sh bench/bench_stiff.sh        # imex on the elbow and the bone chain (~5 min)
+
+# `make bench-sundials`: SUNDIALS's ARKODE (IMEX ARKStep, MRIStep) against
+# the imex kick on a 1-D model of a biceps filament between its tendons
+# (bench/eval_sundials.c; the figures and the decision are in
+# docs/dependencies.md).  Optional: libsundials-dev is installed here, when
+# missing, and nowhere else; neither `make test` nor `make bench` needs it.
+# SUNDIALS_SRC=<a SUNDIALS source tree> also runs it against that release
+# built with optimisation (bench/eval_sundials.sh), as Debian's is not.
+SUNDIALS_LIBS = -lsundials_arkode -lsundials_nvecserial -lsundials_sunlinsoldense \
+                -lsundials_sunmatrixdense -lm
+SUNDIALS_SRC ?=
+.PHONY: bench-sundials
+bench-sundials:
+	@[ -e /usr/include/arkode/arkode_arkstep.h ] || { echo "bench-sundials: installing libsundials-dev" >&2; \
+	  SUDO=""; [ "$$(id -u)" = 0 ] || SUDO=sudo; export DEBIAN_FRONTEND=noninteractive; \
+	  $$SUDO apt-get update -qq >/dev/null && \
+	  $$SUDO apt-get install -y -qq --no-install-recommends libsundials-dev >/dev/null; }
+	@$(MAKE) --no-print-directory build/bench/eval_sundials
+	./build/bench/eval_sundials
+	@if [ -n "$(SUNDIALS_SRC)" ]; then sh bench/eval_sundials.sh "$(SUNDIALS_SRC)"; fi
+build/bench/eval_sundials: bench/eval_sundials.c bench/bench_util.h | build/bench
+	$(CC) $(STD) $(WARN) -O3 -march=native -g -DEVAL_SUNDIALS_BUILD='"Debian libsundials-dev"' \
+	  $< -o $@ $(SUNDIALS_LIBS)
 
 # `make demo`: compile the elbow flexion with sinewc, run it (about a minute),
 # show what the file holds and plot the elbow angle.

@@ -340,7 +340,7 @@ void sema_activate(swSema *S, swScope *scope, const swAst *it) {
   if (v.kind != VAL_NUM && v.kind != VAL_SIGNAL) {
     diag_error(v.loc, "an activation is a number from 0 to 1 or a time signal "
                "(e.g. ramp(0, 1, over = 0.1 s)), not %s",
-               v.kind == VAL_VEC ? "a vector" : v.kind == VAL_POINT ? "a point" : "a definition");
+               val_kind_noun(&v));
     return;
   }
   if (!dim_is_none(v.dim)) {

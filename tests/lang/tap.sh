@@ -15,3 +15,11 @@ ok() {     # ok CONDITION_EXIT_CODE DESCRIPTION
 }
 diag() { sed '/^$/d; s/^/# /'; }   # pipe text into TAP comments
 done_testing() { echo "1..$TAP_N"; [ "$TAP_FAILED" -eq 0 ]; }
+# The sanitizer build of sinewc for checking, or the optimised one if it is
+# not built.
+SINEWC_CHECK=$SINEWC_ASAN
+[ -x "$SINEWC_CHECK" ] || SINEWC_CHECK=$SINEWC
+scratch() {   # scratch NAME: a fresh directory $TMP, removed on exit
+  TMP=$(mktemp -d "${TMPDIR:-/tmp}/sinew-$1.XXXXXX") || exit 1
+  trap 'rm -rf "$TMP"' EXIT INT TERM
+}

@@ -5,10 +5,8 @@
 # the muscle filaments' Hill damping implicitly and runs.
 . "$(dirname "$0")/tap.sh"
 cd "$ROOT" || exit 1
-SC=$SINEWC_ASAN
-[ -x "$SC" ] || SC=$SINEWC
-TMP=$(mktemp -d "${TMPDIR:-/tmp}/sinew-imex.XXXXXX") || exit 1
-trap 'rm -rf "$TMP"' EXIT INT TERM
+SC=$SINEWC_CHECK
+scratch imex
 
 M=examples/constructs/imex.sinew
 "$SC" "$M" --emit-c -o "$TMP/imex.c" 2>"$TMP/err"; ok $? "$M compiles to C"

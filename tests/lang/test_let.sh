@@ -13,10 +13,8 @@
 #   golden files, tests/lang/errors/let_*).
 . "$(dirname "$0")/tap.sh"
 cd "$ROOT" || exit 1
-SC=$SINEWC_ASAN
-[ -x "$SC" ] || SC=$SINEWC
-TMP=$(mktemp -d "${TMPDIR:-/tmp}/sinew-let.XXXXXX") || exit 1
-trap 'rm -rf "$TMP"' EXIT INT TERM
+SC=$SINEWC_CHECK
+scratch let
 LIBS="$ROOT/build/libsinewrt.a $(pkg-config --libs hdf5 gsl 2>/dev/null) -lm"
 CFLAGS_RT="-I$ROOT/runtime $(pkg-config --cflags hdf5 gsl 2>/dev/null)"
 
