@@ -22,12 +22,4 @@ T50=$(wall dt50ns 50ns)
 TST=$(wall stable "$STABLE")
 REPORT=$(/usr/bin/python3 scripts/elbow_compare.py $OUT/dt50ns.h5 $OUT/stable.h5 "$T50" "$TST" "$STABLE" "$DUR")
 echo "$REPORT"
-/usr/bin/python3 - "$REPORT" <<'PY'
-import re, sys
-path = "docs/benchmarks.md"
-text = open(path).read()
-section = "## Elbow flexion (issue 4, validation 6)\n\n" + sys.argv[1].strip() + "\n"
-pat = re.compile(r"## Elbow flexion \(issue 4, validation 6\)\n.*?(?=\n## |\Z)", re.S)
-text = pat.sub(section.rstrip("\n"), text) if pat.search(text) else text.rstrip("\n") + "\n\n" + section
-open(path, "w").write(text)
-PY
+/usr/bin/python3 scripts/put_section.py docs/benchmarks.md "Elbow flexion (issue 4, validation 6)" "$REPORT"

@@ -71,12 +71,4 @@ done
 REPORT=$(/usr/bin/python3 scripts/stiff_report.py $OUT "$DUR" "$DURC" "$E_V" "$E_I" "$E_R" "$E_C" \
          "$DT_FINE" "$DT_100" "$DT_1000")
 echo "$REPORT"
-/usr/bin/python3 - "$REPORT" <<'PY'
-import re, sys
-path = "docs/benchmarks.md"
-text = open(path).read()
-section = "## Stiff scenes (issue 11)\n\n" + sys.argv[1].strip() + "\n"
-pat = re.compile(r"## Stiff scenes \(issue 11\)\n.*?(?=\n## |\Z)", re.S)
-text = pat.sub(section.rstrip("\n"), text) if pat.search(text) else text.rstrip("\n") + "\n\n" + section
-open(path, "w").write(text)
-PY
+/usr/bin/python3 scripts/put_section.py docs/benchmarks.md "Stiff scenes (issue 11)" "$REPORT"

@@ -466,10 +466,9 @@ static int shorten_under_load(swIntegrator integ, double factor, double *u_out, 
 
 /* The implicit tension steps past the explicit limit: at 10x the Hill
  * damping's explicit step, position Verlet fails (unstable, or shortening
- * several times too fast) while imex runs, and its
- * shortening rate is the one the force-velocity law gives for the tension it
- * applies and the one the explicit scheme finds at half its limit; the
- * booked energy still balances.  The scheme's stable-dt estimate no longer
+ * several times too fast) while imex runs, and its shortening rate is the
+ * one the force-velocity law gives for the load and the one the explicit
+ * scheme finds at half its limit; the booked energy still balances.  The scheme's stable-dt estimate no longer
  * counts the damping. */
 static void test_implicit_hill(void **state) {
   (void)state;

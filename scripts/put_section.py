@@ -1,0 +1,19 @@
+#!/usr/bin/python3
+"""put_section.py — put a generated section into a Markdown file.
+
+Usage: put_section.py FILE TITLE TEXT
+Replaces the section "## TITLE" of FILE (up to the next "## " heading) with
+TITLE and TEXT, or appends it when FILE has no such section.  The bench
+scripts write their figures into docs/benchmarks.md with it."""
+import re
+import sys
+
+path, title, body = sys.argv[1:4]
+text = open(path).read()
+section = f"## {title}\n\n{body.strip()}\n"
+pat = re.compile(r"## " + re.escape(title) + r"\n.*?(?=\n## |\Z)", re.S)
+if pat.search(text):
+    text = pat.sub(lambda _: section.rstrip("\n"), text)
+else:
+    text = text.rstrip("\n") + "\n\n" + section
+open(path, "w").write(text)
