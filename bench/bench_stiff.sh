@@ -24,8 +24,10 @@ mkdir -p $OUT
 ./bin/sinewc examples/bone_chain.sinew -o $OUT/chain
 ./bin/sinewc examples/bone_chain.sinew -o $OUT/chain_rigid --let rigid_bones=true
 
-estimate() { # SIM [options] -> the stable estimate --info reports, as "1.2us"
-  "$@" --info | sed -n 's/.*stable estimate \([0-9.e+-]*\) \([a-z]*\)).*/\1\2/p'
+estimate() { # SIM [options] -> the stable estimate --info reports, as "1.2us",
+  # less 1e-5 of it: --info rounds it to 6 digits, which may round it up
+  "$@" --info | sed -n 's/.*stable estimate \([0-9.e+-]*\) \([a-z]*\)).*/\1 \2/p' |
+    { read -r v u; printf '%.6g%s\n' "$(echo "$v * 0.99999" | bc -l)" "$u"; }
 }
 wall() { # OUT.h5 SIM [options] -> seconds of wall time
   o=$1; shift
@@ -57,9 +59,10 @@ done
 E_C=$(estimate $OUT/chain)
 FINE=$(echo "$E_C" | sed 's/[a-z]*$//')
 UNIT=$(echo "$E_C" | sed 's/^[0-9.e+-]*//')
-DT_FINE=$(echo "0.9 * $FINE" | bc -l)$UNIT
-DT_100=$(echo "90 * $FINE" | bc -l)$UNIT
-DT_1000=$(echo "900 * $FINE" | bc -l)$UNIT
+times() { printf '%.6g%s' "$(echo "$1 * $FINE" | bc -l)" "$UNIT"; } # FACTOR -> a dt
+DT_FINE=$(times 0.9)
+DT_100=$(times 90)
+DT_1000=$(times 900)
 CREF=$OUT/chain_fine.h5
 wall $CREF $OUT/chain --duration $DURC --dt $DT_FINE --every 0.1ms > $OUT/chain_fine.wall
 : > $OUT/chain.walls
