@@ -192,9 +192,9 @@ plots: deps
 	@sh scripts/plots.sh
 
 # `make tradeoff`: speed against accuracy, measured (docs/tradeoff.md): runs
-# scripts/sinew-study over the cantilever, the elbow (four compile-time
+# scripts/sinew-study over the cantilever, the elbow (five compile-time
 # variants, 0.5 s against Verlet at 50 ns) and the snake, and rewrites the
-# tables of docs/tradeoff.md and docs/img/tradeoff_*.png (~15-20 min; like
+# tables of docs/tradeoff.md and docs/img/tradeoff_*.png (~20-25 min; like
 # `make bench`, never part of `make test`).  ELBOW_DURATION=0.1s for a
 # shorter elbow; SCENES="cantilever snake_continuum" for a subset.
 .PHONY: tradeoff

@@ -93,10 +93,10 @@ for i in verlet pefrl; do
   n=$(grep -c "^| base | $i | \(50\|100\|200\) us | " "$TMP/s/table.md")
   [ "$n" -eq 3 ]; ok $? "table.md: $i at 50, 100 and 200 us"
 done
-grep -q '^| variant | integrator | dt | steps | wall (s) | x faster | tip error (m) | tipz error (m) |$' \
+grep -q '^| variant | integrator | dt | steps | wall (s) | cpu (s) | x faster | tip error (m) | tipz error (m) |$' \
   "$TMP/s/table.md"; ok $? "table.md has the header with one error column per observable"
 cmp -s "$TMP/stdout" "$TMP/s/table.md"; ok $? "the table printed is table.md"
-grep -q '^| base | pefrl | 50 us | 4000 | [0-9.]* | 1 (reference) | 0 m (0 %) | 0 m (0 %) |$' \
+grep -q '^| base | pefrl | 50 us | 4000 | [0-9.]* | [0-9.]* | 1 (reference) | 0 m (0 %) | 0 m (0 %) |$' \
   "$TMP/s/table.md"; ok $? "table.md: the reference row, 4000 steps, error 0"
 [ "$(csv "$TMP/s/table.csv" base pefrl 5e-5 tip_error_m)" = 0 ] &&
   [ "$(csv "$TMP/s/table.csv" base pefrl 5e-5 tip_error_rel)" = 0 ] &&
@@ -122,7 +122,7 @@ is_png "$TMP/s/pareto.png"; ok $? "pareto.png is a PNG of $(wc -c <"$TMP/s/paret
 # code, so that variant must give the base's bits; a --let variant (sinewc
 # --let, which sets a top-level let) changes the scene.
 "$STUDY" "$BEAM" --out "$TMP/u" --sinewc "$SC" --observable "$TIP" --dt 100us,1.5ms \
-  --variant base --variant strict:-Werror --plot "$TMP/u.png" --quiet >"$TMP/stdout" 2>"$TMP/log"
+  --variant base --variant strict:-Werror --plot "$TMP/u.png" --clock cpu --quiet >"$TMP/stdout" 2>"$TMP/log"
 ok $? "a study with a step above the stable limit and a second variant exits 0"
 diag <"$TMP/log"
 [ ! -s "$TMP/stdout" ]; ok $? "--quiet prints nothing"
@@ -130,9 +130,11 @@ for v in base strict; do
   st=$(csv "$TMP/u/table.csv" $v verlet 1.5e-3 status)
   case $st in "unstable at t = "*) r=0 ;; *) r=1 ;; esac
   ok $r "$v at 1.5 ms is recorded as '$st'"
-  grep -q "^| $v | verlet | 1.5 ms | 133 | [0-9.]* (stopped) | - | unstable at t = " "$TMP/u/table.md"
+  grep -q "^| $v | verlet | 1.5 ms | 133 | [0-9.]* (stopped) | [0-9.]* (stopped) | - | unstable at t = " "$TMP/u/table.md"
   ok $? "$v at 1.5 ms: a table row, its wall time marked stopped"
 done
+grep -q '^| variant | integrator | dt | steps | wall (s) | cpu (s) | x faster (cpu) | tip error (m) |$' \
+  "$TMP/u/table.md"; ok $? "--clock cpu: x faster by processor time, said in the header"
 [ "$(csv "$TMP/u/table.csv" base verlet 1e-4 reference)" = 1 ]
 ok $? "the default reference is the base variant's smallest dt"
 [ "$(csv "$TMP/u/table.csv" strict verlet 1e-4 tip_error_m)" = 0 ]
