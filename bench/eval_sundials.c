@@ -20,7 +20,8 @@
  *   ark      ARKODE's ARKStep, additive Runge-Kutta: the tension (and in one
  *            variant the joint springs) implicit, solved by Newton with
  *            SUNDIALS' dense LU (SUNLinSol_Dense, SUNDenseMatrix), the rest
- *            explicit; fixed steps, and adaptive at rtol 1e-6, atol 1e-9;
+ *            explicit; fixed steps, and adaptive at rtol 1e-6, atol 1e-9
+ *            (and the looser 1e-4, 1e-7);
  *   mri      ARKODE's MRIStep: the filament (tension, elasticity, its nodes'
  *            x' = v) fast, integrated by an explicit ARKStep at a step the
  *            damper allows, everything else slow at the fixed slow step.
