@@ -91,7 +91,7 @@ for scene in $SCENES; do
   case $scene in
     cantilever)
       study cantilever --observable 'tip=/rods/beam/position[-1]' \
-        --dt 20us,50us,100us,200us --dt-factors 0.5,0.9,1.1 --integrator verlet,pefrl \
+        --dt 20us,50us,100us,200us --dt-factors 0.5,0.9,1.1,1.5,2 --integrator verlet,pefrl \
         --reference dt=5us,integrator=verlet ;;
     elbow_flexion)
       study elbow_flexion --duration "$ELBOW_DURATION" \
@@ -105,7 +105,7 @@ for scene in $SCENES; do
         --reference dt=50ns,integrator=verlet,variant=base ;;
     snake_continuum)
       study snake_continuum --duration 2s --observable com=/probes/com \
-        --observable head=/probes/head --dt 5us,10us,20us,40us --dt-factors 0.5,0.9,1.1 \
+        --observable head=/probes/head --dt 5us,10us,20us,40us --dt-factors 0.5,0.9,1.1,1.5 \
         --integrator verlet,pefrl --reference dt=1us,integrator=verlet ;;
     *)
       echo "tradeoff: unknown scene '$scene' (cantilever, elbow_flexion, snake_continuum)" >&2
