@@ -73,7 +73,7 @@ study() {
     echo
     cat "$out/table.md"
     echo
-    echo "![$name: relative error of the first observable against wall time](img/tradeoff_$name.png)"
+    echo "![$name: relative error of the first observable against $CLOCK time](img/tradeoff_$name.png)"
   } >"$sec"
   begin="<!-- tradeoff:$name:begin -->" end="<!-- tradeoff:$name:end -->"
   if grep -qF "$begin" "$DOC" 2>/dev/null; then
