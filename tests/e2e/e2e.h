@@ -72,6 +72,15 @@ static inline void simulate(const char *sim, const char *out, ...) {
   assert_int_equal(run(argv), 0);
 }
 
+/* A double attribute of object `obj` ("/" for the root) of the file at `path`. */
+static inline double file_attr(const char *path, const char *obj, const char *name) {
+  hid_t f = H5Fopen(path, H5F_ACC_RDONLY, H5P_DEFAULT);
+  assert_true(f >= 0);
+  double v = read_double_attr_of(f, obj, name);
+  H5Fclose(f);
+  return v;
+}
+
 /* Read a whole double dataset; *count = number of doubles. */
 static inline double *read_dataset(const char *file, const char *path, size_t *count) {
   hid_t f = H5Fopen(file, H5F_ACC_RDONLY, H5P_DEFAULT);

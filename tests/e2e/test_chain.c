@@ -19,15 +19,6 @@ static const char *build(const char *name, const char *let) {
   return out;
 }
 
-/* The root attribute `name` of the file at `path`. */
-static double file_attr(const char *path, const char *name) {
-  hid_t f = H5Fopen(path, H5F_ACC_RDONLY, H5P_DEFAULT);
-  assert_true(f >= 0);
-  double v = read_double_attr(f, name);
-  H5Fclose(f);
-  return v;
-}
-
 /* Largest |a - b| over n rows of `width` values (rows as vectors), and the
  * largest distance of a's rows from its first. */
 static void difference(const double *a, const double *b, size_t n, size_t width, size_t col,
@@ -51,7 +42,7 @@ static void test_stiff_chain(void **state) {
   char ref[512], run_k[2][512];
   snprintf(ref, sizeof ref, "%s/fine.h5", tmpdir);
   simulate(elastic, ref, "--duration", "0.5 ms", "--dt", "0.8 ns", "--every", "0.05 ms", NULL);
-  const double dt_fine = file_attr(ref, "dt");
+  const double dt_fine = file_attr(ref, "/", "dt");
   const char *dts[] = {"80 ns", "800 ns"};
   size_t nt, np;
   double *ang0 = read_dataset(ref, "/joints/base/angle", &nt);
@@ -61,7 +52,7 @@ static void test_stiff_chain(void **state) {
     snprintf(run_k[k], sizeof run_k[k], "%s/imex%d.h5", tmpdir, k);
     simulate(rigid, run_k[k], "--duration", "0.5 ms", "--dt", dts[k], "--every", "0.05 ms",
              "--integrator", "imex", NULL);
-    const double dt = file_attr(run_k[k], "dt");
+    const double dt = file_attr(run_k[k], "/", "dt");
     size_t n1, n2;
     double *ang = read_dataset(run_k[k], "/joints/base/angle", &n1);
     double *pos = read_dataset(run_k[k], "/rods/s8.b/position", &n2);

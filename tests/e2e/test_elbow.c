@@ -23,15 +23,6 @@ static const char *arm_sim(const char *scene, const char *name) {
   return compile_with("bin/sinewc", scene, name);
 }
 
-/* A double attribute of an object of the file at `path`. */
-static double group_attr(const char *path, const char *obj, const char *name) {
-  hid_t f = H5Fopen(path, H5F_ACC_RDONLY, H5P_DEFAULT);
-  assert_true(f >= 0);
-  double v = read_double_attr_of(f, obj, name);
-  H5Fclose(f);
-  return v;
-}
-
 /* f_act of Suppl. eq. 3, written out here independently of the runtime. */
 static double f_act(double eta) {
   return 6.405 * pow(eta, 4) - 24.42 * pow(eta, 3) + 29.64 * eta * eta - 12.01 * eta + 1.385;
@@ -61,7 +52,7 @@ static void test_isokinetic(void **state) {
     double Fk = F[k - 1] + w * (F[k] - F[k - 1]);
     /* shortening rate in rest lengths per second, centred differences */
     double u = -(eta[k + 1] - eta[k - 2]) / (t[k + 1] - t[k - 2]);
-    double Fmax = group_attr(out, grp, "F_max");
+    double Fmax = file_attr(out, grp, "F_max");
     double Fqs = f_act(0.85) * Fmax, a = 0.16 * Fqs, l0 = 1, v = u * l0, v0 = 6 * l0;
     double zeta = (Fqs + a) * Fqs * l0 / (a * v0 + v * Fqs); /* Suppl. eq. 5 */
     fprintf(stderr, "# %s: %s passes eta = 0.85 at t = %.3f s, elbow angle %.1f deg, shortening "
@@ -124,7 +115,7 @@ static void test_reference_dt(void **state) {
   snprintf(stable, sizeof stable, "%s/stable.h5", tmpdir);
   simulate(sim, fine, "--duration", "20 ms", "--dt", "50 ns", NULL);
   simulate(sim, stable, "--duration", "20 ms", NULL);
-  const double dt = group_attr(stable, "/", "dt");
+  const double dt = file_attr(stable, "/", "dt");
   size_t n1, n2;
   double *a1 = read_dataset(fine, "/joints/arm.elbow/angle", &n1);
   double *a2 = read_dataset(stable, "/joints/arm.elbow/angle", &n2);
@@ -156,7 +147,7 @@ static void test_reference_dt(void **state) {
   simulate(rigid_sim, rigid, "--duration", "20 ms", "--integrator", "imex", NULL);
   const char *runs[] = {imex, rigid}, *what[] = {"imex", "imex, rigid bones"};
   for (int k = 0; k < 2; k++) {
-    const double dt_k = group_attr(runs[k], "/", "dt");
+    const double dt_k = file_attr(runs[k], "/", "dt");
     size_t n3;
     double *a3 = read_dataset(runs[k], "/joints/arm.elbow/angle", &n3);
     double *f3 = read_dataset(runs[k], "/muscles/arm.biceps_long/force", &n3);

@@ -62,6 +62,18 @@ static swSpec *clamped_muscle(const swMuscleDesc *md) {
   return s;
 }
 
+/* A clamped muscle (clamped_muscle) whose filament ends carry, shared
+ * equally, a load of half the bundle's peak force along +z. */
+static swSpec *half_loaded_muscle(const swMuscleDesc *md) {
+  swSpec *s = clamped_muscle(md);
+  for (int f = 0; f < md->filaments; f++) {
+    swLoadDesc l = {.kind = SW_LOAD_FORCE, .rod = f, .index = -1, .signal = sw_signal_const(1)};
+    l.vec[2] = 0.5 * fmax_total() / md->filaments;
+    sw_spec_add_load(s, &l);
+  }
+  return s;
+}
+
 /* Axial force the filaments' end nodes exert on whatever holds them (+ = the
  * muscle pulls back toward its start). */
 static double end_pull(const swModel *m, const swData *d) {
@@ -413,12 +425,7 @@ static int shorten_under_load(swIntegrator integ, double factor, double *u_out, 
                               double *imbalance) {
   const int N = 3;
   swMuscleDesc md = muscle_desc(N, 6);
-  swSpec *s = clamped_muscle(&md);
-  for (int f = 0; f < N; f++) {
-    swLoadDesc l = {.kind = SW_LOAD_FORCE, .rod = f, .index = -1, .signal = sw_signal_const(1)};
-    l.vec[2] = 0.5 * fmax_total() / N;
-    sw_spec_add_load(s, &l);
-  }
+  swSpec *s = half_loaded_muscle(&md);
   swModel *m0 = sw_test_compile(s);          /* Verlet: the Hill limit */
   const double dt_hill = sw_stable_dt(m0);
   sw_model_free(m0);
@@ -468,8 +475,8 @@ static int shorten_under_load(swIntegrator integ, double factor, double *u_out, 
  * damping's explicit step, position Verlet fails (unstable, or shortening
  * several times too fast) while imex runs, and its shortening rate is the
  * one the force-velocity law gives for the load and the one the explicit
- * scheme finds at half its limit; the booked energy still balances.  The scheme's stable-dt estimate no longer
- * counts the damping. */
+ * scheme finds at half its limit; the booked energy still balances.  The
+ * scheme's stable-dt estimate no longer counts the damping. */
 static void test_implicit_hill(void **state) {
   (void)state;
   double u_ex, h_ex, i_ex, u_im, h_im, i_im, u_bad, h_bad, i_bad;
@@ -513,12 +520,7 @@ static void test_energy_balance(void **state) {
   (void)state;
   const int N = 3;
   swMuscleDesc md = muscle_desc(N, 6);
-  swSpec *s = clamped_muscle(&md);
-  for (int f = 0; f < N; f++) {
-    swLoadDesc l = {.kind = SW_LOAD_FORCE, .rod = f, .index = -1, .signal = sw_signal_const(1)};
-    l.vec[2] = 0.5 * fmax_total() / N;
-    sw_spec_add_load(s, &l);
-  }
+  swSpec *s = half_loaded_muscle(&md);
   swModel *m = sw_test_compile_at(s, 0.3);
   swData *d = sw_data_new(m);
   double e0[3], e[3], drift = 0;
