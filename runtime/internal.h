@@ -169,7 +169,6 @@ void sw_muscle_reset(const swModel *m, swData *d);
 void sw_muscle_advance(const swModel *m, swData *d, double t, double h);
 void sw_muscle_loads(const swModel *m, swData *d);
 double sw_muscle_tension(const swModel *m, int f, double eta, double edot, double a);
-double sw_muscle_tension_slope(const swModel *m, int f, double eta, double edot, double a);
 double sw_stable_dt_filament(const swModel *m, int f);
 /* Rigid rods (rigid.c).  sw_rigid_setup fills the rigid_* arrays of the
  * model (mass, principal inertia, body-frame nodes and element frames; called

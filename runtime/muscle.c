@@ -475,7 +475,7 @@ double sw_muscle_tension(const swModel *m, int f, double eta, double edot, doubl
 
 /* dT/d(edot) of sw_muscle_tension (1/s -> N s): F_qs g'(u) du/d(edot), with
  * u = -edot, so -F_qs g'(u); 0 beyond u0, constant when lengthening. */
-double sw_muscle_tension_slope(const swModel *m, int f, double eta, double edot, double a) {
+static double tension_slope(const swModel *m, int f, double eta, double edot, double a) {
   const double Fmax = m->fil_fmax[f];
   const double Fqs = a * sw_muscle_f_act(eta) * Fmax + Fmax * sw_muscle_f_pass(eta);
   const double k = m->fil_hill_a[f], u0 = m->fil_v_max[f], u = -edot;
@@ -518,7 +518,7 @@ static void filament_rates(const swModel *m, swData *d, int lo, int hi) {
 static double implicit_tension(const swModel *m, const swData *d, int f, double T0, double eta,
                                double edot, double h) {
   const int r = m->fil_rod[f], lo = m->elem_adr[r], n = m->rod_nelem[r], bits = m->fil_implicit[f];
-  const double c = sw_muscle_tension_slope(m, f, eta, edot, d->fil_activation[f]) / m->fil_l0[f];
+  const double c = tension_slope(m, f, eta, edot, d->fil_activation[f]) / m->fil_l0[f];
   if (!(c > 0)) return T0;
   double p = 0, s = 0, t_before[3] = {0, 0, 0};
   for (int i = 0; i <= n; i++) { /* node lo + i: b_i = t_{i-1} - t_i */
