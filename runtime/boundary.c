@@ -113,7 +113,7 @@ void sw_bc_kick(const swModel *m, swData *d, double h, double t, int lo, int hi,
       }
     }
     if (what & 2) {
-      double e = d->dilatation[elem];
+      double e = sw_inertia_dilatation(m, d, elem);
       for (int c = 0; c < 3; c++) {
         const double T = SW_AT(m, d->torque, elem - so, c), et = SW_AT(m, d->ext_torque, elem - so, c);
         double Je = SW_AT(m, m->inertia, elem, c) / e;
@@ -129,7 +129,9 @@ void sw_bc_kick(const swModel *m, swData *d, double h, double t, int lo, int hi,
 
 /* The clamp domain of boundary condition b: rest curvature zero with respect
  * to the clamp frame.  kappa, couple and the rotation come out; the return
- * value is the end element. */
+ * value is the end element.  The couple follows the rod's law (rod.c): with
+ * Gazzola's B^ kappa / eps^3, with the variational law B^ kappa and the
+ * caller adds its beta term. */
 static int clamp_domain(const swModel *m, const swData *d, const swBCDesc *b,
                         double kappa[3], double couple[3], double *D) {
   int n = m->rod_nelem[b->rod];
@@ -141,7 +143,8 @@ static int clamp_domain(const swModel *m, const swData *d, const swBCDesc *b,
   if (b->end) sw_frame_log(phi, Qe, Qc); else sw_frame_log(phi, Qc, Qe);
   *D = 0.5 * m->rest_len[e];
   /* the end element's own B^ (model.c: clamp_bend) */
-  double eps = d->dilatation[e], inv_eps3 = 1.0 / (eps * eps * eps);
+  double eps = d->dilatation[e];
+  double inv_eps3 = m->rod_law[b->rod] == SW_LAW_VARIATIONAL ? 1.0 : 1.0 / (eps * eps * eps);
   for (int k = 0; k < 3; k++) {
     kappa[k] = phi[k] / *D;
     couple[k] = SW_AT(m, m->clamp_bend, e, k) * kappa[k] * inv_eps3;
@@ -164,6 +167,13 @@ void sw_bc_loads(const swModel *m, swData *d, int lo, int hi, int so) {
     /* as in rod.c: the element before the domain gets +c, the one after -c,
      * and each gets half of kappa x c D^ (the clamp's half is not needed) */
     double sgn = b->end ? 1.0 : -1.0;
+    if (m->rod_law[b->rod] == SW_LAW_VARIATIONAL) {
+      /* the beta term of rod.c's variational couple: c += beta phi x (phi x c) */
+      double kkc[3];
+      sw_v3_cross(kkc, kappa, h);
+      const double beta = sw_dexpinv_beta(D * D * sw_v3_dot(kappa, kappa)) * D * D;
+      for (int i = 0; i < 3; i++) c[i] += beta * kkc[i];
+    }
     for (int i = 0; i < 3; i++) SW_AT(m, d->torque, e - so, i) += sgn * c[i] + 0.5 * h[i] * D;
   }
 }

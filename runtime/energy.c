@@ -4,6 +4,7 @@
  * so clarity beats speed here: the strains are recomputed from the current
  * state by the same kernel the step uses (rod.c), then summed.
  *   kinetic  = sum_nodes m |v|^2 / 2 + sum_elements w . (J^ / e) w / 2
+ *              (J^ alone on the rods of the variational law, rod.c)
  *   elastic  = sum_elements l^ (s - s0) . S^ (s - s0) / 2
  *            + sum_voronoi  D^ (k - k0) . B^ (k - k0) / 2
  * (Gazzola et al. 2018, eq. 2.5 discretised; the same sums as PyElastica's
@@ -33,7 +34,7 @@ void sw_energy(const swModel *m, swData *d, double out[3]) {
       for (int k = 0; k < 3; k++) {
         double w = SW_AT(m, d->omega, e, k);
         double ds = SW_AT(m, d->sigma, e, k) - SW_AT(m, m->rest_sigma, e, k);
-        kin += 0.5 * SW_AT(m, m->inertia, e, k) / d->dilatation[e] * w * w;
+        kin += 0.5 * SW_AT(m, m->inertia, e, k) / sw_inertia_dilatation(m, d, e) * w * w;
         ela += 0.5 * m->rest_len[e] * SW_AT(m, m->shear_stiff, e, k) * ds * ds;
       }
   for (int r = 0; r < m->nrod; r++)

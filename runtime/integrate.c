@@ -127,12 +127,14 @@ static inline swFrame turn_about_d3(swFrame Q, double c, double sn) {
  * sw_rotate_frame.  The rotations s a are scratch, at i - so (internal.h,
  * "Scratch windows"); psi = -(s a)_3 / 2 is recovered from them.  The
  * round-off of the two turns is taken out every few steps (end_step). */
-static inline __attribute__((always_inline)) void drift_frames(const swModel *m, swData *d, double h,
-                                                             int lo, int hi, int so, const int simpson) {
+static inline __attribute__((always_inline)) void drift_frames_law(const swModel *m, swData *d, double h,
+                                                                 int lo, int hi, int so, const int simpson,
+                                                                 const int law) {
   const size_t S = (size_t)m->stride;
   const double *restrict x = d->x, *restrict v = d->v;
   double *restrict w = d->omega, *restrict Q = d->Q, *restrict dil = d->dilatation;
   const double *restrict irl = m->inv_rest_len, *restrict ghost = m->elem_ghost;
+  const double *restrict var = m->elem_variational;
   double *restrict rot = d->scratch_phi;
   int turned = 0; /* frames past the series */
 #pragma omp simd reduction(+ : turned)
@@ -145,8 +147,11 @@ static inline __attribute__((always_inline)) void drift_frames(const swModel *m,
     /* (1/h) integral of e dt over the drift, in units of e_old: Simpson's
      * rule (PEFRL) or the trapezoidal rule (Verlet) */
     const sw3 mid = {dx.x - 0.5 * h * dv.x, dx.y - 0.5 * h * dv.y, dx.z - 0.5 * h * dv.z};
-    const double mean = simpson ? (1.0 + 4.0 * sqrt(sw3_dot(mid, mid)) * irl[i] * inv_e_old + ratio) * (1.0 / 6.0)
-                                : 0.5 * (1.0 + ratio);
+    const double mean_e = simpson ? (1.0 + 4.0 * sqrt(sw3_dot(mid, mid)) * irl[i] * inv_e_old + ratio) * (1.0 / 6.0)
+                                  : 0.5 * (1.0 + ratio);
+    /* a variational rod's inertia is J^, not J^ / e: w = J^-1 L stays */
+    const int fixed_inertia = law && var[i] != 0.0;
+    const double mean = fixed_inertia ? 1.0 : mean_e, scale = fixed_inertia ? 1.0 : ratio;
     const double sh = h * mean;
     const sw3 wi = sw3_load(w, S, i), phi = {sh * wi.x, sh * wi.y, 2.0 * sh * wi.z};
     const double psi = -sh * wi.z; /* |psi| <= |phi| / 2: small with phi */
@@ -163,7 +168,7 @@ static inline __attribute__((always_inline)) void drift_frames(const swModel *m,
     sw3_store(rot, S, i - so, phi);
     turned += !small;
     const double cw = small ? c : 1.0, sw = small ? sn : 0.0;
-    sw3_store(w, S, i, sw3_scale((sw3){cw * wi.x + sw * wi.y, cw * wi.y - sw * wi.x, wi.z}, ratio));
+    sw3_store(w, S, i, sw3_scale((sw3){cw * wi.x + sw * wi.y, cw * wi.y - sw * wi.x, wi.z}, scale));
     dil[i] = e_new;
   }
   if (!turned) return;
@@ -182,19 +187,28 @@ static inline __attribute__((always_inline)) void drift_frames(const swModel *m,
   }
 }
 
+/* drift_frames_law for the model's laws: a model without variational rods
+ * runs a loop that has no trace of them. */
+static inline __attribute__((always_inline)) void drift_frames(const swModel *m, swData *d, double h,
+                                                             int lo, int hi, int so, const int simpson) {
+  if (m->nvariational) drift_frames_law(m, d, h, lo, hi, so, simpson, 1);
+  else drift_frames_law(m, d, h, lo, hi, so, simpson, 0);
+}
+
 /* Velocities of the elastic slots [lo, hi) under the loads (scratch, at
  * i - so), and the work booked over the kick (see kick()) slot by slot into
  * work[i] (summed by chunk in kick(), so that the sum does not depend on
  * the threads).  One loop per kind of model: with `exact_any` 0 (no rod
  * integrates its damping exactly, the common case) the loop carries no
  * exact path at all. */
-static inline __attribute__((always_inline)) void kick_slots(const swModel *m, swData *d, double h,
-                                                           int lo, int hi, int so, double *restrict work,
-                                                           const int exact_any) {
+static inline __attribute__((always_inline)) void kick_slots_law(const swModel *m, swData *d, double h,
+                                                               int lo, int hi, int so, double *restrict work,
+                                                               const int exact_any, const int law) {
   const size_t S = (size_t)m->stride;
   const double *restrict im = m->inv_mass, *restrict mass = m->mass;
   const double *restrict ndec = m->node_decay, *restrict nkick = m->node_kick;
-  const double *restrict exact = m->kick_exact, *restrict e = d->dilatation;
+  const double *restrict exact = m->kick_exact, *restrict dil = d->dilatation;
+  const double *restrict var = m->elem_variational;
   for (int k = 0; k < 3; k++) {
     double *restrict v = d->v + k * S, *restrict w = d->omega + k * S;
     const double *restrict F = d->force + k * S, *restrict T = d->torque + k * S;
@@ -216,17 +230,24 @@ static inline __attribute__((always_inline)) void kick_slots(const swModel *m, s
       /* elements: (J^/e) dw/dt = tau (Gazzola 2018, eq. 3.7b, the couples
        * of rod.c without the dilatation-rate term, which the drift
        * integrates) */
-      const double wo = w[i];
-      const double wd = wo * edec[i] + Ti * iJ[i] * e[i] * ekick[i], wp = wo + h * Ti * iJ[i] * e[i];
+      const double wo = w[i], e = law && var[i] != 0.0 ? 1.0 : dil[i]; /* sw_inertia_dilatation */
+      const double wd = wo * edec[i] + Ti * iJ[i] * e * ekick[i], wp = wo + h * Ti * iJ[i] * e;
       const double wn = ex ? wd : wp;
       w[i] = wn;
       /* the midpoint rule, h F . (v_old + v_new) / 2 */
       const double booked = ex ? 0.5 * ((mass[i] * (vn - vo) - h * (Fi - efi)) * (vo + vn) +
-                                        (J[i] / e[i] * (wn - wo) - h * (Ti - eti)) * (wo + wn))
+                                        (J[i] / e * (wn - wo) - h * (Ti - eti)) * (wo + wn))
                                : 0.5 * h * (efi * (vo + vn) + eti * (wo + wn));
       work[i] = k ? work[i] + booked : booked;
     }
   }
+}
+
+static inline __attribute__((always_inline)) void kick_slots(const swModel *m, swData *d, double h,
+                                                           int lo, int hi, int so, double *restrict work,
+                                                           const int exact_any) {
+  if (m->nvariational) kick_slots_law(m, d, h, lo, hi, so, work, exact_any, 1);
+  else kick_slots_law(m, d, h, lo, hi, so, work, exact_any, 0);
 }
 
 /* Sum of work[lo, hi). */
@@ -388,7 +409,7 @@ static void analytic_decay_serial(const swModel *m, swData *d) {
       for (int k = 0; k < 3; k++) {
         double w = SW_AT(m, d->omega, e, k), f = SW_AT(m, m->elem_decay, e, k);
         SW_AT(m, d->omega, e, k) = f * w;
-        lost += 0.5 * SW_AT(m, m->inertia, e, k) / d->dilatation[e] * w * w * (1 - f * f);
+        lost += 0.5 * SW_AT(m, m->inertia, e, k) / sw_inertia_dilatation(m, d, e) * w * w * (1 - f * f);
       }
   }
   d->work -= lost;

@@ -108,6 +108,13 @@ void sw_external_loads_slots(const swModel *m, swData *d, int lo, int hi, int so
  * its end (slots [lo, hi)); the kick's work of condition k into work[k]. */
 void sw_bc_kick(const swModel *m, swData *d, double h, double t, int lo, int hi, int so, double *work);
 void sw_bc_loads(const swModel *m, swData *d, int lo, int hi, int so);
+
+/* The dilatation that divides element e's rotational inertia: J^ / e on
+ * Gazzola's rods, J^ alone on variational ones (rod.c, Simo's kinetic
+ * energy). */
+static inline double sw_inertia_dilatation(const swModel *m, const swData *d, int e) {
+  return m->nvariational && m->elem_variational[e] != 0.0 ? 1.0 : d->dilatation[e];
+}
 /* The slot of the end node a condition holds. */
 static inline int sw_bc_node(const swModel *m, const swBCDesc *b) {
   return m->node_adr[b->rod] + (b->end ? m->rod_nelem[b->rod] : 0);

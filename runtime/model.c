@@ -198,6 +198,8 @@ static int check_rod(const swRodDesc *r, char *err, size_t errlen) {
     return sw_fail(err, errlen, "rod '%s': unknown damping kind %d", nm, (int)r->damping);
   if (r->rigid != 0 && r->rigid != 1)
     return sw_fail(err, errlen, "rod '%s': rigid must be 0 or 1, got %d", nm, r->rigid);
+  if (r->law != SW_LAW_GAZZOLA && r->law != SW_LAW_VARIATIONAL)
+    return sw_fail(err, errlen, "rod '%s': unknown constitutive law %d", nm, (int)r->law);
   if (r->rigid && r->damping == SW_DAMP_ANALYTIC && r->gamma > 0)
     return sw_fail(err, errlen, "rod '%s': analytic damping is not supported on a rigid rod "
                 "(use linear damping)", nm);
@@ -257,12 +259,12 @@ void sw_model_free(swModel *m) {
   if (!m) return;
   for (int r = 0; r < m->nrod; r++) free(m->rod_name[r]);
   free(m->rod_name); free(m->rod_nelem); free(m->node_adr); free(m->elem_adr);
-  free(m->vor_adr); free(m->rod_wave_dt); free(m->rod_damping);
+  free(m->vor_adr); free(m->rod_wave_dt); free(m->rod_damping); free(m->rod_law);
   free(m->mass); free(m->inv_mass); free(m->node_gamma); free(m->node_decay); free(m->elem_decay); free(m->node_kick); free(m->elem_kick); free(m->x0);
   free(m->rest_len); free(m->inv_rest_len); free(m->radius); free(m->shear_stiff); free(m->inertia);
   free(m->inv_inertia); free(m->rest_sigma); free(m->elem_gamma); free(m->Q0); free(m->clamp_bend);
   free(m->rest_vor_len); free(m->bend_stiff); free(m->rest_kappa);
-  free(m->elem_ghost); free(m->kick_exact); free(m->damp_linear); free(m->inv_rest_vor_len);
+  free(m->elem_ghost); free(m->elem_variational); free(m->kick_exact); free(m->damp_linear); free(m->inv_rest_vor_len);
   free(m->load); free(m->bc);
   for (int j = 0; j < m->njoint; j++) free(m->joint_name[j]);
   free(m->joint); free(m->joint_name); free(m->joint_node_a); free(m->joint_node_b);
@@ -458,9 +460,10 @@ swModel *sw_compile(const swSpec *s, char *err, size_t errlen) {
   m->elem_adr = calloc((size_t)nr, sizeof(int));
   m->vor_adr = calloc((size_t)nr, sizeof(int));
   m->rod_damping = calloc((size_t)nr, sizeof(swDampingKind));
+  m->rod_law = calloc((size_t)nr, sizeof(swLaw));
   m->rod_wave_dt = dalloc((size_t)nr);
   if (!m->rod_name || !m->rod_nelem || !m->node_adr || !m->elem_adr || !m->vor_adr ||
-      !m->rod_damping || !m->rod_wave_dt)
+      !m->rod_damping || !m->rod_law || !m->rod_wave_dt)
     goto oom;
   /* Slots: elastic rods first, in rod order, then rigid ones, so the rod
    * kernels run one loop over [0, nslot_elastic) (sinew.h, "Layout"). */
@@ -479,6 +482,9 @@ swModel *sw_compile(const swSpec *s, char *err, size_t errlen) {
       m->nvor += n - 1;
       m->rod_damping[r] = s->rod[r].gamma > 0 ? s->rod[r].damping : SW_DAMP_NONE;
       if (m->rod_damping[r] != SW_DAMP_NONE) m->has_damping = 1;
+      m->rod_law[r] = s->rod[r].law;
+      /* a rigid rod has no internal loads, so no law to apply */
+      m->nvariational += !pass && s->rod[r].law == SW_LAW_VARIATIONAL;
     }
   m->stride = (m->nslot + 2 + 7) / 8 * 8;
   /* Chunks of the threaded kernels (internal.h): at most 32 over the elastic
@@ -491,8 +497,8 @@ swModel *sw_compile(const swSpec *s, char *err, size_t errlen) {
   m->inertia = palloc(m, 3); m->inv_inertia = palloc(m, 3); m->rest_sigma = palloc(m, 3);
   m->elem_gamma = palloc(m, 3); m->elem_decay = palloc(m, 3); m->elem_kick = palloc(m, 3); m->Q0 = palloc(m, 9); m->clamp_bend = palloc(m, 3);
   m->rest_vor_len = palloc(m, 1); m->bend_stiff = palloc(m, 3); m->rest_kappa = palloc(m, 3);
-  m->elem_ghost = palloc(m, 1); m->kick_exact = palloc(m, 1); m->damp_linear = palloc(m, 1); m->inv_rest_vor_len = palloc(m, 1);
-  if (!m->elem_ghost || !m->kick_exact || !m->damp_linear || !m->inv_rest_vor_len ||!m->mass || !m->inv_mass || !m->node_gamma || !m->node_decay || !m->elem_decay || !m->node_kick || !m->elem_kick || !m->x0 || !m->rest_len || !m->inv_rest_len || !m->radius ||
+  m->elem_ghost = palloc(m, 1); m->elem_variational = palloc(m, 1); m->kick_exact = palloc(m, 1); m->damp_linear = palloc(m, 1); m->inv_rest_vor_len = palloc(m, 1);
+  if (!m->elem_ghost || !m->elem_variational || !m->kick_exact || !m->damp_linear || !m->inv_rest_vor_len ||!m->mass || !m->inv_mass || !m->node_gamma || !m->node_decay || !m->elem_decay || !m->node_kick || !m->elem_kick || !m->x0 || !m->rest_len || !m->inv_rest_len || !m->radius ||
       !m->shear_stiff || !m->inertia || !m->inv_inertia || !m->rest_sigma || !m->elem_gamma ||
       !m->Q0 || !m->clamp_bend || !m->rest_vor_len || !m->bend_stiff || !m->rest_kappa)
     goto oom;
@@ -527,6 +533,7 @@ swModel *sw_compile(const swSpec *s, char *err, size_t errlen) {
     for (int i = 0; i < n; i++) {
       int e = ea + i;
       m->elem_ghost[e] = 0.0;
+      m->elem_variational[e] = rd->law == SW_LAW_VARIATIONAL && !rd->rigid;
       double dx[3];
       sw_v3_sub(dx, x + 3 * (i + 1), x + 3 * i);
       double l = sw_v3_norm(dx);

@@ -232,6 +232,7 @@ int sw_spec_add_muscle(swSpec *s, const swMuscleDesc *md) {
     r.poisson = md->poisson;
     r.shear_hardening = md->shear_hardening;
     r.twist_hardening = md->twist_hardening;
+    r.law = md->law;
     r.damping = md->damping;
     r.gamma = md->gamma;
     int rod = sw_spec_add_rod(s, &r);

@@ -36,6 +36,28 @@
  * Q_i x_s,i l^_i = Q_i (x_{i+1} - x_i) = l^_i (sigma_i + d3), which is how the
  * shear couple is formed below.  The same constitutive law (S = S^/e,
  * B = B^/eps^3 at the Voronoi domains) is used by PyElastica.
+ *
+ * The variational law (SW_LAW_VARIATIONAL, per rod) makes every internal
+ * load the exact negative gradient of the energy sw_energy reports,
+ *   U = sum_i l^_i (s_i - s0_i).S^_i (s_i - s0_i) / 2
+ *     + sum_j D^_j (k_j - k0_j).B^_j (k_j - k0_j) / 2:
+ *   n_i  = S^_i (sigma_i - sigma0_i)              (no 1/e)
+ *   c_j  = B^_j (kappa_j - kappa0_j)              (no 1/eps^3)
+ * and, with phi_j = kappa_j D^_j and Q_{j+1} Q_j^T = exp(-[phi_j]x), a turn
+ * of element j or j+1 by a small b (material frame) moves phi_j by
+ * -J_l^-1(phi_j) b or J_r^-1(phi_j) b (the inverse Jacobians of the SO(3)
+ * exponential, vec.h), so the couples are
+ *   tau_j     += J_r^-T c_j =  c_j + phi_j x c_j / 2 + beta phi_j x (phi_j x c_j)
+ *   tau_{j+1} -= J_l^-T c_j = -c_j + phi_j x c_j / 2 - beta phi_j x (phi_j x c_j).
+ * Gazzola's Delta^h(c) + A^h(kappa x c D^) is this without the beta term (it
+ * is O(phi^2) smaller), so the gather stays one: the pass stores
+ * c + beta phi x (phi x c) where it stored c.  The force and shear couple
+ * keep their form.  The kinetic energy that goes with it is Simo's (Simo,
+ * Comput. Methods Appl. Mech. Eng. 49 (1985) 55): the rotational inertia
+ * J^ per element is that of the rest section and does not follow e, so
+ * the drift turns a variational element at w = J^-1 L and the kick divides
+ * by J^ (integrate.c, sw_inertia_dilatation); with Gazzola's J^ / e the
+ * rotational kinetic energy would depend on the positions and push on them.
  */
 #include <string.h>
 #include "sinew.h"
@@ -58,21 +80,32 @@ static inline double elem_length(vorArrays a, size_t S, int i) {
 }
 
 /* Domain i from its curvature kv = kappa (1/m) and the lengths l, l1 of its
- * two elements: c = B^ (kappa - kappa0) / eps^3 with eps = (l + l1) / (2 D^),
- * and half the transport couple kappa x c D^ / 2. */
-static inline void domain_couple(vorArrays a, size_t S, int i, sw3 kv, double l, double l1) {
+ * two elements.  Gazzola (law 0): c = B^ (kappa - kappa0) / eps^3 with
+ * eps = (l + l1) / (2 D^); variational (law 1 and var != 0):
+ * c = B^ (kappa - kappa0), stored as c + beta phi x (phi x c) with
+ * phi = kappa D^ and beta from vec.h (the caller's: series or exact).  Both
+ * store half the transport couple, kappa x c D^ / 2. */
+static inline void domain_couple(vorArrays a, size_t S, int i, sw3 kv, double l, double l1, int law,
+                                 int var, double beta) {
   const double inv_D = a.iD[i];
   const double eps = 0.5 * (l + l1) * inv_D;
-  const double inv_eps3 = 1.0 / (eps * eps * eps);
+  const double inv_eps3 = law && var ? 1.0 : 1.0 / (eps * eps * eps);
   const sw3 Bi = sw3_load(a.B, S, i), kv0 = sw3_load(a.k0, S, i);
   const sw3 c = {Bi.x * (kv.x - kv0.x) * inv_eps3, Bi.y * (kv.y - kv0.y) * inv_eps3,
                  Bi.z * (kv.z - kv0.z) * inv_eps3};
   const int j = i - a.so; /* scratch */
   sw3_store(a.kap, S, j, kv);
-  sw3_store(a.cpl, S, j, c);
   a.vdil[j] = eps;
   const sw3 h = sw3_cross(kv, c);
   sw3_store(a.hh, S, j, (sw3){0.5 * h.x * a.D[i], 0.5 * h.y * a.D[i], 0.5 * h.z * a.D[i]});
+  if (law) {
+    /* beta phi x (phi x c) = beta D^2 kappa x (kappa x c), zero on Gazzola's domains */
+    const double b = var ? beta * a.D[i] * a.D[i] : 0.0;
+    const sw3 kkc = sw3_cross(kv, h);
+    sw3_store(a.cpl, S, j, (sw3){c.x + b * kkc.x, c.y + b * kkc.y, c.z + b * kkc.z});
+  } else {
+    sw3_store(a.cpl, S, j, c);
+  }
 }
 
 /* Element pass and Voronoi pass over slots [lo, hi): element i, then the
@@ -84,12 +117,16 @@ static inline void domain_couple(vorArrays a, size_t S, int i, sw3 kv, double l,
  * loop with the exact logarithm, which gives every domain the bits of
  * vec.h's sw_frame_log. */
 /* Element pass over slots [lo, hi): strain, internal force, Q^T n, the
- * element's own couples (scratch at i - so, internal.h "Scratch windows"). */
-static void element_pass(const swModel *m, swData *d, int lo, int hi, int so) {
+ * element's own couples (scratch at i - so, internal.h "Scratch windows").
+ * law = 0: Gazzola's law on every slot; law = 1: each slot by its rod's
+ * (elem_variational).  Called with a constant law, so each is compiled
+ * apart and Gazzola's loop does none of the variational law's work. */
+static inline __attribute__((always_inline)) void element_pass_law(const swModel *m, swData *d, int lo,
+                                                                   int hi, int so, const int law) {
   const size_t S = (size_t)m->stride;
   const double *restrict x = d->x, *restrict Q = d->Q;
   const double *restrict rl = m->rest_len, *restrict irl = m->inv_rest_len;
-  const double *restrict ghost = m->elem_ghost;
+  const double *restrict ghost = m->elem_ghost, *restrict var = m->elem_variational;
   const double *restrict Sh = m->shear_stiff, *restrict s0 = m->rest_sigma;
   double *restrict len = d->length, *restrict dil = d->dilatation;
   double *restrict sig = d->sigma, *restrict str = d->stress, *restrict T = d->torque;
@@ -100,13 +137,15 @@ static void element_pass(const swModel *m, swData *d, int lo, int hi, int so) {
     const double l = ghost[i] != 0.0 ? 1.0 : sqrt(sw3_dot(dx, dx));
     const double inv_l = 1.0 / l, inv_rl = irl[i];
     const double e = l * inv_rl, inv_e = rl[i] * inv_l;
+    const int v = law && var[i] != 0.0;
+    const double inv_e_law = v ? 1.0 : inv_e;
     const swFrame Qi = sw_frame_load(Q, S, i);
     const sw3 Qdx = sw_frame_apply(Qi, dx);
-    /* sigma = Q dx / l^ - d3,  n = S^ (sigma - sigma0) / e */
+    /* sigma = Q dx / l^ - d3,  n = S^ (sigma - sigma0) / e (variational: no 1/e) */
     const sw3 sg = {Qdx.x * inv_rl, Qdx.y * inv_rl, Qdx.z * inv_rl - 1.0};
     const sw3 S_ = sw3_load(Sh, S, i), sg0 = sw3_load(s0, S, i);
-    const sw3 nm = {S_.x * (sg.x - sg0.x) * inv_e, S_.y * (sg.y - sg0.y) * inv_e,
-                    S_.z * (sg.z - sg0.z) * inv_e};
+    const sw3 nm = {S_.x * (sg.x - sg0.x) * inv_e_law, S_.y * (sg.y - sg0.y) * inv_e_law,
+                    S_.z * (sg.z - sg0.z) * inv_e_law};
     const int j = i - so;
     sw3_store(sig, S, j, sg);
     sw3_store(str, S, j, nm);
@@ -124,10 +163,13 @@ static void element_pass(const swModel *m, swData *d, int lo, int hi, int so) {
  * kappa = log(Q_{i+1} Q_i^T) / D^ (a ghost domain's is never used: its
  * stiffness is zero), the bending couple and the transport term; returns
  * how many real domains were bent past the logarithm's series (flagged in
- * flag[i - so]). */
-static int voronoi_pass(const swModel *m, swData *d, int lo, int hi, int so, double *restrict flag) {
+ * flag[i - so]).  law as for the element pass. */
+static inline __attribute__((always_inline)) int voronoi_pass_law(const swModel *m, swData *d, int lo, int hi,
+                                                                  int so, double *restrict flag,
+                                                                  const int law) {
   const size_t S = (size_t)m->stride;
   const double *restrict Q = d->Q, *restrict ghost = m->elem_ghost, *restrict len = d->length;
+  const double *restrict var = m->elem_variational;
   const vorArrays va = {d->x, ghost, m->rest_vor_len, m->inv_rest_vor_len, m->bend_stiff, m->rest_kappa,
                         d->kappa, d->couple, d->vor_dilatation, d->scratch_h, so};
   int bent = 0;
@@ -138,9 +180,20 @@ static int voronoi_pass(const swModel *m, swData *d, int lo, int hi, int so, dou
     const int redo = (lg.small == 0) & (ghost[i] == 0.0) & (ghost[i + 1] == 0.0);
     flag[i - so] = redo;
     bent += redo;
-    domain_couple(va, S, i, kv, len[i - so], elem_length(va, S, i + 1));
+    const double beta = law ? sw_dexpinv_beta_small(sw3_dot(lg.phi, lg.phi)) : 0.0;
+    domain_couple(va, S, i, kv, len[i - so], elem_length(va, S, i + 1), law, law && var[i] != 0.0, beta);
   }
   return bent;
+}
+
+static void element_pass(const swModel *m, swData *d, int lo, int hi, int so) {
+  if (m->nvariational) element_pass_law(m, d, lo, hi, so, 1);
+  else element_pass_law(m, d, lo, hi, so, 0);
+}
+
+static int voronoi_pass(const swModel *m, swData *d, int lo, int hi, int so, double *restrict flag) {
+  return m->nvariational ? voronoi_pass_law(m, d, lo, hi, so, flag, 1)
+                         : voronoi_pass_law(m, d, lo, hi, so, flag, 0);
 }
 
 /* Element pass and Voronoi pass over slots [lo, hi), block by block, so
@@ -172,7 +225,9 @@ void sw_rod_pass(const swModel *m, swData *d, int lo, int hi, int so, double *fl
     sw_frame_log(phi, Qa, Qb);
     const double inv_D = m->inv_rest_vor_len[i];
     const sw3 kv = {phi[0] * inv_D, phi[1] * inv_D, phi[2] * inv_D};
-    domain_couple(va, S, i, kv, len[i - so], elem_length(va, S, i + 1));
+    const int var = m->nvariational && m->elem_variational[i] != 0.0;
+    const double beta = var ? sw_dexpinv_beta(sw_v3_dot(phi, phi)) : 0.0;
+    domain_couple(va, S, i, kv, len[i - so], elem_length(va, S, i + 1), var, var, beta);
   }
 }
 

@@ -52,6 +52,14 @@ typedef enum { SW_VERLET = 0, SW_PEFRL = 1, SW_IMEX = 2 } swIntegrator;
 enum { SW_FIL_IMPLICIT = 1, SW_FIL_HELD_START = 2, SW_FIL_HELD_END = 4 }; /* swModel.fil_implicit */
 typedef enum { SW_DAMP_NONE = 0, SW_DAMP_LINEAR = 1, SW_DAMP_ANALYTIC = 2 } swDampingKind;
 
+/* The rods' constitutive law (rod.c).  SW_LAW_GAZZOLA is the law of Gazzola
+ * et al. 2018 and PyElastica: n = S^ (s - s0) / e, c = B^ (k - k0) / eps^3,
+ * whose stiffness follows the cross-section as the rod stretches; it is not
+ * the gradient of an energy.  SW_LAW_VARIATIONAL is the hyperelastic law of
+ * the energy sw_energy reports, sum l^ (s-s0).S^(s-s0)/2 + D^ (k-k0).B^(k-k0)/2:
+ * every internal force and couple is its exact negative gradient. */
+typedef enum { SW_LAW_GAZZOLA = 0, SW_LAW_VARIATIONAL = 1 } swLaw;
+
 /* ---- time signals: scalar functions of time that scale loads and BCs ---- */
 typedef enum {
   SW_SIG_CONST = 0, /* value = a                                              */
@@ -104,6 +112,7 @@ typedef struct {
   double rest_sigma[3];       /* uniform rest shear/stretch strain        */
   swDampingKind damping;
   double gamma;               /* force dissipation, kg m^-1 s^-1 (Zhang 2019) */
+  swLaw law;                  /* constitutive law (0: Gazzola 2018)       */
   int rigid;                  /* 1: the rod moves as one rigid body (rigid.c):
                                  no deformation, so its stiffness sets no
                                  stable-dt limit; mass and inertia as if it
@@ -203,6 +212,7 @@ typedef struct {
   double radius;              /* whole muscle at rest, A = pi radius^2, m     */
   double density, youngs, shear_modulus, poisson; /* filament tissue (as rods) */
   double shear_hardening, twist_hardening;
+  swLaw law;                  /* the filaments' constitutive law              */
   swDampingKind damping;      /* rod dissipation of each filament             */
   double gamma;
   double sigma_max;           /* peak isometric stress, Pa                    */
@@ -412,6 +422,8 @@ typedef struct {
   double *Q0;                /* (9) initial directors                        */
   double *clamp_bend;        /* (3) B^ of the element, for clamps            */
   double *elem_ghost;        /* 1 at ghost element slots and padding, else 0  */
+  double *elem_variational;  /* 1 on the element and Voronoi slots of rods of
+                                SW_LAW_VARIATIONAL, else 0                   */
   double *damp_linear;       /* 1 on the slots of rods with linear damping
                                 (loads.c)                                  */
   double *kick_exact;        /* 1 where the kick integrates analytic damping
@@ -447,6 +459,9 @@ typedef struct {
    * body frame (the principal axes of the inertia tensor) to the lab frame.
    * Body b owns rows [rigid_node_adr[b], +nelem+1) of rigid_p and
    * [rigid_elem_adr[b], +nelem) of rigid_B. */
+  int nvariational;          /* rods of SW_LAW_VARIATIONAL (0: rod.c's passes
+                                are Gazzola's alone)                        */
+  swLaw *rod_law;            /* (nrod)                                       */
   int nrigid;
   int *rod_rigid;            /* (nrod)      rigid body of each rod, -1 elastic */
   int *rigid_rod;            /* (nrigid)    rod of each rigid body            */
@@ -546,11 +561,15 @@ typedef struct {
   /* derived per element slot */
   double *length;            /* current length l                             */
   double *sigma;             /* (3) shear/stretch strain, material           */
-  double *stress;            /* (3) internal force n = S^ (s-s0) / e         */
+  double *stress;            /* (3) internal force n = S^ (s-s0) / e (Gazzola)
+                                or S^ (s-s0) (variational), material        */
   /* derived per Voronoi slot */
   double *vor_dilatation;
   double *kappa;             /* (3) curvature/twist, material frame          */
-  double *couple;            /* (3) B^ (k - k0) / eps^3                      */
+  double *couple;            /* (3) the bending couple as Delta^h applies it:
+                                B^ (k - k0) / eps^3 (Gazzola), or
+                                (I + beta [phi]x^2) B^ (k - k0) (variational,
+                                rod.c)                                      */
   /* accumulated loads */
   double *force;             /* (3) total force on nodes, lab                */
   double *torque;            /* (3) total couple on elements, material frame */

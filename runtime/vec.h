@@ -214,6 +214,23 @@ static inline swSmallLog sw_frame_log_small(swFrame a, swFrame b) {
   return (swSmallLog){{f * w0, f * w1, f * w2}, (t < 1e-2) & (c > 0.0)};
 }
 
+/* beta(theta) of the inverse of the SO(3) exponential's Jacobian,
+ *   J_l^-1(phi) = I - [phi]x / 2 + beta [phi]x^2,
+ *   beta = 1 / theta^2 - cos(theta/2) / (2 theta sin(theta/2)),  theta = |phi|,
+ * from theta^2 (0 <= theta <= pi, as sw_frame_log gives).  Its series,
+ * 1/12 + theta^2/720 + theta^4/30240 + theta^6/1209600 (from that of
+ * cot(theta/2)), is exact to round-off below theta^2 = 1e-2, where the
+ * closed form loses digits; the series alone serves sw_frame_log_small's
+ * range.  rod.c forms the variational bending couple with it. */
+static inline double sw_dexpinv_beta_small(double th2) {
+  return 1.0 / 12 + th2 * (1.0 / 720 + th2 * (1.0 / 30240 + th2 * (1.0 / 1209600)));
+}
+static inline double sw_dexpinv_beta(double th2) {
+  if (th2 < 1e-2) return sw_dexpinv_beta_small(th2);
+  const double th = sqrt(th2);
+  return 1.0 / th2 - cos(0.5 * th) / (2.0 * th * sin(0.5 * th));
+}
+
 static inline sw3 sw_rodrigues_column(sw3 c, sw3 phi, double a, double b) {
   const sw3 pc = sw3_cross(phi, c), ppc = sw3_cross(phi, pc);
   return (sw3){c.x - a * pc.x + b * ppc.x, c.y - a * pc.y + b * ppc.y, c.z - a * pc.z + b * ppc.z};

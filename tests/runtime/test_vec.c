@@ -551,7 +551,7 @@ static void test_frame_from(void **state) {
   (void)state;
   double worst = 0;
   for (int t = 0; t < 1000; t++) {
-    double dir[3], nrm[3], Q[9], d2[3], u[3];
+    double dir[3], nrm[3], Q[9] = {0}, d2[3], u[3];
     do {
       for (int k = 0; k < 3; k++) { dir[k] = 10 * srand_sym(); nrm[k] = srand_sym(); }
       sw_v3_cross(d2, dir, nrm);
@@ -600,7 +600,7 @@ static void test_frame_from_nearly_parallel(void **state) {
   const double dir[3] = {1, 2, 3}, perp[3] = {3, 0, -1};
   double worst = 0, worst_alpha = 0;
   for (double alpha = 1e-1; alpha > 5e-12; alpha /= 10) {
-    double nrm[3], Q[9];
+    double nrm[3], Q[9] = {0};
     for (int k = 0; k < 3; k++) nrm[k] = dir[k] / sqrt(14.0) + alpha * perp[k] / sqrt(10.0);
     assert_int_equal(sw_frame_from(Q, dir, nrm), 1);
     double e = orth_error(Q);
