@@ -127,6 +127,7 @@ static void emit_rod(FILE *out, swArena *a, const swSceneRod *r) {
   static const char *damp[] = {"SW_DAMP_NONE", "SW_DAMP_LINEAR", "SW_DAMP_ANALYTIC"};
   fprintf(out, "    rod.damping = %s;\n", damp[r->damping]);
   if (r->rigid) fputs("    rod.rigid = 1;\n", out);
+  if (r->variational) fputs("    rod.law = SW_LAW_VARIATIONAL;\n", out);
   gen_assign_fields(out, a, "rod", f, gen_rod_fields(r, f));
   fputs("    ok &= sw_spec_add_rod(s, &rod) >= 0;\n  }\n", out);
 }
@@ -147,6 +148,7 @@ static void emit_muscle(FILE *out, swArena *a, const swScene *sc, int mi) {
   if (m->motor_units) fprintf(out, "    muscle.motor_units = %ld;\n", m->motor_units);
   static const char *damp[] = {"SW_DAMP_NONE", "SW_DAMP_LINEAR", "SW_DAMP_ANALYTIC"};
   if (m->has_damping) fprintf(out, "    muscle.damping = %s;\n", damp[m->damping]);
+  if (m->variational) fputs("    muscle.law = SW_LAW_VARIATIONAL;\n", out);
   for (int e = 0; e < 2; e++)
     if (m->attach_rod[e] >= 0) {
       fprintf(out, "    muscle.attach_rod[%d] = %d; muscle.attach_node[%d] = %d;", e,

@@ -207,6 +207,7 @@ swSpec *gen_spec(const swScene *sc) {
       d.nelem = r->nelem;
       d.damping = r->damping;
       d.rigid = r->rigid;
+      d.law = r->variational ? SW_LAW_VARIATIONAL : SW_LAW_GAZZOLA;
       fill(&d, f, gen_rod_fields(r, f));
       sw_spec_add_rod(s, &d);
       continue;
@@ -219,6 +220,7 @@ swSpec *gen_spec(const swScene *sc) {
     d.nelem = m->nelem;
     if (m->motor_units) d.motor_units = (int)m->motor_units;
     if (m->has_damping) d.damping = m->damping;
+    if (m->variational) d.law = SW_LAW_VARIATIONAL;
     for (int e = 0; e < 2; e++)
       if (m->attach_rod[e] >= 0) {
         d.attach_rod[e] = gen_rod_id(sc, m->attach_rod[e]);

@@ -99,6 +99,7 @@ typedef struct swScope {
 
 typedef struct swMaterial {
   swValue E, G, poisson, density;
+  int variational;            /* variational = true: the energy-consistent law */
 } swMaterial;
 
 typedef enum { ROD_PLAIN, ROD_BONE, ROD_TENDON } swRodKind;
@@ -110,6 +111,7 @@ typedef struct {
   int id;                     /* the runtime's rod id (sw_spec_add_rod)    */
   int nelem;                  /* known at compile time                     */
   int rigid;                  /* rigid = true                              */
+  int variational;            /* the variational constitutive law          */
   swValue start, direction, normal, length, radius_start, radius_end;
   swValue density, youngs, shear_modulus, poisson;
   swValue shear_hardening, twist_hardening, rest_kappa, rest_sigma, gamma;
@@ -129,6 +131,7 @@ typedef struct {
   swValue start, end, normal, radius;
   swValue density, youngs, shear_modulus, poisson;
   swValue shear_hardening, twist_hardening, gamma;
+  int variational;            /* the filaments' law is the variational one */
   int has_damping;            /* damping written: damping, gamma set       */
   swDampingKind damping;
   swValue sigma_max, size_ratio, twitch_small, twitch_large, hill_a, v_max, fibre_diameter;

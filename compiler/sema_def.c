@@ -209,13 +209,13 @@ static void let_override(swSema *S, swSymbol *sym) {
 
 /* ---- materials ---- */
 
-static const char *const material_keys[] = {"E", "G", "poisson", "density"};
+static const char *const material_keys[] = {"E", "G", "poisson", "density", "variational"};
 
 static void eval_material(swSema *S, swSymbol *sym) {
   swFields f;
   char what[128];
   snprintf(what, sizeof what, "material '%s'", sym->name);
-  sema_fields(S, sym->def, 0, what, material_keys, 4, &f);
+  sema_fields(S, sym->def, 0, what, material_keys, 5, &f);
   swMaterial *m = ast_alloc(S->a, sizeof *m);
   m->E = sema_field_value(S, sym->scope, &f, "E", 1, DIM_PRESSURE);
   m->G = sema_field_value(S, sym->scope, &f, "G", 1, DIM_PRESSURE);
@@ -231,11 +231,16 @@ static void eval_material(swSema *S, swSymbol *sym) {
     diag_error(m->density.loc, "density must be positive, got %g kg/m^3", m->density.v[0]);
   if (m->poisson.kind == VAL_NUM && !(m->poisson.v[0] > -1 && m->poisson.v[0] <= 0.5))
     diag_error(m->poisson.loc, "poisson must be in (-1, 0.5], got %g", m->poisson.v[0]);
+  /* variational = true: rods of this material take the law whose loads are
+   * the gradient of their elastic energy (the runtime's rod.c); a switch,
+   * so fixed when compiling, through a let or component parameter too */
+  const swAst *var = sema_field(&f, "variational");
+  m->variational = var ? sema_truth(S, sym->scope, var, "'variational'") > 0 : 0;
   sym->material = m;
 }
 
 /* material = NAME and the per-definition overrides E, G, poisson, density
- * of a rod or a muscle.  Each value comes from the override, else from the
+ * and variational of a rod or a muscle.  Each value comes from the override, else from the
  * material; one given by neither stays VAL_ERROR.  Returns 0 after an error
  * (reported here, or in the material). */
 int sema_tissue(swSema *S, swScope *sc, const swFields *f, swTissue *t) {
@@ -281,6 +286,12 @@ int sema_tissue(swSema *S, swScope *sc, const swFields *f, swTissue *t) {
     diag_error(t->shear_modulus.loc, "G must be positive, got %g Pa", t->shear_modulus.v[0]);
     ok = 0;
   }
+  const swAst *var = sema_field(f, "variational");
+  if (var) {
+    int truth = sema_truth(S, sc, var, "'variational'");
+    if (truth < 0) ok = 0;
+    else t->variational = truth;
+  } else if (mat) t->variational = mat->variational;
   if (t->E_ast && t->youngs.kind == VAL_NUM) sema_positive(S, &t->youngs, "E", "Pa");
   if (t->rho_ast && t->density.kind == VAL_NUM) sema_positive(S, &t->density, "density", "kg/m^3");
   return ok;
@@ -292,6 +303,7 @@ static const char *const rod_keys[] = {
   "material", "start", "from", "to", "direction", "normal", "length", "radius", "radius_start",
   "radius_end", "elements", "E", "G", "poisson", "density", "shear_hardening",
   "twist_hardening", "rest_curvature", "rest_strain", "damping", "damping_model", "rigid",
+  "variational",
 };
 enum { NROD_KEYS = sizeof rod_keys / sizeof rod_keys[0] };
 
@@ -378,6 +390,7 @@ static void eval_rod(swSema *S, swSymbol *sym) {
   r.density = t.density.kind || t.mat ? t.density : val_num(S->a, 1000, DIM_DENSITY, loc);
   r.shear_modulus = t.shear_modulus.kind ? t.shear_modulus : val_num(S->a, 0, DIM_PRESSURE, loc);
   r.poisson = t.poisson.kind ? t.poisson : val_num(S->a, 0.5, DIM_NONE, loc);
+  r.variational = t.variational;
   r.has_material = t.mat != NULL || (t.E_ast && t.rho_ast);
   if (!t.mat && !t.me && !t.E_ast && !t.rho_ast)
     diag_warning(loc, "%s has no material; it gets E = %g Pa and density = %g kg/m^3", what,

@@ -126,11 +126,13 @@ swValue sema_field_value(swSema *S, swScope *scope, const swFields *f, const cha
  * (if given) on a bad model word */
 swDampingKind sema_damping_kind(swSema *S, swScope *sc, const swFields *f, int *ok);
 
-/* material = NAME and the overrides E, G, poisson, density (sema_tissue) */
+/* material = NAME and the overrides E, G, poisson, density, variational
+ * (sema_tissue) */
 typedef struct {
   const swMaterial *mat;      /* NULL: no material                         */
   const swAst *me, *E_ast, *rho_ast;   /* the fields, when written         */
   swValue youngs, density, shear_modulus, poisson;   /* VAL_ERROR: not given */
+  int variational;            /* 1: the variational law, written or the material's */
 } swTissue;
 int sema_tissue(swSema *S, swScope *sc, const swFields *f, swTissue *t);
 

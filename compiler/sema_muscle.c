@@ -32,7 +32,7 @@ static const char *const muscle_keys[] = {
   "material", "from", "to", "normal", "radius", "filaments", "motor_units", "elements",
   "E", "G", "poisson", "density", "sigma_max", "size_ratio", "twitch_small", "twitch_large",
   "hill_a", "v_max", "fibre_diameter", "attach_stiffness", "attach_damping",
-  "shear_hardening", "twist_hardening", "damping", "damping_model",
+  "shear_hardening", "twist_hardening", "damping", "damping_model", "variational",
   /* rod fields that a muscle does not take, refused with a reason below */
   "start", "direction", "length", "radius_start", "radius_end",
 };
@@ -106,6 +106,7 @@ void sema_eval_muscle(swSema *S, swSymbol *sym) {
   m.density = t.density;
   m.shear_modulus = t.shear_modulus;
   m.poisson = t.poisson;
+  m.variational = t.variational;
   if (!t.mat && !t.me && (!t.E_ast || !t.rho_ast)) {
     swMuscleDesc tissue;
     sw_muscle_desc_init(&tissue);

@@ -674,6 +674,26 @@ static void print_stiff_parts(const swModel *m) {
   }
 }
 
+/* The rods' constitutive law (rod.c): Gazzola's unless a material says
+ * variational; the elastic ones of each law are named (rigid rods have
+ * none). */
+static void print_law(const swModel *m) {
+  int nelastic = 0;
+  for (int r = 0; r < m->nrod; r++) nelastic += !(m->nrigid && m->rod_rigid[r] >= 0);
+  if (!m->nvariational) {
+    printf("constitutive law: Gazzola et al. 2018 (n = S^ s / e, c = B^ k / eps^3), all %d elastic rod%s\n",
+           nelastic, nelastic == 1 ? "" : "s");
+    return;
+  }
+  printf("constitutive law: variational (loads the gradient of the elastic energy) on %d of %d "
+         "elastic rod%s:", m->nvariational, nelastic, nelastic == 1 ? "" : "s");
+  for (int r = 0, k = 0; r < m->nrod && k < 8; r++)
+    if (m->rod_law[r] == SW_LAW_VARIATIONAL && !(m->nrigid && m->rod_rigid[r] >= 0))
+      printf("%s %s", k++ ? "," : "", m->rod_name[r]);
+  printf("%s%s\n", m->nvariational > 8 ? ", ..." : "",
+         m->nvariational < nelastic ? "; Gazzola et al. 2018 on the others" : "");
+}
+
 /* The part whose bound is the stable estimate: a rod, a joint, or the
  * environments. */
 static void print_step_limit(const swModel *m, double stable) {
@@ -765,6 +785,7 @@ static void print_info(const swCli *c, const swModel *m, double stable, const ch
          m->nmuscle ? ", muscles" : "", m->nwave ? ", torque waves" : "",
          m->nground ? ", ground contact and friction" : "", m->nfluid ? ", fluid" : "",
          m->ncontact ? ", rod-rod contact" : "", m->has_damping ? ", damping" : "");
+  print_law(m);
   printf("integrator: %s\n", m->integrator == SW_PEFRL ? "PEFRL"
                              : m->integrator == SW_IMEX ? "position Verlet, stiff terms linearly implicit (imex)"
                                                         : "position Verlet");
