@@ -62,6 +62,9 @@ static const int TARGET_MIN_N = 100;           /* the target applies from this n
 static const int VERLET_N[] = {25, 50, 100, 200, 400, 800};
 static const int PEFRL_N[] = {100, 400};
 static const int ENERGY_N = 100;
+static const int LAW_N[] = {100, 800};         /* the two laws, side by side      */
+enum { LAW_ROUNDS = 3 };                       /* interleaved rounds per law and n */
+static swLaw bench_law = SW_LAW_GAZZOLA;       /* the law of bench_model's rod    */
 #define NVERLET ((int)(sizeof VERLET_N / sizeof VERLET_N[0]))
 #define NPEFRL ((int)(sizeof PEFRL_N / sizeof PEFRL_N[0]))
 
@@ -191,6 +194,7 @@ static swModel *bench_model(int n, swIntegrator integ) {
   r.density = 1000.0;
   r.direction[0] = 1; r.direction[1] = 0; r.direction[2] = 0;
   r.normal[0] = 0; r.normal[1] = 0; r.normal[2] = 1;
+  r.law = bench_law;
   int rod = sw_spec_add_rod(s, &r);
   if (rod < 0) die("sw_spec_add_rod failed");
   swBCDesc clamp;
@@ -332,8 +336,9 @@ static Cost bench_step(int n, swIntegrator integ) {
   sw_reset(m, d);
   Bench b = {kernel_step, m, d, n, (long)ceil(SEGMENT_SECONDS / m->dt), 0};
   Cost c = measure(&b);
-  fprintf(stderr, "bench_rod: %s n = %d: %.2f ns/element-step\n",
-          integ == SW_PEFRL ? "PEFRL" : "Verlet", n, c.ns_median);
+  fprintf(stderr, "bench_rod: %s%s n = %d: %.2f ns/element-step\n",
+          integ == SW_PEFRL ? "PEFRL" : "Verlet", bench_law == SW_LAW_VARIATIONAL ? ", variational law" : "",
+          n, c.ns_median);
   sw_data_free(d);
   sw_model_free(m);
   return c;
@@ -462,8 +467,33 @@ static void target_line(FILE *f, const char *scheme, const Cost *c) {
             c->ns_median <= TARGET_NS ? "meets the target" : "misses the target");
 }
 
+enum { NLAW = sizeof LAW_N / sizeof LAW_N[0] };
+
+/* Median of the LAW_ROUNDS row medians of one law and size. */
+static double rounds_median(const Cost *rounds) {
+  double v[LAW_ROUNDS];
+  for (int k = 0; k < LAW_ROUNDS; k++) v[k] = rounds[k].ns_median;
+  return median(v, LAW_ROUNDS);
+}
+
+static void law_table(FILE *f, const Cost (*g18)[LAW_ROUNDS], const Cost (*var)[LAW_ROUNDS]) {
+  fprintf(f, "\n## Constitutive law: Gazzola et al. 2018 and the variational one (Verlet)\n\n");
+  fprintf(f, "The same rod with `variational = true` (docs/physics.md, \"The variational\n"
+             "law\"): the exact gradient of the energy costs the beta term of each bending\n"
+             "couple and a selection per slot. Each law measured %d times per n, the rounds\n"
+             "interleaved (Gazzola, variational, Gazzola, ...); the median of the rows' medians.\n\n",
+          LAW_ROUNDS);
+  fprintf(f, "| n | Gazzola ns/element-step | variational ns/element-step | variational / Gazzola |\n");
+  fprintf(f, "|--:|--:|--:|--:|\n");
+  for (int i = 0; i < NLAW; i++) {
+    const double a = rounds_median(g18[i]), b = rounds_median(var[i]);
+    fprintf(f, "| %d | %.2f | %.2f | %.2f |\n", LAW_N[i], a, b, b / a);
+  }
+}
+
 static void write_report(FILE *f, const Machine *mc, const Cost *verlet, const Cost *pefrl,
-                         const Cost *energy) {
+                         const Cost *energy, const Cost (*g18)[LAW_ROUNDS],
+                         const Cost (*var)[LAW_ROUNDS]) {
   fprintf(f, "# sinew runtime benchmarks\n\n");
   fprintf(f, "Written by `make bench` (bench/bench_rod.c); run it again to refresh this file.\n"
              "Figures are wall time per element per step: a flat column across n means the\n"
@@ -498,6 +528,7 @@ static void write_report(FILE *f, const Machine *mc, const Cost *verlet, const C
   fprintf(f, "Cost of a whole PEFRL step per element; \"x Verlet\" is the ratio to the\n"
              "Verlet row of the same n.\n\n");
   step_table(f, pefrl, NPEFRL, verlet);
+  law_table(f, g18, var);
 
   fprintf(f, "\n## Diagnostics: sw_energy at n = %d\n\n", energy->n);
   fprintf(f, "sw_energy() recomputes the strains and sums the energies; the run loop calls\n"
@@ -541,14 +572,25 @@ int main(int argc, char **argv) {
   for (int i = 0; i < NVERLET; i++) verlet[i] = bench_step(VERLET_N[i], SW_VERLET);
   for (int i = 0; i < NPEFRL; i++) pefrl[i] = bench_step(PEFRL_N[i], SW_PEFRL);
   Cost energy = bench_energy(ENERGY_N);
+  Cost g18[NLAW][LAW_ROUNDS], var[NLAW][LAW_ROUNDS];
+  for (int i = 0; i < NLAW; i++)
+    for (int k = 0; k < LAW_ROUNDS; k++) {
+      bench_law = SW_LAW_GAZZOLA;
+      g18[i][k] = bench_step(LAW_N[i], SW_VERLET);
+      bench_law = SW_LAW_VARIATIONAL;
+      var[i][k] = bench_step(LAW_N[i], SW_VERLET);
+    }
+  bench_law = SW_LAW_GAZZOLA;
 
   Machine mc;
   machine_describe(&mc);
-  write_report(stdout, &mc, verlet, pefrl, &energy);
+  write_report(stdout, &mc, verlet, pefrl, &energy, (const Cost (*)[LAW_ROUNDS])g18,
+               (const Cost (*)[LAW_ROUNDS])var);
   if (argc == 2) {
     FILE *f = fopen(argv[1], "w");
     if (!f) die("cannot write the report: %s", argv[1]);
-    write_report(f, &mc, verlet, pefrl, &energy);
+    write_report(f, &mc, verlet, pefrl, &energy, (const Cost (*)[LAW_ROUNDS])g18,
+                 (const Cost (*)[LAW_ROUNDS])var);
     if (fclose(f) != 0) die("cannot write the report: %s", argv[1]);
     fprintf(stderr, "bench_rod: wrote %s\n", argv[1]);
   }
