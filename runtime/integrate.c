@@ -229,7 +229,7 @@ static inline __attribute__((always_inline)) void kick_slots_law(const swModel *
       v[i] = vn;
       /* elements: (J^/e) dw/dt = tau (Gazzola 2018, eq. 3.7b, the couples
        * of rod.c without the dilatation-rate term, which the drift
-       * integrates) */
+       * integrates); J^ dw/dt = tau on variational rods (rod.c) */
       const double wo = w[i], e = law && var[i] != 0.0 ? 1.0 : dil[i]; /* sw_inertia_dilatation */
       const double wd = wo * edec[i] + Ti * iJ[i] * e * ekick[i], wp = wo + h * Ti * iJ[i] * e;
       const double wn = ex ? wd : wp;
