@@ -210,12 +210,13 @@ static void let_override(swSema *S, swSymbol *sym) {
 /* ---- materials ---- */
 
 static const char *const material_keys[] = {"E", "G", "poisson", "density", "variational"};
+enum { NMATERIAL_KEYS = sizeof material_keys / sizeof material_keys[0] };
 
 static void eval_material(swSema *S, swSymbol *sym) {
   swFields f;
   char what[128];
   snprintf(what, sizeof what, "material '%s'", sym->name);
-  sema_fields(S, sym->def, 0, what, material_keys, 5, &f);
+  sema_fields(S, sym->def, 0, what, material_keys, NMATERIAL_KEYS, &f);
   swMaterial *m = ast_alloc(S->a, sizeof *m);
   m->E = sema_field_value(S, sym->scope, &f, "E", 1, DIM_PRESSURE);
   m->G = sema_field_value(S, sym->scope, &f, "G", 1, DIM_PRESSURE);

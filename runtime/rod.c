@@ -47,8 +47,8 @@
  * of element j or j+1 by a small b (material frame) moves phi_j by
  * -J_l^-1(phi_j) b or J_r^-1(phi_j) b (the inverse Jacobians of the SO(3)
  * exponential, vec.h), so the couples are
- *   tau_j     += J_r^-T c_j =  c_j + phi_j x c_j / 2 + beta phi_j x (phi_j x c_j)
- *   tau_{j+1} -= J_l^-T c_j = -c_j + phi_j x c_j / 2 - beta phi_j x (phi_j x c_j).
+ *   tau_j     += J_l^-T c_j =  c_j + phi_j x c_j / 2 + beta phi_j x (phi_j x c_j)
+ *   tau_{j+1} -= J_r^-T c_j = -c_j + phi_j x c_j / 2 - beta phi_j x (phi_j x c_j).
  * Gazzola's Delta^h(c) + A^h(kappa x c D^) is this without the beta term (it
  * is O(phi^2) smaller), so the gather stays one: the pass stores
  * c + beta phi x (phi x c) where it stored c.  The force and shear couple
