@@ -207,6 +207,7 @@ void gen_env_build(FILE *out, swArena *a, const swScene *sc) {
       fprintf(out, "    ground.height = height_%d;\n    ground.height_ctx = %s;\n", i,
               sc->nparam ? "height_P" : "NULL");
     rod_list(out, "ground", &g->rods);
+    if (g->contact_point) fputs("    ground.contact_point = 1;\n", out);
     gen_assign_fields(out, a, "ground", f, gen_ground_fields(g, f));
     fputs("    ok &= sw_spec_add_ground(s, &ground) >= 0;\n  }\n", out);
   }

@@ -37,9 +37,12 @@ int gen_rod_fields(const swSceneRod *r, swLowField *out) {
     F(rest_kappa, 3, &r->rest_kappa),
     F(rest_sigma, 3, &r->rest_sigma),
     F(gamma, 1, &r->gamma),
+    F(gamma_rot, 1, &r->gamma_rot),
   };
-  memcpy(out, f, sizeof f);
-  return (int)(sizeof f / sizeof f[0]);
+  int n = 0;
+  for (size_t i = 0; i < sizeof f / sizeof f[0]; i++)
+    if (f[i].value->kind != VAL_ERROR) out[n++] = f[i];
+  return n;
 }
 #undef F
 
@@ -280,6 +283,7 @@ swSpec *gen_spec(const swScene *sc) {
       d.height = sema_height_eval;
       d.height_ctx = g->height;
     }
+    d.contact_point = g->contact_point;
     fill(&d, f, gen_ground_fields(g, f));
     sw_spec_add_ground(s, &d);
   }

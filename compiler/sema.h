@@ -115,6 +115,7 @@ typedef struct {
   swValue start, direction, normal, length, radius_start, radius_end;
   swValue density, youngs, shear_modulus, poisson;
   swValue shear_hardening, twist_hardening, rest_kappa, rest_sigma, gamma;
+  swValue gamma_rot;           /* rotational_damping, N s/rad; VAL_ERROR: not given */
   swDampingKind damping;
   int has_material;
 } swSceneRod;
@@ -223,6 +224,7 @@ typedef struct {
   swLoc loc;
   swHeight *height;           /* terrain; NULL: a plane                     */
   swValue origin, normal, stiffness, damping, mu_kinetic, mu_static, mu_rolling, slip_velocity;
+  int contact_point;          /* 1: sideways friction at the contact point   */
   swRodList rods;             /* values not given are VAL_ERROR: the runtime's default */
 } swSceneGround;
 

@@ -303,8 +303,8 @@ int sema_tissue(swSema *S, swScope *sc, const swFields *f, swTissue *t) {
 static const char *const rod_keys[] = {
   "material", "start", "from", "to", "direction", "normal", "length", "radius", "radius_start",
   "radius_end", "elements", "E", "G", "poisson", "density", "shear_hardening",
-  "twist_hardening", "rest_curvature", "rest_strain", "damping", "damping_model", "rigid",
-  "variational",
+  "twist_hardening", "rest_curvature", "rest_strain", "damping", "rotational_damping",
+  "damping_model", "rigid", "variational",
 };
 enum { NROD_KEYS = sizeof rod_keys / sizeof rod_keys[0] };
 
@@ -353,20 +353,21 @@ swValue sema_position(swSema *S, swScope *scope, const swAst *e, const char *wha
   return sema_position_on(S, scope, e, what, NULL, NULL);
 }
 
-/* The damping kind of a definition with fields `damping` and
- * `damping_model` (rods and muscles): none without `damping`, else linear
- * unless damping_model says analytic.  A damping_model that is no model is
- * reported, leaves the default kind and clears *ok (when ok is given). */
+/* The damping kind of a definition with fields `damping` (and, on rods,
+ * `rotational_damping`) and `damping_model` (rods and muscles): none without
+ * either damping, else linear unless damping_model says analytic.  A
+ * damping_model that is no model is reported, leaves the default kind and
+ * clears *ok (when ok is given). */
 swDampingKind sema_damping_kind(swSema *S, swScope *sc, const swFields *f, int *ok) {
-  swDampingKind kind = sema_field(f, "damping") ? SW_DAMP_LINEAR : SW_DAMP_NONE;
+  const int damped = sema_field(f, "damping") || sema_field(f, "rotational_damping");
+  swDampingKind kind = damped ? SW_DAMP_LINEAR : SW_DAMP_NONE;
   const swAst *dm = sema_field(f, "damping_model");
   if (!dm) return kind;
   static const char *const models[] = {"linear", "analytic"};
   const char *w = sema_word(S, sc, dm, "damping model", models, 2);
   if (!w && ok) *ok = 0;
   else if (w && !strcmp(w, "analytic")) kind = SW_DAMP_ANALYTIC;
-  if (!sema_field(f, "damping"))
-    diag_warning(dm->loc, "'damping_model' has no effect without 'damping'");
+  if (!damped) diag_warning(dm->loc, "'damping_model' has no effect without 'damping'");
   return kind;
 }
 
@@ -523,6 +524,17 @@ static void eval_rod(swSema *S, swSymbol *sym) {
   if (r.gamma.kind == VAL_NUM && r.gamma.v[0] < 0) {
     diag_error(r.gamma.loc, "'damping' must not be negative");
     ok = 0;
+  }
+  /* rotational_damping: the couple density -gamma_rot w of Gazzola 2018, in
+   * N s/rad; without it the couples are damped in proportion to the inertia */
+  r.gamma_rot.kind = VAL_ERROR;
+  if (sema_field(&f, "rotational_damping")) {
+    r.gamma_rot = sema_field_value(S, sc, &f, "rotational_damping", 1, dim_make(1, 1, -1, -1));
+    if (r.gamma_rot.kind == VAL_ERROR) ok = 0;
+    else if (r.gamma_rot.kind == VAL_NUM && r.gamma_rot.v[0] < 0) {
+      diag_error(r.gamma_rot.loc, "'rotational_damping' must not be negative");
+      ok = 0;
+    }
   }
   r.damping = sema_damping_kind(S, sc, &f, NULL);
   /* rigid = true: the runtime moves the rod as one rigid body.  It changes

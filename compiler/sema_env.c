@@ -213,15 +213,21 @@ static int rods_field(swSema *S, swScope *sc, const swFields *f, const char *wha
 /* ---- the kinds ---- */
 
 static const char *const ground_keys[] = {"normal", "origin", "stiffness", "damping", "mu_kinetic",
-                                          "mu_static", "mu_rolling", "slip_velocity", "rods"};
+                                          "mu_static", "mu_rolling", "slip_velocity",
+                                          "contact_point", "rods"};
 static const char *const terrain_keys[] = {"height", "stiffness", "damping", "mu_kinetic",
-                                           "mu_static", "mu_rolling", "slip_velocity", "rods"};
+                                           "mu_static", "mu_rolling", "slip_velocity",
+                                           "contact_point", "rods"};
+enum {
+  NGROUND_KEYS = sizeof ground_keys / sizeof ground_keys[0],
+  NTERRAIN_KEYS = sizeof terrain_keys / sizeof terrain_keys[0]
+};
 
 static void ground(swSema *S, swScope *sc, const swAst *it, const char *name, const char *what,
                    int terrain) {
   swFields f;
-  if (terrain) sema_fields(S, it, 0, what, terrain_keys, 8, &f);
-  else sema_fields(S, it, 0, what, ground_keys, 9, &f);
+  if (terrain) sema_fields(S, it, 0, what, terrain_keys, NTERRAIN_KEYS, &f);
+  else sema_fields(S, it, 0, what, ground_keys, NGROUND_KEYS, &f);
   swSceneGround g;
   memset(&g, 0, sizeof g);
   g.name = name;
@@ -255,6 +261,12 @@ static void ground(swSema *S, swScope *sc, const swAst *it, const char *name, co
                            &g.slip_velocity};
   for (int i = 0; i < 6; i++)
     if (sema_field(&f, keys[i]) && vals[i]->kind == VAL_ERROR) ok = 0;
+  const swAst *cp = sema_field(&f, "contact_point");
+  if (cp) {
+    int t = sema_truth(S, sc, cp, "'contact_point'");
+    if (t < 0) ok = 0;
+    else g.contact_point = t;
+  }
   ok &= rods_field(S, sc, &f, what, &g.rods);
   if (!ok) return;
   swScene *scn = S->scene;

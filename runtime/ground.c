@@ -104,15 +104,18 @@ void sw_ground_setup(swModel *m) {
 }
 
 /* Coulomb friction along one direction against the slip u along it, under
- * normal force N: kinetic with mu_kp (u > 0) or mu_km (u < 0), then static
- * against the remaining load T + kinetic with mu_sp (load > 0) or mu_sm
- * (load < 0), blended by the slip function.  Returns the friction along the
- * direction. */
-static double coulomb(double u, double speed, double T, double N, double v_eps, double mu_kp,
-                      double mu_km, double mu_sp, double mu_sm) {
+ * normal force N: kinetic with mu_kp (u > 0) or mu_km (u < 0), at most
+ * m_h |u| (m_h: the mass the friction moves along the direction over the
+ * step, m / h, so that it never reverses the slip within one step), then
+ * static against the remaining load T + kinetic with mu_sp (load > 0) or
+ * mu_sm (load < 0), blended by the slip function.  Returns the friction
+ * along the direction. */
+static double coulomb(double u, double speed, double T, double N, double v_eps, double m_h,
+                      double mu_kp, double mu_km, double mu_sp, double mu_sm) {
   double phi = slip_function(fabs(u), v_eps);
   double share = speed > 0 ? u / speed : 0.0; /* u/|u| = sign(u) along a single direction */
   double kinetic = -(1.0 - phi) * (u > 0 ? mu_kp : mu_km) * N * share;
+  if (fabs(kinetic) > m_h * fabs(u)) kinetic = -m_h * u;
   double rest = T + kinetic;
   double cap = phi * (rest > 0 ? mu_sp : mu_sm) * N;
   return kinetic - sign_of(rest) * fmin(fabs(rest), cap);
@@ -162,25 +165,49 @@ static int ground_element(const swModel *m, swData *d, const swGroundDesc *g, in
   if (N > 0 && alen > 1e-9 * tlen) {
     sw_v3_scale(a, a, 1.0 / alen);
     sw_v3_cross(b, a, n);
-    /* forward = along the tangent: mu[0] for slip (or load) along +a */
-    const double slip = sw_v3_norm(u);
-    double fa = coulomb(sw_v3_dot(u, a), slip, sw_v3_dot(T, a), N, ve, mk[0], mk[1], ms[0], ms[1]);
-    double fb = coulomb(sw_v3_dot(u, b), slip, sw_v3_dot(T, b), N, ve, mk[2], mk[2], ms[2], ms[2]);
-    for (int k = 0; k < 3; k++) friction[k] = fa * a[k] + fb * b[k];
-    if (g->mu_rolling > 0) {
-      /* rolling resistance about a (design note) */
-      double Q[9], w[3], tau[3], wl[3], tl[3];
+    /* the element's spin and couples in the lab frame (contact point and
+     * rolling resistance) */
+    double Q[9], wl[3] = {0, 0, 0}, tl[3] = {0, 0, 0};
+    if (g->contact_point || g->mu_rolling > 0) {
+      double w[3], tau[3];
       sw_getQ(m, d->Q, e, Q);
       sw_get3(m, d->omega, e, w);
       sw_get3(m, d->torque, e, tau);
       sw_matT_vec(wl, Q, w);
       sw_matT_vec(tl, Q, tau);
+    }
+    const double ua = sw_v3_dot(u, a);
+    const double me = wa * m->mass[ia] + wb * m->mass[ib], inv_h = 1.0 / m->dt;
+    double ub = sw_v3_dot(u, b), Tb = sw_v3_dot(T, b), mb = me;
+    if (g->contact_point) {
+      /* the contact point -r n slips sideways at u_b - r w_a; a force f
+       * along b there also turns the element about a by -r f, so it moves
+       * the point as a mass 1 / (1 / m_e + r^2 / J_a) would, and the load
+       * that accelerates the point, as a force there, is
+       * (T_b / m_e - r tau_a / J_a) / (1 / m_e + r^2 / J_a) (design note) */
+      const double Ja = SW_AT(m, m->inertia, e, 2) / sw_inertia_dilatation(m, d, e);
+      ub -= r * sw_v3_dot(wl, a);
+      mb = 1.0 / (1.0 / me + r * r / Ja);
+      Tb = (Tb / me - r * sw_v3_dot(tl, a) / Ja) * mb;
+    }
+    /* forward = along the tangent: mu[0] for slip (or load) along +a */
+    const double slip = g->contact_point ? sqrt(ua * ua + ub * ub) : sw_v3_norm(u);
+    double fa = coulomb(ua, slip, sw_v3_dot(T, a), N, ve, me * inv_h, mk[0], mk[1], ms[0], ms[1]);
+    double fb = coulomb(ub, slip, Tb, N, ve, mb * inv_h, mk[2], mk[2], ms[2], ms[2]);
+    for (int k = 0; k < 3; k++) friction[k] = fa * a[k] + fb * b[k];
+    double cl[3] = {0, 0, 0}; /* the couple in the lab frame */
+    if (g->contact_point)
+      for (int k = 0; k < 3; k++) cl[k] = -r * fb * a[k];
+    if (g->mu_rolling > 0) {
+      /* rolling resistance about a (design note) */
       double wa_rate = sw_v3_dot(wl, a);
       double mr = g->mu_rolling * r;
-      double ca = coulomb(r * wa_rate, fabs(r * wa_rate), sw_v3_dot(tl, a), N, ve, mr, mr, mr, mr);
-      double cl[3] = {ca * a[0], ca * a[1], ca * a[2]};
-      sw_mat_vec(couple, Q, cl);
+      double Jh = SW_AT(m, m->inertia, e, 2) / sw_inertia_dilatation(m, d, e) * inv_h / r;
+      double ca = coulomb(r * wa_rate, fabs(r * wa_rate), sw_v3_dot(tl, a), N, ve, Jh, mr, mr, mr,
+                          mr);
+      for (int k = 0; k < 3; k++) cl[k] += ca * a[k];
     }
+    if (g->contact_point || g->mu_rolling > 0) sw_mat_vec(couple, Q, cl);
   } else if (N > 0) {
     /* element standing on end: no axis in the surface, isotropic friction
      * with the sideways coefficients, along the slip (or, at rest, along the
@@ -191,7 +218,8 @@ static int ground_element(const swModel *m, swData *d, const swGroundDesc *g, in
     if (len > 0) {
       sw_v3_scale(dir, src, 1.0 / len);
       double ud = sw_v3_dot(u, dir);
-      double f = coulomb(ud, fabs(ud), sw_v3_dot(T, dir), N, ve, mk[2], mk[2], ms[2], ms[2]);
+      double mh = (wa * m->mass[ia] + wb * m->mass[ib]) / m->dt;
+      double f = coulomb(ud, fabs(ud), sw_v3_dot(T, dir), N, ve, mh, mk[2], mk[2], ms[2], ms[2]);
       sw_v3_scale(friction, dir, f);
     }
   }

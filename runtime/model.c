@@ -86,6 +86,7 @@ void sw_rod_desc_init(swRodDesc *r) {
   r->poisson = 0.5;
   r->shear_hardening = 1.0;
   r->twist_hardening = 1.0;
+  r->gamma_rot = -1.0;
 }
 
 /* Grow an array to hold at least n+1 items (0: out of memory). */
@@ -194,13 +195,15 @@ static int check_rod(const swRodDesc *r, char *err, size_t errlen) {
     return sw_fail(err, errlen, "rod '%s': hardening factors must be > 0", nm);
   if (!(r->gamma >= 0) || !isfinite(r->gamma))
     return sw_fail(err, errlen, "rod '%s': dissipation constant must be >= 0", nm);
+  if (isnan(r->gamma_rot) || !isfinite(r->gamma_rot))
+    return sw_fail(err, errlen, "rod '%s': rotational dissipation must be finite", nm);
   if (r->damping != SW_DAMP_NONE && r->damping != SW_DAMP_LINEAR && r->damping != SW_DAMP_ANALYTIC)
     return sw_fail(err, errlen, "rod '%s': unknown damping kind %d", nm, (int)r->damping);
   if (r->rigid != 0 && r->rigid != 1)
     return sw_fail(err, errlen, "rod '%s': rigid must be 0 or 1, got %d", nm, r->rigid);
   if (r->law != SW_LAW_GAZZOLA && r->law != SW_LAW_VARIATIONAL)
     return sw_fail(err, errlen, "rod '%s': unknown constitutive law %d", nm, (int)r->law);
-  if (r->rigid && r->damping == SW_DAMP_ANALYTIC && r->gamma > 0)
+  if (r->rigid && r->damping == SW_DAMP_ANALYTIC && (r->gamma > 0 || r->gamma_rot > 0))
     return sw_fail(err, errlen, "rod '%s': analytic damping is not supported on a rigid rod "
                 "(use linear damping)", nm);
   double Q[9];
@@ -480,7 +483,8 @@ swModel *sw_compile(const swSpec *s, char *err, size_t errlen) {
       m->nnode += n + 1;
       m->nelem += n;
       m->nvor += n - 1;
-      m->rod_damping[r] = s->rod[r].gamma > 0 ? s->rod[r].damping : SW_DAMP_NONE;
+      m->rod_damping[r] = s->rod[r].gamma > 0 || s->rod[r].gamma_rot > 0 ? s->rod[r].damping
+                                                                          : SW_DAMP_NONE;
       if (m->rod_damping[r] != SW_DAMP_NONE) m->has_damping = 1;
       m->rod_law[r] = s->rod[r].law;
       /* a rigid rod has no internal loads, so no law to apply */
@@ -559,8 +563,10 @@ swModel *sw_compile(const swSpec *s, char *err, size_t errlen) {
         SW_AT(m, m->inv_inertia, e, k) = 1.0 / SW_AT(m, m->inertia, e, k);
         SW_AT(m, m->rest_sigma, e, k) = rd->rest_sigma[k];
         /* rotational dissipation: gamma I_k / A per unit length, so that
-         * rotation and translation decay at the same rate gamma/(rho A) */
-        SW_AT(m, m->elem_gamma, e, k) = rd->gamma * l * Ik[k] / A;
+         * rotation and translation decay at the same rate gamma/(rho A), or
+         * the couple density -gamma_rot w of Gazzola 2018 when given */
+        SW_AT(m, m->elem_gamma, e, k) = rd->gamma_rot >= 0 ? rd->gamma_rot * l
+                                                            : rd->gamma * l * Ik[k] / A;
       }
       bend_elem[3 * i + 0] = rd->youngs * I1;
       bend_elem[3 * i + 1] = rd->youngs * I1;

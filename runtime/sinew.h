@@ -112,6 +112,10 @@ typedef struct {
   double rest_sigma[3];       /* uniform rest shear/stretch strain        */
   swDampingKind damping;
   double gamma;               /* force dissipation, kg m^-1 s^-1 (Zhang 2019) */
+  double gamma_rot;           /* couple dissipation per unit length, N s/rad:
+                                 c = -gamma_rot w (Gazzola 2018's rotational
+                                 dissipation); < 0 (the default): gamma I_k / A,
+                                 so rotation decays at translation's rate   */
   swLaw law;                  /* constitutive law (0: Gazzola 2018)       */
   int rigid;                  /* 1: the rod moves as one rigid body (rigid.c):
                                  no deformation, so its stiffness sets no
@@ -271,6 +275,10 @@ typedef struct {
   double mu_kinetic[3];     /* forward, backward, sideways (>= 0)            */
   double mu_static[3];      /* forward, backward, sideways (>= 0; 0: none)   */
   double mu_rolling;        /* rolling friction coefficient (>= 0; 0: none)  */
+  int contact_point;        /* 1: sideways friction acts at the contact point
+                               r below the axis, against that point's slip,
+                               so it rolls the rod and its twist resists;
+                               0: at the centreline (no couple)              */
   double slip_velocity;     /* v_eps, m/s, below which friction is static    */
   int nrods;                /* rods it acts on (0: all)                      */
   const int *rods;

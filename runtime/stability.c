@@ -129,6 +129,12 @@ double sw_stable_dt_rod(const swModel *m, int r) {
     if (m->rod_damping[r] == SW_DAMP_LINEAR) {
       double c = fmax(m->node_gamma[na + i] * m->inv_mass[na + i],
                       m->node_gamma[na + i + 1] * m->inv_mass[na + i + 1]);
+      /* the element's rotational rate: the same up to round-off under the
+       * default mass-proportional damping, larger with rotational_damping */
+      for (int k = 0; k < 3; k++) {
+        double ce = SW_AT(m, m->elem_gamma, e, k) * SW_AT(m, m->inv_inertia, e, k);
+        if (ce > c * (1 + 1e-9)) c = ce;
+      }
       zeta = c / (2 * w);
     }
     double lim = 0.95 * sw_integrator_stability_limit(m->integrator, zeta) / w;

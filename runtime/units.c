@@ -117,6 +117,7 @@ static const struct {
   {{1, 3, -2, 0}, "bending stiffness (N m^2)"},
   {{1, 2, -2, -1}, "rotational stiffness (N m/rad)"},
   {{1, 2, -1, -1}, "rotational damping (N m s/rad)"},
+  {{1, 1, -1, -1}, "rotational damping per length (N s/rad)"}, /* a rod's gamma_rot */
   {{1, -1, 0, 0}, "linear density (kg/m)"},
   {{1, 2, 0, 0}, "moment of inertia (kg m^2)"},
 };

@@ -92,10 +92,12 @@ static const char *const ORIENT[3] = {"forward (tangent downhill)", "backward (t
 
 /* A rod lying on the plane through the origin with normal (-sin a, 0, cos a)
  * (rising along +x), gravity -z; its tangent downhill, uphill or across,
- * centred on the origin and PEN0 into the plane.  terrain: the same plane as a
- * height field. */
+ * centred on the origin and PEN0 into the plane.  flags: TERRAIN, the same
+ * plane as a height field; CONTACT_POINT, sideways friction at the contact
+ * point. */
+enum { TERRAIN = 1, CONTACT_POINT = 2 };
 static swModel *slope_scene(double angle, int orient, const double mu_k[3], const double mu_s[3],
-                            int terrain, double *slope_store, swSpec **sout) {
+                            int flags, double *slope_store, swSpec **sout) {
   const double nrm[3] = {-sin(angle), 0, cos(angle)}, down[3] = {-cos(angle), 0, -sin(angle)};
   double dir[3];
   for (int k = 0; k < 3; k++)
@@ -107,7 +109,8 @@ static swModel *slope_scene(double angle, int orient, const double mu_k[3], cons
   sw_spec_add_rod(s, &r);
   swGroundDesc g = ground_of(KW, GW, mu_k, mu_s);
   g.name = "slope";
-  if (terrain) {
+  g.contact_point = (flags & CONTACT_POINT) != 0;
+  if (flags & TERRAIN) {
     *slope_store = tan(angle);
     g.height = incline;
     g.height_ctx = slope_store;
@@ -205,7 +208,7 @@ static void test_terrain_plane(void **state) {
   swSpec *sp, *st;
   double slope_p, slope_t;
   swModel *mp = slope_scene(a, FORWARD, mu_k, mu_s, 0, &slope_p, &sp);
-  swModel *mt = slope_scene(a, FORWARD, mu_k, mu_s, 1, &slope_t, &st);
+  swModel *mt = slope_scene(a, FORWARD, mu_k, mu_s, TERRAIN, &slope_t, &st);
   assert_true(mp->dt == mt->dt);
   swData *dp = sw_data_new(mp), *dt = sw_data_new(mt);
   sw_test_run_to(mp, dp, T);
@@ -478,7 +481,7 @@ static void test_rolling_resistance(void **state) {
 /* Claim: with mu_static = 0 and mu_rolling = 0 (the reference snake's
  * ground) friction is kinetic anisotropic friction on the element velocity:
  * a rod on flat ground sliding sideways at 0.5 m/s and spinning about its
- * axis at 40 rad/s (contact point slipping at v - w r = 0.1 m/s, not 0.5)
+ * axis at 40 rad/s (its contact point slipping at v + r w = 0.9 m/s)
  * decelerates at mu_sideways g, whatever its spin, and keeps the spin.
  * Measured between 0.02 s and 0.08 s (slip > 0.3 m/s). */
 static void test_kinetic_on_element_velocity(void **state) {
@@ -548,6 +551,195 @@ static void test_kinetic_follows_slip_direction(void **state) {
   sw_data_free(d);
   sw_model_free(m);
   sw_spec_free(s);
+}
+
+/* ---- friction at the contact point ---- */
+
+/* Mean over the elements of the spin about the rod's axis in the lab frame,
+ * w . t (t: the element's unit tangent), rad/s. */
+static double axial_spin(const swModel *m, const swData *d) {
+  double sum = 0;
+  const int n = m->rod_nelem[0];
+  for (int i = 0; i < n; i++) {
+    const int e = m->elem_adr[0] + i, a = m->node_adr[0] + i;
+    double Q[9], w[3], wl[3], t[3];
+    sw_getQ(m, d->Q, e, Q);
+    sw_get3(m, d->omega, e, w);
+    for (int k = 0; k < 3; k++) /* material to lab: sum_j w_j d_j, d_j the rows of Q */
+      wl[k] = Q[k] * w[0] + Q[3 + k] * w[1] + Q[6 + k] * w[2];
+    for (int k = 0; k < 3; k++) t[k] = SW_AT(m, d->x, a + 1, k) - SW_AT(m, d->x, a, k);
+    sum += dot3(wl, t) / sqrt(dot3(t, t));
+  }
+  return sum / n;
+}
+
+/* Claim: with contact_point, sideways friction acts at the contact point
+ * -r n, so a rod lying across a slope is a cylinder on an incline.  Slipping
+ * (tan a > 3 mu_sideways), its centre accelerates at g (sin a - mu cos a),
+ * as with friction at the centreline, and the friction's couple r mu N
+ * spins it up about its axis at 2 mu g cos a / r (J = m r^2 / 2).  a = 30
+ * deg, mu_sideways = 0.1 (tan a = 0.577 > 0.3): 4.055 m/s^2 and 169.9
+ * rad/s^2, measured between 0.1 s and 0.3 s, when the contact point slips
+ * at more than 0.4 m/s.  With mu_static = 0.3 >= tan a / 3 the cylinder
+ * rolls without slipping instead: static friction holds the contact point,
+ * so the centre accelerates at 2/3 g sin a = 3.270 m/s^2 (where friction at
+ * the centreline, 0.3 < tan a, lets it slide at g (sin a - 0.25 cos a) =
+ * 2.781), its spin follows as v / r, and the contact point's slip stays
+ * below v_eps. */
+static void test_contact_point_incline(void **state) {
+  (void)state;
+  const double a = 30.0 * M_PI / 180.0, down[3] = {-cos(a), 0, -sin(a)};
+  const double t1 = 0.1, t2 = sw_test_sanitized() ? 0.15 : 0.3;
+  for (int rolling = 0; rolling < 2; rolling++) {
+    const double mu_k[3] = {0.2, 0.3, rolling ? 0.25 : 0.1};
+    const double mu_s[3] = {0, 0, rolling ? 0.3 : 0};
+    swSpec *s;
+    double slope, v[3];
+    swModel *m = slope_scene(a, SIDEWAYS, mu_k, mu_s, CONTACT_POINT, &slope, &s);
+    swData *d = sw_data_new(m);
+    sw_test_run_to(m, d, t1);
+    com(m, d->v, v);
+    double u1 = dot3(v, down), w1 = axial_spin(m, d), ta = d->time;
+    sw_test_run_to(m, d, t2);
+    com(m, d->v, v);
+    double u2 = dot3(v, down), w2 = axial_spin(m, d), tb = d->time;
+    const double acc = (u2 - u1) / (tb - ta), spin = fabs(w2 - w1) / (tb - ta);
+    fprintf(stderr, "# %s: %s: speed %.3f -> %.3f m/s, spin %.2f -> %.2f rad/s, contact-point "
+            "slip at the end %.3e m/s\n", __func__, rolling ? "rolling" : "slipping", u1, u2, w1,
+            w2, fabs(u2) - RR * fabs(w2));
+    if (!rolling) {
+      SW_EXPECT_REL("acceleration across the slope, slipping (m/s^2)", acc,
+                    GRAV * (sin(a) - mu_k[2] * cos(a)), 1e-2);
+      SW_EXPECT_REL("spin-up about the axis, slipping (rad/s^2)", spin,
+                    2 * mu_k[2] * GRAV * cos(a) / RR, 1e-2);
+    } else {
+      SW_EXPECT_REL("acceleration across the slope, rolling (m/s^2)", acc,
+                    2.0 / 3.0 * GRAV * sin(a), 1e-2);
+      SW_EXPECT_REL("spin-up about the axis, rolling (rad/s^2)", spin,
+                    2.0 / 3.0 * GRAV * sin(a) / RR, 1e-2);
+      assert_true(fabs(fabs(u2) - RR * fabs(w2)) < 2 * 1e-4); /* below 2 v_eps */
+    }
+    sw_data_free(d);
+    sw_model_free(m);
+    sw_spec_free(s);
+  }
+}
+
+/* Claim: the bowling ball.  A rod on flat ground sliding sideways at v0 =
+ * 0.5 m/s and spinning so that its contact point slips at v0 + r w0 = 0.1
+ * m/s (r w0 = -0.4 m/s, w0 about +x, its axis) feels kinetic friction
+ * against that slip: its angular momentum about the contact line is kept,
+ * so it ends rolling at (2 v0 - r w0) / 3 = 0.4667 m/s, after t* = 0.1 /
+ * (3 mu g) = 8.5 ms (mu =
+ * 0.4), whereas friction at the centreline (test_kinetic_on_element_velocity)
+ * would keep the spin and stop the slide.  Once it rolls, the ground sees no
+ * slip: the rod travels r times the angle its directors turn, which checks
+ * the direction of the couple against the frames the integrator turns. */
+static void test_contact_point_bowling(void **state) {
+  (void)state;
+  const double zero[3] = {0, 0, 0}, mu_k[3] = {0.1, 0.2, 0.4}, v0 = 0.5, w0 = -40;
+  const double start[3] = {0, 0, RR - PEN0}, dir[3] = {1, 0, 0}, nrm[3] = {0, 0, 1};
+  swSpec *s = sw_spec_new();
+  swRodDesc r = rod_at(start, dir, nrm, RR);
+  sw_spec_add_rod(s, &r);
+  swGroundDesc g = ground_of(KW, GW, mu_k, zero);
+  g.contact_point = 1;
+  sw_spec_add_ground(s, &g);
+  const double grav[3] = {0, 0, -GRAV};
+  sw_spec_set_gravity(s, grav);
+  swModel *m = sw_test_compile_at(s, 0.5);
+  swData *d = sw_data_new(m);
+  for (int i = 0; i <= m->rod_nelem[0]; i++) SW_AT(m, d->v, m->node_adr[0] + i, 1) = v0;
+  for (int e = 0; e < m->rod_nelem[0]; e++) SW_AT(m, d->omega, m->elem_adr[0] + e, 2) = w0;
+  const double w_lab = axial_spin(m, d); /* +w0: the tangent is +x = d3 */
+  /* the contact point -r z moves at v + w x (-r z) = v + r w_x along y */
+  SW_EXPECT_ABS("initial contact-point slip (m/s)", v0 + RR * w_lab, 0.1, 1e-12);
+  double v[3], c[3];
+  sw_test_run_to(m, d, 0.03);
+  com(m, d->v, v);
+  com(m, d->x, c);
+  const int mid = m->elem_adr[0] + RN / 2;
+  double Q[9];
+  sw_getQ(m, d->Q, mid, Q);
+  /* d1 (row 0 of Q) turns in the y-z plane: by phi about +x it is
+   * (0, -sin phi, cos phi), and rolling along +y turns it by -y / r */
+  const double ya = c[1], phia = -atan2(Q[1], Q[2]);
+  SW_EXPECT_REL("rolling speed after the slip stops (m/s)", v[1], (2 * v0 - RR * w_lab) / 3, 1e-2);
+  sw_test_run_to(m, d, 0.06); /* 1.4 rad, inside atan2's range */
+  com(m, d->x, c);
+  sw_getQ(m, d->Q, mid, Q);
+  double turn = -atan2(Q[1], Q[2]) - phia;
+  fprintf(stderr, "# %s: rolled %.4f m while d1 turned %.4f rad (r x turn = %.4f m)\n", __func__,
+          c[1] - ya, turn, RR * turn);
+  SW_EXPECT_REL("distance rolled against r x the frame's turn", c[1] - ya, -RR * turn, 1e-2);
+  sw_data_free(d);
+  sw_model_free(m);
+  sw_spec_free(s);
+}
+
+/* Largest speed across the rod (along y) of the points where its elements
+ * touch the ground: the element centre's, plus r w_x with the contact point
+ * at -r z when friction acts there (rod along x on the ground z = 0). */
+static double largest_slip_across(const swModel *m, const swData *d, int contact_point) {
+  double worst = 0;
+  for (int i = 0; i < m->rod_nelem[0]; i++) {
+    const int e = m->elem_adr[0] + i, a = m->node_adr[0] + i;
+    double u = 0.5 * (SW_AT(m, d->v, a, 1) + SW_AT(m, d->v, a + 1, 1));
+    if (contact_point) {
+      double Q[9], w[3];
+      sw_getQ(m, d->Q, e, Q);
+      sw_get3(m, d->omega, e, w);
+      u += RR * (Q[0] * w[0] + Q[3] * w[1] + Q[6] * w[2]); /* + r (w_lab . x) */
+    }
+    worst = fmax(worst, fabs(u));
+  }
+  return worst;
+}
+
+/* Claim: kinetic friction never reverses a slip within one step.  With the
+ * slip tolerance of PyElastica's snake, v_eps = 1e-8 m/s, Coulomb friction
+ * mu N against a slip that a step's kick of mu g h would carry past zero
+ * would chatter at +-mu g h (1e-3 m/s here) about rest.  Capped at the
+ * force that stops the slip in one step (m u / h, ground.c), a rod sliding
+ * sideways at 0.1 m/s with mu = 0.5 stops at 20.4 ms, as g mu gives, and
+ * then stays put: below 2 v_eps.  With friction at the contact point the
+ * same rod is the bowling ball of test_contact_point_bowling: it ends
+ * rolling at 2/3 of its speed, and it is its contact point that stays below
+ * 2 v_eps. */
+static void test_friction_never_reverses(void **state) {
+  (void)state;
+  const double zero[3] = {0, 0, 0}, mu_k[3] = {0.3, 0.4, 0.5}, v0 = 0.1;
+  const double start[3] = {0, 0, RR - PEN0}, dir[3] = {1, 0, 0}, nrm[3] = {0, 0, 1};
+  for (int cp = 0; cp < 2; cp++) {
+    swSpec *s = sw_spec_new();
+    swRodDesc r = rod_at(start, dir, nrm, RR);
+    sw_spec_add_rod(s, &r);
+    swGroundDesc g = ground_of(KW, GW, mu_k, zero);
+    g.slip_velocity = 1e-8;
+    g.contact_point = cp;
+    sw_spec_add_ground(s, &g);
+    const double grav[3] = {0, 0, -GRAV};
+    sw_spec_set_gravity(s, grav);
+    swModel *m = sw_test_compile_at(s, 0.5);
+    swData *d = sw_data_new(m);
+    for (int i = 0; i <= m->rod_nelem[0]; i++) SW_AT(m, d->v, m->node_adr[0] + i, 1) = v0;
+    double v[3];
+    sw_test_run_to(m, d, 0.01);
+    com(m, d->v, v);
+    if (cp) SW_EXPECT_REL("rolling speed at 10 ms (m/s)", v[1], 2.0 / 3.0 * v0, 1e-2);
+    else SW_EXPECT_REL("sliding speed at 10 ms (m/s)", v[1], v0 - mu_k[2] * GRAV * d->time, 1e-2);
+    double worst = 0;
+    while (d->time < 0.05) {
+      sw_test_run_to(m, d, d->time + 0.002);
+      if (d->time >= 0.025) worst = fmax(worst, largest_slip_across(m, d, cp));
+    }
+    fprintf(stderr, "# %s: %s: largest slip across, 25-50 ms: %.3e m/s (mu g h = %.3e)\n",
+            __func__, cp ? "contact point" : "centreline", worst, mu_k[2] * GRAV * m->dt);
+    assert_true(worst < 2 * g.slip_velocity);
+    sw_data_free(d);
+    sw_model_free(m);
+    sw_spec_free(s);
+  }
 }
 
 /* ---- the roll of a rod on a curved terrain ---- */
@@ -753,6 +945,9 @@ int main(void) {
       cmocka_unit_test(test_kinetic_on_element_velocity),
       cmocka_unit_test(test_roll_on_curved_terrain),
       cmocka_unit_test(test_kinetic_follows_slip_direction),
+      cmocka_unit_test(test_contact_point_incline),
+      cmocka_unit_test(test_contact_point_bowling),
+      cmocka_unit_test(test_friction_never_reverses),
   };
   return cmocka_run_group_tests_name("ground", tests, NULL, NULL);
 }
