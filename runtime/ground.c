@@ -41,20 +41,31 @@
  * surface, so that each coefficient is weighted by the slip's direction
  * cosine along its direction (the anisotropic Coulomb law of Hu et al.,
  * PNAS 2009, that Gazzola 2018 and PyElastica's snake use), then static
- * friction, which cancels the
- * remaining tangential load T (others plus kinetic) up to phi mu_s N, with
- * the coefficient chosen by the sign of T.  Friction acts at the element
- * centre (no couple): with mu_static = 0 and mu_rolling = 0 this is kinetic
- * anisotropic friction on the element velocity, the reference's snake.
+ * friction, which cancels the remaining tangential load T (others plus
+ * kinetic) up to phi mu_s N, with the coefficient chosen by the sign of T.
+ * Kinetic friction is capped at m |u| / h, the force that stops the slip in
+ * one step (m: the mass it moves along its direction), so that it never
+ * carries a slip past zero and chatters there; the cap vanishes as h -> 0.
+ *
+ * By default friction acts at the element centre (no couple): with
+ * mu_static = 0 and mu_rolling = 0 this is kinetic anisotropic friction on
+ * the element velocity, the reference's snake.  With contact_point the
+ * sideways friction acts where the element touches, at -r n: the point slips
+ * at u_b - r w_a (w_a = (Q^T w) . a, the roll rate), a force f b there also
+ * turns the element by -r f a, so the point moves as a mass
+ * m_b = 1 / (1/m_e + r^2/J_a) (m_e / 3 for a solid cylinder), and static
+ * friction cancels the load that accelerates the point,
+ * m_b (T_b / m_e - r tau_a / J_a).  Only the roll is free: pitch and yaw are
+ * held by the surface and the neighbours, so the forward direction keeps
+ * the centre's slip.  (PyElastica's rolling-direction friction has the same
+ * couple but takes the force's direction from the centre's velocity, so it
+ * can keep spinning a rod that already rolls; this one only dissipates.)
  *
  * Rolling friction, mu_rolling, is a rolling resistance: a couple about a
- * against the element's rolling rate w_a = (Q^T w) . a, of magnitude
- * mu_rolling r N (the classical rolling-resistance force mu_rolling N at
- * lever arm r), blended by the same slip function of the contact-point speed
- * r |w_a|, kinetic and static alike.  PyElastica instead applies the
- * sideways coefficient to the contact point's slip v + w x (-r n), which
- * makes sideways friction spin the rod; here sideways friction never
- * couples to rotation.
+ * against the element's rolling rate w_a, of magnitude mu_rolling r N (the
+ * classical rolling-resistance force mu_rolling N at lever arm r), blended
+ * by the same slip function of the contact-point speed r |w_a|, kinetic and
+ * static alike.
  *
  * The elements of a rod are visited in order and each sees its nodes' loads
  * as they were before this ground acted: what the previous element has just

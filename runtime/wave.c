@@ -26,7 +26,7 @@
  * moment has a component sum_i tau_i z . (d3_i - d3_{i-1}) about the
  * elements' own axes that does not depend on how far they have rolled.  The
  * roll of a round, isotropic rod has no elastic stiffness, the ground's
- * friction acts at the element centre (no couple, ground.c) and the
+ * friction acts at the element centre by default (no couple, ground.c) and the
  * mass-proportional damping lets it decay at only gamma / (rho A), so the
  * reference's snake on the barrier of Zhang 2019 Suppl. Fig. 11 spun up to
  * ~600 rad/s (100 J of the wave's work) and the explicit gyroscopic couple
