@@ -97,7 +97,7 @@ const char *ast_kind_name(swAstKind kind) {
     "import", "param", "let", "definition", "joint", "component", "use", "statement",
     "simulate", "output", "field", "selection", "number", "string", "name", "unit",
     "operator", "negation", "quantity", "vector", "call", "member", "method call",
-    "arguments", "argument", "parameters", "condition", "file",
+    "arguments", "argument", "parameters", "condition", "file", "expect",
   };
   return (unsigned)kind < sizeof names / sizeof names[0] ? names[kind] : "?";
 }

@@ -50,7 +50,8 @@ typedef enum {
   AST_ARG,        /* name = keyword or NULL, kid[0] = value             */
   AST_FORMALS,    /* kids = ARG (name, kid[0] = default or NULL)        */
   AST_CASE,       /* piecewise argument "cond: value": kid[0], kid[1]   */
-  AST_FILE        /* kids = items                                       */
+  AST_FILE,       /* kids = items                                       */
+  AST_EXPECT      /* kid[0] = quantity, kids[1..] = ARG (name = word, kid[0]) */
 } swAstKind;
 
 typedef struct swAst swAst;

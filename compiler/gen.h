@@ -39,6 +39,7 @@ int gen_rod_id(const swScene *sc, int rod);
  * ri rods and mi muscles added so far, whether a rod comes next. */
 int gen_rod_next(const swScene *sc, int ri, int mi);
 swSpec *gen_spec(const swScene *sc);
+void gen_expect_desc(const swSceneExpect *x, swExpectDesc *d);   /* constants */
 
 /* Validate the scene with the runtime (sw_compile) and warn when dt is above
  * the stable estimate.  Returns the number of errors. */

@@ -236,6 +236,33 @@ static void emit_build(FILE *out, swArena *a, const swScene *sc) {
     }
   }
   gen_env_build(out, a, sc);
+  static const char *const quantities[] = {"SW_EXPECT_JOINT_ANGLE", "SW_EXPECT_JOINT_FORCE",
+                                           "SW_EXPECT_MUSCLE_FORCE", "SW_EXPECT_MUSCLE_STRETCH",
+                                           "SW_EXPECT_PROBE"};
+  for (int i = 0; i < sc->nexpect; i++) {
+    swExpectDesc d;
+    gen_expect_desc(&sc->expect[i], &d);
+    char where[300];
+    /* the file's name without its directory: no machine path in the C */
+    const char *path = diag_file(sc->expect[i].loc.file)->path, *slash = strrchr(path, '/');
+    snprintf(where, sizeof where, "%s:%d", slash ? slash + 1 : path, sc->expect[i].loc.line);
+    fputc('\n', out);
+    gen_origin(out, sc->expect[i].loc, "  ");
+    fputs("  {\n    swExpectDesc expect;\n    sw_expect_desc_init(&expect);\n    expect.text = ",
+          out);
+    gen_c_string(out, d.text);
+    fputs(";\n    expect.where = ", out);
+    gen_c_string(out, where);
+    fprintf(out, ";\n    expect.quantity = %s;\n    expect.index = %d;\n", quantities[d.quantity],
+            d.index);
+    if (d.quantity == SW_EXPECT_PROBE) fprintf(out, "    expect.component = %d;\n", d.component);
+    if (d.window) fputs("    expect.window = 1;\n", out);
+    fprintf(out, "    expect.t0 = %.17g;\n    expect.t1 = %.17g;\n", d.t0, d.t1);
+    fprintf(out, "    expect.lo = %.17g;\n    expect.hi = %.17g;\n", d.lo, d.hi);
+    fprintf(out, "    expect.scale = %.17g;\n    expect.unit = ", d.scale);
+    gen_c_string(out, d.unit);
+    fputs(";\n    ok &= sw_spec_add_expect(s, &expect) >= 0;\n  }\n", out);
+  }
   if (sc->gravity.kind == VAL_VEC) {
     fputc('\n', out);
     gen_origin(out, sc->gravity_loc, "  ");

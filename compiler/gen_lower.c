@@ -197,6 +197,22 @@ int gen_rod_next(const swScene *sc, int ri, int mi) {
   return mi >= sc->nmuscle || sc->rod[ri].id < sc->muscle[mi].id;
 }
 
+/* An expectation's description: all constants. */
+void gen_expect_desc(const swSceneExpect *x, swExpectDesc *d) {
+  sw_expect_desc_init(d);
+  d->text = x->text;
+  d->quantity = x->quantity;
+  d->index = x->index;
+  d->component = x->component;
+  d->window = x->window;
+  d->t0 = x->t0;
+  d->t1 = x->t1;
+  d->lo = x->lo;
+  d->hi = x->hi;
+  d->scale = x->scale;
+  d->unit = x->unit;
+}
+
 swSpec *gen_spec(const swScene *sc) {
   swSpec *s = sw_spec_new();
   if (!s) return NULL;
@@ -333,6 +349,11 @@ swSpec *gen_spec(const swScene *sc) {
     d.node = p->node;
     if (p->window.kind == VAL_NUM) d.window = p->window.v[0];
     sw_spec_add_probe(s, &d);
+  }
+  for (int i = 0; i < sc->nexpect; i++) {
+    swExpectDesc d;
+    gen_expect_desc(&sc->expect[i], &d);
+    sw_spec_add_expect(s, &d);
   }
   if (sc->gravity.kind == VAL_VEC) sw_spec_set_gravity(s, sc->gravity.v);
   sw_spec_set_integrator(s, sc->integrator);

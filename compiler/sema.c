@@ -525,6 +525,9 @@ void sema_items(swSema *S, swScope *scope, const swAst *items, int first) {
     case AST_OUTPUT:
       sema_output(S, scope, it);
       break;
+    case AST_EXPECT:
+      sema_expectation_later(S, scope, it);
+      break;
     default:
       break;
     }
@@ -650,6 +653,7 @@ int sema_check_lets(swArena *arena, int file, swLetOverride *lets, int nlets, sw
   scene->model_name = ast_strdup(arena, base, dot && dot != base ? (size_t)(dot - base) : strlen(base));
   int before = diag_errors();
   check_file(&S, file);
+  sema_expectations(&S);
   warn_unused(&S);
   int lets_ok = 1;
   for (int i = 0; i < nlets; i++) {
@@ -666,6 +670,8 @@ int sema_check_lets(swArena *arena, int file, swLetOverride *lets, int nlets, sw
   sha256_hex(S.src ? S.src : "", S.srclen, scene->sha256);
   for (int i = 0; i < S.ndone; i++) free(S.done_paths[i]);
   free(S.done_paths);
+  free(S.expect_item);
+  free(S.expect_scope);
   return diag_errors() - before;
 }
 
@@ -682,5 +688,6 @@ void sema_scene_free(swScene *scene) {
   free(scene->contact);
   free(scene->wave);
   free(scene->probe);
+  free(scene->expect);
   memset(scene, 0, sizeof *scene);
 }

@@ -265,6 +265,18 @@ typedef struct {
   swValue window;             /* MEAN_VELOCITY; VAL_ERROR: frame interval  */
 } swSceneProbe;
 
+/* An expectation (swExpectDesc; expect.c): constants, fixed when compiling. */
+typedef struct {
+  const char *text;           /* the statement as written, on one line     */
+  swLoc loc;
+  swExpectQuantity quantity;
+  int index, component;       /* runtime joint, muscle or probe id         */
+  int window;                 /* 0: at t0; 1: every step of [t0, t1]      */
+  double t0, t1, lo, hi;      /* SI                                        */
+  double scale;               /* the report's unit, in SI ...              */
+  const char *unit;           /* ... and its name                          */
+} swSceneExpect;
+
 typedef struct {
   swSceneRod *rod;       int nrod, caprod;
   swSceneMuscle *muscle; int nmuscle, capmuscle;
@@ -279,6 +291,7 @@ typedef struct {
   swSceneContact *contact; int ncontact, capcontact;
   swSceneWave *wave;     int nwave, capwave;
   swSceneProbe *probe;   int nprobe, capprobe;
+  swSceneExpect *expect; int nexpect, capexpect;
   swValue gravity;            /* kind VAL_ERROR when absent                 */
   swLoc gravity_loc;
   swIntegrator integrator;

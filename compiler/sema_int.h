@@ -43,6 +43,10 @@ typedef struct {
   /* items met once per scene */
   swLoc simulate_loc, output_loc;
   int has_simulate, has_output;
+  /* expect statements, checked once the whole scene (its probes) is known */
+  const swAst **expect_item;
+  swScope **expect_scope;
+  int nexpect_item, capexpect_item;
 } swSema;
 
 /* sema.c */
@@ -93,6 +97,10 @@ void sema_output(swSema *S, swScope *scope, const swAst *item);
 int sema_is_env_kind(const char *kind);
 void sema_env(swSema *S, swScope *scope, const swAst *item);
 void sema_probe(swSema *S, swScope *scope, const swAst *field);
+/* sema_expectation.c: an expect statement is kept when met and checked by
+ * sema_expectations after the last item */
+void sema_expectation_later(swSema *S, swScope *scope, const swAst *it);
+void sema_expectations(swSema *S);
 /* a rod list: NAME, (NAME, NAME, ...), all; muscles stand for their filaments */
 int sema_rod_list(swSema *S, swScope *scope, const swAst *e, const char *what, swRodList *out);
 

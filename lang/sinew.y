@@ -83,7 +83,7 @@ static void sinew_yyerror(swLoc *loc, yyscan_t scanner, struct swLexState *st, c
 %token <str> STRING "string"
 %token IMPORT "'import'" PARAM "'param'" LET "'let'" JOINT "'joint'"
 %token COMPONENT "'component'" USE "'use'" SIMULATE "'simulate'"
-%token OUTPUT "'output'" EVERY "'every'"
+%token OUTPUT "'output'" EVERY "'every'" EXPECT "'expect'"
 %token AND "'and'" OR "'or'" LE "'<='" GE "'>='"
 
 %left OR
@@ -156,6 +156,20 @@ item
                                $$->kid[0] = every; }
   | OUTPUT STRING every_opt ';'
                              { $$ = node(st, AST_OUTPUT, ast_span(@1, @2)); $$->text = $2; ast_push(A, $$, $3); }
+  /* expect QUANTITY WORD expr WORD expr [WORD expr];
+       expect angle(elbow) at 0.5 s in (-155 deg, -150 deg);
+       expect force(biceps) over (0.2 s, 0.5 s) in (0 N, 300 N);
+       expect angle(elbow) at 0.5 s within 1 deg of -152 deg;
+     the words (at/over, in/within, of) are checked by sema_expect.c */
+  | EXPECT expr IDENT expr IDENT expr ';'
+                             { $$ = node(st, AST_EXPECT, ast_span(@1, @6)); ast_push(A, $$, $2);
+                               ast_push(A, $$, ast_push(A, named(st, AST_ARG, @3, $3), $4));
+                               ast_push(A, $$, ast_push(A, named(st, AST_ARG, @5, $5), $6)); }
+  | EXPECT expr IDENT expr IDENT expr IDENT expr ';'
+                             { $$ = node(st, AST_EXPECT, ast_span(@1, @8)); ast_push(A, $$, $2);
+                               ast_push(A, $$, ast_push(A, named(st, AST_ARG, @3, $3), $4));
+                               ast_push(A, $$, ast_push(A, named(st, AST_ARG, @5, $5), $6));
+                               ast_push(A, $$, ast_push(A, named(st, AST_ARG, @7, $7), $8)); }
   | error ';'                { $$ = NULL; yyerrok; }
   | error '}'                { $$ = NULL; yyerrok; }
   ;

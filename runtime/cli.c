@@ -430,7 +430,8 @@ static void print_help(const swCli *c, const char *default_out) {
     printf("The model has no params.\n\n");
   }
   printf("exit status: 0 ok, 1 model error, 2 usage error, 3 the simulation became\n"
-         "unstable, 4 I/O error, 130 interrupted (the file holds every frame written).\n");
+         "unstable, 4 I/O error, 5 an expect of the model failed, 130 interrupted (the\n"
+         "file holds every frame written).\n");
   fflush(stdout);
 }
 
@@ -845,10 +846,22 @@ static int run(const swCli *c, const swModel *m, const char *out) {
     sw_data_free(d);
     return SW_EIO;
   }
-  swRunOptions ro = {c->duration, c->every, c->quiet, NULL};
+  swExpectRun *expect = m->nexpect ? sw_expect_run_new(m) : NULL;
+  if (m->nexpect && !expect) {
+    complain(c, "out of memory");
+    sw_output_close(o, "failed: out of memory");
+    sw_data_free(d);
+    return SW_EMODEL;
+  }
+  swRunOptions ro = {c->duration, c->every, c->quiet, NULL, expect};
   double start = wall_seconds();
   int rc = sw_run(m, d, o, &ro);
   double wall = wall_seconds() - start;
+  /* the model's expectations: reported whatever the run's end, and a
+   * failure is the run's verdict only when nothing else went wrong */
+  int failed = sw_expect_report(m, expect, stderr, c->prog, c->quiet);
+  sw_expect_run_free(expect);
+  if (failed && rc == SW_OK) rc = SW_EEXPECT;
 
   /* The file says how the run ended. */
   char status[600];
@@ -857,6 +870,11 @@ static int run(const swCli *c, const swModel *m, const char *out) {
   case SW_OK:
     verdict = "done";
     snprintf(status, sizeof status, "complete");
+    break;
+  case SW_EEXPECT:
+    verdict = "done, an expectation failed";
+    snprintf(status, sizeof status, "complete; %d expectation%s failed", failed,
+             failed == 1 ? "" : "s");
     break;
   case SW_EUNSTABLE:
     verdict = "unstable";
@@ -884,7 +902,8 @@ static int run(const swCli *c, const swModel *m, const char *out) {
     char t[32], total[32], w[32];
     fprintf(stderr, "%s: %s: %ld frame%s written to %s; simulated %s", c->prog, verdict, frames,
             frames == 1 ? "" : "s", out, format_time(t, sizeof t, d->time));
-    if (rc != SW_OK) fprintf(stderr, " of %s", format_time(total, sizeof total, c->duration));
+    if (rc != SW_OK && rc != SW_EEXPECT)
+      fprintf(stderr, " of %s", format_time(total, sizeof total, c->duration));
     fprintf(stderr, " in %s wall time (%ld steps)\n", format_wall(w, sizeof w, wall), d->step);
     fflush(stderr);
   }

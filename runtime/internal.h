@@ -10,6 +10,22 @@
  * memory); write a message into err and return 0. */
 int sw_grow(void **p, int *cap, int n, size_t item);
 int sw_fail(char *err, size_t errlen, const char *fmt, ...) __attribute__((format(printf, 3, 4)));
+/* Expectations (expect.c): the spec's list (kept in swSpec by model.c), the
+ * model's copies, and the run loop's hooks: sw_expect_next is the first step
+ * after `step` at which one is sampled (LONG_MAX: none), sw_expect_sample
+ * samples those due at d->step. */
+typedef struct { swExpectDesc *item; int n, cap; } swExpectList;
+swExpectList *sw_spec_expects(swSpec *s);                                   /* model.c */
+void sw_expect_list_free(swExpectList *l);
+int sw_expect_setup(swModel *m, const swExpectList *l, char *err, size_t errlen);
+void sw_expect_free(swModel *m);
+long sw_expect_next(const swModel *m, long step);
+void sw_expect_sample(const swModel *m, swData *d, swExpectRun *r);
+/* A muscle's tension (the sum of its filaments') and its stretch (the
+ * filaments' end-to-end length over rest length, averaged by area), of the
+ * last force evaluation (output.c and expect.c). */
+double sw_muscle_force(const swModel *m, const swData *d, int mu);
+double sw_muscle_stretch(const swModel *m, const swData *d, int mu);
 /* Threads (integrate.c).  A step on more than one thread runs inside one
  * OpenMP parallel region that sw_steps opens, and every function of the step
  * is entered by all threads of the team.  Loops over slots are cut into the

@@ -42,11 +42,13 @@ struct swSpec {
   const swMuscleOps *muscle_ops; /* set by muscle.c with the first muscle */
   swEnvSpec *env;                /* owned by environment.c */
   const swEnvOps *env_ops;       /* set by environment.c with the first */
+  swExpectList expects;          /* owned by expect.c */
 };
 
 swMuscleSpec **sw_spec_muscles(swSpec *s) { return &s->muscles; }
 const swMuscleOps **sw_spec_muscle_ops(swSpec *s) { return &s->muscle_ops; }
 swEnvSpec **sw_spec_env(swSpec *s) { return &s->env; }
+swExpectList *sw_spec_expects(swSpec *s) { return &s->expects; }
 const swEnvOps **sw_spec_env_ops(swSpec *s) { return &s->env_ops; }
 int sw_spec_nrod(const swSpec *s) { return s->nrod; }
 
@@ -70,6 +72,7 @@ void sw_spec_free(swSpec *s) {
   free(s->load); free(s->bc); free(s->joint); free(s->joint_name);
   if (s->muscle_ops) s->muscle_ops->free_spec(s->muscles);
   if (s->env_ops) s->env_ops->free_spec(s->env);
+  sw_expect_list_free(&s->expects);
   free(s);
 }
 
@@ -270,6 +273,7 @@ void sw_model_free(swModel *m) {
   free(m->elem_ghost); free(m->elem_variational); free(m->kick_exact); free(m->damp_linear); free(m->inv_rest_vor_len);
   free(m->load); free(m->bc);
   for (int j = 0; j < m->njoint; j++) free(m->joint_name[j]);
+  sw_expect_free(m);
   free(m->joint); free(m->joint_name); free(m->joint_node_a); free(m->joint_node_b);
   free(m->joint_elem_a); free(m->joint_elem_b); free(m->joint_axis_a); free(m->joint_axis_b);
   free(m->joint_rest_rot); free(m->joint_angle0); free(m->joint_wave_dt);
@@ -668,7 +672,8 @@ swModel *sw_compile(const swSpec *s, char *err, size_t errlen) {
   m->muscle_ops = s->muscle_ops;
   m->env_ops = s->env_ops;
   if ((s->muscle_ops && !s->muscle_ops->setup(m, s->muscles, err, errlen)) ||
-      (s->env_ops && !s->env_ops->setup(m, s->env, err, errlen))) {
+      (s->env_ops && !s->env_ops->setup(m, s->env, err, errlen)) ||
+      !sw_expect_setup(m, &s->expects, err, errlen)) {
     sw_model_free(m);
     return NULL;
   }

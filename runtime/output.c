@@ -110,23 +110,11 @@ static void fill_joint_angle(const swModel *m, swData *d, int joint, double *fra
  * which is what its own law uses) averaged by cross-section; its activation
  * is the mean weighted by peak force. */
 static void fill_muscle_force(const swModel *m, swData *d, int mu, double *frame) {
-  double T = 0;
-  for (int f = m->muscle_fil_adr[mu]; f < m->muscle_fil_adr[mu + 1]; f++) T += d->fil_tension[f];
-  frame[0] = T;
+  frame[0] = sw_muscle_force(m, d, mu);
 }
 
 static void fill_muscle_stretch(const swModel *m, swData *d, int mu, double *frame) {
-  double s = 0, w = 0;
-  for (int f = m->muscle_fil_adr[mu]; f < m->muscle_fil_adr[mu + 1]; f++) {
-    const int r = m->fil_rod[f];
-    double a[3], b[3];
-    sw_get3(m, d->x, m->node_adr[r], a);
-    sw_get3(m, d->x, m->node_adr[r] + m->rod_nelem[r], b);
-    const double dx[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]};
-    s += m->fil_area[f] * sqrt(dx[0] * dx[0] + dx[1] * dx[1] + dx[2] * dx[2]) / m->fil_l0[f];
-    w += m->fil_area[f];
-  }
-  frame[0] = s / w;
+  frame[0] = sw_muscle_stretch(m, d, mu);
 }
 
 static void fill_muscle_activation(const swModel *m, swData *d, int mu, double *frame) {

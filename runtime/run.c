@@ -13,7 +13,8 @@
  * one line rewritten with '\r', only for runs longer than a second and at most
  * twice a second; the wall clock is read on a stride of steps re-estimated
  * from the measured step rate, so a tiny rod does not pay a clock read per
- * step and a huge one is not left silent. */
+ * step and a huge one is not left silent.  A model's expectations (expect.c)
+ * are sampled at the steps they name: the fused chunks end there. */
 #include <math.h>
 #include <signal.h>
 #include <stdio.h>
@@ -22,6 +23,7 @@
 #include <time.h>
 
 #include "sinew.h"
+#include "internal.h"
 
 #define PROGRESS_AFTER 1.0      /* s of wall time before the first line   */
 #define PROGRESS_EVERY 0.5      /* s of wall time between lines           */
@@ -149,16 +151,23 @@ int sw_run(const swModel *m, swData *d, swOutput *out, const swRunOptions *ro) {
   int handler_installed = sigaction(SIGINT, &action, &previous) == 0;
 
   int rc = write_frame(m, d, out, &p);
+  if (ro->expect) sw_expect_sample(m, d, ro->expect);
   long k = 0, last_frame = 0;
   p.start = p.last_line = wall_seconds();
   while (rc == SW_OK && k < nsteps && !interrupted) {
     /* as many fused steps as fit before the next frame (at most 256, so
-     * that SIGINT and the progress line stay responsive) */
+     * that SIGINT and the progress line stay responsive) and before the
+     * next step an expectation samples (expect.c) */
     long chunk = every - k % every;
     if (chunk > nsteps - k) chunk = nsteps - k;
     if (chunk > 256) chunk = 256;
+    if (ro->expect) {
+      long due = sw_expect_next(m, d->step);
+      if (due - d->step < chunk) chunk = due - d->step;
+    }
     int step_rc = sw_steps(m, d, chunk);
     k += chunk;
+    if (step_rc == SW_OK && ro->expect) sw_expect_sample(m, d, ro->expect);
     if (step_rc != SW_OK) {
       progress_end(&p);
       fprintf(log, "sinew: %s\n", d->error[0] ? d->error : "the step failed");

@@ -42,6 +42,7 @@ enum {
   SW_EUSAGE = 2,    /* bad call or command-line argument */
   SW_EUNSTABLE = 3, /* the simulation became unstable */
   SW_EIO = 4,       /* file could not be written */
+  SW_EEXPECT = 5,   /* an expect of the model (or --compare) failed */
   SW_EINTERRUPT = 130 /* stopped by SIGINT; output is valid up to the last frame */
 };
 
@@ -362,6 +363,31 @@ typedef struct {
 void sw_wave_desc_init(swWaveDesc *w);       /* fills defaults */
 int sw_spec_add_wave(swSpec *s, const swWaveDesc *w);
 
+/* ---- expectations (expect.c): a model as its own golden test ----
+ * An expectation bounds one quantity at one time (the step nearest t0) or
+ * at every step of a window [t0, t1]; the simulator checks it while it
+ * runs and reports at the end (exit SW_EEXPECT when one fails). */
+typedef enum {
+  SW_EXPECT_JOINT_ANGLE = 0,  /* hinge angle of joint `index`, rad              */
+  SW_EXPECT_JOINT_FORCE,      /* magnitude of joint `index`'s force, N          */
+  SW_EXPECT_MUSCLE_FORCE,     /* tension of muscle `index` (its filaments'), N  */
+  SW_EXPECT_MUSCLE_STRETCH,   /* its stretch l / l0                             */
+  SW_EXPECT_PROBE             /* component `component` of probe `index` (0-2: x,
+                                 y, z; 3: length); not a mean-velocity probe   */
+} swExpectQuantity;
+typedef struct {
+  const char *text;           /* the expectation as written, for the report    */
+  const char *where;          /* "file.sinew:12"                               */
+  swExpectQuantity quantity;
+  int index, component;
+  int window;                 /* 0: at t0; 1: every step of [t0, t1]          */
+  double t0, t1;              /* s                                            */
+  double lo, hi;              /* bounds, SI                                   */
+  double scale;               /* the report shows value / scale ...           */
+  const char *unit;           /* ... in this unit ("deg"); "" for none        */
+} swExpectDesc;
+void sw_expect_desc_init(swExpectDesc *e);   /* fills defaults */
+int sw_spec_add_expect(swSpec *s, const swExpectDesc *e);
 /* Observables for /probes/NAME, one row [3] a frame. */
 typedef enum {
   SW_PROBE_COM = 0,         /* centre of mass of the rods, m                 */
@@ -512,6 +538,8 @@ typedef struct {
   swContactDesc *contact;    /* (ncontact)                                   */
   swWaveDesc *wave;          /* (nwave)                                      */
   swProbeDesc *probe;        /* (nprobe)                                     */
+  int nexpect;
+  swExpectDesc *expect;      /* (nexpect) copies, strings owned (expect.c)   */
   /* fluid.c: fluid k acts on rows [fluid_row_adr[k], fluid_row_adr[k+1]), one
    * row per element of its rods, in the order of its rod list */
   int nfluidrow;
@@ -693,6 +721,16 @@ double sw_stable_dt(const swModel *m);
 double sw_stable_dt_rod(const swModel *m, int rod);
 double sw_stable_dt_joint(const swModel *m, int joint);
 
+/* The record of one run's expectations (created before the run, sampled by
+ * sw_run through swRunOptions.expect, reported after it). */
+typedef struct swExpectRun swExpectRun;
+swExpectRun *sw_expect_run_new(const swModel *m);
+void sw_expect_run_free(swExpectRun *r);
+/* Writes the report to f (quiet: the failures only); returns how many
+ * expectations failed (those the run did not reach are listed, not counted). */
+int sw_expect_report(const swModel *m, const swExpectRun *r, FILE *f, const char *prog,
+                     int quiet);
+
 /* ---- output (output.c, the only file that touches HDF5) ---- */
 typedef struct swOutput swOutput;
 typedef struct {
@@ -720,6 +758,7 @@ typedef struct {
   double every;          /* s between frames; 0 = every step            */
   int quiet;             /* no progress line                             */
   FILE *log;             /* messages (stderr when NULL)                  */
+  swExpectRun *expect;   /* expectations to sample (NULL: none)          */
 } swRunOptions;
 
 int sw_run(const swModel *m, swData *d, swOutput *out, const swRunOptions *ro);
