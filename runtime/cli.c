@@ -29,6 +29,8 @@
 #include <errno.h>
 #include <limits.h>
 #include <math.h>
+#include <unistd.h>
+#include <sys/stat.h>
 #include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -41,7 +43,8 @@
 /* ---- the options ---- */
 
 typedef enum {
-  OPT_OUT, OPT_DURATION, OPT_DT, OPT_INTEGRATOR, OPT_EVERY, OPT_SET, OPT_THREADS, OPT_QUIET, OPT_INFO, OPT_HELP
+  OPT_OUT, OPT_DURATION, OPT_DT, OPT_INTEGRATOR, OPT_EVERY, OPT_SET, OPT_THREADS, OPT_COMPARE,
+  OPT_RTOL, OPT_QUIET, OPT_INFO, OPT_HELP
 } swOptionId;
 
 typedef struct {
@@ -59,6 +62,8 @@ static const swOption options[] = {
   {OPT_EVERY, "--every", "T", "simulated time between frames, 0 = every step"},
   {OPT_SET, "--set", "NAME=VALUE", "override a param, VALUE with its unit (repeatable)"},
   {OPT_THREADS, "--threads", "N", "threads of each step, or 'auto' (by the model's size)"},
+  {OPT_COMPARE, "--compare", "FILE", "after the run, compare each dataset with a stored run's"},
+  {OPT_RTOL, "--rtol", "R", "tolerance of --compare, relative to each dataset's largest value"},
   {OPT_QUIET, "--quiet", NULL, "no progress line, notes or summary"},
   {OPT_INFO, "--info", NULL, "print the compiled scene and exit"},
   {OPT_HELP, "--help", NULL, "print this help and exit"},
@@ -81,6 +86,9 @@ typedef struct {
   int threads_set;           /* given on the command line */
   int threads_auto;          /* --threads auto: chosen for the model */
   int quiet, info, help;
+  const char *golden;        /* --compare: the stored run, or NULL          */
+  double rtol;               /* its tolerance (--rtol; default 1e-9)        */
+  int rtol_given;
   double *P;                 /* (nparam) param values, SI                   */
   char *overridden;          /* (nparam) set by --set                       */
 } swCli;
@@ -365,13 +373,34 @@ static int parse_args(swCli *c, int argc, char **argv) {
     case OPT_EVERY: rc = read_time(c, opt->name, value, 0, &c->every); break;
     case OPT_SET: rc = read_set(c, value); break;
     case OPT_THREADS: rc = read_threads(c, value); c->threads_set = 1; break;
+    case OPT_COMPARE:
+      if (!value[0]) rc = complain(c, "--compare: empty file name");
+      c->golden = value;
+      break;
+    case OPT_RTOL: {
+      char *end = NULL;
+      c->rtol = strtod(value, &end);
+      c->rtol_given = 1;
+      if (end == value || *end || !(c->rtol >= 0) || !isfinite(c->rtol))
+        rc = complain(c, "--rtol: expected a number >= 0 (a fraction: 1e-6), got '%s'", value);
+      break;
+    }
     case OPT_QUIET: c->quiet = 1; break;
     case OPT_INFO: c->info = 1; break;
     case OPT_HELP: c->help = 1; break;
     }
     if (rc != SW_OK) return rc;
   }
+  if (c->rtol_given && !c->golden) return complain(c, "--rtol is the tolerance of --compare, "
+                                                  "which was not given");
   return SW_OK;
+}
+
+/* Whether two paths name the same file (the same path, or the same inode). */
+static int same_file(const char *a, const char *b) {
+  if (!strcmp(a, b)) return 1;
+  struct stat sa, sb;
+  return stat(a, &sa) == 0 && stat(b, &sb) == 0 && sa.st_dev == sb.st_dev && sa.st_ino == sb.st_ino;
 }
 
 /* ---- --help ---- */
@@ -397,6 +426,7 @@ static void print_help(const swCli *c, const char *default_out) {
       break;
     case OPT_THREADS: def = "1; the results are the same for any N"; break;
     case OPT_INTEGRATOR: def = "the model's"; break;
+    case OPT_RTOL: def = "1e-9"; break;
     default: break;
     }
     printf("  %-18s %s", head, o->help);
@@ -430,8 +460,8 @@ static void print_help(const swCli *c, const char *default_out) {
     printf("The model has no params.\n\n");
   }
   printf("exit status: 0 ok, 1 model error, 2 usage error, 3 the simulation became\n"
-         "unstable, 4 I/O error, 5 an expect of the model failed, 130 interrupted (the\n"
-         "file holds every frame written).\n");
+         "unstable, 4 I/O error, 5 an expect of the model (or --compare) failed, 130\n"
+         "interrupted (the file holds every frame written).\n");
   fflush(stdout);
 }
 
@@ -898,6 +928,13 @@ static int run(const swCli *c, const swModel *m, const char *out) {
     complain(c, "%s", sw_output_error());
     if (rc == SW_OK) rc = SW_EIO;
   }
+  /* --compare: the closed file against the stored one (a run that did not
+   * finish is not compared: its file is shorter by design) */
+  if (c->golden && (rc == SW_OK || rc == SW_EEXPECT)) {
+    int differ = sw_compare_files(out, c->golden, c->rtol, stderr, c->prog);
+    if (differ < 0) rc = SW_EIO;
+    else if (differ > 0 && rc == SW_OK) rc = SW_EEXPECT;
+  }
   if (!c->quiet) {
     char t[32], total[32], w[32];
     fprintf(stderr, "%s: %s: %ld frame%s written to %s; simulated %s", c->prog, verdict, frames,
@@ -928,6 +965,7 @@ int sw_main(const swProgram *p, int argc, char **argv) {
   c.every = p->every;
   c.threads = 1;
   c.integrator = -1;
+  c.rtol = 1e-9;
 
   /* default output: the model's, or NAME.h5 */
   char default_out[256];
@@ -944,6 +982,13 @@ int sw_main(const swProgram *p, int argc, char **argv) {
   for (int i = 0; i < p->nparam; i++) c.P[i] = p->param[i].value;
 
   int rc = parse_args(&c, argc, argv);
+  if (rc == SW_OK && c.golden && access(c.golden, R_OK) != 0) {
+    complain(&c, "--compare: cannot read '%s': %s", c.golden, strerror(errno));
+    rc = SW_EIO;
+  }
+  if (rc == SW_OK && c.golden && same_file(c.out, c.golden))
+    rc = complain(&c, "--compare %s: that is the file this run would write (--out); the run "
+                  "would overwrite what it is compared with", c.golden);
   if (rc == SW_OK && c.help) {
     print_help(&c, p->out && p->out[0] ? p->out : default_out);
   } else if (rc == SW_OK) {

@@ -1,5 +1,5 @@
-/* output.c — HDF5 output of a run; the only file of the runtime that includes
- * hdf5.h.
+/* output.c — HDF5 output of a run; with compare.c (which reads a golden
+ * file), the only file of the runtime that includes hdf5.h.
  *
  * Design.  What is written is described by one table, output_fields[]: a
  * dataset path, whether it exists once, once per rod, per joint (or hinge),

@@ -747,6 +747,12 @@ swOutput *sw_output_open(const char *path, const swModel *m, const swOutputOptio
 int sw_output_frame(swOutput *o, const swModel *m, swData *d);
 int sw_output_close(swOutput *o, const char *status);
 long sw_output_frames(const swOutput *o);
+/* SIM --compare (compare.c): every numeric dataset of the golden file against
+ * the run's, within rtol of the dataset's largest magnitude; the report to
+ * f.  Returns how many datasets differ or are missing, -1 when a file cannot
+ * be opened. */
+int sw_compare_files(const char *run_path, const char *golden_path, double rtol, FILE *f,
+                     const char *prog);
 /* Message of the most recent failed sw_output_* call in this thread (names the
  * file and the object; "" if none failed).  Added because sw_output_frame()
  * and sw_output_close() have no err argument. */
