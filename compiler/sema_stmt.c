@@ -19,7 +19,52 @@
 
 static const char *const joint_kinds[] = {"spherical", "hinge", "fixed"};
 static const char *const joint_keys[] = {"axis", "stiffness", "damping", "rot_stiffness",
-                                         "rot_damping"};
+                                         "rot_damping", "allow_gap"};
+
+/* "5 mm", "12 um", "0.3 m": a length in the unit that reads best. */
+static const char *length_text(char *buf, size_t len, double metres) {
+  if (metres < 1e-3) snprintf(buf, len, "%.3g um", metres * 1e6);
+  else if (metres < 1) snprintf(buf, len, "%.3g mm", metres * 1e3);
+  else snprintf(buf, len, "%.4g m", metres);
+  return buf;
+}
+
+/* A joint's two points must start together: its spring pulls a gap shut
+ * with stiffness x gap on the first step (654 kN for 5 mm on the elbow's
+ * default).  The tolerance is a millionth of the shorter element at the
+ * joint, far below anything a model means; allow_gap = true says the gap is
+ * intended (the joint then pulls the points together).  Positions are those
+ * of the params' defaults. */
+static int joint_gap_ok(swSema *S, swScope *scope, const swFields *f, const swAst *it,
+                        const swValue *a, const swValue *b) {
+  const swAst *allow = sema_field(f, "allow_gap");
+  int allowed = 0;
+  if (allow) {
+    allowed = sema_truth(S, scope, allow, "'allow_gap'");
+    if (allowed < 0) return 0;
+  }
+  if (a->kind != VAL_POINT || (b->kind != VAL_POINT && b->kind != VAL_VEC)) return 1;
+  double gap = 0;
+  for (int k = 0; k < 3; k++) gap += (a->v[k] - b->v[k]) * (a->v[k] - b->v[k]);
+  gap = sqrt(gap);
+  const swScene *scn = S->scene;
+  double element = INFINITY;
+  const swValue *ends[2] = {a, b};
+  for (int e = 0; e < 2; e++) {
+    if (ends[e]->kind != VAL_POINT) continue;
+    const swSceneRod *r = &scn->rod[ends[e]->rod];
+    if (r->length.kind == VAL_NUM && r->nelem > 0) element = fmin(element, r->length.v[0] / r->nelem);
+  }
+  if (!isfinite(element) || gap <= 1e-6 * element || allowed) return 1;
+  char g[64], pa[160], pb[160];
+  snprintf(pa, sizeof pa, "(%.4g, %.4g, %.4g) m", a->v[0], a->v[1], a->v[2]);
+  snprintf(pb, sizeof pb, "(%.4g, %.4g, %.4g) m", b->v[0], b->v[1], b->v[2]);
+  diag_error(it->loc, "joint '%s': its two points are %s apart (%s and %s), and its spring "
+             "would pull them together on the first step; move them together, or write "
+             "allow_gap = true; if the gap is intended", it->name,
+             length_text(g, sizeof g, gap), pa, pb);
+  return 0;
+}
 
 void sema_joint(swSema *S, swScope *scope, const swAst *it) {
   swSceneJoint j;
@@ -79,7 +124,8 @@ void sema_joint(swSema *S, swScope *scope, const swAst *it) {
   swFields f;
   char what[128];
   snprintf(what, sizeof what, "joint '%s'", it->name);
-  sema_fields(S, it, 1, what, joint_keys, 5, &f);
+  sema_fields(S, it, 1, what, joint_keys, 6, &f);
+  if (!joint_gap_ok(S, scope, &f, it, &a, &b)) ok = 0;
   swLoc loc = it->loc;
   j.axis = sema_field(&f, "axis") ? sema_field_value(S, scope, &f, "axis", 3, DIM_NONE)
            : sema_vec3(S, 0, 0, 0, DIM_NONE, loc);
