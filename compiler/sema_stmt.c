@@ -125,7 +125,7 @@ void sema_joint(swSema *S, swScope *scope, const swAst *it) {
   char what[128];
   snprintf(what, sizeof what, "joint '%s'", it->name);
   sema_fields(S, it, 1, what, joint_keys, 6, &f);
-  if (!joint_gap_ok(S, scope, &f, it, &a, &b)) ok = 0;
+  if (ok && !joint_gap_ok(S, scope, &f, it, &a, &b)) ok = 0; /* after the ends are sound */
   swLoc loc = it->loc;
   j.axis = sema_field(&f, "axis") ? sema_field_value(S, scope, &f, "axis", 3, DIM_NONE)
            : sema_vec3(S, 0, 0, 0, DIM_NONE, loc);
