@@ -43,7 +43,7 @@ void gen_expect_desc(const swSceneExpect *x, swExpectDesc *d);   /* constants */
 
 /* Validate the scene with the runtime (sw_compile) and warn when dt is above
  * the stable estimate.  Returns the number of errors. */
-int gen_check(const swScene *sc);
+int gen_check(const swScene *sc, double *stable_dt);
 
 /* Print the simulator's C source. */
 typedef struct {

@@ -361,7 +361,7 @@ int gen_c(FILE *out, swArena *a, const swScene *sc, const swGenOptions *opt) {
   return ferror(out) ? -1 : 0;
 }
 
-int gen_check(const swScene *sc) {
+int gen_check(const swScene *sc, double *stable_dt) {
   swSpec *s = gen_spec(sc);
   if (!s) {
     diag_plain("out of memory");
@@ -385,6 +385,7 @@ int gen_check(const swScene *sc) {
                    "(set by rod '%s'); the run will likely become unstable", sc->dt, est,
                    m->rod_name[worst]);
   }
+  if (stable_dt) *stable_dt = m->nrod > 0 ? sw_stable_dt(m) : 0;
   sw_model_free(m);
   return 0;
 }

@@ -27,6 +27,8 @@ struct swLexState {
   swAst *root;                  /* the parser's result                     */
   const char *last_unit;        /* spelling of the last UNIT token          */
   int cur_unit, prev_unit;      /* this token / the one before is a UNIT    */
+  int cur_value, prev_value;    /* this token / the one before ends a value
+                                   (a number or ')'), where a unit may follow */
 };
 
 /* Parse text of file `file` (already registered with diag_add_file). */

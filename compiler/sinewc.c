@@ -309,6 +309,26 @@ static int parse_args(int argc, char **argv, swOptions *o) {
 }
 
 /* The --let overrides that could not apply, one line each; their count. */
+/* sinewc --check on success: what was checked, on one line of stderr. */
+static void print_checked(const char *model, const swScene *sc, double stable) {
+  int nfil = 0;
+  for (int i = 0; i < sc->nmuscle; i++) nfil += sc->muscle[i].filaments;
+  int nenv = sc->nground + sc->nfluid + sc->ncontact + sc->nwave;
+  char dt[64] = "";
+  if (stable > 0) {
+    if (stable < 1e-6) snprintf(dt, sizeof dt, "; stable dt %.3g ns", stable * 1e9);
+    else if (stable < 1e-3) snprintf(dt, sizeof dt, "; stable dt %.3g us", stable * 1e6);
+    else snprintf(dt, sizeof dt, "; stable dt %.3g ms", stable * 1e3);
+  }
+  fprintf(stderr, "%s: %s: ok: %d file%s, %d rod%s (%ld elements), %d muscle%s (%d filaments), "
+          "%d joint%s, %d environment%s, %d param%s, %d expectation%s, %d warning%s%s\n",
+          progname, model, diag_nfiles(), diag_nfiles() == 1 ? "" : "s", sc->nrod,
+          sc->nrod == 1 ? "" : "s", sc->nelem, sc->nmuscle, sc->nmuscle == 1 ? "" : "s", nfil,
+          sc->njoint, sc->njoint == 1 ? "" : "s", nenv, nenv == 1 ? "" : "s", sc->nparam,
+          sc->nparam == 1 ? "" : "s", sc->nexpect, sc->nexpect == 1 ? "" : "s", diag_warnings(),
+          diag_warnings() == 1 ? "" : "s", dt);
+}
+
 static int report_lets(const swOptions *o) {
   int n = 0;
   for (int i = 0; i < o->nlets; i++)
@@ -340,7 +360,8 @@ static int compile(const swOptions *o) {
   /* a --let that cannot apply is a usage error: said first, in one line */
   int bad_lets = report_lets(o);
   /* a library file (materials, components, no rods) has nothing to run */
-  if (!diag_errors() && !bad_lets && scene.nrodid > 0) gen_check(&scene);
+  double stable = 0;
+  if (!diag_errors() && !bad_lets && scene.nrodid > 0) gen_check(&scene, &stable);
   if (!diag_errors() && !bad_lets && scene.nrodid == 0 && !o->check)
     fprintf(stderr, "%s: warning: '%s' defines no rods; the simulator will have nothing to "
             "simulate\n", progname, model);
@@ -355,7 +376,9 @@ static int compile(const swOptions *o) {
   if (rc) goto done;
   if (o->eval_height) {
     print_heights(&scene);
-  } else if (!o->check) {
+  } else if (o->check) {
+    print_checked(model, &scene, stable);
+  } else {
     char tmp[PATH_MAX];
     const char *cpath = out;
     if (!o->emit_c) {

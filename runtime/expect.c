@@ -18,7 +18,8 @@
  * (a shortened --duration); only failures count.
  *
  * Quantities are read as the output reads them (output.c): joints through
- * sw_joint_measure, muscles from their filaments' last force evaluation,
+ * sw_joint_measure, muscles through muscle.c's table (their filaments' last
+ * force evaluation),
  * probes through sw_probe_measure.  A mean-velocity probe keeps a ring of
  * samples taken at frames, so it cannot also be sampled at other steps; the
  * compiler and sw_expect_setup refuse it. */
@@ -158,26 +159,6 @@ long sw_expect_next(const swModel *m, long step) {
 
 /* ---- quantities ---- */
 
-double sw_muscle_force(const swModel *m, const swData *d, int mu) {
-  double T = 0;
-  for (int f = m->muscle_fil_adr[mu]; f < m->muscle_fil_adr[mu + 1]; f++) T += d->fil_tension[f];
-  return T;
-}
-
-double sw_muscle_stretch(const swModel *m, const swData *d, int mu) {
-  double s = 0, w = 0;
-  for (int f = m->muscle_fil_adr[mu]; f < m->muscle_fil_adr[mu + 1]; f++) {
-    const int r = m->fil_rod[f];
-    double a[3], b[3];
-    sw_get3(m, d->x, m->node_adr[r], a);
-    sw_get3(m, d->x, m->node_adr[r] + m->rod_nelem[r], b);
-    const double dx[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]};
-    s += m->fil_area[f] * sqrt(dx[0] * dx[0] + dx[1] * dx[1] + dx[2] * dx[2]) / m->fil_l0[f];
-    w += m->fil_area[f];
-  }
-  return s / w;
-}
-
 static double quantity(const swModel *m, swData *d, const swExpectDesc *e) {
   switch (e->quantity) {
   case SW_EXPECT_JOINT_ANGLE:
@@ -188,8 +169,8 @@ static double quantity(const swModel *m, swData *d, const swExpectDesc *e) {
     const double *f = d->joint_force + 3 * (size_t)e->index;
     return sqrt(f[0] * f[0] + f[1] * f[1] + f[2] * f[2]);
   }
-  case SW_EXPECT_MUSCLE_FORCE: return sw_muscle_force(m, d, e->index);
-  case SW_EXPECT_MUSCLE_STRETCH: return sw_muscle_stretch(m, d, e->index);
+  case SW_EXPECT_MUSCLE_FORCE: return sw_muscle_ops(m)->force(m, d, e->index);
+  case SW_EXPECT_MUSCLE_STRETCH: return sw_muscle_ops(m)->stretch(m, d, e->index);
   case SW_EXPECT_PROBE: {
     double row[3];
     sw_probe_measure(m, d, e->index, row);

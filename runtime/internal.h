@@ -21,11 +21,6 @@ int sw_expect_setup(swModel *m, const swExpectList *l, char *err, size_t errlen)
 void sw_expect_free(swModel *m);
 long sw_expect_next(const swModel *m, long step);
 void sw_expect_sample(const swModel *m, swData *d, swExpectRun *r);
-/* A muscle's tension (the sum of its filaments') and its stretch (the
- * filaments' end-to-end length over rest length, averaged by area), of the
- * last force evaluation (output.c and expect.c). */
-double sw_muscle_force(const swModel *m, const swData *d, int mu);
-double sw_muscle_stretch(const swModel *m, const swData *d, int mu);
 /* Threads (integrate.c).  A step on more than one thread runs inside one
  * OpenMP parallel region that sw_steps opens, and every function of the step
  * is entered by all threads of the team.  Loops over slots are cut into the
@@ -177,6 +172,10 @@ typedef struct {
   void (*tensions)(const swModel *m, swData *d, double h); /* after the rod pass, then after */
   void (*pull)(const swModel *m, swData *d);     /*   a barrier each               */
   double (*stable_dt_filament)(const swModel *m, int f);
+  /* a muscle's tension (its filaments' sum) and stretch (their end-to-end
+   * length over rest length, averaged by area), for output.c and expect.c */
+  double (*force)(const swModel *m, const swData *d, int mu);
+  double (*stretch)(const swModel *m, const swData *d, int mu);
 } swMuscleOps;
 static inline const swMuscleOps *sw_muscle_ops(const swModel *m) {
   return (const swMuscleOps *)m->muscle_ops;

@@ -172,10 +172,34 @@ static int check_item(const swMuscleItem *it, int nrod, char *err, size_t errlen
 static void muscle_rates(const swModel *m, swData *d);
 static void muscle_tensions(const swModel *m, swData *d, double h);
 static void muscle_pull(const swModel *m, swData *d);
+/* The bundle's tension, the sum of its filaments' (they pull in parallel),
+ * and its stretch, each filament's end-to-end length over its rest length
+ * averaged by cross-section, of the last force evaluation. */
+static double muscle_force(const swModel *m, const swData *d, int mu) {
+  double T = 0;
+  for (int f = m->muscle_fil_adr[mu]; f < m->muscle_fil_adr[mu + 1]; f++) T += d->fil_tension[f];
+  return T;
+}
+
+static double muscle_stretch(const swModel *m, const swData *d, int mu) {
+  double s = 0, w = 0;
+  for (int f = m->muscle_fil_adr[mu]; f < m->muscle_fil_adr[mu + 1]; f++) {
+    const int r = m->fil_rod[f];
+    double a[3], b[3];
+    sw_get3(m, d->x, m->node_adr[r], a);
+    sw_get3(m, d->x, m->node_adr[r] + m->rod_nelem[r], b);
+    const double dx[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]};
+    s += m->fil_area[f] * sqrt(dx[0] * dx[0] + dx[1] * dx[1] + dx[2] * dx[2]) / m->fil_l0[f];
+    w += m->fil_area[f];
+  }
+  return s / w;
+}
+
 static const swMuscleOps muscle_ops = {sw_muscle_check,  sw_muscle_setup,     sw_muscle_free,
                                        sw_muscle_spec_free, sw_muscle_reset, sw_muscle_advance,
                                        sw_muscle_loads,  muscle_rates,        muscle_tensions,
-                                       muscle_pull,      sw_stable_dt_filament};
+                                       muscle_pull,      sw_stable_dt_filament,
+                                       muscle_force,     muscle_stretch};
 
 int sw_spec_add_muscle(swSpec *s, const swMuscleDesc *md) {
   *sw_spec_muscle_ops(s) = &muscle_ops;

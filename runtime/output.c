@@ -110,11 +110,11 @@ static void fill_joint_angle(const swModel *m, swData *d, int joint, double *fra
  * which is what its own law uses) averaged by cross-section; its activation
  * is the mean weighted by peak force. */
 static void fill_muscle_force(const swModel *m, swData *d, int mu, double *frame) {
-  frame[0] = sw_muscle_force(m, d, mu);
+  frame[0] = sw_muscle_ops(m)->force(m, d, mu);
 }
 
 static void fill_muscle_stretch(const swModel *m, swData *d, int mu, double *frame) {
-  frame[0] = sw_muscle_stretch(m, d, mu);
+  frame[0] = sw_muscle_ops(m)->stretch(m, d, mu);
 }
 
 static void fill_muscle_activation(const swModel *m, swData *d, int mu, double *frame) {
