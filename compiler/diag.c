@@ -38,6 +38,7 @@ void diag_reset(FILE *out) {
   for (int i = 0; i < nfiles; i++) {
     free(files[i].path);
     free(files[i].text);
+    free(files[i].name);
   }
   free(files);
   files = NULL;
@@ -56,8 +57,9 @@ int diag_add_file(const char *path, const char *text, size_t len) {
   }
   swSource *f = &files[nfiles];
   f->path = strdup(path);
+  f->name = strdup(path);
   f->text = malloc(len + 1);
-  if (!f->path || !f->text) abort();
+  if (!f->path || !f->name || !f->text) abort();
   memcpy(f->text, text, len);
   f->text[len] = 0;
   f->len = len;
@@ -66,6 +68,14 @@ int diag_add_file(const char *path, const char *text, size_t len) {
 
 const swSource *diag_file(int id) {
   return id >= 0 && id < nfiles ? &files[id] : NULL;
+}
+
+void diag_set_name(int id, const char *name) {
+  if (id < 0 || id >= nfiles) return;
+  char *copy = strdup(name);
+  if (!copy) abort();
+  free(files[id].name);
+  files[id].name = copy;
 }
 
 int diag_nfiles(void) { return nfiles; }
@@ -219,6 +229,12 @@ void diag_plain(const char *fmt, ...) {
 const char *diag_where(swLoc loc, char *buf, size_t len) {
   const swSource *f = diag_file(loc.file);
   snprintf(buf, len, "%s:%d", f ? f->path : "?", loc.line);
+  return buf;
+}
+
+const char *diag_name_where(swLoc loc, char *buf, size_t len) {
+  const swSource *f = diag_file(loc.file);
+  snprintf(buf, len, "%s:%d", f ? f->name : "?", loc.line);
   return buf;
 }
 

@@ -19,11 +19,18 @@ typedef struct {
   char *path;        /* as shown in messages                  */
   char *text;        /* whole file, NUL-terminated            */
   size_t len;
+  char *name;        /* the same on every machine, for what the compiler
+                        writes (model source, generated C): the main file's
+                        base name, an import's name as written; the path
+                        until diag_set_name gives one             */
 } swSource;
 
 void diag_reset(FILE *out);                /* forget all files and counts */
 int diag_add_file(const char *path, const char *text, size_t len);  /* file id */
 const swSource *diag_file(int id);
+void diag_set_name(int id, const char *name);
+/* "name:line" of a place, in the machine-independent name (generated C) */
+const char *diag_name_where(swLoc loc, char *buf, size_t len);
 int diag_nfiles(void);
 
 void diag_error(swLoc loc, const char *fmt, ...) __attribute__((format(printf, 2, 3)));

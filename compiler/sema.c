@@ -304,8 +304,11 @@ static void do_import(swSema *S, const swAst *item) {
   }
   mark_done(S, canon);
   int file = diag_add_file(path, text, len);
+  /* the import as written, not where it was found: the model's source, and
+   * its hash, are the same wherever sinewc runs and is installed */
+  diag_set_name(file, name);
   char header[PATH_MAX + 64];
-  int hl = snprintf(header, sizeof header, "\n# ---- imported: %s ----\n", path);
+  int hl = snprintf(header, sizeof header, "\n# ---- imported: %s ----\n", name);
   append_source(S, header, (size_t)hl);
   append_source(S, text, len);
   free(text);
@@ -617,7 +620,7 @@ static void let_not_found(swSema *S, swLetOverride *o) {
 static void record_lets(swSema *S) {
   char line[1024];
   int n = snprintf(line, sizeof line, "\n# ---- sinewc --let: lets of %s given on the command "
-                   "line ----\n", diag_file(S->main_file)->path);
+                   "line ----\n", diag_file(S->main_file)->name);
   append_source(S, line, (size_t)n);
   for (int i = 0; i < S->nlets; i++) {
     n = snprintf(line, sizeof line, "# --let %s (in place of the let at line %d)\n",

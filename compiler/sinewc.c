@@ -353,6 +353,8 @@ static int compile(const swOptions *o) {
     return not_text ? 1 : 4;
   }
   int file = diag_add_file(model, text, len);
+  const char *base = strrchr(model, '/');
+  diag_set_name(file, base && base[1] ? base + 1 : model);
   free(text);
   swArena *arena = ast_arena_new();
   swScene scene;
