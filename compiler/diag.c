@@ -23,7 +23,16 @@ typedef struct {
   long seq;                     /* order of reporting, to keep sorts stable */
   char severity;                /* 'e'rror, 'w'arning or 'n'ote             */
   char *text;                   /* the whole formatted diagnostic           */
+  size_t head;                  /* its length without the context notes     */
 } swPending;
+
+/* Where the checker is when a diagnostic comes: the component instances
+ * being expanded, innermost last; each error or warning gets a note per
+ * instance ("in 'thumb', an instance of 'finger'"), with the use's line,
+ * which shows its arguments. */
+#define MAX_CONTEXT 32
+static struct { swLoc loc; char *text; } context[MAX_CONTEXT];
+static int ncontext;
 
 static swPending *pending;
 static long npending, cappending;
@@ -133,13 +142,25 @@ static void report(const char *severity, swLoc loc, const char *fmt, va_list ap)
   vfprintf(out, fmt, ap);
   fputc('\n', out);
   if (f && loc.line > 0) show_source(out, loc);
+  fflush(out);
+  size_t head = size;
+  if (severity[0] != 'n')
+    for (int k = ncontext - 1; k >= 0 && k < MAX_CONTEXT; k--) {
+      const swSource *g = diag_file(context[k].loc.file);
+      if (!g || (context[k].loc.file == loc.file && context[k].loc.line == loc.line))
+        continue; /* the diagnostic is on the use's own line */
+      fprintf(out, "%s:%d:%d: note: %s\n", g->path, context[k].loc.line, context[k].loc.col,
+              context[k].text);
+      show_source(out, context[k].loc);
+    }
   fclose(out);
   if (npending == cappending) {
     cappending = cappending ? 2 * cappending : 16;
     pending = realloc(pending, (size_t)cappending * sizeof *pending);
     if (!pending) abort();
   }
-  pending[npending] = (swPending){f ? loc.file : -1, loc.line, loc.col, npending, severity[0], text};
+  pending[npending] =
+      (swPending){f ? loc.file : -1, loc.line, loc.col, npending, severity[0], text, head};
   npending++;
 }
 
@@ -158,13 +179,15 @@ void diag_flush(void) {
   FILE *out = out_stream();
   for (long i = 0; i < npending; i++) {
     /* the same message at the same place once more (an error in the body of
-     * a component is found again for every use of it): print it once */
+     * a component is found again for every use of it): print it once, with
+     * the notes of the first use that met it */
     int again = 0;
     for (long k = i - 1; k >= 0 && !again; k--) {
       if (pending[k].file != pending[i].file || pending[k].line != pending[i].line ||
           pending[k].col != pending[i].col)
         break;
-      again = !strcmp(pending[k].text, pending[i].text);
+      again = pending[k].head == pending[i].head &&
+              !strncmp(pending[k].text, pending[i].text, pending[i].head);
     }
     if (!again) fputs(pending[i].text, out);
     else if (pending[i].severity == 'e') nerrors--;
@@ -204,6 +227,25 @@ void diag_warning(swLoc loc, const char *fmt, ...) {
     report("warning", loc, fmt, ap);
   }
   va_end(ap);
+}
+
+void diag_push_context(swLoc loc, const char *fmt, ...) {
+  if (ncontext < MAX_CONTEXT) {
+    char buf[512];
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(buf, sizeof buf, fmt, ap);
+    va_end(ap);
+    if (!(context[ncontext].text = strdup(buf))) abort();
+    context[ncontext].loc = loc;
+  }
+  ncontext++;
+}
+
+void diag_pop_context(void) {
+  if (ncontext <= 0) return;
+  ncontext--;
+  if (ncontext < MAX_CONTEXT) free(context[ncontext].text);
 }
 
 void diag_note(swLoc loc, const char *fmt, ...) {

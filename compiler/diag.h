@@ -36,6 +36,10 @@ int diag_nfiles(void);
 void diag_error(swLoc loc, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
 void diag_warning(swLoc loc, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
 void diag_note(swLoc loc, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
+/* While a context is pushed (a component instance being expanded), every
+ * error and warning carries a note at its place; pops in reverse order. */
+void diag_push_context(swLoc loc, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
+void diag_pop_context(void);
 /* A message with no place in a model ("sinewc: cannot read x.sinew"). */
 void diag_plain(const char *fmt, ...) __attribute__((format(printf, 1, 2)));
 /* Print pending diagnostics sorted by file, line and column. */

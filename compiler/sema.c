@@ -464,6 +464,8 @@ static void instantiate(swSema *S, swScope *scope, const swAst *it) {
     bound[slot] = arg;
   }
   S->instance_depth++;
+  diag_push_context(it->loc, "in '%s%s', an instance of component '%s'", scope->prefix,
+                    it->name, comp->name);
   comp->state = 1;   /* its body is being instantiated */
   for (int k = 0; k < formals->nkid; k++) {
     const swAst *f = formals->kid[k];
@@ -488,6 +490,7 @@ static void instantiate(swSema *S, swScope *scope, const swAst *it) {
   declare_items(S, inner, def, 1);
   sema_items(S, inner, def, 1);
   comp->state = 0;
+  diag_pop_context();
   S->instance_depth--;
 }
 
