@@ -63,6 +63,8 @@ struct swAst {
   const char *name;  /* identifier (arena)                                */
   const char *text;  /* string literal or keyword (arena)                 */
   int nkid, capkid;
+  int damaged;       /* a body (or a definition) that lost a field to a syntax
+                        error: its "needs a field" checks stay silent       */
   swAst **kid;
 };
 

@@ -13,17 +13,30 @@
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
+#include <stdarg.h>
 #include <string.h>
 
 #include "sema_int.h"
 
 /* ---- field tables ---- */
 
+void sema_missing(const swFields *f, swLoc loc, const char *fmt, ...) {
+  if (!sema_fields_whole(f)) return; /* lost or misspelt: already reported */
+  char msg[1024];
+  va_list ap;
+  va_start(ap, fmt);
+  vsnprintf(msg, sizeof msg, fmt, ap);
+  va_end(ap);
+  diag_error(loc, "%s", msg);
+}
+
 void sema_fields(swSema *S, const swAst *body, int first, const char *what,
                  const char *const *keys, int nkeys, swFields *f) {
   (void)S;
   f->keys = keys;
   f->nkeys = nkeys;
+  f->damaged = body && body->damaged;
+  f->unknown = 0;
   for (int k = 0; k < SEMA_MAX_FIELDS; k++) f->value[k] = NULL;
   for (int i = first; body && i < body->nkid; i++) {
     const swAst *fl = body->kid[i];
@@ -50,6 +63,7 @@ void sema_fields(swSema *S, const swAst *body, int first, const char *what,
       continue;
     }
     if (k == nkeys) {
+      f->unknown = 1;
       const char *near = diag_suggest(fl->name, keys, nkeys);
       swLoc at = fl->loc;
       if (near)
@@ -223,9 +237,9 @@ static void eval_material(swSema *S, swSymbol *sym) {
   m->poisson = sema_field_value(S, sym->scope, &f, "poisson", 1, DIM_NONE);
   m->density = sema_field_value(S, sym->scope, &f, "density", 1, DIM_DENSITY);
   if (!sema_field(&f, "E"))
-    diag_error(sym->loc, "material '%s' needs Young's modulus E (e.g. E = 10 kPa;)", sym->name);
+    sema_missing(&f, sym->loc, "material '%s' needs Young's modulus E (e.g. E = 10 kPa;)", sym->name);
   if (!sema_field(&f, "density"))
-    diag_error(sym->loc, "material '%s' needs a density (e.g. density = 1.06 g/cm^3;)", sym->name);
+    sema_missing(&f, sym->loc, "material '%s' needs a density (e.g. density = 1.06 g/cm^3;)", sym->name);
   if (m->E.kind == VAL_NUM && !(m->E.v[0] > 0))
     diag_error(m->E.loc, "E must be positive, got %g Pa", m->E.v[0]);
   if (m->density.kind == VAL_NUM && !(m->density.v[0] > 0))
@@ -415,7 +429,7 @@ static void eval_rod(swSema *S, swSymbol *sym) {
   }
   const swAst *s0 = start ? start : from;
   if (!s0) {
-    diag_error(loc, "%s needs a 'start' (or 'from') position", what);
+    sema_missing(&f, loc, "%s needs a 'start' (or 'from') position", what);
     ok = 0;
     r.start = val_error();
   } else r.start = sema_position(S, sc, s0, start ? "'start'" : "'from'");
@@ -434,7 +448,7 @@ static void eval_rod(swSema *S, swSymbol *sym) {
     r.direction = r.length.kind == VAL_NUM ? val_binop(S->a, '/', d, r.length, to->loc) : val_error();
   } else {
     if (!dir || !len) {
-      diag_error(loc, "%s needs 'to', or 'direction' and 'length'", what);
+      sema_missing(&f, loc, "%s needs 'to', or 'direction' and 'length'", what);
       ok = 0;
     }
     r.direction = dir ? sema_field_value(S, sc, &f, "direction", 3, DIM_NONE) : val_error();
@@ -486,7 +500,7 @@ static void eval_rod(swSema *S, swSymbol *sym) {
     sema_positive(S, &r.radius_start, "'radius_start'", "m");
     sema_positive(S, &r.radius_end, "'radius_end'", "m");
   } else {
-    diag_error(loc, "%s needs a 'radius' (or 'radius_start' and 'radius_end')", what);
+    sema_missing(&f, loc, "%s needs a 'radius' (or 'radius_start' and 'radius_end')", what);
     ok = 0;
   }
   /* discretisation */

@@ -245,7 +245,7 @@ static void ground(swSema *S, swScope *sc, const swAst *it, const char *name, co
     ok &= !sema_field(&f, "normal") || g.normal.kind != VAL_ERROR;
   }
   if (!sema_field(&f, "stiffness")) {
-    diag_error(it->loc, "%s needs a 'stiffness' (the penalty of the surface, e.g. "
+    sema_missing(&f, it->loc, "%s needs a 'stiffness' (the penalty of the surface, e.g. "
                "stiffness = 100 N/m;)", what);
     ok = 0;
   }
@@ -310,12 +310,12 @@ static void fluid(swSema *S, swScope *sc, const swAst *it, const char *name, con
     else fl.buoyancy = t;
   }
   if (ok && fl.model == SW_FLUID_STOKES && !sema_field(&f, "viscosity")) {
-    diag_error(it->loc, "%s: Stokes drag needs a 'viscosity' (e.g. viscosity = 1e-3 Pa s;)", what);
+    sema_missing(&f, it->loc, "%s: Stokes drag needs a 'viscosity' (e.g. viscosity = 1e-3 Pa s;)", what);
     ok = 0;
   }
   if (ok && fl.model == SW_FLUID_QUADRATIC &&
       (!sema_field(&f, "density") || !sema_field(&f, "drag_coefficient"))) {
-    diag_error(it->loc, "%s: quadratic drag needs a 'density' and a 'drag_coefficient' (e.g. "
+    sema_missing(&f, it->loc, "%s: quadratic drag needs a 'density' and a 'drag_coefficient' (e.g. "
                "density = 1000 kg/m^3; drag_coefficient = 1.2;)", what);
     ok = 0;
   }
@@ -348,7 +348,7 @@ static void contact(swSema *S, swScope *sc, const swAst *it, const char *name, c
   c.loc = it->loc;
   int ok = 1;
   if (!sema_field(&f, "stiffness")) {
-    diag_error(it->loc, "%s needs a 'stiffness' (e.g. stiffness = 1e4 N/m;)", what);
+    sema_missing(&f, it->loc, "%s needs a 'stiffness' (e.g. stiffness = 1e4 N/m;)", what);
     ok = 0;
   }
   c.stiffness = bounded(S, sc, &f, "stiffness", 1, DIM_STIFFNESS, 1);
@@ -394,7 +394,7 @@ static void wave(swSema *S, swScope *sc, const swAst *it, const char *name, cons
       nmissing++;
     }
   if (nmissing) {
-    diag_error(it->loc, "%s needs %s (e.g. rod = snake; coefficients = (0, 17.4, 48.5, 5.4, "
+    sema_missing(&f, it->loc, "%s needs %s (e.g. rod = snake; coefficients = (0, 17.4, 48.5, 5.4, "
                "14.7, 0) N m; wavelength = 1 m; period = 1 s;)", what, missing);
     ok = 0;
   }

@@ -122,7 +122,15 @@ typedef struct {
   const char *const *keys;
   int nkeys;
   const swAst *value[SEMA_MAX_FIELDS];
+  int damaged;                /* the body lost a field to a syntax error     */
+  int unknown;                /* it has a field of no known key (misspelt)   */
 } swFields;
+/* Whether a body is whole, so that a field it lacks is really missing: not
+ * lost to a syntax error, nor misspelt (that error is already reported). */
+static inline int sema_fields_whole(const swFields *f) { return !f->damaged && !f->unknown; }
+/* A field is missing: the error, unless the body is not whole. */
+void sema_missing(const swFields *f, swLoc loc, const char *fmt, ...)
+    __attribute__((format(printf, 3, 4)));
 void sema_fields(swSema *S, const swAst *body, int first, const char *what,
                  const char *const *keys, int nkeys, swFields *f);
 const swAst *sema_field(const swFields *f, const char *key);

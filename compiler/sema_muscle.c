@@ -123,7 +123,7 @@ void sema_eval_muscle(swSema *S, swSymbol *sym) {
   /* placement: from and to, each a point on a rod (tied) or a position */
   const swAst *from = sema_field(&f, "from"), *to = sema_field(&f, "to");
   if (!from || !to) {
-    diag_error(loc, "%s needs '%s', %s (a point on a rod, e.g. humerus.at(0.1), or a position)",
+    sema_missing(&f, loc, "%s needs '%s', %s (a point on a rod, e.g. humerus.at(0.1), or a position)",
                what, !from ? "from" : "to", !from ? "where it starts" : "where it ends");
     ok = 0;
   }
@@ -159,7 +159,7 @@ void sema_eval_muscle(swSema *S, swSymbol *sym) {
 
   /* cross section and filaments */
   if (!sema_field(&f, "radius")) {
-    diag_error(loc, "%s needs a 'radius', the whole muscle's rest radius (e.g. radius = 5 mm;)",
+    sema_missing(&f, loc, "%s needs a 'radius', the whole muscle's rest radius (e.g. radius = 5 mm;)",
                what);
     ok = 0;
   } else {
@@ -168,7 +168,7 @@ void sema_eval_muscle(swSema *S, swSymbol *sym) {
   }
   long filaments = 0;
   if (!sema_field(&f, "filaments")) {
-    diag_error(loc, "%s needs 'filaments', the number of rods that stand for its motor units "
+    sema_missing(&f, loc, "%s needs 'filaments', the number of rods that stand for its motor units "
                "(e.g. filaments = 18;)", what);
     ok = 0;
   } else {
@@ -205,7 +205,7 @@ void sema_eval_muscle(swSema *S, swSymbol *sym) {
 
   /* contraction */
   if (!sema_field(&f, "sigma_max")) {
-    diag_error(loc, "%s needs 'sigma_max', its peak isometric stress: the force per area of "
+    sema_missing(&f, loc, "%s needs 'sigma_max', its peak isometric stress: the force per area of "
                "a fully activated muscle at rest length (e.g. sigma_max = 300 kPa;)", what);
     ok = 0;
   } else {

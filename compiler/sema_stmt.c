@@ -130,7 +130,7 @@ void sema_joint(swSema *S, swScope *scope, const swAst *it) {
   j.axis = sema_field(&f, "axis") ? sema_field_value(S, scope, &f, "axis", 3, DIM_NONE)
            : sema_vec3(S, 0, 0, 0, DIM_NONE, loc);
   if (j.kind == SW_JOINT_HINGE && !sema_field(&f, "axis")) {
-    diag_error(loc, "hinge '%s' needs an 'axis' (e.g. axis = (0, 1, 0);)", it->name);
+    sema_missing(&f, loc, "hinge '%s' needs an 'axis' (e.g. axis = (0, 1, 0);)", it->name);
     ok = 0;
   } else if (j.kind != SW_JOINT_HINGE && sema_field(&f, "axis")) {
     diag_warning(sema_field(&f, "axis")->loc, "'axis' has no effect on a %s joint", it->text);

@@ -121,14 +121,15 @@ item
   /* KIND NAME { fields }      material bone { E = 15 GPa; } */
   | IDENT IDENT body         { $$ = named(st, AST_DEF, @2, $2); $$->text = $1;
                                $$->kid = $3->kid; $$->nkid = $3->nkid; $$->capkid = $3->capkid;
-                               $$->loc = ast_span(@1, @2); }
+                               $$->damaged = $3->damaged; $$->loc = ast_span(@1, @2); }
   /* KIND { fields }           ground { stiffness = 1e4 N/m; }  (named after its kind) */
   | IDENT body               { $$ = named(st, AST_DEF, @1, NULL); $$->text = $1;
-                               $$->kid = $2->kid; $$->nkid = $2->nkid; $$->capkid = $2->capkid; }
+                               $$->kid = $2->kid; $$->nkid = $2->nkid; $$->capkid = $2->capkid;
+                               $$->damaged = $2->damaged; }
   /* joint NAME = KIND(args) [{ fields }] */
   | JOINT IDENT '=' IDENT '(' args ')' body
                              { $$ = named(st, AST_JOINT, @2, $2); $$->text = $4;
-                               ast_push(A, $$, $6);
+                               $$->damaged = $8->damaged; ast_push(A, $$, $6);
                                for (int i = 0; i < $8->nkid; i++) ast_push(A, $$, $8->kid[i]); }
   | JOINT IDENT '=' IDENT '(' args ')' ';'
                              { $$ = named(st, AST_JOINT, @2, $2); $$->text = $4; ast_push(A, $$, $6); }
@@ -182,12 +183,12 @@ every_opt
 /* body: { field* } */
 body
   : '{' fields '}'           { $$ = $2; }
-  | '{' fields error '}'     { $$ = $2; yyerrok; }
+  | '{' fields error '}'     { $$ = $2; $$->damaged = 1; yyerrok; }
   ;
 
 fields
   : %empty                   { $$ = node(st, AST_SIMULATE, @$); }
-  | fields field             { $$ = $2 ? ast_push(A, $1, $2) : $1; }
+  | fields field             { $$ = $2 ? ast_push(A, $1, $2) : $1; if (!$2) $$->damaged = 1; }
   ;
 
 field
@@ -312,8 +313,23 @@ static int yyreport_syntax_error(const yypcontext_t *ctx, yyscan_t scanner, stru
         return 0;
       }
   }
+  /* a name or number is quoted as written: "unexpected name 'G'" */
+  const swSource *src = diag_file(loc->file);
+  const char *text = NULL;
+  int tlen = 0;
+  if ((found == YYSYMBOL_IDENT || found == YYSYMBOL_NUMBER) && src && loc->line == loc->end_line) {
+    const char *p = src->text, *end = src->text + src->len;
+    for (int l = 1; l < loc->line && p < end; p++)
+      if (*p == '\n') l++;
+    if (p + loc->end_col <= end && loc->end_col >= loc->col) {
+      text = p + loc->col - 1;
+      tlen = loc->end_col - loc->col + 1;
+    }
+  }
   if (found == YYSYMBOL_YYEOF)
     len = snprintf(msg, sizeof msg, "unexpected end of file");
+  else if (text && tlen <= 40)
+    len = snprintf(msg, sizeof msg, "unexpected %s '%.*s'", yysymbol_name(found), tlen, text);
   else
     len = snprintf(msg, sizeof msg, "unexpected %s", yysymbol_name(found));
   /* Where an expression could go on, every operator and unit is "expected";
