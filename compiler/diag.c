@@ -280,6 +280,20 @@ const char *diag_name_where(swLoc loc, char *buf, size_t len) {
   return buf;
 }
 
+const char *diag_join(char *buf, size_t len, const char *const *items, int n) {
+  if (!len) return buf;
+  buf[0] = 0;
+  for (int i = 0; i < n; i++) {
+    if (strlen(buf) + strlen(items[i]) + 8 > len) {
+      strcat(buf, ", ...");
+      break;
+    }
+    if (i) strcat(buf, ", ");
+    strcat(buf, items[i]);
+  }
+  return buf;
+}
+
 const char *diag_suggest(const char *name, const char *const *cands, int n) {
   const char *best = NULL;
   int best_d = 1000;

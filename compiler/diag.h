@@ -51,6 +51,8 @@ void diag_set_werror(int on);
 /* The closest of n candidate names to `name`, or NULL when none is close
  * enough to be a likely misspelling (edit distance, transpositions count 1). */
 const char *diag_suggest(const char *name, const char *const *cands, int n);
+/* "a, b, c" (", ..." when the next would not fit in len, which must be > 8) */
+const char *diag_join(char *buf, size_t len, const char *const *items, int n);
 
 /* "file:line" of a location, for messages that point elsewhere. */
 const char *diag_where(swLoc loc, char *buf, size_t len);

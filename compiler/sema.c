@@ -602,15 +602,8 @@ static void let_not_found(swSema *S, swLetOverride *o) {
       snprintf(msg, sizeof msg, "--let: unknown let '%s' (%s has no top-level lets)", o->name,
                main_path);
     else {
-      char list[512] = "";
-      for (int i = 0; i < n; i++) {
-        if (strlen(list) + strlen(cands[i]) + 8 > sizeof list) {
-          strcat(list, ", ...");
-          break;
-        }
-        if (i) strcat(list, ", ");
-        strcat(list, cands[i]);
-      }
+      char list[512];
+      diag_join(list, sizeof list, cands, n);
       snprintf(msg, sizeof msg, "--let: unknown let '%s' (the lets of %s: %s)", o->name,
                main_path, list);
     }

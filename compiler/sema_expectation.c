@@ -119,15 +119,8 @@ static int resolve(swSema *S, swScope *scope, const swAst *q, swSceneExpect *x, 
       int n = 0;
       for (int i = 0; i < scn->nprobe && n < 64; i++) cands[n++] = scn->probe[i].name;
       const char *near = arg->kind == AST_NAME ? diag_suggest(arg->name, cands, n) : NULL;
-      char list[256] = "";
-      for (int i = 0; i < n; i++) {
-        if (strlen(list) + strlen(cands[i]) + 8 > sizeof list) {
-          strcat(list, ", ...");
-          break;
-        }
-        if (i) strcat(list, ", ");
-        strcat(list, cands[i]);
-      }
+      char list[256];
+      diag_join(list, sizeof list, cands, n);
       if (near) diag_error(arg->loc, "%s() reads a probe of 'output'; did you mean '%s'?",
                            q->name, near);
       else if (n) diag_error(arg->loc, "%s() reads a probe declared in 'output' (the probes: %s)",
