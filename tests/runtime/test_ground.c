@@ -63,6 +63,20 @@ static swGroundDesc ground_of(double kw, double gw, const double mu_k[3], const 
   return g;
 }
 
+/* A rod along x lying PEN0 into the flat ground z = 0 (ground g), under
+ * gravity -z, compiled at half its stable step; the spec goes to *sout. */
+static swModel *flat_scene(const swGroundDesc *g, swSpec **sout) {
+  const double start[3] = {0, 0, RR - PEN0}, dir[3] = {1, 0, 0}, nrm[3] = {0, 0, 1};
+  swSpec *s = sw_spec_new();
+  swRodDesc r = rod_at(start, dir, nrm, RR);
+  sw_spec_add_rod(s, &r);
+  sw_spec_add_ground(s, g);
+  const double grav[3] = {0, 0, -GRAV};
+  sw_spec_set_gravity(s, grav);
+  *sout = s;
+  return sw_test_compile_at(s, 0.5);
+}
+
 /* Mass-weighted mean of a per-node field (x or v) over all rods. */
 static void com(const swModel *m, const double *field, double out[3]) {
   double M = 0;
@@ -449,16 +463,10 @@ static void test_bounce_energy(void **state) {
 static void test_rolling_resistance(void **state) {
   (void)state;
   const double zero[3] = {0, 0, 0}, mu_r = 0.05, w0 = 20;
-  const double start[3] = {0, 0, RR - PEN0}, dir[3] = {1, 0, 0}, nrm[3] = {0, 0, 1};
-  swSpec *s = sw_spec_new();
-  swRodDesc r = rod_at(start, dir, nrm, RR);
-  sw_spec_add_rod(s, &r);
   swGroundDesc g = ground_of(KW, GW, zero, zero);
   g.mu_rolling = mu_r;
-  sw_spec_add_ground(s, &g);
-  const double grav[3] = {0, 0, -GRAV};
-  sw_spec_set_gravity(s, grav);
-  swModel *m = sw_test_compile_at(s, 0.5);
+  swSpec *s;
+  swModel *m = flat_scene(&g, &s);
   swData *d = sw_data_new(m);
   for (int e = 0; e < m->rod_nelem[0]; e++) SW_AT(m, d->omega, m->elem_adr[0] + e, 2) = w0;
   sw_test_run_to(m, d, 0.05);
@@ -487,15 +495,9 @@ static void test_rolling_resistance(void **state) {
 static void test_kinetic_on_element_velocity(void **state) {
   (void)state;
   const double zero[3] = {0, 0, 0}, mu_k[3] = {0.1, 0.2, 0.3}, v0 = 0.5, w0 = 40;
-  const double start[3] = {0, 0, RR - PEN0}, dir[3] = {1, 0, 0}, nrm[3] = {0, 0, 1};
-  swSpec *s = sw_spec_new();
-  swRodDesc r = rod_at(start, dir, nrm, RR);
-  sw_spec_add_rod(s, &r);
   swGroundDesc g = ground_of(KW, GW, mu_k, zero);
-  sw_spec_add_ground(s, &g);
-  const double grav[3] = {0, 0, -GRAV};
-  sw_spec_set_gravity(s, grav);
-  swModel *m = sw_test_compile_at(s, 0.5);
+  swSpec *s;
+  swModel *m = flat_scene(&g, &s);
   swData *d = sw_data_new(m);
   for (int i = 0; i <= m->rod_nelem[0]; i++) SW_AT(m, d->v, m->node_adr[0] + i, 1) = v0;
   for (int e = 0; e < m->rod_nelem[0]; e++) SW_AT(m, d->omega, m->elem_adr[0] + e, 2) = w0;
@@ -525,15 +527,9 @@ static void test_kinetic_follows_slip_direction(void **state) {
   (void)state;
   const double zero[3] = {0, 0, 0}, mu_k[3] = {0.2, 0.3, 0.5}, v0 = 0.5;
   const double theta = 40 * M_PI / 180;
-  const double start[3] = {0, 0, RR - PEN0}, dir[3] = {1, 0, 0}, nrm[3] = {0, 0, 1};
-  swSpec *s = sw_spec_new();
-  swRodDesc r = rod_at(start, dir, nrm, RR);
-  sw_spec_add_rod(s, &r);
   swGroundDesc g = ground_of(KW, GW, mu_k, zero);
-  sw_spec_add_ground(s, &g);
-  const double grav[3] = {0, 0, -GRAV};
-  sw_spec_set_gravity(s, grav);
-  swModel *m = sw_test_compile_at(s, 0.5);
+  swSpec *s;
+  swModel *m = flat_scene(&g, &s);
   swData *d = sw_data_new(m);
   for (int i = m->node_adr[0]; i <= m->node_adr[0] + m->rod_nelem[0]; i++) {
     SW_AT(m, d->v, i, 0) = v0 * cos(theta);
@@ -638,16 +634,10 @@ static void test_contact_point_incline(void **state) {
 static void test_contact_point_bowling(void **state) {
   (void)state;
   const double zero[3] = {0, 0, 0}, mu_k[3] = {0.1, 0.2, 0.4}, v0 = 0.5, w0 = -40;
-  const double start[3] = {0, 0, RR - PEN0}, dir[3] = {1, 0, 0}, nrm[3] = {0, 0, 1};
-  swSpec *s = sw_spec_new();
-  swRodDesc r = rod_at(start, dir, nrm, RR);
-  sw_spec_add_rod(s, &r);
   swGroundDesc g = ground_of(KW, GW, mu_k, zero);
   g.contact_point = 1;
-  sw_spec_add_ground(s, &g);
-  const double grav[3] = {0, 0, -GRAV};
-  sw_spec_set_gravity(s, grav);
-  swModel *m = sw_test_compile_at(s, 0.5);
+  swSpec *s;
+  swModel *m = flat_scene(&g, &s);
   swData *d = sw_data_new(m);
   for (int i = 0; i <= m->rod_nelem[0]; i++) SW_AT(m, d->v, m->node_adr[0] + i, 1) = v0;
   for (int e = 0; e < m->rod_nelem[0]; e++) SW_AT(m, d->omega, m->elem_adr[0] + e, 2) = w0;
@@ -709,18 +699,12 @@ static double largest_slip_across(const swModel *m, const swData *d, int contact
 static void test_friction_never_reverses(void **state) {
   (void)state;
   const double zero[3] = {0, 0, 0}, mu_k[3] = {0.3, 0.4, 0.5}, v0 = 0.1;
-  const double start[3] = {0, 0, RR - PEN0}, dir[3] = {1, 0, 0}, nrm[3] = {0, 0, 1};
   for (int cp = 0; cp < 2; cp++) {
-    swSpec *s = sw_spec_new();
-    swRodDesc r = rod_at(start, dir, nrm, RR);
-    sw_spec_add_rod(s, &r);
     swGroundDesc g = ground_of(KW, GW, mu_k, zero);
     g.slip_velocity = 1e-8;
     g.contact_point = cp;
-    sw_spec_add_ground(s, &g);
-    const double grav[3] = {0, 0, -GRAV};
-    sw_spec_set_gravity(s, grav);
-    swModel *m = sw_test_compile_at(s, 0.5);
+    swSpec *s;
+    swModel *m = flat_scene(&g, &s);
     swData *d = sw_data_new(m);
     for (int i = 0; i <= m->rod_nelem[0]; i++) SW_AT(m, d->v, m->node_adr[0] + i, 1) = v0;
     double v[3];
