@@ -829,8 +829,10 @@ typedef struct {
  * For "did you mean" suggestions, here and in the compiler. */
 int sw_edit_distance(const char *a, size_t la, const char *b);
 
-/* Parses --out --duration --dt --every --set NAME=VALUE --threads --quiet
- * --info --help, builds, compiles and runs; returns the exit code. */
+/* Parses --out --duration --dt --every --set NAME=VALUE --threads --compare
+ * --rtol --quiet --info --help, builds, compiles and runs (checking the
+ * model's expectations and, with --compare, the output against a golden
+ * file); returns the exit code. */
 int sw_main(const swProgram *p, int argc, char **argv);
 
 #endif
