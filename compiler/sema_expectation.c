@@ -184,6 +184,16 @@ static int constant(swSema *S, swScope *scope, const swAst *e, int n, swDim want
   return 1;
 }
 
+/* Two constants (a window, a pair of bounds), the first not above the
+ * second: `backwards` names that mistake. */
+static int ordered_pair(swSema *S, swScope *scope, const swAst *e, swDim want, const char *what,
+                        const char *backwards, double out[2]) {
+  if (!constant(S, scope, e, 2, want, what, out)) return 0;
+  if (out[0] <= out[1]) return 1;
+  diag_error(e->loc, "%s", backwards);
+  return 0;
+}
+
 static void check_one(swSema *S, swScope *scope, const swAst *it) {
   swSceneExpect x;
   memset(&x, 0, sizeof x);
@@ -198,17 +208,11 @@ static void check_one(swSema *S, swScope *scope, const swAst *it) {
     x.t1 = x.t0;
   } else if (!strcmp(when->name, "over")) {
     double w[2] = {0, 0};
-    if (constant(S, scope, ast_kid(when, 0), 2, DIM_TIME, "'over (T0, T1)'", w)) {
-      x.window = 1;
-      x.t0 = w[0];
-      x.t1 = w[1];
-      if (!(w[0] <= w[1])) {
-        diag_error(ast_kid(when, 0)->loc, "the window ends before it starts");
-        ok = 0;
-      }
-    } else {
-      ok = 0;
-    }
+    ok &= ordered_pair(S, scope, ast_kid(when, 0), DIM_TIME, "'over (T0, T1)'",
+                       "the window ends before it starts", w);
+    x.window = 1;
+    x.t0 = w[0];
+    x.t1 = w[1];
   } else {
     diag_error(when->loc, "an expectation says when: 'at T' or 'over (T0, T1)', not '%s'",
                when->name);
@@ -222,16 +226,10 @@ static void check_one(swSema *S, swScope *scope, const swAst *it) {
   const swUnit *unit = NULL;
   if (!strcmp(test->name, "in") && !of) {
     double b[2] = {0, 0};
-    if (ok && constant(S, scope, ast_kid(test, 0), 2, dim, "'in (LO, HI)'", b)) {
-      x.lo = b[0];
-      x.hi = b[1];
-      if (!(b[0] <= b[1])) {
-        diag_error(ast_kid(test, 0)->loc, "the lower bound is above the upper one");
-        ok = 0;
-      }
-    } else {
-      ok = 0;
-    }
+    ok &= ok && ordered_pair(S, scope, ast_kid(test, 0), dim, "'in (LO, HI)'",
+                             "the lower bound is above the upper one", b);
+    x.lo = b[0];
+    x.hi = b[1];
     unit = written_unit(ast_kid(test, 0));
   } else if (!strcmp(test->name, "within") && of && !strcmp(of->name, "of")) {
     double tol = 0, value = 0;
