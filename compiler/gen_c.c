@@ -14,6 +14,7 @@
  * machine, stable order: the same model gives the same bytes.
  */
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include "diag.h"
@@ -116,6 +117,26 @@ static void rod_comment(FILE *out, const swScene *sc, int rod) {
   fputs(" */\n", out);
 }
 
+/* What the output's group says of a rod or a muscle: its kind, material
+ * and model line (VAR.kind, VAR.material, VAR.where). */
+static void emit_description(FILE *out, const char *var, const char *kind, const char *material,
+                             swLoc loc) {
+  char where[512];
+  if (kind) {
+    fprintf(out, "    %s.kind = ", var);
+    gen_c_string(out, kind);
+    fputs(";\n", out);
+  }
+  if (material) {
+    fprintf(out, "    %s.material = ", var);
+    gen_c_string(out, material);
+    fputs(";\n", out);
+  }
+  fprintf(out, "    %s.where = ", var);
+  gen_c_string(out, diag_name_where(loc, where, sizeof where));
+  fputs(";\n", out);
+}
+
 static void emit_rod(FILE *out, swArena *a, const swSceneRod *r) {
   swLowField f[GEN_MAX_FIELDS];
   fputc('\n', out);
@@ -128,6 +149,7 @@ static void emit_rod(FILE *out, swArena *a, const swSceneRod *r) {
   fprintf(out, "    rod.damping = %s;\n", damp[r->damping]);
   if (r->rigid) fputs("    rod.rigid = 1;\n", out);
   if (r->variational) fputs("    rod.law = SW_LAW_VARIATIONAL;\n", out);
+  emit_description(out, "rod", rod_kind_word(r->kind), r->material, r->loc);
   gen_assign_fields(out, a, "rod", f, gen_rod_fields(r, f));
   fputs("    ok &= sw_spec_add_rod(s, &rod) >= 0;\n  }\n", out);
 }
@@ -149,6 +171,7 @@ static void emit_muscle(FILE *out, swArena *a, const swScene *sc, int mi) {
   static const char *damp[] = {"SW_DAMP_NONE", "SW_DAMP_LINEAR", "SW_DAMP_ANALYTIC"};
   if (m->has_damping) fprintf(out, "    muscle.damping = %s;\n", damp[m->damping]);
   if (m->variational) fputs("    muscle.law = SW_LAW_VARIATIONAL;\n", out);
+  emit_description(out, "muscle", NULL, m->material, m->loc);
   for (int e = 0; e < 2; e++)
     if (m->attach_rod[e] >= 0) {
       fprintf(out, "    muscle.attach_rod[%d] = %d; muscle.attach_node[%d] = %d;", e,
@@ -169,12 +192,132 @@ static void emit_muscle(FILE *out, swArena *a, const swScene *sc, int mi) {
   fputs("    ok &= sw_spec_add_muscle(s, &muscle) >= 0;\n  }\n", out);
 }
 
+/* ---- output selection ---- */
+
+static const char *const scope_word[] = {"rod", "joint", "muscle"};
+
+static int has_selection(const swScene *sc, int scope) {
+  for (int i = 0; i < sc->nselect; i++)
+    if ((int)sc->select[i].scope == scope) return 1;
+  return 0;
+}
+
+/* What each item of a scope writes (SW_OUT_* bits), from the selections in
+ * model order.  A quantity written by default (positions; a joint's and a
+ * muscle's quantities) goes to every item until a selection names it, then
+ * to the items selected; the others only to the items selected. */
+static unsigned selected_bits(const swScene *sc, int scope, int count, unsigned *bits) {
+  const unsigned defaults = scope == OUT_RODS     ? SW_OUT_POSITION
+                            : scope == OUT_JOINTS ? SW_OUT_ANGLE | SW_OUT_JOINT_FORCE
+                                                  : SW_OUT_MUSCLE_FORCE | SW_OUT_STRETCH |
+                                                        SW_OUT_ACTIVATION | SW_OUT_FILAMENT_FORCE;
+  unsigned named = 0;
+  for (int k = 0; k < count; k++) bits[k] = defaults;
+  for (int i = 0; i < sc->nselect; i++) {
+    const swOutSelect *o = &sc->select[i];
+    if ((int)o->scope != scope) continue;
+    if (!(named & o->bit))
+      for (int k = 0; k < count; k++) bits[k] &= ~o->bit;
+    named |= o->bit;
+    if (o->n < 0)
+      for (int k = 0; k < count; k++) bits[k] |= o->bit;
+    for (int k = 0; k < o->n; k++) bits[o->id[k]] |= o->bit;
+  }
+  return defaults & ~named;   /* what an item no selection can name keeps */
+}
+
+/* The name of runtime rod `id`: a rod's, or a muscle's filament's. */
+static const char *runtime_rod_name(const swScene *sc, int id, char *buf, size_t len) {
+  for (int r = 0; r < sc->nrod; r++)
+    if (sc->rod[r].id == id) return sc->rod[r].name;
+  for (int m = 0; m < sc->nmuscle; m++)
+    if (id >= sc->muscle[m].id && id < sc->muscle[m].id + sc->muscle[m].filaments) {
+      snprintf(buf, len, "%s.f%02d", sc->muscle[m].name, id - sc->muscle[m].id + 1);
+      return buf;
+    }
+  return "?";
+}
+
+/* Bits by name: "SW_OUT_POSITION | SW_OUT_STRAIN", or "0". */
+static void emit_bits(FILE *out, unsigned bits) {
+  static const char *const bit_name[] = {
+      "SW_OUT_POSITION",       "SW_OUT_VELOCITY",        "SW_OUT_DIRECTORS",
+      "SW_OUT_ANGULAR_VELOCITY", "SW_OUT_STRAIN",        "SW_OUT_CURVATURE",
+      "SW_OUT_INTERNAL_FORCE", "SW_OUT_INTERNAL_COUPLE", "SW_OUT_ANGLE",
+      "SW_OUT_JOINT_FORCE",    "SW_OUT_MUSCLE_FORCE",    "SW_OUT_STRETCH",
+      "SW_OUT_ACTIVATION",     "SW_OUT_FILAMENT_FORCE"};
+  int any = 0;
+  for (unsigned b = 0; b < sizeof bit_name / sizeof bit_name[0]; b++)
+    if (bits & (1u << b)) fprintf(out, "%s%s", any++ ? " | " : "", bit_name[b]);
+  if (!any) fputs("0", out);
+}
+
+/* Items of a scope the compiler knows, when the model selects any of them. */
+static int selection_count(const swScene *sc, int scope) {
+  if (!has_selection(sc, scope)) return 0;
+  return scope == OUT_RODS ? sc->nrodid : scope == OUT_JOINTS ? sc->njoint : sc->nmuscle;
+}
+
+/* static const unsigned rod_out[N] = {...}: one line per item, its bits by
+ * name and the item's name; joints also by name (joint_out_name[N]), as the
+ * runtime adds joints of its own. */
+static void emit_selection(FILE *out, const swScene *sc, int scope) {
+  const int count = selection_count(sc, scope);
+  if (count == 0) return;
+  unsigned *bits = calloc((size_t)count, sizeof *bits);
+  if (!bits) abort();
+  selected_bits(sc, scope, count, bits);
+  fprintf(out, "\n/* What the output writes of each %s (output's selections). */\n",
+          scope_word[scope]);
+  if (scope == OUT_JOINTS) {
+    fprintf(out, "static const char *const joint_out_name[%d] = {", count);
+    for (int k = 0; k < count; k++) {
+      fputs(k ? ", " : "", out);
+      gen_c_string(out, sc->joint[k].name);
+    }
+    fputs("};\n", out);
+  }
+  fprintf(out, "static const unsigned %s_out[%d] = {\n", scope_word[scope], count);
+  for (int k = 0; k < count; k++) {
+    char buf[128];
+    const char *name = scope == OUT_RODS     ? runtime_rod_name(sc, k, buf, sizeof buf)
+                       : scope == OUT_JOINTS ? sc->joint[k].name
+                                             : sc->muscle[k].name;
+    fputs("  ", out);
+    emit_bits(out, bits[k]);
+    fputs(",   /* ", out);
+    gen_c_comment(out, name, strlen(name));
+    fputs(" */\n", out);
+  }
+  fputs("};\n", out);
+  free(bits);
+}
+
+/* The program's members that point at the selections. */
+static void emit_selection_members(FILE *out, const swScene *sc) {
+  if (selection_count(sc, OUT_RODS)) fputs(",\n    .rod_out = rod_out", out);
+  if (selection_count(sc, OUT_MUSCLES)) fputs(",\n    .muscle_out = muscle_out", out);
+  const int nj = selection_count(sc, OUT_JOINTS);
+  if (!nj) return;
+  unsigned *bits = calloc((size_t)nj, sizeof *bits);
+  if (!bits) abort();
+  unsigned rest = selected_bits(sc, OUT_JOINTS, nj, bits);
+  free(bits);
+  fprintf(out, ",\n    .njoint_out = %d,\n    .joint_out_name = joint_out_name,\n"
+          "    .joint_out = joint_out,\n    /* every other joint (a muscle's attachments) */\n"
+          "    .joint_out_rest = ", nj);
+  emit_bits(out, rest);
+}
+
 static void emit_build(FILE *out, swArena *a, const swScene *sc) {
   fputs("/* Builds the scene from the param values P (SI units, in the order of\n"
         " * params[]).  Returns SW_OK or SW_EMODEL with a message in err. */\n"
         "static int build(swSpec *s, const double *P, char *err, size_t errlen) {\n"
         "  int ok = 1;\n"
         "  (void)P;\n", out);
+  /* the runtime numbers joints with its own (a muscle's attachments) */
+  if (sc->njoint)
+    fprintf(out, "  int joint_id[%d];   /* the runtime's id of each joint */\n", sc->njoint);
   swLowField f[GEN_MAX_FIELDS];
   /* rods and muscles in the order of their runtime ids */
   for (int ri = 0, mi = 0; ri < sc->nrod || mi < sc->nmuscle;) {
@@ -205,7 +348,8 @@ static void emit_build(FILE *out, swArena *a, const swScene *sc) {
     else fputs("   /* anchored in space */\n", out);
     if (j->undamped) fputs("    joint.undamped = 1;\n", out);
     gen_assign_fields(out, a, "joint", f, gen_joint_fields(j, f));
-    fputs("    ok &= sw_spec_add_joint(s, &joint) >= 0;\n  }\n", out);
+    fprintf(out, "    joint_id[%d] = sw_spec_add_joint(s, &joint);\n"
+            "    ok &= joint_id[%d] >= 0;\n  }\n", i, i);
   }
   for (int i = 0; i < sc->nact; i++) {
     const swSceneAction *act = &sc->act[i];
@@ -251,8 +395,11 @@ static void emit_build(FILE *out, swArena *a, const swScene *sc) {
     gen_c_string(out, d.text);
     fputs(";\n    expect.where = ", out);
     gen_c_string(out, where);
-    fprintf(out, ";\n    expect.quantity = %s;\n    expect.index = %d;\n", quantities[d.quantity],
-            d.index);
+    fprintf(out, ";\n    expect.quantity = %s;\n", quantities[d.quantity]);
+    if (d.quantity == SW_EXPECT_JOINT_ANGLE || d.quantity == SW_EXPECT_JOINT_FORCE)
+      fprintf(out, "    expect.index = joint_id[%d];\n", d.index);
+    else
+      fprintf(out, "    expect.index = %d;\n", d.index);
     if (d.quantity == SW_EXPECT_PROBE) fprintf(out, "    expect.component = %d;\n", d.component);
     if (d.window) fputs("    expect.window = 1;\n", out);
     fprintf(out, "    expect.t0 = %.17g;\n    expect.t1 = %.17g;\n", d.t0, d.t1);
@@ -333,6 +480,7 @@ int gen_c(FILE *out, swArena *a, const swScene *sc, const swGenOptions *opt) {
   }
   gen_env_heights(out, a, sc);
   emit_build(out, a, sc);
+  for (int scope = OUT_RODS; scope <= OUT_MUSCLES; scope++) emit_selection(out, sc, scope);
   /* without "output ... every T", a thousand frames over the run */
   double duration = sc->has_duration ? sc->duration : 1.0;
   swValue ev = val_num(a, sc->every > 0 ? sc->every : duration / 1000, DIM_TIME, (swLoc){0});
@@ -354,8 +502,8 @@ int gen_c(FILE *out, swArena *a, const swScene *sc, const swGenOptions *opt) {
     snprintf(def, sizeof def, "%s.h5", sc->model_name);
     gen_c_string(out, def);
   }
-  fprintf(out, ",\n    .velocity = %d,\n    .directors = %d,\n  };\n"
-          "  return sw_main(&program, argc, argv);\n}\n", sc->velocity, sc->directors);
+  emit_selection_members(out, sc);
+  fputs(",\n  };\n  return sw_main(&program, argc, argv);\n}\n", out);
   return ferror(out) ? -1 : 0;
 }
 

@@ -652,6 +652,7 @@ int sema_check_lets(swArena *arena, int file, swLetOverride *lets, int nlets, sw
   scene->model_name = ast_strdup(arena, base, dot && dot != base ? (size_t)(dot - base) : strlen(base));
   int before = diag_errors();
   check_file(&S, file);
+  sema_output_selections(&S);
   sema_expectations(&S);
   warn_unused(&S);
   int lets_ok = 1;
@@ -688,5 +689,6 @@ void sema_scene_free(swScene *scene) {
   free(scene->wave);
   free(scene->probe);
   free(scene->expect);
+  free(scene->select);
   memset(scene, 0, sizeof *scene);
 }

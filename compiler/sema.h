@@ -118,6 +118,7 @@ typedef struct {
   swValue gamma_rot;           /* rotational_damping, N s/rad; VAL_ERROR: not given */
   swDampingKind damping;
   int has_material;
+  const char *material;       /* its material's name (NULL: none), output   */
 } swSceneRod;
 
 /* A muscle (swMuscleDesc): values the model did not give are VAL_ERROR and
@@ -141,6 +142,7 @@ typedef struct {
   int attach_node[2];
   swSignalVal *activation;    /* NULL: not activated (the runtime's default) */
   swLoc activation_loc;       /* the activate statement                    */
+  const char *material;       /* its material's name (NULL: none), output   */
 } swSceneMuscle;
 
 /* passive MUSCLE.filament(K); */
@@ -277,6 +279,18 @@ typedef struct {
   const char *unit;           /* ... and its name                          */
 } swSceneExpect;
 
+/* One selection of output: quantity `bit` (SW_OUT_*) for the listed items
+ * of one scope: rods as runtime rod ids (a muscle stands for its
+ * filaments), joints and muscles as scene indices; n < 0: all of them. */
+typedef enum { OUT_RODS, OUT_JOINTS, OUT_MUSCLES } swOutScope;
+typedef struct {
+  unsigned bit;
+  swOutScope scope;
+  int n;
+  int *id;
+  swLoc loc;
+} swOutSelect;
+
 typedef struct {
   swSceneRod *rod;       int nrod, caprod;
   swSceneMuscle *muscle; int nmuscle, capmuscle;
@@ -299,7 +313,7 @@ typedef struct {
   swLoc dt_loc;
   int has_dt, has_duration;
   const char *out;            /* output path                               */
-  int velocity, directors;
+  swOutSelect *select;   int nselect, capselect;   /* output selections    */
   const struct swLetOverride *let;   /* (nlet) sinewc --let, applied      */
   int nlet;
   const char *model_name;     /* stem of the main file                     */

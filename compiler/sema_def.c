@@ -270,6 +270,7 @@ int sema_tissue(swSema *S, swScope *sc, const swFields *f, swTissue *t) {
     } else if (mv.kind == VAL_REF && mv.ref->kind == SYM_MATERIAL) {
       sema_eval_symbol(S, mv.ref);
       t->mat = mv.ref->material;
+      t->mat_name = mv.ref->full;
     } else if (mv.kind != VAL_ERROR) {
       diag_error(t->me->loc, "'material' expects the name of a material");
       ok = 0;
@@ -407,6 +408,7 @@ static void eval_rod(swSema *S, swSymbol *sym) {
   r.shear_modulus = t.shear_modulus.kind ? t.shear_modulus : val_num(S->a, 0, DIM_PRESSURE, loc);
   r.poisson = t.poisson.kind ? t.poisson : val_num(S->a, 0.5, DIM_NONE, loc);
   r.variational = t.variational;
+  r.material = t.mat_name;
   r.has_material = t.mat != NULL || (t.E_ast && t.rho_ast);
   if (!t.mat && !t.me && !t.E_ast && !t.rho_ast)
     diag_warning(loc, "%s has no material; it gets E = %g Pa and density = %g kg/m^3", what,

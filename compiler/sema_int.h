@@ -43,6 +43,9 @@ typedef struct {
   /* items met once per scene */
   swLoc simulate_loc, output_loc;
   int has_simulate, has_output;
+  /* output's selections, checked once every rod, joint and muscle is known */
+  const swAst *output_item;
+  swScope *output_scope;
   /* expect statements, checked once the whole scene (its probes) is known */
   const swAst **expect_item;
   swScope **expect_scope;
@@ -90,7 +93,8 @@ swValue sema_rod_length(swSema *S, swSymbol *rod, swLoc loc);
 void sema_joint(swSema *S, swScope *scope, const swAst *item);
 void sema_action(swSema *S, swScope *scope, const swAst *item);
 void sema_simulate(swSema *S, swScope *scope, const swAst *item);
-void sema_output(swSema *S, swScope *scope, const swAst *item);
+void sema_output(swSema *S, swScope *scope, const swAst *item);      /* sema_output.c */
+void sema_output_selections(swSema *S);
 
 /* sema_env.c: ground, terrain, fluid, contact, torque_wave definitions and
  * the probes of an output block */
@@ -146,6 +150,7 @@ swDampingKind sema_damping_kind(swSema *S, swScope *sc, const swFields *f, int *
  * (sema_tissue) */
 typedef struct {
   const swMaterial *mat;      /* NULL: no material                         */
+  const char *mat_name;       /* its full name (NULL: none)                */
   const swAst *me, *E_ast, *rho_ast;   /* the fields, when written         */
   swValue youngs, density, shear_modulus, poisson;   /* VAL_ERROR: not given */
   int variational;            /* 1: the variational law, written or the material's */

@@ -107,6 +107,7 @@ void sema_eval_muscle(swSema *S, swSymbol *sym) {
   m.shear_modulus = t.shear_modulus;
   m.poisson = t.poisson;
   m.variational = t.variational;
+  m.material = t.mat_name;
   if (!t.mat && !t.me && (!t.E_ast || !t.rho_ast)) {
     swMuscleDesc tissue;
     sw_muscle_desc_init(&tissue);

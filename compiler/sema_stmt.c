@@ -1,12 +1,12 @@
 /* sema_stmt.c — statements: joints, actions (clamp, gravity, force, torque,
  * velocity, angular_velocity; activate and passive are handed to
- * sema_muscle.c), simulate and output.
+ * sema_muscle.c) and simulate.
  *
  * Design.  Statements are checked in file order.  They become scene joints
  * and actions (loads and boundary conditions) that refer to rods by scene
  * index and to nodes by number, which must be known when compiling; the
- * runtime's rod ids are applied when lowering (gen_rod_id).  simulate and
- * output are met once per scene and fill the scene's options.
+ * runtime's rod ids are applied when lowering (gen_rod_id).  simulate is
+ * met once per scene and fills the scene's options (output: sema_output.c).
  */
 #include <math.h>
 #include <stdio.h>
@@ -351,61 +351,3 @@ void sema_simulate(swSema *S, swScope *scope, const swAst *it) {
   }
 }
 
-void sema_output(swSema *S, swScope *scope, const swAst *it) {
-  if (S->has_output) {
-    diag_error(it->loc, "a second 'output' (the first is at line %d)", S->output_loc.line);
-    return;
-  }
-  S->has_output = 1;
-  S->output_loc = it->loc;
-  swScene *sc = S->scene;
-  if (!it->text[0]) diag_error(it->loc, "the output file name is empty");
-  else sc->out = it->text;
-  const swAst *every = ast_kid(it, 0);
-  if (every) {
-    swValue e = sema_expect(S, scope, every, 1, DIM_TIME, "'every'");
-    if (e.kind == VAL_NUM && sema_require_const(S, &e, "'every'")) {
-      if (!(e.v[0] > 0)) diag_error(e.loc, "'every' must be positive");
-      else sc->every = e.v[0];
-    }
-  }
-  static const char *const what[] = {"positions", "velocity", "directors", "energy"};
-  for (int i = 1; i < it->nkid; i++) {
-    const swAst *s = it->kid[i];
-    if (s->kind == AST_FIELD && !strcmp(s->name, "probe")) {   /* probe NAME = WHAT; */
-      sema_probe(S, scope, s);
-      continue;
-    }
-    if (s->kind == AST_FIELD) {
-      diag_error(s->loc, "an output selection reads 'velocity all;', not '%s = ...'", s->name);
-      continue;
-    }
-    if (s->kind != AST_SELECT) continue;
-    int k;
-    for (k = 0; k < 4; k++)
-      if (!strcmp(s->name, what[k])) break;
-    if (k == 4 && !strcmp(s->name, "probe")) {
-      diag_error(s->loc, "a probe has a name and a value: probe NAME = centre_of_mass(RODS);");
-      continue;
-    }
-    if (k == 4) {
-      const char *near = diag_suggest(s->name, what, 4);
-      if (near) diag_error(s->loc, "unknown output '%s'; did you mean '%s'?", s->name, near);
-      else diag_error(s->loc, "unknown output '%s' (expected positions, velocity, directors, "
-                      "energy or probe)", s->name);
-      continue;
-    }
-    /* selections are per scene for now: "all" (or nothing) */
-    int all = s->nkid == 0;
-    for (int t = 0; t < s->nkid; t++) {
-      const swAst *tg = s->kid[t];
-      if (tg->kind == AST_NAME && !strcmp(tg->name, "all")) all = 1;
-      else
-        diag_error(tg->loc, "output of single rods is not supported yet; write '%s all;'",
-                   s->name);
-    }
-    if (!all) continue;
-    if (k == 1) sc->velocity = 1;
-    if (k == 2) sc->directors = 1;
-  }
-}

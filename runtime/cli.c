@@ -163,7 +163,9 @@ static const char *format_wall(char *buf, size_t len, double seconds) {
 
 /* A param's value in the unit the model wrote it in ("0.3 m"), or in SI when
  * that unit cannot be read or does not fit the param's dimension. */
-static const char *format_param(char *buf, size_t len, const swParam *q, double value) {
+/* A param's value in the unit it was written with, or in SI; the unit's
+ * name in *unit ("" when dimensionless).  For the output's /params table. */
+static double param_in_unit(const swParam *q, double value, char *unit, size_t len) {
   if (q->unit && q->unit[0]) {
     char text[96];
     double scale;
@@ -171,16 +173,28 @@ static const char *format_param(char *buf, size_t len, const swParam *q, double 
     snprintf(text, sizeof text, "1 %s", q->unit);
     if (!sw_parse_quantity(text, &scale, dim, NULL, 0) && !memcmp(dim, q->dim, SW_NDIM) &&
         scale != 0) {
-      snprintf(buf, len, "%.6g %s", value / scale, q->unit);
-      return buf;
+      snprintf(unit, len, "%s", q->unit);
+      return value / scale;
     }
   }
+  unit[0] = '\0';
   if (memcmp(q->dim, DIM_NONE, SW_NDIM)) {
+    /* "length (m)" -> "m"; "kg m^-1 s^-2" as it is */
     char what[64];
-    snprintf(buf, len, "%.6g (SI, %s)", value, sw_dim_describe(what, sizeof what, q->dim));
-  } else {
-    snprintf(buf, len, "%.6g", value);
+    const char *d = sw_dim_describe(what, sizeof what, q->dim), *open = strchr(d, '(');
+    if (open) snprintf(unit, len, "%.*s", (int)strcspn(open + 1, ")"), open + 1);
+    else snprintf(unit, len, "%s", d);
   }
+  return value;
+}
+
+static const char *format_param(char *buf, size_t len, const swParam *q, double value) {
+  char unit[48], what[64];
+  double v = param_in_unit(q, value, unit, sizeof unit);
+  if (q->unit && q->unit[0] && !strcmp(unit, q->unit)) snprintf(buf, len, "%.6g %s", v, unit);
+  else if (unit[0])
+    snprintf(buf, len, "%.6g (SI, %s)", v, sw_dim_describe(what, sizeof what, q->dim));
+  else snprintf(buf, len, "%.6g", v);
   return buf;
 }
 
@@ -601,15 +615,6 @@ static long frame_count(long nsteps, double every, double dt) {
   return 1 + nsteps / k + (nsteps % k != 0);
 }
 
-static const char *joint_kind_name(swJointKind kind) {
-  switch (kind) {
-  case SW_JOINT_SPHERICAL: return "spherical";
-  case SW_JOINT_HINGE: return "hinge";
-  case SW_JOINT_FIXED: return "fixed";
-  }
-  return "joint";
-}
-
 /* The rods an environment acts on: "all rods" or "rods a, b". */
 static const char *rod_list(char *buf, size_t len, const swModel *m, int nrods, const int *rods) {
   if (nrods == m->nrod) return "all rods";
@@ -769,7 +774,7 @@ static void print_info(const swCli *c, const swModel *m, double stable, const ch
   for (int j = 0; j < m->njoint; j++) {
     const char *name = m->joint_name && m->joint_name[j] ? m->joint_name[j]
                        : m->joint && m->joint[j].name ? m->joint[j].name : "(unnamed)";
-    printf("  %s: %s\n", name, m->joint ? joint_kind_name(m->joint[j].kind) : "joint");
+    printf("  %s: %s\n", name, m->joint ? sw_joint_kind_name(m->joint[j].kind) : "joint");
   }
   printf("muscles: %d\n", m->nmuscle);
   for (int i = 0; i < m->nmuscle; i++) {
@@ -868,7 +873,34 @@ static int run(const swCli *c, const swModel *m, const char *out) {
     free(params);
     return SW_EMODEL;
   }
-  swOutputOptions oo = {p->source, p->sha256, params, c->duration, p->velocity, p->directors};
+  swOutputOptions oo = {p->source, p->sha256, params, c->duration, p->velocity, p->directors,
+                        p->rod_out, NULL, p->muscle_out, 0, NULL, NULL, NULL, NULL};
+  /* the joints' selection by name (at most a few hundred joints) */
+  unsigned joint_out[m->njoint > 0 ? m->njoint : 1];
+  if (p->njoint_out > 0) {
+    for (int j = 0; j < m->njoint; j++) {
+      joint_out[j] = p->joint_out_rest;
+      for (int k = 0; k < p->njoint_out; k++)
+        if (!strcmp(m->joint_name[j], p->joint_out_name[k])) joint_out[j] = p->joint_out[k];
+    }
+    oo.joint_out = joint_out;
+  }
+  /* the params table: at most a few dozen rows */
+  const int np = p->nparam;
+  const char *pname[np > 0 ? np : 1], *punit[np > 0 ? np : 1];
+  char unit[np > 0 ? np : 1][48];
+  double pvalue[np > 0 ? np : 1], pdefault[np > 0 ? np : 1];
+  for (int i = 0; i < np; i++) {
+    pname[i] = p->param[i].name;
+    pvalue[i] = param_in_unit(&p->param[i], c->P[i], unit[i], sizeof unit[i]);
+    pdefault[i] = param_in_unit(&p->param[i], p->param[i].value, unit[i], sizeof unit[i]);
+    punit[i] = unit[i];
+  }
+  oo.nparam = np;
+  oo.param_name = pname;
+  oo.param_value = pvalue;
+  oo.param_default = pdefault;
+  oo.param_unit = punit;
   swOutput *o = sw_output_open(out, m, &oo, err, sizeof err);
   free(params);
   if (!o) {

@@ -282,6 +282,8 @@ int sw_probe_data_new(const swModel *m, swData *d);
 void sw_probe_data_free(swData *d);
 void sw_probe_reset(const swModel *m, swData *d);
 const char *sw_probe_kind_name(swProbeKind kind);
+/* "spherical", "hinge", "fixed" (joint.c) */
+const char *sw_joint_kind_name(swJointKind kind);
 const char *sw_probe_units(swProbeKind kind);
 /* Rod-rod contact (contact.c).  sw_contact_setup lists each contact's
  * elements in the model (0: out of memory; from sw_env_setup), sw_contact_free

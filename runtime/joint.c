@@ -355,3 +355,12 @@ double sw_joint_energy(const swModel *m, const swData *d) {
   }
   return u;
 }
+
+const char *sw_joint_kind_name(swJointKind kind) {
+  switch (kind) {
+  case SW_JOINT_SPHERICAL: return "spherical";
+  case SW_JOINT_HINGE: return "hinge";
+  case SW_JOINT_FIXED: return "fixed";
+  }
+  return "joint";
+}

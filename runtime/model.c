@@ -30,6 +30,7 @@ struct swSpec {
   int caprod, capload, capbc, capjoint;
   swRodDesc *rod;
   char **rod_name;
+  swRodInfo *rod_info;           /* owned copies of rod[k].kind, material, where */
   double **rest_x, **rest_Q;     /* optional rest shapes, per rod */
   swLoadDesc *load;
   swBCDesc *bc;
@@ -54,6 +55,27 @@ int sw_spec_nrod(const swSpec *s) { return s->nrod; }
 
 static const double SW_ALPHA_SHEAR = 4.0 / 3.0; /* circular section */
 
+static void free_rod_info(swRodInfo *i) {
+  free(i->kind);
+  free(i->material);
+  free(i->where);
+}
+
+/* Owned copies of kind, material and where (each NULL when absent); 0: out
+ * of memory. */
+static int copy_rod_info(swRodInfo *to, const char *kind, const char *material,
+                         const char *where) {
+  to->kind = kind ? strdup(kind) : NULL;
+  to->material = material ? strdup(material) : NULL;
+  to->where = where ? strdup(where) : NULL;
+  if ((kind && !to->kind) || (material && !to->material) || (where && !to->where)) {
+    free_rod_info(to);
+    *to = (swRodInfo){0};
+    return 0;
+  }
+  return 1;
+}
+
 swSpec *sw_spec_new(void) {
   swSpec *s = calloc(1, sizeof *s);
   if (s) s->dt = 1e-5;
@@ -64,10 +86,11 @@ void sw_spec_free(swSpec *s) {
   if (!s) return;
   for (int r = 0; r < s->nrod; r++) {
     free(s->rod_name[r]);
+    free_rod_info(&s->rod_info[r]);
     free(s->rest_x[r]);
     free(s->rest_Q[r]);
   }
-  free(s->rod); free(s->rod_name); free(s->rest_x); free(s->rest_Q);
+  free(s->rod); free(s->rod_name); free(s->rod_info); free(s->rest_x); free(s->rest_Q);
   for (int k = 0; k < s->njoint; k++) free(s->joint_name[k]);
   free(s->load); free(s->bc); free(s->joint); free(s->joint_name);
   if (s->muscle_ops) s->muscle_ops->free_spec(s->muscles);
@@ -109,14 +132,20 @@ int sw_spec_add_rod(swSpec *s, const swRodDesc *r) {
   cap = s->caprod;
   if (!sw_grow((void **)&s->rod_name, &cap, s->nrod, sizeof *s->rod_name)) return -1;
   cap = s->caprod;
+  if (!sw_grow((void **)&s->rod_info, &cap, s->nrod, sizeof *s->rod_info)) return -1;
+  cap = s->caprod;
   if (!sw_grow((void **)&s->rest_x, &cap, s->nrod, sizeof *s->rest_x)) return -1;
   if (!sw_grow((void **)&s->rest_Q, &s->caprod, s->nrod, sizeof *s->rest_Q)) return -1;
   int id = s->nrod++;
   s->rod[id] = *r;
   s->rod_name[id] = strdup(r->name ? r->name : "rod");
   s->rod[id].name = s->rod_name[id];
+  int copied = copy_rod_info(&s->rod_info[id], r->kind, r->material, r->where);
+  s->rod[id].kind = s->rod_info[id].kind;
+  s->rod[id].material = s->rod_info[id].material;
+  s->rod[id].where = s->rod_info[id].where;
   s->rest_x[id] = s->rest_Q[id] = NULL;
-  return id;
+  return copied && s->rod_name[id] ? id : -1;
 }
 
 int sw_spec_add_load(swSpec *s, const swLoadDesc *l) {
@@ -263,8 +292,11 @@ static void rigid_free(swModel *m) {
 
 void sw_model_free(swModel *m) {
   if (!m) return;
-  for (int r = 0; r < m->nrod; r++) free(m->rod_name[r]);
-  free(m->rod_name); free(m->rod_nelem); free(m->node_adr); free(m->elem_adr);
+  for (int r = 0; r < m->nrod; r++) {
+    free(m->rod_name[r]);
+    if (m->rod_info) free_rod_info(&m->rod_info[r]);
+  }
+  free(m->rod_name); free(m->rod_info); free(m->rod_nelem); free(m->node_adr); free(m->elem_adr);
   free(m->vor_adr); free(m->rod_wave_dt); free(m->rod_damping); free(m->rod_law);
   free(m->mass); free(m->inv_mass); free(m->node_gamma); free(m->node_decay); free(m->elem_decay); free(m->node_kick); free(m->elem_kick); free(m->x0);
   free(m->rest_len); free(m->inv_rest_len); free(m->radius); free(m->shear_stiff); free(m->inertia);
@@ -462,6 +494,7 @@ swModel *sw_compile(const swSpec *s, char *err, size_t errlen) {
   m->has_gravity = s->gravity[0] != 0 || s->gravity[1] != 0 || s->gravity[2] != 0;
   int nr = m->nrod;
   m->rod_name = calloc((size_t)nr, sizeof(char *));
+  m->rod_info = calloc((size_t)nr, sizeof *m->rod_info);
   m->rod_nelem = calloc((size_t)nr, sizeof(int));
   m->node_adr = calloc((size_t)nr, sizeof(int));
   m->elem_adr = calloc((size_t)nr, sizeof(int));
@@ -469,7 +502,7 @@ swModel *sw_compile(const swSpec *s, char *err, size_t errlen) {
   m->rod_damping = calloc((size_t)nr, sizeof(swDampingKind));
   m->rod_law = calloc((size_t)nr, sizeof(swLaw));
   m->rod_wave_dt = dalloc((size_t)nr);
-  if (!m->rod_name || !m->rod_nelem || !m->node_adr || !m->elem_adr || !m->vor_adr ||
+  if (!m->rod_name || !m->rod_info || !m->rod_nelem || !m->node_adr || !m->elem_adr || !m->vor_adr ||
       !m->rod_damping || !m->rod_law || !m->rod_wave_dt)
     goto oom;
   /* Slots: elastic rods first, in rod order, then rigid ones, so the rod
@@ -479,7 +512,15 @@ swModel *sw_compile(const swSpec *s, char *err, size_t errlen) {
       if ((s->rod[r].rigid != 0) != pass) continue;
       int n = s->rod[r].nelem;
       m->rod_name[r] = strdup(s->rod[r].name);
-      if (!m->rod_name[r]) goto oom;
+      if (!m->rod_name[r] || !copy_rod_info(&m->rod_info[r], s->rod[r].kind,
+                                            s->rod[r].material, s->rod[r].where))
+        goto oom;
+      m->rod_info[r].youngs = s->rod[r].youngs;
+      m->rod_info[r].shear_modulus = s->rod[r].shear_modulus > 0
+                                         ? s->rod[r].shear_modulus
+                                         : s->rod[r].youngs / (2 * (1 + s->rod[r].poisson));
+      m->rod_info[r].density = s->rod[r].density;
+      m->rod_info[r].length = s->rod[r].length;
       m->rod_nelem[r] = n;
       m->node_adr[r] = m->elem_adr[r] = m->vor_adr[r] = m->nslot;
       m->nslot += n + 1;

@@ -219,6 +219,7 @@ int sw_spec_add_muscle(swSpec *s, const swMuscleDesc *md) {
   it->name = strdup(md->name ? md->name : "muscle");
   if (!it->name) return -1;
   it->desc.name = it->name;
+  it->desc.material = it->desc.where = NULL;  /* the caller's; its filaments keep copies */
   it->rod0 = sw_spec_nrod(s);
   /* Invalid descriptions are kept and reported by sw_compile (sw_muscle_check),
    * which names the muscle; only the rods of a sensible muscle are made. */
@@ -259,6 +260,9 @@ int sw_spec_add_muscle(swSpec *s, const swMuscleDesc *md) {
     r.law = md->law;
     r.damping = md->damping;
     r.gamma = md->gamma;
+    r.kind = "muscle filament";
+    r.material = md->material;
+    r.where = md->where;
     int rod = sw_spec_add_rod(s, &r);
     if (rod < 0) {
       free(area);

@@ -35,9 +35,8 @@
 /* ---- the output table ---- */
 
 /* Symbolic per-frame extents, resolved for each rod at open time. */
-enum { EXTENT_NODES = -1, EXTENT_ELEMS = -2, EXTENT_FILAMENTS = -3 };
+enum { EXTENT_NODES = -1, EXTENT_ELEMS = -2, EXTENT_FILAMENTS = -3, EXTENT_VORONOI = -4 };
 enum { SCOPE_ROOT, SCOPE_ROD, SCOPE_JOINT, SCOPE_MUSCLE, SCOPE_PROBE };
-enum { WHEN_ALWAYS, WHEN_VELOCITY, WHEN_DIRECTORS, WHEN_HINGE };
 #define MAX_FRAME_RANK 3
 
 /* Fill one frame of a field (contiguous, row-major) from the state; `item`
@@ -52,7 +51,7 @@ typedef struct {
   int extent[MAX_FRAME_RANK];/* count, EXTENT_NODES or EXTENT_ELEMS            */
   const char *units;         /* NULL: the item's own (probes)                  */
   const char *const *columns;/* names along the last dimension, or NULL        */
-  int when;                  /* which option (or joint kind) enables it        */
+  unsigned bit;              /* the SW_OUT_* selection bit; 0: always written  */
   swFillFn fill;
 } swField;
 
@@ -89,6 +88,32 @@ static void fill_velocity(const swModel *m, swData *d, int rod, double *frame) {
  * frame is its matrix in row-major order. */
 static void fill_directors(const swModel *m, swData *d, int rod, double *frame) {
   gather_rows(m, d->Q, m->elem_adr[rod], m->rod_nelem[rod], 9, frame);
+}
+
+static void fill_angular_velocity(const swModel *m, swData *d, int rod, double *frame) {
+  gather_rows(m, d->omega, m->elem_adr[rod], m->rod_nelem[rod], 3, frame);
+}
+
+/* Strains, curvatures and internal loads are scratch of a step (sinew.h,
+ * swData): recomputed from the state being written, as sw_energy does. */
+static void fill_strain(const swModel *m, swData *d, int rod, double *frame) {
+  sw_internal_loads(m, d);
+  gather_rows(m, d->sigma, m->elem_adr[rod], m->rod_nelem[rod], 3, frame);
+}
+
+static void fill_curvature(const swModel *m, swData *d, int rod, double *frame) {
+  sw_internal_loads(m, d);
+  gather_rows(m, d->kappa, m->vor_adr[rod], m->rod_nelem[rod] - 1, 3, frame);
+}
+
+static void fill_internal_force(const swModel *m, swData *d, int rod, double *frame) {
+  sw_internal_loads(m, d);
+  gather_rows(m, d->stress, m->elem_adr[rod], m->rod_nelem[rod], 3, frame);
+}
+
+static void fill_internal_couple(const swModel *m, swData *d, int rod, double *frame) {
+  sw_internal_loads(m, d);
+  gather_rows(m, d->couple, m->vor_adr[rod], m->rod_nelem[rod] - 1, 3, frame);
 }
 
 /* Joint force on rod a (lab) and hinge angle, of the state being written
@@ -138,21 +163,32 @@ static void fill_probe(const swModel *m, swData *d, int probe, double *frame) {
 
 /* Must match the order sw_energy() returns. */
 static const char *const energy_columns[] = {"kinetic", "elastic", "work_done", NULL};
+/* Vectors in the material frame of each element (or Voronoi domain). */
+static const char *const material_columns[] = {"d1", "d2", "d3", NULL};
+
+/* Rods' fields that need strains refuse rigid rods (item_enabled). */
+#define SW_OUT_STRAINS (SW_OUT_STRAIN | SW_OUT_CURVATURE | SW_OUT_INTERNAL_FORCE | \
+                        SW_OUT_INTERNAL_COUPLE)
 
 static const swField output_fields[] = {
-  /* path                 scope       rank  extent per frame         units  columns         when            source */
-  {"time",                SCOPE_ROOT, 0, {0},                        "s",   NULL,           WHEN_ALWAYS,    fill_time},
-  {"position",            SCOPE_ROD,  2, {EXTENT_NODES, 3},          "m",   NULL,           WHEN_ALWAYS,    fill_position},
-  {"velocity",            SCOPE_ROD,  2, {EXTENT_NODES, 3},          "m/s", NULL,           WHEN_VELOCITY,  fill_velocity},
-  {"directors",           SCOPE_ROD,  3, {EXTENT_ELEMS, 3, 3},       "-",   NULL,           WHEN_DIRECTORS, fill_directors},
-  {"force",               SCOPE_JOINT,1, {3},                        "N",   NULL,           WHEN_ALWAYS,    fill_joint_force},
-  {"angle",               SCOPE_JOINT,0, {0},                        "rad", NULL,           WHEN_HINGE,     fill_joint_angle},
-  {"force",               SCOPE_MUSCLE,0,{0},                        "N",   NULL,           WHEN_ALWAYS,    fill_muscle_force},
-  {"stretch",             SCOPE_MUSCLE,0,{0},                        "-",   NULL,           WHEN_ALWAYS,    fill_muscle_stretch},
-  {"activation",          SCOPE_MUSCLE,0,{0},                        "-",   NULL,           WHEN_ALWAYS,    fill_muscle_activation},
-  {"filament_force",      SCOPE_MUSCLE,1,{EXTENT_FILAMENTS},         "N",   NULL,           WHEN_ALWAYS,    fill_filament_force},
-  {"",                    SCOPE_PROBE,1, {3},                        NULL,  NULL,           WHEN_ALWAYS,    fill_probe},
-  {"diagnostics/energy",  SCOPE_ROOT, 1, {3},                        "J",   energy_columns, WHEN_ALWAYS,    fill_energy},
+  /* path                 scope        rank extent per frame        units    columns           bit                      source */
+  {"time",                SCOPE_ROOT,  0, {0},                      "s",     NULL,             0,                       fill_time},
+  {"position",            SCOPE_ROD,   2, {EXTENT_NODES, 3},        "m",     NULL,             SW_OUT_POSITION,         fill_position},
+  {"velocity",            SCOPE_ROD,   2, {EXTENT_NODES, 3},        "m/s",   NULL,             SW_OUT_VELOCITY,         fill_velocity},
+  {"directors",           SCOPE_ROD,   3, {EXTENT_ELEMS, 3, 3},     "-",     NULL,             SW_OUT_DIRECTORS,        fill_directors},
+  {"angular_velocity",    SCOPE_ROD,   2, {EXTENT_ELEMS, 3},        "rad/s", material_columns, SW_OUT_ANGULAR_VELOCITY, fill_angular_velocity},
+  {"strain",              SCOPE_ROD,   2, {EXTENT_ELEMS, 3},        "-",     material_columns, SW_OUT_STRAIN,           fill_strain},
+  {"curvature",           SCOPE_ROD,   2, {EXTENT_VORONOI, 3},      "rad/m", material_columns, SW_OUT_CURVATURE,        fill_curvature},
+  {"internal_force",      SCOPE_ROD,   2, {EXTENT_ELEMS, 3},        "N",     material_columns, SW_OUT_INTERNAL_FORCE,   fill_internal_force},
+  {"internal_couple",     SCOPE_ROD,   2, {EXTENT_VORONOI, 3},      "N m",   material_columns, SW_OUT_INTERNAL_COUPLE,  fill_internal_couple},
+  {"force",               SCOPE_JOINT, 1, {3},                      "N",     NULL,             SW_OUT_JOINT_FORCE,      fill_joint_force},
+  {"angle",               SCOPE_JOINT, 0, {0},                      "rad",   NULL,             SW_OUT_ANGLE,            fill_joint_angle},
+  {"force",               SCOPE_MUSCLE,0, {0},                      "N",     NULL,             SW_OUT_MUSCLE_FORCE,     fill_muscle_force},
+  {"stretch",             SCOPE_MUSCLE,0, {0},                      "-",     NULL,             SW_OUT_STRETCH,          fill_muscle_stretch},
+  {"activation",          SCOPE_MUSCLE,0, {0},                      "-",     NULL,             SW_OUT_ACTIVATION,       fill_muscle_activation},
+  {"filament_force",      SCOPE_MUSCLE,1, {EXTENT_FILAMENTS},       "N",     NULL,             SW_OUT_FILAMENT_FORCE,   fill_filament_force},
+  {"",                    SCOPE_PROBE, 1, {3},                      NULL,    NULL,             0,                       fill_probe},
+  {"diagnostics/energy",  SCOPE_ROOT,  1, {3},                      "J",     energy_columns,   0,                       fill_energy},
 };
 #define NFIELDS (sizeof output_fields / sizeof output_fields[0])
 
@@ -315,6 +351,21 @@ static int attr_vector(const swAttrTarget *t, const char *name, const double *va
   return rc;
 }
 
+/* A quantity: its value (n > 1: a vector) and its unit in NAME_units. */
+static int attr_quantity(const swAttrTarget *t, const char *name, const double *values, int n,
+                         const char *units) {
+  int rc = n > 1 ? attr_vector(t, name, values, n)
+                 : attr_scalar(t, name, H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, values);
+  char key[64];
+  snprintf(key, sizeof key, "%s_units", name);
+  if (rc == SW_OK) rc = attr_string(t, key, units);
+  return rc;
+}
+
+static int attr_int(const swAttrTarget *t, const char *name, int value) {
+  return attr_scalar(t, name, H5T_STD_I32LE, H5T_NATIVE_INT, &value);
+}
+
 /* What a probe measures: `kind` (probe.c's name), its rods (or rod and
  * node), and the averaging window of a mean velocity (s). */
 static int write_probe_attrs(const swAttrTarget *t, const swProbeDesc *p) {
@@ -334,7 +385,7 @@ static int write_probe_attrs(const swAttrTarget *t, const swProbeDesc *p) {
     H5Sclose(space);
   }
   if (rc == SW_OK && p->kind == SW_PROBE_MEAN_VELOCITY)
-    rc = attr_scalar(t, "window", H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, &p->window);
+    rc = attr_quantity(t, "window", &p->window, 1, "s");
   return rc;
 }
 
@@ -344,15 +395,7 @@ static int valid_group_name(const char *name) {
   return name && name[0] && !strchr(name, '/') && strcmp(name, ".") && strcmp(name, "..");
 }
 
-static int field_enabled(const swField *f, const swOutputOptions *opt) {
-  switch (f->when) {
-  case WHEN_VELOCITY: return opt->velocity;
-  case WHEN_DIRECTORS: return opt->directors;
-  default: return 1;
-  }
-}
-
-/* How many datasets field f can make, and whether item k gets one. */
+/* How many datasets field f can make. */
 static int field_items(const swField *f, const swModel *m) {
   return f->scope == SCOPE_ROD      ? m->nrod
          : f->scope == SCOPE_JOINT  ? m->njoint
@@ -360,8 +403,34 @@ static int field_items(const swField *f, const swModel *m) {
          : f->scope == SCOPE_PROBE  ? m->nprobe
                                     : 1;
 }
-static int item_enabled(const swField *f, const swModel *m, int k) {
-  return f->when != WHEN_HINGE || m->joint[k].kind == SW_JOINT_HINGE;
+
+/* The SW_OUT_* bits selected for item k of a scope: the options' arrays, or
+ * the defaults (positions, plus velocity and directors when asked, and every
+ * quantity of joints and muscles). */
+static unsigned selected(const swOutputOptions *opt, int scope, int k) {
+  switch (scope) {
+  case SCOPE_ROD:
+    if (opt->rod_out) return opt->rod_out[k];
+    return SW_OUT_POSITION | (opt->velocity ? SW_OUT_VELOCITY : 0u) |
+           (opt->directors ? SW_OUT_DIRECTORS : 0u);
+  case SCOPE_JOINT: return opt->joint_out ? opt->joint_out[k] : ~0u;
+  case SCOPE_MUSCLE: return opt->muscle_out ? opt->muscle_out[k] : ~0u;
+  default: return ~0u;
+  }
+}
+
+/* Whether item k gets a dataset of field f: selected, and meaningful for it
+ * (an angle for hinges only; strains for elastic rods, and curvatures for
+ * rods of two elements or more). */
+static int item_enabled(const swField *f, const swModel *m, const swOutputOptions *opt,
+                        int k) {
+  if (f->bit && !(selected(opt, f->scope, k) & f->bit)) return 0;
+  if (f->bit == SW_OUT_ANGLE) return m->joint[k].kind == SW_JOINT_HINGE;
+  if (f->bit & SW_OUT_STRAINS) {
+    if (m->rod_rigid && m->rod_rigid[k] >= 0) return 0;
+    if (f->extent[0] == EXTENT_VORONOI && m->rod_nelem[k] < 2) return 0;
+  }
+  return 1;
 }
 
 /* Create the dataset of field f (for rod or joint `item`, or -1) with its
@@ -389,6 +458,7 @@ static int create_dataset(swOutput *o, swDataset *ds, const swField *f, const sw
     int e = f->extent[k];
     if (e == EXTENT_NODES) e = m->rod_nelem[rod] + 1;
     else if (e == EXTENT_ELEMS) e = m->rod_nelem[rod];
+    else if (e == EXTENT_VORONOI) e = m->rod_nelem[rod] - 1;
     else if (e == EXTENT_FILAMENTS) e = m->muscle_fil_adr[item + 1] - m->muscle_fil_adr[item];
     ds->dims[1 + k] = maxdims[1 + k] = chunk[1 + k] = (hsize_t)e;
     ds->frame_len *= (size_t)e;
@@ -429,9 +499,9 @@ static int write_root_attrs(swOutput *o, const swModel *m, const swOutputOptions
   int rc = attr_string(&t, "sinew_version", SW_VERSION);
   if (rc == SW_OK) rc = attr_string(&t, "model_source", opt->model_source);
   if (rc == SW_OK) rc = attr_string(&t, "model_sha256", opt->model_sha256);
-  if (rc == SW_OK) rc = attr_scalar(&t, "dt", H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, &m->dt);
-  if (rc == SW_OK)
-    rc = attr_scalar(&t, "duration", H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, &opt->duration);
+  if (rc == SW_OK) rc = attr_quantity(&t, "dt", &m->dt, 1, "s");
+  if (rc == SW_OK) rc = attr_quantity(&t, "duration", &opt->duration, 1, "s");
+  if (rc == SW_OK) rc = attr_quantity(&t, "gravity", m->gravity, 3, "m/s^2");
   if (rc == SW_OK)
     rc = attr_string(&t, "integrator",
                      m->integrator == SW_PEFRL ? "pefrl"
@@ -443,31 +513,143 @@ static int write_root_attrs(swOutput *o, const swModel *m, const swOutputOptions
   return rc;
 }
 
+/* ---- groups that describe themselves ---- */
+
+/* Opens group PATH if a dataset made it (a rod, joint or muscle with nothing
+ * selected has none); 0 when absent, -1 on error. */
+static hid_t open_group(swOutput *o, const char *gpath, char *err, size_t errlen) {
+  htri_t exists = H5Lexists(o->file, gpath, H5P_DEFAULT);
+  if (exists < 0) {
+    fail(err, errlen, "%s: cannot look up group %s", o->path, gpath);
+    return -1;
+  }
+  if (!exists) return 0;
+  hid_t g = H5Gopen2(o->file, gpath, H5P_DEFAULT);
+  if (g < 0) fail(err, errlen, "%s: cannot open group %s", o->path, gpath);
+  return g;
+}
+
+/* A rod: what it is (kind, material, the model line), its rest geometry
+ * (elements, length, the radius of each element) and its material
+ * constants, each with its unit. */
+static int rod_attrs(const swAttrTarget *t, const swModel *m, int r) {
+  const swRodInfo *info = &m->rod_info[r];
+  const int n = m->rod_nelem[r];
+  double *radius = malloc((size_t)n * sizeof *radius);
+  if (!radius) return fail(t->err, t->errlen, "%s: out of memory", t->file);
+  for (int i = 0; i < n; i++) radius[i] = m->radius[m->elem_adr[r] + i];
+  int rc = attr_string(t, "kind", info->kind ? info->kind : "rod");
+  if (rc == SW_OK && info->material) rc = attr_string(t, "material", info->material);
+  if (rc == SW_OK && info->where) rc = attr_string(t, "where", info->where);
+  if (rc == SW_OK) rc = attr_int(t, "rigid", m->rod_rigid && m->rod_rigid[r] >= 0);
+  if (rc == SW_OK) rc = attr_int(t, "elements", n);
+  if (rc == SW_OK) rc = attr_quantity(t, "length", &info->length, 1, "m");
+  if (rc == SW_OK) rc = attr_quantity(t, "radius", radius, n, "m");
+  if (rc == SW_OK) rc = attr_quantity(t, "density", &info->density, 1, "kg/m^3");
+  if (rc == SW_OK) rc = attr_quantity(t, "E", &info->youngs, 1, "Pa");
+  if (rc == SW_OK) rc = attr_quantity(t, "G", &info->shear_modulus, 1, "Pa");
+  free(radius);
+  return rc;
+}
+
+/* A joint: its kind, the rods and nodes it ties (an anchored joint has no
+ * rod_b but an anchor), the hinge's axis and its stiffnesses. */
+static int joint_attrs(const swAttrTarget *t, const swModel *m, int j) {
+  const swJointDesc *jd = &m->joint[j];
+  int rc = attr_string(t, "kind", sw_joint_kind_name(jd->kind));
+  if (rc == SW_OK) rc = attr_string(t, "rod_a", m->rod_name[jd->rod_a]);
+  if (rc == SW_OK)
+    rc = attr_int(t, "node_a", jd->node_a < 0 ? m->rod_nelem[jd->rod_a] : jd->node_a);
+  if (rc == SW_OK && jd->rod_b >= 0) {
+    rc = attr_string(t, "rod_b", m->rod_name[jd->rod_b]);
+    if (rc == SW_OK)
+      rc = attr_int(t, "node_b", jd->node_b < 0 ? m->rod_nelem[jd->rod_b] : jd->node_b);
+  } else if (rc == SW_OK) {
+    rc = attr_quantity(t, "anchor", jd->anchor, 3, "m");
+  }
+  if (rc == SW_OK && jd->kind == SW_JOINT_HINGE) rc = attr_quantity(t, "axis", jd->axis, 3, "-");
+  if (rc == SW_OK) rc = attr_quantity(t, "stiffness", &jd->stiffness, 1, "N/m");
+  if (rc == SW_OK && jd->kind != SW_JOINT_SPHERICAL)
+    rc = attr_quantity(t, "rot_stiffness", &jd->rot_stiffness, 1, "N m/rad");
+  return rc;
+}
+
 /* What a reader needs to normalise a muscle's output: F_max (N, the sum of
  * its filaments' peak forces), l0 (m), its filament count, and per filament
- * the peak force, the rest cross-section and the number of muscle fibres. */
-static int write_muscle_attrs(swOutput *o, const swModel *m, int mu, char *err, size_t errlen) {
-  char *gpath = dup_printf("/muscles/%s", m->muscle_name[mu]);
-  if (!gpath) return fail(err, errlen, "%s: out of memory", o->path);
-  hid_t g = H5Gopen2(o->file, gpath, H5P_DEFAULT);
-  if (g < 0) {
-    int rc = fail(err, errlen, "%s: cannot open group %s", o->path, gpath);
-    free(gpath);
-    return rc;
-  }
+ * the peak force, the rest cross-section and the number of muscle fibres;
+ * its material and model line are its first filament's. */
+static int muscle_attrs(const swAttrTarget *t, const swModel *m, int mu) {
   const int f0 = m->muscle_fil_adr[mu], nf = m->muscle_fil_adr[mu + 1] - f0;
+  const swRodInfo *info = &m->rod_info[m->fil_rod[f0]];
   double fmax = 0;
   for (int f = f0; f < f0 + nf; f++) fmax += m->fil_fmax[f];
-  swAttrTarget t = {g, o->path, gpath, err, errlen};
-  int rc = attr_scalar(&t, "F_max", H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, &fmax);
-  if (rc == SW_OK) rc = attr_scalar(&t, "l0", H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, &m->fil_l0[f0]);
-  if (rc == SW_OK) rc = attr_scalar(&t, "filaments", H5T_STD_I32LE, H5T_NATIVE_INT, &nf);
-  if (rc == SW_OK) rc = attr_vector(&t, "filament_F_max", m->fil_fmax + f0, nf);
-  if (rc == SW_OK) rc = attr_vector(&t, "filament_area", m->fil_area + f0, nf);
-  if (rc == SW_OK) rc = attr_vector(&t, "filament_fibres", m->fil_fibres + f0, nf);
-  H5Gclose(g);
-  free(gpath);
+  int rc = attr_string(t, "kind", "muscle");
+  if (rc == SW_OK && info->material) rc = attr_string(t, "material", info->material);
+  if (rc == SW_OK && info->where) rc = attr_string(t, "where", info->where);
+  if (rc == SW_OK) rc = attr_quantity(t, "F_max", &fmax, 1, "N");
+  if (rc == SW_OK) rc = attr_quantity(t, "l0", &m->fil_l0[f0], 1, "m");
+  if (rc == SW_OK) rc = attr_int(t, "filaments", nf);
+  if (rc == SW_OK) rc = attr_quantity(t, "filament_F_max", m->fil_fmax + f0, nf, "N");
+  if (rc == SW_OK) rc = attr_quantity(t, "filament_area", m->fil_area + f0, nf, "m^2");
+  if (rc == SW_OK) rc = attr_vector(t, "filament_fibres", m->fil_fibres + f0, nf);
   return rc;
+}
+
+/* The attributes of every rod, joint and muscle group the datasets made. */
+static int write_group_attrs(swOutput *o, const swModel *m, char *err, size_t errlen) {
+  static const char *const kinds[] = {"rods", "joints", "muscles"};
+  const int count[] = {m->nrod, m->njoint, m->nmuscle};
+  int rc = SW_OK;
+  for (int kind = 0; kind < 3 && rc == SW_OK; kind++)
+    for (int i = 0; i < count[kind] && rc == SW_OK; i++) {
+      const char *name = kind == 0 ? m->rod_name[i] : kind == 1 ? m->joint_name[i]
+                                                                 : m->muscle_name[i];
+      char *gpath = dup_printf("/%s/%s", kinds[kind], name);
+      if (!gpath) return fail(err, errlen, "%s: out of memory", o->path);
+      hid_t g = open_group(o, gpath, err, errlen);
+      if (g < 0) rc = SW_EIO;
+      if (g > 0) {
+        swAttrTarget t = {g, o->path, gpath, err, errlen};
+        rc = kind == 0 ? rod_attrs(&t, m, i) : kind == 1 ? joint_attrs(&t, m, i)
+                                                         : muscle_attrs(&t, m, i);
+        H5Gclose(g);
+      }
+      free(gpath);
+    }
+  return rc;
+}
+
+/* /params: a table of (name, value, unit, default), one row per param. */
+static int write_params(swOutput *o, const swOutputOptions *opt, char *err, size_t errlen) {
+  if (opt->nparam <= 0) return SW_OK;
+  typedef struct {
+    const char *name;
+    double value;
+    const char *unit;
+    double dflt;
+  } swParamRow;
+  hsize_t n = (hsize_t)opt->nparam;
+  swParamRow rows[opt->nparam];
+  for (int i = 0; i < opt->nparam; i++)
+    rows[i] = (swParamRow){opt->param_name[i], opt->param_value[i],
+                           opt->param_unit[i] ? opt->param_unit[i] : "", opt->param_default[i]};
+  hid_t str = utf8_string_type();
+  hid_t type = H5Tcreate(H5T_COMPOUND, sizeof(swParamRow));
+  hid_t space = H5Screate_simple(1, &n, NULL);
+  int ok = str >= 0 && type >= 0 && space >= 0 &&
+           H5Tinsert(type, "name", HOFFSET(swParamRow, name), str) >= 0 &&
+           H5Tinsert(type, "value", HOFFSET(swParamRow, value), H5T_NATIVE_DOUBLE) >= 0 &&
+           H5Tinsert(type, "unit", HOFFSET(swParamRow, unit), str) >= 0 &&
+           H5Tinsert(type, "default", HOFFSET(swParamRow, dflt), H5T_NATIVE_DOUBLE) >= 0;
+  hid_t dset = ok ? H5Dcreate2(o->file, "/params", type, space, H5P_DEFAULT, H5P_DEFAULT,
+                               H5P_DEFAULT)
+                  : H5I_INVALID_HID;
+  ok = ok && dset >= 0 && H5Dwrite(dset, type, H5S_ALL, H5S_ALL, H5P_DEFAULT, rows) >= 0;
+  if (dset >= 0) H5Dclose(dset);
+  if (space >= 0) H5Sclose(space);
+  if (type >= 0) H5Tclose(type);
+  if (str >= 0) H5Tclose(str);
+  return ok ? SW_OK : fail(err, errlen, "%s: cannot write the table /params", o->path);
 }
 
 static void release(swOutput *o) {
@@ -549,10 +731,9 @@ swOutput *sw_output_open(const char *path, const swModel *m, const swOutputOptio
   size_t max_frame = 1;
   for (size_t f = 0; f < NFIELDS && rc == SW_OK; f++) {
     const swField *field = &output_fields[f];
-    if (!field_enabled(field, opt)) continue;
     int nrep = field_items(field, m);
     for (int k = 0; k < nrep && rc == SW_OK; k++) {
-      if (field->scope != SCOPE_ROOT && !item_enabled(field, m, k)) continue;
+      if (field->scope != SCOPE_ROOT && !item_enabled(field, m, opt, k)) continue;
       swDataset *ds = &o->dset[o->ndset++];
       rc = create_dataset(o, ds, field, m, field->scope == SCOPE_ROOT ? -1 : k, lcpl, err,
                           errlen);
@@ -560,7 +741,8 @@ swOutput *sw_output_open(const char *path, const swModel *m, const swOutputOptio
     }
   }
   if (lcpl >= 0) H5Pclose(lcpl);
-  for (int i = 0; i < m->nmuscle && rc == SW_OK; i++) rc = write_muscle_attrs(o, m, i, err, errlen);
+  if (rc == SW_OK) rc = write_group_attrs(o, m, err, errlen);
+  if (rc == SW_OK) rc = write_params(o, opt, err, errlen);
   if (rc == SW_OK && !(o->frame = malloc(max_frame * sizeof *o->frame)))
     rc = fail(err, errlen, "%s: out of memory", path);
   if (rc == SW_OK && H5Fflush(o->file, H5F_SCOPE_LOCAL) < 0)

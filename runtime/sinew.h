@@ -122,6 +122,10 @@ typedef struct {
                                  no deformation, so its stiffness sets no
                                  stable-dt limit; mass and inertia as if it
                                  were elastic                               */
+  /* What the rod is, for the output's /rods/NAME group only (copied; NULL:
+   * not written): its tissue ("bone", "tendon", "muscle filament", "rod"),
+   * its material's name and the model line that made it ("arm.sinew:12"). */
+  const char *kind, *material, *where;
 } swRodDesc;
 
 typedef enum { SW_LOAD_FORCE = 0, SW_LOAD_TORQUE = 1 } swLoadKind;
@@ -145,6 +149,14 @@ typedef struct {
   double vec[3];
   swSignal signal;
 } swBCDesc;
+
+/* A rod's description for the output (owned copies of swRodDesc's kind,
+ * material and where; NULL: not given). */
+typedef struct {
+  char *kind, *material, *where;
+  double youngs, shear_modulus, density;  /* Pa, Pa (G, before hardening), kg/m^3 */
+  double length;                          /* rest length, m                   */
+} swRodInfo;
 
 typedef struct swSpec swSpec;
 swSpec *sw_spec_new(void);
@@ -232,6 +244,9 @@ typedef struct {
   int attach_node[2];         /* node of that rod (-1 = last)                 */
   double attach_stiffness;    /* N/m per filament end; 0 = 100 F_max,k / l0  */
   double attach_damping;      /* N s/m per filament end; 0 = choose (joint.c) */
+  /* For the output only, given to its filament rods (swRodDesc): its
+   * material's name and the model line; NULL: not written. */
+  const char *material, *where;
 } swMuscleDesc;
 void sw_muscle_desc_init(swMuscleDesc *md);  /* fills defaults */
 /* Adds the filaments as rods [nrod, nrod + filaments), smallest first, named
@@ -429,6 +444,7 @@ typedef struct {
   double gravity[3];         /* m/s^2                                        */
   /* per rod (nrod) */
   char **rod_name;
+  swRodInfo *rod_info;       /* kind, material, where (output.c)             */
   int *rod_nelem;            /* n of each rod                                */
   int *node_adr;             /* first node                                   */
   int *elem_adr;             /* first element                                */
@@ -740,7 +756,40 @@ typedef struct {
   double duration;            /* s                                           */
   int velocity;               /* also write /rods/NAME/velocity             */
   int directors;              /* also write /rods/NAME/directors            */
+  /* Per-item selection (SW_OUT_* bits), each array NULL for the default:
+   * rods write their position (and velocity, directors as above), joints and
+   * muscles every quantity they have. */
+  const unsigned *rod_out;    /* (nrod)                                     */
+  const unsigned *joint_out;  /* (njoint)                                   */
+  const unsigned *muscle_out; /* (nmuscle)                                  */
+  /* The params as a table /params of nparam rows (name, value, unit,
+   * default): value and default in unit ("" if none); nparam may be 0. */
+  int nparam;
+  const char *const *param_name;
+  const double *param_value, *param_default;
+  const char *const *param_unit;
 } swOutputOptions;
+
+/* What the output writes of each rod, joint and muscle (bits). */
+enum {
+  /* rods */
+  SW_OUT_POSITION = 1u << 0,         /* /rods/NAME/position          [F, n+1, 3] m   */
+  SW_OUT_VELOCITY = 1u << 1,         /* velocity                     [F, n+1, 3] m/s */
+  SW_OUT_DIRECTORS = 1u << 2,        /* directors                    [F, n, 3, 3]    */
+  SW_OUT_ANGULAR_VELOCITY = 1u << 3, /* angular_velocity (material)  [F, n, 3] rad/s */
+  SW_OUT_STRAIN = 1u << 4,           /* strain sigma (material)      [F, n, 3]       */
+  SW_OUT_CURVATURE = 1u << 5,        /* curvature kappa (material)   [F, n-1, 3] rad/m */
+  SW_OUT_INTERNAL_FORCE = 1u << 6,   /* internal_force n (material)  [F, n, 3] N     */
+  SW_OUT_INTERNAL_COUPLE = 1u << 7,  /* internal_couple (material)   [F, n-1, 3] N m */
+  /* joints */
+  SW_OUT_ANGLE = 1u << 8,            /* /joints/NAME/angle (hinges)  [F] rad         */
+  SW_OUT_JOINT_FORCE = 1u << 9,      /* force                        [F, 3] N        */
+  /* muscles */
+  SW_OUT_MUSCLE_FORCE = 1u << 10,    /* /muscles/NAME/force          [F] N           */
+  SW_OUT_STRETCH = 1u << 11,         /* stretch                      [F]             */
+  SW_OUT_ACTIVATION = 1u << 12,      /* activation                   [F]             */
+  SW_OUT_FILAMENT_FORCE = 1u << 13   /* filament_force               [F, filaments] N */
+};
 
 swOutput *sw_output_open(const char *path, const swModel *m, const swOutputOptions *o,
                          char *err, size_t errlen);
@@ -822,6 +871,15 @@ typedef struct {
   double every;                /* s between frames; 0 = every step          */
   const char *out;             /* default output path                       */
   int velocity, directors;     /* output selection                          */
+  const unsigned *rod_out;     /* (rods) SW_OUT_* bits, NULL: the defaults  */
+  const unsigned *muscle_out;  /* (muscles)                                 */
+  /* Joints by name, since the runtime adds joints of its own (a muscle's
+   * attachments): njoint_out named joints and their bits; every other joint
+   * gets joint_out_rest.  njoint_out = 0: the defaults. */
+  int njoint_out;
+  const char *const *joint_out_name;
+  const unsigned *joint_out;
+  unsigned joint_out_rest;
 } swProgram;
 
 /* Optimal-string-alignment edit distance between a[0..la) and b (a

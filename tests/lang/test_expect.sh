@@ -87,7 +87,7 @@ MODEL
 "$SC" "$TMP/pair.sinew" --emit-c -o "$TMP/pair.c" 2>"$TMP/err"; ok $? "expectations in a component compile"
 diag <"$TMP/err"
 n=$(grep -c 'expect.quantity = SW_EXPECT_JOINT_ANGLE;' "$TMP/pair.c")
-i0=$(grep -c 'expect.index = 0;' "$TMP/pair.c"); i1=$(grep -c 'expect.index = 1;' "$TMP/pair.c")
+i0=$(grep -Fc 'expect.index = joint_id[0];' "$TMP/pair.c"); i1=$(grep -Fc 'expect.index = joint_id[1];' "$TMP/pair.c")
 ok $((n != 2 || i0 != 1 || i1 != 1)) "one per instance, each on its own joint ($n; $i0, $i1)"
 n=$(grep -A3 '^#line 6 "' "$TMP/pair.c" | grep -c '^    swExpectDesc expect;$')
 ok $((n != 2)) "the C of each has a #line to the statement ($n)"
