@@ -44,7 +44,7 @@
 
 typedef enum {
   OPT_OUT, OPT_DURATION, OPT_DT, OPT_INTEGRATOR, OPT_EVERY, OPT_SET, OPT_THREADS, OPT_COMPARE,
-  OPT_RTOL, OPT_QUIET, OPT_INFO, OPT_HELP
+  OPT_RTOL, OPT_RESTART, OPT_QUIET, OPT_INFO, OPT_HELP
 } swOptionId;
 
 typedef struct {
@@ -64,6 +64,7 @@ static const swOption options[] = {
   {OPT_THREADS, "--threads", "N", "threads of each step, or 'auto' (by the model's size)"},
   {OPT_COMPARE, "--compare", "FILE", "after the run, compare each dataset with a stored run's"},
   {OPT_RTOL, "--rtol", "R", "tolerance of --compare, relative to each dataset's largest value"},
+  {OPT_RESTART, "--restart", "FILE", "continue the run FILE holds from its last checkpoint"},
   {OPT_QUIET, "--quiet", NULL, "no progress line, notes or summary"},
   {OPT_INFO, "--info", NULL, "print the compiled scene and exit"},
   {OPT_HELP, "--help", NULL, "print this help and exit"},
@@ -89,6 +90,8 @@ typedef struct {
   const char *golden;        /* --compare: the stored run, or NULL          */
   double rtol;               /* its tolerance (--rtol; default 1e-9)        */
   int rtol_given;
+  const char *restart;       /* --restart: the run to continue, or NULL     */
+  int out_given, every_given;
   double *P;                 /* (nparam) param values, SI                   */
   char *overridden;          /* (nparam) set by --set                       */
 } swCli;
@@ -374,6 +377,7 @@ static int parse_args(swCli *c, int argc, char **argv) {
     case OPT_OUT:
       if (!value[0]) rc = complain(c, "--out: empty file name");
       c->out = value;
+      c->out_given = 1;
       break;
     case OPT_DURATION:
       rc = read_time(c, opt->name, value, 0, &c->duration);
@@ -384,7 +388,14 @@ static int parse_args(swCli *c, int argc, char **argv) {
       c->dt_given = 1;
       break;
     case OPT_INTEGRATOR: rc = read_integrator(c, value); break;
-    case OPT_EVERY: rc = read_time(c, opt->name, value, 0, &c->every); break;
+    case OPT_EVERY:
+      rc = read_time(c, opt->name, value, 0, &c->every);
+      c->every_given = 1;
+      break;
+    case OPT_RESTART:
+      if (!value[0]) rc = complain(c, "--restart: empty file name");
+      c->restart = value;
+      break;
     case OPT_SET: rc = read_set(c, value); break;
     case OPT_THREADS: rc = read_threads(c, value); c->threads_set = 1; break;
     case OPT_COMPARE:
@@ -407,6 +418,44 @@ static int parse_args(swCli *c, int argc, char **argv) {
   }
   if (c->rtol_given && !c->golden) return complain(c, "--rtol is the tolerance of --compare, "
                                                   "which was not given");
+  if (c->restart && c->out_given && strcmp(c->out, c->restart))
+    return complain(c, "--restart %s continues that file: --out %s cannot name another",
+                    c->restart, c->out);
+  if (c->restart) c->out = c->restart;
+  return SW_OK;
+}
+
+/* --restart: the params (those not given with --set), the time step and
+ * the frame interval (unless --dt, --every are given) of the run being
+ * continued. */
+static int read_restart(swCli *c) {
+  char params[8192], sha256[65];
+  double dt, every;
+  if (access(c->restart, R_OK) != 0) {
+    complain(c, "--restart: cannot read '%s': %s", c->restart, strerror(errno));
+    return SW_EIO;
+  }
+  if (sw_output_read_run(c->restart, sha256, params, sizeof params, &dt, &every) != SW_OK) {
+    complain(c, "--restart: %s", sw_output_error());
+    return SW_EIO;
+  }
+  if (strcmp(sha256, c->p->sha256 ? c->p->sha256 : "")) {
+    complain(c, "--restart: %s was written by another model (model_sha256 %.12s..., this "
+             "model's %.12s...)", c->restart, sha256, c->p->sha256 ? c->p->sha256 : "");
+    return SW_EIO;
+  }
+  if (!c->every_given && every >= 0) c->every = every;
+  if (!c->dt_given && dt > 0) {
+    c->dt = dt;
+    c->dt_given = 1;
+  }
+  for (char *item = strtok(params, ";"); item; item = strtok(NULL, ";")) {
+    char *eq = strchr(item, '=');
+    if (!eq) continue;
+    *eq = '\0';
+    for (int i = 0; i < c->p->nparam; i++)
+      if (!strcmp(c->p->param[i].name, item) && !c->overridden[i]) c->P[i] = strtod(eq + 1, NULL);
+  }
   return SW_OK;
 }
 
@@ -873,8 +922,15 @@ static int run(const swCli *c, const swModel *m, const char *out) {
     free(params);
     return SW_EMODEL;
   }
-  swOutputOptions oo = {p->source, p->sha256, params, c->duration, p->velocity, p->directors,
-                        p->rod_out, NULL, p->muscle_out, 0, NULL, NULL, NULL, NULL};
+  swOutputOptions oo = {.model_source = p->source,
+                        .model_sha256 = p->sha256,
+                        .params = params,
+                        .duration = c->duration,
+                        .every = c->every,
+                        .velocity = p->velocity,
+                        .directors = p->directors,
+                        .rod_out = p->rod_out,
+                        .muscle_out = p->muscle_out};
   /* the joints' selection by name (at most a few hundred joints) */
   unsigned joint_out[m->njoint > 0 ? m->njoint : 1];
   if (p->njoint_out > 0) {
@@ -901,21 +957,35 @@ static int run(const swCli *c, const swModel *m, const char *out) {
   oo.param_value = pvalue;
   oo.param_default = pdefault;
   oo.param_unit = punit;
-  swOutput *o = sw_output_open(out, m, &oo, err, sizeof err);
-  free(params);
-  if (!o) {
-    complain(c, "%s", err);
-    sw_data_free(d);
-    return SW_EIO;
-  }
   swExpectRun *expect = m->nexpect ? sw_expect_run_new(m) : NULL;
   if (m->nexpect && !expect) {
     complain(c, "out of memory");
-    sw_output_close(o, "failed: out of memory");
     sw_data_free(d);
+    free(params);
     return SW_EMODEL;
   }
-  swRunOptions ro = {c->duration, c->every, c->quiet, NULL, expect};
+  swOutput *o = c->restart ? sw_output_resume(out, m, &oo, d, expect, err, sizeof err)
+                           : sw_output_open(out, m, &oo, err, sizeof err);
+  free(params);
+  if (!o) {
+    complain(c, "%s", err);
+    sw_expect_run_free(expect);
+    sw_data_free(d);
+    return SW_EIO;
+  }
+  if (c->restart && !(d->time < c->duration - 0.5 * m->dt)) {
+    complain(c, "--restart: %s already reaches t = %.9g s; give a longer --duration", out,
+             d->time);
+    sw_output_close(o, "complete");
+    sw_expect_run_free(expect);
+    sw_data_free(d);
+    return SW_EUSAGE;
+  }
+  if (c->restart && !c->quiet)
+    fprintf(stderr, "%s: continuing %s from t = %.9g s (frame %ld)\n", c->prog, out, d->time,
+            sw_output_frames(o));
+  swRunOptions ro = {.duration = c->duration, .every = c->every, .quiet = c->quiet,
+                     .expect = expect, .resumed = c->restart != NULL};
   double start = wall_seconds();
   int rc = sw_run(m, d, o, &ro);
   double wall = wall_seconds() - start;
@@ -1014,6 +1084,7 @@ int sw_main(const swProgram *p, int argc, char **argv) {
   for (int i = 0; i < p->nparam; i++) c.P[i] = p->param[i].value;
 
   int rc = parse_args(&c, argc, argv);
+  if (rc == SW_OK && c.restart) rc = read_restart(&c);
   if (rc == SW_OK && c.golden && access(c.golden, R_OK) != 0) {
     complain(&c, "--compare: cannot read '%s': %s", c.golden, strerror(errno));
     rc = SW_EIO;

@@ -213,6 +213,25 @@ swExpectRun *sw_expect_run_new(const swModel *m) {
   return r;
 }
 
+void sw_expect_run_save(const swModel *m, const swExpectRun *r, double *out) {
+  for (int k = 0; k < m->nexpect; k++, out += 4) {
+    out[0] = r ? (double)r->count[k] : 0;
+    out[1] = r ? (double)r->last[k] : 0;
+    out[2] = r ? r->min[k] : 0;
+    out[3] = r ? r->max[k] : 0;
+  }
+}
+
+void sw_expect_run_load(const swModel *m, swExpectRun *r, const double *in) {
+  if (!r) return;
+  for (int k = 0; k < m->nexpect && k < r->n; k++, in += 4) {
+    r->count[k] = (long)in[0];
+    r->last[k] = (long)in[1];
+    r->min[k] = in[2];
+    r->max[k] = in[3];
+  }
+}
+
 void sw_expect_run_free(swExpectRun *r) {
   if (!r) return;
   free(r->count);

@@ -20,6 +20,11 @@ void sw_expect_list_free(swExpectList *l);
 int sw_expect_setup(swModel *m, const swExpectList *l, char *err, size_t errlen);
 void sw_expect_free(swModel *m);
 long sw_expect_next(const swModel *m, long step);
+/* The running state of the expectations (4 doubles each: samples, last
+ * step, minimum, maximum), for the checkpoint (restart.c); r may be NULL
+ * (save writes zeros, load does nothing). */
+void sw_expect_run_save(const swModel *m, const swExpectRun *r, double *out);
+void sw_expect_run_load(const swModel *m, swExpectRun *r, const double *in);
 void sw_expect_sample(const swModel *m, swData *d, swExpectRun *r);
 /* Threads (integrate.c).  A step on more than one thread runs inside one
  * OpenMP parallel region that sw_steps opens, and every function of the step
@@ -300,4 +305,15 @@ void sw_contact_loads(const swModel *m, swData *d);
 void sw_contact_loads_with(const swModel *m, swData *d, swContactPhase phase);
 double sw_contact_energy(const swModel *m, const swData *d);
 double sw_contact_stable_dt(const swModel *m);
+/* ---- the checkpoint (restart.c) ----
+ * A snapshot of every array of the state at a scheduled frame, kept in
+ * memory by the run loop and written into the output file (restart.h). */
+typedef struct swCheckpoint swCheckpoint;
+swCheckpoint *sw_checkpoint_new(const swModel *m);
+void sw_checkpoint_free(swCheckpoint *c);
+/* Copies d (and the expectations' state x, may be NULL) as the state of the
+ * file's frame `frames` - 1. */
+void sw_checkpoint_take(swCheckpoint *c, const swModel *m, const swData *d,
+                        const swExpectRun *x, long frames);
+
 #endif

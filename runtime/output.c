@@ -1,5 +1,6 @@
 /* output.c — HDF5 output of a run; with compare.c (which reads a golden
- * file), the only file of the runtime that includes hdf5.h.
+ * file) and restart.c (the checkpoint), the only files of the runtime that
+ * include hdf5.h.
  *
  * Design.  What is written is described by one table, output_fields[]: a
  * dataset path, whether it exists once, once per rod, per joint (or hinge),
@@ -28,9 +29,11 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <time.h>
 
 #include "sinew.h"
 #include "internal.h"
+#include "restart.h"
 
 /* ---- the output table ---- */
 
@@ -215,6 +218,9 @@ struct swOutput {
   int ndset;
   swDataset *dset;
   double *frame;                         /* scratch, the largest frame       */
+  swCheckpoint *checkpoint;              /* the last scheduled frame's state */
+  const swModel *model;                  /* the model it was taken of        */
+  double checkpoint_written;             /* wall clock of its last write, s  */
 };
 
 /* ---- errors ---- */
@@ -433,10 +439,33 @@ static int item_enabled(const swField *f, const swModel *m, const swOutputOption
   return 1;
 }
 
+/* A continued run (sw_output_resume): the dataset the first part made, cut
+ * back to `frames` frames; its shape per frame must be this model's. */
+static int reopen_dataset(swOutput *o, swDataset *ds, long frames, char *err, size_t errlen) {
+  ds->dset = H5Dopen2(o->file, ds->path, H5P_DEFAULT);
+  if (ds->dset < 0)
+    return fail(err, errlen, "%s: no dataset %s: the file was written by another model or "
+                "another output selection", o->path, ds->path);
+  hsize_t have[1 + MAX_FRAME_RANK];
+  hid_t space = H5Dget_space(ds->dset);
+  int rank = space >= 0 ? H5Sget_simple_extent_dims(space, have, NULL) : -1;
+  if (space >= 0) H5Sclose(space);
+  int same = rank == ds->rank;
+  for (int k = 1; same && k < rank; k++) same = have[k] == ds->dims[k];
+  if (!same || have[0] < (hsize_t)frames)
+    return fail(err, errlen, "%s: dataset %s does not have the shape this model writes",
+                o->path, ds->path);
+  ds->dims[0] = (hsize_t)frames;
+  if (H5Dset_extent(ds->dset, ds->dims) < 0)
+    return fail(err, errlen, "%s: cannot cut dataset %s back to %ld frames", o->path,
+                ds->path, frames);
+  return SW_OK;
+}
+
 /* Create the dataset of field f (for rod or joint `item`, or -1) with its
  * attributes. */
 static int create_dataset(swOutput *o, swDataset *ds, const swField *f, const swModel *m,
-                          int item, hid_t lcpl, char *err, size_t errlen) {
+                          int item, hid_t lcpl, long reopen_frames, char *err, size_t errlen) {
   hsize_t maxdims[1 + MAX_FRAME_RANK], chunk[1 + MAX_FRAME_RANK];
   const int rod = f->scope == SCOPE_ROD ? item : -1;
   ds->field = f;
@@ -469,6 +498,7 @@ static int create_dataset(swOutput *o, swDataset *ds, const swField *f, const sw
   if (frames_per_chunk < 1) frames_per_chunk = 1;
   chunk[0] = frames_per_chunk;
 
+  if (reopen_frames >= 0) return reopen_dataset(o, ds, reopen_frames, err, errlen);
   hid_t space = H5Screate_simple(ds->rank, ds->dims, maxdims);
   hid_t dcpl = H5Pcreate(H5P_DATASET_CREATE);
   if (space < 0 || dcpl < 0 || H5Pset_chunk(dcpl, ds->rank, chunk) < 0) {
@@ -501,6 +531,7 @@ static int write_root_attrs(swOutput *o, const swModel *m, const swOutputOptions
   if (rc == SW_OK) rc = attr_string(&t, "model_sha256", opt->model_sha256);
   if (rc == SW_OK) rc = attr_quantity(&t, "dt", &m->dt, 1, "s");
   if (rc == SW_OK) rc = attr_quantity(&t, "duration", &opt->duration, 1, "s");
+  if (rc == SW_OK) rc = attr_quantity(&t, "every", &opt->every, 1, "s");
   if (rc == SW_OK) rc = attr_quantity(&t, "gravity", m->gravity, 3, "m/s^2");
   if (rc == SW_OK)
     rc = attr_string(&t, "integrator",
@@ -661,11 +692,70 @@ static void release(swOutput *o) {
   free(o->dset);
   free(o->frame);
   free(o->path);
+  sw_checkpoint_free(o->checkpoint);
   free(o);
 }
 
-swOutput *sw_output_open(const char *path, const swModel *m, const swOutputOptions *opt,
-                         char *err, size_t errlen) {
+/* The root attribute `name` as a string into buf ("" when absent). */
+static void read_root_string(hid_t file, const char *name, char *buf, size_t len) {
+  buf[0] = '\0';
+  if (H5Aexists(file, name) <= 0) return;
+  hid_t attr = H5Aopen(file, name, H5P_DEFAULT), type = utf8_string_type();
+  char *value = NULL;
+  if (attr >= 0 && type >= 0 && H5Aread(attr, type, &value) >= 0 && value) {
+    snprintf(buf, len, "%s", value);
+    H5free_memory(value);
+  }
+  if (type >= 0) H5Tclose(type);
+  if (attr >= 0) H5Aclose(attr);
+}
+
+/* Replaces (or adds) a root string attribute. */
+static int replace_root_string(swOutput *o, const char *name, const char *value) {
+  swAttrTarget t = {o->file, o->path, "/", NULL, 0};
+  htri_t had = H5Aexists(o->file, name);
+  if (had < 0 || (had > 0 && H5Adelete(o->file, name) < 0))
+    return fail(NULL, 0, "%s: cannot replace attribute '%s' of /", o->path, name);
+  return attr_string(&t, name, value);
+}
+
+/* A root attribute that is a number (-1 when absent). */
+static double read_root_number(hid_t file, const char *name) {
+  double value = -1;
+  hid_t attr = H5Aexists(file, name) > 0 ? H5Aopen(file, name, H5P_DEFAULT) : -1;
+  if (attr >= 0) {
+    if (H5Aread(attr, H5T_NATIVE_DOUBLE, &value) < 0) value = -1;
+    H5Aclose(attr);
+  }
+  return value;
+}
+
+/* A continued run's file: the model that wrote it (by hash) and the params,
+ * time step and frame interval it ran with must be this run's. */
+static int check_resumable(swOutput *o, const swModel *m, const swOutputOptions *opt, char *err,
+                           size_t errlen) {
+  char have[4096];
+  read_root_string(o->file, "model_sha256", have, sizeof have);
+  if (strcmp(have, opt->model_sha256 ? opt->model_sha256 : ""))
+    return fail(err, errlen, "%s was written by another model (model_sha256 %.12s..., this "
+                "model's %.12s...)", o->path, have, opt->model_sha256 ? opt->model_sha256 : "");
+  read_root_string(o->file, "params", have, sizeof have);
+  if (strcmp(have, opt->params ? opt->params : ""))
+    return fail(err, errlen, "%s was run with the params %s, this run has %s", o->path, have,
+                opt->params ? opt->params : "");
+  double dt = read_root_number(o->file, "dt"), every = read_root_number(o->file, "every");
+  if (dt != m->dt)
+    return fail(err, errlen, "%s was run at dt = %g s, this run at %g s", o->path, dt, m->dt);
+  if (every != opt->every)
+    return fail(err, errlen, "%s was written with a frame every %g s, this run every %g s",
+                o->path, every, opt->every);
+  return SW_OK;
+}
+
+/* sw_output_open and sw_output_resume: d == NULL creates the file, else it
+ * reopens it and puts its checkpoint into d and x. */
+static swOutput *open_output(const char *path, const swModel *m, const swOutputOptions *opt,
+                             swData *d, swExpectRun *x, char *err, size_t errlen) {
   static const swOutputOptions no_options;
   if (!opt) opt = &no_options;
   H5Eset_auto2(H5E_DEFAULT, NULL, NULL);   /* our messages, not HDF5's stack dump */
@@ -715,13 +805,40 @@ swOutput *sw_output_open(const char *path, const swModel *m, const swOutputOptio
     return NULL;
   }
 
-  o->file = H5Fcreate(path, H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
-  if (o->file < 0) {
-    fail(err, errlen, "cannot create HDF5 file %s", path);
+  o->model = m;
+  o->checkpoint = sw_checkpoint_new(m);
+  if (!o->checkpoint) {
+    fail(err, errlen, "%s: out of memory", path);
     release(o);
     return NULL;
   }
-  int rc = write_root_attrs(o, m, opt, err, errlen);
+  long frames = -1;   /* reopening: the frames to keep */
+  int rc = SW_OK;
+  if (!d) {
+    o->file = H5Fcreate(path, H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
+    if (o->file < 0) {
+      fail(err, errlen, "cannot create HDF5 file %s", path);
+      release(o);
+      return NULL;
+    }
+    rc = write_root_attrs(o, m, opt, err, errlen);
+  } else {
+    o->file = H5Fopen(path, H5F_ACC_RDWR, H5P_DEFAULT);
+    if (o->file < 0) {
+      fail(err, errlen, "cannot open HDF5 file %s to continue its run", path);
+      release(o);
+      return NULL;
+    }
+    rc = check_resumable(o, m, opt, err, errlen);
+    if (rc == SW_OK) rc = sw_checkpoint_read(path, o->file, m, d, x, &frames, err, errlen);
+    if (rc == SW_OK) rc = replace_root_string(o, "status", "incomplete: the run did not close this file");
+    if (rc == SW_OK && H5Adelete(o->file, "duration") >= 0) {
+      swAttrTarget t = {o->file, o->path, "/", err, errlen};
+      rc = attr_scalar(&t, "duration", H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, &opt->duration);
+    }
+    if (rc == SW_OK && frames >= 0) sw_checkpoint_take(o->checkpoint, m, d, x, frames);
+    o->frames = frames;
+  }
 
   /* Groups /rods/NAME, /joints/NAME and /diagnostics come into being with
    * their datasets. */
@@ -735,14 +852,14 @@ swOutput *sw_output_open(const char *path, const swModel *m, const swOutputOptio
     for (int k = 0; k < nrep && rc == SW_OK; k++) {
       if (field->scope != SCOPE_ROOT && !item_enabled(field, m, opt, k)) continue;
       swDataset *ds = &o->dset[o->ndset++];
-      rc = create_dataset(o, ds, field, m, field->scope == SCOPE_ROOT ? -1 : k, lcpl, err,
-                          errlen);
+      rc = create_dataset(o, ds, field, m, field->scope == SCOPE_ROOT ? -1 : k, lcpl, frames,
+                          err, errlen);
       if (ds->frame_len > max_frame) max_frame = ds->frame_len;
     }
   }
   if (lcpl >= 0) H5Pclose(lcpl);
-  if (rc == SW_OK) rc = write_group_attrs(o, m, err, errlen);
-  if (rc == SW_OK) rc = write_params(o, opt, err, errlen);
+  if (rc == SW_OK && !d) rc = write_group_attrs(o, m, err, errlen);
+  if (rc == SW_OK && !d) rc = write_params(o, opt, err, errlen);
   if (rc == SW_OK && !(o->frame = malloc(max_frame * sizeof *o->frame)))
     rc = fail(err, errlen, "%s: out of memory", path);
   if (rc == SW_OK && H5Fflush(o->file, H5F_SCOPE_LOCAL) < 0)
@@ -752,6 +869,33 @@ swOutput *sw_output_open(const char *path, const swModel *m, const swOutputOptio
     return NULL;
   }
   return o;
+}
+
+int sw_output_read_run(const char *path, char *sha256, char *params, size_t len, double *dt,
+                       double *every) {
+  H5Eset_auto2(H5E_DEFAULT, NULL, NULL);
+  hid_t file = H5Fopen(path, H5F_ACC_RDONLY, H5P_DEFAULT);
+  if (file < 0) return fail(NULL, 0, "cannot open HDF5 file %s", path);
+  read_root_string(file, "model_sha256", sha256, 65);
+  read_root_string(file, "params", params, len);
+  *dt = read_root_number(file, "dt");
+  *every = read_root_number(file, "every");
+  H5Fclose(file);
+  return SW_OK;
+}
+
+swOutput *sw_output_open(const char *path, const swModel *m, const swOutputOptions *opt,
+                         char *err, size_t errlen) {
+  return open_output(path, m, opt, NULL, NULL, err, errlen);
+}
+
+swOutput *sw_output_resume(const char *path, const swModel *m, const swOutputOptions *opt,
+                           swData *d, swExpectRun *x, char *err, size_t errlen) {
+  if (!d) {
+    fail(err, errlen, "%s: no state to continue into", path ? path : "output");
+    return NULL;
+  }
+  return open_output(path, m, opt, d, x, err, errlen);
 }
 
 /* ---- frames ---- */
@@ -800,16 +944,35 @@ int sw_output_frame(swOutput *o, const swModel *m, swData *d) {
 
 long sw_output_frames(const swOutput *o) { return o ? o->frames : 0; }
 
+static double wall_now(void) {
+  struct timespec ts;
+  clock_gettime(CLOCK_MONOTONIC, &ts);
+  return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
+/* Seconds of wall time between two writes of the checkpoint: a run killed
+ * outright loses at most this much. */
+#define CHECKPOINT_EVERY 10.0
+
+int sw_output_checkpoint(swOutput *o, const swModel *m, const swData *d, const swExpectRun *x) {
+  if (!o || !o->checkpoint || m != o->model) return SW_OK;
+  sw_checkpoint_take(o->checkpoint, m, d, x, o->frames);
+  double now = wall_now();
+  if (now - o->checkpoint_written < CHECKPOINT_EVERY) return SW_OK;
+  o->checkpoint_written = now;
+  if (sw_checkpoint_write(o->checkpoint, m, o->file) != SW_OK)
+    return fail(NULL, 0, "%s: cannot write the checkpoint /restart", o->path);
+  return SW_OK;
+}
+
 /* ---- close ---- */
 
 int sw_output_close(swOutput *o, const char *status) {
   if (!o) return SW_OK;
   int rc = SW_OK;
-  swAttrTarget t = {o->file, o->path, "/", NULL, 0};
-  htri_t had_status = H5Aexists(o->file, "status");
-  if (had_status < 0 || (had_status > 0 && H5Adelete(o->file, "status") < 0))
-    rc = fail(NULL, 0, "%s: cannot replace attribute 'status' of /", o->path);
-  if (rc == SW_OK) rc = attr_string(&t, "status", status ? status : "complete");
+  if (o->checkpoint && sw_checkpoint_write(o->checkpoint, o->model, o->file) != SW_OK)
+    rc = fail(NULL, 0, "%s: cannot write the checkpoint /restart", o->path);
+  if (rc == SW_OK) rc = replace_root_string(o, "status", status ? status : "complete");
   for (int i = 0; i < o->ndset; i++) {
     if (o->dset[i].dset >= 0 && H5Dclose(o->dset[i].dset) < 0 && rc == SW_OK)
       rc = fail(NULL, 0, "%s: cannot close dataset %s", o->path, o->dset[i].path);

@@ -14,7 +14,11 @@
  * twice a second; the wall clock is read on a stride of steps re-estimated
  * from the measured step rate, so a tiny rod does not pay a clock read per
  * step and a huge one is not left silent.  A model's expectations (expect.c)
- * are sampled at the steps they name: the fused chunks end there. */
+ * are sampled at the steps they name: the fused chunks end there.  Frames
+ * are scheduled on the step count since t = 0, and after each frame of the
+ * schedule the output takes a checkpoint (restart.c), so a run continued
+ * from its file (`resumed`) steps in the same chunks as one that never
+ * stopped. */
 #include <math.h>
 #include <signal.h>
 #include <stdio.h>
@@ -92,6 +96,16 @@ static int write_frame(const swModel *m, swData *d, swOutput *out, swProgress *p
   return SW_EIO;
 }
 
+/* After a frame of the schedule: the state a continued run starts from
+ * (restart.c). */
+static int checkpoint(const swModel *m, const swData *d, swOutput *out, const swRunOptions *ro,
+                      swProgress *p) {
+  if (!out || sw_output_checkpoint(out, m, d, ro->expect) == SW_OK) return SW_OK;
+  progress_end(p);
+  fprintf(p->log, "sinew: %s\n", sw_output_error());
+  return SW_EIO;
+}
+
 int sw_step_count(double duration, double dt, long *nsteps, char *err, size_t errlen) {
   *nsteps = 0;
   if (!(dt > 0) || !isfinite(dt)) {
@@ -137,9 +151,12 @@ int sw_run(const swModel *m, swData *d, swOutput *out, const swRunOptions *ro) {
     fprintf(log, "sinew: %s\n", why);
     return SW_EUSAGE;
   }
-  /* a frame interval longer than the run: the first and last frames only */
+  /* Frames are scheduled on the step count since t = 0 (d->step), so a run
+   * continued from its file keeps the schedule; a frame interval longer
+   * than the run: the first and last frames only. */
+  const long last_step = d->step + nsteps;
   double every_steps = ro->every > 0 ? round(ro->every / m->dt) : 1;
-  long every = every_steps > (double)nsteps ? nsteps + 1 : (long)every_steps;
+  long every = every_steps > (double)last_step ? last_step + 1 : (long)every_steps;
   if (every < 1) every = 1;
 
   swProgress p = {log, ro->quiet, nsteps, ro->duration, 0, 0, 1, 0};
@@ -150,15 +167,19 @@ int sw_run(const swModel *m, swData *d, swOutput *out, const swRunOptions *ro) {
   interrupted = 0;
   int handler_installed = sigaction(SIGINT, &action, &previous) == 0;
 
-  int rc = write_frame(m, d, out, &p);
-  if (ro->expect) sw_expect_sample(m, d, ro->expect);
+  int rc = SW_OK;
+  if (!ro->resumed) {   /* a continued run's first frame is in its file */
+    rc = write_frame(m, d, out, &p);
+    if (ro->expect) sw_expect_sample(m, d, ro->expect);
+    if (rc == SW_OK) rc = checkpoint(m, d, out, ro, &p);
+  }
   long k = 0, last_frame = 0;
   p.start = p.last_line = wall_seconds();
   while (rc == SW_OK && k < nsteps && !interrupted) {
     /* as many fused steps as fit before the next frame (at most 256, so
      * that SIGINT and the progress line stay responsive) and before the
      * next step an expectation samples (expect.c) */
-    long chunk = every - k % every;
+    long chunk = every - d->step % every;
     if (chunk > nsteps - k) chunk = nsteps - k;
     if (chunk > 256) chunk = 256;
     if (ro->expect) {
@@ -174,8 +195,9 @@ int sw_run(const swModel *m, swData *d, swOutput *out, const swRunOptions *ro) {
       rc = step_rc;
       break;
     }
-    if (k % every == 0 || k == nsteps) {
+    if (d->step % every == 0 || k == nsteps) {
       rc = write_frame(m, d, out, &p);
+      if (rc == SW_OK) rc = checkpoint(m, d, out, ro, &p);
       last_frame = k;
     }
     progress_update(&p, d, k);

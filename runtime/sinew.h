@@ -768,6 +768,8 @@ typedef struct {
   const char *const *param_name;
   const double *param_value, *param_default;
   const char *const *param_unit;
+  double every;               /* s between frames (0: every step), recorded
+                                 so that a continued run keeps it          */
 } swOutputOptions;
 
 /* What the output writes of each rod, joint and muscle (bits). */
@@ -794,6 +796,20 @@ enum {
 swOutput *sw_output_open(const char *path, const swModel *m, const swOutputOptions *o,
                          char *err, size_t errlen);
 int sw_output_frame(swOutput *o, const swModel *m, swData *d);
+/* SIM --restart (restart.c): reopens a file a run of the same model (same
+ * model_sha256, params and `every`) wrote, puts the state of its checkpoint
+ * into d (and the expectations' into x, may be NULL), cuts its datasets back
+ * to the frames it held then, and appends from there. */
+swOutput *sw_output_resume(const char *path, const swModel *m, const swOutputOptions *o,
+                           swData *d, swExpectRun *x, char *err, size_t errlen);
+/* The model's hash (sha256[65]), the params ("name=value;...", SI), the
+ * time step and the frame interval (s; -1 if not recorded) a file's run
+ * had, for SIM --restart.  SW_OK or SW_EIO. */
+int sw_output_read_run(const char *path, char *sha256, char *params, size_t len, double *dt,
+                       double *every);
+/* The run loop's checkpoint at a scheduled frame, just written: kept in
+ * memory, written to /restart every 10 s of wall time and at close. */
+int sw_output_checkpoint(swOutput *o, const swModel *m, const swData *d, const swExpectRun *x);
 int sw_output_close(swOutput *o, const char *status);
 long sw_output_frames(const swOutput *o);
 /* SIM --compare (compare.c): every numeric dataset of the golden file against
@@ -814,6 +830,8 @@ typedef struct {
   int quiet;             /* no progress line                             */
   FILE *log;             /* messages (stderr when NULL)                  */
   swExpectRun *expect;   /* expectations to sample (NULL: none)          */
+  int resumed;           /* the state is the output's last frame, already
+                            written and sampled (sw_output_resume)      */
 } swRunOptions;
 
 int sw_run(const swModel *m, swData *d, swOutput *out, const swRunOptions *ro);

@@ -1,0 +1,17 @@
+/* restart.h — the checkpoint's file side, shared by output.c (which owns the
+ * file) and restart.c; the only runtime header that includes hdf5.h.  The
+ * in-memory side (sw_checkpoint_new/take/free) is in internal.h. */
+#ifndef SINEW_RESTART_H
+#define SINEW_RESTART_H
+#include <hdf5.h>
+#include "internal.h"
+
+/* Writes the snapshot to /restart of the file if it changed since it was
+ * last written; SW_OK or SW_EIO. */
+int sw_checkpoint_write(swCheckpoint *c, const swModel *m, hid_t file);
+/* Reads /restart of `file` (named `path` in messages) into d and x (x may be
+ * NULL); *frames is how many frames the file held at the snapshot.  SW_OK,
+ * SW_EIO (no checkpoint, unreadable) or SW_EMODEL (another model's). */
+int sw_checkpoint_read(const char *path, hid_t file, const swModel *m, swData *d,
+                       swExpectRun *x, long *frames, char *err, size_t errlen);
+#endif

@@ -1,0 +1,85 @@
+#!/bin/sh
+# test_restart.sh — SIM --restart RUN.h5 continues a run from its file and
+# gives the datasets of a run that never stopped, bit for bit (h5diff finds
+# no difference, and --compare with --rtol 0 agrees):
+#
+#   a run of 0.1 s continued to 0.2 s; a run stopped with Ctrl-C (SIGINT)
+#   part way and continued with no other argument, its expectations (which
+#   span the whole run) then passing as in one run; a file of another model,
+#   another param or dt is refused (exit 4) naming what differs; a file that
+#   already reaches the duration, and --out naming another file, are usage
+#   errors (exit 2).
+. "$(dirname "$0")/tap.sh"
+cd "$ROOT" || exit 1
+SC=$SINEWC_CHECK
+scratch restart
+
+"$SC" examples/pendulum.sinew -o "$TMP/p" 2>"$TMP/err"; ok $? "the pendulum compiles"
+diag <"$TMP/err"
+cd "$TMP" || exit 1
+
+# 1. a finished run, extended
+./p --duration 0.2s --out full.h5 --quiet 2>err; ok $? "an uninterrupted run of 0.2 s"
+./p --duration 0.1s --out part.h5 --quiet 2>err; ok $? "a run of 0.1 s"
+./p --restart part.h5 --duration 0.2s >run 2>&1; rc=$?
+ok $rc "continued to 0.2 s (exit $rc; the pendulum's expectations lie later, not reached)"
+grep -q '^p: continuing part.h5 from t = 0.1 s (frame 101)$' run; ok $? "it says where it continues from"
+diag <run
+h5diff part.h5 full.h5 >diff 2>&1; ok $? "every dataset equals the uninterrupted run's (h5diff)"
+diag <diff
+./p --duration 0.1s --out part2.h5 --quiet 2>err
+./p --restart part2.h5 --duration 0.2s --compare full.h5 --rtol 0 --quiet >run 2>&1; rc=$?
+grep -q 'compare: [0-9]* datasets match, 0 differ$' run; ok $? "--compare --rtol 0 agrees (exit $rc)"
+diag <run
+
+# 2. stopped by Ctrl-C part way, continued with no other argument
+./p --duration 3s --out long.h5 --quiet 2>err; ok $? "an uninterrupted run of 3 s"
+./p --duration 3s --out cut.h5 --quiet 2>err &
+pid=$!
+sleep 1
+kill -INT $pid
+wait $pid; rc=$?
+ok $((rc != 130)) "a run of 3 s stopped by SIGINT (exit $rc)"
+/usr/bin/python3 -c "
+import h5py; f = h5py.File('cut.h5', 'r')
+print('stopped at t = %.6g s, frame %d; status: %s' % (f['time'][-1], len(f['time']), f.attrs['status']))
+" | diag
+./p --restart cut.h5 --duration 3s >run 2>&1; rc=$?
+ok $rc "continued to the end (exit $rc)"
+grep -q '^p: expectations: 3 passed, 0 failed$' run; ok $? "the expectations over the whole run pass"
+diag <run
+h5diff cut.h5 long.h5 >diff 2>&1; ok $? "every dataset equals the uninterrupted run's (h5diff)"
+diag <diff
+/usr/bin/python3 -c "
+import h5py; f = h5py.File('cut.h5', 'r'); print(f.attrs['status'])" >status
+grep -qx complete status; ok $? "the continued file's status is complete"
+
+# 3. refused
+./p --restart long.h5 --duration 3s >run 2>&1; rc=$?
+ok $((rc != 2)) "a file that already reaches the duration (exit $rc)"
+grep -q 'already reaches t = 3 s; give a longer --duration' run; ok $? "says so"
+./p --restart part.h5 --out other.h5 --duration 0.3s >run 2>&1; rc=$?
+ok $((rc != 2)) "--out naming another file (exit $rc)"
+./p --duration 0.1s --out set.h5 --quiet 2>err
+./p --restart set.h5 --set release=20deg --duration 0.2s >run 2>&1; rc=$?
+ok $((rc != 4)) "another param is refused (exit $rc)"
+grep -q 'was run with the params release=0.17453292519943295, this run has release=0.3490658503988659' run
+ok $? "naming both values"
+diag <run
+./p --restart set.h5 --dt 1us --duration 0.2s >run 2>&1; rc=$?
+ok $((rc != 4)) "another dt is refused (exit $rc)"
+diag <run
+cat >other.sinew <<'EOF'
+material steel { E = 200 GPa; density = 7.8 g/cm^3; }
+rod beam { material = steel; start = (0, 0, 0) m; direction = (1, 0, 0); length = 1 m;
+           radius = 5 mm; elements = 4; }
+clamp beam.start;
+simulate { duration = 1 ms; }
+EOF
+"$SC" other.sinew -o other 2>err
+./other --restart set.h5 --duration 0.2s >run 2>&1; rc=$?
+ok $((rc != 4)) "a file of another model is refused (exit $rc)"
+grep -q 'set.h5 was written by another model' run; ok $? "saying so"
+diag <run
+
+done_testing
