@@ -587,11 +587,28 @@ static void eval_rod(swSema *S, swSymbol *sym) {
 void sema_eval_symbol(swSema *S, swSymbol *sym) {
   if (sym->state == 2) return;
   if (sym->state == 1) {
-    diag_error(sym->loc, "'%s' is defined in terms of itself", sym->name);
+    /* the chain from sym's own evaluation to here: "b -> c -> b" */
+    char chain[512] = "";
+    size_t used = 0;
+    int from = S->nevaluating;
+    while (from > 0 && S->evaluating[from - 1] != sym) from--;
+    for (int k = from > 0 ? from - 1 : S->nevaluating; k < S->nevaluating && used < sizeof chain;
+         k++)
+      used += (size_t)snprintf(chain + used, sizeof chain - used, "%s -> ",
+                               S->evaluating[k]->name);
+    if (from > 0 && from < S->nevaluating && used < sizeof chain) {   /* not a -> a */
+      snprintf(chain + used, sizeof chain - used, "%s", sym->name);
+      diag_error(sym->loc, "'%s' is defined in terms of itself (%s)", sym->name, chain);
+    } else {
+      diag_error(sym->loc, "'%s' is defined in terms of itself", sym->name);
+    }
     sym->value = val_error();
     return;
   }
   sym->state = 1;
+  if (S->nevaluating < (int)(sizeof S->evaluating / sizeof S->evaluating[0]))
+    S->evaluating[S->nevaluating] = sym;
+  S->nevaluating++;
   switch (sym->kind) {
   case SYM_PARAM:
     eval_param(S, sym);
@@ -618,6 +635,7 @@ void sema_eval_symbol(swSema *S, swSymbol *sym) {
   default:
     break;
   }
+  S->nevaluating--;
   sym->state = 2;
 }
 

@@ -499,8 +499,11 @@ static swValue eval_call(swSema *S, swScope *scope, const swAst *e) {
   const char *near = diag_suggest(fn, functions, NFUNCTIONS);
   if (near)
     diag_error(e->loc, "unknown function '%s'; did you mean '%s'?", fn, near);
-  else
-    diag_error(e->loc, "unknown function '%s'", fn);
+  else {
+    char list[256];
+    diag_join(list, sizeof list, functions, NFUNCTIONS);
+    diag_error(e->loc, "unknown function '%s' (the functions: %s)", fn, list);
+  }
   return val_error();
 }
 
@@ -664,8 +667,8 @@ static swValue eval_vector(swSema *S, swScope *scope, const swAst *e) {
 swValue sema_eval(swSema *S, swScope *scope, const swAst *e) {
   if (!e) return val_error();
   switch (e->kind) {
-  case AST_NUM:
-    return val_num(S->a, e->num, DIM_NONE, e->loc);
+  case AST_NUM:   /* NaN: a number the lexer reported out of range */
+    return isnan(e->num) ? val_error() : val_num(S->a, e->num, DIM_NONE, e->loc);
   case AST_UNIT: {
     const swUnit *u = sw_unit_find(e->name, strlen(e->name));
     if (!u) {

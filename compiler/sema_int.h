@@ -43,6 +43,9 @@ typedef struct {
   /* items met once per scene */
   swLoc simulate_loc, output_loc;
   int has_simulate, has_output;
+  /* the symbols being evaluated, outermost first, to name a cycle */
+  swSymbol *evaluating[64];
+  int nevaluating;
   /* output's selections, checked once every rod, joint and muscle is known */
   const swAst *output_item;
   swScope *output_scope;

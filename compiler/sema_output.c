@@ -63,7 +63,7 @@ void sema_output(swSema *S, swScope *scope, const swAst *it) {
   if (every) {
     swValue e = sema_expect(S, scope, every, 1, DIM_TIME, "'every'");
     if (e.kind == VAL_NUM && sema_require_const(S, &e, "'every'")) {
-      if (!(e.v[0] > 0)) diag_error(e.loc, "'every' must be positive");
+      if (!(e.v[0] > 0)) diag_error(e.loc, "'every' must be positive, got %g s", e.v[0]);
       else sc->every = e.v[0];
     }
   }
