@@ -29,6 +29,7 @@ struct swLexState {
   int cur_unit, prev_unit;      /* this token / the one before is a UNIT    */
   int cur_value, prev_value;    /* this token / the one before ends a value
                                    (a number or ')'), where a unit may follow */
+  swLoc cur_loc, prev_loc;      /* where this token and the one before are  */
 };
 
 /* Parse text of file `file` (already registered with diag_add_file). */

@@ -173,6 +173,11 @@ item
                                ast_push(A, $$, ast_push(A, named(st, AST_ARG, @7, $7), $8)); }
   | error ';'                { $$ = NULL; yyerrok; }
   | error '}'                { $$ = NULL; yyerrok; }
+  /* a statement whose ';' is missing: the next line's item is kept (no
+     yyerrok: what does not fit after it is dropped without more errors) */
+  | IDENT expr error         { $$ = NULL; }
+  | PARAM IDENT '=' expr error { $$ = NULL; }
+  | LET IDENT '=' expr error { $$ = NULL; }
   ;
 
 every_opt
@@ -202,6 +207,8 @@ field
   /* let NAME = value;         a name local to the body (terrain) */
   | LET IDENT '=' expr ';'   { $$ = named(st, AST_LET, @2, $2); ast_push(A, $$, $4); }
   | error ';'                { $$ = NULL; yyerrok; }
+  /* a field whose ';' is missing: the next line's field is kept */
+  | IDENT '=' expr error     { $$ = NULL; }
   ;
 
 formals
@@ -313,8 +320,31 @@ static int yyreport_syntax_error(const yypcontext_t *ctx, yyscan_t scanner, stru
         return 0;
       }
   }
-  /* a name or number is quoted as written: "unexpected name 'G'" */
   const swSource *src = diag_file(loc->file);
+  /* a ';' missing at the end of a line: said there, as C compilers do,
+   * quoting the statement's line ("expected ';' after 'clamp beam.start'") */
+  const swLoc *prev = &st->prev_loc;
+  int semicolon = 0;
+  for (int i = 0; i < n; i++) semicolon |= !strcmp(yysymbol_name(expected[i]), "';'");
+  if (semicolon && src && prev->line > 0 && loc->line > prev->end_line &&
+      prev->line == prev->end_line) {
+    const char *p = src->text, *end = src->text + src->len;
+    for (int l = 1; l < prev->line && p < end; p++)
+      if (*p == '\n') l++;
+    /* the statement or field: from the line's last ';' or '{' before it */
+    const char *last = p + prev->end_col;   /* one past the token */
+    const char *first = p;
+    for (const char *q = p; q < last && q < end; q++)
+      if (*q == ';' || *q == '{') first = q + 1;
+    while (first < end && (*first == ' ' || *first == '\t')) first++;
+    swLoc at = {prev->file, prev->end_line, prev->end_col + 1, prev->end_line, prev->end_col + 1};
+    if (last <= end && last > first && last - first <= 60)
+      diag_error(at, "expected ';' after '%.*s'", (int)(last - first), first);
+    else
+      diag_error(at, "expected ';' at the end of this line");
+    return 0;
+  }
+  /* a name or number is quoted as written: "unexpected name 'G'" */
   const char *text = NULL;
   int tlen = 0;
   if ((found == YYSYMBOL_IDENT || found == YYSYMBOL_NUMBER) && src && loc->line == loc->end_line) {
