@@ -333,6 +333,8 @@ static void declare_items(swSema *S, swScope *scope, const swAst *items, int fir
       if (scope != S->global) {
         diag_error(it->loc, "a param belongs at file level; a component takes parameters "
                    "in its header: component NAME(%s = ...)", it->name);
+        /* declared as a let all the same, so its uses are not also unknown */
+        declare(S, scope, SYM_LET, it->name, it->loc, it);
         break;
       }
       declare(S, scope, SYM_PARAM, it->name, it->loc, it);

@@ -272,7 +272,13 @@ void sema_action(swSema *S, swScope *scope, const swAst *it) {
     sema_report_unknown(S, scope, p.word, p.loc, "name");
     return;
   }
-  if (p.kind == VAL_ERROR) return;
+  if (p.kind == VAL_ERROR) {   /* a rod with errors: its value may have its own */
+    if (has_value) {
+      swValue v = sema_eval(S, scope, it->kid[1]);
+      if (v.kind == VAL_WORD) sema_report_unknown(S, scope, v.word, v.loc, "name");
+    }
+    return;
+  }
   if (p.kind != VAL_POINT) {
     diag_error(p.loc, "'%s' applies to a point on a rod (rod.start, rod.end, rod.at(f))", word);
     return;
