@@ -271,6 +271,9 @@ int sema_tissue(swSema *S, swScope *sc, const swFields *f, swTissue *t) {
       sema_eval_symbol(S, mv.ref);
       t->mat = mv.ref->material;
       t->mat_name = mv.ref->full;
+    } else if (mv.kind != VAL_ERROR && t->me->kind == AST_UNIT) {
+      diag_error(t->me->loc, "'%s' is a unit, so it cannot name a material", t->me->name);
+      ok = 0;
     } else if (mv.kind != VAL_ERROR) {
       diag_error(t->me->loc, "'material' expects the name of a material");
       ok = 0;

@@ -122,6 +122,10 @@ item
   | IDENT IDENT body         { $$ = named(st, AST_DEF, @2, $2); $$->text = $1;
                                $$->kid = $3->kid; $$->nkid = $3->nkid; $$->capkid = $3->capkid;
                                $$->damaged = $3->damaged; $$->loc = ast_span(@1, @2); }
+  /* KIND UNIT { fields }      material m { ... }: a unit cannot name a definition;
+     the body is read (and dropped), so its fields raise no errors of their own */
+  | IDENT UNIT body          { $$ = NULL;
+                               diag_error(@2, "'%s' is a unit and cannot be used as a name", $2); }
   /* KIND { fields }           ground { stiffness = 1e4 N/m; }  (named after its kind) */
   | IDENT body               { $$ = named(st, AST_DEF, @1, NULL); $$->text = $1;
                                $$->kid = $2->kid; $$->nkid = $2->nkid; $$->capkid = $2->capkid;
