@@ -55,7 +55,6 @@ swSymbol *sema_lookup(swSema *S, swScope *scope, const char *name) {
 
 void sema_report_unknown(swSema *S, swScope *scope, const char *name, swLoc loc,
                          const char *what) {
-  (void)S;
   enum { MAXC = 512 };
   const char *cands[MAXC] = {0};
   int n = 0;
@@ -72,8 +71,18 @@ void sema_report_unknown(swSema *S, swScope *scope, const char *name, swLoc loc,
     swSymbol *meant = sema_lookup(S, scope, near);
     if (meant) meant->used = 1;
   }
-  if (near) diag_error(loc, "unknown %s '%s'; did you mean '%s'?", what, name, near);
-  else diag_error(loc, "unknown %s '%s'", what, name);
+  if (near) {
+    diag_error(loc, "unknown %s '%s'; did you mean '%s'?", what, name, near);
+  } else if (S->failed_import) {   /* the cause is more likely the import */
+    char where[300];
+    const swLoc at = S->failed_import->loc;
+    if (at.file == loc.file) snprintf(where, sizeof where, "line %d", at.line);
+    else diag_name_where(at, where, sizeof where);
+    diag_error(loc, "unknown %s '%s' (perhaps defined in \"%s\", which could not be imported "
+               "at %s)", what, name, S->failed_import->text, where);
+  } else {
+    diag_error(loc, "unknown %s '%s'", what, name);
+  }
 }
 
 const char *sema_sym_noun(swSymKind k) {
@@ -269,6 +278,7 @@ static void do_import(swSema *S, const swAst *item) {
   if (!resolve_import(from->path, name, path, sizeof path)) {
     diag_error(item->loc, "cannot find \"%s\" (looked next to %s%s)", name, from->path,
                getenv("SINEW_PATH") ? " and along SINEW_PATH" : "; SINEW_PATH is not set");
+    if (!S->failed_import) S->failed_import = item;
     return;
   }
   char canon[PATH_MAX];

@@ -43,6 +43,8 @@ typedef struct {
   /* items met once per scene */
   swLoc simulate_loc, output_loc;
   int has_simulate, has_output;
+  /* the first import that could not be read: unknown names may be its */
+  const swAst *failed_import;
   /* the symbols being evaluated, outermost first, to name a cycle */
   swSymbol *evaluating[64];
   int nevaluating;
