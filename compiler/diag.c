@@ -109,22 +109,42 @@ static const char *line_text(const swSource *f, int line, size_t *len) {
   return p;
 }
 
+/* Columns count characters (UTF-8 code points), not bytes, as the lexer
+ * counts them: a continuation byte 10xxxxxx starts no character. */
+static int starts_char(char c) { return ((unsigned char)c & 0xC0) != 0x80; }
+
+const char *diag_at(const swSource *src, int line, int col) {
+  const char *p = src->text, *end = src->text + src->len;
+  for (int l = 1; l < line && p < end; p++)
+    if (*p == '\n') l++;
+  for (int c = 1; c < col && p < end && *p != '\n'; c++)
+    do p++; while (p < end && !starts_char(*p));
+  return p;
+}
+
 static void show_source(FILE *out, swLoc loc) {
   const swSource *f = diag_file(loc.file);
   size_t len;
   const char *text = f && loc.line > 0 ? line_text(f, loc.line, &len) : NULL;
   if (!text) return;
   fprintf(out, "%5d | ", loc.line);
+  int chars = 0;   /* characters on the line */
   for (size_t i = 0; i < len; i++) {
     unsigned char c = (unsigned char)text[i];
     fputc(c == '\t' || c >= 0x20 ? c : '?', out);   /* control bytes shown as ? */
+    chars += starts_char((char)c);
   }
   fputs("\n      | ", out);
   int col = loc.col < 1 ? 1 : loc.col;
-  for (int i = 1; i < col && (size_t)i <= len; i++) fputc(text[i - 1] == '\t' ? '\t' : ' ', out);
+  /* under each character before the column a blank (a tab under a tab) */
+  const char *p = text, *end = text + len;
+  for (int i = 1; i < col && p < end; i++) {
+    fputc(*p == '\t' ? '\t' : ' ', out);
+    do p++; while (p < end && !starts_char(*p));
+  }
   fputc('^', out);
-  int last = loc.end_line == loc.line ? loc.end_col : (int)len;
-  if (last > (int)len) last = (int)len;
+  int last = loc.end_line == loc.line ? loc.end_col : chars;
+  if (last > chars) last = chars;
   for (int i = col + 1; i <= last; i++) fputc('~', out);
   fputc('\n', out);
 }

@@ -51,6 +51,9 @@ void diag_set_werror(int on);
 /* The closest of n candidate names to `name`, or NULL when none is close
  * enough to be a likely misspelling (edit distance, transpositions count 1). */
 const char *diag_suggest(const char *name, const char *const *cands, int n);
+/* Where column `col` (1-based, in characters) of line `line` is in the text
+ * of src (the line's end if it is shorter). */
+const char *diag_at(const swSource *src, int line, int col);
 /* "a, b, c" (", ..." when the next would not fit in len, which must be > 8) */
 const char *diag_join(char *buf, size_t len, const char *const *items, int n);
 

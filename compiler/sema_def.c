@@ -156,15 +156,11 @@ static void eval_param(swSema *S, swSymbol *sym) {
     num = num->kid[0];
   if (num->kind == AST_NUM && num != e && units_only(e, num) && e->loc.line == e->loc.end_line) {
     const swSource *f = diag_file(e->loc.file);
-    const char *p0 = f ? f->text : NULL;
-    for (int l = 1; p0 && l < e->loc.line; l++) {
-      p0 = strchr(p0, '\n');
-      if (p0) p0++;
-    }
-    int from = num->loc.end_col + 1, to = e->loc.end_col;
-    if (p0) {
-      while (from <= to && (p0[from - 1] == ' ' || p0[from - 1] == '\t')) from++;
-      if (to >= from) p->unit = ast_strdup(S->a, p0 + from - 1, (size_t)(to - from + 1));
+    if (f) {   /* the text after the number, blanks skipped */
+      const char *from = diag_at(f, e->loc.line, num->loc.end_col + 1);
+      const char *to = diag_at(f, e->loc.line, e->loc.end_col + 1);
+      while (from < to && (*from == ' ' || *from == '\t')) from++;
+      if (to > from) p->unit = ast_strdup(S->a, from, (size_t)(to - from));
     }
   }
   sym->index = idx;

@@ -40,19 +40,10 @@ void sema_expectation_later(swSema *S, swScope *scope, const swAst *it) {
   S->nexpect_item = n + 1;
 }
 
-/* Where (line, col) is in the text of src (1-based; col may pass the end). */
-static const char *at(const swSource *src, int line, int col) {
-  const char *p = src->text, *end = src->text + src->len;
-  for (int l = 1; l < line && p < end; p++)
-    if (*p == '\n') l++;
-  for (int c = 1; c < col && p < end && *p != '\n'; c++) p++;
-  return p;
-}
-
 /* The statement's text on one line, blanks folded, for the report. */
 static const char *statement_text(swSema *S, swLoc loc) {
   const swSource *src = diag_file(loc.file);
-  const char *p = at(src, loc.line, loc.col), *end = at(src, loc.end_line, loc.end_col + 1);
+  const char *p = diag_at(src, loc.line, loc.col), *end = diag_at(src, loc.end_line, loc.end_col + 1);
   char *out = ast_alloc(S->a, (size_t)(end - p) + 2);
   size_t k = 0;
   int blank = 0;

@@ -332,11 +332,9 @@ static int yyreport_syntax_error(const yypcontext_t *ctx, yyscan_t scanner, stru
   for (int i = 0; i < n; i++) semicolon |= !strcmp(yysymbol_name(expected[i]), "';'");
   if (semicolon && src && prev->line > 0 && loc->line > prev->end_line &&
       prev->line == prev->end_line) {
-    const char *p = src->text, *end = src->text + src->len;
-    for (int l = 1; l < prev->line && p < end; p++)
-      if (*p == '\n') l++;
+    const char *p = diag_at(src, prev->line, 1), *end = src->text + src->len;
     /* the statement or field: from the line's last ';' or '{' before it */
-    const char *last = p + prev->end_col;   /* one past the token */
+    const char *last = diag_at(src, prev->line, prev->end_col + 1);   /* one past the token */
     const char *first = p;
     for (const char *q = p; q < last && q < end; q++)
       if (*q == ';' || *q == '{') first = q + 1;
@@ -352,12 +350,9 @@ static int yyreport_syntax_error(const yypcontext_t *ctx, yyscan_t scanner, stru
   const char *text = NULL;
   int tlen = 0;
   if ((found == YYSYMBOL_IDENT || found == YYSYMBOL_NUMBER) && src && loc->line == loc->end_line) {
-    const char *p = src->text, *end = src->text + src->len;
-    for (int l = 1; l < loc->line && p < end; p++)
-      if (*p == '\n') l++;
-    if (p + loc->end_col <= end && loc->end_col >= loc->col) {
-      text = p + loc->col - 1;
-      tlen = loc->end_col - loc->col + 1;
+    if (loc->end_col >= loc->col) {
+      text = diag_at(src, loc->line, loc->col);
+      tlen = (int)(diag_at(src, loc->line, loc->end_col + 1) - text);
     }
   }
   if (found == YYSYMBOL_YYEOF)
