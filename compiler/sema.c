@@ -225,7 +225,16 @@ static void mark_done(swSema *S, const char *canon) {
   S->done_paths[S->ndone++] = strdup(canon);
 }
 
-static void check_file(swSema *S, int file);
+static void check_file(swSema *S, int file, swScope *scope);
+
+/* A file imported into a scope: "PREFIX\x1fPATH" (the global scope's prefix
+ * is ""), so a file imported under two namespaces is read into each. */
+static const char *done_key(swSema *S, const swScope *scope, const char *canon) {
+  size_t n = strlen(scope->prefix) + strlen(canon) + 2;
+  char *key = ast_alloc(S->a, n);
+  snprintf(key, n, "%s\x1f%s", scope->prefix, canon);
+  return key;
+}
 
 /* Candidate path for `name` imported from file `from`: its directory first. */
 static int resolve_import(const char *from, const char *name, char *out, size_t len) {
@@ -267,7 +276,7 @@ static int resolve_import(const char *from, const char *name, char *out, size_t 
   return 0;
 }
 
-static void do_import(swSema *S, const swAst *item) {
+static void do_import(swSema *S, const swAst *item, swScope *scope) {
   const swSource *from = diag_file(item->loc.file);
   const char *name = item->text;
   if (!name[0]) {
@@ -299,7 +308,22 @@ static void do_import(swSema *S, const swAst *item) {
       return;
     }
   }
-  if (already_done(S, canon)) return;
+  /* import "f" as ns: the file's definitions in a scope of their own, named
+   * ns.x and reached through the instance-like symbol ns */
+  if (item->name) {
+    swSymbol *ns = sema_lookup_local(scope, item->name);
+    if (!ns || ns->def != item) return;   /* the name clashed (reported) */
+    size_t plen = strlen(scope->prefix) + strlen(item->name) + 2;
+    char *prefix = ast_alloc(S->a, plen);
+    snprintf(prefix, plen, "%s%s.", scope->prefix, item->name);
+    swScope *inner = scope_new(S, NULL, prefix);
+    inner->file_level = 1;
+    ns->members = inner;
+    ns->state = 2;
+    scope = inner;
+  }
+  const char *key = done_key(S, scope, canon);
+  if (already_done(S, key)) return;
   if (S->import_depth >= SEMA_MAX_IMPORT_DEPTH) {
     diag_error(item->loc, "imports are nested more than %d deep", SEMA_MAX_IMPORT_DEPTH);
     return;
@@ -312,17 +336,20 @@ static void do_import(swSema *S, const swAst *item) {
     diag_error(item->loc, "cannot read \"%s\": %s", path, why);
     return;
   }
-  mark_done(S, canon);
+  mark_done(S, key);
   int file = diag_add_file(path, text, len);
   /* the import as written, not where it was found: the model's source, and
    * its hash, are the same wherever sinewc runs and is installed */
   diag_set_name(file, name);
-  char header[PATH_MAX + 64];
-  int hl = snprintf(header, sizeof header, "\n# ---- imported: %s ----\n", name);
-  append_source(S, header, (size_t)hl);
-  append_source(S, text, len);
+  if (!already_done(S, canon)) {   /* its text once, however often imported */
+    mark_done(S, canon);
+    char header[PATH_MAX + 64];
+    int hl = snprintf(header, sizeof header, "\n# ---- imported: %s ----\n", name);
+    append_source(S, header, (size_t)hl);
+    append_source(S, text, len);
+  }
   free(text);
-  check_file(S, file);
+  check_file(S, file, scope);
 }
 
 /* ---- items ---- */
@@ -330,17 +357,35 @@ static void do_import(swSema *S, const swAst *item) {
 static const char *const def_kinds[] = {"material", "rod", "bone", "tendon", "muscle",
                                         "ground", "terrain", "fluid", "contact", "torque_wave"};
 
+/* A scene statement, which a runnable scene imported for its definitions
+ * keeps to itself: an action (clamp, gravity, force, activate ...),
+ * simulate, output, expect, use, and the environments. */
+static int scene_statement(const swAst *it) {
+  return it->kind == AST_ACTION || it->kind == AST_SIMULATE || it->kind == AST_OUTPUT ||
+         it->kind == AST_EXPECT || it->kind == AST_USE ||
+         (it->kind == AST_DEF && sema_is_env_kind(it->text));
+}
+
 static void declare_items(swSema *S, swScope *scope, const swAst *items, int first) {
   for (int i = first; i < items->nkid; i++) {
     const swAst *it = items->kid[i];
+    if (S->defs_only && scene_statement(it)) continue;
     switch (it->kind) {
     case AST_IMPORT:
-      if (scope != S->global)
+      if (!scope->file_level) {
         diag_error(it->loc, "import is only allowed at the top of a file, not in a component");
-      else do_import(S, it);
+      } else {
+        if (it->name) {   /* the namespace: its uses fail quietly if the file does */
+          swSymbol *ns = declare(S, scope, SYM_INSTANCE, it->name, it->loc, it);
+          if (!ns) break;
+          ns->state = 2;
+          ns->used = 1;
+        }
+        do_import(S, it, scope);
+      }
       break;
     case AST_PARAM:
-      if (scope != S->global) {
+      if (!scope->file_level) {
         diag_error(it->loc, "a param belongs at file level; a component takes parameters "
                    "in its header: component NAME(%s = ...)", it->name);
         /* declared as a let all the same, so its uses are not also unknown */
@@ -384,7 +429,7 @@ static void declare_items(swSema *S, swScope *scope, const swAst *items, int fir
       declare(S, scope, SYM_JOINT, it->name, it->loc, it);
       break;
     case AST_COMPONENT:
-      if (scope != S->global) {
+      if (!scope->file_level) {
         diag_error(it->loc, "components cannot be defined inside components");
         break;
       }
@@ -399,15 +444,45 @@ static void declare_items(swSema *S, swScope *scope, const swAst *items, int fir
   }
 }
 
+/* A component by name, NAME or NAMESPACE.NAME (import "f" as NAMESPACE);
+ * NULL after reporting what is unknown. */
+static swSymbol *lookup_qualified(swSema *S, swScope *scope, const char *text, swLoc loc) {
+  const char *dot = strchr(text, '.');
+  if (!dot) {
+    swSymbol *s = sema_lookup(S, scope, text);
+    if (!s) sema_report_unknown(S, scope, text, loc, "component");
+    return s;
+  }
+  char *head = ast_strdup(S->a, text, (size_t)(dot - text));
+  swSymbol *ns = sema_lookup(S, scope, head);
+  if (!ns) {
+    sema_report_unknown(S, scope, head, loc, "name");
+    return NULL;
+  }
+  if (ns->kind != SYM_INSTANCE || !ns->members) {
+    diag_error(loc, "'%s' is a %s, not an imported namespace or an instance", head,
+               sema_sym_noun(ns->kind));
+    return NULL;
+  }
+  ns->used = 1;
+  swSymbol *s = sema_lookup_local(ns->members, dot + 1);
+  if (!s) {
+    const char *cands[256];
+    int n = 0;
+    for (int i = 0; i < ns->members->n && n < 256; i++) cands[n++] = ns->members->sym[i]->name;
+    const char *near = diag_suggest(dot + 1, cands, n);
+    if (near) diag_error(loc, "'%s' has no component '%s'; did you mean '%s'?", head, dot + 1, near);
+    else diag_error(loc, "'%s' has no component '%s'", head, dot + 1);
+  }
+  return s;
+}
+
 static void instantiate(swSema *S, swScope *scope, const swAst *it) {
   swSymbol *inst = sema_lookup_local(scope, it->name);
   if (!inst || inst->def != it) return;   /* declaration failed */
   inst->state = 2;   /* instantiated, or its error reported: members may stay NULL */
-  swSymbol *comp = sema_lookup(S, scope, it->text);
-  if (!comp) {
-    sema_report_unknown(S, scope, it->text, it->loc, "component");
-    return;
-  }
+  swSymbol *comp = lookup_qualified(S, scope, it->text, it->loc);
+  if (!comp) return;   /* reported */
   comp->used = 1;
   if (comp->kind != SYM_COMPONENT) {
     diag_error(it->loc, "'%s' is a %s, not a component", it->text, sema_sym_noun(comp->kind));
@@ -509,6 +584,7 @@ static void instantiate(swSema *S, swScope *scope, const swAst *it) {
 void sema_items(swSema *S, swScope *scope, const swAst *items, int first) {
   for (int i = first; i < items->nkid; i++) {
     const swAst *it = items->kid[i];
+    if (S->defs_only && scene_statement(it)) continue;
     switch (it->kind) {
     case AST_PARAM:
     case AST_LET:
@@ -552,17 +628,30 @@ void sema_items(swSema *S, swScope *scope, const swAst *items, int first) {
   }
 }
 
-static void check_file(swSema *S, int file) {
+/* A runnable scene: a file with 'simulate' or 'output'. */
+static int is_scene(const swAst *root) {
+  for (int i = 0; i < root->nkid; i++)
+    if (root->kid[i]->kind == AST_SIMULATE || root->kid[i]->kind == AST_OUTPUT) return 1;
+  return 0;
+}
+
+/* The items of a file, into `scope` (the global scope or a namespace's).  An
+ * imported runnable scene gives its definitions only. */
+static void check_file(swSema *S, int file, swScope *scope) {
   swAst *root = parse_file(S->a, file);
   if (!root) return;
   if (S->import_depth < SEMA_MAX_IMPORT_DEPTH) {
     S->import_stack[S->import_depth] = file;
     S->import_depth++;
   }
-  declare_items(S, S->global, root, 0);
-  sema_items(S, S->global, root, 0);
+  int outer = S->defs_only;
+  S->defs_only = file != S->main_file && is_scene(root);
+  declare_items(S, scope, root, 0);
+  sema_items(S, scope, root, 0);
+  S->defs_only = outer;
   S->import_depth--;
 }
+
 
 /* Definitions never used, in a scene (a file with 'simulate'): a library of
  * materials and components exists to be imported, and after an error the
@@ -651,11 +740,15 @@ int sema_check_lets(swArena *arena, int file, swLetOverride *lets, int nlets, sw
   S.lets = lets;
   S.nlets = nlets;
   S.global = scope_new(&S, NULL, "");
+  S.global->file_level = 1;
   scene->integrator = SW_VERLET;
   scene->gravity = val_error();
   const swSource *src = diag_file(file);
   char canon[PATH_MAX];
-  if (realpath(src->path, canon)) mark_done(&S, canon);
+  if (realpath(src->path, canon)) {
+    mark_done(&S, canon);                          /* its text is in the source */
+    mark_done(&S, done_key(&S, S.global, canon));  /* and its items are global's */
+  }
   append_source(&S, src->text, src->len);
   /* the model's name: the file's stem */
   const char *base = strrchr(src->path, '/');
@@ -663,7 +756,7 @@ int sema_check_lets(swArena *arena, int file, swLetOverride *lets, int nlets, sw
   const char *dot = strrchr(base, '.');
   scene->model_name = ast_strdup(arena, base, dot && dot != base ? (size_t)(dot - base) : strlen(base));
   int before = diag_errors();
-  check_file(&S, file);
+  check_file(&S, file, S.global);
   sema_output_selections(&S);
   sema_expectations(&S);
   warn_unused(&S);

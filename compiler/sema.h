@@ -93,6 +93,8 @@ typedef struct swSymbol {
 typedef struct swScope {
   struct swScope *parent;
   const char *prefix;         /* "" or "left."                             */
+  int file_level;             /* a file's top level: the main file's (global)
+                                 or a namespace's (import "f" as ns;)     */
   swSymbol **sym;
   int n, cap;
 } swScope;

@@ -43,6 +43,10 @@ typedef struct {
   /* items met once per scene */
   swLoc simulate_loc, output_loc;
   int has_simulate, has_output;
+  /* the items of a runnable scene imported for its definitions: its scene
+   * statements (actions, simulate, output, expect, use, environments) are
+   * skipped (check_file) */
+  int defs_only;
   /* the first import that could not be read: unknown names may be its */
   const swAst *failed_import;
   /* the symbols being evaluated, outermost first, to name a cycle */

@@ -114,6 +114,12 @@ items
 item
   /* import "path"; */
   : IMPORT STRING ';'        { $$ = node(st, AST_IMPORT, @$); $$->text = $2; }
+  /* import "path" as NAME;    its definitions as NAME.x */
+  | IMPORT STRING IDENT IDENT ';'
+                             { $$ = node(st, AST_IMPORT, @$); $$->text = $2; $$->name = $4;
+                               if (strcmp($3, "as"))
+                                 diag_error(@3, "unexpected name '%s' after the file name, "
+                                            "expected ';' or 'as NAME'", $3); }
   /* param NAME = expr; */
   | PARAM IDENT '=' expr ';' { $$ = named(st, AST_PARAM, @2, $2); ast_push(A, $$, $4); }
   /* let NAME = expr; */
@@ -145,6 +151,14 @@ item
   | USE IDENT '=' IDENT '(' args ')' ';'
                              { $$ = named(st, AST_USE, @2, $2); $$->text = $4;
                                $$->loc = ast_span(@2, @7); ast_push(A, $$, $6); }
+  /* use NAME = NAMESPACE.COMPONENT(args); */
+  | USE IDENT '=' IDENT '.' IDENT '(' args ')' ';'
+                             { $$ = named(st, AST_USE, @2, $2);
+                               size_t n = strlen($4) + strlen($6) + 2;
+                               char *q = ast_alloc(A, n);
+                               snprintf(q, n, "%s.%s", $4, $6);
+                               $$->text = q;
+                               $$->loc = ast_span(@2, @9); ast_push(A, $$, $8); }
   /* ACTION operand;   ACTION operand = value;      clamp bar.start;  force bar.end = (0, 0, -1) N; */
   | IDENT expr ';'           { $$ = node(st, AST_ACTION, @1); $$->text = $1; ast_push(A, $$, $2); }
   | IDENT expr '=' expr ';'  { $$ = node(st, AST_ACTION, @1); $$->text = $1;
