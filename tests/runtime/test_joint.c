@@ -31,6 +31,7 @@
 #include <unistd.h>
 
 #include "testutil.h"
+#include "internal.h"   /* sw_joint_measure: the angle of a state set by hand */
 
 static const double GRAV = 9.81;
 
@@ -266,6 +267,87 @@ static swModel *hinged_beam(int n, const double F[3], double gamma, swSpec **sou
   sw_spec_add_load(s, &f);
   *sout = s;
   return sw_test_compile_at(s, 0.9);
+}
+
+/* Turns rod r rigidly by `angle` about the z axis through point p: nodes
+ * x -> p + R (x - p), directors d_i -> R d_i (rows of Q: Q -> Q R^T). */
+static void turn_rod_about_z(const swModel *m, swData *d, int r, const double p[3],
+                             double angle) {
+  const double c = cos(angle), s = sin(angle);
+  for (int i = 0; i <= m->rod_nelem[r]; i++) {
+    double x[3];
+    sw_get3(m, d->x, m->node_adr[r] + i, x);
+    double dx = x[0] - p[0], dy = x[1] - p[1];
+    x[0] = p[0] + c * dx - s * dy;
+    x[1] = p[1] + s * dx + c * dy;
+    sw_set3(m, d->x, m->node_adr[r] + i, x);
+  }
+  for (int e = 0; e < m->rod_nelem[r]; e++) {
+    double Q[9];
+    sw_getQ(m, d->Q, m->elem_adr[r] + e, Q);
+    for (int row = 0; row < 3; row++) {
+      double a = Q[3 * row], b = Q[3 * row + 1];
+      Q[3 * row] = c * a - s * b;
+      Q[3 * row + 1] = s * a + c * b;
+    }
+    sw_setQ(m, d->Q, m->elem_adr[r] + e, Q);
+  }
+}
+
+/* One convention for the hinge angle (docs/physics.md, "Hinge angle"): the
+ * angle, right-handed about the axis, from a reference tangent to the moving
+ * rod's tangent: rod a's tangent for a hinge between two rods (rod b moves),
+ * rod a's tangent at t = 0, fixed in space, for an anchored hinge (rod a
+ * moves).  Turning the moving rod by +30 degrees about the axis (z) reads
+ * +30 degrees in both; a two-rod hinge built with rod b at +90 degrees from
+ * rod a reads +90 degrees at t = 0, and turning rod a by +30 degrees about
+ * the joint reads 90 - 30. */
+static void test_hinge_angle_convention(void **state) {
+  (void)state;
+  const double o[3] = {0, 0, 0}, x1[3] = {0.2, 0, 0}, ex[3] = {1, 0, 0}, ey[3] = {0, 1, 0};
+  const double turn = 30 * M_PI / 180;
+  /* anchored at the origin, rod a along +x */
+  swRodDesc ra = steel(rod_along("a", 8, 0.2, 0.005, o, ex));
+  swRodDesc rb = steel(rod_along("b", 8, 0.2, 0.005, x1, ey));
+  swSpec *s = sw_spec_new();
+  int a = sw_spec_add_rod(s, &ra);
+  swJointDesc j = joint_of("pivot", SW_JOINT_HINGE, a, 0, -1, 0);
+  j.axis[2] = 1;
+  sw_spec_add_joint(s, &j);
+  swModel *m = sw_test_compile_at(s, 0.9);
+  swData *d = sw_data_new(m);
+  sw_joint_measure(m, d, 0);
+  SW_EXPECT_ABS("anchored hinge at t = 0 (rad)", d->joint_angle[0], 0.0, 1e-15);
+  turn_rod_about_z(m, d, 0, o, turn);
+  sw_joint_measure(m, d, 0);
+  SW_EXPECT_ABS("anchored hinge, rod a turned +30 deg about the axis (rad)", d->joint_angle[0],
+                turn, 1e-12);
+  sw_data_free(d);
+  sw_model_free(m);
+  sw_spec_free(s);
+  /* two rods: a along +x, b from a's end along +y (+90 degrees about z) */
+  s = sw_spec_new();
+  a = sw_spec_add_rod(s, &ra);
+  int b = sw_spec_add_rod(s, &rb);
+  j = joint_of("elbow", SW_JOINT_HINGE, a, -1, b, 0);
+  j.axis[2] = 1;
+  sw_spec_add_joint(s, &j);
+  m = sw_test_compile_at(s, 0.9);
+  d = sw_data_new(m);
+  sw_joint_measure(m, d, 0);
+  SW_EXPECT_ABS("two-rod hinge, b at +90 deg from a (rad)", d->joint_angle[0], M_PI / 2, 1e-12);
+  turn_rod_about_z(m, d, 1, x1, turn);
+  sw_joint_measure(m, d, 0);
+  SW_EXPECT_ABS("two-rod hinge, b turned +30 deg more (rad)", d->joint_angle[0],
+                M_PI / 2 + turn, 1e-12);
+  turn_rod_about_z(m, d, 1, x1, -turn);
+  turn_rod_about_z(m, d, 0, x1, turn);
+  sw_joint_measure(m, d, 0);
+  SW_EXPECT_ABS("two-rod hinge, a turned +30 deg instead (rad)", d->joint_angle[0],
+                M_PI / 2 - turn, 1e-12);
+  sw_data_free(d);
+  sw_model_free(m);
+  sw_spec_free(s);
 }
 
 /* Tip force along +z on a rod along +x: a moment -F L about y, the hinge's
@@ -1048,6 +1130,7 @@ int main(void) {
       cmocka_unit_test(test_pendulum_hinge_period),
       cmocka_unit_test(test_pendulum_spherical),
       cmocka_unit_test(test_hinge_free_about_axis),
+      cmocka_unit_test(test_hinge_angle_convention),
       cmocka_unit_test(test_hinge_stiff_across_axis),
       cmocka_unit_test(test_hinge_off_axis_torque),
       cmocka_unit_test(test_fixed_joint_cantilever),
