@@ -164,10 +164,9 @@ static const char *format_wall(char *buf, size_t len, double seconds) {
   return buf;
 }
 
-/* A param's value in the unit the model wrote it in ("0.3 m"), or in SI when
- * that unit cannot be read or does not fit the param's dimension. */
-/* A param's value in the unit it was written with, or in SI; the unit's
- * name in *unit ("" when dimensionless).  For the output's /params table. */
+/* A param's value in the unit the model wrote it in, or in SI when that unit
+ * cannot be read or does not fit the param's dimension; the unit's name in
+ * *unit ("" when dimensionless).  For --help, --info and /params. */
 static double param_in_unit(const swParam *q, double value, char *unit, size_t len) {
   if (q->unit && q->unit[0]) {
     char text[96];
@@ -191,6 +190,7 @@ static double param_in_unit(const swParam *q, double value, char *unit, size_t l
   return value;
 }
 
+/* "0.3 m", "0.3 (SI, length (m))", "2" */
 static const char *format_param(char *buf, size_t len, const swParam *q, double value) {
   char unit[48], what[64];
   double v = param_in_unit(q, value, unit, sizeof unit);
