@@ -2,6 +2,8 @@
 # deps.sh — install the Debian packages sinew needs, only those that are missing.
 # Called by `make test`, `make demo`, `make bench` and `make plots` so that each works on a
 # fresh Debian machine.  docs/dependencies.md says why each package is here.
+# With arguments (PKG:PROBE ...), installs those instead: the heavy packages that only one
+# test or tool needs (ParaView, ffmpeg) are pulled in by that test, not by every build.
 set -e
 # package:probe-file pairs; a package is missing when its probe file is absent.
 PKGS="
@@ -16,6 +18,7 @@ perl:/usr/bin/prove
 python3-h5py:/usr/lib/python3/dist-packages/h5py/__init__.py
 python3-matplotlib:/usr/lib/python3/dist-packages/matplotlib/__init__.py
 "
+[ $# -gt 0 ] && PKGS="$*"
 missing=""
 for pair in $PKGS; do
   pkg=${pair%%:*}; probe=${pair#*:}
