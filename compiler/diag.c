@@ -294,6 +294,14 @@ const char *diag_where(swLoc loc, char *buf, size_t len) {
   return buf;
 }
 
+const char *diag_where_from(swLoc at, swLoc from, char *buf, size_t len) {
+  if (at.file == from.file) {
+    snprintf(buf, len, "line %d", at.line);
+    return buf;
+  }
+  return diag_where(at, buf, len);
+}
+
 const char *diag_name_where(swLoc loc, char *buf, size_t len) {
   const swSource *f = diag_file(loc.file);
   snprintf(buf, len, "%s:%d", f ? f->name : "?", loc.line);

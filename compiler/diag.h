@@ -59,5 +59,8 @@ const char *diag_join(char *buf, size_t len, const char *const *items, int n);
 
 /* "file:line" of a location, for messages that point elsewhere. */
 const char *diag_where(swLoc loc, char *buf, size_t len);
+/* Where `at` is, as a message at `from` cites it: "line N" in the same file,
+ * "file:N" in another (a component's body, an imported scene statement). */
+const char *diag_where_from(swLoc at, swLoc from, char *buf, size_t len);
 
 #endif

@@ -73,8 +73,9 @@ void sema_fields(swSema *S, const swAst *body, int first, const char *what,
       continue;
     }
     if (f->value[k]) {
-      diag_error(fl->loc, "field '%s' is given twice (first at line %d)", fl->name,
-                 f->value[k]->loc.line);
+      char first[300];
+      diag_error(fl->loc, "field '%s' is given twice (first at %s)", fl->name,
+                 diag_where_from(f->value[k]->loc, fl->loc, first, sizeof first));
       continue;
     }
     f->value[k] = fl;

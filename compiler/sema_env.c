@@ -493,8 +493,9 @@ void sema_probe(swSema *S, swScope *scope, const swAst *fl) {
   swScene *scn = S->scene;
   for (int i = 0; i < scn->nprobe; i++)
     if (!strcmp(scn->probe[i].name, target->name)) {
-      diag_error(target->loc, "probe '%s' is given twice (first at line %d)", target->name,
-                 scn->probe[i].loc.line);
+      char first[300];
+      diag_error(target->loc, "probe '%s' is given twice (first at %s)", target->name,
+                 diag_where_from(scn->probe[i].loc, target->loc, first, sizeof first));
       return;
     }
   swSceneProbe p;

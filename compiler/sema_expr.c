@@ -540,9 +540,10 @@ static swValue eval_member(swSema *S, swScope *scope, const swAst *e) {
   }
   if (b.kind == VAL_REF && b.ref->kind == SYM_INSTANCE) {
     if (!b.ref->members) {   /* its 'use' failed (reported there) or comes later */
+      char made[300];
       if (b.ref->state != 2)
-        diag_error(e->loc, "'%s' is used before the line that creates it (line %d)",
-                   b.ref->name, b.ref->loc.line);
+        diag_error(e->loc, "'%s' is used before the line that creates it (%s)", b.ref->name,
+                   diag_where_from(b.ref->loc, e->loc, made, sizeof made));
       return val_error();
     }
     swSymbol *m = sema_lookup_local(b.ref->members, e->name);

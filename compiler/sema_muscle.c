@@ -377,8 +377,9 @@ void sema_activate(swSema *S, swScope *scope, const swAst *it) {
   if (!mus) return;
   swSceneMuscle *m = &S->scene->muscle[mus->index];
   if (m->activation) {
-    diag_error(it->loc, "muscle '%s' is activated twice (first at line %d)", mus->name,
-               m->activation_loc.line);
+    char first[300];
+    diag_error(it->loc, "muscle '%s' is activated twice (first at %s)", mus->name,
+               diag_where_from(m->activation_loc, it->loc, first, sizeof first));
     return;
   }
   m->activation = sig;
@@ -413,8 +414,9 @@ void sema_passive(swSema *S, swScope *scope, const swAst *it) {
   swScene *scn = S->scene;
   for (int i = 0; i < scn->npassive; i++)
     if (scn->passive[i].muscle == mus->index && scn->passive[i].filament == (int)x - 1) {
-      diag_error(it->loc, "filament %d of muscle '%s' is already passive (line %d)", (int)x,
-                 mus->name, scn->passive[i].loc.line);
+      char first[300];
+      diag_error(it->loc, "filament %d of muscle '%s' is already passive (%s)", (int)x,
+                 mus->name, diag_where_from(scn->passive[i].loc, it->loc, first, sizeof first));
       return;
     }
   if (scn->npassive == scn->cappassive) {

@@ -49,7 +49,9 @@ static const unsigned strain_bits = SW_OUT_STRAIN | SW_OUT_CURVATURE | SW_OUT_IN
 
 void sema_output(swSema *S, swScope *scope, const swAst *it) {
   if (S->has_output) {
-    diag_error(it->loc, "a second 'output' (the first is at line %d)", S->output_loc.line);
+    char first[300];
+    diag_error(it->loc, "a second 'output' (the first is at %s)",
+               diag_where_from(S->output_loc, it->loc, first, sizeof first));
     return;
   }
   S->has_output = 1;

@@ -260,7 +260,9 @@ void sema_action(swSema *S, swScope *scope, const swAst *it) {
     swValue g = sema_expect(S, scope, it->kid[0], 3, dim_make(0, 1, -2, 0), "gravity");
     if (g.kind == VAL_ERROR) return;
     if (S->scene->gravity.kind != VAL_ERROR) {
-      diag_error(it->loc, "gravity is given twice (first at line %d)", S->scene->gravity_loc.line);
+      char first[300];
+      diag_error(it->loc, "gravity is given twice (first at %s)",
+                 diag_where_from(S->scene->gravity_loc, it->loc, first, sizeof first));
       return;
     }
     S->scene->gravity = g;
@@ -320,8 +322,9 @@ static const char *const simulate_keys[] = {"dt", "duration", "integrator"};
 
 void sema_simulate(swSema *S, swScope *scope, const swAst *it) {
   if (S->has_simulate) {
-    diag_error(it->loc, "a second 'simulate' block (the first is at line %d)",
-               S->simulate_loc.line);
+    char first[300];
+    diag_error(it->loc, "a second 'simulate' block (the first is at %s)",
+               diag_where_from(S->simulate_loc, it->loc, first, sizeof first));
     return;
   }
   S->has_simulate = 1;
