@@ -186,6 +186,31 @@ fails 2 "sinew-plot: --speed must be a positive number (1: real time)" "zero spe
 fails 2 "sinew-plot: no output file: give -o OUT.mp4" "movie without -o" movie "$TMP/pend.h5"
 fails 2 "sinew-plot: movie takes exactly one file" "movie of two files" \
   movie "$TMP/pend.h5" "$TMP/long.h5" -o "$TMP/x.mp4"
+# Ctrl-C, as a terminal sends it (SIGINT to the foreground process group),
+# 2 s into a movie of 12,000 frames: exit 130, one line, no partial movie,
+# no ffmpeg left running
+$PY - "$PLOT" "$TMP" <<'EOF' >"$TMP/measure" 2>"$TMP/log"
+import os, signal, subprocess, sys, time
+plot, d = sys.argv[1], sys.argv[2]
+p = subprocess.Popen([plot, "movie", f"{d}/long.h5", "-o", f"{d}/x.mp4", "--size", "160x120",
+                      "--fps", "30", "--speed", "0.05"],
+                     stderr=subprocess.PIPE, start_new_session=True)
+time.sleep(2)
+os.killpg(p.pid, signal.SIGINT)
+err = p.communicate(timeout=30)[1].decode().strip()
+def cmdline(pid):
+    try:
+        with open(f"/proc/{pid}/cmdline", "rb") as fh:
+            return fh.read()
+    except OSError:
+        return b""
+left = [p for p in os.listdir("/proc") if p.isdigit() and f"{d}/x.mp4".encode() in cmdline(p)]
+print(p.returncode, int(os.path.exists(f"{d}/x.mp4")), int(bool(left)), err.replace("\n", " | "))
+EOF
+read -r rc partial running msg <"$TMP/measure"
+[ "$rc" = 130 ] && [ "$partial" = 0 ] && [ "$running" = 0 ] && [ "$msg" = "sinew-plot: interrupted" ]
+ok $? "Ctrl-C during a movie: exit $rc, \"$msg\", partial file $partial, ffmpeg left $running"
+diag <"$TMP/log"
 "$PLOT" movie "$TMP/pend.h5" --size 160x120 -o /nonexistent/x.mp4 >"$TMP/log" 2>&1
 rc=$?
 last=$(tail -n 1 "$TMP/log")
