@@ -143,6 +143,11 @@ movie "a 20 s run without --fps: capped at 300 frames, at 299/20 fps to keep rea
 grep -q "^sinew-plot: note: 300 frames at 14.9 fps play the 20 s run at speed 1; give --fps for more$" \
   "$TMP/log"
 ok $? "the capped movie says so in a note"
+"$PLOT" frames "$TMP/long.h5" -o "$TMP/longframes" --size 64x48 >"$TMP/log" 2>&1
+n=$(ls "$TMP/longframes" | grep -c '^frame_[0-9]\{5\}\.png$')
+[ "$n" -eq 300 ]
+ok $? "frames of the 2001 frames of the 20 s run: 300 spread evenly ($n)"
+diag <"$TMP/log"
 
 # ---- bad input: one line, the right exit code, no traceback, no output
 # fails CODE MESSAGE DESCRIPTION ARGS...
