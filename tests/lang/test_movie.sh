@@ -13,6 +13,9 @@
 #   movie    ffprobe counts the frames (real time at 30 fps; --fps and
 #            --speed; the 300-frame cap on a synthetic 20 s run), and
 #            reports the size and codec (h264 from libx264, or mpeg4)
+#   errors   one line and the exit code for a file without rods, a missing
+#            file, no ffmpeg on PATH, bad options, an unwritable movie; Ctrl-C
+#            exits 130 and leaves neither a partial movie nor an ffmpeg
 #
 # ffmpeg is not one of `make test`'s base packages: this test installs it
 # when it is missing (scripts/deps.sh ffmpeg:/usr/bin/ffmpeg); its absence
