@@ -11,6 +11,9 @@
 #   docs/img/elbow_angle.png     build/bench/elbow/{dt50ns,stable}.h5 (make
 #                                bench), else build/demo/elbow_flexion.h5
 #                                (make demo), joint `arm.elbow`
+#   docs/img/elbow_frame.png     build/demo/elbow_flexion.h5: the rods at
+#                                t = 0.3 s (`sinew-plot frames --every 100`
+#                                of its frames every 1 ms, the fourth)
 #
 # `make test` writes the tables, `make bench` or `make demo` the runs; a
 # missing input is skipped with a line saying which file was missing.  A
@@ -53,6 +56,19 @@ if [ -e build/bench/elbow/stable.h5 ]; then
 else
   h5=build/demo/elbow_flexion.h5
   draw docs/img/elbow_angle.png "$h5" angle "$h5" --joint arm.elbow
+fi
+
+h5=build/demo/elbow_flexion.h5
+if [ ! -e "$h5" ]; then
+  echo "plots: skipped docs/img/elbow_frame.png: $h5 not found (not produced yet)"
+  skipped=$((skipped + 1))
+elif "$PLOT" frames "$h5" -o build/demo/frames --every 100 --view 10,-75 &&
+  cp build/demo/frames/frame_00003.png docs/img/elbow_frame.png; then
+  echo "plots: wrote docs/img/elbow_frame.png from $h5"
+  made=$((made + 1))
+else
+  echo "plots: FAILED docs/img/elbow_frame.png from $h5" >&2
+  failed=$((failed + 1))
 fi
 
 echo "plots: $made written, $skipped skipped, $failed failed"
