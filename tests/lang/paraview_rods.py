@@ -11,8 +11,9 @@
 # The checks, each against something ParaView did not compute:
 #  - the time steps are /time of the HDF5 file, value for value;
 #  - at the last step each rod's points are /rods/NAME/position's last frame
-#    (read with h5py) to 1e-12 m, and its point data `radius` is
-#    /rods/NAME/node_radius;
+#    (read with h5py) to 1e-12 m, its point data `radius` is
+#    /rods/NAME/node_radius and `velocity` (when written) the last frame of
+#    /rods/NAME/velocity;
 #  - the Tube filter, its radius taken from `radius`, makes a tube whose
 #    bounds are the rod's points widened by the radius (to within the
 #    polygonal tube's inscribed radius, cos(pi / sides) of it);
@@ -85,6 +86,11 @@ for name in rods:
     pts = np.array(g.Points)
     want = f["rods"][name]["position"][-1]
     worst = max(worst, np.max(np.abs(pts - want)) if pts.shape == want.shape else np.inf)
+    if "velocity" in f["rods"][name]:
+        v = np.array(g.PointData["velocity"])
+        vwant = f["rods"][name]["velocity"][-1]
+        check(v.shape == vwant.shape and np.max(np.abs(v - vwant)) == 0,
+              "rod %s: point data velocity is the last frame of its velocity" % name)
     radius = np.array(g.PointData["radius"])
     radius_ok = radius_ok and np.array_equal(radius, f["rods"][name]["node_radius"][:])
     lo, hi = np.minimum(lo, want.min(axis=0)), np.maximum(hi, want.max(axis=0))
