@@ -830,18 +830,12 @@ static int xdmf_update(swOutput *o) {
  * the times of the frames it keeps (a continued one: the description lists
  * them again), and a first description. */
 static int xdmf_open(swOutput *o, const swModel *m, int fresh, char *err, size_t errlen) {
-  if (!sw_xdmf_name_ok(o->path))
-    return fail(err, errlen, "%s: the file name has a control character, which the XDMF "
-                "description (XML) cannot hold", o->path);
   if (!(o->xdmf_rod = calloc((size_t)m->nrod + 1, sizeof *o->xdmf_rod)))
     return fail(err, errlen, "%s: out of memory", o->path);
   for (int i = 0; i < o->ndset; i++) {
     const swDataset *ds = &o->dset[i];
     if (ds->field->fill != fill_position) continue;
     const int r = ds->item;
-    if (!sw_xdmf_name_ok(m->rod_name[r]))
-      return fail(err, errlen, "%s: rod %d has a control character in its name, which the "
-                  "XDMF description (XML) cannot hold", o->path, r);
     swXdmfRod *x = &o->xdmf_rod[o->nxdmf_rod++];
     *x = (swXdmfRod){m->rod_name[r], m->rod_nelem[r] + 1, 0};
     for (int j = 0; j < o->ndset; j++)
@@ -884,6 +878,17 @@ static swOutput *open_output(const char *path, const swModel *m, const swOutputO
     if (!valid_group_name(m->rod_name[r])) {
       fail(err, errlen, "%s: rod %d has name '%s', which cannot name an HDF5 group", path, r,
            m->rod_name[r] ? m->rod_name[r] : "");
+      return NULL;
+    }
+  if (!sw_xdmf_name_ok(path)) {
+    fail(err, errlen, "%s: the file name has a control character, which the XDMF "
+         "description beside it (XML) cannot hold", path);
+    return NULL;
+  }
+  for (int r = 0; r < m->nrod; r++)
+    if (!sw_xdmf_name_ok(m->rod_name[r])) {
+      fail(err, errlen, "%s: rod %d has a control character in its name, which the XDMF "
+           "description (XML) cannot hold", path, r);
       return NULL;
     }
   for (int j = 0; j < m->njoint; j++)
