@@ -22,7 +22,8 @@
  * until sw_output_close() replaces it with the caller's verdict.  Beside the
  * file, RUN.xdmf describes the rods' frames for ParaView (xdmf.c); it is
  * rewritten from the frames written (at open, after the first frame, every
- * second of wall time, at close), so it never lists a frame the file has
+ * second of wall time or less often when rewriting it takes long, at close),
+ * so it never lists a frame the file has
  * not flushed, and each rod whose positions are written gets the static
  * /rods/NAME/node_radius it draws tubes with.  HDF5's own
  * error printing is switched off; every call is checked and the failure is
@@ -237,6 +238,7 @@ struct swOutput {
   long frame_time_cap;
   long xdmf_frames;                      /* frames it listed when last written */
   double xdmf_written;                   /* wall clock of its last write, s  */
+  double xdmf_wait;                      /* s until the next may be written  */
 };
 
 /* ---- errors ---- */
@@ -780,9 +782,12 @@ static double wall_now(void) {
 /* ---- the XDMF description (xdmf.c) ---- */
 
 /* Seconds of wall time between two rewrites of the description during a
- * run: it is rewritten whole, so rewriting it at every frame would cost the
- * square of the frame count. */
+ * run, at least, and at least this many times the last rewrite took: it is
+ * rewritten whole (about 1 kB per rod and frame), so rewriting it at every
+ * frame would cost the square of the frame count, and a long run's rewrites
+ * take at most 1/XDMF_SHARE of its wall time. */
 #define XDMF_EVERY 1.0
+#define XDMF_SHARE 20.0
 
 /* /rods/NAME/node_radius [n + 1] (m): the rest radius at each node, the
  * mean of the elements on either side (an end node takes its element's),
@@ -818,11 +823,15 @@ static int write_node_radius(swOutput *o, const swModel *m, int r) {
 static int xdmf_update(swOutput *o) {
   if (!o->xdmf_path) return SW_OK;
   char err[512];
+  double start = wall_now();
   if (sw_xdmf_write(o->xdmf_path, o->path, o->xdmf_rod, o->nxdmf_rod, o->frame_time, o->frames,
                     err, sizeof err) != SW_OK)
     return fail(NULL, 0, "%s", err);
+  double now = wall_now();
   o->xdmf_frames = o->frames;
-  o->xdmf_written = wall_now();
+  o->xdmf_wait = XDMF_SHARE * (now - start);
+  if (o->xdmf_wait < XDMF_EVERY) o->xdmf_wait = XDMF_EVERY;
+  o->xdmf_written = now;
   return SW_OK;
 }
 
@@ -1073,8 +1082,8 @@ int sw_output_frame(swOutput *o, const swModel *m, swData *d) {
   }
   o->frames++;
   /* the description follows the flushed file: at the first frame, then
-   * every XDMF_EVERY seconds, and at close */
-  if (o->xdmf_path && (o->xdmf_frames == 0 || wall_now() - o->xdmf_written >= XDMF_EVERY))
+   * every xdmf_wait seconds, and at close */
+  if (o->xdmf_path && (o->xdmf_frames == 0 || wall_now() - o->xdmf_written >= o->xdmf_wait))
     return xdmf_update(o);
   return SW_OK;
 }

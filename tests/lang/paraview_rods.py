@@ -19,7 +19,8 @@
 #    polygonal tube's inscribed radius, cos(pi / sides) of it);
 #  - rendered side on with a parallel projection of known scale, the picture's
 #    non-background pixels cover the tube's projected bounding box (to 3
-#    pixels) and about its projected area.
+#    pixels) and about its projected area (for rods that do not overlap in
+#    the view, as the test's cantilever).
 import math
 import os
 import re
