@@ -561,11 +561,11 @@ static void test_xdmf_names_and_radius(void **state) {
   snprintf(xdmf, sizeof xdmf, "%s.xdmf", path);
   swData *d = sw_data_new(m);
   sw_reset(m, d);
-  swOutputOptions opt = {NULL, NULL, NULL, 1e-3, 0, 0};
+  swOutputOptions opt = {.duration = 1e-3};
   char err[256] = "";
   swOutput *out = sw_output_open(path, m, &opt, err, sizeof err);
   assert_non_null(out);
-  swRunOptions ro = {1e-3, 2e-4, 1, NULL};
+  swRunOptions ro = {.duration = 1e-3, .every = 2e-4, .quiet = 1};
   assert_int_equal(sw_run(m, d, out, &ro), SW_OK);
   long frames = sw_output_frames(out);
   assert_int_equal(sw_output_close(out, NULL), SW_OK);
