@@ -19,10 +19,17 @@
  * units follow its kind and whose attributes say what it measures
  * (write_probe_attrs).  The root group records how the file was made
  * (SPEC.md "Output (HDF5)") and a `status` attribute that reads "incomplete"
- * until sw_output_close() replaces it with the caller's verdict.  HDF5's own
+ * until sw_output_close() replaces it with the caller's verdict.  Beside the
+ * file, RUN.xdmf describes the rods' frames for ParaView (xdmf.c); it is
+ * rewritten from the frames written (at open, after the first frame, every
+ * second of wall time or less often when rewriting it takes long, at close),
+ * so it never lists a frame the file has
+ * not flushed, and each rod whose positions are written gets the static
+ * /rods/NAME/node_radius it draws tubes with.  HDF5's own
  * error printing is switched off; every call is checked and the failure is
  * reported once, in our words, naming the file and the object, with HDF5's
  * innermost reason appended. */
+#include <errno.h>
 #include <hdf5.h>
 #include <math.h>
 #include <stdarg.h>
@@ -34,6 +41,7 @@
 #include "sinew.h"
 #include "internal.h"
 #include "restart.h"
+#include "xdmf.h"
 
 /* ---- the output table ---- */
 
@@ -221,6 +229,16 @@ struct swOutput {
   swCheckpoint *checkpoint;              /* the last scheduled frame's state */
   const swModel *model;                  /* the model it was taken of        */
   double checkpoint_written;             /* wall clock of its last write, s  */
+  /* The XDMF description beside the file (xdmf.c); xdmf_path is NULL when
+   * no rod's positions are written. */
+  char *xdmf_path;
+  swXdmfRod *xdmf_rod;
+  int nxdmf_rod;
+  double *frame_time;                    /* (frame_time_cap) time of each frame */
+  long frame_time_cap;
+  long xdmf_frames;                      /* frames it listed when last written */
+  double xdmf_written;                   /* wall clock of its last write, s  */
+  double xdmf_wait;                      /* s until the next may be written  */
 };
 
 /* ---- errors ---- */
@@ -692,6 +710,9 @@ static void release(swOutput *o) {
   free(o->dset);
   free(o->frame);
   free(o->path);
+  free(o->xdmf_path);
+  free(o->xdmf_rod);
+  free(o->frame_time);
   sw_checkpoint_free(o->checkpoint);
   free(o);
 }
@@ -752,6 +773,105 @@ static int check_resumable(swOutput *o, const swModel *m, const swOutputOptions 
   return SW_OK;
 }
 
+static double wall_now(void) {
+  struct timespec ts;
+  clock_gettime(CLOCK_MONOTONIC, &ts);
+  return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
+/* ---- the XDMF description (xdmf.c) ---- */
+
+/* Seconds of wall time between two rewrites of the description during a
+ * run, at least, and at least this many times the last rewrite took: it is
+ * rewritten whole (about 1 kB per rod and frame), so rewriting it at every
+ * frame would cost the square of the frame count, and a long run's rewrites
+ * take at most 1/XDMF_SHARE of its wall time. */
+#define XDMF_EVERY 1.0
+#define XDMF_SHARE 20.0
+
+/* /rods/NAME/node_radius [n + 1] (m): the rest radius at each node, the
+ * mean of the elements on either side (an end node takes its element's),
+ * for ParaView's Tube filter, which varies radius over points. */
+static int write_node_radius(swOutput *o, const swModel *m, int r) {
+  const int n = m->rod_nelem[r];
+  const double *radius = m->radius + m->elem_adr[r];
+  double node[n + 1];
+  for (int i = 0; i <= n; i++)
+    node[i] = i == 0 ? radius[0] : i == n ? radius[n - 1] : 0.5 * (radius[i - 1] + radius[i]);
+  char *path = dup_printf("/rods/%s/node_radius", m->rod_name[r]);
+  if (!path) return fail(NULL, 0, "%s: out of memory", o->path);
+  hsize_t count = (hsize_t)n + 1;
+  hid_t space = H5Screate_simple(1, &count, NULL);
+  hid_t dset = space < 0 ? H5I_INVALID_HID
+                         : H5Dcreate2(o->file, path, H5T_IEEE_F64LE, space, H5P_DEFAULT,
+                                      H5P_DEFAULT, H5P_DEFAULT);
+  int rc = dset >= 0 && H5Dwrite(dset, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT,
+                                 node) >= 0
+               ? SW_OK
+               : fail(NULL, 0, "%s: cannot write dataset %s", o->path, path);
+  if (rc == SW_OK) {
+    swAttrTarget t = {dset, o->path, path, NULL, 0};
+    rc = attr_string(&t, "units", "m");
+  }
+  if (dset >= 0) H5Dclose(dset);
+  if (space >= 0) H5Sclose(space);
+  free(path);
+  return rc;
+}
+
+/* Rewrites the description to list the frames written so far. */
+static int xdmf_update(swOutput *o) {
+  if (!o->xdmf_path) return SW_OK;
+  char err[512];
+  double start = wall_now();
+  if (sw_xdmf_write(o->xdmf_path, o->path, o->xdmf_rod, o->nxdmf_rod, o->frame_time, o->frames,
+                    err, sizeof err) != SW_OK)
+    return fail(NULL, 0, "%s", err);
+  double now = wall_now();
+  o->xdmf_frames = o->frames;
+  o->xdmf_wait = XDMF_SHARE * (now - start);
+  if (o->xdmf_wait < XDMF_EVERY) o->xdmf_wait = XDMF_EVERY;
+  o->xdmf_written = now;
+  return SW_OK;
+}
+
+/* The rods whose positions the file holds, their node radii (a new file),
+ * the times of the frames it keeps (a continued one: the description lists
+ * them again), and a first description. */
+static int xdmf_open(swOutput *o, const swModel *m, int fresh, char *err, size_t errlen) {
+  if (!(o->xdmf_rod = calloc((size_t)m->nrod + 1, sizeof *o->xdmf_rod)))
+    return fail(err, errlen, "%s: out of memory", o->path);
+  for (int i = 0; i < o->ndset; i++) {
+    const swDataset *ds = &o->dset[i];
+    if (ds->field->fill != fill_position) continue;
+    const int r = ds->item;
+    swXdmfRod *x = &o->xdmf_rod[o->nxdmf_rod++];
+    *x = (swXdmfRod){m->rod_name[r], m->rod_nelem[r] + 1, 0};
+    for (int j = 0; j < o->ndset; j++)
+      if (o->dset[j].field->fill == fill_velocity && o->dset[j].item == r) x->velocity = 1;
+    if (fresh && write_node_radius(o, m, r) != SW_OK)
+      return fail(err, errlen, "%s", last_error);
+  }
+  char *xdmf_path = sw_xdmf_path(o->path);
+  if (!xdmf_path) return fail(err, errlen, "%s: out of memory", o->path);
+  if (!o->nxdmf_rod) {   /* nothing to draw: no description, nor a stale one */
+    if (remove(xdmf_path) != 0 && errno != ENOENT)
+      fail(NULL, 0, "%s: cannot remove the stale %s", o->path, xdmf_path);
+    free(xdmf_path);
+    return SW_OK;
+  }
+  o->xdmf_path = xdmf_path;
+  o->frame_time_cap = o->frames + 64;
+  if (!(o->frame_time = malloc((size_t)o->frame_time_cap * sizeof *o->frame_time)))
+    return fail(err, errlen, "%s: out of memory", o->path);
+  /* output_fields[0] is /time, the first dataset opened */
+  if (o->frames > 0 && H5Dread(o->dset[0].dset, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL,
+                               H5P_DEFAULT, o->frame_time) < 0)
+    return fail(err, errlen, "%s: cannot read /time", o->path);
+  if (xdmf_update(o) != SW_OK) return fail(err, errlen, "%s", last_error);
+  return SW_OK;
+}
+
 /* sw_output_open and sw_output_resume: d == NULL creates the file, else it
  * reopens it and puts its checkpoint into d and x. */
 static swOutput *open_output(const char *path, const swModel *m, const swOutputOptions *opt,
@@ -767,6 +887,17 @@ static swOutput *open_output(const char *path, const swModel *m, const swOutputO
     if (!valid_group_name(m->rod_name[r])) {
       fail(err, errlen, "%s: rod %d has name '%s', which cannot name an HDF5 group", path, r,
            m->rod_name[r] ? m->rod_name[r] : "");
+      return NULL;
+    }
+  if (!sw_xdmf_name_ok(path)) {
+    fail(err, errlen, "%s: the file name has a control character, which the XDMF "
+         "description beside it (XML) cannot hold", path);
+    return NULL;
+  }
+  for (int r = 0; r < m->nrod; r++)
+    if (!sw_xdmf_name_ok(m->rod_name[r])) {
+      fail(err, errlen, "%s: rod %d has a control character in its name, which the XDMF "
+           "description (XML) cannot hold", path, r);
       return NULL;
     }
   for (int j = 0; j < m->njoint; j++)
@@ -860,6 +991,7 @@ static swOutput *open_output(const char *path, const swModel *m, const swOutputO
   if (lcpl >= 0) H5Pclose(lcpl);
   if (rc == SW_OK && !d) rc = write_group_attrs(o, m, err, errlen);
   if (rc == SW_OK && !d) rc = write_params(o, opt, err, errlen);
+  if (rc == SW_OK) rc = xdmf_open(o, m, !d, err, errlen);
   if (rc == SW_OK && !(o->frame = malloc(max_frame * sizeof *o->frame)))
     rc = fail(err, errlen, "%s: out of memory", path);
   if (rc == SW_OK && H5Fflush(o->file, H5F_SCOPE_LOCAL) < 0)
@@ -938,17 +1070,25 @@ int sw_output_frame(swOutput *o, const swModel *m, swData *d) {
   /* Metadata on disk after every frame: a run that dies leaves a valid file. */
   if (H5Fflush(o->file, H5F_SCOPE_LOCAL) < 0)
     return fail(NULL, 0, "%s: cannot flush the file after frame %ld", o->path, o->frames);
+  if (o->xdmf_path) {
+    if (o->frames == o->frame_time_cap) {
+      long cap = 2 * o->frame_time_cap;
+      double *grown = realloc(o->frame_time, (size_t)cap * sizeof *grown);
+      if (!grown) return fail(NULL, 0, "%s: out of memory", o->path);
+      o->frame_time = grown;
+      o->frame_time_cap = cap;
+    }
+    o->frame_time[o->frames] = d->time;
+  }
   o->frames++;
+  /* the description follows the flushed file: at the first frame, then
+   * every xdmf_wait seconds, and at close */
+  if (o->xdmf_path && (o->xdmf_frames == 0 || wall_now() - o->xdmf_written >= o->xdmf_wait))
+    return xdmf_update(o);
   return SW_OK;
 }
 
 long sw_output_frames(const swOutput *o) { return o ? o->frames : 0; }
-
-static double wall_now(void) {
-  struct timespec ts;
-  clock_gettime(CLOCK_MONOTONIC, &ts);
-  return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
-}
 
 /* Seconds of wall time between two writes of the checkpoint: a run killed
  * outright loses at most this much. */
@@ -981,6 +1121,9 @@ int sw_output_close(swOutput *o, const char *status) {
   if (H5Fclose(o->file) < 0 && rc == SW_OK)
     rc = fail(NULL, 0, "%s: cannot close the file", o->path);
   o->file = H5I_INVALID_HID;
+  /* every frame is in the file: the description lists them all */
+  int described = xdmf_update(o);
+  if (rc == SW_OK) rc = described;
   release(o);
   return rc;
 }

@@ -53,7 +53,7 @@ def check(cond, what):
     fails += 0 if cond else 1
 beam, rope = f["rods/beam"], f["rods/rope"]
 check(sorted(beam) == ["curvature", "internal_couple"], "beam datasets %s" % sorted(beam))
-check(sorted(rope) == ["internal_force", "position", "strain"], "rope datasets %s" % sorted(rope))
+check(sorted(rope) == ["internal_force", "node_radius", "position", "strain"], "rope datasets %s" % sorted(rope))
 n, r, rho, g = 40, 0.01, 1000.0, 9.81
 A, I = np.pi * r * r, np.pi * r ** 4 / 4
 # beam: bending about d2 (d3 = x, d1 = z), kappa = w (L - s)^2 / (2 E I) at
@@ -137,7 +137,7 @@ want = ["diagnostics/energy", "joints/elbow/angle", "joints/elbow/force",
         "muscles/extensor/activation",
         "muscles/extensor/filament_force", "muscles/extensor/stretch",
         "muscles/flexor/activation", "muscles/flexor/filament_force", "muscles/flexor/force",
-        "muscles/flexor/stretch", "rods/upper/position", "time"]
+        "muscles/flexor/stretch", "rods/upper/node_radius", "rods/upper/position", "time"]
 print("datasets:", names)
 # the checkpoint of SIM --restart is always there
 ok = sorted(n for n in names if not n.startswith("restart/")) == want

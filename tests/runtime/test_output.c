@@ -1,6 +1,7 @@
 /* test_output.c — tests of output.c and run.c: the HDF5 schema written by a
  * run, the frame schedule, Ctrl-C leaving a valid file, an unstable run, time
- * arguments, and the error message for a file that cannot be created.
+ * arguments, the error message for a file that cannot be created, and the
+ * XDMF description beside the file (names escaped, node radii).
  *
  * Design.  The file written by sw_run() is read back with the plain HDF5 C API
  * (not through output.c), so the test checks what a user's h5py script would
@@ -43,6 +44,15 @@ static swModel *falling_rod(double dt) {
   swModel *m = sw_test_compile(s);
   sw_spec_free(s);
   return m;
+}
+
+/* An output file and the XDMF description beside it (PATH.xdmf: the
+ * temporary names have no .h5 ending). */
+static void remove_outputs(const char *path) {
+  char xdmf[80];
+  snprintf(xdmf, sizeof xdmf, "%s.xdmf", path);
+  unlink(path);
+  unlink(xdmf);
 }
 
 static void temp_path(char *path, size_t len) {
@@ -236,7 +246,7 @@ static void test_output_schema(void **state) {
 
   H5Fclose(file);
   free(source);
-  unlink(path);
+  remove_outputs(path);
   sw_data_free(d);
   sw_model_free(m);
 }
@@ -266,7 +276,7 @@ static void test_frame_schedule(void **state) {
   expect_string_attr(file, "/", "status", "complete");
   expect_string_attr(file, "/", "model_sha256", "");
   H5Fclose(file);
-  unlink(path);
+  remove_outputs(path);
 
   sw_reset(m, d);
   ro.duration = 2e-3;
@@ -387,7 +397,7 @@ static void test_sigint_leaves_valid_file(void **state) {
   free(status);
   free(time);
   H5Fclose(file);
-  unlink(path);
+  remove_outputs(path);
 }
 
 /* ---- an unstable run keeps the frames written so far ---- */
@@ -442,7 +452,7 @@ static void test_unstable_run_stops(void **state) {
   free(position);
   free(time);
   H5Fclose(file);
-  unlink(path);
+  remove_outputs(path);
   sw_data_free(d);
   sw_model_free(m);
 }
@@ -497,6 +507,115 @@ static void test_unwritable_path(void **state) {
   sw_model_free(m);
 }
 
+/* ---- (e) the XDMF description ---- */
+
+static char *read_text(const char *path) {
+  FILE *f = fopen(path, "rb");
+  assert_non_null(f);
+  fseek(f, 0, SEEK_END);
+  long len = ftell(f);
+  fseek(f, 0, SEEK_SET);
+  char *text = malloc((size_t)len + 1);
+  assert_non_null(text);
+  assert_int_equal(fread(text, 1, (size_t)len, f), (size_t)len);
+  text[len] = '\0';
+  fclose(f);
+  return text;
+}
+
+static int count_of(const char *text, const char *what) {
+  int n = 0;
+  for (const char *p = strstr(text, what); p; p = strstr(p + 1, what)) n++;
+  return n;
+}
+
+/* A rod whose name has every character XML gives meaning to, tapered from
+ * 1 cm to 3 cm over 6 elements: the description carries the name escaped
+ * (the raw name nowhere), lists each frame of the run once, and
+ * /rods/NAME/node_radius is the mean of the elements on either side of each
+ * node (elements taper linearly between the end elements' centres, model.c:
+ * r_i = r0 + (r1 - r0) i / (n - 1), so node k has r0 + (r1 - r0)
+ * clamp((k - 1/2) / (n - 1), 0, 1)).  A name with a control character,
+ * which XML cannot hold, is refused with a message. */
+static void test_xdmf_names_and_radius(void **state) {
+  (void)state;
+  const char *name = "a<b&\"c'>d", *escaped = "a&lt;b&amp;&quot;c&apos;&gt;d";
+  const int n = 6;
+  const double r0 = 0.01, r1 = 0.03;
+  swSpec *s = sw_spec_new();
+  swRodDesc r;
+  sw_rod_desc_init(&r);
+  r.name = name;
+  r.nelem = n;
+  r.direction[0] = 1, r.direction[1] = 0, r.direction[2] = 0;
+  r.normal[0] = 0, r.normal[1] = 0, r.normal[2] = 1;
+  r.length = 1.0;
+  r.radius_start = r0, r.radius_end = r1;
+  r.density = 1000, r.youngs = 1e6, r.poisson = 0.5;
+  assert_int_equal(sw_spec_add_rod(s, &r), 0);
+  sw_spec_set_dt(s, 1e-4);
+  swModel *m = sw_test_compile(s);
+  sw_spec_free(s);
+  char path[64], xdmf[80];
+  temp_path(path, sizeof path);
+  snprintf(xdmf, sizeof xdmf, "%s.xdmf", path);
+  swData *d = sw_data_new(m);
+  sw_reset(m, d);
+  swOutputOptions opt = {.duration = 1e-3};
+  char err[256] = "";
+  swOutput *out = sw_output_open(path, m, &opt, err, sizeof err);
+  assert_non_null(out);
+  swRunOptions ro = {.duration = 1e-3, .every = 2e-4, .quiet = 1};
+  assert_int_equal(sw_run(m, d, out, &ro), SW_OK);
+  long frames = sw_output_frames(out);
+  assert_int_equal(sw_output_close(out, NULL), SW_OK);
+
+  char *text = read_text(xdmf);
+  char want[160];
+  snprintf(want, sizeof want, "<Grid Name=\"%s\" GridType=\"Uniform\">", escaped);
+  int grids = count_of(text, want), times = count_of(text, "<Time Value=");
+  snprintf(want, sizeof want, ":/rods/%s/position</DataItem>", escaped);
+  int positions = count_of(text, want);
+  fprintf(stderr, "# %s: %ld frames; the description has %d grids named %s, %d times, %d "
+          "position references; the raw name %d times\n", __func__, frames, grids, escaped,
+          times, positions, count_of(text, name));
+  assert_int_equal(frames, 6);
+  assert_int_equal(grids, frames);
+  assert_int_equal(times, frames);
+  assert_int_equal(positions, frames);
+  assert_int_equal(count_of(text, name), 0);
+  free(text);
+
+  hid_t file = H5Fopen(path, H5F_ACC_RDONLY, H5P_DEFAULT);
+  assert_true(file >= 0);
+  snprintf(want, sizeof want, "/rods/%s/node_radius", name);
+  double *node = read_doubles(file, want);
+  double worst = 0;
+  for (int k = 0; k <= n; k++) {
+    double f = ((double)k - 0.5) / (n - 1);
+    f = f < 0 ? 0 : f > 1 ? 1 : f;
+    double e = fabs(node[k] - (r0 + (r1 - r0) * f));
+    if (e > worst) worst = e;
+  }
+  fprintf(stderr, "# %s: node radii against the closed form: largest difference %.3g m\n",
+          __func__, worst);
+  assert_true(worst <= 1e-15);
+  expect_string_attr(file, want, "units", "m");
+  free(node);
+  H5Fclose(file);
+  remove_outputs(path);
+
+  /* a control character */
+  m->rod_name[0][1] = '\x01';
+  out = sw_output_open(path, m, &opt, err, sizeof err);
+  fprintf(stderr, "# %s: error = \"%s\"\n", __func__, err);
+  assert_null(out);
+  assert_non_null(strstr(err, "control character"));
+  remove_outputs(path);
+  sw_data_free(d);
+  sw_model_free(m);
+}
+
 int main(void) {
   const struct CMUnitTest tests[] = {
     cmocka_unit_test(test_output_schema),
@@ -505,6 +624,7 @@ int main(void) {
     cmocka_unit_test(test_unstable_run_stops),
     cmocka_unit_test(test_parse_time),
     cmocka_unit_test(test_unwritable_path),
+    cmocka_unit_test(test_xdmf_names_and_radius),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);
 }

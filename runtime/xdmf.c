@@ -1,0 +1,159 @@
+/* xdmf.c — the XDMF description beside a run's HDF5 file, so that ParaView
+ * (and VisIt, or any XDMF reader) opens the rods as lines over time.
+ *
+ * Design.  XDMF is light XML that points into heavy HDF5 data (xdmf.org,
+ * "XDMF Model and Format").  The description is one temporal collection with
+ * one spatial collection per frame of the file, at that frame's time; in it
+ * each rod is an unstructured grid of one Polyline cell through its n + 1
+ * nodes (connectivity 0 1 ... n, written inline), whose geometry is the
+ * frame's row of /rods/NAME/position (a HyperSlab: start (f, 0, 0), count
+ * (1, n + 1, 3)).  Point data: the rest radius at each node,
+ * /rods/NAME/node_radius (static), which ParaView's Tube filter uses to vary
+ * the tube's radius, and the velocity when the file has it.  Nothing here
+ * reads HDF5: output.c says which rods and datasets exist and how many
+ * frames are written, and this file only prints XML.
+ *
+ * The file is rewritten whole (output.c decides when: at open, after the
+ * first frame, at most once a second of wall time after that, and at close),
+ * to a temporary name in the same directory and renamed over the old one,
+ * which POSIX makes atomic: a reader sees the previous description or the
+ * new one, and every frame either lists is in the HDF5 file, whose frames
+ * are flushed before they are described.  Names from the model are escaped
+ * (&amp; &lt; &gt; &quot; &apos;), so a name cannot end an attribute or open
+ * an element; the HDF5 file is named by its base name, relative to the
+ * description, so the pair can be moved together. */
+#include <errno.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "sinew.h"
+#include "xdmf.h"
+
+char *sw_xdmf_path(const char *h5_path) {
+  size_t len = strlen(h5_path);
+  if (len > 3 && !strcmp(h5_path + len - 3, ".h5")) len -= 3;
+  char *path = malloc(len + sizeof ".xdmf");
+  if (!path) return NULL;
+  memcpy(path, h5_path, len);
+  memcpy(path + len, ".xdmf", sizeof ".xdmf");
+  return path;
+}
+
+int sw_xdmf_name_ok(const char *name) {
+  for (const unsigned char *c = (const unsigned char *)name; *c; c++)
+    if (*c < 0x20 || *c == 0x7f) return 0;
+  return 1;
+}
+
+/* s with the five characters XML gives meaning to replaced by their
+ * predefined entities (XML 1.0, section 4.6). */
+static void put_escaped(FILE *f, const char *s) {
+  for (; *s; s++) switch (*s) {
+    case '&': fputs("&amp;", f); break;
+    case '<': fputs("&lt;", f); break;
+    case '>': fputs("&gt;", f); break;
+    case '"': fputs("&quot;", f); break;
+    case '\'': fputs("&apos;", f); break;
+    default: fputc(*s, f);
+    }
+}
+
+/* FILE.h5:/rods/NAME/DATASET, the form of an HDF data item's text. */
+static void put_hdf_ref(FILE *f, const char *h5_base, const char *rod, const char *dataset) {
+  put_escaped(f, h5_base);
+  fputs(":/rods/", f);
+  put_escaped(f, rod);
+  fprintf(f, "/%s", dataset);
+}
+
+/* Frame `frame` of /rods/NAME/DATASET [frames, nodes, 3]: one row of nodes
+ * x 3 values, by a HyperSlab whose first item is start, stride and count. */
+static void put_frame_slab(FILE *f, const char *indent, const char *h5_base,
+                           const swXdmfRod *r, const char *dataset, long frame, long frames) {
+  fprintf(f, "%s<DataItem ItemType=\"HyperSlab\" Dimensions=\"1 %d 3\" Type=\"HyperSlab\">\n"
+             "%s <DataItem Dimensions=\"3 3\" NumberType=\"Int\" Format=\"XML\">"
+             "%ld 0 0 1 1 1 1 %d 3</DataItem>\n"
+             "%s <DataItem Dimensions=\"%ld %d 3\" NumberType=\"Float\" Precision=\"8\" "
+             "Format=\"HDF\">",
+          indent, r->nodes, indent, frame, r->nodes, indent, frames, r->nodes);
+  put_hdf_ref(f, h5_base, r->name, dataset);
+  fprintf(f, "</DataItem>\n%s</DataItem>\n", indent);
+}
+
+static void put_rod(FILE *f, const char *h5_base, const swXdmfRod *r, long frame, long frames) {
+  fputs("    <Grid Name=\"", f);
+  put_escaped(f, r->name);
+  fprintf(f, "\" GridType=\"Uniform\">\n"
+             "     <Topology TopologyType=\"Polyline\" NumberOfElements=\"1\" "
+             "NodesPerElement=\"%d\">\n"
+             "      <DataItem Dimensions=\"1 %d\" NumberType=\"Int\" Format=\"XML\">",
+          r->nodes, r->nodes);
+  for (int i = 0; i < r->nodes; i++) fprintf(f, i ? " %d" : "%d", i);
+  fputs("</DataItem>\n     </Topology>\n     <Geometry GeometryType=\"XYZ\">\n", f);
+  put_frame_slab(f, "      ", h5_base, r, "position", frame, frames);
+  fprintf(f, "     </Geometry>\n"
+             "     <Attribute Name=\"radius\" AttributeType=\"Scalar\" Center=\"Node\">\n"
+             "      <DataItem Dimensions=\"%d\" NumberType=\"Float\" Precision=\"8\" "
+             "Format=\"HDF\">",
+          r->nodes);
+  put_hdf_ref(f, h5_base, r->name, "node_radius");
+  fputs("</DataItem>\n     </Attribute>\n", f);
+  if (r->velocity) {
+    fputs("     <Attribute Name=\"velocity\" AttributeType=\"Vector\" Center=\"Node\">\n", f);
+    put_frame_slab(f, "      ", h5_base, r, "velocity", frame, frames);
+    fputs("     </Attribute>\n", f);
+  }
+  fputs("    </Grid>\n", f);
+}
+
+int sw_xdmf_write(const char *xdmf_path, const char *h5_path, const swXdmfRod *rods, int nrod,
+                  const double *time, long frames, char *err, size_t errlen) {
+  const char *slash = strrchr(h5_path, '/');
+  const char *h5_base = slash ? slash + 1 : h5_path;
+  size_t len = strlen(xdmf_path);
+  char *tmp = malloc(len + sizeof ".tmp");
+  if (!tmp) {
+    snprintf(err, errlen, "%s: out of memory", xdmf_path);
+    return SW_EIO;
+  }
+  memcpy(tmp, xdmf_path, len);
+  memcpy(tmp + len, ".tmp", sizeof ".tmp");
+  FILE *f = fopen(tmp, "w");
+  if (!f) {
+    snprintf(err, errlen, "cannot create %s: %s", tmp, strerror(errno));
+    free(tmp);
+    return SW_EIO;
+  }
+  fputs("<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n"
+        "<!-- The rods of ", f);
+  /* "--" may not occur inside a comment: the name is given in a comment
+   * only when it has none */
+  fputs(strstr(h5_base, "--") ? "this run" : h5_base, f);
+  fprintf(f, " over time, %ld frame%s (written by sinew %s; rewritten as the run goes). "
+             "In ParaView: open this file, apply Extract Surface, then Tube with "
+             "\"Vary Radius\" by the scalar radius. -->\n"
+             "<Xdmf Version=\"3.0\">\n"
+             " <Domain>\n"
+             "  <Grid Name=\"rods\" GridType=\"Collection\" CollectionType=\"Temporal\">\n",
+          frames, frames == 1 ? "" : "s", SW_VERSION);
+  for (long k = 0; k < frames; k++) {
+    fprintf(f, "   <Grid Name=\"frame %ld\" GridType=\"Collection\" "
+               "CollectionType=\"Spatial\">\n"
+               "    <Time Value=\"%.17g\"/>\n",
+            k, time[k]);
+    for (int r = 0; r < nrod; r++) put_rod(f, h5_base, &rods[r], k, frames);
+    fputs("   </Grid>\n", f);
+  }
+  fputs("  </Grid>\n </Domain>\n</Xdmf>\n", f);
+  int bad = ferror(f);
+  if (fclose(f) != 0) bad = 1;
+  if (bad || rename(tmp, xdmf_path) != 0) {
+    snprintf(err, errlen, "cannot write %s: %s", bad ? tmp : xdmf_path, strerror(errno));
+    remove(tmp);
+    free(tmp);
+    return SW_EIO;
+  }
+  free(tmp);
+  return SW_OK;
+}
