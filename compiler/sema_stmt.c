@@ -87,7 +87,7 @@ static swValue angle_field(swSema *S, swScope *scope, const swFields *f, const c
     return val_error();
   }
   if ((v.kind == VAL_NUM || v.kind == VAL_VEC) && dim_is_none(v.dim)) {
-    diag_error(v.loc, "'%s' is an angle and needs its unit (e.g. %s; or rad)", key, example);
+    diag_error(v.loc, "'%s' is an angle: write its unit (deg or rad), e.g. %s", key, example);
     return val_error();
   }
   char what[64];
@@ -143,7 +143,7 @@ static int joint_limits(swSema *S, swScope *scope, const swFields *f, const swAs
                it->name, kind, j->kind == SW_JOINT_SPHERICAL ? " (its limit is a 'cone')" : "");
     ok = 0;
   } else if (range) {
-    swValue r = angle_field(S, scope, f, "range", 2, "range = (-150 deg, 0 deg)");
+    swValue r = angle_field(S, scope, f, "range", 2, "range = (-150 deg, 0 deg);");
     if (r.kind == VAL_ERROR) {
       ok = 0;
     } else {
@@ -163,7 +163,7 @@ static int joint_limits(swSema *S, swScope *scope, const swFields *f, const swAs
         double angle0;
         if (ends_ok && j->axis.kind == VAL_VEC && hinge_angle0(S->scene, j, &angle0) &&
             (angle0 < r.v[0] || angle0 > r.v[1])) {
-          diag_error(r.loc, "joint '%s': its angle at t = 0 is %s, outside its range (%s, %s): "
+          diag_error(r.loc, "joint '%s': its hinge angle at t = 0 is %s, outside its range (%s, %s): "
                      "the limit would throw the joint on the first step; widen the range or "
                      "start the rods inside it", it->name, deg_text(a0, sizeof a0, angle0),
                      deg_text(lo, sizeof lo, r.v[0]), deg_text(hi, sizeof hi, r.v[1]));
@@ -178,7 +178,7 @@ static int joint_limits(swSema *S, swScope *scope, const swFields *f, const swAs
                j->kind == SW_JOINT_HINGE ? " (its limit is a 'range')" : "");
     ok = 0;
   } else if (cone) {
-    swValue c = angle_field(S, scope, f, "cone", 1, "cone = 60 deg");
+    swValue c = angle_field(S, scope, f, "cone", 1, "cone = 60 deg;");
     if (c.kind == VAL_ERROR) {
       ok = 0;
     } else if (!(c.v[0] > 0 && c.v[0] < M_PI)) {
