@@ -208,7 +208,8 @@ static int has_selection(const swScene *sc, int scope) {
  * to the items selected; the others only to the items selected. */
 static unsigned selected_bits(const swScene *sc, int scope, int count, unsigned *bits) {
   const unsigned defaults = scope == OUT_RODS     ? SW_OUT_POSITION
-                            : scope == OUT_JOINTS ? SW_OUT_ANGLE | SW_OUT_JOINT_FORCE
+                            : scope == OUT_JOINTS ? SW_OUT_ANGLE | SW_OUT_JOINT_FORCE |
+                                                        SW_OUT_LIMIT_TORQUE
                                                   : SW_OUT_MUSCLE_FORCE | SW_OUT_STRETCH |
                                                         SW_OUT_ACTIVATION | SW_OUT_FILAMENT_FORCE;
   unsigned named = 0;
@@ -245,7 +246,7 @@ static void emit_bits(FILE *out, unsigned bits) {
       "SW_OUT_ANGULAR_VELOCITY", "SW_OUT_STRAIN",        "SW_OUT_CURVATURE",
       "SW_OUT_INTERNAL_FORCE", "SW_OUT_INTERNAL_COUPLE", "SW_OUT_ANGLE",
       "SW_OUT_JOINT_FORCE",    "SW_OUT_MUSCLE_FORCE",    "SW_OUT_STRETCH",
-      "SW_OUT_ACTIVATION",     "SW_OUT_FILAMENT_FORCE"};
+      "SW_OUT_ACTIVATION",     "SW_OUT_FILAMENT_FORCE",  "SW_OUT_LIMIT_TORQUE"};
   int any = 0;
   for (unsigned b = 0; b < sizeof bit_name / sizeof bit_name[0]; b++)
     if (bits & (1u << b)) fprintf(out, "%s%s", any++ ? " | " : "", bit_name[b]);
@@ -347,6 +348,7 @@ static void emit_build(FILE *out, swArena *a, const swScene *sc) {
     if (j->rod_b >= 0) rod_comment(out, sc, j->rod_b);
     else fputs("   /* anchored in space */\n", out);
     if (j->undamped) fputs("    joint.undamped = 1;\n", out);
+    if (j->has_range) fputs("    joint.has_range = 1;\n", out);
     gen_assign_fields(out, a, "joint", f, gen_joint_fields(j, f));
     fprintf(out, "    joint_id[%d] = sw_spec_add_joint(s, &joint);\n"
             "    ok &= joint_id[%d] >= 0;\n  }\n", i, i);

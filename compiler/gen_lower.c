@@ -88,7 +88,18 @@ int gen_joint_fields(const swSceneJoint *j, swLowField *out) {
     F(rot_damping, 1, &j->rot_damping),
   };
   memcpy(out, f, sizeof f);
-  return (int)(sizeof f / sizeof f[0]);
+  /* the limits only when given, so a joint without them lowers as before */
+  const swLowField lim[] = {
+    F(angle_min, 1, &j->angle_min),
+    F(angle_max, 1, &j->angle_max),
+    F(cone, 1, &j->cone),
+    F(limit_stiffness, 1, &j->limit_stiffness),
+    F(limit_damping, 1, &j->limit_damping),
+  };
+  int n = (int)(sizeof f / sizeof f[0]);
+  for (size_t i = 0; i < sizeof lim / sizeof lim[0]; i++)
+    if (lim[i].value->kind == VAL_NUM) out[n++] = lim[i];
+  return n;
 }
 #undef F
 
@@ -285,6 +296,7 @@ swSpec *gen_spec(const swScene *sc) {
     d.rod_b = gen_rod_id(sc, j->rod_b);
     d.node_b = j->node_b;
     d.undamped = j->undamped;
+    d.has_range = j->has_range;
     fill(&d, f, gen_joint_fields(j, f));
     sw_spec_add_joint(s, &d);
   }

@@ -170,6 +170,9 @@ typedef struct {
   int rod_a, node_a, rod_b, node_b;
   swValue anchor, axis, stiffness, damping, rot_stiffness, rot_damping;
   int undamped;               /* damping = 0 written: no damping at all     */
+  /* limits; VAL_ERROR: not given */
+  int has_range;              /* range = (lower, upper) on a hinge          */
+  swValue angle_min, angle_max, cone, limit_stiffness, limit_damping;
 } swSceneJoint;
 
 typedef struct {

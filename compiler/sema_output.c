@@ -10,8 +10,9 @@
  * SW_OUT_* bit of the runtime) for a list of items of one kind, or for all
  * of them.  gen_c.c turns them into the per-item bit arrays the simulator
  * hands to its output.  Each name is looked up as what the quantity can be
- * written for: `force` is a joint's or a muscle's, `angle` a hinge's, the
- * rod quantities a rod's or a muscle's filaments'.
+ * written for: `force` is a joint's or a muscle's, `angle` a hinge's,
+ * `limit_torque` a limited joint's, the rod quantities a rod's or a muscle's
+ * filaments'.
  */
 #include <stdio.h>
 #include <stdlib.h>
@@ -36,6 +37,7 @@ static const swOutWord out_words[] = {
   {"internal_couple", SW_OUT_INTERNAL_COUPLE, 0, 0},
   {"angle", 0, SW_OUT_ANGLE, 0},
   {"force", 0, SW_OUT_JOINT_FORCE, SW_OUT_MUSCLE_FORCE},
+  {"limit_torque", 0, SW_OUT_LIMIT_TORQUE, 0},
   {"stretch", 0, 0, SW_OUT_STRETCH},
   {"activation", 0, 0, SW_OUT_ACTIVATION},
   {"filament_force", 0, 0, SW_OUT_FILAMENT_FORCE},
@@ -130,9 +132,10 @@ static void select_named(swSema *S, swScope *scope, const swOutWord *w, const sw
                          swOutSelect **joints, swOutSelect **muscles, swLoc loc) {
   swScene *sc = S->scene;
   swValue v = sema_eval(S, scope, target);
-  const char *reads = w->joint_bit && w->muscle_bit ? "a joint or a muscle"
-                      : w->joint_bit                 ? "a hinge joint"
-                                                     : "a muscle";
+  const char *reads = w->joint_bit && w->muscle_bit       ? "a joint or a muscle"
+                      : w->joint_bit == SW_OUT_LIMIT_TORQUE ? "a joint with a limit"
+                      : w->joint_bit                        ? "a hinge joint"
+                                                            : "a muscle";
   if (v.kind == VAL_WORD) {
     sema_report_unknown(S, scope, v.word, v.loc, w->joint_bit ? "joint" : "muscle");
     return;
@@ -147,6 +150,12 @@ static void select_named(swSema *S, swScope *scope, const swOutWord *w, const sw
     if (w->joint_bit == SW_OUT_ANGLE && sc->joint[j].kind != SW_JOINT_HINGE) {
       diag_error(target->loc, "joint '%s' is not a hinge: only a hinge has an angle",
                  sym->full);
+      return;
+    }
+    if (w->joint_bit == SW_OUT_LIMIT_TORQUE && !sc->joint[j].has_range &&
+        sc->joint[j].cone.kind != VAL_NUM) {
+      diag_error(target->loc, "joint '%s' has no limit (a hinge's 'range' or a spherical "
+                 "joint's 'cone'): it has no limit_torque", sym->full);
       return;
     }
     if (!*joints) *joints = new_select(sc, w->joint_bit, OUT_JOINTS, loc);

@@ -19,7 +19,9 @@
 
 static const char *const joint_kinds[] = {"spherical", "hinge", "fixed"};
 static const char *const joint_keys[] = {"axis", "stiffness", "damping", "rot_stiffness",
-                                         "rot_damping", "allow_gap"};
+                                         "rot_damping", "allow_gap", "range", "cone",
+                                         "limit_stiffness", "limit_damping"};
+enum { NJOINT_KEYS = sizeof joint_keys / sizeof joint_keys[0] };
 
 /* "5 mm", "12 um", "0.3 m": a length in the unit that reads best. */
 static const char *length_text(char *buf, size_t len, double metres) {
@@ -64,6 +66,154 @@ static int joint_gap_ok(swSema *S, swScope *scope, const swFields *f, const swAs
              "allow_gap = true; if the gap is intended", it->name,
              length_text(g, sizeof g, gap), pa, pb);
   return 0;
+}
+
+/* ---- limits ---- */
+
+/* "-150 deg": an angle for messages. */
+static const char *deg_text(char *buf, size_t len, double rad) {
+  snprintf(buf, len, "%.4g deg", rad * 180.0 / M_PI);
+  return buf;
+}
+
+/* An angle field (n components): a bare number is refused with the units
+ * it could have, since a limit in radians and one in degrees differ by 57. */
+static swValue angle_field(swSema *S, swScope *scope, const swFields *f, const char *key, int n,
+                           const char *example) {
+  const swAst *e = sema_field(f, key);
+  swValue v = sema_eval(S, scope, e);
+  if (v.kind == VAL_WORD) {
+    sema_report_unknown(S, scope, v.word, v.loc, "name");
+    return val_error();
+  }
+  if ((v.kind == VAL_NUM || v.kind == VAL_VEC) && dim_is_none(v.dim)) {
+    diag_error(v.loc, "'%s' is an angle: write its unit (deg or rad), e.g. %s", key, example);
+    return val_error();
+  }
+  char what[64];
+  snprintf(what, sizeof what, "'%s'", key);
+  return sema_expect_value(S, v, n, DIM_ANGLE, ast_strdup(S->a, what, strlen(what)));
+}
+
+/* A scene rod's tangent at t = 0 (rods start straight along 'direction'). */
+static int rod_tangent(const swScene *sc, int rod, double t[3]) {
+  const swValue *d = &sc->rod[rod].direction;
+  if (d->kind != VAL_VEC || d->n != 3) return 0;
+  double len = sqrt(d->v[0] * d->v[0] + d->v[1] * d->v[1] + d->v[2] * d->v[2]);
+  if (!(len > 0)) return 0;
+  for (int k = 0; k < 3; k++) t[k] = d->v[k] / len;
+  return 1;
+}
+
+/* The hinge angle at t = 0 (the runtime's convention, joint.c): between two
+ * rods, from rod a's tangent to rod b's about the axis; anchored, 0.
+ * Returns 0 when a direction is not known here. */
+static int hinge_angle0(const swScene *sc, const swSceneJoint *j, double *angle) {
+  *angle = 0;
+  if (j->rod_b < 0) return 1;
+  double ta[3], tb[3], u[3], c[3];
+  if (!rod_tangent(sc, j->rod_a, ta) || !rod_tangent(sc, j->rod_b, tb)) return 0;
+  double len = sqrt(j->axis.v[0] * j->axis.v[0] + j->axis.v[1] * j->axis.v[1] +
+                    j->axis.v[2] * j->axis.v[2]);
+  for (int k = 0; k < 3; k++) u[k] = j->axis.v[k] / len;
+  c[0] = ta[1] * tb[2] - ta[2] * tb[1];
+  c[1] = ta[2] * tb[0] - ta[0] * tb[2];
+  c[2] = ta[0] * tb[1] - ta[1] * tb[0];
+  double tu_a = ta[0] * u[0] + ta[1] * u[1] + ta[2] * u[2];
+  double tu_b = tb[0] * u[0] + tb[1] * u[1] + tb[2] * u[2];
+  *angle = atan2(u[0] * c[0] + u[1] * c[1] + u[2] * c[2],
+                 ta[0] * tb[0] + ta[1] * tb[1] + ta[2] * tb[2] - tu_a * tu_b);
+  return 1;
+}
+
+/* range = (lower, upper) on a hinge, cone = ANGLE on a spherical joint,
+ * limit_stiffness and limit_damping (joint.c, "Limits").  Values with params
+ * are checked at the params' defaults (the simulator checks the values it
+ * runs with).  Returns 0 after an error. */
+static int joint_limits(swSema *S, swScope *scope, const swFields *f, const swAst *it,
+                        swSceneJoint *j, int ends_ok) {
+  static const swDim kR = {{1, 2, -2, -1}}, kRD = {{1, 2, -1, -1}};
+  const char *kind = joint_kinds[j->kind];
+  const swAst *range = sema_field(f, "range"), *cone = sema_field(f, "cone");
+  int ok = 1;
+  char lo[32], hi[32], a0[32];
+  j->angle_min = j->angle_max = j->cone = val_error();
+  if (range && j->kind != SW_JOINT_HINGE) {
+    diag_error(range->loc, "'range' limits a hinge's angle, and joint '%s' is a %s joint%s",
+               it->name, kind, j->kind == SW_JOINT_SPHERICAL ? " (its limit is a 'cone')" : "");
+    ok = 0;
+  } else if (range) {
+    swValue r = angle_field(S, scope, f, "range", 2, "range = (-150 deg, 0 deg);");
+    if (r.kind == VAL_ERROR) {
+      ok = 0;
+    } else {
+      swValue c0 = r, c1 = r;
+      c0.kind = c1.kind = VAL_NUM;
+      c0.n = c1.n = 1;
+      c1.v = r.v + 1;
+      if (r.c) c1.c = r.c + 1;
+      if (!(r.v[0] < r.v[1])) {
+        diag_error(r.loc, "joint '%s': a range is (lower, upper) with lower < upper, got (%s, %s)",
+                   it->name, deg_text(lo, sizeof lo, r.v[0]), deg_text(hi, sizeof hi, r.v[1]));
+        ok = 0;
+      } else {
+        j->has_range = 1;
+        j->angle_min = c0;
+        j->angle_max = c1;
+        double angle0;
+        if (ends_ok && j->axis.kind == VAL_VEC && hinge_angle0(S->scene, j, &angle0) &&
+            (angle0 < r.v[0] || angle0 > r.v[1])) {
+          diag_error(r.loc, "joint '%s': its hinge angle at t = 0 is %s, outside its range (%s, %s): "
+                     "the limit would throw the joint on the first step; widen the range or "
+                     "start the rods inside it", it->name, deg_text(a0, sizeof a0, angle0),
+                     deg_text(lo, sizeof lo, r.v[0]), deg_text(hi, sizeof hi, r.v[1]));
+          ok = 0;
+        }
+      }
+    }
+  }
+  if (cone && j->kind != SW_JOINT_SPHERICAL) {
+    diag_error(cone->loc, "'cone' limits a spherical joint's swing, and joint '%s' is a %s%s",
+               it->name, j->kind == SW_JOINT_HINGE ? "hinge" : "fixed joint",
+               j->kind == SW_JOINT_HINGE ? " (its limit is a 'range')" : "");
+    ok = 0;
+  } else if (cone) {
+    swValue c = angle_field(S, scope, f, "cone", 1, "cone = 60 deg;");
+    if (c.kind == VAL_ERROR) {
+      ok = 0;
+    } else if (!(c.v[0] > 0 && c.v[0] < M_PI)) {
+      diag_error(c.loc, "joint '%s': 'cone' is the largest swing, between 0 and 180 deg "
+                 "(both excluded), got %s", it->name, deg_text(a0, sizeof a0, c.v[0]));
+      ok = 0;
+    } else {
+      j->cone = c;
+    }
+  }
+  const int limited = range || cone;
+  j->limit_stiffness = sema_field(f, "limit_stiffness")
+                       ? sema_field_value(S, scope, f, "limit_stiffness", 1, kR) : val_error();
+  j->limit_damping = sema_field(f, "limit_damping")
+                     ? sema_field_value(S, scope, f, "limit_damping", 1, kRD) : val_error();
+  const swValue *coef[] = {&j->limit_stiffness, &j->limit_damping};
+  const char *coef_key[] = {"limit_stiffness", "limit_damping"};
+  for (int i = 0; i < 2; i++) {
+    if (!sema_field(f, coef_key[i])) continue;
+    if (coef[i]->kind == VAL_ERROR) {
+      ok = 0;
+    } else if (coef[i]->v[0] < 0) {
+      diag_error(coef[i]->loc, "joint '%s': '%s' must not be negative", it->name, coef_key[i]);
+      ok = 0;
+    } else if (!limited) {
+      diag_warning(sema_field(f, coef_key[i])->loc, "'%s' has no effect without a 'range' or "
+                   "a 'cone'", coef_key[i]);
+    }
+  }
+  if (j->undamped && j->limit_damping.kind == VAL_NUM && j->limit_damping.v[0] != 0) {
+    diag_error(j->limit_damping.loc, "joint '%s' has damping = 0 (none) but a limit_damping; "
+               "give both or neither", it->name);
+    ok = 0;
+  }
+  return ok;
 }
 
 void sema_joint(swSema *S, swScope *scope, const swAst *it) {
@@ -124,7 +274,7 @@ void sema_joint(swSema *S, swScope *scope, const swAst *it) {
   swFields f;
   char what[128];
   snprintf(what, sizeof what, "joint '%s'", it->name);
-  sema_fields(S, it, 1, what, joint_keys, 6, &f);
+  sema_fields(S, it, 1, what, joint_keys, NJOINT_KEYS, &f);
   if (ok && !joint_gap_ok(S, scope, &f, it, &a, &b)) ok = 0; /* after the ends are sound */
   swLoc loc = it->loc;
   j.axis = sema_field(&f, "axis") ? sema_field_value(S, scope, &f, "axis", 3, DIM_NONE)
@@ -170,6 +320,7 @@ void sema_joint(swSema *S, swScope *scope, const swAst *it) {
       ok = 0;
     }
   }
+  if (!joint_limits(S, scope, &f, it, &j, ok && a.kind == VAL_POINT)) ok = 0;
   if (!ok || a.kind != VAL_POINT) return;
   swScene *sc = S->scene;
   if (sc->njoint == sc->capjoint) {

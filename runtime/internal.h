@@ -152,6 +152,14 @@ void sw_joint_rows(const swModel *m, swData *d);  /* each joint's loads, from th
 void sw_joint_apply(const swModel *m, swData *d); /* the rows into this thread's slots */
 void sw_joint_measure(const swModel *m, swData *d, int j);
 double sw_joint_energy(const swModel *m, const swData *d);
+/* Limits (joint.c, "Limits"): whether joint j has one; the stiffness and
+ * damping that bound its elements' rotation (the larger of the joint's own
+ * and its limit's, which act about different directions); the direction g
+ * of a limit in violation, for rigid_joint.c's tangent (0: inside). */
+int sw_joint_limited(const swJointDesc *jd);
+double sw_joint_rot_bound_stiffness(const swJointDesc *jd);
+double sw_joint_rot_bound_damping(const swJointDesc *jd);
+int sw_joint_limit_tangent(const swModel *m, const swData *d, int j, double *g);
 /* Muscles (muscle.c).  The swSpec keeps its muscles in an opaque list that
  * muscle.c owns (sw_spec_muscles gives its slot; model.c frees it with
  * sw_muscle_spec_free); sw_muscle_setup fills the model's muscle and filament

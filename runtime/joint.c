@@ -23,7 +23,7 @@
  *     from there to Q_b (lab components Phi = Q_b^T phi; vec.h):
  *     U = k_t |phi|^2 / 2,  C_b = -k_t Phi,  C_a = k_t Phi,
  *     plus  C_a = c_t (w_b - w_a).  Anchored: Q_b* = Q_a(t = 0), C_a = -k_t Phi.
- *   spherical: position only.
+ *   spherical: position only (and its cone, below).
  * The couples are exact gradients of U (for the fixed joint because the
  * rotation vector of exp(phi) is its own gradient, J(phi)^T phi = phi), and
  * they come in equal and opposite pairs, so an undamped jointed system
@@ -47,6 +47,38 @@
  * element b with respect to element a about the axis since then; anchored,
  * the rotation of rod a's element about the axis since t = 0.  It is unwrapped
  * from evaluation to evaluation, so it is continuous past +-pi.
+ *
+ * Limits.  A hinge may have an angle range [angle_min, angle_max] and a
+ * spherical joint a cone (the largest swing); outside them a one-sided
+ * penalty couple pushes back, as a contact does (MuJoCo's joint limits and
+ * OpenSim's coordinate limit forces are of this kind).  Each limit measures a
+ * coordinate q whose rate is a projection of the relative angular velocity,
+ *   dq = (dalpha_F - dalpha_M) . g,
+ * F the side carrying the reference (rod a; space when anchored) and M the
+ * side that moves against it (rod b; rod a when anchored), dalpha their
+ * small rotations (lab):
+ *   hinge: e1, e2 = u x e1 carried by F (e1 normal to the axis u at t = 0),
+ *     r carried by M (= e1 at t = 0); x = e1 . r, y = e2 . r,
+ *     q = angle0 + atan2(y, x) (unwrapped against the hinge angle),
+ *     g = (x e2 - y e1) x r / (x^2 + y^2);
+ *     turning M by +dphi about u gives dq = +dphi (g = -u when r lies in
+ *     the plane), so q is the hinge angle above; the two differ only by the
+ *     square of the hinge's small off-axis misalignment.
+ *   cone: r carried by F (rod b's tangent at t = 0, or rod a's when
+ *     anchored), t the tangent of M's element;
+ *     q = psi = atan2(|t x r|, t . r),  g = (t x r) / |t x r|.
+ * With the violation delta = q - q_max above the upper bound, q - q_min below
+ * the lower (the cone's lower bound is none), 0 inside,
+ *   U = k_l delta^2 / 2,  generalised force f = -k_l delta - c_l dq/dt,
+ *   couple on F  C_F = f g,  on M  C_M = -f g,
+ * the spring part the exact gradient of U (equal and opposite), the damping
+ * part acting only while delta != 0.  f is clipped so that it never pulls
+ * the joint further into the limit (f <= 0 above, >= 0 below: the contact
+ * does not stick); the clipped damping still only takes energy out.  The
+ * spring part is bookkept like the other springs (U into the elastic
+ * energy), the damping part like the other dampers (into ext_torque).  The
+ * limit's couple on rod a (its spring and damping parts; the one on rod b
+ * is its opposite) is d->joint_limit_torque, /joints/NAME/limit_torque.
  *
  * Defaults (0 in swJointDesc means "choose"; the compiled model->joint holds
  * what was chosen).  The penalty has to be stiff enough that the gap stays a
@@ -74,6 +106,13 @@
  *         frequencies (position Verlet: h w < 2 undamped, < 0.83 at critical),
  *         so critical damping would cost up to half the step; a tenth still
  *         damps a gap oscillation by e^-0.63 per period.
+ *   k_l = k_t for a hinge's range (the joint's own rotational stiffness, as
+ *         given or chosen), min(EI) / D for a spherical joint's cone (what
+ *         k_t would be): the same stiffness about the axis as across it, so
+ *         the element's rotation bound in stability.c, which takes the larger
+ *         of k_t and k_l, does not change by default, and the overshoot under
+ *         a couple tau is tau / k_l, the bend of the Voronoi domain the joint
+ *         stands in for.  c_l = 0.1 * 2 sqrt(k_l J_mu), as c_t.
  */
 #include <math.h>
 #include <string.h>
@@ -107,6 +146,61 @@ static int joint_element(const swModel *m, int r, int i) {
   return m->elem_adr[r] + (i < n ? i : n - 1);
 }
 
+int sw_joint_limited(const swJointDesc *jd) {
+  return (jd->kind == SW_JOINT_HINGE && jd->has_range) ||
+         (jd->kind == SW_JOINT_SPHERICAL && jd->cone > 0);
+}
+
+/* Whether the joint exchanges couples (rows ROW_CA..ROW_CDB). */
+static int has_couples(const swJointDesc *jd) {
+  return jd->kind != SW_JOINT_SPHERICAL || sw_joint_limited(jd);
+}
+
+/* The limits' reference directions (the top of the file), ref = 9 doubles:
+ *   hinge, two rods:  e1, e2 in rod a's material frame, r = e1 in rod b's;
+ *   hinge, anchored:  e1, e2 in the lab, r = e1 in rod a's material frame;
+ *   cone, two rods:   rod b's tangent at t = 0 in rod a's material frame;
+ *   cone, anchored:   rod a's tangent at t = 0 in the lab.
+ * e1 is rod a's tangent without its part along the axis (any normal to the
+ * axis when the tangent lies along it; q does not depend on the choice). */
+static void limit_setup(swModel *m, int j, const double *Qa0, const double *Qb0) {
+  const swJointDesc *jd = &m->joint[j];
+  double *ref = m->joint_limit_ref + 9 * j;
+  memset(ref, 0, 9 * sizeof *ref);
+  if (!sw_joint_limited(jd)) return;
+  if (jd->kind == SW_JOINT_SPHERICAL) {
+    if (Qb0) sw_mat_vec(ref, Qa0, Qb0 + 6);
+    else memcpy(ref, Qa0 + 6, 3 * sizeof *ref);
+    return;
+  }
+  double u[3], e1[3], e2[3];
+  sw_v3_scale(u, jd->axis, 1.0 / sw_v3_norm(jd->axis));
+  const double *ta = Qa0 + 6;
+  for (int k = 0; k < 3; k++) e1[k] = ta[k] - sw_v3_dot(ta, u) * u[k];
+  if (sw_v3_norm(e1) < 1e-6) { /* tangent along the axis: any normal */
+    const double x[3] = {1, 0, 0}, y[3] = {0, 1, 0};
+    sw_v3_cross(e1, u, fabs(u[0]) < 0.9 ? x : y);
+  }
+  sw_v3_scale(e1, e1, 1.0 / sw_v3_norm(e1));
+  sw_v3_cross(e2, u, e1);
+  if (Qb0) {
+    sw_mat_vec(ref, Qa0, e1);
+    sw_mat_vec(ref + 3, Qa0, e2);
+    sw_mat_vec(ref + 6, Qb0, e1);
+  } else {
+    memcpy(ref, e1, sizeof e1);
+    memcpy(ref + 3, e2, sizeof e2);
+    sw_mat_vec(ref + 6, Qa0, e1);
+  }
+}
+
+double sw_joint_rot_bound_stiffness(const swJointDesc *jd) {
+  return fmax(jd->rot_stiffness, jd->limit_stiffness);
+}
+double sw_joint_rot_bound_damping(const swJointDesc *jd) {
+  return fmax(jd->rot_damping, jd->limit_damping);
+}
+
 void sw_joint_setup(swModel *m) {
   for (int j = 0; j < m->njoint; j++) {
     swJointDesc *jd = &m->joint[j];
@@ -135,17 +229,25 @@ void sw_joint_setup(swModel *m) {
     if (jd->stiffness == 0) jd->stiffness = 0.5 * axial;
     if (jd->damping == 0 && !jd->undamped)
       jd->damping = SW_JOINT_ZETA * 2.0 * sqrt(jd->stiffness * mu);
+    double bend = anchored ? SW_AT(m, m->clamp_bend, ea, 0)
+                           : fmin(SW_AT(m, m->clamp_bend, ea, 0), SW_AT(m, m->clamp_bend, eb, 0));
+    double D = 0.5 * m->rest_len[ea] + (anchored ? 0.0 : 0.5 * m->rest_len[eb]);
+    double Ja = SW_AT(m, m->inertia, ea, 0);
+    double Jmu = anchored ? Ja : Ja * SW_AT(m, m->inertia, eb, 0) / (Ja + SW_AT(m, m->inertia, eb, 0));
     if (jd->kind == SW_JOINT_SPHERICAL) {
       jd->rot_stiffness = jd->rot_damping = 0;
     } else {
-      double bend = anchored ? SW_AT(m, m->clamp_bend, ea, 0)
-                             : fmin(SW_AT(m, m->clamp_bend, ea, 0), SW_AT(m, m->clamp_bend, eb, 0));
-      double D = 0.5 * m->rest_len[ea] + (anchored ? 0.0 : 0.5 * m->rest_len[eb]);
-      double Ja = SW_AT(m, m->inertia, ea, 0);
-      double Jmu = anchored ? Ja : Ja * SW_AT(m, m->inertia, eb, 0) / (Ja + SW_AT(m, m->inertia, eb, 0));
       if (jd->rot_stiffness == 0) jd->rot_stiffness = bend / D;
       if (jd->rot_damping == 0 && !jd->undamped)
         jd->rot_damping = SW_JOINT_ZETA * 2.0 * sqrt(jd->rot_stiffness * Jmu);
+    }
+    if (sw_joint_limited(jd)) {
+      if (jd->limit_stiffness == 0)
+        jd->limit_stiffness = jd->kind == SW_JOINT_HINGE ? jd->rot_stiffness : bend / D;
+      if (jd->limit_damping == 0 && !jd->undamped)
+        jd->limit_damping = SW_JOINT_ZETA * 2.0 * sqrt(jd->limit_stiffness * Jmu);
+    } else {
+      jd->limit_stiffness = jd->limit_damping = 0;
     }
 
     /* rest geometry */
@@ -176,7 +278,13 @@ void sw_joint_setup(swModel *m) {
             atan2(sw_v3_dot(u, c), sw_v3_dot(ta, tb) - sw_v3_dot(ta, u) * sw_v3_dot(tb, u));
       }
     }
+    limit_setup(m, j, Qa0, anchored ? NULL : Qb0);
   }
+}
+
+/* The continuous branch of an angle known modulo 2 pi, nearest to prev. */
+static double unwrap(double angle, double prev) {
+  return angle + 2.0 * SW_PI * nearbyint((prev - angle) / (2.0 * SW_PI));
 }
 
 /* One joint in the current state: loads on side a (side b gets minus), lab. */
@@ -187,7 +295,90 @@ typedef struct {
   double couple_damp[3]; /* damping couple on element a                     */
   double energy;         /* stored in the springs, J                        */
   double angle;          /* hinge angle, not unwrapped (0 for other kinds)  */
+  double limit[3];       /* the limit's couple on element a (in the above)  */
 } swJointEval;
+
+/* The limit's coordinate q, its direction g (dq = (dalpha_F - dalpha_M) . g)
+ * and the sign of rod a's side (+1: rod a is F), from the current frames
+ * (the top of the file); returns 0 if g is undefined (the reference and the
+ * moving direction parallel, or for a hinge the moving one along the axis). */
+static int limit_coordinate(const swModel *m, const swData *d, int j, const double *Qa,
+                            const double *Qb, double *q, double *g, double *sign_a) {
+  const swJointDesc *jd = &m->joint[j];
+  const double *ref = m->joint_limit_ref + 9 * j;
+  *sign_a = Qb ? 1.0 : -1.0;
+  if (jd->kind == SW_JOINT_SPHERICAL) {
+    double r[3], t[3], c[3];
+    if (Qb) {
+      sw_matT_vec(r, Qa, ref);
+      memcpy(t, Qb + 6, sizeof t);
+    } else {
+      memcpy(r, ref, sizeof r);
+      memcpy(t, Qa + 6, sizeof t);
+    }
+    sw_v3_cross(c, t, r);
+    const double s = sw_v3_norm(c);
+    *q = atan2(s, sw_v3_dot(t, r));
+    if (!(s > 1e-12)) return 0;
+    sw_v3_scale(g, c, 1.0 / s);
+    return 1;
+  }
+  double e1[3], e2[3], r[3], w[3];
+  if (Qb) {
+    sw_matT_vec(e1, Qa, ref);
+    sw_matT_vec(e2, Qa, ref + 3);
+    sw_matT_vec(r, Qb, ref + 6);
+  } else {
+    memcpy(e1, ref, sizeof e1);
+    memcpy(e2, ref + 3, sizeof e2);
+    sw_matT_vec(r, Qa, ref + 6);
+  }
+  const double x = sw_v3_dot(e1, r), y = sw_v3_dot(e2, r), rho2 = x * x + y * y;
+  if (!(rho2 > 1e-12)) return 0;
+  *q = unwrap(m->joint_angle0[j] + atan2(y, x), d->joint_angle[j]);
+  for (int k = 0; k < 3; k++) w[k] = (x * e2[k] - y * e1[k]) / rho2;
+  sw_v3_cross(g, w, r);
+  return 1;
+}
+
+/* The limit's couple (the top of the file) into o: spring and damping parts
+ * on element a, the energy, and the whole in o->limit.  dw = w_b - w_a. */
+static void limit_eval(const swModel *m, const swData *d, int j, const double *Qa,
+                       const double *Qb, const double *dw, swJointEval *o) {
+  const swJointDesc *jd = &m->joint[j];
+  double q, g[3], sign_a;
+  if (!limit_coordinate(m, d, j, Qa, Qb, &q, g, &sign_a)) return;
+  const double lo = jd->kind == SW_JOINT_HINGE ? jd->angle_min : -INFINITY;
+  const double hi = jd->kind == SW_JOINT_HINGE ? jd->angle_max : jd->cone;
+  const double delta = q > hi ? q - hi : q < lo ? q - lo : 0.0;
+  if (delta == 0) return;
+  /* dq/dt = (w_F - w_M) . g = -sign_a (w_b - w_a) . g (anchored, w_b = 0) */
+  const double rate = -sign_a * sw_v3_dot(dw, g);
+  const double spring = -jd->limit_stiffness * delta;
+  double f = spring - jd->limit_damping * rate;
+  f = delta > 0 ? fmin(f, 0.0) : fmax(f, 0.0); /* never pulls into the limit */
+  for (int k = 0; k < 3; k++) {
+    o->couple[k] += sign_a * spring * g[k];
+    o->couple_damp[k] += sign_a * (f - spring) * g[k];
+    o->limit[k] = sign_a * f * g[k];
+  }
+  o->energy += 0.5 * jd->limit_stiffness * delta * delta;
+}
+
+/* A limit's direction for rigid_joint.c's tangent: 1 and g when joint j is
+ * outside its limits ((w_b - w_a) . g is the rate of q up to sign), 0
+ * otherwise. */
+int sw_joint_limit_tangent(const swModel *m, const swData *d, int j, double *g) {
+  if (!sw_joint_limited(&m->joint[j])) return 0;
+  const int ea = m->joint_elem_a[j], eb = m->joint_elem_b[j];
+  double Qa[9], Qb[9], q, sign_a;
+  sw_getQ(m, d->Q, ea, Qa);
+  if (eb >= 0) sw_getQ(m, d->Q, eb, Qb);
+  if (!limit_coordinate(m, d, j, Qa, eb >= 0 ? Qb : NULL, &q, g, &sign_a)) return 0;
+  const swJointDesc *jd = &m->joint[j];
+  if (jd->kind == SW_JOINT_HINGE) return q > jd->angle_max || q < jd->angle_min;
+  return q > jd->cone;
+}
 
 static void joint_eval(const swModel *m, const swData *d, int j, swJointEval *o) {
   const swJointDesc *jd = &m->joint[j];
@@ -213,7 +404,7 @@ static void joint_eval(const swModel *m, const swData *d, int j, swJointEval *o)
   sw_v3_scale(o->force, g, jd->stiffness);
   sw_v3_scale(o->force_damp, dv, jd->damping);
   o->energy = 0.5 * jd->stiffness * sw_v3_dot(g, g);
-  if (jd->kind == SW_JOINT_SPHERICAL) return;
+  if (!has_couples(jd)) return;
 
   /* relative angular velocity w_b - w_a, lab */
   double Qa_[9], Qb_[9], om[3];
@@ -228,6 +419,8 @@ static void joint_eval(const swModel *m, const swData *d, int j, swJointEval *o)
     sw_matT_vec(wb, Qb, om);
   }
   sw_v3_sub(dw, wb, wa);
+  if (sw_joint_limited(jd)) limit_eval(m, d, j, Qa, Qb, dw, o);
+  if (jd->kind == SW_JOINT_SPHERICAL) return;
 
   /* relative rotation Phi (lab) of side b from where it would be had it
    * moved rigidly with side a; anchored, of rod a from its initial frame */
@@ -249,11 +442,12 @@ static void joint_eval(const swModel *m, const swData *d, int j, swJointEval *o)
     sw_matT_vec(aa, Qa, m->joint_axis_a + 3 * j);
     if (Qb) sw_matT_vec(ab, Qb, m->joint_axis_b + 3 * j);
     else memcpy(ab, m->joint_axis_b + 3 * j, sizeof ab);
-    sw_v3_cross(o->couple, aa, ab);
-    sw_v3_scale(o->couple, o->couple, kt);
+    double c[3];
+    sw_v3_cross(c, aa, ab);
+    for (int k = 0; k < 3; k++) o->couple[k] += kt * c[k];
     o->energy += kt * (1.0 - sw_v3_dot(aa, ab));
     double along = sw_v3_dot(dw, aa);
-    for (int k = 0; k < 3; k++) o->couple_damp[k] = ct * (dw[k] - along * aa[k]);
+    for (int k = 0; k < 3; k++) o->couple_damp[k] += ct * (dw[k] - along * aa[k]);
     /* anchored: the rod's rotation about the fixed axis */
     o->angle = m->joint_angle0[j] + sw_v3_dot(Phi, Qb ? aa : ab);
   } else { /* fixed */
@@ -263,13 +457,9 @@ static void joint_eval(const swModel *m, const swData *d, int j, swJointEval *o)
   }
 }
 
-/* The continuous branch of an angle known modulo 2 pi, nearest to prev. */
-static double unwrap(double angle, double prev) {
-  return angle + 2.0 * SW_PI * nearbyint((prev - angle) / (2.0 * SW_PI));
-}
-
 static void record(const swModel *m, swData *d, int j, const swJointEval *o) {
   sw_v3_add(d->joint_force + 3 * j, o->force, o->force_damp);
+  memcpy(d->joint_limit_torque + 3 * j, o->limit, sizeof o->limit);
   d->joint_angle[j] = m->joint[j].kind == SW_JOINT_HINGE ? unwrap(o->angle, d->joint_angle[j]) : 0.0;
 }
 
@@ -290,7 +480,7 @@ static void joint_row(const swModel *m, swData *d, int j, double *row) {
   record(m, d, j, &o);
   sw_v3_add(row + ROW_F, o.force, o.force_damp);
   memcpy(row + ROW_FD, o.force_damp, sizeof o.force_damp);
-  if (m->joint[j].kind == SW_JOINT_SPHERICAL) return;
+  if (!has_couples(&m->joint[j])) return;
   const int ea = m->joint_elem_a[j], eb = m->joint_elem_b[j];
   double c[3], Q[9];
   sw_v3_add(c, o.couple, o.couple_damp);
@@ -320,7 +510,7 @@ static void apply_row(const swModel *m, swData *d, int j, const double *row, int
     add_to(m, d->force, nb, lo, hi, row + ROW_F, -1.0);
     add_to(m, d->ext_force, nb, lo, hi, row + ROW_FD, -1.0);
   }
-  if (m->joint[j].kind == SW_JOINT_SPHERICAL) return;
+  if (!has_couples(&m->joint[j])) return;
   add_to(m, d->torque, ea, lo, hi, row + ROW_CA, 1.0);
   add_to(m, d->ext_torque, ea, lo, hi, row + ROW_CDA, 1.0);
   if (eb >= 0) {

@@ -308,7 +308,7 @@ void sw_model_free(swModel *m) {
   sw_expect_free(m);
   free(m->joint); free(m->joint_name); free(m->joint_node_a); free(m->joint_node_b);
   free(m->joint_elem_a); free(m->joint_elem_b); free(m->joint_axis_a); free(m->joint_axis_b);
-  free(m->joint_rest_rot); free(m->joint_angle0); free(m->joint_wave_dt);
+  free(m->joint_rest_rot); free(m->joint_angle0); free(m->joint_wave_dt); free(m->joint_limit_ref);
   sw_rigid_joints_free(m);
   if (sw_muscle_ops(m)) sw_muscle_ops(m)->free_model(m);
   if (sw_env_ops(m)) sw_env_ops(m)->free_model(m);
@@ -414,6 +414,31 @@ static int check_joint_coef(const swJointDesc *j, double v, const char *what, ch
               j->name, what, v);
 }
 
+/* A joint's limits (joint.c, "Limits"): a range on hinges only, ordered; a
+ * cone on spherical joints only, in (0, pi); their coefficients >= 0. */
+static int check_joint_limits(const swJointDesc *j, char *err, size_t errlen) {
+  const char *nm = j->name, *kind = sw_joint_kind_name(j->kind);
+  if (j->has_range && j->kind != SW_JOINT_HINGE)
+    return sw_fail(err, errlen, "joint '%s': an angle range is for a hinge, not a %s joint", nm,
+                   kind);
+  if (j->has_range && !(isfinite(j->angle_min) && isfinite(j->angle_max) &&
+                        j->angle_min < j->angle_max))
+    return sw_fail(err, errlen, "joint '%s': angle range must be finite with angle_min < "
+                   "angle_max, got [%g, %g] rad", nm, j->angle_min, j->angle_max);
+  if (j->cone != 0 && j->kind != SW_JOINT_SPHERICAL)
+    return sw_fail(err, errlen, "joint '%s': a cone is for a spherical joint, not a %s joint", nm,
+                   kind);
+  if (!(j->cone >= 0 && j->cone < SW_PI))
+    return sw_fail(err, errlen, "joint '%s': cone must be in (0, pi) rad (0 = none), got %g", nm,
+                   j->cone);
+  if (!check_joint_coef(j, j->limit_stiffness, "limit stiffness", err, errlen) ||
+      !check_joint_coef(j, j->limit_damping, "limit damping", err, errlen))
+    return 0;
+  if (j->undamped && j->limit_damping != 0)
+    return sw_fail(err, errlen, "joint '%s': declared undamped but limit damping is given", nm);
+  return 1;
+}
+
 /* Node index of a joint end on rod r: -1 (last) or 0..n. */
 static int check_joint_node(const swSpec *s, const swJointDesc *j, int rod, int node,
                             const char *end, char *err, size_t errlen) {
@@ -461,6 +486,7 @@ static int check_joints(const swSpec *s, char *err, size_t errlen) {
       return 0;
     if (j->undamped && (j->damping != 0 || j->rot_damping != 0))
       return sw_fail(err, errlen, "joint '%s': declared undamped but damping is given", nm);
+    if (!check_joint_limits(j, err, errlen)) return 0;
   }
   return 1;
 }
@@ -697,9 +723,10 @@ swModel *sw_compile(const swSpec *s, char *err, size_t errlen) {
   m->joint_elem_a = calloc(J1, sizeof(int)); m->joint_elem_b = calloc(J1, sizeof(int));
   m->joint_axis_a = dalloc(3 * J); m->joint_axis_b = dalloc(3 * J);
   m->joint_rest_rot = dalloc(9 * J); m->joint_angle0 = dalloc(J); m->joint_wave_dt = dalloc(J);
+  m->joint_limit_ref = dalloc(9 * J);
   if (!m->joint || !m->joint_name || !m->joint_node_a || !m->joint_node_b || !m->joint_elem_a ||
       !m->joint_elem_b || !m->joint_axis_a || !m->joint_axis_b || !m->joint_rest_rot ||
-      !m->joint_angle0 || !m->joint_wave_dt)
+      !m->joint_angle0 || !m->joint_wave_dt || !m->joint_limit_ref)
     goto oom;
   for (int j = 0; j < s->njoint; j++) {
     if (!(m->joint_name[j] = strdup(s->joint[j].name))) goto oom;
@@ -708,6 +735,17 @@ swModel *sw_compile(const swSpec *s, char *err, size_t errlen) {
     m->joint[j].name = m->joint_name[j];
   }
   sw_joint_setup(m);
+  for (int j = 0; j < m->njoint; j++) {
+    const swJointDesc *jd = &m->joint[j];
+    const double a0 = m->joint_angle0[j];
+    if (jd->has_range && (a0 < jd->angle_min || a0 > jd->angle_max)) {
+      sw_fail(err, errlen, "joint '%s': its hinge angle at t = 0 is %g rad, outside its range "
+              "[%g, %g] rad: the limit would throw it on the first step", jd->name, a0,
+              jd->angle_min, jd->angle_max);
+      sw_model_free(m);
+      return NULL;
+    }
+  }
   if (!sw_rigid_joints_setup(m)) goto oom;
   for (int j = 0; j < m->njoint; j++) m->joint_wave_dt[j] = sw_stable_dt_joint(m, j);
   m->muscle_ops = s->muscle_ops;
@@ -736,7 +774,7 @@ void sw_data_free(swData *d) {
   free(d->force); free(d->torque); free(d->ext_force); free(d->ext_torque);
   free(d->scratch_f); free(d->scratch_h); free(d->scratch_flag); free(d->scratch_phi);
   free(d->chunk_sum); free(d->bc_work); free(d->joint_scratch); free(d->team);
-  free(d->joint_force); free(d->joint_angle);
+  free(d->joint_force); free(d->joint_angle); free(d->joint_limit_torque);
   free(d->fil_activation); free(d->fil_stretch); free(d->fil_rate); free(d->fil_tension);
   free(d->rigid_X); free(d->rigid_V); free(d->rigid_R); free(d->rigid_L); free(d->rigid_omega);
   free(d->rigid_load); free(d->rigid_sys);
@@ -766,6 +804,7 @@ swData *sw_data_new(const swModel *m) {
   d->team = aligned_alloc(64, sizeof(swTeam));
   if (d->team) memset(d->team, 0, sizeof(swTeam));
   d->joint_force = dalloc(3 * (size_t)m->njoint); d->joint_angle = dalloc((size_t)m->njoint);
+  d->joint_limit_torque = dalloc(3 * (size_t)m->njoint);
   size_t F = (size_t)m->nfil;
   d->fil_activation = dalloc(F); d->fil_stretch = dalloc(F); d->fil_rate = dalloc(F);
   d->fil_tension = dalloc(F);
@@ -773,7 +812,7 @@ swData *sw_data_new(const swModel *m) {
       !d->sigma || !d->stress || !d->vor_dilatation || !d->kappa ||
       !d->couple || !d->force || !d->torque || !d->ext_force || !d->ext_torque ||
       !d->scratch_f || !d->scratch_h || !d->scratch_flag || !d->scratch_phi ||
-      !d->chunk_sum || !d->bc_work || !d->joint_scratch || !d->team || !d->joint_force || !d->joint_angle || !d->fil_activation || !d->fil_stretch ||
+      !d->chunk_sum || !d->bc_work || !d->joint_scratch || !d->team || !d->joint_force || !d->joint_angle || !d->joint_limit_torque || !d->fil_activation || !d->fil_stretch ||
       !d->fil_rate || !d->fil_tension) {
     sw_data_free(d);
     return NULL;

@@ -134,6 +134,11 @@ static void fill_joint_force(const swModel *m, swData *d, int joint, double *fra
   memcpy(frame, d->joint_force + 3 * (size_t)joint, 3 * sizeof *frame);
 }
 
+static void fill_joint_limit_torque(const swModel *m, swData *d, int joint, double *frame) {
+  sw_joint_measure(m, d, joint);
+  memcpy(frame, d->joint_limit_torque + 3 * (size_t)joint, 3 * sizeof *frame);
+}
+
 static void fill_joint_angle(const swModel *m, swData *d, int joint, double *frame) {
   sw_joint_measure(m, d, joint);
   frame[0] = d->joint_angle[joint];
@@ -194,6 +199,7 @@ static const swField output_fields[] = {
   {"internal_couple",     SCOPE_ROD,   2, {EXTENT_VORONOI, 3},      "N m",   material_columns, SW_OUT_INTERNAL_COUPLE,  fill_internal_couple},
   {"force",               SCOPE_JOINT, 1, {3},                      "N",     NULL,             SW_OUT_JOINT_FORCE,      fill_joint_force},
   {"angle",               SCOPE_JOINT, 0, {0},                      "rad",   NULL,             SW_OUT_ANGLE,            fill_joint_angle},
+  {"limit_torque",        SCOPE_JOINT, 1, {3},                      "N m",   NULL,             SW_OUT_LIMIT_TORQUE,     fill_joint_limit_torque},
   {"force",               SCOPE_MUSCLE,0, {0},                      "N",     NULL,             SW_OUT_MUSCLE_FORCE,     fill_muscle_force},
   {"stretch",             SCOPE_MUSCLE,0, {0},                      "-",     NULL,             SW_OUT_STRETCH,          fill_muscle_stretch},
   {"activation",          SCOPE_MUSCLE,0, {0},                      "-",     NULL,             SW_OUT_ACTIVATION,       fill_muscle_activation},
@@ -450,6 +456,7 @@ static int item_enabled(const swField *f, const swModel *m, const swOutputOption
                         int k) {
   if (f->bit && !(selected(opt, f->scope, k) & f->bit)) return 0;
   if (f->bit == SW_OUT_ANGLE) return m->joint[k].kind == SW_JOINT_HINGE;
+  if (f->bit == SW_OUT_LIMIT_TORQUE) return sw_joint_limited(&m->joint[k]);
   if (f->bit & SW_OUT_STRAINS) {
     if (m->rod_rigid && m->rod_rigid[k] >= 0) return 0;
     if (f->extent[0] == EXTENT_VORONOI && m->rod_nelem[k] < 2) return 0;
@@ -602,7 +609,7 @@ static int rod_attrs(const swAttrTarget *t, const swModel *m, int r) {
 }
 
 /* A joint: its kind, the rods and nodes it ties (an anchored joint has no
- * rod_b but an anchor), the hinge's axis and its stiffnesses. */
+ * rod_b but an anchor), the hinge's axis, its stiffnesses and its limits. */
 static int joint_attrs(const swAttrTarget *t, const swModel *m, int j) {
   const swJointDesc *jd = &m->joint[j];
   int rc = attr_string(t, "kind", sw_joint_kind_name(jd->kind));
@@ -620,6 +627,16 @@ static int joint_attrs(const swAttrTarget *t, const swModel *m, int j) {
   if (rc == SW_OK) rc = attr_quantity(t, "stiffness", &jd->stiffness, 1, "N/m");
   if (rc == SW_OK && jd->kind != SW_JOINT_SPHERICAL)
     rc = attr_quantity(t, "rot_stiffness", &jd->rot_stiffness, 1, "N m/rad");
+  if (rc == SW_OK && jd->kind == SW_JOINT_HINGE && jd->has_range) {
+    rc = attr_quantity(t, "angle_min", &jd->angle_min, 1, "rad");
+    if (rc == SW_OK) rc = attr_quantity(t, "angle_max", &jd->angle_max, 1, "rad");
+  }
+  if (rc == SW_OK && jd->kind == SW_JOINT_SPHERICAL && jd->cone > 0)
+    rc = attr_quantity(t, "cone", &jd->cone, 1, "rad");
+  if (rc == SW_OK && sw_joint_limited(jd)) {
+    rc = attr_quantity(t, "limit_stiffness", &jd->limit_stiffness, 1, "N m/rad");
+    if (rc == SW_OK) rc = attr_quantity(t, "limit_damping", &jd->limit_damping, 1, "N m s/rad");
+  }
   return rc;
 }
 

@@ -500,9 +500,9 @@ double sw_rigid_joint_dt(const swModel *m, int b) {
       double mob = node_mobility(m, b, node);
       w2 += s * jd->stiffness * mob;
       c += s * jd->damping * mob;
-      if (jd->kind != SW_JOINT_SPHERICAL) {
-        w2 += s * jd->rot_stiffness / Imin;
-        c += s * jd->rot_damping / Imin;
+      if (jd->kind != SW_JOINT_SPHERICAL || sw_joint_limited(jd)) { /* with its limit */
+        w2 += s * sw_joint_rot_bound_stiffness(jd) / Imin;
+        c += s * sw_joint_rot_bound_damping(jd) / Imin;
       }
     }
   }

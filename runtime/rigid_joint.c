@@ -24,7 +24,14 @@
  *     K += k J^T J,  C += nu J^T J (signed blocks for the two sides);
  *   hinge (k_t about the two directions normal to the axis a) and fixed
  *   (about all three), relative rotation rate w_b - w_a:
- *     K += k_t P,  C += c_t P,  P = I - a a^T (hinge) or I (fixed).
+ *     K += k_t P,  C += c_t P,  P = I - a a^T (hinge) or I (fixed);
+ *   a limit outside its range (joint.c, "Limits"), its coordinate's rate
+ *   -/+ (w_b - w_a) . g:  K += k_l g g^T,  C += c_l g g^T, so a stiff limit
+ *   is implicit too (its state at the kick's midpoint decides whether it
+ *   is in the system, as the joint's loads are evaluated there).  Because
+ *   contact switches on and off there, a limit still bounds the step
+ *   (stability.c, implicit_limit_dt); the tangent keeps a resting contact
+ *   converging up to that bound.
  * The system couples the bodies the joints connect; it is symmetric
  * positive definite, 6 unknowns per body, and is solved by a dense
  * Cholesky factorisation each kick (a chain of 10 bones: 60 unknowns, about
@@ -191,13 +198,17 @@ int sw_rigid_joints_kick(const swModel *m, swData *d, double h, double *load) {
     const double wpos = 0.25 * h * h * jd->stiffness + 0.5 * h * jd->damping;
     const double wrot = jd->kind == SW_JOINT_SPHERICAL
                             ? 0.0 : 0.25 * h * h * jd->rot_stiffness + 0.5 * h * jd->rot_damping;
-    double Jp[2][18], Jr[2][18];
+    double Jp[2][18], Jr[2][18], Jl[18] = {0}, g[3] = {0, 0, 0};
     for (int side = 0; side < 2; side++) {
       if (body[side] < 0) continue;
       double r[3];
       lever(m, d, body[side], node[side], r);
       side_maps(r, P, Jp[side], Jr[side]);
     }
+    /* the limit's rate map, one row [0, g^T], the same on both sides */
+    const double wlim = sw_joint_limit_tangent(m, d, j, g)
+                            ? 0.25 * h * h * jd->limit_stiffness + 0.5 * h * jd->limit_damping : 0.0;
+    for (int k = 0; k < 3; k++) Jl[3 + k] = g[k];
     for (int s = 0; s < 2; s++)
       for (int t = 0; t < 2; t++) {
         if (body[s] < 0 || body[t] < 0) continue;
@@ -205,6 +216,7 @@ int sw_rigid_joints_kick(const swModel *m, swData *d, double h, double *load) {
         const int bs = m->rigid_block[body[s]], bt = m->rigid_block[body[t]];
         add_block(A, n, bs, bt, sign * wpos, Jp[s], Jp[t]);
         if (wrot > 0) add_block(A, n, bs, bt, sign * wrot, Jr[s], Jr[t]);
+        if (wlim > 0) add_block(A, n, bs, bt, sign * wlim, Jl, Jl);
       }
   }
   if (!cholesky_solve(A, n, rhs)) return 0;

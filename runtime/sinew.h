@@ -196,9 +196,19 @@ typedef struct {
   double rot_damping;       /* N m s / rad                                  */
   int undamped;             /* 1: no damping at all (damping, rot_damping   */
                             /* must then be 0; 0 otherwise means "choose")  */
+  /* limits (joint.c, "Limits"): a one-sided penalty couple outside them   */
+  int has_range;            /* 1: the hinge angle is held in the range      */
+  double angle_min, angle_max; /* rad, hinge angle (its convention, joint.c) */
+  double cone;              /* rad, spherical: largest swing of rod b's     */
+                            /* tangent from its t = 0 direction relative to */
+                            /* rod a (anchored: rod a's tangent from its    */
+                            /* t = 0 direction); 0 = no cone, < pi          */
+  double limit_stiffness;   /* k_l, N m / rad; 0 = choose                   */
+  double limit_damping;     /* c_l, N m s / rad; 0 = choose                 */
 } swJointDesc;
 /* sw_joint_desc_init: spherical, rod_a 0 node -1 to anchor (0,0,0) (rod_b -1,
- * node_b 0), and 0 for stiffness, damping, rot_stiffness and rot_damping,
+ * node_b 0), no limits, and 0 for stiffness, damping, rot_stiffness,
+ * rot_damping, limit_stiffness and limit_damping,
  * which sw_compile replaces by values derived from the connected elements
  * (joint.c explains them; the compiled model->joint holds the values used). */
 void sw_joint_desc_init(swJointDesc *j);    /* fills defaults */
@@ -498,6 +508,8 @@ typedef struct {
   double *joint_axis_b;      /* (njoint*3) of elem b; lab frame when anchored */
   double *joint_rest_rot;    /* (njoint*9) Q_b Q_a^T at t = 0 (two rods)      */
   double *joint_angle0;      /* (njoint)   hinge angle at t = 0, rad         */
+  double *joint_limit_ref;   /* (njoint*9) the limits' reference directions
+                                           (joint.c, "Limits")               */
   double *joint_wave_dt;     /* (njoint)   stable dt estimate of each joint  */
   int *joint_implicit;       /* (njoint)   1: between rigid bodies, linearly
                                            implicit (SW_IMEX, rigid_joint.c) */
@@ -647,6 +659,8 @@ typedef struct {
   /* joints, updated with each force evaluation */
   double *joint_force;       /* (njoint*3) force of the joint on rod a, lab, N */
   double *joint_angle;       /* (njoint)  hinge angle, rad (0 for others)     */
+  double *joint_limit_torque; /* (njoint*3) the limit's couple on rod a's
+                                 element, lab, N m (0 inside the limits)     */
   /* rigid bodies (rigid.c), the state the nodes and elements of a rigid rod
    * are set from after every drift and kick */
   double *rigid_X;           /* (nrigid*3) centre of mass, lab, m              */
@@ -786,6 +800,7 @@ enum {
   /* joints */
   SW_OUT_ANGLE = 1u << 8,            /* /joints/NAME/angle (hinges)  [F] rad         */
   SW_OUT_JOINT_FORCE = 1u << 9,      /* force                        [F, 3] N        */
+  SW_OUT_LIMIT_TORQUE = 1u << 14,    /* limit_torque (limited joints) [F, 3] N m     */
   /* muscles */
   SW_OUT_MUSCLE_FORCE = 1u << 10,    /* /muscles/NAME/force          [F] N           */
   SW_OUT_STRETCH = 1u << 11,         /* stretch                      [F]             */
