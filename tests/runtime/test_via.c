@@ -199,8 +199,10 @@ static void test_sliding(void **state) {
   fprintf(stderr, "#   material at the ring %.2f mm from the uniform stretch's (%.2f elements)\n",
           1e3 * (S_c - S_ref), (S_c - S_ref) / m->rest_len[n0]);
   assert_true(dist(S, P) - S_c > m->rest_len[n0]); /* it slid past a node */
+  /* |F| / k is the gap's part normal to the tangent; |c - p| also has the
+   * part along it, which the ring does not hold (a few % of the gap) */
   SW_EXPECT_REL("contact gap |c - p| k / |F|", dist(d->ring_row + 5, P) * m->ring_stiffness[0] /
-                norm3(d->ring_row + 2), 1.0, 1e-2);
+                norm3(d->ring_row + 2), 1.0, 5e-2);
   sw_data_free(d);
   sw_model_free(m);
   sw_spec_free(s);
@@ -290,7 +292,7 @@ static void test_hinge_moment(void **state) {
    * 1e-3 (test_pulley), and the insertion's segment acts at about 2.5
    * times the via point's arm, so 1e-3 of T there moves M by 2.5e-3 */
   SW_EXPECT_REL("moment about the hinge / (T r_via)", fabs(My) / (T * r_via), 1.0, 5e-3);
-  assert_true(fabs(r_via - r_straight) > 0.3 * r_straight);
+  assert_true(fabs(r_via - r_straight) > 0.2 * r_straight);
   sw_data_free(d);
   sw_model_free(m);
   sw_spec_free(s);
