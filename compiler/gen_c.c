@@ -178,6 +178,12 @@ static void emit_muscle(FILE *out, swArena *a, const swScene *sc, int mi) {
               gen_rod_id(sc, m->attach_rod[e]), e, m->attach_node[e]);
       rod_comment(out, sc, m->attach_rod[e]);
     }
+  if (m->nvia) fprintf(out, "    muscle.nvia = %d;\n", m->nvia);
+  for (int k = 0; k < m->nvia; k++)
+    if (m->via_rod[k] >= 0) {
+      fprintf(out, "    muscle.via_rod[%d] = %d;", k, gen_rod_id(sc, m->via_rod[k]));
+      rod_comment(out, sc, m->via_rod[k]);
+    }
   gen_assign_fields(out, a, "muscle", f, gen_muscle_fields(m, f));
   if (m->activation) {
     gen_origin(out, m->activation_loc, "    ");

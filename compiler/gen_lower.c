@@ -69,9 +69,13 @@ int gen_muscle_fields(const swSceneMuscle *m, swLowField *out) {
     F(fibre_diameter, 1, &m->fibre_diameter),
     F(attach_stiffness, 1, &m->attach_stiffness),
     F(attach_damping, 1, &m->attach_damping),
+    F(via[0], 3, &m->via[0]), F(via[1], 3, &m->via[1]), F(via[2], 3, &m->via[2]),
+    F(via[3], 3, &m->via[3]), F(via[4], 3, &m->via[4]), F(via[5], 3, &m->via[5]),
+    F(via[6], 3, &m->via[6]), F(via[7], 3, &m->via[7]),
   };
   int n = 0;
-  for (size_t i = 0; i < sizeof f / sizeof f[0]; i++)
+  const size_t nf = sizeof f / sizeof f[0] - (size_t)(SW_MUSCLE_MAX_VIA - m->nvia);
+  for (size_t i = 0; i < nf; i++)
     if (f[i].value->kind == VAL_NUM || f[i].value->kind == VAL_VEC) out[n++] = f[i];
   return n;
 }
@@ -257,6 +261,8 @@ swSpec *gen_spec(const swScene *sc) {
         d.attach_node[e] = m->attach_node[e];
       }
     if (m->activation) d.activation = gen_signal(m->activation);
+    d.nvia = m->nvia;
+    for (int k = 0; k < m->nvia; k++) d.via_rod[k] = gen_rod_id(sc, m->via_rod[k]);
     fill(&d, f, gen_muscle_fields(m, f));
     sw_spec_add_muscle(s, &d);
   }

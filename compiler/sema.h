@@ -140,6 +140,9 @@ typedef struct {
   swDampingKind damping;
   swValue sigma_max, size_ratio, twitch_small, twitch_large, hill_a, v_max, fibre_diameter;
   swValue attach_stiffness, attach_damping;
+  int nvia;                   /* via points (muscle_via.c), in path order    */
+  swValue via[SW_MUSCLE_MAX_VIA];  /* positions at t = 0                     */
+  int via_rod[SW_MUSCLE_MAX_VIA];  /* scene rod index carrying each, -1 space */
   int attach_rod[2];          /* scene rod index tied at from / to, -1 none */
   int attach_node[2];
   swSignalVal *activation;    /* NULL: not activated (the runtime's default) */

@@ -73,9 +73,9 @@ void sema_fields(swSema *S, const swAst *body, int first, const char *what,
       continue;
     }
     if (f->value[k]) {
-      char first[300];
+      char first_at[300];
       diag_error(fl->loc, "field '%s' is given twice (first at %s)", fl->name,
-                 diag_where_from(f->value[k]->loc, fl->loc, first, sizeof first));
+                 diag_where_from(f->value[k]->loc, fl->loc, first_at, sizeof first_at));
       continue;
     }
     f->value[k] = fl;

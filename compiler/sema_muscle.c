@@ -32,7 +32,7 @@ static const char *const muscle_keys[] = {
   "material", "from", "to", "normal", "radius", "filaments", "motor_units", "elements",
   "E", "G", "poisson", "density", "sigma_max", "size_ratio", "twitch_small", "twitch_large",
   "hill_a", "v_max", "fibre_diameter", "attach_stiffness", "attach_damping",
-  "shear_hardening", "twist_hardening", "damping", "damping_model", "variational",
+  "shear_hardening", "twist_hardening", "damping", "damping_model", "variational", "via",
   /* rod fields that a muscle does not take, refused with a reason below */
   "start", "direction", "length", "radius_start", "radius_end",
 };
@@ -43,6 +43,76 @@ void sema_muscle_not_rod(swSema *S, const swSymbol *muscle, swLoc loc) {
   diag_error(loc, "'%s' is a muscle: a bundle of filaments attached by its 'from' and 'to', "
              "with no points of its own; use a point on a rod it is attached to",
              muscle->name);
+}
+
+/* The via points (`via = P;` or `via = (P1, P2, ...);`), each a point on a
+ * rod, that point plus an offset (humerus.at(0.95) + (0, 0, 1) cm: the offset
+ * is taken at t = 0 and the point is carried by that rod), or a position in
+ * space.  Fills m->via, m->via_rod and m->nvia; 0 after an error. */
+static int eval_via(swSema *S, swScope *sc, const swSymbol *sym, const swAst *e,
+                    swSceneMuscle *m) {
+  const swAst *item[SW_MUSCLE_MAX_VIA + 64];
+  int n = 0;
+  /* a list of points, or one point; a vector of numbers is one position */
+  int list = e->kind == AST_VEC && e->nkid > 0;
+  for (int i = 0; list && i < e->nkid; i++) {
+    const swAst *k = e->kid[i];
+    if (k->kind == AST_NUM || k->kind == AST_APPLY || k->kind == AST_NEG) list = 0;
+  }
+  if (list) {
+    if (e->nkid > SW_MUSCLE_MAX_VIA) {
+      diag_error(e->loc, "'via' lists %d points; a muscle takes at most %d via points", e->nkid,
+                 SW_MUSCLE_MAX_VIA);
+      return 0;
+    }
+    for (int i = 0; i < e->nkid; i++) item[n++] = e->kid[i];
+  } else item[n++] = e;
+  int ok = 1;
+  for (int i = 0; i < n; i++) {
+    char what[64];
+    snprintf(what, sizeof what, "via point %d", i + 1);
+    /* the rod: of the point itself, or of the point an offset is added to */
+    const swAst *base = item[i];
+    while (base->kind == AST_BINOP && (base->op == '+' || base->op == '-')) base = base->kid[0];
+    const swAst *owner = base->kind == AST_MEMBER || base->kind == AST_METHOD ? base->kid[0] : NULL;
+    if (owner && owner->kind == AST_NAME && sema_lookup(S, sc, owner->name) == sym) {
+      diag_error(base->loc, "a via point of muscle '%s' cannot be on the muscle itself; put it on "
+                 "a rod the muscle passes (e.g. humerus.at(0.95))", sym->name);
+      ok = 0;
+      continue;
+    }
+    int rod = -1, node = 0;
+    if (base != item[i]) {
+      swValue b = sema_position_on(S, sc, base, what, &rod, &node);
+      if (b.kind == VAL_ERROR) {
+        ok = 0;
+        continue;
+      }
+    }
+    swValue v = sema_position_on(S, sc, item[i], what, base != item[i] ? NULL : &rod, &node);
+    if (v.kind == VAL_ERROR) {
+      ok = 0;
+      continue;
+    }
+    /* coinciding with the point before it (from, or the previous via) */
+    const swValue *prev = i == 0 ? &m->start : &m->via[i - 1];
+    if (prev->kind == VAL_VEC && prev->v[0] == v.v[0] && prev->v[1] == v.v[1] &&
+        prev->v[2] == v.v[2]) {
+      diag_error(item[i]->loc, "via point %d is the same point as %s, so the muscle's path has "
+                 "a segment of no length", i + 1, i == 0 ? "'from'" : "the via point before it");
+      ok = 0;
+    }
+    m->via[i] = v;
+    m->via_rod[i] = rod;
+  }
+  if (ok && m->end.kind == VAL_VEC && m->via[n - 1].kind == VAL_VEC &&
+      !memcmp(m->via[n - 1].v, m->end.v, 3 * sizeof(double))) {
+    diag_error(item[n - 1]->loc, "via point %d is the same point as 'to', so the muscle's path "
+               "has a segment of no length", n);
+    ok = 0;
+  }
+  m->nvia = ok ? n : 0;
+  return ok;
 }
 
 /* An optional scalar field: its value, VAL_ERROR when absent; *ok cleared on
@@ -135,10 +205,14 @@ void sema_eval_muscle(swSema *S, swSymbol *sym) {
              : val_error();
   if (from && m.start.kind == VAL_ERROR) ok = 0;
   if (to && m.end.kind == VAL_ERROR) ok = 0;
+  const swAst *via = sema_field(&f, "via");
+  if (via && !eval_via(S, sc, sym, via, &m)) ok = 0;
   double axis[3] = {0, 0, 0};
   if (m.start.kind == VAL_VEC && m.end.kind == VAL_VEC) {
-    for (int k = 0; k < 3; k++) axis[k] = m.end.v[k] - m.start.v[k];
-    if (!(fabs(axis[0]) + fabs(axis[1]) + fabs(axis[2]) > 0)) {
+    /* the first segment's direction: to the first via point, or to 'to' */
+    const swValue *next = m.nvia > 0 ? &m.via[0] : &m.end;
+    for (int k = 0; k < 3; k++) axis[k] = next->v[k] - m.start.v[k];
+    if (!m.nvia && !(fabs(axis[0]) + fabs(axis[1]) + fabs(axis[2]) > 0)) {
       diag_error(to->loc, "'to' is the same point as 'from', so the muscle has no length");
       ok = 0;
     }

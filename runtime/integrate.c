@@ -76,6 +76,7 @@ static void compute_loads(const swModel *m, swData *d, double h) {
   sw_external_loads(m, d); /* on this thread's slots, no barrier inside */
   if (m->njoint) sw_joint_apply(m, d);
   if (m->nmuscle) {
+    if (m->nring) mu->rings(m, d); /* via rings (muscle_via.c), from (A)'s rows */
     /* an implicit filament reads the loads on all its nodes (muscle.c) */
     if (m->muscle_implicit) sw_team_barrier(d);
     mu->tensions(m, d, h);

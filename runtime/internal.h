@@ -189,6 +189,9 @@ typedef struct {
    * length over rest length, averaged by area), for output.c and expect.c */
   double (*force)(const swModel *m, const swData *d, int mu);
   double (*stretch)(const swModel *m, const swData *d, int mu);
+  /* the via rings' loads (muscle_via.c) into this thread's slots: in the
+   * tensions' phase, before an implicit filament reads its loads */
+  void (*rings)(const swModel *m, swData *d);
 } swMuscleOps;
 static inline const swMuscleOps *sw_muscle_ops(const swModel *m) {
   return (const swMuscleOps *)m->muscle_ops;
@@ -205,6 +208,23 @@ void sw_muscle_advance(const swModel *m, swData *d, double t, double h);
 void sw_muscle_loads(const swModel *m, swData *d);
 double sw_muscle_tension(const swModel *m, int f, double eta, double edot, double a);
 double sw_stable_dt_filament(const swModel *m, int f);
+/* Via points (muscle_via.c, for muscle.c): the checks of a description's
+ * via points; the rest length of its path; the filament laid along it (x:
+ * (n+1)*3 nodes, Q: n*9 frames, d1 from `normal`; 0 if the elements do not
+ * add up); ring q (via point k of filament f) resolved on the compiled
+ * model; the rings' rows of filament f from the state (SW_RING_ROW doubles
+ * each in d->ring_row) and the rows into slots [lo, hi); the rows' contact
+ * search reset; the rings' step bound; the path length now. */
+#define SW_RING_ROW 8
+int sw_via_check(const swMuscleDesc *md, int nrod, char *err, size_t errlen);
+double sw_via_path_rest(const swMuscleDesc *md);
+int sw_via_lay(const swMuscleDesc *md, const double *normal, double *x, double *Q);
+void sw_via_setup_ring(swModel *m, int q, const swMuscleDesc *md, int k, int f);
+void sw_via_rows(const swModel *m, swData *d, int f);
+void sw_via_apply(const swModel *m, swData *d, int lo, int hi);
+void sw_via_reset(const swModel *m, swData *d);
+double sw_via_stable_dt(const swModel *m, int f);
+double sw_via_path(const swModel *m, const swData *d, int f);
 /* Rigid rods (rigid.c).  sw_rigid_setup fills the rigid_* arrays of the
  * model (mass, principal inertia, body-frame nodes and element frames; called
  * by sw_compile once the rods, loads and boundary conditions are in);

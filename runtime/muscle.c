@@ -109,6 +109,7 @@ void sw_muscle_desc_init(swMuscleDesc *md) {
   md->attach_rod[0] = md->attach_rod[1] = -1;
   md->attach_node[0] = 0;
   md->attach_node[1] = -1;
+  for (int k = 0; k < SW_MUSCLE_MAX_VIA; k++) md->via_rod[k] = -1;
 }
 
 static double dist3(const double *a, const double *b) {
@@ -172,9 +173,11 @@ static int check_item(const swMuscleItem *it, int nrod, char *err, size_t errlen
 static void muscle_rates(const swModel *m, swData *d);
 static void muscle_tensions(const swModel *m, swData *d, double h);
 static void muscle_pull(const swModel *m, swData *d);
+static void muscle_rings(const swModel *m, swData *d);
 /* The bundle's tension, the sum of its filaments' (they pull in parallel),
- * and its stretch, each filament's end-to-end length over its rest length
- * averaged by cross-section, of the last force evaluation. */
+ * and its stretch, each filament's path length (end to end through its via
+ * points, muscle_via.c) over its rest length averaged by cross-section, of
+ * the last force evaluation. */
 static double muscle_force(const swModel *m, const swData *d, int mu) {
   double T = 0;
   for (int f = m->muscle_fil_adr[mu]; f < m->muscle_fil_adr[mu + 1]; f++) T += d->fil_tension[f];
@@ -184,12 +187,7 @@ static double muscle_force(const swModel *m, const swData *d, int mu) {
 static double muscle_stretch(const swModel *m, const swData *d, int mu) {
   double s = 0, w = 0;
   for (int f = m->muscle_fil_adr[mu]; f < m->muscle_fil_adr[mu + 1]; f++) {
-    const int r = m->fil_rod[f];
-    double a[3], b[3];
-    sw_get3(m, d->x, m->node_adr[r], a);
-    sw_get3(m, d->x, m->node_adr[r] + m->rod_nelem[r], b);
-    const double dx[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]};
-    s += m->fil_area[f] * sqrt(dx[0] * dx[0] + dx[1] * dx[1] + dx[2] * dx[2]) / m->fil_l0[f];
+    s += m->fil_area[f] * sw_via_path(m, d, f) / m->fil_l0[f];
     w += m->fil_area[f];
   }
   return s / w;
@@ -199,7 +197,7 @@ static const swMuscleOps muscle_ops = {sw_muscle_check,  sw_muscle_setup,     sw
                                        sw_muscle_spec_free, sw_muscle_reset, sw_muscle_advance,
                                        sw_muscle_loads,  muscle_rates,        muscle_tensions,
                                        muscle_pull,      sw_stable_dt_filament,
-                                       muscle_force,     muscle_stretch};
+                                       muscle_force,     muscle_stretch,      muscle_rings};
 
 int sw_spec_add_muscle(swSpec *s, const swMuscleDesc *md) {
   *sw_spec_muscle_ops(s) = &muscle_ops;
@@ -237,8 +235,19 @@ int sw_spec_add_muscle(swSpec *s, const swMuscleDesc *md) {
   if (!area) return -1;
   filament_areas(N, SW_PI * md->radius * md->radius, md->size_ratio, area);
   double dir[3];
-  sw_v3_sub(dir, md->end, md->start);
-  const double L = sw_v3_norm(dir);
+  sw_v3_sub(dir, md->nvia > 0 ? md->via[0] : md->end, md->start);
+  const double L = sw_via_path_rest(md); /* |end - start| without via points */
+  double *lay_x = NULL, *lay_Q = NULL;   /* the polyline through the via points */
+  if (md->nvia > 0) {
+    double d1[3];
+    filament_normal(d1, dir, md->normal);
+    lay_x = malloc(sizeof(double) * 3 * (size_t)(md->nelem + 1));
+    lay_Q = malloc(sizeof(double) * 9 * (size_t)md->nelem);
+    if (!lay_x || !lay_Q || !sw_via_lay(md, d1, lay_x, lay_Q)) {
+      free(lay_x); free(lay_Q); free(area);
+      return -1;
+    }
+  }
   for (int k = 0; k < N; k++) {
     char name[96];
     snprintf(name, sizeof name, "%s.f%02d", it->name, k + 1);
@@ -264,8 +273,8 @@ int sw_spec_add_muscle(swSpec *s, const swMuscleDesc *md) {
     r.material = md->material;
     r.where = md->where;
     int rod = sw_spec_add_rod(s, &r);
-    if (rod < 0) {
-      free(area);
+    if (rod < 0 || (lay_x && sw_spec_set_rest_shape(s, rod, lay_x, lay_Q) != SW_OK)) {
+      free(area); free(lay_x); free(lay_Q);
       return -1;
     }
     for (int end = 0; end < 2; end++) {
@@ -285,12 +294,12 @@ int sw_spec_add_muscle(swSpec *s, const swMuscleDesc *md) {
                                              : 100.0 * md->sigma_max * area[k] / L;
       j.damping = md->attach_damping;
       if (sw_spec_add_joint(s, &j) < 0) {
-        free(area);
+        free(area); free(lay_x); free(lay_Q);
         return -1;
       }
     }
   }
-  free(area);
+  free(area); free(lay_x); free(lay_Q);
   return ms->n - 1;
 }
 
@@ -317,7 +326,13 @@ static int check_item(const swMuscleItem *it, int nrod, char *err, size_t errlen
   if (md->nelem < 2)
     return BAD("muscle '%s': filaments need at least 2 elements, have %d", nm, md->nelem);
   double L = dist3(md->start, md->end);
-  if (!(L > 0) || !isfinite(L)) return BAD("muscle '%s': start and end coincide", nm);
+  if (md->nvia == 0 && (!(L > 0) || !isfinite(L)))
+    return BAD("muscle '%s': start and end coincide", nm);
+  {
+    swMuscleDesc named = *md;
+    named.name = nm;
+    if (!sw_via_check(&named, nrod, err, errlen)) return 0;
+  }
   if (!(md->radius > 0) || !isfinite(md->radius))
     return BAD("muscle '%s': radius must be > 0", nm);
   if (!(md->sigma_max > 0) || !isfinite(md->sigma_max))
@@ -350,6 +365,8 @@ void sw_muscle_free(swModel *m) {
   free(m->fil_rod); free(m->fil_passive); free(m->fil_area); free(m->fil_fmax);
   free(m->fil_l0); free(m->fil_tau); free(m->fil_recruit); free(m->fil_hill_a);
   free(m->fil_v_max); free(m->fil_fibres); free(m->fil_elem); free(m->fil_implicit);
+  free(m->fil_ring_adr); free(m->ring_elem); free(m->ring_point); free(m->ring_stiffness);
+  free(m->ring_damping); free(m->muscle_via); free(m->muscle_nvia);
 }
 
 int sw_muscle_check(const swMuscleSpec *ms, int nrod, char *err, size_t errlen) {
@@ -377,8 +394,11 @@ static int filament_implicit_bits(const swModel *m, int r) {
 int sw_muscle_setup(swModel *m, const swMuscleSpec *ms, char *err, size_t errlen) {
   if (!ms || ms->n == 0) return 1;
   if (!sw_muscle_check(ms, m->nrod, err, errlen)) return 0;
-  int nf = 0;
-  for (int i = 0; i < ms->n; i++) nf += ms->item[i].desc.filaments;
+  int nf = 0, nring = 0;
+  for (int i = 0; i < ms->n; i++) {
+    nf += ms->item[i].desc.filaments;
+    nring += ms->item[i].desc.filaments * ms->item[i].desc.nvia;
+  }
   const size_t M = (size_t)ms->n, F = (size_t)nf;
   m->nmuscle = ms->n;
   m->nfil = nf;
@@ -396,17 +416,33 @@ int sw_muscle_setup(swModel *m, const swMuscleSpec *ms, char *err, size_t errlen
   m->fil_v_max = calloc(F, sizeof(double));
   m->fil_fibres = calloc(F, sizeof(double));
   m->fil_implicit = calloc(F, sizeof(int));
+  const size_t R = (size_t)nring;
+  m->nring = nring;
+  m->fil_ring_adr = calloc(F + 1, sizeof(int));
+  m->ring_elem = calloc(R + 1, sizeof(int));
+  m->ring_point = calloc(3 * R + 1, sizeof(double));
+  m->ring_stiffness = calloc(R + 1, sizeof(double));
+  m->ring_damping = calloc(R + 1, sizeof(double));
+  m->muscle_via = calloc(M * SW_MUSCLE_MAX_VIA * 3, sizeof(double));
+  m->muscle_nvia = calloc(M, sizeof(int));
+  if (!m->fil_ring_adr || !m->ring_elem || !m->ring_point || !m->ring_stiffness ||
+      !m->ring_damping || !m->muscle_via || !m->muscle_nvia) {
+    snprintf(err, errlen, "out of memory");
+    return 0;
+  }
   if (!m->fil_implicit || !m->muscle_name || !m->muscle_fil_adr || !m->muscle_activation || !m->fil_rod ||
       !m->fil_passive || !m->fil_area || !m->fil_fmax || !m->fil_l0 || !m->fil_tau ||
       !m->fil_recruit || !m->fil_hill_a || !m->fil_v_max || !m->fil_fibres) {
     snprintf(err, errlen, "out of memory");
     return 0;
   }
-  int f = 0;
+  int f = 0, q = 0;
   for (int i = 0; i < ms->n; i++) {
     const swMuscleItem *it = &ms->item[i];
     const swMuscleDesc *md = &it->desc;
     const int N = md->filaments;
+    m->muscle_nvia[i] = md->nvia;
+    memcpy(m->muscle_via + 3 * SW_MUSCLE_MAX_VIA * i, md->via, sizeof md->via);
     if (!(m->muscle_name[i] = strdup(it->name))) {
       snprintf(err, errlen, "out of memory");
       return 0;
@@ -436,8 +472,15 @@ int sw_muscle_setup(swModel *m, const swMuscleSpec *ms, char *err, size_t errlen
       m->fil_hill_a[f] = md->hill_a;
       m->fil_v_max[f] = md->v_max;
       m->fil_fibres[f] = A[k] / fibre_area;
+      /* via rings; the filament is straight at rest (muscle_via.c) */
+      m->fil_ring_adr[f] = q;
+      for (int v = 0; v < md->nvia; v++) sw_via_setup_ring(m, q++, md, v, f);
+      if (md->nvia > 0)
+        for (int v = m->vor_adr[r]; v < m->vor_adr[r] + m->rod_nelem[r] - 1; v++)
+          for (int c = 0; c < 3; c++) SW_AT(m, m->rest_kappa, v, c) = 0;
     }
   }
+  m->fil_ring_adr[nf] = q;
   m->muscle_fil_adr[ms->n] = f;
   for (int g = 0; g < nf; g++)
     if ((m->fil_implicit[g] = filament_implicit_bits(m, m->fil_rod[g]))) m->muscle_implicit = 1;
@@ -472,6 +515,7 @@ static double muscle_input(const swModel *m, int i, double t) {
 }
 
 void sw_muscle_reset(const swModel *m, swData *d) {
+  sw_via_reset(m, d);
   for (int i = 0; i < m->nmuscle; i++) {
     const double u = muscle_input(m, i, 0.0);
     for (int f = m->muscle_fil_adr[i]; f < m->muscle_fil_adr[i + 1]; f++)
@@ -629,6 +673,11 @@ static int muscle_of(const swModel *m, int f) {
 static void muscle_rates(const swModel *m, swData *d) {
   int lo, hi;
   sw_owned_slots(m, d, &lo, &hi);
+  if (m->nring) /* each filament's rings by the owner of its first node */
+    for (int f = 0; f < m->nfil; f++) {
+      const int first = m->node_adr[m->fil_rod[f]];
+      if (first >= lo && first < hi) sw_via_rows(m, d, f);
+    }
   if (hi > m->nslot_elastic) hi = m->nslot_elastic;
   if (lo < hi) filament_rates(m, d, lo, hi);
 }
@@ -655,9 +704,16 @@ static void muscle_pull(const swModel *m, swData *d) {
   if (lo < hi) filament_pull(m, d, lo, hi);
 }
 
+static void muscle_rings(const swModel *m, swData *d) {
+  int lo, hi;
+  sw_owned_slots(m, d, &lo, &hi);
+  if (m->nring) sw_via_apply(m, d, lo, hi);
+}
+
 void sw_muscle_loads(const swModel *m, swData *d) {
   muscle_rates(m, d);
   sw_team_barrier(d);
+  muscle_rings(m, d);
   muscle_tensions(m, d, 0.0); /* no kick: the explicit tension */
   sw_team_barrier(d);
   muscle_pull(m, d);
@@ -670,7 +726,8 @@ void sw_muscle_loads(const swModel *m, swData *d) {
  * nodes (reduced mass m_end / 2); the explicit kick of a damper of rate c / mu
  * is stable for h c / mu < 2. */
 double sw_stable_dt_filament(const swModel *m, int f) {
-  if (m->fil_implicit && m->fil_implicit[f]) return INFINITY; /* L-stable (the header) */
+  const double ring = m->fil_ring_adr ? sw_via_stable_dt(m, f) : INFINITY; /* muscle_via.c */
+  if (m->fil_implicit && m->fil_implicit[f]) return ring; /* L-stable (the header) */
   double peak = 0; /* max of f_act + p over the fitted range */
   for (int s = 0; s <= 120; s++) {
     double eta = 0.4 + 0.01 * s, q = sw_muscle_f_act(eta) + sw_muscle_f_pass(eta);
@@ -680,5 +737,5 @@ double sw_stable_dt_filament(const swModel *m, int f) {
   const double c = (1.0 + k) * peak * m->fil_fmax[f] / (k * u0) / m->fil_l0[f];
   const int r = m->fil_rod[f], na = m->node_adr[r];
   double mass = fmin(m->mass[na], m->mass[na + m->rod_nelem[r]]);
-  return c > 0 ? 2.0 * (0.5 * mass) / c : INFINITY;
+  return fmin(ring, c > 0 ? 2.0 * (0.5 * mass) / c : INFINITY);
 }

@@ -658,6 +658,20 @@ static int muscle_attrs(const swAttrTarget *t, const swModel *m, int mu) {
   if (rc == SW_OK) rc = attr_quantity(t, "filament_F_max", m->fil_fmax + f0, nf, "N");
   if (rc == SW_OK) rc = attr_quantity(t, "filament_area", m->fil_area + f0, nf, "m^2");
   if (rc == SW_OK) rc = attr_vector(t, "filament_fibres", m->fil_fibres + f0, nf);
+  /* via points (muscle_via.c): where each was at t = 0, row by row, and the
+   * rod that carries it ("space": fixed) */
+  const int nvia = m->muscle_nvia ? m->muscle_nvia[mu] : 0;
+  if (rc == SW_OK && nvia > 0) {
+    const char *rods[SW_MUSCLE_MAX_VIA];
+    for (int k = 0; k < nvia; k++) {
+      const int e = m->ring_elem[m->fil_ring_adr[f0] + k];
+      rods[k] = "space";
+      for (int r = 0; e >= 0 && r < m->nrod; r++)
+        if (m->elem_adr[r] <= e && e < m->elem_adr[r] + m->rod_nelem[r]) rods[k] = m->rod_name[r];
+    }
+    rc = attr_quantity(t, "via", m->muscle_via + 3 * SW_MUSCLE_MAX_VIA * mu, 3 * nvia, "m");
+    if (rc == SW_OK) rc = attr_strings(t, "via_rods", rods, (hsize_t)nvia);
+  }
   return rc;
 }
 

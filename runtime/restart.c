@@ -37,7 +37,7 @@
 
 /* ---- what is saved ---- */
 
-enum { PER_SLOT, PER_CHUNK, PER_BC, PER_JOINT, PER_FIL, PER_BODY, PER_PROBE_RING, RIGID_SYS };
+enum { PER_SLOT, PER_CHUNK, PER_BC, PER_JOINT, PER_FIL, PER_BODY, PER_PROBE_RING, RIGID_SYS, PER_RING };
 
 typedef struct {
   const char *name;
@@ -66,6 +66,7 @@ static const swSaved saved[] = {
     SAVED(rigid_sys, RIGID_SYS, 1),   SAVED(fil_activation, PER_FIL, 1),
     SAVED(fil_stretch, PER_FIL, 1),   SAVED(fil_rate, PER_FIL, 1),
     SAVED(fil_tension, PER_FIL, 1),   SAVED(probe_ring, PER_PROBE_RING, 4),
+    SAVED(ring_row, PER_RING, SW_RING_ROW),
 };
 #define NSAVED (sizeof saved / sizeof saved[0])
 
@@ -80,6 +81,7 @@ static size_t saved_len(const swModel *m, const swSaved *s) {
   case PER_BODY: n = (size_t)m->nrigid; break;
   case PER_PROBE_RING: n = (size_t)m->nprobe * SW_PROBE_RING; break;
   case RIGID_SYS: n = sw_rigid_joints_scratch(m); break;
+  case PER_RING: n = (size_t)m->nring; break;
   }
   return n * (size_t)s->count;
 }

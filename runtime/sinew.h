@@ -229,6 +229,7 @@ int sw_spec_add_joint(swSpec *s, const swJointDesc *j);  /* returns joint id */
  * The muscle's activation u(t) recruits filaments smallest first: filament k
  * is driven by clamp((u - C_{k-1}) / (C_k - C_{k-1}), 0, 1) with C_k the
  * cumulative share of peak force, so the bundle's peak force is u F_max. */
+#define SW_MUSCLE_MAX_VIA 8
 typedef struct {
   const char *name;           /* output group /muscles/NAME, rods NAME.f01..  */
   int filaments;              /* N >= 1                                       */
@@ -254,6 +255,17 @@ typedef struct {
   int attach_node[2];         /* node of that rod (-1 = last)                 */
   double attach_stiffness;    /* N/m per filament end; 0 = 100 F_max,k / l0  */
   double attach_damping;      /* N s/m per filament end; 0 = choose (joint.c) */
+  /* Via points (muscle_via.c): the filaments are laid along the polyline
+   * start -> via[0] -> ... -> end and each via point is a frictionless ring
+   * they slide through.  via[k] is the point at t = 0 (lab, m); it moves
+   * and turns with the element of rod via_rod[k] nearest to it (a point off
+   * the centreline keeps its offset in that element's material frame), or
+   * stays fixed in space when via_rod[k] is -1. */
+  int nvia;                           /* 0 .. SW_MUSCLE_MAX_VIA             */
+  double via[SW_MUSCLE_MAX_VIA][3];
+  int via_rod[SW_MUSCLE_MAX_VIA];
+  double via_stiffness;       /* N/m per filament ring; 0 = 100 F_max,k / l0  */
+  double via_damping;         /* N s/m per filament ring; 0 = choose          */
   /* For the output only, given to its filament rods (swRodDesc): its
    * material's name and the model line; NULL: not written. */
   const char *material, *where;
@@ -557,6 +569,18 @@ typedef struct {
   int *fil_implicit;         /* (nfil)     SW_FIL_* bits: Hill damping linearly
                                            implicit (SW_IMEX), end nodes held */
   int muscle_implicit;       /* some filament is implicit                    */
+  /* via rings (muscle_via.c): one per via point per filament, filament by
+   * filament, each filament's in path order */
+  int nring;
+  int *fil_ring_adr;         /* (nfil+1)   first ring of each filament        */
+  int *ring_elem;            /* (nring)    element slot carrying the point, -1: space */
+  double *ring_point;        /* (nring*3)  offset from that element's centre in
+                                           its material frame; the lab point
+                                           when fixed in space, m             */
+  double *ring_stiffness;    /* (nring)    N/m                                */
+  double *ring_damping;      /* (nring)    N s/m                              */
+  double *muscle_via;        /* (nmuscle*SW_MUSCLE_MAX_VIA*3) via points at t = 0 */
+  int *muscle_nvia;          /* (nmuscle)                                     */
   /* environments (environment.c): resolved copies of the descriptions, in
    * the order added; rod lists owned by the model (every rod listed when the
    * description said 0) */
@@ -675,6 +699,8 @@ typedef struct {
   double *fil_stretch;       /* (nfil)    eta = l / l0                          */
   double *fil_rate;          /* (nfil)    strain rate dl/dt / l0, 1/s           */
   double *fil_tension;       /* (nfil)    T_k, N                                */
+  double *ring_row;          /* (nring*SW_RING_ROW) each ring's contact and
+                                           load, last evaluation (muscle_via.c) */
   /* environments, updated with each force evaluation */
   /* contact.c: the last evaluation's figures, and the hash grid's scratch */
   int contact_pairs;         /* element pairs in contact                     */
