@@ -164,9 +164,20 @@ static long read_frames(hid_t file, double *tip_x0) {
   return (long)dims[0];
 }
 
+/* A run's files: RUN.h5 and the XDMF description written beside it. */
+static void unlink_run(const char *path) {
+  char xdmf[600];
+  size_t n = strlen(path);
+  unlink(path);
+  if (n > 3 && n < sizeof xdmf && !strcmp(path + n - 3, ".h5")) {
+    snprintf(xdmf, sizeof xdmf, "%.*s.xdmf", (int)(n - 3), path);
+    unlink(xdmf);
+  }
+}
+
 static void temp_file(char *path, size_t len, const char *name) {
   snprintf(path, len, "%s/%s", tmpdir, name);
-  unlink(path);
+  unlink_run(path);
 }
 
 /* ---- tests ---- */
@@ -347,14 +358,14 @@ static void test_run_writes_file(void **state) {
   free(sha);
   free(source);
   H5Fclose(file);
-  unlink(path);
+  unlink_run(path);
 
   /* --quiet: no summary */
   run_cli(&r, (const char *[]){"--out", path, "--quiet", "--duration", "0.2 ms", NULL});
   assert_int_equal(r.rc, SW_OK);
   assert_string_equal(r.err, "");
   assert_string_equal(r.out, "");
-  unlink(path);
+  unlink_run(path);
 }
 
 /* Without --dt (and none in the model) the step is at most half the stable
@@ -396,7 +407,7 @@ static void test_automatic_dt(void **state) {
   assert_int_equal(frames, 1 + nsteps / every + (nsteps % every != 0));
   SW_EXPECT_ABS("default rod length (m)", tip_x0, 0.5, 1e-15);
   H5Fclose(file);
-  unlink(path);
+  unlink_run(path);
 }
 
 /* A step above the estimate is warned about, not refused; this one is far
@@ -420,7 +431,7 @@ static void test_unstable_dt(void **state) {
   assert_true(strncmp(status, "unstable: ", 10) == 0);
   free(status);
   H5Fclose(file);
-  unlink(path);
+  unlink_run(path);
 
   /* --info says the same without running */
   run_cli(&r, (const char *[]){"--info", "--dt", "1ms", "--quiet", NULL});
@@ -468,7 +479,7 @@ static void test_dt_ladder(void **state) {
     }
     free(status);
     H5Fclose(file);
-    unlink(path);
+    unlink_run(path);
   }
 }
 
