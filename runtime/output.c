@@ -826,11 +826,15 @@ static double wall_now(void) {
 static int write_node_radius(swOutput *o, const swModel *m, int r) {
   const int n = m->rod_nelem[r];
   const double *radius = m->radius + m->elem_adr[r];
-  double node[n + 1];
+  double *node = malloc(((size_t)n + 1) * sizeof *node); /* not on the stack: n is unbounded */
+  char *path = dup_printf("/rods/%s/node_radius", m->rod_name[r]);
+  if (!node || !path) {
+    free(node);
+    free(path);
+    return fail(NULL, 0, "%s: out of memory", o->path);
+  }
   for (int i = 0; i <= n; i++)
     node[i] = i == 0 ? radius[0] : i == n ? radius[n - 1] : 0.5 * (radius[i - 1] + radius[i]);
-  char *path = dup_printf("/rods/%s/node_radius", m->rod_name[r]);
-  if (!path) return fail(NULL, 0, "%s: out of memory", o->path);
   hsize_t count = (hsize_t)n + 1;
   hid_t space = H5Screate_simple(1, &count, NULL);
   hid_t dset = space < 0 ? H5I_INVALID_HID
@@ -847,6 +851,7 @@ static int write_node_radius(swOutput *o, const swModel *m, int r) {
   if (dset >= 0) H5Dclose(dset);
   if (space >= 0) H5Sclose(space);
   free(path);
+  free(node);
   return rc;
 }
 
