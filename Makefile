@@ -27,7 +27,9 @@ ALL_CFLAGS = $(STD) $(WARN) $(CFLAGS) -Iruntime $(PKG_CFLAGS)
 SAN_CFLAGS = $(STD) $(WARN) $(SAN) -Iruntime $(PKG_CFLAGS)
 LIBS     = $(PKG_LIBS) -lm
 
-RT_SRC   = $(wildcard runtime/*.c)
+# study_mpi.c is the one runtime file that needs MPI: it is built on its own
+# (below), only where mpicc exists, and never into the libraries.
+RT_SRC   = $(filter-out runtime/study_mpi.c,$(wildcard runtime/*.c))
 RT_HDR   = $(wildcard runtime/*.h)
 RT_OBJ   = $(RT_SRC:runtime/%.c=build/rt/%.o)
 RT_SOBJ  = $(RT_SRC:runtime/%.c=build/asan/rt/%.o)
@@ -40,7 +42,7 @@ TEST_BIN = $(TEST_SRC:tests/runtime/%.c=build/tests/%)
 TEST_SBIN = $(TEST_SRC:tests/runtime/%.c=build/asan/tests/%)
 
 .PHONY: all deps test check demo bench clean install plots
-all: build/libsinewrt.a build/libsinewrt-portable.a bin/sinewc
+all: build/libsinewrt.a build/libsinewrt-portable.a $(MPI_OBJ) bin/sinewc
 
 # ---- the compiler: flex + bison front end (lang/), checker and generator
 # (compiler/).  Generated parser sources are build outputs, never committed.
@@ -51,8 +53,20 @@ CC_SOBJ  = $(CC_SRC:compiler/%.c=build/asan/cc/%.o) build/asan/cc/sinew.tab.o bu
 CC_INC   = -Icompiler -Ibuild/lang -Iruntime
 # flex output is not written for our warning set
 GEN_WARN = -Wno-unused-function -Wno-sign-compare -Wno-missing-prototypes -Wno-unused-parameter
+# MPI (OpenMPI from Debian): where mpicc exists, runtime/study_mpi.c becomes
+# build/sinewrt_mpi.o, which sinewc links into every simulator beside the
+# runtime (with mpicc's libraries), so that `mpirun -np N SIM --optimize`
+# farms the evaluations out; without mpicc the simulators build and study on
+# one machine (docs/optimisation.md).
+MPICC     := $(shell command -v mpicc 2>/dev/null)
+ifneq ($(MPICC),)
+MPI_CFLAGS := $(shell mpicc --showme:compile)
+MPI_LIBS   := $(shell mpicc --showme:link)
+MPI_OBJ    := build/sinewrt_mpi.o
+endif
 # the flags sinewc passes to the C compiler when it builds a simulator
-RT_LINK  = -DSW_RT_CFLAGS='"$(PKG_CFLAGS)"' -DSW_RT_LIBS='"$(PKG_LIBS) -lm"'
+RT_LINK  = -DSW_RT_CFLAGS='"$(PKG_CFLAGS)"' -DSW_RT_LIBS='"$(PKG_LIBS) -lm"' \
+           -DSW_RT_MPI_LIBS='"$(MPI_LIBS)"'
 
 build/lang/sinew.tab.c build/lang/sinew.tab.h: lang/sinew.y | build/lang
 	bison -Wall -Werror -d -o build/lang/sinew.tab.c lang/sinew.y
@@ -82,6 +96,9 @@ build/asan/rt/%.o: runtime/%.c $(RT_HDR) | build/asan/rt
 	$(CC) $(SAN_CFLAGS) -c $< -o $@
 build/libsinewrt.a: $(RT_OBJ)
 	ar rcs $@ $^
+# for any x86-64 (like the portable library): it only passes messages
+build/sinewrt_mpi.o: runtime/study_mpi.c $(RT_HDR) | build/rt
+	$(CC) $(STD) $(WARN) $(PORTABLE) -Iruntime $(MPI_CFLAGS) -c $< -o $@
 build/asan/libsinewrt.a: $(RT_SOBJ)
 	ar rcs $@ $^
 build/portable/rt/%.o: runtime/%.c $(RT_HDR) | build/portable/rt
@@ -113,7 +130,7 @@ E2E_BIN  = build/tests/test_e2e build/tests/test_elbow build/tests/test_snake \
            build/tests/test_swimmer build/tests/test_walker build/tests/test_chain
 $(E2E_BIN): build/tests/test_%: tests/e2e/test_%.c tests/e2e/e2e.h tests/runtime/h5read.h | build/tests
 	$(CC) $(ALL_CFLAGS) -Itests/runtime -Itests/e2e $< -o $@ $(LIBS) -lcmocka
-check: $(TEST_BIN) $(TEST_SBIN) $(E2E_BIN) build/libsinewrt.a build/libsinewrt-portable.a bin/sinewc build/asan/sinewc
+check: $(TEST_BIN) $(TEST_SBIN) $(E2E_BIN) build/libsinewrt.a build/libsinewrt-portable.a $(MPI_OBJ) bin/sinewc build/asan/sinewc
 	@mkdir -p build/validation   # measured tables the validation tests leave for `make plots`
 	@SINEWC=build/asan/sinewc CMOCKA_MESSAGE_OUTPUT=TAP prove -j2 --exec '' \
 	  $(E2E_BIN) $(TEST_BIN) $(TEST_SBIN) $(LANG_TESTS)
@@ -205,13 +222,14 @@ tradeoff: deps
 # `make install PREFIX=...`: compiler, runtime library and header, models,
 # and the plot tool.
 PREFIX ?= /usr/local
-install: bin/sinewc build/libsinewrt.a build/libsinewrt-portable.a
+install: bin/sinewc build/libsinewrt.a build/libsinewrt-portable.a $(MPI_OBJ)
 	install -d $(DESTDIR)$(PREFIX)/bin $(DESTDIR)$(PREFIX)/lib $(DESTDIR)$(PREFIX)/include/sinew \
 	  $(DESTDIR)$(PREFIX)/share/sinew/models
 	install -m 755 bin/sinewc $(DESTDIR)$(PREFIX)/bin/sinewc
 	install -m 755 scripts/sinew-plot $(DESTDIR)$(PREFIX)/bin/sinew-plot
 	install -m 644 build/libsinewrt.a $(DESTDIR)$(PREFIX)/lib/libsinewrt.a
 	install -m 644 build/libsinewrt-portable.a $(DESTDIR)$(PREFIX)/lib/libsinewrt-portable.a
+	@if [ -n "$(MPI_OBJ)" ]; then install -m 644 $(MPI_OBJ) $(DESTDIR)$(PREFIX)/lib/sinewrt_mpi.o; fi
 	install -m 644 runtime/sinew.h $(DESTDIR)$(PREFIX)/include/sinew/sinew.h
 	@if ls models/*.sinew >/dev/null 2>&1; then \
 	  install -m 644 models/*.sinew $(DESTDIR)$(PREFIX)/share/sinew/models/; fi

@@ -42,6 +42,10 @@
 #ifndef SW_RT_LIBS
 #define SW_RT_LIBS "-lhdf5 -lgsl -lgslcblas -lm"
 #endif
+/* mpicc's libraries when sinew was built with MPI ("" without) */
+#ifndef SW_RT_MPI_LIBS
+#define SW_RT_MPI_LIBS ""
+#endif
 
 extern char **environ;
 
@@ -59,6 +63,9 @@ static void usage(FILE *out) {
           "  --portable   build a simulator for any x86-64 machine (-O3, the baseline\n"
           "               instruction set, libsinewrt-portable.a); without it the\n"
           "               simulator is built at -O3 for this machine's CPU\n"
+          "  --no-mpi     leave MPI out of the simulator: it sweeps and optimises on\n"
+          "               one machine only (by default MPI is linked in when sinew\n"
+          "               was built where mpicc exists, for mpirun -np N SIM ...)\n"
           "  -Werror      treat warnings as errors\n"
           "  --let NAME=VALUE  give the top-level let NAME of the model this value\n"
           "               instead of its own, when compiling (repeatable): a number\n"
@@ -123,7 +130,7 @@ static int split_flags(char *s, char **argv, int max) {
  * runtime library `make` built the same way), or, with `portable`, for any
  * x86-64 machine (-O3, the compiler's baseline instruction set, and
  * libsinewrt-portable.a).  docs/benchmarks.md has what each costs. */
-static int run_cc(const char *csrc, const char *out, int portable) {
+static int run_cc(const char *csrc, const char *out, int portable, int no_mpi) {
   char inc[PATH_MAX], lib[PATH_MAX];
   if (!find_runtime(inc, lib, sizeof inc)) {
     fprintf(stderr, "%s: cannot find the runtime (sinew.h and libsinewrt.a) next to this "
@@ -140,10 +147,15 @@ static int run_cc(const char *csrc, const char *out, int portable) {
             portable ? " (built by `make` beside libsinewrt.a)" : "");
     return 4;
   }
-  char cflags[1024], libs[1024];
+  char cflags[1024], libs[1024], mpilibs[1024], mpiobj[PATH_MAX + 32];
   snprintf(cflags, sizeof cflags, "%s", SW_RT_CFLAGS);
   snprintf(libs, sizeof libs, "%s", SW_RT_LIBS);
-  char *argv[96];
+  snprintf(mpilibs, sizeof mpilibs, "%s", SW_RT_MPI_LIBS);
+  /* the study's MPI transport, built by `make` beside the library where
+   * mpicc exists (runtime/study_mpi.c) */
+  snprintf(mpiobj, sizeof mpiobj, "%s/sinewrt_mpi.o", lib);
+  int mpi = !no_mpi && mpilibs[0] && exists(mpiobj);
+  char *argv[128];
   int n = 0;
   argv[n++] = (char *)cc;
   argv[n++] = "-std=c11";
@@ -158,8 +170,10 @@ static int run_cc(const char *csrc, const char *out, int portable) {
   argv[n++] = (char *)csrc;
   argv[n++] = "-x";
   argv[n++] = "none";
+  if (mpi) argv[n++] = mpiobj;
   argv[n++] = libpath;
   n += split_flags(libs, argv + n, 32);
+  if (mpi) n += split_flags(mpilibs, argv + n, 24);
   argv[n++] = "-o";
   argv[n++] = (char *)out;
   argv[n] = NULL;
@@ -250,7 +264,7 @@ static int read_let(const char *arg, const swLetOverride *given, int ngiven, swL
 /* What the command line asks for. */
 typedef struct {
   const char *model, *out;
-  int emit_c, check, werror, eval_height, portable;
+  int emit_c, check, werror, eval_height, portable, no_mpi;
   swLetOverride *lets;        /* (nlets) --let, in the order given          */
   int nlets;
 } swOptions;
@@ -273,6 +287,7 @@ static int parse_args(int argc, char **argv, swOptions *o) {
     } else if (!strcmp(a, "--emit-c")) o->emit_c = 1;
     else if (!strcmp(a, "--check")) o->check = 1;
     else if (!strcmp(a, "--portable")) o->portable = 1;
+    else if (!strcmp(a, "--no-mpi")) o->no_mpi = 1;
     else if (!strcmp(a, "--eval-height")) o->check = o->eval_height = 1;
     else if (!strcmp(a, "-Werror")) o->werror = 1;
     else if (!strcmp(a, "--help") || !strcmp(a, "-h")) {
@@ -283,7 +298,8 @@ static int parse_args(int argc, char **argv, swOptions *o) {
       return 0;
     } else if (a[0] == '-' && a[1]) {
       static const char *const opts[] = {"-o", "--emit-c", "--check", "-Werror", "--help",
-                                         "--version", "--eval-height", "--portable", "--let"};
+                                         "--version", "--eval-height", "--portable", "--let",
+                                         "--no-mpi"};
       const char *near = diag_suggest(a, opts, 9);
       fprintf(stderr, "%s: unknown option '%s'%s%s%s\n", progname, a, near ? "; did you mean '" : "",
               near ? near : "", near ? "'?" : "");
@@ -408,7 +424,7 @@ static int compile(const swOptions *o) {
     if (fclose(f) != 0 || bad) {
       fprintf(stderr, "%s: cannot write '%s'\n", progname, cpath);
       rc = 4;
-    } else if (!o->emit_c) rc = run_cc(cpath, out, o->portable);
+    } else if (!o->emit_c) rc = run_cc(cpath, out, o->portable, o->no_mpi);
     if (!o->emit_c) unlink(cpath);
   }
 done:

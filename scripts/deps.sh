@@ -17,6 +17,8 @@ libcmocka-dev:/usr/include/cmocka.h
 perl:/usr/bin/prove
 python3-h5py:/usr/lib/python3/dist-packages/h5py/__init__.py
 python3-matplotlib:/usr/lib/python3/dist-packages/matplotlib/__init__.py
+openmpi-bin:/usr/bin/mpirun
+libopenmpi-dev:/usr/bin/mpicc
 "
 [ $# -gt 0 ] && PKGS="$*"
 missing=""

@@ -1,0 +1,104 @@
+/* study.h — sweeps and optimisations of a model's params (SIM --sweep,
+ * --optimize, --resume), on one machine or across MPI ranks.  Internal to the
+ * runtime: cli.c calls sw_study_main(); study_file.c keeps the study's HDF5
+ * file; study_pool.c hands evaluations to workers (a thread of this process
+ * and, under mpirun, the other ranks through study_mpi.c).
+ *
+ * The study does not know what an evaluation is: it calls swStudyEvalFn with
+ * every param's value (SI) and gets a status and a score back.  cli.c makes
+ * that a run of the model (sw_evaluate); the tests make it a test function. */
+#ifndef SINEW_STUDY_H
+#define SINEW_STUDY_H
+#include <stddef.h>
+#include <stdint.h>
+
+/* How an evaluation ended (an HDF5 enum in the file, so that readers see the
+ * names).  Every status but OK is a scored failure: it ranks below any
+ * design that ran, and the study goes on. */
+typedef enum {
+  SW_EVAL_PENDING = 0,    /* not evaluated yet (a row the file reserves)     */
+  SW_EVAL_OK = 1,
+  SW_EVAL_UNSTABLE = 2,   /* the simulation became unstable                   */
+  SW_EVAL_INVALID = 3,    /* the params give no valid scene                   */
+  SW_EVAL_FAILED = 4      /* anything else (out of memory, ...)               */
+} swEvalStatus;
+
+typedef struct {
+  int status;             /* swEvalStatus                                    */
+  double objective;       /* SI; NaN when not reached                        */
+  double penalty;         /* sum of the penalties, SI                        */
+  double score;           /* larger is better; -INFINITY unless OK          */
+  double sim_time;        /* s simulated                                     */
+  double wall;            /* s of wall time the evaluation took              */
+  int rank;               /* the MPI rank that ran it (0 without MPI)        */
+  int interrupted;        /* Ctrl-C stopped it: not a result                 */
+  char message[200];      /* why it failed ("" when OK)                      */
+} swStudyEval;
+
+/* Evaluates the design P (all nparam params, SI) into r. Called on one
+ * thread at a time per process; must not print. */
+typedef void (*swStudyEvalFn)(void *ctx, const double *P, swStudyEval *r);
+
+typedef enum { SW_STUDY_GRID = 0, SW_STUDY_LHS, SW_STUDY_CMAES } swStudyKind;
+
+typedef struct {
+  const char *prog;          /* prefix of messages                          */
+  const char *path;          /* the study's HDF5 file                        */
+  int resume;                /* continue the study `path` holds              */
+  int quiet;
+  swStudyKind kind;
+  long levels;               /* grid: points per varied param (>= 2)        */
+  long samples;              /* lhs: designs; cmaes: budget of evaluations   */
+  long popsize;              /* cmaes: lambda (0: 4 + floor(3 ln n))         */
+  double sigma;              /* cmaes: initial step, fraction of each range  */
+  long restarts;             /* cmaes: IPOP restarts (population doubled)    */
+  uint64_t seed;
+  double eval_timeout;       /* s; an evaluation running longer than this on
+                                another rank is re-queued (0: automatic)    */
+  /* the params: all of them, the values of those not varied */
+  int nparam;
+  const char *const *name;
+  const char *const *unit;   /* unit shown ("" for none)                     */
+  const double *scale;       /* SI value of one unit                         */
+  const double *value;       /* SI: defaults and --set; the varied ones'
+                                values are the start of an optimisation     */
+  const int *vary;           /* 1: ranged and not fixed by --set             */
+  const double *lo, *hi;     /* SI, for the varied ones                       */
+  /* the objective */
+  int sense;                 /* +1 maximize, -1 minimize                     */
+  const char *objective_text, *objective_unit;
+  double objective_scale;
+  /* the model, recorded and checked on --resume */
+  const char *model_name, *model_sha256;
+  const char *run_settings;  /* "duration=...;dt=...;integrator=..."          */
+  swStudyEvalFn eval;
+  void *ctx;
+} swStudyOptions;
+
+/* Runs (or continues) the study on this process and, under mpirun, on every
+ * rank; returns the exit code (SW_OK; SW_EUSAGE; SW_EIO; SW_EINTERRUPT). On
+ * ranks other than 0 it serves evaluations and returns SW_OK. */
+int sw_study_run(const swStudyOptions *o);
+
+/* What a study file says about how it was made, for --resume.  Strings are
+ * copied into the buffers; value/vary/lo/hi are arrays of nparam that the
+ * caller allocates after sw_study_file_count.  SW_OK or SW_EIO with err. */
+typedef struct {
+  swStudyKind kind;
+  long levels, samples, popsize, restarts;
+  double sigma;
+  uint64_t seed;
+  char model_sha256[65];
+  char run_settings[512];
+  char fixed[2048];           /* "name=value;..." SI, every param's start value */
+  char varied[2048];          /* "name;name;..." the varied params            */
+} swStudySettings;
+int sw_study_file_settings(const char *path, swStudySettings *s, char *err, size_t errlen);
+
+/* 1 when this process was started by mpirun (or srun) with more than one
+ * rank; its rank in *rank. */
+int sw_study_launched(int *rank, int *size);
+/* 1 when the runtime was linked with its MPI transport. */
+int sw_study_have_mpi(void);
+
+#endif

@@ -1,0 +1,44 @@
+/* study_file.h — the HDF5 file of a study (study_file.c), for study.c. */
+#ifndef SINEW_STUDY_FILE_H
+#define SINEW_STUDY_FILE_H
+#include "study.h"
+
+typedef struct swStudyFile swStudyFile;
+
+/* What the file records beside the options. */
+typedef struct {
+  const swStudyOptions *o;
+  const char *seed_text;        /* the seed, decimal (64 bits exact)          */
+  const char *start_text;       /* "name=value;..." SI: every param's start    */
+  const char *varied_text;      /* "name;name;..."                            */
+  int nvar;                     /* the varied params: names, units, SI bounds */
+  const char *const *design_name, *const *design_unit;
+  const double *design_lo, *design_hi;
+} swStudyFileInfo;
+
+/* The evaluations a file holds (for --resume): n rows, P in the units
+ * shown, status swEvalStatus, objective/penalty/score in the objective's
+ * unit. */
+typedef struct {
+  long n;
+  double *P;
+  int *status;
+  double *objective, *penalty, *score;
+} swStudyRows;
+
+swStudyFile *sw_study_file_create(const swStudyFileInfo *in, char *err, size_t errlen);
+swStudyFile *sw_study_file_reopen(const swStudyFileInfo *in, swStudyRows *rows, char *err,
+                                  size_t errlen);
+void sw_study_rows_free(swStudyRows *rows);
+/* Row `index`: the params as shown (units of the model), r's values divided
+ * by shown_scale (the objective's unit). */
+int sw_study_file_write(swStudyFile *f, long index, int generation, const double *Pshown,
+                        const swStudyEval *r, double shown_scale);
+int sw_study_file_best(swStudyFile *f, long index, const double *Pshown, double score,
+                       double objective, double penalty);
+int sw_study_file_generation(swStudyFile *f, long g, double sigma, const double *mean, int nvar,
+                             double best_score, long evaluations);
+int sw_study_file_attr(swStudyFile *f, const char *name, const char *value);
+int sw_study_file_close(swStudyFile *f, const char *status);
+const char *sw_eval_status_name(int status);
+#endif
