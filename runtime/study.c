@@ -394,6 +394,12 @@ static int check_options(const swStudyOptions *o, int nvar, long *total) {
             "(LOW, HIGH);') or every ranged param is fixed by --set\n", o->prog);
     return SW_EUSAGE;
   }
+  for (int i = 0; i < o->nparam; i++)
+    if (o->vary[i] && !(o->lo[i] < o->hi[i] && o->value[i] >= o->lo[i] && o->value[i] <= o->hi[i])) {
+      fprintf(stderr, "%s: param %s: its value %.9g is not in its range (%.9g, %.9g) (SI)\n",
+              o->prog, o->name[i], o->value[i], o->lo[i], o->hi[i]);
+      return SW_EUSAGE;
+    }
   if (o->nparam > MAX_PARAMS) {
     fprintf(stderr, "%s: %d params: a study handles at most %d\n", o->prog, o->nparam,
             MAX_PARAMS);

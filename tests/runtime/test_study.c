@@ -25,11 +25,11 @@ static void path_of(char *buf, size_t len, const char *name) {
 
 /* ---- the problems ---- */
 
-/* Two params, x in (0, 4) m and y in (-1, 1) (plain), a third fixed. */
+/* Two params, x in (0, 4) cm and y in (-1, 1) (plain), a third fixed. */
 static const char *const names[] = {"x", "y", "fixed"};
 static const char *const units[] = {"cm", "", "s"};
 static const double scales[] = {0.01, 1, 1};
-static const double lo[] = {0, -1, 0}, hi[] = {4, 1, 0};
+static const double lo[] = {0, -1, 0}, hi[] = {0.04, 1, 0};
 
 typedef struct {
   int calls;
@@ -93,7 +93,7 @@ static swStudyOptions options(const char *file, swStudyKind kind, swProblem *p,
   return o;
 }
 
-static const double start[] = {1.0, 0.2, 0.5};
+static const double start[] = {0.01, 0.2, 0.5};
 static const int vary2[] = {1, 1, 0};
 
 /* Reads a whole 1-D or 2-D double (or int) dataset; caller frees. */
