@@ -58,11 +58,14 @@ GEN_WARN = -Wno-unused-function -Wno-sign-compare -Wno-missing-prototypes -Wno-u
 # runtime (with mpicc's libraries), so that `mpirun -np N SIM --optimize`
 # farms the evaluations out; without mpicc the simulators build and study on
 # one machine (docs/optimisation.md).
+# (openmpi-bin has mpicc; its mpi.h comes with libopenmpi-dev)
 MPICC     := $(shell command -v mpicc 2>/dev/null)
 ifneq ($(MPICC),)
-MPI_CFLAGS := $(shell mpicc --showme:compile)
+MPI_CFLAGS := $(shell mpicc --showme:compile 2>/dev/null)
+ifneq ($(wildcard $(patsubst -I%,%/mpi.h,$(filter -I%,$(MPI_CFLAGS)))),)
 MPI_LIBS   := $(shell mpicc --showme:link)
 MPI_OBJ    := build/sinewrt_mpi.o
+endif
 endif
 # the flags sinewc passes to the C compiler when it builds a simulator
 RT_LINK  = -DSW_RT_CFLAGS='"$(PKG_CFLAGS)"' -DSW_RT_LIBS='"$(PKG_LIBS) -lm"' \
@@ -130,7 +133,12 @@ E2E_BIN  = build/tests/test_e2e build/tests/test_elbow build/tests/test_snake \
            build/tests/test_swimmer build/tests/test_walker build/tests/test_chain
 $(E2E_BIN): build/tests/test_%: tests/e2e/test_%.c tests/e2e/e2e.h tests/runtime/h5read.h | build/tests
 	$(CC) $(ALL_CFLAGS) -Itests/runtime -Itests/e2e $< -o $@ $(LIBS) -lcmocka
-check: $(TEST_BIN) $(TEST_SBIN) $(E2E_BIN) build/libsinewrt.a build/libsinewrt-portable.a $(MPI_OBJ) bin/sinewc build/asan/sinewc
+# tests/mpi/mpi_study.c: the study driver under mpirun (test_mpi.sh), where
+# mpicc exists
+MPI_TEST = $(if $(MPI_OBJ),build/tests/mpi_study)
+build/tests/mpi_study: tests/mpi/mpi_study.c $(MPI_OBJ) build/libsinewrt.a | build/tests
+	$(CC) $(ALL_CFLAGS) $< -o $@ $(MPI_OBJ) build/libsinewrt.a $(LIBS) $(MPI_LIBS)
+check: $(TEST_BIN) $(TEST_SBIN) $(E2E_BIN) build/libsinewrt.a build/libsinewrt-portable.a $(MPI_OBJ) $(MPI_TEST) bin/sinewc build/asan/sinewc
 	@mkdir -p build/validation   # measured tables the validation tests leave for `make plots`
 	@SINEWC=build/asan/sinewc CMOCKA_MESSAGE_OUTPUT=TAP prove -j2 --exec '' \
 	  $(E2E_BIN) $(TEST_BIN) $(TEST_SBIN) $(LANG_TESTS)

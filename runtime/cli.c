@@ -39,12 +39,14 @@
 
 #include "sinew.h"
 #include "internal.h"
+#include "study.h"
 
 /* ---- the options ---- */
 
 typedef enum {
   OPT_OUT, OPT_DURATION, OPT_DT, OPT_INTEGRATOR, OPT_EVERY, OPT_SET, OPT_THREADS, OPT_COMPARE,
-  OPT_RTOL, OPT_RESTART, OPT_QUIET, OPT_INFO, OPT_HELP
+  OPT_RTOL, OPT_RESTART, OPT_SWEEP, OPT_OPTIMIZE, OPT_BUDGET, OPT_POPSIZE, OPT_SIGMA,
+  OPT_RESTARTS, OPT_SEED, OPT_STUDY, OPT_RESUME, OPT_EVAL_TIMEOUT, OPT_QUIET, OPT_INFO, OPT_HELP
 } swOptionId;
 
 typedef struct {
@@ -65,6 +67,18 @@ static const swOption options[] = {
   {OPT_COMPARE, "--compare", "FILE", "after the run, compare each dataset with a stored run's"},
   {OPT_RTOL, "--rtol", "R", "tolerance of --compare, relative to each dataset's largest value"},
   {OPT_RESTART, "--restart", "FILE", "continue the run FILE holds from its last checkpoint"},
+  {OPT_SWEEP, "--sweep", "grid:K|lhs:N", "evaluate the ranged params on a grid of K points each, "
+   "or N Latin-hypercube designs"},
+  {OPT_OPTIMIZE, "--optimize", NULL, "optimise the ranged params for the objective (CMA-ES)"},
+  {OPT_BUDGET, "--budget", "N", "--optimize: at most N evaluations"},
+  {OPT_POPSIZE, "--popsize", "L", "--optimize: designs per generation"},
+  {OPT_SIGMA, "--sigma", "F", "--optimize: initial step, a fraction of each range"},
+  {OPT_RESTARTS, "--restarts", "K", "--optimize: restarts with doubled populations (IPOP)"},
+  {OPT_SEED, "--seed", "S", "random seed of --sweep lhs and --optimize"},
+  {OPT_STUDY, "--study", "FILE", "HDF5 file of the sweep or optimisation"},
+  {OPT_RESUME, "--resume", "FILE", "continue the sweep or optimisation FILE holds"},
+  {OPT_EVAL_TIMEOUT, "--eval-timeout", "T", "under mpirun: re-queue an evaluation a rank holds "
+   "longer than T"},
   {OPT_QUIET, "--quiet", NULL, "no progress line, notes or summary"},
   {OPT_INFO, "--info", NULL, "print the compiled scene and exit"},
   {OPT_HELP, "--help", NULL, "print this help and exit"},
@@ -94,6 +108,7 @@ typedef struct {
   int out_given, every_given;
   double *P;                 /* (nparam) param values, SI                   */
   char *overridden;          /* (nparam) set by --set                       */
+  swStudyArgs study;         /* --sweep, --optimize, --resume and theirs     */
 } swCli;
 
 static int complain(const swCli *c, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
@@ -331,6 +346,112 @@ static int read_set(swCli *c, const char *value) {
   return SW_OK;
 }
 
+/* A whole number in [lo, hi] for an option. */
+static int read_count(const swCli *c, const char *opt, const char *value, long lo, long hi,
+                      long *out) {
+  char *end = NULL;
+  errno = 0;
+  long v = strtol(value, &end, 10);
+  if (end == value || *end || errno || v < lo || v > hi)
+    return complain(c, "%s: expected a whole number from %ld to %ld, got '%s'", opt, lo, hi,
+                    value);
+  *out = v;
+  return SW_OK;
+}
+
+/* --sweep grid:K | lhs:N */
+static int read_sweep(swCli *c, const char *value) {
+  swStudyArgs *a = &c->study;
+  a->mode = 1;
+  a->kind_given = 1;
+  if (!strncmp(value, "grid:", 5)) {
+    a->kind = SW_STUDY_GRID;
+    return read_count(c, "--sweep grid", value + 5, 2, 1000000, &a->levels);
+  }
+  if (!strncmp(value, "lhs:", 4)) {
+    a->kind = SW_STUDY_LHS;
+    return read_count(c, "--sweep lhs", value + 4, 1, 100000000, &a->samples);
+  }
+  return complain(c, "--sweep: expected grid:K (K points per ranged param) or lhs:N (N "
+                  "Latin-hypercube designs), got '%s'", value);
+}
+
+static int read_study_option(swCli *c, swOptionId id, const char *value) {
+  swStudyArgs *a = &c->study;
+  switch (id) {
+  case OPT_OPTIMIZE:
+    a->mode = 2;
+    a->kind = SW_STUDY_CMAES;
+    a->kind_given = 1;
+    return SW_OK;
+  case OPT_BUDGET:
+    a->budget_given = 1;
+    return read_count(c, "--budget", value, 2, 1000000000, &a->samples);
+  case OPT_POPSIZE:
+    a->popsize_given = 1;
+    return read_count(c, "--popsize", value, 2, 100000, &a->popsize);
+  case OPT_RESTARTS:
+    a->restarts_given = 1;
+    return read_count(c, "--restarts", value, 0, 20, &a->restarts);
+  case OPT_SEED: {
+    char *end = NULL;
+    errno = 0;
+    unsigned long long v = strtoull(value, &end, 10);
+    if (end == value || *end || errno || value[0] == '-')
+      return complain(c, "--seed: expected a whole number from 0 to 2^64 - 1, got '%s'", value);
+    a->seed = (uint64_t)v;
+    a->seed_given = 1;
+    return SW_OK;
+  }
+  case OPT_SIGMA: {
+    char *end = NULL;
+    a->sigma = strtod(value, &end);
+    a->sigma_given = 1;
+    if (end == value || *end || !(a->sigma > 0 && a->sigma <= 1))
+      return complain(c, "--sigma: expected a fraction of each param's range in (0, 1], got "
+                      "'%s'", value);
+    return SW_OK;
+  }
+  case OPT_STUDY:
+    if (!value[0]) return complain(c, "--study: empty file name");
+    a->study = value;
+    return SW_OK;
+  case OPT_RESUME:
+    if (!value[0]) return complain(c, "--resume: empty file name");
+    a->resume = value;
+    return SW_OK;
+  case OPT_EVAL_TIMEOUT:
+    return read_time(c, "--eval-timeout", value, 1, &a->eval_timeout);
+  default:
+    return SW_OK;
+  }
+}
+
+/* The study options, together: which belong to which, and what cannot mix. */
+static int check_study_args(const swCli *c) {
+  const swStudyArgs *a = &c->study;
+  int optimize_only = a->budget_given || a->popsize_given || a->sigma_given || a->restarts_given;
+  if (a->resume && a->study)
+    return complain(c, "--resume %s continues that file: --study %s cannot name another",
+                    a->resume, a->study);
+  if (a->resume && a->kind_given)
+    return complain(c, "--resume takes the sweep or optimisation from its file: leave out "
+                    "--sweep and --optimize");
+  if (!a->mode && !a->resume) {
+    if (optimize_only || a->seed_given || a->study || a->eval_timeout > 0)
+      return complain(c, "--budget, --popsize, --sigma, --restarts, --seed, --study and "
+                      "--eval-timeout belong to --sweep or --optimize, which was not given");
+    return SW_OK;
+  }
+  if (a->mode == 1 && optimize_only)
+    return complain(c, "--budget, --popsize, --sigma and --restarts belong to --optimize, not "
+                    "--sweep");
+  if (c->restart || c->golden || c->out_given || c->every_given || c->info)
+    return complain(c, "a sweep or optimisation writes its study file (--study), not a run: "
+                    "leave out --out, --every, --restart, --compare and --info");
+  return SW_OK;
+}
+
 static int unknown_option(const swCli *c, const char *arg, size_t len) {
   const char *bare = arg;             /* compared without its dashes */
   while (*bare == '-' && (size_t)(bare - arg) < len) bare++;
@@ -410,6 +531,11 @@ static int parse_args(swCli *c, int argc, char **argv) {
         rc = complain(c, "--rtol: expected a number >= 0 (a fraction: 1e-6), got '%s'", value);
       break;
     }
+    case OPT_SWEEP: rc = read_sweep(c, value); break;
+    case OPT_OPTIMIZE: case OPT_BUDGET: case OPT_POPSIZE: case OPT_SIGMA: case OPT_RESTARTS:
+    case OPT_SEED: case OPT_STUDY: case OPT_RESUME: case OPT_EVAL_TIMEOUT:
+      rc = read_study_option(c, opt->id, value);
+      break;
     case OPT_QUIET: c->quiet = 1; break;
     case OPT_INFO: c->info = 1; break;
     case OPT_HELP: c->help = 1; break;
@@ -422,7 +548,7 @@ static int parse_args(swCli *c, int argc, char **argv) {
     return complain(c, "--restart %s continues that file: --out %s cannot name another",
                     c->restart, c->out);
   if (c->restart) c->out = c->restart;
-  return SW_OK;
+  return check_study_args(c);
 }
 
 /* --restart: the params (those not given with --set), the time step and
@@ -490,6 +616,13 @@ static void print_help(const swCli *c, const char *default_out) {
     case OPT_THREADS: def = "1; the results are the same for any N"; break;
     case OPT_INTEGRATOR: def = "the model's"; break;
     case OPT_RTOL: def = "1e-9"; break;
+    case OPT_BUDGET: def = "1000"; break;
+    case OPT_POPSIZE: def = "4 + floor(3 ln n), n the ranged params"; break;
+    case OPT_SIGMA: def = "0.25"; break;
+    case OPT_RESTARTS: def = "0"; break;
+    case OPT_SEED: def = "1"; break;
+    case OPT_STUDY: def = buf, snprintf(buf, sizeof buf, "%s_study.h5", p->name); break;
+    case OPT_EVAL_TIMEOUT: def = "20 times the slowest evaluation, at least 60 s"; break;
     default: break;
     }
     printf("  %-18s %s", head, o->help);
@@ -1050,6 +1183,37 @@ static int run(const swCli *c, const swModel *m, const char *out) {
   return rc;
 }
 
+/* ---- a sweep or an optimisation (cli_study.c, study.c) ---- */
+
+static int study(swCli *c) {
+  const swProgram *p = c->p;
+  const int np = p->nparam;
+  const char **unit = malloc(((size_t)np + 1) * sizeof *unit);
+  char (*units)[48] = malloc(((size_t)np + 1) * sizeof *units);
+  double *scale = malloc(((size_t)np + 1) * sizeof *scale);
+  if (!unit || !units || !scale) {
+    free(unit);
+    free(units);
+    free(scale);
+    return complain(c, "out of memory");
+  }
+  /* each param in the unit the model shows it in: 1 unit = scale SI */
+  for (int i = 0; i < np; i++) {
+    double one = param_in_unit(&p->param[i], 1.0, units[i], sizeof units[i]);
+    scale[i] = one != 0 && isfinite(one) ? 1.0 / one : 1.0;
+    unit[i] = units[i];
+  }
+  swStudyCall call = {.p = p, .prog = c->prog, .P = c->P, .overridden = c->overridden,
+                      .unit = unit, .scale = scale, .duration = c->duration, .dt = c->dt,
+                      .duration_given = c->duration_given, .dt_given = c->dt_given,
+                      .integrator = c->integrator, .quiet = c->quiet, .args = c->study};
+  int rc = sw_study_cli(&call);
+  free(unit);
+  free(units);
+  free(scale);
+  return rc;
+}
+
 /* ---- main ---- */
 
 int sw_main(const swProgram *p, int argc, char **argv) {
@@ -1068,6 +1232,10 @@ int sw_main(const swProgram *p, int argc, char **argv) {
   c.threads = 1;
   c.integrator = -1;
   c.rtol = 1e-9;
+  c.study.levels = 2;
+  c.study.samples = 1000;
+  c.study.sigma = 0.25;
+  c.study.seed = 1;
 
   /* default output: the model's, or NAME.h5 */
   char default_out[256];
@@ -1094,6 +1262,8 @@ int sw_main(const swProgram *p, int argc, char **argv) {
                   "would overwrite what it is compared with", c.golden);
   if (rc == SW_OK && c.help) {
     print_help(&c, p->out && p->out[0] ? p->out : default_out);
+  } else if (rc == SW_OK && (c.study.mode || c.study.resume)) {
+    rc = study(&c);
   } else if (rc == SW_OK) {
     if (c.threads > omp_get_num_procs() && !c.quiet && !c.info) {
       fprintf(stderr, "%s: note: %ld threads on %d processors: threads that wait for a "

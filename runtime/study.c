@@ -515,9 +515,6 @@ int sw_study_run(const swStudyOptions *o) {
             sw_pool_size(pool) == 1 ? "" : "s", o->path);
     fflush(stderr);
   }
-  char ranks[32];
-  snprintf(ranks, sizeof ranks, "%d", sw_pool_size(pool));
-  sw_study_file_attr(s.file, "workers", ranks);
 
   char why[160] = "";
   rc = o->kind == SW_STUDY_CMAES ? run_cmaes(&s, pool, o->resume ? &rows : NULL, why, sizeof why)

@@ -95,6 +95,37 @@ typedef struct {
 } swStudySettings;
 int sw_study_file_settings(const char *path, swStudySettings *s, char *err, size_t errlen);
 
+/* ---- the command line's side (cli_study.c) ---- */
+#include "sinew.h"
+
+/* What --sweep, --optimize, --budget, --popsize, --sigma, --restarts,
+ * --seed, --study, --resume and --eval-timeout asked for (cli.c). */
+typedef struct {
+  int mode;                  /* 0: no study; 1: --sweep; 2: --optimize        */
+  swStudyKind kind;
+  long levels, samples, popsize, restarts;
+  double sigma;
+  uint64_t seed;
+  double eval_timeout;
+  const char *study, *resume;
+  int kind_given, budget_given, popsize_given, sigma_given, restarts_given, seed_given;
+} swStudyArgs;
+
+typedef struct {
+  const swProgram *p;
+  const char *prog;
+  double *P;                 /* every param's value (defaults and --set), SI   */
+  const char *overridden;    /* 1: given with --set                           */
+  const char *const *unit;   /* the unit each param is shown in, its SI value  */
+  const double *scale;
+  double duration, dt;
+  int duration_given, dt_given, integrator, quiet;
+  swStudyArgs args;
+} swStudyCall;
+
+/* Runs the study the command line asked for; returns the exit code. */
+int sw_study_cli(swStudyCall *c);
+
 /* 1 when this process was started by mpirun (or srun) with more than one
  * rank; its rank in *rank. */
 int sw_study_launched(int *rank, int *size);

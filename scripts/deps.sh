@@ -18,7 +18,7 @@ perl:/usr/bin/prove
 python3-h5py:/usr/lib/python3/dist-packages/h5py/__init__.py
 python3-matplotlib:/usr/lib/python3/dist-packages/matplotlib/__init__.py
 openmpi-bin:/usr/bin/mpirun
-libopenmpi-dev:/usr/bin/mpicc
+libopenmpi-dev:/usr/lib/x86_64-linux-gnu/openmpi/include/mpi.h
 "
 [ $# -gt 0 ] && PKGS="$*"
 missing=""

@@ -1,0 +1,196 @@
+/* cli_study.c — SIM --sweep, --optimize and --resume: the command line's side
+ * of a study (study.c runs it).
+ *
+ * Design.  cli.c reads the options; this file turns them and the model's
+ * ranged params into swStudyOptions, and each evaluation into a run of the
+ * model in this process (sw_evaluate: built from the design's params,
+ * compiled, run for --duration without output, its objective sampled).  The
+ * params a study varies are those with a range that --set does not fix; the
+ * others keep their values.  What an evaluation depends on (the time step,
+ * duration and integrator, every param's start value, the model's hash and
+ * the study's settings) is recorded in the study's file, and --resume takes
+ * it all from there: a setting given again must agree with the file's (but
+ * an optimisation's --budget, which may grow), so a resumed study is the
+ * one that was interrupted. */
+#include <errno.h>
+#include <inttypes.h>
+#include <math.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#include "sinew.h"
+#include "study.h"
+
+static int say(const swStudyCall *c, int rc, const char *fmt, ...)
+    __attribute__((format(printf, 3, 4)));
+static int say(const swStudyCall *c, int rc, const char *fmt, ...) {
+  va_list ap;
+  va_start(ap, fmt);
+  fprintf(stderr, "%s: ", c->prog);
+  vfprintf(stderr, fmt, ap);
+  fprintf(stderr, "\n");
+  va_end(ap);
+  return rc;
+}
+
+/* One evaluation: the model run with the design's params. */
+static void eval_model(void *ctx, const double *P, swStudyEval *r) {
+  const swStudyCall *c = ctx;
+  swEvalResult e;
+  int rc = sw_evaluate(c->p, P, c->duration, c->dt_given ? c->dt : 0, c->integrator, &e);
+  r->status = rc == SW_OK ? SW_EVAL_OK : rc == SW_EUNSTABLE ? SW_EVAL_UNSTABLE
+              : rc == SW_EMODEL ? SW_EVAL_INVALID : SW_EVAL_FAILED;
+  r->interrupted = rc == SW_EINTERRUPT;
+  r->objective = e.objective;
+  r->penalty = e.penalty;
+  r->score = rc == SW_OK ? e.score : -INFINITY;
+  r->sim_time = e.sim_time;
+  snprintf(r->message, sizeof r->message, "%s", e.message);
+}
+
+/* "duration=...;dt=...;integrator=..." of this command line */
+static void run_settings(const swStudyCall *c, char *buf, size_t len) {
+  snprintf(buf, len, "duration=%.17g;dt=%.17g;integrator=%d", c->duration,
+           c->dt_given ? c->dt : 0.0, c->integrator);
+}
+
+/* --resume: the settings, params and run of the file, checked against the
+ * options given again. */
+static int take_resumed(swStudyCall *c, swStudyArgs *a, int *vary) {
+  const swProgram *p = c->p;
+  swStudySettings s;
+  char err[512];
+  if (access(a->resume, R_OK) != 0)
+    return say(c, SW_EIO, "--resume: cannot read '%s': %s", a->resume, strerror(errno));
+  if (sw_study_file_settings(a->resume, &s, err, sizeof err) != SW_OK)
+    return say(c, SW_EIO, "--resume: %s", err);
+  if (strcmp(s.model_sha256, p->sha256 ? p->sha256 : ""))
+    return say(c, SW_EIO, "--resume: %s is a study of another model (model_sha256 %.12s..., "
+               "this model's %.12s...)", a->resume, s.model_sha256, p->sha256 ? p->sha256 : "");
+  /* the run of each evaluation */
+  double duration = 0, dt = 0;
+  int integrator = -1;
+  if (sscanf(s.run_settings, "duration=%lf;dt=%lf;integrator=%d", &duration, &dt,
+             &integrator) != 3)
+    return say(c, SW_EIO, "--resume: %s: unreadable run settings '%s'", a->resume,
+               s.run_settings);
+  if ((c->duration_given && c->duration != duration) || (c->dt_given && c->dt != dt) ||
+      (c->integrator >= 0 && c->integrator != integrator))
+    return say(c, SW_EUSAGE, "--resume %s: its evaluations ran with %s; --duration, --dt and "
+               "--integrator must agree or be left out", a->resume, s.run_settings);
+  c->duration = duration;
+  c->dt = dt;
+  c->dt_given = dt > 0;
+  c->integrator = integrator;
+  /* the study's settings */
+  if (a->kind_given || a->seed_given || a->popsize_given || a->sigma_given ||
+      a->restarts_given || (a->budget_given && s.kind != SW_STUDY_CMAES))
+    return say(c, SW_EUSAGE, "--resume %s: the study's settings are in the file; only an "
+               "optimisation's --budget may be given again (to let it run longer)", a->resume);
+  a->kind = s.kind;
+  a->levels = s.levels;
+  a->popsize = s.popsize;
+  a->sigma = s.sigma;
+  a->seed = s.seed;
+  a->restarts = s.restarts;
+  if (!a->budget_given) a->samples = s.samples;
+  else if (a->samples < s.samples)
+    return say(c, SW_EUSAGE, "--resume %s --budget %ld: the study already had a budget of %ld",
+               a->resume, a->samples, s.samples);
+  if (s.kind != SW_STUDY_CMAES) a->samples = s.samples;
+  /* every param's start value, and which vary */
+  for (char *item = strtok(s.fixed, ";"); item; item = strtok(NULL, ";")) {
+    char *eq = strchr(item, '=');
+    if (!eq) continue;
+    *eq = 0;
+    for (int i = 0; i < p->nparam; i++) {
+      if (strcmp(p->param[i].name, item)) continue;
+      double v = strtod(eq + 1, NULL);
+      if (c->overridden[i] && c->P[i] != v)
+        return say(c, SW_EUSAGE, "--resume %s: the study ran with %s = %.9g (SI); --set "
+                   "must agree or be left out", a->resume, item, v);
+      c->P[i] = v;
+    }
+  }
+  for (int i = 0; i < p->nparam; i++) vary[i] = 0;
+  for (char *item = strtok(s.varied, ";"); item; item = strtok(NULL, ";"))
+    for (int i = 0; i < p->nparam; i++)
+      if (!strcmp(p->param[i].name, item)) vary[i] = p->param[i].ranged;
+  return SW_OK;
+}
+
+int sw_study_cli(swStudyCall *c) {
+  const swProgram *p = c->p;
+  swStudyArgs a = c->args;
+  const int np = p->nparam;
+  int *vary = calloc((size_t)np + 1, sizeof *vary);
+  const char **name = malloc(((size_t)np + 1) * sizeof *name);
+  double *lo = malloc(((size_t)np + 1) * sizeof *lo), *hi = malloc(((size_t)np + 1) * sizeof *hi);
+  if (!vary || !name || !lo || !hi) {
+    free(vary);
+    free(name);
+    free(lo);
+    free(hi);
+    return say(c, SW_EIO, "out of memory");
+  }
+  int rc = SW_OK;
+  for (int i = 0; i < np; i++) {
+    name[i] = p->param[i].name;
+    vary[i] = p->param[i].ranged && !c->overridden[i];
+    lo[i] = p->param[i].lo;
+    hi[i] = p->param[i].hi;
+  }
+  const char *path = a.resume ? a.resume : a.study;
+  char default_path[300];
+  if (!path) {
+    snprintf(default_path, sizeof default_path, "%s_study.h5", p->name && p->name[0] ? p->name
+                                                                                    : "sinew");
+    path = default_path;
+  }
+  if (a.resume) rc = take_resumed(c, &a, vary);
+  else if (access(path, F_OK) == 0)
+    rc = say(c, SW_EUSAGE, "the study file %s exists: continue it with --resume %s, or give "
+             "another --study (or remove it)", path, path);
+  char settings[256];
+  run_settings(c, settings, sizeof settings);
+  swStudyOptions o;
+  memset(&o, 0, sizeof o);
+  o.prog = c->prog;
+  o.path = path;
+  o.resume = a.resume != NULL;
+  o.quiet = c->quiet;
+  o.kind = a.kind;
+  o.levels = a.levels;
+  o.samples = a.samples;
+  o.popsize = a.popsize;
+  o.sigma = a.sigma;
+  o.restarts = a.restarts;
+  o.seed = a.seed;
+  o.eval_timeout = a.eval_timeout;
+  o.nparam = np;
+  o.name = name;
+  o.unit = c->unit;
+  o.scale = c->scale;
+  o.value = c->P;
+  o.vary = vary;
+  o.lo = lo;
+  o.hi = hi;
+  o.sense = p->sense;
+  o.objective_text = p->objective_text ? p->objective_text : "";
+  o.objective_unit = p->objective_unit ? p->objective_unit : "";
+  o.objective_scale = p->objective_scale > 0 ? p->objective_scale : 1;
+  o.model_name = p->name;
+  o.model_sha256 = p->sha256 ? p->sha256 : "";
+  o.run_settings = settings;
+  o.eval = eval_model;
+  o.ctx = c;
+  if (rc == SW_OK) rc = sw_study_run(&o);
+  free(vary);
+  free(name);
+  free(lo);
+  free(hi);
+  return rc;
+}
