@@ -391,7 +391,9 @@ static void emit_build(FILE *out, swArena *a, const swScene *sc) {
   static const char *const quantities[] = {"SW_EXPECT_JOINT_ANGLE", "SW_EXPECT_JOINT_FORCE",
                                            "SW_EXPECT_MUSCLE_FORCE", "SW_EXPECT_MUSCLE_STRETCH",
                                            "SW_EXPECT_PROBE"};
-  for (int i = 0; i < sc->nexpect; i++) {
+  static const char *const reductions[] = {"SW_REDUCE_NONE", "SW_REDUCE_AT", "SW_REDUCE_MEAN",
+                                           "SW_REDUCE_MAX", "SW_REDUCE_MIN"};
+  for (int i = 0, r = 0; i < sc->nexpect; i++) {
     swExpectDesc d;
     gen_expect_desc(&sc->expect[i], &d);
     char where[300];
@@ -411,10 +413,16 @@ static void emit_build(FILE *out, swArena *a, const swScene *sc) {
     if (d.quantity == SW_EXPECT_PROBE) fprintf(out, "    expect.component = %d;\n", d.component);
     if (d.window) fputs("    expect.window = 1;\n", out);
     fprintf(out, "    expect.t0 = %.17g;\n    expect.t1 = %.17g;\n", d.t0, d.t1);
-    fprintf(out, "    expect.lo = %.17g;\n    expect.hi = %.17g;\n", d.lo, d.hi);
-    fprintf(out, "    expect.scale = %.17g;\n    expect.unit = ", d.scale);
-    gen_c_string(out, d.unit);
-    fputs(";\n    ok &= sw_spec_add_expect(s, &expect) >= 0;\n  }\n", out);
+    if (d.reduce) {   /* a reduction the objective reads */
+      fprintf(out, "    expect.reduce = %s;   /* R[%d] of objective() */\n",
+              reductions[d.reduce], r++);
+    } else {
+      fprintf(out, "    expect.lo = %.17g;\n    expect.hi = %.17g;\n", d.lo, d.hi);
+      fprintf(out, "    expect.scale = %.17g;\n    expect.unit = ", d.scale);
+      gen_c_string(out, d.unit);
+      fputs(";\n", out);
+    }
+    fputs("    ok &= sw_spec_add_expect(s, &expect) >= 0;\n  }\n", out);
   }
   if (sc->gravity.kind == VAL_VEC) {
     fputc('\n', out);
@@ -426,6 +434,47 @@ static void emit_build(FILE *out, swArena *a, const swScene *sc) {
   fprintf(out, "\n  sw_spec_set_integrator(s, %s);\n", integrators[sc->integrator]);
   fputs("  if (!ok) {\n    snprintf(err, errlen, \"out of memory while building the scene\");\n"
         "    return SW_EMODEL;\n  }\n  return SW_OK;\n}\n", out);
+}
+
+/* objective(): the objective and the sum of the penalties over the params P
+ * and the values R of the reductions build() adds. */
+static void emit_objective(FILE *out, swArena *a, const swScene *sc) {
+  const swSceneObjective *o = &sc->objective;
+  if (!o->sense) return;
+  fputs("\n/* The objective and the sum of the penalties (SI) from the params P and the\n"
+        " * values R of the reductions of the run, in the order build() adds them:", out);
+  for (int i = 0, r = 0; i < sc->nexpect; i++)
+    if (sc->expect[i].reduce) {
+      fprintf(out, "\n *   R[%d] ", r++);
+      gen_c_comment(out, sc->expect[i].text, strlen(sc->expect[i].text));
+    }
+  fputs(" */\nstatic void objective(const double *P, const double *R, double *value, "
+        "double *penalty) {\n  (void)P;\n  (void)R;\n", out);
+  gen_origin(out, o->loc, "  ");
+  fprintf(out, "  *value = %s;\n  *penalty = 0.0;\n", val_c(a, &o->value, 0));
+  for (int i = 0; i < o->npenalty; i++) {
+    gen_origin(out, o->penalty_loc[i], "  ");
+    fprintf(out, "  *penalty += %s;\n", val_c(a, &o->penalty[i], 0));
+  }
+  fputs("}\n", out);
+}
+
+/* The program's members that describe the objective. */
+static void emit_objective_members(FILE *out, swArena *a, const swScene *sc) {
+  const swSceneObjective *o = &sc->objective;
+  if (!o->sense) return;
+  char where[512];
+  swValue scale = val_num(a, o->scale, DIM_NONE, o->loc);
+  fprintf(out, ",\n    .sense = %d,\n    .objective_text = ", o->sense);
+  gen_c_string(out, o->text);
+  fputs(",\n    .objective_where = ", out);
+  gen_c_string(out, diag_name_where(o->loc, where, sizeof where));
+  fputs(",\n    .objective_unit = ", out);
+  gen_c_string(out, o->unit);
+  fprintf(out, ",\n    .objective_scale = %s,\n    .objective_si_unit = ", val_c(a, &scale, 0));
+  gen_c_string(out, o->si_unit);
+  fprintf(out, ",\n    .npenalty = %d,\n    .nreduce = %d,\n    .objective = objective",
+          o->npenalty, o->nreduce);
 }
 
 static void emit_source(FILE *out, const char *src) {
@@ -482,12 +531,18 @@ int gen_c(FILE *out, swArena *a, const swScene *sc, const swGenOptions *opt) {
       gen_c_string(out, p->unit);
       fputs(", ", out);
       gen_c_string(out, diag_name_where(p->loc, where, sizeof where));
+      if (p->ranged) {   /* in (lo, hi): what a study varies */
+        swValue lo = val_num(a, p->lo, p->value.dim, p->loc);
+        swValue hi = val_num(a, p->hi, p->value.dim, p->loc);
+        fprintf(out, ", 1, %s, %s", val_c(a, &lo, 0), val_c(a, &hi, 0));
+      }
       fprintf(out, "},   /* P[%d] */\n", i);
     }
     fputs("};\n\n", out);
   }
   gen_env_heights(out, a, sc);
   emit_build(out, a, sc);
+  emit_objective(out, a, sc);
   for (int scope = OUT_RODS; scope <= OUT_MUSCLES; scope++) emit_selection(out, sc, scope);
   /* without "output ... every T", a thousand frames over the run */
   double duration = sc->has_duration ? sc->duration : 1.0;
@@ -511,6 +566,7 @@ int gen_c(FILE *out, swArena *a, const swScene *sc, const swGenOptions *opt) {
     gen_c_string(out, def);
   }
   emit_selection_members(out, sc);
+  emit_objective_members(out, a, sc);
   fputs(",\n  };\n  return sw_main(&program, argc, argv);\n}\n", out);
   return ferror(out) ? -1 : 0;
 }

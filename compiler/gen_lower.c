@@ -226,6 +226,7 @@ void gen_expect_desc(const swSceneExpect *x, swExpectDesc *d) {
   d->hi = x->hi;
   d->scale = x->scale;
   d->unit = x->unit;
+  d->reduce = x->reduce;
 }
 
 swSpec *gen_spec(const swScene *sc) {

@@ -611,7 +611,8 @@ void sema_items(swSema *S, swScope *scope, const swAst *items, int first) {
       instantiate(S, scope, it);
       break;
     case AST_ACTION:
-      sema_action(S, scope, it);
+      if (sema_is_objective_word(it->text)) sema_objective_later(S, scope, it);
+      else sema_action(S, scope, it);
       break;
     case AST_SIMULATE:
       sema_simulate(S, scope, it);
@@ -759,6 +760,7 @@ int sema_check_lets(swArena *arena, int file, swLetOverride *lets, int nlets, sw
   check_file(&S, file, S.global);
   sema_output_selections(&S);
   sema_expectations(&S);
+  sema_objectives(&S);
   warn_unused(&S);
   int lets_ok = 1;
   for (int i = 0; i < nlets; i++) {
@@ -777,6 +779,8 @@ int sema_check_lets(swArena *arena, int file, swLetOverride *lets, int nlets, sw
   free(S.done_paths);
   free(S.expect_item);
   free(S.expect_scope);
+  free(S.objective_item);
+  free(S.objective_scope);
   return diag_errors() - before;
 }
 

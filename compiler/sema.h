@@ -43,7 +43,9 @@ typedef struct swValue {
   swValKind kind;
   swDim dim;
   int n;                      /* components                                */
-  double *v;                  /* (n) values with params at their defaults  */
+  double *v;                  /* (n) values with params at their defaults;
+                                 NaN when known only at the end of a run (an
+                                 objective's reduction, R[k] in its C text) */
   const char **c;             /* (n) C expressions, NULL entries constant; NULL if all */
   const char *param;          /* a param it depends on (for messages)      */
   swLoc loc;
@@ -183,6 +185,8 @@ typedef struct {
   swLoc loc;
   swValue value;              /* default                                   */
   const char *unit;           /* as written, for --help                    */
+  int ranged;                 /* `in (lo, hi)` given: a study varies it     */
+  double lo, hi;              /* the range, SI, lo < hi                     */
 } swSceneParam;
 
 /* ---- environments (sema_env.c, sema_terrain.c) ---- */
@@ -285,7 +289,27 @@ typedef struct {
   double t0, t1, lo, hi;      /* SI                                        */
   double scale;               /* the report's unit, in SI ...              */
   const char *unit;           /* ... and its name                          */
+  int reduce;                 /* SW_REDUCE_NONE: an expect statement; else a
+                                 reduction the objective reads (lo, hi, scale
+                                 and unit unused), R[k] for the k-th of them */
 } swSceneExpect;
+
+/* The model's objective (sema_objective.c): maximize or minimize EXPR, and
+ * the penalties, as values over the params P and the reductions R (the
+ * entries of swScene.expect with `reduce` set, in order). */
+typedef struct {
+  int sense;                  /* +1 maximize, -1 minimize, 0: none          */
+  const char *text;           /* "maximize EXPR" as written, on one line    */
+  swLoc loc;
+  swValue value;              /* a number; its C text reads P and R         */
+  int npenalty;
+  swValue *penalty;           /* (npenalty) of the objective's dimension     */
+  swLoc *penalty_loc;         /* (npenalty) the statements                   */
+  int nreduce;
+  const char *unit;           /* the unit reports show it in ("" none) ...  */
+  double scale;               /* ... its SI value                           */
+  const char *si_unit;        /* its SI unit ("m/s"; "" none)               */
+} swSceneObjective;
 
 /* One selection of output: quantity `bit` (SW_OUT_*) for the listed items
  * of one scope: rods as runtime rod ids (a muscle stands for its
@@ -314,6 +338,7 @@ typedef struct {
   swSceneWave *wave;     int nwave, capwave;
   swSceneProbe *probe;   int nprobe, capprobe;
   swSceneExpect *expect; int nexpect, capexpect;
+  swSceneObjective objective;
   swValue gravity;            /* kind VAL_ERROR when absent                 */
   swLoc gravity_loc;
   swIntegrator integrator;

@@ -110,6 +110,50 @@ static int units_only(const swAst *e, const swAst *num) {
   return 0;
 }
 
+/* param NAME = V in (LO, HI): the range a study varies the param over;
+ * constants of its dimension, LO below HI, V within [LO, HI].  After an
+ * error the param stays, without a range. */
+static void param_range(swSema *S, const swSymbol *sym, const swAst *range, int idx) {
+  /* the bounds may name params, evaluated (and added to the table) here */
+  const swValue value = S->scene->param[idx].value;
+  if (strcmp(range->name, "in")) {
+    diag_error(range->loc, "unexpected '%s' after the value of param '%s'; a range is written "
+               "'in (LO, HI)'", range->name, sym->name);
+    return;
+  }
+  const swAst *pair = ast_kid(range, 0);
+  if (pair->kind != AST_VEC || pair->nkid != 2) {
+    diag_error(pair->loc, "the range of param '%s' is two values: in (LO, HI)", sym->name);
+    return;
+  }
+  char what[160];
+  snprintf(what, sizeof what, "the range of param '%s'", sym->name);
+  const char *w = ast_strdup(S->a, what, strlen(what));
+  double b[2] = {0, 0};
+  int ok = 1;
+  for (int k = 0; k < 2; k++) {
+    swValue v = sema_expect(S, sym->scope, pair->kid[k], 1, value.dim, w);
+    if (v.kind == VAL_ERROR || !sema_require_const(S, &v, w)) ok = 0;
+    else b[k] = v.v[0];
+  }
+  if (!ok) return;
+  const char *text = sema_source_text(S, pair->loc);
+  if (!(b[0] < b[1])) {
+    diag_error(pair->loc, "the range %s of param '%s' is empty: its lower bound must be below "
+               "its upper bound", text, sym->name);
+    return;
+  }
+  if (!(value.v[0] >= b[0] && value.v[0] <= b[1])) {
+    diag_error(sym->def->kid[0]->loc, "the value of param '%s' is outside its range %s (a "
+               "study starts from it)", sym->name, text);
+    return;
+  }
+  swSceneParam *p = &S->scene->param[idx];
+  p->ranged = 1;
+  p->lo = b[0];
+  p->hi = b[1];
+}
+
 static void eval_param(swSema *S, swSymbol *sym) {
   const swAst *def = sym->def;
   swValue v = sema_eval(S, sym->scope, def->kid[0]);
@@ -164,6 +208,8 @@ static void eval_param(swSema *S, swSymbol *sym) {
       if (to > from) p->unit = ast_strdup(S->a, from, (size_t)(to - from));
     }
   }
+  const swAst *range = ast_kid(def, 1);
+  if (range) param_range(S, sym, range, idx);
   sym->index = idx;
   char buf[32];
   snprintf(buf, sizeof buf, "P[%d]", idx);
@@ -584,7 +630,7 @@ static void eval_rod(swSema *S, swSymbol *sym) {
   scn->rod[scn->nrod++] = r;
 }
 
-void sema_eval_symbol(swSema *S, swSymbol *sym) {
+static void eval_symbol(swSema *S, swSymbol *sym) {
   if (sym->state == 2) return;
   if (sym->state == 1) {
     /* the chain from sym's own evaluation to here: "b -> c -> b" */
@@ -637,6 +683,16 @@ void sema_eval_symbol(swSema *S, swSymbol *sym) {
   }
   S->nevaluating--;
   sym->state = 2;
+}
+
+/* A definition means the same wherever it is first used: a reduction of the
+ * run in a let is not the objective's, even when the objective is what
+ * reads the let first. */
+void sema_eval_symbol(swSema *S, swSymbol *sym) {
+  const int reducing = S->reducing;
+  S->reducing = 0;
+  eval_symbol(S, sym);
+  S->reducing = reducing;
 }
 
 swValue sema_rod_length(swSema *S, swSymbol *rod, swLoc loc) {

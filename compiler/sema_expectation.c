@@ -17,7 +17,9 @@
  * `angle(elbow)` is the instance's joint) and checked after the last item.
  * The bounds are fixed when compiling: a golden test states numbers, and a
  * run with other params (--set) is held to the same ones.  The report shows
- * values in the unit the bounds were written in. */
+ * values in the unit the bounds were written in.  The reductions of an
+ * objective (sema_objective.c) read their quantities through the same
+ * sema_quantity. */
 #include <stdlib.h>
 #include <string.h>
 
@@ -40,8 +42,9 @@ void sema_expectation_later(swSema *S, swScope *scope, const swAst *it) {
   S->nexpect_item = n + 1;
 }
 
-/* The statement's text on one line, blanks folded, for the report. */
-static const char *statement_text(swSema *S, swLoc loc) {
+/* The text of loc on one line, blanks folded: a statement for the report,
+ * an objective or a reduction. */
+const char *sema_source_text(swSema *S, swLoc loc) {
   const swSource *src = diag_file(loc.file);
   const char *p = diag_at(src, loc.line, loc.col), *end = diag_at(src, loc.end_line, loc.end_col + 1);
   char *out = ast_alloc(S->a, (size_t)(end - p) + 2);
@@ -56,8 +59,17 @@ static const char *statement_text(swSema *S, swLoc loc) {
     blank = 0;
     out[k++] = *q;
   }
-  out[k++] = ';';
   out[k] = 0;
+  return out;
+}
+
+/* The statement's text for the report: "expect ...;". */
+static const char *statement_text(swSema *S, swLoc loc) {
+  const char *text = sema_source_text(S, loc);
+  size_t n = strlen(text);
+  char *out = ast_alloc(S->a, n + 2);
+  memcpy(out, text, n);
+  out[n] = ';';
   return out;
 }
 
@@ -73,13 +85,14 @@ static const swUnit *written_unit(const swAst *e) {
 }
 
 /* Which quantity `q` reads, into x (quantity, index, component) and its
- * dimension; 0 after reporting why not. */
-static int resolve(swSema *S, swScope *scope, const swAst *q, swSceneExpect *x, swDim *dim) {
+ * dimension; 0 after reporting why not.  `who` reads it ("an expectation"). */
+int sema_quantity(swSema *S, swScope *scope, const swAst *q, const char *who, swSceneExpect *x,
+                  swDim *dim) {
   static const char *const funcs[] = {"angle", "force", "stretch", "x", "y", "z", "size"};
   const int nfuncs = (int)(sizeof funcs / sizeof funcs[0]);
   if (q->kind != AST_CALL) {
-    diag_error(q->loc, "an expectation reads a quantity: angle(JOINT), force(JOINT or MUSCLE), "
-               "stretch(MUSCLE), or x, y, z or size of a probe");
+    diag_error(q->loc, "%s reads a quantity: angle(JOINT), force(JOINT or MUSCLE), "
+               "stretch(MUSCLE), or x, y, z or size of a probe", who);
     return 0;
   }
   int k;
@@ -192,7 +205,7 @@ static void check_one(swSema *S, swScope *scope, const swAst *it) {
   const swAst *q = ast_kid(it, 0), *when = ast_kid(it, 1), *test = ast_kid(it, 2),
               *of = ast_kid(it, 3);
   swDim dim = DIM_NONE;
-  int ok = resolve(S, scope, q, &x, &dim);
+  int ok = sema_quantity(S, scope, q, "an expectation", &x, &dim);
   /* at T | over (T0, T1) */
   if (!strcmp(when->name, "at")) {
     ok &= constant(S, scope, ast_kid(when, 0), 1, DIM_TIME, "'at T'", &x.t0);
@@ -246,13 +259,17 @@ static void check_one(swSema *S, swScope *scope, const swAst *it) {
            : x.quantity == SW_EXPECT_MUSCLE_STRETCH ? ""
            : x.quantity == SW_EXPECT_PROBE ? (dim.e[2] ? "m/s" : "m") : "N";
   x.text = statement_text(S, it->loc);
+  sema_add_expect(S, &x);
+}
+
+void sema_add_expect(swSema *S, const swSceneExpect *x) {
   swScene *scn = S->scene;
   if (scn->nexpect == scn->capexpect) {
     scn->capexpect = scn->capexpect ? 2 * scn->capexpect : 8;
     scn->expect = realloc(scn->expect, (size_t)scn->capexpect * sizeof *scn->expect);
     if (!scn->expect) abort();
   }
-  scn->expect[scn->nexpect++] = x;
+  scn->expect[scn->nexpect++] = *x;
 }
 
 void sema_expectations(swSema *S) {

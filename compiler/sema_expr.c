@@ -12,7 +12,9 @@
  * parameter may hold one and pass it on to a switch such as rigid
  * (sema_truth); arithmetic refuses them.  Time
  * signals are the runtime's (constant, ramp, sine, step, table) with their
- * arguments checked by dimension; a signal may only be scaled.
+ * arguments checked by dimension; a signal may only be scaled.  max(a, b),
+ * min(a, b) and abs(a) take numbers (of one dimension); the reductions of
+ * the run, at() and the *_over() windows, are sema_objective.c's.
  */
 #include <math.h>
 #include <stdio.h>
@@ -23,7 +25,8 @@
 #define PI 3.14159265358979323846
 
 static const char *const functions[] = {"sqrt", "sin", "cos", "tan", "ramp", "sine", "step",
-                                        "table", "bspline", "exp", "piecewise"};
+                                        "table", "bspline", "exp", "piecewise", "max", "min",
+                                        "abs", "at", "mean_over", "max_over", "min_over"};
 enum { NFUNCTIONS = sizeof functions / sizeof functions[0] };
 
 static const char *describe_value(swSema *S, const swValue *v) {
@@ -110,8 +113,12 @@ swValue sema_expect(swSema *S, swScope *scope, const swAst *e, int n, swDim want
 int sema_require_const(swSema *S, const swValue *v, const char *what) {
   (void)S;
   if (v->kind == VAL_ERROR || val_is_const(v)) return 1;
-  diag_error(v->loc, "%s must be known when the model is compiled, but it depends on param '%s'",
-             what, v->param ? v->param : "?");
+  if (v->param)
+    diag_error(v->loc, "%s must be known when the model is compiled, but it depends on param "
+               "'%s'", what, v->param);
+  else   /* a reduction of the run (sema_objective.c) */
+    diag_error(v->loc, "%s must be known when the model is compiled, but it depends on the run",
+               what);
   return 0;
 }
 
@@ -478,9 +485,59 @@ static swValue eval_signal(swSema *S, swScope *scope, const swAst *call) {
   return make_signal(S, sig, sig->values.dim, loc);
 }
 
+/* max(a, b), min(a, b): numbers of one dimension; abs(a).  A value known
+ * only at the end of a run (NaN) stays unknown. */
+static swValue eval_extreme(swSema *S, swScope *scope, const swAst *e) {
+  const char *fn = e->name;
+  const swAst *args = ast_kid(e, 0);
+  const int n = fn[0] == 'a' ? 1 : 2;
+  int ok = args && args->nkid == n;
+  for (int i = 0; ok && i < n; i++) ok = args->kid[i]->kind == AST_ARG && !args->kid[i]->name;
+  if (!ok) {
+    diag_error(e->loc, n == 1 ? "abs() takes one number" : "%s() takes two numbers", fn);
+    return val_error();
+  }
+  swValue x[2];
+  for (int i = 0; i < n; i++) {
+    x[i] = operand(S, scope, ast_kid(args->kid[i], 0));
+    if (x[i].kind != VAL_ERROR && x[i].kind != VAL_NUM) {
+      diag_error(x[i].loc, "%s() takes numbers, not %s", fn, describe_value(S, &x[i]));
+      x[i] = val_error();
+    }
+  }
+  if (x[0].kind == VAL_ERROR || (n == 2 && x[1].kind == VAL_ERROR)) return val_error();
+  if (n == 2 && !dim_eq(x[0].dim, x[1].dim)) {
+    diag_error(e->loc, "%s() compares numbers of one dimension, but the first is %s and the "
+               "second %s", fn, describe_value(S, &x[0]), describe_value(S, &x[1]));
+    return val_error();
+  }
+  const double a = x[0].v[0], b = n == 2 ? x[1].v[0] : 0;
+  double r = n == 1 ? fabs(a) : isnan(a) || isnan(b) ? NAN : fn[1] == 'a' ? fmax(a, b) : fmin(a, b);
+  swValue v = val_num(S->a, r, x[0].dim, e->loc);
+  v.param = x[0].param ? x[0].param : n == 2 ? x[1].param : NULL;
+  if (!val_is_const(&x[0]) || (n == 2 && !val_is_const(&x[1]))) {
+    char buf[4096];
+    int len = n == 1 ? snprintf(buf, sizeof buf, "fabs(%s)", val_c(S->a, &x[0], 0))
+                     : snprintf(buf, sizeof buf, "%s(%s, %s)", fn[1] == 'a' ? "fmax" : "fmin",
+                                val_c(S->a, &x[0], 0), val_c(S->a, &x[1], 0));
+    if (len >= (int)sizeof buf) {
+      diag_error(e->loc, "expression is too long to generate");
+      return val_error();
+    }
+    v.c = ast_alloc(S->a, sizeof *v.c);
+    v.c[0] = ast_strdup(S->a, buf, (size_t)len);
+  }
+  return v;
+}
+
 static swValue eval_call(swSema *S, swScope *scope, const swAst *e) {
   const char *fn = e->name;
   const swAst *args = ast_kid(e, 0);
+  if (!strcmp(fn, "max") || !strcmp(fn, "min") || !strcmp(fn, "abs"))
+    return eval_extreme(S, scope, e);
+  if (!strcmp(fn, "at") || !strcmp(fn, "mean_over") || !strcmp(fn, "max_over") ||
+      !strcmp(fn, "min_over"))
+    return sema_reduction(S, scope, e);
   if (!strcmp(fn, "ramp") || !strcmp(fn, "sine") || !strcmp(fn, "step") ||
       !strcmp(fn, "table") || !strcmp(fn, "bspline"))
     return eval_signal(S, scope, e);

@@ -59,6 +59,13 @@ typedef struct {
   const swAst **expect_item;
   swScope **expect_scope;
   int nexpect_item, capexpect_item;
+  /* maximize, minimize and penalty statements, likewise */
+  const swAst **objective_item;
+  swScope **objective_scope;
+  int nobjective_item, capobjective_item;
+  /* set while one of them is evaluated: a reduction (at, mean_over, ...)
+   * is allowed there and nowhere else */
+  int reducing;
 } swSema;
 
 /* sema.c */
@@ -114,6 +121,23 @@ void sema_probe(swSema *S, swScope *scope, const swAst *field);
  * sema_expectations after the last item */
 void sema_expectation_later(swSema *S, swScope *scope, const swAst *it);
 void sema_expectations(swSema *S);
+/* the quantity an expectation or a reduction reads (`who` names it in
+ * messages): its swExpectQuantity, index and component into x, its
+ * dimension into dim; 0 after reporting why not */
+int sema_quantity(swSema *S, swScope *scope, const swAst *q, const char *who,
+                  swSceneExpect *x, swDim *dim);
+/* appends an entry (an expectation or a reduction) to the scene's list */
+void sema_add_expect(swSema *S, const swSceneExpect *x);
+/* the source text of loc on one line, blanks folded */
+const char *sema_source_text(swSema *S, swLoc loc);
+/* sema_objective.c: maximize, minimize and penalty statements are kept when
+ * met (sema_objective_later: 1 when `it` is one) and checked by
+ * sema_objectives after the expectations; sema_reduction evaluates at(),
+ * mean_over(), max_over() and min_over() inside them */
+int sema_is_objective_word(const char *word);
+void sema_objective_later(swSema *S, swScope *scope, const swAst *it);
+void sema_objectives(swSema *S);
+swValue sema_reduction(swSema *S, swScope *scope, const swAst *call);
 /* a rod list: NAME, (NAME, NAME, ...), all; muscles stand for their filaments */
 int sema_rod_list(swSema *S, swScope *scope, const swAst *e, const char *what, swRodList *out);
 

@@ -382,7 +382,12 @@ void sema_action(swSema *S, swScope *scope, const swAst *it) {
     if (!strcmp(word, actions[k])) break;
   swLoc wloc = it->loc;
   if (k == NACTIONS) {
-    const char *near = diag_suggest(word, actions, NACTIONS);
+    /* the statements of the objective are sema_objective.c's, but a
+     * misspelt one is only an unknown statement here */
+    static const char *const all[] = {"clamp", "gravity", "force", "torque", "velocity",
+                                      "angular_velocity", "activate", "passive", "maximize",
+                                      "minimize", "penalty"};
+    const char *near = diag_suggest(word, all, (int)(sizeof all / sizeof all[0]));
     if (near) diag_error(wloc, "unknown statement '%s'; did you mean '%s'?", word, near);
     else
       diag_error(wloc, "unknown statement '%s' (expected clamp, gravity, force, torque, "

@@ -279,7 +279,7 @@ swValue val_pow(swArena *a, swValue x, double p, swLoc loc) {
   double r = pow(x.v[0], p);
   int k = power_of_ten(x.v[0]);
   if (k != NOT_POW10 && p == floor(p) && fabs(k * p) <= 300) r = decimal_shift(1.0, (int)(k * p));
-  if (!isfinite(r)) {
+  if (!isfinite(r) && isfinite(x.v[0])) {   /* NaN: known at the end of a run */
     diag_error(loc, "the power is not a finite number");
     return val_error();
   }
@@ -323,7 +323,7 @@ swValue val_func(swArena *a, const char *fn, swValue x, swLoc loc) {
       return val_error();
     }
     r = exp(x.v[0]);
-    if (!isfinite(r)) {
+    if (!isfinite(r) && !isnan(x.v[0])) {
       diag_error(loc, "exp() of %g is not a finite number", x.v[0]);
       return val_error();
     }

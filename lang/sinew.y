@@ -122,6 +122,11 @@ item
                                             "expected ';' or 'as NAME'", $3); }
   /* param NAME = expr; */
   | PARAM IDENT '=' expr ';' { $$ = named(st, AST_PARAM, @2, $2); ast_push(A, $$, $4); }
+  /* param NAME = expr in (LO, HI);   the range a study varies it over; the
+     word (in) and the pair are checked by sema_def.c */
+  | PARAM IDENT '=' expr IDENT expr ';'
+                             { $$ = named(st, AST_PARAM, @2, $2); ast_push(A, $$, $4);
+                               ast_push(A, $$, ast_push(A, named(st, AST_ARG, @5, $5), $6)); }
   /* let NAME = expr; */
   | LET IDENT '=' expr ';'   { $$ = named(st, AST_LET, @2, $2); ast_push(A, $$, $4); }
   /* KIND NAME { fields }      material bone { E = 15 GPa; } */

@@ -17,7 +17,10 @@
  * estimate is conservative and the user may know better.  --info prints the
  * compiled scene and stops; otherwise the run writes HDF5 through output.c,
  * closes the file with a status that says how the run ended, prints a one-line
- * summary and returns sw_run()'s code as the exit code.  --threads N runs each
+ * summary and returns sw_run()'s code as the exit code.  A model with an
+ * objective (maximize, minimize) also gets it printed and stored at the end
+ * of the run (evaluate.c), and its ranges and objective shown by --info
+ * and --help.  --threads N runs each
  * step on N OpenMP threads ("auto": one per 8192 elastic slots of the model,
  * up to the processors this process may use);
  * the default is 1, because most simulators run beside others (a sweep, an
@@ -214,6 +217,58 @@ static const char *format_param(char *buf, size_t len, const swParam *q, double 
     snprintf(buf, len, "%.6g (SI, %s)", v, sw_dim_describe(what, sizeof what, q->dim));
   else snprintf(buf, len, "%.6g", v);
   return buf;
+}
+
+/* "in (0 N, 50 N)": a param's range in its unit ("" without one). */
+static const char *format_range(char *buf, size_t len, const swParam *q) {
+  char lo[48], hi[48], unit[48];
+  if (!q->ranged) {
+    snprintf(buf, len, "%s", "");
+    return buf;
+  }
+  snprintf(lo, sizeof lo, "%.6g", param_in_unit(q, q->lo, unit, sizeof unit));
+  snprintf(hi, sizeof hi, "%.6g", param_in_unit(q, q->hi, unit, sizeof unit));
+  if (unit[0]) snprintf(buf, len, "in (%s %s, %s %s)", lo, unit, hi, unit);
+  else snprintf(buf, len, "in (%s, %s)", lo, hi);
+  return buf;
+}
+
+/* The model's objective, for --help and --info. */
+static void print_objective(const swProgram *p) {
+  printf("objective: %s  # %s\n", p->objective_text, p->objective_where);
+  printf("  shown in %s; %d penalt%s; score = %s\n",
+         p->objective_unit[0] ? p->objective_unit : "no unit (a plain number)", p->npenalty,
+         p->npenalty == 1 ? "y" : "ies",
+         p->sense > 0 ? "objective - penalties" : "-(objective + penalties)");
+}
+
+/* The run's objective (evaluate.c) on one line of stderr, unless --quiet,
+ * and in the root attributes of its file; a run that did not finish, or
+ * ended before a time the objective reads, has none (NaN in the file). */
+static int report_objective(const swCli *c, const swModel *m, const swExpectRun *x,
+                            swOutput *o, int rc) {
+  const swProgram *p = c->p;
+  double value = NAN, penalty = NAN, score = NAN;
+  char why[256] = "";
+  if (rc == SW_OK) rc = sw_objective(p, m, x, c->P, &value, &penalty, &score, why, sizeof why);
+  else snprintf(why, sizeof why, "the run did not finish");
+  if (!c->quiet) {
+    const char *u = p->objective_unit, *space = u[0] ? " " : "";
+    const double k = p->objective_scale > 0 ? p->objective_scale : 1;
+    if (rc == SW_OK)
+      fprintf(stderr, "%s: objective: %s = %.9g%s%s; penalty %.9g%s%s; score %.9g%s%s\n",
+              c->prog, p->objective_text, value / k, space, u, penalty / k, space, u,
+              score / k, space, u);
+    else fprintf(stderr, "%s: objective: %s: not reached (%s)\n", c->prog, p->objective_text,
+                 why);
+    fflush(stderr);
+  }
+  if (rc != SW_OK) value = penalty = score = NAN;
+  if (sw_output_objective(o, p->objective_text, value, penalty, score,
+                          p->objective_si_unit) == SW_OK)
+    return SW_OK;
+  complain(c, "%s", sw_output_error());
+  return SW_EIO;
 }
 
 static double wall_seconds(void) {
@@ -641,19 +696,31 @@ static void print_help(const swCli *c, const char *default_out) {
       if (n > width) width = n;
       if (w > what_width) what_width = w;
     }
-    printf("params (--set NAME=VALUE, VALUE in the dimension shown):\n");
+    int range_width = 0;
+    for (int i = 0; i < p->nparam; i++) {
+      int n = (int)strlen(format_range(buf, sizeof buf, &p->param[i]));
+      if (n > range_width) range_width = n;
+    }
+    printf("params (--set NAME=VALUE, VALUE in the dimension shown%s):\n",
+           range_width ? "; a study varies those with a range" : "");
     for (int i = 0; i < p->nparam; i++) {
       const swParam *q = &p->param[i];
-      char value[96];
+      char value[96], range[200];
       format_param(value, sizeof value, q, q->value);
+      format_range(range, sizeof range, q);
       sw_dim_describe(what, sizeof what, q->dim);
-      if (q->where && q->where[0])
-        printf("  %-*s = %-12s %-*s  %s\n", width, q->name, value, what_width, what, q->where);
-      else printf("  %-*s = %-12s %s\n", width, q->name, value, what);
+      printf("  %-*s = %-12s ", width, q->name, value);
+      if (range_width) printf("%-*s ", range_width, range);
+      if (q->where && q->where[0]) printf("%-*s  %s\n", what_width, what, q->where);
+      else printf("%s\n", what);
     }
     printf("\n");
   } else {
     printf("The model has no params.\n\n");
+  }
+  if (p->sense) {
+    print_objective(p);
+    printf("\n");
   }
   printf("exit status: 0 ok, 1 model error, 2 usage error, 3 the simulation became\n"
          "unstable, 4 I/O error, 5 an expect of the model (or --compare) failed, 130\n"
@@ -668,50 +735,10 @@ static void print_help(const swCli *c, const char *default_out) {
 static swModel *build_model(const swCli *c, double *stable, const char **dt_source, int *rc) {
   const swProgram *p = c->p;
   char err[512] = "";
-  *rc = SW_EMODEL;
-  if (!p->build) {
-    complain(c, "the program has no scene to build");
-    return NULL;
-  }
-  swSpec *s = sw_spec_new();
-  if (!s) {
-    complain(c, "out of memory");
-    return NULL;
-  }
-  int built = p->build(s, c->P, err, sizeof err);
-  if (built != SW_OK) {
-    complain(c, "%s", err[0] ? err : "the scene could not be built");
-    sw_spec_free(s);
-    *rc = built > 0 ? built : SW_EMODEL;
-    return NULL;
-  }
-  if (c->integrator >= 0) sw_spec_set_integrator(s, (swIntegrator)c->integrator);
-  double dt = c->dt_given ? c->dt : p->dt;
   *dt_source = c->dt_given ? "--dt" : p->dt > 0 ? "from the model" : "half the stable estimate";
-  if (dt > 0) sw_spec_set_dt(s, dt);
-  swModel *m = sw_compile(s, err, sizeof err);
-  if (m) {
-    *stable = sw_stable_dt(m);
-    if (!(dt > 0)) {
-      if (!(*stable > 0) || !isfinite(*stable)) {
-        complain(c, "the scene has no finite stable time step estimate; give one with --dt");
-        sw_model_free(m);
-        sw_spec_free(s);
-        return NULL;
-      }
-      sw_model_free(m);
-      /* half the estimate, shortened so that a whole number of steps
-       * spans the frame interval: frames then fall on the times asked for */
-      double auto_dt = 0.5 * *stable;
-      if (c->every > 0 && isfinite(c->every)) {
-        double k = ceil(c->every / auto_dt - 1e-9);
-        if (k >= 1 && k < 1e12) auto_dt = c->every / k;
-      }
-      sw_spec_set_dt(s, auto_dt);
-      m = sw_compile(s, err, sizeof err);
-    }
-  }
-  sw_spec_free(s);
+  /* the step sw_evaluate takes too (evaluate.c) */
+  swModel *m = sw_program_compile(p, c->P, c->dt_given ? c->dt : 0, c->integrator, c->every,
+                                  stable, rc, err, sizeof err);
   if (!m) {
     complain(c, "%s", err);
     return NULL;
@@ -1031,13 +1058,16 @@ static void print_info(const swCli *c, const swModel *m, double stable, const ch
     printf("params:\n");
     for (int i = 0; i < p->nparam; i++) {
       const swParam *q = &p->param[i];
+      char range[200];
       printf("  %s = %s", q->name, format_param(a, sizeof a, q, c->P[i]));
+      if (q->ranged) printf(" %s", format_range(range, sizeof range, q));
       if (c->overridden[i]) printf(" (--set; default %s)", format_param(b, sizeof b, q, q->value));
       printf("\n");
     }
   } else {
     printf("params: none\n");
   }
+  if (p->sense) print_objective(p);
   fflush(stdout);
 }
 
@@ -1125,6 +1155,7 @@ static int run(const swCli *c, const swModel *m, const char *out) {
   /* the model's expectations: reported whatever the run's end, and a
    * failure is the run's verdict only when nothing else went wrong */
   int failed = sw_expect_report(m, expect, stderr, c->prog, c->quiet);
+  if (p->sense && report_objective(c, m, expect, o, rc) != SW_OK && rc == SW_OK) rc = SW_EIO;
   sw_expect_run_free(expect);
   if (failed && rc == SW_OK) rc = SW_EEXPECT;
 

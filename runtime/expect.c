@@ -22,7 +22,17 @@
  * force evaluation),
  * probes through sw_probe_measure.  A mean-velocity probe keeps a ring of
  * samples taken at frames, so it cannot also be sampled at other steps; the
- * compiler and sw_expect_setup refuse it. */
+ * compiler and sw_expect_setup refuse it.
+ *
+ * The reductions of a model's objective (maximize, minimize, penalty) are
+ * entries of the same list with `reduce` set: sampled exactly as
+ * expectations are, at the same steps, but never checked nor reported.
+ * Besides the extremes, the record keeps the last value and the trapezoidal
+ * sum of the samples, sum_k (v_{k-1} + v_k) / 2, so that a window's time
+ * average is that sum over the number of steps between its first and last
+ * sample (second order in dt; the plain mean of the samples would weigh
+ * the two ends by a whole step each, first order).  sw_expect_reduced turns
+ * the record into the values evaluate.c hands the objective. */
 #include <limits.h>
 #include <math.h>
 #include <stdlib.h>
@@ -36,6 +46,8 @@ struct swExpectRun {
   long *count;        /* samples taken                          */
   long *last;         /* step of the last sample                */
   double *min, *max;  /* over the samples                       */
+  double *latest;     /* the last sample's value                */
+  double *trapezoid;  /* sum of (previous + value) / 2 over the samples after the first */
 };
 
 void sw_expect_desc_init(swExpectDesc *e) {
@@ -101,6 +113,11 @@ static int check(const swModel *m, const swExpectDesc *e, char *err, size_t errl
   if (!(e->t0 >= 0) || !isfinite(e->t0) || (e->window && !(e->t1 >= e->t0 && isfinite(e->t1))))
     return sw_fail(err, errlen, "%s: time %g s (window end %g s) is not a time of the run", t,
                    e->t0, e->t1);
+  if (e->reduce < SW_REDUCE_NONE || e->reduce > SW_REDUCE_MIN)
+    return sw_fail(err, errlen, "%s: unknown reduction %d", t, e->reduce);
+  if ((e->reduce == SW_REDUCE_AT && e->window) ||
+      (e->reduce > SW_REDUCE_AT && !e->window))
+    return sw_fail(err, errlen, "%s: at() reads one time, the others a window", t);
   if (!(e->lo <= e->hi))
     return sw_fail(err, errlen, "%s: lower bound %g above upper bound %g", t, e->lo, e->hi);
   if (!(e->scale > 0) || !isfinite(e->scale))
@@ -190,6 +207,8 @@ void sw_expect_sample(const swModel *m, swData *d, swExpectRun *r) {
     const double v = quantity(m, d, &m->expect[k]);
     if (!r->count[k] || !(v >= r->min[k])) r->min[k] = v; /* a NaN sticks */
     if (!r->count[k] || !(v <= r->max[k])) r->max[k] = v;
+    if (r->count[k]) r->trapezoid[k] += 0.5 * (r->latest[k] + v);
+    r->latest[k] = v;
     r->count[k]++;
     r->last[k] = d->step;
   }
@@ -206,7 +225,9 @@ swExpectRun *sw_expect_run_new(const swModel *m) {
   r->last = calloc(n, sizeof *r->last);
   r->min = calloc(n, sizeof *r->min);
   r->max = calloc(n, sizeof *r->max);
-  if (!r->count || !r->last || !r->min || !r->max) {
+  r->latest = calloc(n, sizeof *r->latest);
+  r->trapezoid = calloc(n, sizeof *r->trapezoid);
+  if (!r->count || !r->last || !r->min || !r->max || !r->latest || !r->trapezoid) {
     sw_expect_run_free(r);
     return NULL;
   }
@@ -214,22 +235,66 @@ swExpectRun *sw_expect_run_new(const swModel *m) {
 }
 
 void sw_expect_run_save(const swModel *m, const swExpectRun *r, double *out) {
-  for (int k = 0; k < m->nexpect; k++, out += 4) {
+  for (int k = 0; k < m->nexpect; k++, out += SW_EXPECT_SAVED) {
     out[0] = r ? (double)r->count[k] : 0;
     out[1] = r ? (double)r->last[k] : 0;
     out[2] = r ? r->min[k] : 0;
     out[3] = r ? r->max[k] : 0;
+    out[4] = r ? r->latest[k] : 0;
+    out[5] = r ? r->trapezoid[k] : 0;
   }
 }
 
 void sw_expect_run_load(const swModel *m, swExpectRun *r, const double *in) {
   if (!r) return;
-  for (int k = 0; k < m->nexpect && k < r->n; k++, in += 4) {
+  for (int k = 0; k < m->nexpect && k < r->n; k++, in += SW_EXPECT_SAVED) {
     r->count[k] = (long)in[0];
     r->last[k] = (long)in[1];
     r->min[k] = in[2];
     r->max[k] = in[3];
+    r->latest[k] = in[4];
+    r->trapezoid[k] = in[5];
   }
+}
+
+int sw_expect_reduced(const swModel *m, const swExpectRun *r, double *R, char *why, size_t len) {
+  int n = 0;
+  for (int k = 0; k < m->nexpect; k++) {
+    const swExpectDesc *e = &m->expect[k];
+    if (!e->reduce) continue;
+    long first, last;
+    steps_of(m, e, &first, &last);
+    R[n] = NAN;
+    if (first > last) {
+      if (why) snprintf(why, len, "%s: no step of dt = %g s falls in its window", e->text, m->dt);
+      return SW_EUSAGE;
+    }
+    if (!r || !r->count[k] || r->last[k] != last) {
+      if (why) snprintf(why, len, "%s: the run ended before t = %.6g s", e->text,
+                        e->window ? e->t1 : e->t0);
+      return SW_EUSAGE;
+    }
+    switch (e->reduce) {
+    case SW_REDUCE_AT: R[n] = r->latest[k]; break;
+    case SW_REDUCE_MEAN:
+      R[n] = r->count[k] > 1 ? r->trapezoid[k] / (double)(r->count[k] - 1) : r->latest[k];
+      break;
+    case SW_REDUCE_MAX: R[n] = r->max[k]; break;
+    default: R[n] = r->min[k]; break;
+    }
+    n++;
+  }
+  return SW_OK;
+}
+
+long sw_expect_reduced_last(const swModel *m) {
+  long latest = 0;
+  for (int k = 0; k < m->nexpect; k++) {
+    long first, last;
+    steps_of(m, &m->expect[k], &first, &last);
+    if (m->expect[k].reduce && last > latest) latest = last;
+  }
+  return latest;
 }
 
 void sw_expect_run_free(swExpectRun *r) {
@@ -238,6 +303,8 @@ void sw_expect_run_free(swExpectRun *r) {
   free(r->last);
   free(r->min);
   free(r->max);
+  free(r->latest);
+  free(r->trapezoid);
   free(r);
 }
 
@@ -248,10 +315,13 @@ static void shown(char *buf, size_t len, const swExpectDesc *e, double v) {
 
 int sw_expect_report(const swModel *m, const swExpectRun *r, FILE *f, const char *prog,
                      int quiet) {
-  if (!m->nexpect || !r) return 0;
+  int checks = 0;
+  for (int k = 0; k < m->nexpect; k++) checks += !m->expect[k].reduce;
+  if (!checks || !r) return 0;
   int failed = 0, passed = 0, missed = 0;
   for (int k = 0; k < m->nexpect; k++) {
     const swExpectDesc *e = &m->expect[k];
+    if (e->reduce) continue;   /* the objective's: evaluate.c */
     char lo[64], hi[64], a[64], b[64];
     shown(lo, sizeof lo, e, e->lo);
     shown(hi, sizeof hi, e, e->hi);

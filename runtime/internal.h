@@ -20,12 +20,19 @@ void sw_expect_list_free(swExpectList *l);
 int sw_expect_setup(swModel *m, const swExpectList *l, char *err, size_t errlen);
 void sw_expect_free(swModel *m);
 long sw_expect_next(const swModel *m, long step);
-/* The running state of the expectations (4 doubles each: samples, last
- * step, minimum, maximum), for the checkpoint (restart.c); r may be NULL
- * (save writes zeros, load does nothing). */
+/* The running state of the expectations (SW_EXPECT_SAVED doubles each:
+ * samples, last step, minimum, maximum, last value, trapezoidal sum), for
+ * the checkpoint (restart.c); r may be NULL (save writes zeros, load does
+ * nothing). */
+#define SW_EXPECT_SAVED 6
 void sw_expect_run_save(const swModel *m, const swExpectRun *r, double *out);
 void sw_expect_run_load(const swModel *m, swExpectRun *r, const double *in);
 void sw_expect_sample(const swModel *m, swData *d, swExpectRun *r);
+/* The values of the objective's reductions (the entries with `reduce`, in
+ * order) into R; SW_OK, or SW_EUSAGE with the reason in why when one was
+ * not reached.  sw_expect_reduced_last: the last step any of them samples. */
+int sw_expect_reduced(const swModel *m, const swExpectRun *r, double *R, char *why, size_t len);
+long sw_expect_reduced_last(const swModel *m);
 /* Threads (integrate.c).  A step on more than one thread runs inside one
  * OpenMP parallel region that sw_steps opens, and every function of the step
  * is entered by all threads of the team.  Loops over slots are cut into the

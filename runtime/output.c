@@ -19,7 +19,9 @@
  * units follow its kind and whose attributes say what it measures
  * (write_probe_attrs).  The root group records how the file was made
  * (SPEC.md "Output (HDF5)") and a `status` attribute that reads "incomplete"
- * until sw_output_close() replaces it with the caller's verdict.  Beside the
+ * until sw_output_close() replaces it with the caller's verdict; a model
+ * with an objective also gets its value, penalty and score there
+ * (sw_output_objective).  Beside the
  * file, RUN.xdmf describes the rods' frames for ParaView (xdmf.c); it is
  * rewritten from the frames written (at open, after the first frame, every
  * second of wall time or less often when rewriting it takes long, at close),
@@ -1139,6 +1141,27 @@ int sw_output_checkpoint(swOutput *o, const swModel *m, const swData *d, const s
   if (sw_checkpoint_write(o->checkpoint, m, o->file) != SW_OK)
     return fail(NULL, 0, "%s: cannot write the checkpoint /restart", o->path);
   return SW_OK;
+}
+
+/* ---- the objective (evaluate.c computes it, cli.c hands it here) ---- */
+
+int sw_output_objective(swOutput *o, const char *text, double objective, double penalty,
+                        double score, const char *units) {
+  if (!o) return SW_OK;
+  static const char *const names[] = {"objective", "penalty", "score", "objective_units",
+                                      "objective_text"};
+  for (size_t k = 0; k < sizeof names / sizeof names[0]; k++) {
+    htri_t had = H5Aexists(o->file, names[k]);
+    if (had < 0 || (had > 0 && H5Adelete(o->file, names[k]) < 0))
+      return fail(NULL, 0, "%s: cannot replace attribute '%s' of /", o->path, names[k]);
+  }
+  swAttrTarget t = {o->file, o->path, "/", NULL, 0};
+  int rc = attr_scalar(&t, "objective", H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, &objective);
+  if (rc == SW_OK) rc = attr_scalar(&t, "penalty", H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, &penalty);
+  if (rc == SW_OK) rc = attr_scalar(&t, "score", H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, &score);
+  if (rc == SW_OK) rc = attr_string(&t, "objective_units", units);
+  if (rc == SW_OK) rc = attr_string(&t, "objective_text", text);
+  return rc;
 }
 
 /* ---- close ---- */

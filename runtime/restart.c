@@ -91,10 +91,10 @@ static double *saved_array(const swData *d, const swSaved *s) {
 }
 
 /* The scalars, and per probe its ring's head and count, per expectation its
- * count, last step, minimum and maximum, as doubles (exact: steps and counts
+ * count, last step, minimum, maximum, last value and trapezoidal sum, as doubles (exact: steps and counts
  * are far below 2^53). */
 static size_t scalars_len(const swModel *m) {
-  return 6 + 2 * (size_t)m->nprobe + 4 * (size_t)m->nexpect;
+  return 6 + 2 * (size_t)m->nprobe + SW_EXPECT_SAVED * (size_t)m->nexpect;
 }
 
 struct swCheckpoint {

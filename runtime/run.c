@@ -18,9 +18,12 @@
  * are scheduled on the step count since t = 0, and after each frame of the
  * schedule the output takes a checkpoint (restart.c), so a run continued
  * from its file (`resumed`) steps in the same chunks as one that never
- * stopped. */
+ * stopped.  A silent run (swRunOptions.silent: sw_evaluate's, one of many
+ * of a study) prints nothing at all; an instability's reason stays in
+ * d->error. */
 #include <math.h>
 #include <signal.h>
+#include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -34,6 +37,16 @@
 #define CLOCK_PROBE 0.05        /* s of wall time between clock reads     */
 
 static volatile sig_atomic_t interrupted;
+
+/* A message of the run to log, or nowhere when the run is silent (NULL). */
+static void say(FILE *log, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
+static void say(FILE *log, const char *fmt, ...) {
+  if (!log) return;
+  va_list ap;
+  va_start(ap, fmt);
+  vfprintf(log, fmt, ap);
+  va_end(ap);
+}
 
 static void on_sigint(int sig) {
   (void)sig;
@@ -85,14 +98,14 @@ static void progress_update(swProgress *p, const swData *d, long k) {
 
 /* End the progress line before any other message or at the end of the run. */
 static void progress_end(swProgress *p) {
-  if (p->shown) fputc('\n', p->log);
+  if (p->shown) say(p->log, "\n");
   p->shown = 0;
 }
 
 static int write_frame(const swModel *m, swData *d, swOutput *out, swProgress *p) {
   if (!out || sw_output_frame(out, m, d) == SW_OK) return SW_OK;
   progress_end(p);
-  fprintf(p->log, "sinew: %s\n", sw_output_error());
+  say(p->log, "sinew: %s\n", sw_output_error());
   return SW_EIO;
 }
 
@@ -102,7 +115,7 @@ static int checkpoint(const swModel *m, const swData *d, swOutput *out, const sw
                       swProgress *p) {
   if (!out || sw_output_checkpoint(out, m, d, ro->expect) == SW_OK) return SW_OK;
   progress_end(p);
-  fprintf(p->log, "sinew: %s\n", sw_output_error());
+  say(p->log, "sinew: %s\n", sw_output_error());
   return SW_EIO;
 }
 
@@ -132,14 +145,14 @@ int sw_step_count(double duration, double dt, long *nsteps, char *err, size_t er
 }
 
 int sw_run(const swModel *m, swData *d, swOutput *out, const swRunOptions *ro) {
-  FILE *log = ro && ro->log ? ro->log : stderr;
+  FILE *log = ro && ro->silent ? NULL : ro && ro->log ? ro->log : stderr;
   if (!m || !d || !ro) {
-    fprintf(log, "sinew: sw_run: no model, state or options\n");
+    say(log, "sinew: sw_run: no model, state or options\n");
     return SW_EUSAGE;
   }
   if (!(m->dt > 0) || !isfinite(m->dt) || !(ro->duration >= 0) || !isfinite(ro->duration) ||
       !(ro->every >= 0) || !isfinite(ro->every)) {
-    fprintf(log, "sinew: invalid run: dt = %g s, duration = %g s, every = %g s\n", m->dt,
+    say(log, "sinew: invalid run: dt = %g s, duration = %g s, every = %g s\n", m->dt,
             ro->duration, ro->every);
     return SW_EUSAGE;
   }
@@ -148,7 +161,7 @@ int sw_run(const swModel *m, swData *d, swOutput *out, const swRunOptions *ro) {
   long nsteps = 0;
   char why[256];
   if (remaining > 0 && sw_step_count(remaining, m->dt, &nsteps, why, sizeof why) != SW_OK) {
-    fprintf(log, "sinew: %s\n", why);
+    say(log, "sinew: %s\n", why);
     return SW_EUSAGE;
   }
   /* Frames are scheduled on the step count since t = 0 (d->step), so a run
@@ -159,7 +172,7 @@ int sw_run(const swModel *m, swData *d, swOutput *out, const swRunOptions *ro) {
   long every = every_steps > (double)last_step ? last_step + 1 : (long)every_steps;
   if (every < 1) every = 1;
 
-  swProgress p = {log, ro->quiet, nsteps, ro->duration, 0, 0, 1, 0};
+  swProgress p = {log, ro->quiet || !log, nsteps, ro->duration, 0, 0, 1, 0};
   struct sigaction action, previous;
   memset(&action, 0, sizeof action);
   action.sa_handler = on_sigint;
@@ -191,7 +204,7 @@ int sw_run(const swModel *m, swData *d, swOutput *out, const swRunOptions *ro) {
     if (step_rc == SW_OK && ro->expect) sw_expect_sample(m, d, ro->expect);
     if (step_rc != SW_OK) {
       progress_end(&p);
-      fprintf(log, "sinew: %s\n", d->error[0] ? d->error : "the step failed");
+      say(log, "sinew: %s\n", d->error[0] ? d->error : "the step failed");
       rc = step_rc;
       break;
     }
@@ -206,14 +219,14 @@ int sw_run(const swModel *m, swData *d, swOutput *out, const swRunOptions *ro) {
     if (last_frame != k) rc = write_frame(m, d, out, &p);
     progress_end(&p);
     if (out)
-      fprintf(log, "sinew: interrupted at t = %.9g s; %ld frames written to output\n", d->time,
+      say(log, "sinew: interrupted at t = %.9g s; %ld frames written to output\n", d->time,
               sw_output_frames(out));
     else
-      fprintf(log, "sinew: interrupted at t = %.9g s; no output\n", d->time);
+      say(log, "sinew: interrupted at t = %.9g s; no output\n", d->time);
     if (rc == SW_OK) rc = SW_EINTERRUPT;
   }
   progress_end(&p);
-  fflush(log);
+  if (log) fflush(log);
   if (handler_installed) sigaction(SIGINT, &previous, NULL);
   return rc;
 }

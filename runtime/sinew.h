@@ -422,7 +422,15 @@ typedef struct {
   double lo, hi;              /* bounds, SI                                   */
   double scale;               /* the report shows value / scale ...           */
   const char *unit;           /* ... in this unit ("deg"); "" for none        */
+  int reduce;                 /* SW_REDUCE_NONE: a check, as above; otherwise
+                                 a reduction of the model's objective, sampled
+                                 the same way but neither checked nor reported
+                                 (lo, hi unused; evaluate.c reads it)         */
 } swExpectDesc;
+/* The reductions an objective reads (maximize, minimize, penalty): the value
+ * at the step nearest t0, or the time average (trapezoidal rule over the
+ * steps of [t0, t1]), the largest or the smallest value over the window. */
+enum { SW_REDUCE_NONE = 0, SW_REDUCE_AT, SW_REDUCE_MEAN, SW_REDUCE_MAX, SW_REDUCE_MIN };
 void sw_expect_desc_init(swExpectDesc *e);   /* fills defaults */
 int sw_spec_add_expect(swSpec *s, const swExpectDesc *e);
 /* Observables for /probes/NAME, one row [3] a frame. */
@@ -852,6 +860,11 @@ int sw_output_read_run(const char *path, char *sha256, char *params, size_t len,
  * memory, written to /restart every 10 s of wall time and at close. */
 int sw_output_checkpoint(swOutput *o, const swModel *m, const swData *d, const swExpectRun *x);
 int sw_output_close(swOutput *o, const char *status);
+/* The run's objective as root attributes objective, penalty, score (SI;
+ * NaN when not reached), objective_units and objective_text ("maximize
+ * EXPR"); written again if given again. */
+int sw_output_objective(swOutput *o, const char *text, double objective, double penalty,
+                        double score, const char *units);
 long sw_output_frames(const swOutput *o);
 /* SIM --compare (compare.c): every numeric dataset of the golden file against
  * the run's, within rtol of the dataset's largest magnitude; the report to
@@ -873,6 +886,8 @@ typedef struct {
   swExpectRun *expect;   /* expectations to sample (NULL: none)          */
   int resumed;           /* the state is the output's last frame, already
                             written and sampled (sw_output_resume)      */
+  int silent;            /* no message at all, not even an instability's
+                            (it stays in d->error): sw_evaluate         */
 } swRunOptions;
 
 int sw_run(const swModel *m, swData *d, swOutput *out, const swRunOptions *ro);
@@ -914,6 +929,8 @@ typedef struct {
   signed char dim[SW_NDIM];
   const char *unit;            /* unit to show in --help ("m", "" if none)  */
   const char *where;           /* "arm.sinew:3" for messages                */
+  int ranged;                  /* 1: `in (lo, hi)` given: a study varies it */
+  double lo, hi;               /* its range, SI, lo < hi (ranged only)      */
 } swParam;
 
 typedef struct {
@@ -939,12 +956,70 @@ typedef struct {
   const char *const *joint_out_name;
   const unsigned *joint_out;
   unsigned joint_out_rest;
+  /* The study's objective (0 / NULL when the model has none): maximize or
+   * minimize EXPR and the penalties, over the values R of its reductions
+   * (the entries of the model's expectations with `reduce` set, in order). */
+  int sense;                   /* +1 maximize, -1 minimize, 0 none          */
+  const char *objective_text;  /* "maximize EXPR" as written, for reports   */
+  const char *objective_where; /* "snake.sinew:40"                          */
+  const char *objective_unit;  /* unit to show it in ("m/s"; "" none)       */
+  double objective_scale;      /* SI value of one objective_unit            */
+  const char *objective_si_unit; /* its SI unit ("m/s"; "" none): the unit of
+                                  the values of swEvalResult and the HDF5  */
+  int npenalty;                /* penalty statements                        */
+  int nreduce;                 /* reductions the objective reads            */
+  /* The objective's value and the sum of the penalties (SI) from the param
+   * values P and the reductions R[0..nreduce). */
+  void (*objective)(const double *P, const double *R, double *value, double *penalty);
 } swProgram;
 
 /* Optimal-string-alignment edit distance between a[0..la) and b (a
  * transposition counts one edit); INT_MAX for names over 63 characters.
  * For "did you mean" suggestions, here and in the compiler. */
 int sw_edit_distance(const char *a, size_t la, const char *b);
+
+/* ---- one evaluation of the objective, in process (evaluate.c) ---- */
+typedef struct {
+  int status;          /* SW_OK; SW_EUNSTABLE; SW_EMODEL (the params give no
+                          valid scene, or the objective is not a number);
+                          SW_EUSAGE (no objective, or a run too short for
+                          it); SW_EINTERRUPT                                */
+  double objective;    /* SI, NaN when not reached                          */
+  double penalty;      /* sum of the penalties, SI (0 if none; NaN when the
+                          objective is not reached)                         */
+  double score;        /* maximize: objective - penalty; minimize:
+                          -(objective + penalty); -INFINITY when status != SW_OK */
+  double sim_time;     /* s simulated                                       */
+  long steps;
+  char message[256];   /* why it failed ("" when ok)                        */
+} swEvalResult;
+
+/* Builds the scene from P (SI, p->nparam values; NULL: the defaults),
+ * compiles it with the dt the CLI would use (dt > 0: that; else the
+ * model's, else half the stable estimate, shortened to divide the model's
+ * frame interval), runs `duration` (<= 0: the model's) with one thread, no
+ * output file, no progress and no messages on stderr, samples the
+ * objective's reductions, and fills r.  integrator -1: the model's.  Never
+ * exits; never prints.  Returns r->status. */
+int sw_evaluate(const swProgram *p, const double *P, double duration, double dt,
+                int integrator, swEvalResult *r);
+
+/* The model of program p at params P, compiled at dt (> 0), else at the
+ * model's dt, else at half the stable estimate shortened so that a whole
+ * number of steps spans `every` (> 0); integrator -1: the model's.  The
+ * stable estimate in *stable.  NULL when it cannot be built, with the
+ * status in *status (SW_EMODEL, or build()'s) and the reason in err. */
+swModel *sw_program_compile(const swProgram *p, const double *P, double dt, int integrator,
+                            double every, double *stable, int *status, char *err, size_t errlen);
+
+/* The objective of a run of p's model m whose reductions x sampled
+ * (x may hold expectations too): objective, penalty sum and score, SI.
+ * SW_OK, or SW_EUSAGE with the reason in why when a reduction was not
+ * reached (the run ended before its time, or no step fell in its window),
+ * SW_EMODEL when the objective is not a number; the values are then NaN
+ * and the score -INFINITY. */
+int sw_objective(const swProgram *p, const swModel *m, const swExpectRun *x, const double *P,
+                 double *objective, double *penalty, double *score, char *why, size_t len);
 
 /* Parses --out --duration --dt --every --set NAME=VALUE --threads --compare
  * --rtol --quiet --info --help, builds, compiles and runs (checking the
