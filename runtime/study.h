@@ -32,7 +32,7 @@ typedef struct {
   double wall;            /* s of wall time the evaluation took              */
   int rank;               /* the MPI rank that ran it (0 without MPI)        */
   int interrupted;        /* Ctrl-C stopped it: not a result                 */
-  char message[200];      /* why it failed ("" when OK)                      */
+  char message[256];      /* why it failed ("" when OK)                      */
 } swStudyEval;
 
 /* Evaluates the design P (all nparam params, SI) into r. Called on one
