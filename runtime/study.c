@@ -345,7 +345,7 @@ static void plot(const swStudyOptions *o) {
   size_t len = strlen(png);
   if (len > 3 && !strcmp(png + len - 3, ".h5")) png[len - 3] = 0;
   strncat(png, ".png", sizeof png - strlen(png) - 1);
-  char *argv[] = {(char *)tool, "study", (char *)o->path, "-o", png, "--quiet", NULL};
+  char *argv[] = {(char *)tool, "study", (char *)o->path, "-o", png, NULL};
   pid_t pid;
   if (posix_spawnp(&pid, tool, NULL, NULL, argv, environ) != 0) {
     if (!o->quiet)

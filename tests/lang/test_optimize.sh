@@ -1,0 +1,157 @@
+#!/bin/sh
+# test_optimize.sh — SIM --sweep, --optimize and --resume on a model whose
+# optimum is known in closed form, on one machine and under mpirun:
+#   a soft rod dropped in a vacuum from height h at x0 falls as z = h - g t^2/2
+#   (position Verlet is exact for constant acceleration), so the design that
+#   puts its centre at z = 1 m, x = 0.3 m at t = 0.1 s is h = 1.04905 m,
+#   x0 = 0.3 m;
+#   - a grid sweep stores every combination with the closed-form objective;
+#     a Latin hypercube uses each stratum of each param once;
+#   - CMA-ES finds the design to 1e-6 m;
+#   - a study stopped with Ctrl-C and resumed gives the file of one that never
+#     stopped (tests/lang/study_same.py: every dataset and attribute, bit for
+#     bit, but wall_time and rank);
+#   - `mpirun -np 1`, `-np 2` and `-np 4 --oversubscribe` give the same file,
+#     also when rank 1 hangs and its evaluation is re-queued;
+#   - a simulator built with --no-mpi sweeps alone and refuses mpirun;
+#   - bad use is refused with one line and the exit code of the contract.
+. "$(dirname "$0")/tap.sh"
+cd "$ROOT" || exit 1
+scratch optimize
+PY=/usr/bin/python3
+SAME="$PY $ROOT/tests/lang/study_same.py"
+export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMPI_MCA_rmaps_base_oversubscribe=1
+export PATH="$ROOT/scripts:$PATH"
+
+cat > "$TMP/drop.sinew" <<'EOF'
+# a rod dropped in a vacuum: which start puts its centre at (0.3, 1) m at 0.1 s?
+param height = 1.2 m in (0.5 m, 1.5 m);
+param x0 = 10 cm in (0 cm, 50 cm);
+material soft { E = 1 MPa; density = 1000 kg/m^3; }
+rod r { material = soft; start = (x0 - 5 cm, 0 m, height); direction = (1, 0, 0); length = 10 cm;
+        radius = 1 cm; elements = 2; }
+gravity (0, 0, -9.81) m/s^2;
+simulate { dt = 0.2 ms; duration = 0.1 s; }
+output "drop.h5" every 10 ms { probe c = centre_of_mass(r); }
+maximize -abs(at(z(c), 0.1 s) - 1 m) - abs(at(x(c), 0.1 s) - 0.3 m);
+EOF
+"$SINEWC" "$TMP/drop.sinew" -o "$TMP/drop" 2>"$TMP/err"
+ok $? "the model compiles (with MPI where sinew was built with it)"
+diag < "$TMP/err"
+"$SINEWC" "$TMP/drop.sinew" --no-mpi -o "$TMP/drop_nompi" 2>"$TMP/err"
+ok $? "and with --no-mpi"
+cd "$TMP" || exit 1
+
+# ---- grid and Latin hypercube ----
+./drop --sweep grid:3 --study grid.h5 --quiet 2>err
+ok $? "--sweep grid:3 runs"
+$PY - <<'EOF' 2>&1 | diag
+import h5py, numpy as np, sys
+f = h5py.File("grid.h5", "r")
+P, s = f["evaluations/params"][()], f["evaluations/score"][()]
+names = [n.decode() if isinstance(n, bytes) else n for n in f["evaluations/params"].attrs["names"]]
+h, x0 = P[:, names.index("height")], P[:, names.index("x0")] / 100    # x0 is shown in cm
+want = -np.abs(h - 0.5 * 9.81 * 0.01 - 1) - np.abs(x0 - 0.3)
+err = np.max(np.abs(s - want))
+print(f"grid: {len(s)} designs, h in {sorted(set(np.round(h, 12)))} m; largest error of the "
+      f"score against the closed form {err:.2e} m")
+sys.exit(0 if len(s) == 9 and err < 1e-12 and f.attrs["status"] == "complete" else 1)
+EOF
+ok $? "the grid holds its 9 designs, each scored as the closed form says (to 1e-12 m)"
+./drop_nompi --sweep lhs:12 --seed 3 --study lhs.h5 --quiet 2>err
+ok $? "--sweep lhs:12 by the simulator without MPI"
+$PY - <<'EOF' 2>&1 | diag
+import h5py, numpy as np, sys
+P = h5py.File("lhs.h5", "r")["evaluations/params"][()]
+lo, hi = np.array([0.5, 0.0]), np.array([1.5, 50.0])
+k = np.floor((P - lo) / (hi - lo) * 12).astype(int)
+ok = all(sorted(k[:, j]) == list(range(12)) for j in range(2))
+print(f"lhs: strata of h {sorted(k[:, 0])}, of x0 {sorted(k[:, 1])}")
+sys.exit(0 if ok else 1)
+EOF
+ok $? "the Latin hypercube uses each of the 12 strata of both params once"
+
+# ---- CMA-ES ----
+./drop --optimize --budget 400 --seed 5 --study opt.h5 2>opt.log
+ok $? "--optimize runs"
+tail -1 opt.log | diag
+$PY - <<'EOF' 2>&1 | diag
+import h5py, sys
+f = h5py.File("opt.h5", "r")
+b = f["best/params"][()]
+names = [n.decode() if isinstance(n, bytes) else n for n in f["evaluations/params"].attrs["names"]]
+h, x0 = b[names.index("height")], b[names.index("x0")] / 100
+eh, ex = abs(h - (1 + 0.5 * 9.81 * 0.01)), abs(x0 - 0.3)
+print(f"best h = {h:.9f} m (closed form 1.04905 m, error {eh:.2e}), x0 = {x0:.9f} m "
+      f"(0.3 m, error {ex:.2e}), after {len(f['evaluations/score'])} evaluations")
+sys.exit(0 if eh < 1e-6 and ex < 1e-6 else 1)
+EOF
+ok $? "CMA-ES finds h and x0 of the closed form to 1e-6 m"
+[ -s opt.png ] && [ "$(head -c 4 opt.png | od -An -tx1 | tr -d ' \n')" = 89504e47 ]
+ok $? "the summary plot opt.png is written (sinew-plot study)"
+
+# ---- interrupted and resumed ----
+# at dt = 2 us an evaluation takes milliseconds: Ctrl-C comes mid-study
+./drop --optimize --budget 300 --seed 5 --dt 2us --study whole.h5 --quiet 2>/dev/null
+ok $? "an optimisation at dt = 2 us runs"
+./drop --optimize --budget 300 --seed 5 --dt 2us --study cut.h5 --quiet 2>cut.log &
+pid=$!
+i=0
+while [ $i -lt 400 ]; do
+  n=$($PY -c "import h5py; f=h5py.File('cut.h5','r',locking=False); print((f['evaluations/status'][()]!=0).sum())" 2>/dev/null)
+  [ "${n:-0}" -ge 20 ] && break
+  sleep 0.02; i=$((i + 1))
+done
+kill -INT $pid; wait $pid; rc=$?
+done_before=$($PY -c "import h5py; print((h5py.File('cut.h5','r')['evaluations/status'][()]!=0).sum())")
+[ $rc -eq 130 ] && [ "$done_before" -lt 300 ]
+ok $? "Ctrl-C stops the study after $done_before of 300 evaluations (exit $rc)"
+./drop --resume cut.h5 --quiet 2>>cut.log
+ok $? "--resume continues it"
+$SAME whole.h5 cut.h5 2>&1 | diag
+ok $? "the resumed study's file equals the uninterrupted one's"
+./drop --optimize --study cut.h5 --quiet 2>err; rc=$?
+[ $rc -eq 2 ] && grep -q "exists: continue it with --resume cut.h5" err
+ok $? "a study file is not overwritten (exit $rc)"
+./drop --resume cut.h5 --dt 2ms --quiet 2>err; rc=$?
+[ $rc -eq 2 ] && grep -q "ran with duration=" err
+ok $? "a resume with another --dt is refused (exit $rc)"
+
+# ---- MPI ----
+if command -v mpirun >/dev/null && ./drop --help >/dev/null; then
+  for np in 1 2 4; do
+    mpirun -np $np ./drop --optimize --budget 400 --seed 5 --study mpi$np.h5 --quiet 2>mpi.err
+    ok $? "mpirun -np $np ./drop --optimize"
+    $SAME opt.h5 mpi$np.h5 2>&1 | diag
+    ok $? "-np $np gives the same results as one process"
+  done
+  $PY -c "import h5py,numpy as np; print('ranks used with -np 2:', sorted(set(h5py.File('mpi2.h5')['evaluations/rank'][()])))" | diag
+  mpirun -np 2 ./drop --sweep grid:4 --study gmpi.h5 --quiet 2>/dev/null &&
+    ./drop --sweep grid:4 --study g1.h5 --quiet && $SAME g1.h5 gmpi.h5 2>&1 | diag
+  ok $? "a grid sweep under mpirun -np 2 equals one process's"
+  SINEW_STUDY_FAULT=hang:1:3 mpirun -np 2 ./drop --optimize --budget 400 --seed 5 \
+    --study hang.h5 --eval-timeout 2s --quiet 2>hang.err
+  grep "has not answered" hang.err | diag
+  $SAME opt.h5 hang.h5 2>&1 | diag
+  ok $? "rank 1 hangs on its 3rd evaluation: re-queued after 2 s, same results"
+  mpirun -np 2 ./drop_nompi --sweep grid:2 --study nompi.h5 --quiet 2>err; rc=$?
+  grep -q "built without MPI" err
+  ok $? "a simulator built with --no-mpi refuses to run under mpirun -np 2 (exit $rc)"
+fi
+
+# ---- bad use ----
+fails() {   # fails CODE PATTERN DESCRIPTION ARGS...
+  code=$1 pattern=$2 what=$3; shift 3
+  ./drop "$@" >out 2>err; rc=$?
+  [ $rc -eq "$code" ] && grep -q -- "$pattern" err
+  ok $? "$what (exit $rc)"
+  [ $rc -eq "$code" ] || diag < err
+}
+fails 2 "belong to --optimize" "--budget with --sweep" --sweep grid:2 --budget 10
+fails 2 "expected grid:K" "--sweep with a misspelt kind" --sweep grad:3
+fails 2 "belong to --sweep or --optimize" "--seed alone" --seed 3
+fails 4 "cannot read" "--resume of a missing file" --resume nothere.h5
+fails 2 "nothing to vary" "every ranged param fixed by --set" --optimize --set height=1m \
+  --set x0=2cm --study none.h5
+fails 2 "leave out --out" "--out with --optimize" --optimize --out x.h5
+done_testing
