@@ -464,8 +464,9 @@ static void eigen(swCmaes *c) {
   gsl_vector_view e = gsl_vector_view_array(c->eval, (size_t)n);
   gsl_eigen_symmv(&A.matrix, &e.vector, &V.matrix, c->ws);
   gsl_eigen_symmv_sort(&e.vector, &V.matrix, GSL_EIGEN_SORT_VAL_ASC);
-  /* C is positive definite in exact arithmetic (positive weights); a
-   * round-off eigenvalue <= 0 is lifted to where conditioncov stops. */
+  /* C is positive definite in exact arithmetic (the negative weights are
+   * bounded by alpha_posdef, (53)); a round-off eigenvalue <= 0 is lifted
+   * to where conditioncov stops. */
   const double emax = fmax(c->eval[n - 1], DBL_MIN);
   for (int i = 0; i < n; i++) c->D[i] = sqrt(fmax(c->eval[i], emax * 1e-20));
   c->g_eigen = c->g;

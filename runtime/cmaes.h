@@ -3,9 +3,9 @@
  *
  * The algorithm is Hansen's (μ/μ_w, λ)-CMA-ES as "The CMA Evolution
  * Strategy: A Tutorial" (arXiv:1604.00772) states it, with its default
- * negative weights (active CMA) or, as an option, positive ones only; cmaes.c gives the equations and
- * docs/optimisation.md the defaults, the bounds, the restarts and the
- * validation.  Losses are minimised; +INFINITY (or NaN) marks a failed
+ * negative weights (active CMA) or, as an option, positive ones only;
+ * cmaes.c gives the equations and docs/optimisation.md the defaults, the
+ * bounds, the restarts and the validation.  Losses are minimised; +INFINITY (or NaN) marks a failed
  * candidate, which ranks after every finite one.
  *
  * A generation:
