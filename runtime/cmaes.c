@@ -13,21 +13,26 @@
  *   (43)    p_s <- (1 - c_s) p_s + sqrt(c_s (2 - c_s) mu_eff) C^-1/2 <y>_w
  *   (44)    sigma <- sigma exp(c_s / d_s (|p_s| / E|N(0,I)| - 1))
  *   (45)    p_c <- (1 - c_c) p_c + h_s sqrt(c_c (2 - c_c) mu_eff) <y>_w
- *   (47)    C <- (1 + c_1 delta(h_s) - c_1 - c_mu) C + c_1 p_c p_c^T
- *                + c_mu sum_{i<=mu} w_i y_{i:lambda} y_{i:lambda}^T
+ *   (46)    w°_i = w_i, or w_i n / |C^-1/2 y_{i:lambda}|^2 where w_i < 0
+ *   (47)    C <- (1 + c_1 delta(h_s) - c_1 - c_mu sum_j w_j) C + c_1 p_c p_c^T
+ *                + c_mu sum_{i<=lambda} w°_i y_{i:lambda} y_{i:lambda}^T
  *
  * with h_s = 1 when |p_s| / sqrt(1 - (1 - c_s)^(2(g+1))) < (1.4 + 2/(n+1))
  * E|N(0,I)|, else 0, and delta(h_s) = (1 - h_s) c_c (2 - c_c).  The weights
- * are the tutorial's positive ones only, mu = floor(lambda / 2),
- * w_i ∝ ln((lambda + 1) / 2) - ln i summing to 1 (its Table 1 with the
- * negative weights of the active update (46) set to zero, which the
- * tutorial allows; the figures we compare with in test_cmaes.c were
- * measured without them), mu_eff = 1 / sum w_i^2, and (Table 1)
+ * are the tutorial's log weights w'_i = ln((lambda + 1) / 2) - ln i for all
+ * lambda ranks (49): the first mu = floor(lambda / 2) are positive, sum to
+ * 1 and alone move the mean; mu_eff = 1 / sum_{i<=mu} w_i^2.  The rest are
+ * negative, scaled (53) so that C stays positive definite, and only update
+ * C: the "active" update, which the tutorial's Table 1 makes the default
+ * and which pycma uses.  `active = 0` sets them to zero (the (mu/mu_w,
+ * lambda)-CMA-ES of Hansen & Kern 2004 and purecma).  Table 1:
  *   c_s = (mu_eff + 2) / (n + mu_eff + 5),
  *   d_s = 1 + 2 max(0, sqrt((mu_eff - 1) / (n + 1)) - 1) + c_s,
  *   c_c = (4 + mu_eff / n) / (n + 4 + 2 mu_eff / n),
  *   c_1 = 2 / ((n + 1.3)^2 + mu_eff),
- *   c_mu = min(1 - c_1, 2 (1/4 + mu_eff + 1/mu_eff - 2) / ((n + 2)^2 + mu_eff)).
+ *   c_mu = min(1 - c_1, 2 (1/4 + mu_eff + 1/mu_eff - 2) / ((n + 2)^2 + mu_eff)),
+ *   negative weights: w'_i min(1 + c_1/c_mu, 1 + 2 mu_eff^- / (mu_eff + 2),
+ *                     (1 - c_1 - c_mu) / (n c_mu)) / sum_{j>mu} |w'_j|.
  * E|N(0,I)| = sqrt(n) (1 - 1/(4n) + 1/(21 n^2)).
  *
  * The eigendecomposition (GSL's gsl_eigen_symmv, eigenvalues ascending) is
@@ -49,7 +54,9 @@
  * piecewise quadratic-linear map of his C and Python codes, sw_cmaes_box
  * below): the identity on [lo + al, hi - au], a parabola on each margin
  * that meets the bound with zero slope, and mirrored and periodic outside,
- * al = min((hi - lo)/2, (1 + |lo|)/20), au likewise with hi.  The map is
+ * al = min((hi - lo)/2, (1 + |lo|)/20), au likewise with hi.  A bound may be
+ * infinite: a coordinate bounded on one side is mirrored at that side only
+ * (no period), one with both bounds infinite is not transformed.  The map is
  * continuous with a continuous slope, so the loss seen by the search stays
  * as smooth as it was, and an optimum on a bound is the bottom of a
  * parabola in the genotype, which CMA-ES finds like any other.  Candidates
@@ -59,13 +66,15 @@
  * Failures.  A loss of +INFINITY (or NaN) ranks after every finite loss,
  * and equal losses rank by index, so a generation's order is a total order
  * of (loss, index): the update is then bitwise reproducible and a study
- * survives runs that went unstable.
+ * survives runs that went unstable.  Failed candidates take the last ranks,
+ * so with the active update they carry the most negative weights and the
+ * distribution shrinks away from where runs fail.
  *
  * IPOP (Auger & Hansen, "A restart CMA evolution strategy with increasing
  * population size", CEC 2005): when a run stops for any criterion but
  * ftarget or maxfevals and restarts remain, the next run starts with lambda
  * multiplied by incpopsize (2), sigma0, C = I, empty paths and the mean
- * drawn uniformly in the box (at x0 when there is none); the best-so-far
+ * drawn uniformly in the box (x0's coordinate where a bound is infinite); the best-so-far
  * and the evaluation count carry over, and the random stream continues. */
 #include <float.h>
 #include <math.h>
@@ -91,7 +100,8 @@ struct swCmaes {
   swRng rng;
 
   /* strategy parameters of the current lambda (Table 1) */
-  double *w;              /* (lambda_max / 2) recombination weights          */
+  double *w;              /* (lambda_max) recombination weights, by rank      */
+  double wsum;            /* sum of all lambda weights (1 without active)     */
   double mueff, cs, ds, cc, c1, cmu, chin;
   long eigen_gap;         /* generations between eigendecompositions          */
   long maxiter;           /* of this run                                      */
@@ -136,14 +146,25 @@ struct swCmaes {
 /* ---- Hansen's box transformation ---- */
 
 static void box_margins(double lo, double hi, double *al, double *au) {
-  *al = fmin((hi - lo) / 2, (1 + fabs(lo)) / 20);
+  *al = fmin((hi - lo) / 2, (1 + fabs(lo)) / 20); /* (hi - lo) / 2 is +inf one-sided */
   *au = fmin((hi - lo) / 2, (1 + fabs(hi)) / 20);
 }
 
 double sw_cmaes_box(double x, double lo, double hi) {
+  if (isinf(lo) && isinf(hi)) return x; /* unbounded coordinate */
   double al, au;
   box_margins(lo, hi, &al, &au);
   if (x >= lo + al && x <= hi - au) return x; /* the identity part, the common case */
+  if (isinf(hi)) { /* lower bound only: mirror at lo - al, then the parabola */
+    if (x < lo - al) x = 2 * (lo - al) - x;
+    if (x < lo + al) x = lo + (x - (lo - al)) * (x - (lo - al)) / (4 * al);
+    return fmax(lo, x);
+  }
+  if (isinf(lo)) { /* upper bound only */
+    if (x > hi + au) x = 2 * (hi + au) - x;
+    if (x > hi - au) x = hi - (x - (hi + au)) * (x - (hi + au)) / (4 * au);
+    return fmin(hi, x);
+  }
   /* shift by whole periods into [xlow, xlow + r): the map is periodic with
    * period r = 2 (hi - lo + al + au) */
   const double xlow = lo - 2 * al - (hi - lo) / 2;
@@ -162,10 +183,11 @@ double sw_cmaes_box(double x, double lo, double hi) {
 /* A genotype that the box maps to y in [lo, hi] (the branch next to the
  * box), so a run started at x0 has its mean's image at x0. */
 static double box_inverse(double y, double lo, double hi) {
+  if (isinf(lo) && isinf(hi)) return y;
   double al, au;
   box_margins(lo, hi, &al, &au);
-  if (y < lo + al) return lo - al + sqrt(4 * al * (y - lo));
-  if (y > hi - au) return hi + au - sqrt(4 * au * (hi - y));
+  if (isfinite(lo) && y < lo + al) return lo - al + sqrt(4 * al * (y - lo));
+  if (isfinite(hi) && y > hi - au) return hi + au - sqrt(4 * au * (hi - y));
   return y;
 }
 
@@ -240,27 +262,37 @@ static double median(double *scratch, const double *ring, int cap, long first, i
 
 static int default_lambda(int n) { return 4 + (int)floor(3 * log((double)n)); }
 
-/* Table 1 of the tutorial for population size lambda (positive weights). */
+/* Table 1 of the tutorial for population size lambda: the log weights
+ * w'_i = ln((lambda + 1) / 2) - ln i, i = 1..lambda (49), the positive ones
+ * summing to 1, mu_eff of those; with `active`, the negative ones scaled by
+ * min(alpha_mu^-, alpha_mueff^-, alpha_posdef^-) / sum |w'_j| (53), else 0. */
 static void set_parameters(swCmaes *c, int lambda) {
   const int n = c->n;
   c->lambda = lambda;
   c->mu = lambda / 2;
-  double sum = 0, sum2 = 0;
-  for (int i = 0; i < c->mu; i++) {
+  double pos = 0, pos2 = 0, neg = 0, neg2 = 0;
+  for (int i = 0; i < lambda; i++) {
     c->w[i] = log((lambda + 1) / 2.0) - log(i + 1.0);
-    sum += c->w[i];
+    if (i < c->mu) pos += c->w[i], pos2 += c->w[i] * c->w[i];
+    else neg += fabs(c->w[i]), neg2 += c->w[i] * c->w[i];
   }
-  for (int i = 0; i < c->mu; i++) {
-    c->w[i] /= sum;
-    sum2 += c->w[i] * c->w[i];
-  }
-  c->mueff = 1 / sum2;
+  c->mueff = pos * pos / pos2;
   const double me = c->mueff;
-  c->cs = (me + 2) / (n + me + 5);
-  c->ds = 1 + 2 * fmax(0, sqrt((me - 1) / (n + 1)) - 1) + c->cs;
-  c->cc = (4 + me / n) / (n + 4 + 2 * me / n);
-  c->c1 = 2 / ((n + 1.3) * (n + 1.3) + me);
-  c->cmu = fmin(1 - c->c1, 2 * (0.25 + me + 1 / me - 2) / ((n + 2.0) * (n + 2.0) + me));
+  c->cs = (me + 2) / (n + me + 5);                                    /* (55) */
+  c->ds = 1 + 2 * fmax(0, sqrt((me - 1) / (n + 1)) - 1) + c->cs;      /* (55) */
+  c->cc = (4 + me / n) / (n + 4 + 2 * me / n);                        /* (56) */
+  c->c1 = 2 / ((n + 1.3) * (n + 1.3) + me);                           /* (57) */
+  c->cmu = fmin(1 - c->c1, 2 * (0.25 + me + 1 / me - 2) / ((n + 2.0) * (n + 2.0) + me)); /* (58) */
+  const double mueff_neg = neg > 0 ? neg * neg / neg2 : 0;
+  const double a_mu = 1 + c->c1 / c->cmu;                             /* (50) */
+  const double a_mueff = 1 + 2 * mueff_neg / (me + 2);                /* (51) */
+  const double a_posdef = (1 - c->c1 - c->cmu) / (n * c->cmu);        /* (52) */
+  const double scale_neg = c->o.active && neg > 0 ? fmin(a_mu, fmin(a_mueff, a_posdef)) / neg : 0;
+  c->wsum = 0;
+  for (int i = 0; i < lambda; i++) {
+    c->w[i] *= i < c->mu ? 1 / pos : scale_neg;
+    c->wsum += c->w[i];
+  }
   c->chin = sqrt((double)n) * (1 - 1 / (4.0 * n) + 1 / (21.0 * n * n));
   c->eigen_gap = (long)floor(1 / (10 * n * (c->c1 + c->cmu)));
   if (c->eigen_gap < 1) c->eigen_gap = 1;
@@ -292,6 +324,7 @@ void sw_cmaes_options_init(swCmaesOptions *o) {
   o->tolxup = 1e4;
   o->condition_max = 1e14;
   o->incpopsize = 2;
+  o->active = 1;
 }
 
 static int check_options(const swCmaesOptions *o, char *err, size_t errlen) {
@@ -304,8 +337,10 @@ static int check_options(const swCmaesOptions *o, char *err, size_t errlen) {
   if (!o->lo != !o->hi) return BAD("cmaes: lo and hi go together (one is NULL)");
   if (!o->x0 && !o->lo) return BAD("cmaes: no x0 and no bounds: nowhere to start");
   for (int i = 0; i < o->n; i++) {
-    if (o->lo && !(o->lo[i] < o->hi[i] && isfinite(o->lo[i]) && isfinite(o->hi[i])))
-      return BAD("cmaes: coordinate %d: bounds [%g, %g] need lo < hi, both finite", i, o->lo[i],
+    if (o->lo && !(o->lo[i] < o->hi[i] && o->lo[i] < INFINITY && o->hi[i] > -INFINITY))
+      return BAD("cmaes: coordinate %d: bounds [%g, %g] need lo < hi", i, o->lo[i], o->hi[i]);
+    if (!o->x0 && !(isfinite(o->lo[i]) && isfinite(o->hi[i])))
+      return BAD("cmaes: no x0 and coordinate %d's bounds [%g, %g] have no centre", i, o->lo[i],
                  o->hi[i]);
     if (o->x0 && !isfinite(o->x0[i])) return BAD("cmaes: x0[%d] = %g is not finite", i, o->x0[i]);
     if (o->x0 && o->lo && !(o->x0[i] >= o->lo[i] && o->x0[i] <= o->hi[i]))
@@ -352,7 +387,7 @@ swCmaes *sw_cmaes_new(const swCmaesOptions *o, char *err, size_t errlen) {
   const size_t nn = (size_t)n * n, ln = (size_t)c->lambda_max * n, lm = (size_t)c->lambda_max;
   c->hist_cap = 10 + (int)ceil(30.0 * n / c->lambda0); /* the longest: smallest lambda */
 #define ALLOC(p, k) if (!((p) = calloc((k), sizeof *(p)))) goto oom
-  ALLOC(c->w, lm / 2 + 1);
+  ALLOC(c->w, lm);
   ALLOC(c->m, n); ALLOC(c->ps, n); ALLOC(c->pc, n); ALLOC(c->D, n);
   ALLOC(c->C, nn); ALLOC(c->B, nn); ALLOC(c->Ctmp, nn); ALLOC(c->eval, n);
   ALLOC(c->Xg, ln); ALLOC(c->Y, ln); ALLOC(c->Xp, ln);
@@ -429,8 +464,9 @@ static void eigen(swCmaes *c) {
   gsl_vector_view e = gsl_vector_view_array(c->eval, (size_t)n);
   gsl_eigen_symmv(&A.matrix, &e.vector, &V.matrix, c->ws);
   gsl_eigen_symmv_sort(&e.vector, &V.matrix, GSL_EIGEN_SORT_VAL_ASC);
-  /* C is positive definite in exact arithmetic (positive weights); a
-   * round-off eigenvalue <= 0 is lifted to where conditioncov stops. */
+  /* C is positive definite in exact arithmetic (the negative weights are
+   * bounded by alpha_posdef, (53)); a round-off eigenvalue <= 0 is lifted
+   * to where conditioncov stops. */
   const double emax = fmax(c->eval[n - 1], DBL_MIN);
   for (int i = 0; i < n; i++) c->D[i] = sqrt(fmax(c->eval[i], emax * 1e-20));
   c->g_eigen = c->g;
@@ -588,13 +624,30 @@ void sw_cmaes_tell(swCmaes *c, const double *loss) {
   const double ac = hs * sqrt(c->cc * (2 - c->cc) * c->mueff);
   for (int i = 0; i < n; i++) c->pc[i] = (1 - c->cc) * c->pc[i] + ac * c->yw[i];
 
+  /* (46): the negative weights act on y scaled to the length sqrt(n) in
+   * the metric of C, w°_i = w_i n / |C^-1/2 y_i|^2; Y is not needed after
+   * this generation, so the scaling is done in place. */
+  for (int r = c->mu; r < lam; r++) {
+    if (!(c->w[r] < 0)) continue; /* w'_i = 0 at i = (lambda + 1) / 2 for odd lambda */
+    double *y = c->Y + (size_t)c->idx[r] * n;
+    for (int j = 0; j < n; j++) {
+      double s = 0;
+      for (int i = 0; i < n; i++) s += c->B[i * n + j] * y[i];
+      c->t1[j] = s / c->D[j];
+    }
+    double q = 0;
+    for (int j = 0; j < n; j++) q += c->t1[j] * c->t1[j]; /* |C^-1/2 y|^2 = |D^-1 B^T y|^2 */
+    const double f = q > 0 ? sqrt(n / q) : 0;
+    for (int i = 0; i < n; i++) y[i] *= f;
+  }
   /* (47), upper triangle, then mirrored */
+  const int nw = c->o.active ? lam : mu;
   const double dh = (1 - hs) * c->cc * (2 - c->cc);
-  const double keep = 1 + c->c1 * dh - c->c1 - c->cmu;
+  const double keep = 1 + c->c1 * dh - c->c1 - c->cmu * c->wsum;
   for (int i = 0; i < n; i++)
     for (int j = i; j < n; j++) {
       double rmu = 0;
-      for (int r = 0; r < mu; r++) {
+      for (int r = 0; r < nw; r++) {
         const double *y = c->Y + (size_t)c->idx[r] * n;
         rmu += c->w[r] * y[i] * y[j];
       }
@@ -637,12 +690,11 @@ void sw_cmaes_tell(swCmaes *c, const double *loss) {
   c->restarts_done++;
   c->stop = 0;
   set_parameters(c, (int)lambda_of(c, c->restarts_done));
-  if (c->lo) {
-    for (int i = 0; i < n; i++) c->t2[i] = c->lo[i] + (c->hi[i] - c->lo[i]) * sw_rng_uniform(&c->rng);
-    start_run(c, c->t2);
-  } else {
-    start_run(c, c->x0);
-  }
+  for (int i = 0; i < n; i++) /* one uniform per coordinate, bounded or not */
+    c->t2[i] = c->lo && isfinite(c->lo[i]) && isfinite(c->hi[i])
+                   ? c->lo[i] + (c->hi[i] - c->lo[i]) * sw_rng_uniform(&c->rng)
+                   : (sw_rng_uniform(&c->rng), c->x0[i]);
+  start_run(c, c->t2);
 }
 
 /* ---- queries ---- */

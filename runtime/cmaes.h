@@ -2,10 +2,10 @@
  * internal runtime header, not part of sinew.h; the study driver uses it).
  *
  * The algorithm is Hansen's (μ/μ_w, λ)-CMA-ES as "The CMA Evolution
- * Strategy: A Tutorial" (arXiv:1604.00772) states it, with positive
- * recombination weights only; cmaes.c gives the equations and
- * docs/optimisation.md the defaults, the bounds, the restarts and the
- * validation.  Losses are minimised; +INFINITY (or NaN) marks a failed
+ * Strategy: A Tutorial" (arXiv:1604.00772) states it, with its default
+ * negative weights (active CMA) or, as an option, positive ones only;
+ * cmaes.c gives the equations and docs/optimisation.md the defaults, the
+ * bounds, the restarts and the validation.  Losses are minimised; +INFINITY (or NaN) marks a failed
  * candidate, which ranks after every finite one.
  *
  * A generation:
@@ -49,7 +49,10 @@ typedef struct {
   double sigma0;          /* initial step size, > 0, in the units of x               */
   int lambda;             /* population size; 0: 4 + floor(3 ln n) (>= 2 if given)   */
   uint64_t seed;          /* the run's random numbers: sw_rng_stream(seed, 0)        */
-  const double *lo, *hi;  /* (n) box bounds, lo < hi, both or neither (NULL)         */
+  int active;             /* 1: the tutorial's negative weights (active CMA, its
+                           * default); 0: positive weights only                     */
+  const double *lo, *hi;  /* (n) box bounds, lo < hi, both arrays or neither (NULL);
+                           * -INFINITY / INFINITY leave a side unbounded            */
   /* termination; sw_cmaes_options_init sets the defaults given here */
   double ftarget;         /* stop at best loss <= ftarget; -INFINITY                 */
   long maxfevals;         /* over all restarts; 0: no limit                          */
@@ -60,14 +63,16 @@ typedef struct {
   double condition_max;   /* 1e14                                                    */
   /* IPOP restarts (Auger & Hansen 2005): when a run stops for any reason but
    * ftarget or maxfevals, start again with lambda times incpopsize, sigma0,
-   * C = I and the mean drawn uniformly in the box (at x0 when unbounded). */
+   * C = I and the mean drawn uniformly in the box (x0's coordinate where a
+   * bound is infinite). */
   int restarts;           /* how many; 0                                             */
   double incpopsize;      /* 2                                                       */
 } swCmaesOptions;
 
 typedef struct swCmaes swCmaes;
 
-/* Fills o with the defaults above (n 0, x0/lo/hi NULL, sigma0 0, seed 0). */
+/* Fills o with the defaults above (n 0, x0/lo/hi NULL, sigma0 0, seed 0,
+ * active 1). */
 void sw_cmaes_options_init(swCmaesOptions *o);
 /* NULL with the reason in err when the options are bad or memory is out. */
 swCmaes *sw_cmaes_new(const swCmaesOptions *o, char *err, size_t errlen);
