@@ -183,6 +183,7 @@ static void eval_param(swSema *S, swSymbol *sym) {
   }
   int idx = sc->nparam++;
   swSceneParam *p = &sc->param[idx];
+  memset(p, 0, sizeof *p);   /* no range until param_range finds one */
   p->name = sym->full;
   p->loc = sym->loc;
   p->value = v;
