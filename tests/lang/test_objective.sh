@@ -15,8 +15,10 @@
 #   -(objective + penalty);
 #   --info and --help list the ranges and the objective; --quiet prints no
 #   objective; a run cut short (--duration) says "not reached", exits 0
-#   and stores NaN; the generated C carries objective() with a #line back
-#   to each statement.
+#   and stores NaN; one continued with --restart inside a window stores
+#   the uninterrupted run's bits; penalties in a component's instances add
+#   up; the generated C carries objective() with a #line back to each
+#   statement.
 #
 # python3-h5py is installed by `make test` (scripts/deps.sh).
 . "$(dirname "$0")/tap.sh"
@@ -126,6 +128,29 @@ want=$(awk 'BEGIN { g = 9.81; z0 = 2; h = 1e-3
 close "$got" "$want" 1 1e-8 "minimize, printed"; ok $? "minimize: the trapezoidal mean, and score = -(objective + penalty), in m (no length unit written)"
 close "$(stored "$TMP/l.h5" | sed -n 1p)" "$want" 1 1e-12 "minimize, stored"
 ok $? "the stored mean is the trapezoidal rule's to 1e-12 m (its error term g h^2/12 is 8.2e-7 m)"
+
+# a penalty in a component: one per instance, each with its own weight
+sed 's/^penalty .*/component drag(k) { penalty k * at(z(centre), 0.1 s); }\
+use a = drag(0.25);\
+use b = drag(0.5);/' "$TMP/fall.sinew" >"$TMP/comp.sinew"
+"$SC" "$TMP/comp.sinew" -o "$TMP/comp" 2>"$TMP/err"; ok $? "penalties in a component's instances compile"
+diag <"$TMP/err"
+(cd "$TMP" && ./comp --out "$TMP/k.h5") 2>"$TMP/run"
+got=$(sed -n 's/^comp: objective: .* = \([^ ]*\) cm; penalty \([^ ]*\) cm; score \([^ ]*\) cm$/\1 \2 \3/p' "$TMP/run")
+want=$(awk 'BEGIN { g = 9.81; o = 2 - g * 0.25^2 / 2; p = 0.75 * (2 - g * 0.1^2 / 2)
+  printf "%.12g %.12g %.12g\n", o, p, o - p }')
+close "$got" "$want" 100 1e-6 "two instances"; ok $? "their penalties add up: (0.25 + 0.5) z(0.1 s)"
+
+# continued with --restart from t = 0.2 s, inside the window [0.1 s, 0.3 s]:
+# the window's extremes and trapezoidal sum carry on, to the uninterrupted
+# run's bits
+(cd "$TMP" && ./low --duration 0.4s --out "$TMP/whole.h5" --quiet) 2>/dev/null
+(cd "$TMP" && ./low --duration 0.2s --out "$TMP/r.h5" --quiet) 2>/dev/null
+(cd "$TMP" && ./low --restart "$TMP/r.h5" --duration 0.4s) 2>"$TMP/run"; rc=$?
+ok $rc "a run continued with --restart exits 0 (exit $rc)"
+grep -q "^low: objective: minimize mean_over" "$TMP/run"; ok $? "and prints the objective"
+[ "$(stored "$TMP/r.h5" | sed -n 1p)" = "$(stored "$TMP/whole.h5" | sed -n 1p)" ]
+ok $? "whose figures are an uninterrupted run's, to the bit ($(stored "$TMP/r.h5" | sed -n 1p))"
 
 # the generated C
 "$SC" "$TMP/fall.sinew" --emit-c -o "$TMP/fall.c" 2>/dev/null
