@@ -21,8 +21,8 @@ typedef struct {
 typedef enum {
   /* items */
   AST_IMPORT,     /* text = path                                        */
-  AST_PARAM,      /* name, kid[0] = default, kid[1] = range: ARG (name =
-                     the word, "in"; kid[0] = the pair), or absent       */
+  AST_PARAM,      /* name, kid[0] = default, kid[1] = range: ARG (name
+                     "in", kid[0] = the pair), or absent                 */
   AST_LET,        /* name, kid[0] = value                               */
   AST_DEF,        /* text = kind word (material, rod, bone, ...), name, kids = body */
   AST_JOINT,      /* name, text = joint kind, kid[0] = ARGS, kids[1..] = body */

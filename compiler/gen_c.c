@@ -531,11 +531,10 @@ int gen_c(FILE *out, swArena *a, const swScene *sc, const swGenOptions *opt) {
       gen_c_string(out, p->unit);
       fputs(", ", out);
       gen_c_string(out, diag_name_where(p->loc, where, sizeof where));
-      if (p->ranged) {   /* in (lo, hi): what a study varies */
-        swValue lo = val_num(a, p->lo, p->value.dim, p->loc);
-        swValue hi = val_num(a, p->hi, p->value.dim, p->loc);
-        fprintf(out, ", 1, %s, %s", val_c(a, &lo, 0), val_c(a, &hi, 0));
-      }
+      /* in (lo, hi): what a study varies (0: fixed in studies) */
+      swValue lo = val_num(a, p->lo, p->value.dim, p->loc);
+      swValue hi = val_num(a, p->hi, p->value.dim, p->loc);
+      fprintf(out, ", %d, %s, %s", p->ranged, val_c(a, &lo, 0), val_c(a, &hi, 0));
       fprintf(out, "},   /* P[%d] */\n", i);
     }
     fputs("};\n\n", out);

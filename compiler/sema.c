@@ -777,10 +777,10 @@ int sema_check_lets(swArena *arena, int file, swLetOverride *lets, int nlets, sw
   sha256_hex(S.src ? S.src : "", S.srclen, scene->sha256);
   for (int i = 0; i < S.ndone; i++) free(S.done_paths[i]);
   free(S.done_paths);
-  free(S.expect_item);
-  free(S.expect_scope);
-  free(S.objective_item);
-  free(S.objective_scope);
+  free(S.expects.item);
+  free(S.expects.scope);
+  free(S.objectives.item);
+  free(S.objectives.scope);
   return diag_errors() - before;
 }
 

@@ -116,11 +116,6 @@ static int units_only(const swAst *e, const swAst *num) {
 static void param_range(swSema *S, const swSymbol *sym, const swAst *range, int idx) {
   /* the bounds may name params, evaluated (and added to the table) here */
   const swValue value = S->scene->param[idx].value;
-  if (strcmp(range->name, "in")) {
-    diag_error(range->loc, "unexpected '%s' after the value of param '%s'; a range is written "
-               "'in (LO, HI)'", range->name, sym->name);
-    return;
-  }
   const swAst *pair = ast_kid(range, 0);
   if (pair->kind != AST_VEC || pair->nkid != 2) {
     diag_error(pair->loc, "the range of param '%s' is two values: in (LO, HI)", sym->name);
@@ -188,6 +183,7 @@ static void eval_param(swSema *S, swSymbol *sym) {
   }
   int idx = sc->nparam++;
   swSceneParam *p = &sc->param[idx];
+  memset(p, 0, sizeof *p);   /* no range until param_range finds one */
   p->name = sym->full;
   p->loc = sym->loc;
   p->value = v;

@@ -29,17 +29,18 @@ static const swDim DIM_FORCE_ = {{1, 1, -2, 0}};
 static const swDim DIM_SPEED_ = {{0, 1, -1, 0}};
 
 void sema_expectation_later(swSema *S, swScope *scope, const swAst *it) {
-  int n = S->nexpect_item;
-  if (n == S->capexpect_item) {
-    int cap = n ? 2 * n : 8;
-    S->expect_item = realloc(S->expect_item, (size_t)cap * sizeof *S->expect_item);
-    S->expect_scope = realloc(S->expect_scope, (size_t)cap * sizeof *S->expect_scope);
-    if (!S->expect_item || !S->expect_scope) abort();
-    S->capexpect_item = cap;
+  sema_later(&S->expects, scope, it);
+}
+
+void sema_later(swLater *l, swScope *scope, const swAst *it) {
+  if (l->n == l->cap) {
+    l->cap = l->cap ? 2 * l->cap : 8;
+    l->item = realloc(l->item, (size_t)l->cap * sizeof *l->item);
+    l->scope = realloc(l->scope, (size_t)l->cap * sizeof *l->scope);
+    if (!l->item || !l->scope) abort();
   }
-  S->expect_item[n] = it;
-  S->expect_scope[n] = scope;
-  S->nexpect_item = n + 1;
+  l->item[l->n] = it;
+  l->scope[l->n++] = scope;
 }
 
 /* The text of loc on one line, blanks folded: a statement for the report,
@@ -273,5 +274,5 @@ void sema_add_expect(swSema *S, const swSceneExpect *x) {
 }
 
 void sema_expectations(swSema *S) {
-  for (int i = 0; i < S->nexpect_item; i++) check_one(S, S->expect_scope[i], S->expect_item[i]);
+  for (int i = 0; i < S->expects.n; i++) check_one(S, S->expects.scope[i], S->expects.item[i]);
 }

@@ -20,6 +20,15 @@
  * nesting multiplies them (ten uses of a component that uses ten ...) */
 #define SEMA_MAX_EXPANDED 50000
 
+/* Statements kept when met, with their scopes, and checked after the last
+ * item (sema_later). */
+typedef struct {
+  const swAst **item;
+  swScope **scope;
+  int n, cap;
+} swLater;
+void sema_later(swLater *l, swScope *scope, const swAst *it);   /* sema_expectation.c */
+
 typedef struct {
   swArena *a;
   swScene *scene;
@@ -56,13 +65,9 @@ typedef struct {
   const swAst *output_item;
   swScope *output_scope;
   /* expect statements, checked once the whole scene (its probes) is known */
-  const swAst **expect_item;
-  swScope **expect_scope;
-  int nexpect_item, capexpect_item;
+  swLater expects;
   /* maximize, minimize and penalty statements, likewise */
-  const swAst **objective_item;
-  swScope **objective_scope;
-  int nobjective_item, capobjective_item;
+  swLater objectives;
   /* set while one of them is evaluated: a reduction (at, mean_over, ...)
    * is allowed there and nowhere else */
   int reducing;

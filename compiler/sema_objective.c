@@ -47,17 +47,7 @@ void sema_objective_later(swSema *S, swScope *scope, const swAst *it) {
                "(each instance would add an objective); a penalty may stand in one", it->text);
     return;
   }
-  int n = S->nobjective_item;
-  if (n == S->capobjective_item) {
-    int cap = n ? 2 * n : 8;
-    S->objective_item = realloc(S->objective_item, (size_t)cap * sizeof *S->objective_item);
-    S->objective_scope = realloc(S->objective_scope, (size_t)cap * sizeof *S->objective_scope);
-    if (!S->objective_item || !S->objective_scope) abort();
-    S->capobjective_item = cap;
-  }
-  S->objective_item[n] = it;
-  S->objective_scope[n] = scope;
-  S->nobjective_item = n + 1;
+  sema_later(&S->objectives, scope, it);
 }
 
 /* ---- reductions ---- */
@@ -237,8 +227,8 @@ void sema_objectives(swSema *S) {
   o->value = val_error();
   const swAst *objective = NULL;
   swScope *objective_scope = NULL;
-  for (int i = 0; i < S->nobjective_item; i++) {
-    const swAst *it = S->objective_item[i];
+  for (int i = 0; i < S->objectives.n; i++) {
+    const swAst *it = S->objectives.item[i];
     if (!strcmp(it->text, "penalty")) continue;
     if (objective) {
       char first[300];
@@ -248,7 +238,7 @@ void sema_objectives(swSema *S) {
       continue;
     }
     objective = it;
-    objective_scope = S->objective_scope[i];
+    objective_scope = S->objectives.scope[i];
   }
   if (objective) {
     o->sense = objective->text[1] == 'a' ? 1 : -1;
@@ -257,17 +247,17 @@ void sema_objectives(swSema *S) {
     o->value = evaluate(S, objective_scope, objective->kid[0], "an objective");
   }
   int npenalty = 0;
-  for (int i = 0; i < S->nobjective_item; i++) npenalty += !strcmp(S->objective_item[i]->text,
+  for (int i = 0; i < S->objectives.n; i++) npenalty += !strcmp(S->objectives.item[i]->text,
                                                                    "penalty");
   o->penalty = ast_alloc(S->a, (size_t)(npenalty + 1) * sizeof *o->penalty);
   o->penalty_loc = ast_alloc(S->a, (size_t)(npenalty + 1) * sizeof *o->penalty_loc);
-  for (int i = 0; i < S->nobjective_item; i++) {
-    const swAst *it = S->objective_item[i];
+  for (int i = 0; i < S->objectives.n; i++) {
+    const swAst *it = S->objectives.item[i];
     if (strcmp(it->text, "penalty")) continue;
     if (!objective)
       diag_error(it->loc, "a penalty is subtracted from the objective, and the model has none "
                  "(maximize EXPR; or minimize EXPR;)");
-    swValue v = evaluate(S, S->objective_scope[i], it->kid[0], "a penalty");
+    swValue v = evaluate(S, S->objectives.scope[i], it->kid[0], "a penalty");
     if (v.kind == VAL_ERROR || o->value.kind == VAL_ERROR) continue;
     if (!dim_fits(o->value.dim, v.dim)) {
       char where[300];
@@ -287,10 +277,10 @@ void sema_objectives(swSema *S) {
   o->unit = o->si_unit;
   o->scale = 1;
   if (!unit_written(S, objective_scope, objective->kid[0], o->value.dim, &o->unit, &o->scale))
-    for (int i = 0; i < S->nobjective_item; i++) {
-      const swAst *it = S->objective_item[i];
+    for (int i = 0; i < S->objectives.n; i++) {
+      const swAst *it = S->objectives.item[i];
       if (!strcmp(it->text, "penalty") &&
-          unit_written(S, S->objective_scope[i], it->kid[0], o->value.dim, &o->unit, &o->scale))
+          unit_written(S, S->objectives.scope[i], it->kid[0], o->value.dim, &o->unit, &o->scale))
         break;
     }
 }

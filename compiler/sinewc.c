@@ -336,13 +336,19 @@ static void print_checked(const char *model, const swScene *sc, double stable) {
     else if (stable < 1e-3) snprintf(dt, sizeof dt, "; stable dt %.3g us", stable * 1e6);
     else snprintf(dt, sizeof dt, "; stable dt %.3g ms", stable * 1e3);
   }
+  /* the objective's reductions are entries of the expectations' list */
+  const int nexpect = sc->nexpect - sc->objective.nreduce;
+  char objective[64] = "";
+  if (sc->objective.sense)
+    snprintf(objective, sizeof objective, ", an objective (%d penalt%s)",
+             sc->objective.npenalty, sc->objective.npenalty == 1 ? "y" : "ies");
   fprintf(stderr, "%s: %s: ok: %d file%s, %d rod%s (%ld elements), %d muscle%s (%d filaments), "
-          "%d joint%s, %d environment%s, %d param%s, %d expectation%s, %d warning%s%s\n",
+          "%d joint%s, %d environment%s, %d param%s, %d expectation%s%s, %d warning%s%s\n",
           progname, model, diag_nfiles(), diag_nfiles() == 1 ? "" : "s", sc->nrod,
           sc->nrod == 1 ? "" : "s", sc->nelem, sc->nmuscle, sc->nmuscle == 1 ? "" : "s", nfil,
           sc->njoint, sc->njoint == 1 ? "" : "s", nenv, nenv == 1 ? "" : "s", sc->nparam,
-          sc->nparam == 1 ? "" : "s", sc->nexpect, sc->nexpect == 1 ? "" : "s", diag_warnings(),
-          diag_warnings() == 1 ? "" : "s", dt);
+          sc->nparam == 1 ? "" : "s", nexpect, nexpect == 1 ? "" : "s", objective,
+          diag_warnings(), diag_warnings() == 1 ? "" : "s", dt);
 }
 
 static int report_lets(const swOptions *o) {

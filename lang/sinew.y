@@ -84,7 +84,7 @@ static void sinew_yyerror(swLoc *loc, yyscan_t scanner, struct swLexState *st, c
 %token IMPORT "'import'" PARAM "'param'" LET "'let'" JOINT "'joint'"
 %token COMPONENT "'component'" USE "'use'" SIMULATE "'simulate'"
 %token OUTPUT "'output'" EVERY "'every'" EXPECT "'expect'"
-%token AND "'and'" OR "'or'" LE "'<='" GE "'>='"
+%token AND "'and'" OR "'or'" LE "'<='" GE "'>='" IN "'in'"
 
 %left OR
 %left AND
@@ -122,11 +122,11 @@ item
                                             "expected ';' or 'as NAME'", $3); }
   /* param NAME = expr; */
   | PARAM IDENT '=' expr ';' { $$ = named(st, AST_PARAM, @2, $2); ast_push(A, $$, $4); }
-  /* param NAME = expr in (LO, HI);   the range a study varies it over; the
-     word (in) and the pair are checked by sema_def.c */
-  | PARAM IDENT '=' expr IDENT expr ';'
+  /* param NAME = expr in (LO, HI);   the range a study varies it over (the
+     pair is checked by sema_def.c) */
+  | PARAM IDENT '=' expr IN expr ';'
                              { $$ = named(st, AST_PARAM, @2, $2); ast_push(A, $$, $4);
-                               ast_push(A, $$, ast_push(A, named(st, AST_ARG, @5, $5), $6)); }
+                               ast_push(A, $$, ast_push(A, named(st, AST_ARG, @5, "in"), $6)); }
   /* let NAME = expr; */
   | LET IDENT '=' expr ';'   { $$ = named(st, AST_LET, @2, $2); ast_push(A, $$, $4); }
   /* KIND NAME { fields }      material bone { E = 15 GPa; } */
@@ -184,7 +184,12 @@ item
        expect angle(elbow) at 0.5 s in (-155 deg, -150 deg);
        expect force(biceps) over (0.2 s, 0.5 s) in (0 N, 300 N);
        expect angle(elbow) at 0.5 s within 1 deg of -152 deg;
-     the words (at/over, in/within, of) are checked by sema_expect.c */
+     the words (at/over, in/within, of) are checked by sema_expect.c; 'in' is
+     a keyword, since `param NAME = V in (LO, HI)` takes it too */
+  | EXPECT expr IDENT expr IN expr ';'
+                             { $$ = node(st, AST_EXPECT, ast_span(@1, @6)); ast_push(A, $$, $2);
+                               ast_push(A, $$, ast_push(A, named(st, AST_ARG, @3, $3), $4));
+                               ast_push(A, $$, ast_push(A, named(st, AST_ARG, @5, "in"), $6)); }
   | EXPECT expr IDENT expr IDENT expr ';'
                              { $$ = node(st, AST_EXPECT, ast_span(@1, @6)); ast_push(A, $$, $2);
                                ast_push(A, $$, ast_push(A, named(st, AST_ARG, @3, $3), $4));

@@ -251,7 +251,8 @@ static int report_objective(const swCli *c, const swModel *m, const swExpectRun 
   double value = NAN, penalty = NAN, score = NAN;
   char why[256] = "";
   if (rc == SW_OK) rc = sw_objective(p, m, x, c->P, &value, &penalty, &score, why, sizeof why);
-  else snprintf(why, sizeof why, "the run did not finish");
+  else snprintf(why, sizeof why, "%s", rc == SW_EUNSTABLE ? "the run became unstable"
+                : rc == SW_EINTERRUPT ? "the run was interrupted" : "the run did not finish");
   if (!c->quiet) {
     const char *u = p->objective_unit, *space = u[0] ? " " : "";
     const double k = p->objective_scale > 0 ? p->objective_scale : 1;

@@ -1149,17 +1149,16 @@ int sw_output_objective(swOutput *o, const char *text, double objective, double 
                         double score, const char *units) {
   if (!o) return SW_OK;
   static const char *const names[] = {"objective", "penalty", "score", "objective_units",
-                                      "objective_text"};
+                                      "penalty_units", "score_units", "objective_text"};
   for (size_t k = 0; k < sizeof names / sizeof names[0]; k++) {
     htri_t had = H5Aexists(o->file, names[k]);
     if (had < 0 || (had > 0 && H5Adelete(o->file, names[k]) < 0))
       return fail(NULL, 0, "%s: cannot replace attribute '%s' of /", o->path, names[k]);
   }
   swAttrTarget t = {o->file, o->path, "/", NULL, 0};
-  int rc = attr_scalar(&t, "objective", H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, &objective);
-  if (rc == SW_OK) rc = attr_scalar(&t, "penalty", H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, &penalty);
-  if (rc == SW_OK) rc = attr_scalar(&t, "score", H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, &score);
-  if (rc == SW_OK) rc = attr_string(&t, "objective_units", units);
+  int rc = attr_quantity(&t, "objective", &objective, 1, units);
+  if (rc == SW_OK) rc = attr_quantity(&t, "penalty", &penalty, 1, units);
+  if (rc == SW_OK) rc = attr_quantity(&t, "score", &score, 1, units);
   if (rc == SW_OK) rc = attr_string(&t, "objective_text", text);
   return rc;
 }

@@ -861,8 +861,9 @@ int sw_output_read_run(const char *path, char *sha256, char *params, size_t len,
 int sw_output_checkpoint(swOutput *o, const swModel *m, const swData *d, const swExpectRun *x);
 int sw_output_close(swOutput *o, const char *status);
 /* The run's objective as root attributes objective, penalty, score (SI;
- * NaN when not reached), objective_units and objective_text ("maximize
- * EXPR"); written again if given again. */
+ * NaN when not reached) with their units (objective_units, penalty_units,
+ * score_units: `units`) and objective_text ("maximize EXPR"); written
+ * again if given again. */
 int sw_output_objective(swOutput *o, const char *text, double objective, double penalty,
                         double score, const char *units);
 long sw_output_frames(const swOutput *o);

@@ -22,8 +22,8 @@
 /* ---- the program under test ---- */
 
 static const swParam cantilever_params[] = {
-  {"length", 0.5, {0, 1, 0, 0}, "m", "cantilever.sinew:2"},
-  {"strength", 1.0, {0, 0, 0, 0}, "", "cantilever.sinew:3"},
+  {"length", 0.5, {0, 1, 0, 0}, "m", "cantilever.sinew:2", 0, 0, 0},
+  {"strength", 1.0, {0, 0, 0, 0}, "", "cantilever.sinew:3", 0, 0, 0},
 };
 
 static int build_cantilever(swSpec *s, const double *P, char *err, size_t errlen) {
