@@ -26,6 +26,11 @@
 . "$(dirname "$0")/tap.sh"
 cd "$ROOT" || exit 1
 scratch snake_muscular
+todo() {   # todo CONDITION DESCRIPTION REASON: a known failure (TAP TODO), not counted
+  TAP_N=$((TAP_N + 1))
+  if [ "$1" -eq 0 ]; then echo "ok $TAP_N - $2 # TODO $3"
+  else echo "not ok $TAP_N - $2 # TODO $3"; fi
+}
 
 for f in examples/snake_muscular.sinew examples/study/snake_pairs1.sinew \
          examples/study/snake_pairs2.sinew examples/study/snake_pairs3.sinew \
@@ -80,7 +85,7 @@ c = f["probes/com"][:]
 dx, dy = c[-1, 0] - c[0, 0], c[-1, 1] - c[0, 1]
 print("centre of mass after 1 s: dx = %.2f mm (forward), dy = %.2f mm" % (1e3 * dx, 1e3 * dy))
 sys.exit(0 if dx > 2e-3 and dx > abs(dy) else 1)'
-ok $? "with the default design it moves forward (dx > 2 mm and > |dy|) # TODO the zero-amplitude drift below must be understood first"
+todo $? "with the default design it moves forward (dx > 2 mm and > |dy|)" "the zero-amplitude drift below must be understood first"
 diag <"$TMP/py_forward"
 
 py rest '
@@ -88,6 +93,6 @@ c = rest["probes/com"][:]
 d = np.hypot(c[:, 0] - c[0, 0], c[:, 1] - c[0, 1]).max()
 print("zero amplitude: the centre of mass moves %.3g m in the ground plane in 0.2 s" % d)
 sys.exit(0 if d < 1e-6 else 1)'
-ok $? "with zero amplitude the snake does not move (drift < 1e-6 m) # TODO under gravity the scene drifts forward (14 mm in 0.2 s with one pair; 0.14 mm without gravity): not yet explained"
+todo $? "with zero amplitude the snake does not move (drift < 1e-6 m)" "under gravity the scene drifts forward (14 mm in 0.2 s with one pair; 0.14 mm without gravity): not yet explained"
 diag <"$TMP/py_rest"
 done_testing
