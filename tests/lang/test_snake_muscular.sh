@@ -1,0 +1,98 @@
+#!/bin/sh
+# test_snake_muscular.sh — the muscular snake (issue 13): models/
+# muscular_snake.sinew, examples/snake_muscular.sinew and the study scenes
+# examples/study/*.sinew.
+#
+#   every scene compiles (the #STUDY lines are comments until the compiler
+#   takes ranges and objectives);
+#   the four-pair snake of PyElastica's example runs 1 s of its 5 s and
+#   shows physics with a reference of its own:
+#     - the two muscles of each pair contract in antiphase: a pair bends the
+#       body, so one side shortens as the other lengthens (geometry of the
+#       bend about the axis, lever d on both sides); their stretches
+#       eta - 1 correlate below -0.8 over 0.2-1 s;
+#     - the skeleton stays on the ground: the backbone's nodes stay within
+#       the band in which a 25 mm rod lies on a plane (height of the axis
+#       r, no sinking below r - 0.5 mm, no lift of more than r / 5);
+#     - it moves forward (+x, towards its head) by more than 2 mm, and more
+#       forward than sideways;
+#   and the same snake with every amplitude 0 (examples/study/
+#   snake_pairs4.sinew, --set ampK=0N) does not move: nothing but gravity
+#   acts, static friction (mu_s = 2) holds every element, and the creep it
+#   allows below the slip tolerance v_eps = 1e-8 m/s is 2e-9 m over 0.2 s:
+#   the centre of mass moves less than 1e-6 m in the ground plane.
+# The last two checks are marked TODO (they fail today, and prove reports
+# them as such): docs/validation.md, "Muscular snake", says what is known.
+. "$(dirname "$0")/tap.sh"
+cd "$ROOT" || exit 1
+scratch snake_muscular
+todo() {   # todo CONDITION DESCRIPTION REASON: a known failure (TAP TODO), not counted
+  TAP_N=$((TAP_N + 1))
+  if [ "$1" -eq 0 ]; then echo "ok $TAP_N - $2 # TODO $3"
+  else echo "not ok $TAP_N - $2 # TODO $3"; fi
+}
+
+for f in examples/snake_muscular.sinew examples/study/snake_pairs1.sinew \
+         examples/study/snake_pairs2.sinew examples/study/snake_pairs3.sinew \
+         examples/study/snake_pairs4.sinew examples/study/snake_pairs5.sinew \
+         examples/study/snake_continuum_opt.sinew; do
+  name=$(basename "$f" .sinew)
+  "$SINEWC" "$f" -o "$TMP/$name" 2>"$TMP/err_$name"; ok $? "$f compiles"
+  diag <"$TMP/err_$name"
+done
+
+"$TMP/snake_muscular" --duration 1s --every 10ms --out "$TMP/run.h5" --quiet >"$TMP/run" 2>&1; rc=$?
+ok $rc "the four-pair snake runs 1 s (exit $rc)"
+diag <"$TMP/run"
+"$TMP/snake_pairs4" --duration 0.2s --every 10ms --out "$TMP/rest.h5" --quiet \
+  --set amp1=0N --set amp2=0N --set amp3=0N --set amp4=0N >"$TMP/rest" 2>&1; rc=$?
+ok $rc "the same snake with zero amplitudes runs 0.2 s (exit $rc)"
+diag <"$TMP/rest"
+
+py() {   # py NAME CODE: the check CODE prints its figures and exits 0 if it holds
+  /usr/bin/python3 -c "
+import sys, h5py, numpy as np
+f = h5py.File('$TMP/run.h5', 'r'); t = f['time'][:]
+rest = h5py.File('$TMP/rest.h5', 'r')
+$2" >"$TMP/py_$1" 2>&1
+}
+
+py antiphase '
+w = t >= 0.2
+worst = 1.0
+for k in (1, 2, 3, 4):
+    l = f["muscles/p%d.left/stretch" % k][:][w] - 1
+    r = f["muscles/p%d.right/stretch" % k][:][w] - 1
+    c = np.corrcoef(l, r)[0, 1]
+    print("pair %d: corr(eta_left - 1, eta_right - 1) = %.3f; eta left %.3f-%.3f, right %.3f-%.3f"
+          % (k, c, l.min() + 1, l.max() + 1, r.min() + 1, r.max() + 1))
+    worst = min(worst, -c)
+sys.exit(0 if worst > 0.8 else 1)'
+ok $? "the muscles of each pair contract in antiphase (stretch correlation < -0.8)"
+diag <"$TMP/py_antiphase"
+
+py ground '
+z = f["rods/snake.body/position"][:, :, 2]
+r = 0.025
+print("backbone node heights over 1 s: %.3f to %.3f mm above the axis height r"
+      % (1e3 * (z.min() - r), 1e3 * (z.max() - r)))
+sys.exit(0 if z.min() > r - 0.5e-3 and z.max() < r + r / 5 else 1)'
+ok $? "the skeleton stays on the ground (nodes within r - 0.5 mm and 1.2 r)"
+diag <"$TMP/py_ground"
+
+py forward '
+c = f["probes/com"][:]
+dx, dy = c[-1, 0] - c[0, 0], c[-1, 1] - c[0, 1]
+print("centre of mass after 1 s: dx = %.2f mm (forward), dy = %.2f mm" % (1e3 * dx, 1e3 * dy))
+sys.exit(0 if dx > 2e-3 and dx > abs(dy) else 1)'
+todo $? "with the default design it moves forward (dx > 2 mm and > |dy|)" "the zero-amplitude drift below must be understood first"
+diag <"$TMP/py_forward"
+
+py rest '
+c = rest["probes/com"][:]
+d = np.hypot(c[:, 0] - c[0, 0], c[:, 1] - c[0, 1]).max()
+print("zero amplitude: the centre of mass moves %.3g m in the ground plane in 0.2 s" % d)
+sys.exit(0 if d < 1e-6 else 1)'
+todo $? "with zero amplitude the snake does not move (drift < 1e-6 m)" "under gravity the scene drifts forward (14 mm in 0.2 s with one pair; 0.14 mm without gravity): not yet explained"
+diag <"$TMP/py_rest"
+done_testing
