@@ -30,12 +30,8 @@
 
 struct swStudyFile {
   hid_t file;
-  char *path;
   int nparam;
   hid_t status_type;                    /* the enum of swEvalStatus          */
-  long rows, generations;
-  double best_score;
-  long best_index;
 };
 
 static int fail(char *err, size_t len, const char *fmt, ...) __attribute__((format(printf, 3, 4)));
@@ -196,6 +192,25 @@ static hid_t new_group(hid_t loc, const char *name) {
 
 static const char *const kind_names[] = {"grid", "lhs", "cmaes"};
 
+/* The handle of an opened file (file < 0: it could not be opened). */
+static swStudyFile *new_handle(hid_t file, const swStudyOptions *o, const char *what, char *err,
+                               size_t errlen) {
+  if (file < 0) {
+    fail(err, errlen, "cannot %s the study file %s", what, o->path);
+    return NULL;
+  }
+  swStudyFile *f = calloc(1, sizeof *f);
+  if (!f) {
+    H5Fclose(file);
+    fail(err, errlen, "out of memory");
+    return NULL;
+  }
+  f->file = file;
+  f->nparam = o->nparam;
+  f->status_type = make_status_type();
+  return f;
+}
+
 /* Opens without HDF5's file lock: under mpirun every rank reads a resumed
  * study's settings while rank 0 opens it for writing (only rank 0 writes). */
 static hid_t open_unlocked(const char *path, unsigned flags) {
@@ -235,22 +250,8 @@ swStudyFile *sw_study_file_create(const swStudyFileInfo *in, char *err, size_t e
   H5Pset_obj_track_times(fcpl, 0);
   hid_t file = H5Fcreate(o->path, H5F_ACC_TRUNC, fcpl, H5P_DEFAULT);
   H5Pclose(fcpl);
-  if (file < 0) {
-    fail(err, errlen, "cannot create the study file %s", o->path);
-    return NULL;
-  }
-  swStudyFile *f = calloc(1, sizeof *f);
-  if (!f || !(f->path = strdup(o->path))) {
-    free(f);
-    H5Fclose(file);
-    fail(err, errlen, "out of memory");
-    return NULL;
-  }
-  f->file = file;
-  f->nparam = o->nparam;
-  f->status_type = make_status_type();
-  f->best_score = -INFINITY;
-  f->best_index = -1;
+  swStudyFile *f = new_handle(file, o, "create", err, errlen);
+  if (!f) return NULL;
   int bad = write_settings(file, in);
   /* the design space: the varied params' names, bounds and units */
   hid_t design = new_group(file, "design");
@@ -363,22 +364,8 @@ swStudyFile *sw_study_file_reopen(const swStudyFileInfo *in, swStudyRows *rows, 
   memset(rows, 0, sizeof *rows);
   H5Eset_auto2(H5E_DEFAULT, NULL, NULL);
   hid_t file = open_unlocked(o->path, H5F_ACC_RDWR);
-  if (file < 0) {
-    fail(err, errlen, "cannot open the study file %s for writing", o->path);
-    return NULL;
-  }
-  swStudyFile *f = calloc(1, sizeof *f);
-  if (!f || !(f->path = strdup(o->path))) {
-    free(f);
-    H5Fclose(file);
-    fail(err, errlen, "out of memory");
-    return NULL;
-  }
-  f->file = file;
-  f->nparam = o->nparam;
-  f->status_type = make_status_type();
-  f->best_score = -INFINITY;
-  f->best_index = -1;
+  swStudyFile *f = new_handle(file, o, "open for writing", err, errlen);
+  if (!f) return NULL;
   hid_t ev = H5Gopen2(file, "evaluations", H5P_DEFAULT);
   long n[5] = {0};
   if (ev >= 0) {
@@ -397,14 +384,6 @@ swStudyFile *sw_study_file_reopen(const swStudyFileInfo *in, swStudyRows *rows, 
     return NULL;
   }
   rows->n = n[0];
-  f->rows = n[0];
-  hid_t cm = o->kind == SW_STUDY_CMAES ? H5Gopen2(file, "cmaes", H5P_DEFAULT) : -1;
-  if (cm >= 0) {
-    long g = 0;
-    free(get_rows(cm, "sigma", H5T_NATIVE_DOUBLE, sizeof(double), &g));
-    f->generations = g;
-    H5Gclose(cm);
-  }
   put_string(file, "status", "running");
   return f;
 }
@@ -435,7 +414,6 @@ int sw_study_file_write(swStudyFile *f, long index, int generation, const double
             put_row(ev, "wall_time", index, 0, H5T_NATIVE_DOUBLE, &r->wall) ||
             put_row(ev, "rank", index, 0, H5T_NATIVE_INT, &r->rank);
   H5Gclose(ev);
-  if (index + 1 > f->rows) f->rows = index + 1;
   if (bad || H5Fflush(f->file, H5F_SCOPE_LOCAL) < 0) return SW_EIO;
   return SW_OK;
 }
@@ -485,7 +463,6 @@ int sw_study_file_close(swStudyFile *f, const char *status) {
   if (status) bad |= put_string(f->file, "status", status);
   if (f->status_type >= 0) H5Tclose(f->status_type);
   bad |= H5Fclose(f->file) < 0;
-  free(f->path);
   free(f);
   return bad ? SW_EIO : SW_OK;
 }

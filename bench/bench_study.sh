@@ -1,0 +1,33 @@
+#!/bin/sh
+# bench_study.sh — evaluations per second of a study with 1 and 2 MPI ranks
+# (and 4, oversubscribed on this 2-core machine): the optimisation of
+# tests/lang/test_optimize.sh's dropped rod at dt = 2 us (50 000 steps an
+# evaluation), 300 evaluations, each configuration run REPEAT times,
+# interleaved, the median wall time reported.  Prints a Markdown table.
+set -e
+ROOT=$(cd "$(dirname "$0")/.." && pwd)
+REPEAT=${REPEAT:-3}
+TMP=$(mktemp -d "${TMPDIR:-/tmp}/sinew-bench-study.XXXXXX")
+trap 'rm -rf "$TMP"' EXIT INT TERM
+export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMPI_MCA_rmaps_base_oversubscribe=1
+sed -n '/^cat > "\$TMP\/drop.sinew"/,/^EOF/p' "$ROOT/tests/lang/test_optimize.sh" | sed '1d;$d' \
+  > "$TMP/drop.sinew"
+"$ROOT/bin/sinewc" "$TMP/drop.sinew" -o "$TMP/drop"
+command -v mpirun >/dev/null || { echo "bench_study: mpirun is not installed" >&2; exit 1; }
+cd "$TMP"
+for r in $(seq "$REPEAT"); do
+  for np in 1 2 4; do
+    rm -f s.h5
+    t0=$(date +%s.%N)
+    mpirun -np $np ./drop --optimize --budget 300 --seed 5 --dt 2us --study s.h5 --quiet
+    t1=$(date +%s.%N)
+    awk -v n=$np -v a="$t0" -v b="$t1" 'BEGIN {print n, b - a}' >> times
+  done
+done
+echo "| ranks | evaluations | wall time (median of $REPEAT) | evaluations per second |"
+echo "|--:|--:|--:|--:|"
+for np in 1 2 4; do
+  med=$(awk -v n=$np '$1 == n {print $2}' times | sort -g | awk '{a[NR]=$1} END {print a[int((NR+1)/2)]}')
+  n=$(/usr/bin/python3 -c "import h5py; print((h5py.File('s.h5')['evaluations/status'][()]!=0).sum())")
+  awk -v np=$np -v n="$n" -v t="$med" 'BEGIN {printf "| %d | %d | %.2f s | %.0f |\n", np, n, t, n / t}'
+done
