@@ -150,8 +150,12 @@ int sw_study_cli(swStudyCall *c) {
                                                                                     : "sinew");
     path = default_path;
   }
+  /* only rank 0 writes the file: the other ranks of an mpirun do not look
+   * for it (rank 0 may have created it already) */
+  int rank = 0;
+  sw_study_launched(&rank, NULL);
   if (a.resume) rc = take_resumed(c, &a, vary);
-  else if (access(path, F_OK) == 0)
+  else if (rank == 0 && access(path, F_OK) == 0)
     rc = say(c, SW_EUSAGE, "the study file %s exists: continue it with --resume %s, or give "
              "another --study (or remove it)", path, path);
   char settings[256];

@@ -121,7 +121,7 @@ fails 2 "sinew-plot: $TMP/arm_nofmax.h5: /muscles/biceps_long has no attribute F
 fails 2 "sinew-plot: no output file: give -o OUT.png" "no -o" angle "$TMP/pend.h5"
 fails 2 "sinew-plot: unknown mode 'angles' (did you mean 'angle'?)" \
   "misspelled mode" angles "$TMP/pend.h5" -o "$TMP/x.png"
-fails 2 "sinew-plot: unknown mode 'bars'; modes: angle, force-length, force-velocity, muscle, frames, movie" \
+fails 2 "sinew-plot: unknown mode 'bars'; modes: angle, force-length, force-velocity, muscle, frames, movie, study" \
   "unknown mode" bars -o "$TMP/x.png"
 fails 2 "sinew-plot: unrecognized arguments: --jiont pivot" "unknown option" angle "$TMP/pend.h5" --jiont pivot -o "$TMP/x.png"
 fails 2 "sinew-plot: angle takes one or more files" "angle without a file" angle -o "$TMP/x.png"
