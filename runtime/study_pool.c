@@ -95,7 +95,6 @@ struct swPool {
   long *task;          /* position in the batch                               */
   double *started;
   char *lost;
-  long *done;          /* tasks served (for SINEW_STUDY_FAULT on workers)     */
   int nlost;
   double slowest;
   struct sigaction old_int, old_term;
@@ -201,9 +200,8 @@ swPool *sw_pool_open(const swStudyOptions *o, int *rank, char *err, size_t errle
   p->task = malloc((size_t)n * sizeof *p->task);
   p->started = calloc((size_t)n, sizeof *p->started);
   p->lost = calloc((size_t)n, 1);
-  p->done = calloc((size_t)n, sizeof *p->done);
   p->local.P = malloc(((size_t)o->nparam + 1) * sizeof *p->local.P);
-  if (!p->task || !p->started || !p->lost || !p->done || !p->local.P) {
+  if (!p->task || !p->started || !p->lost || !p->local.P) {
     snprintf(err, errlen, "out of memory");
     sw_pool_close(p, 0);
     return NULL;
@@ -234,15 +232,21 @@ int sw_pool_lost(const swPool *p) { return p->nlost; }
 
 void sw_pool_close(swPool *p, int code) {
   if (!p) return;
+  int detached = 0;
   if (p->local.started) {
     pthread_mutex_lock(&p->local.mu);
     p->local.quit = 1;
     pthread_cond_signal(&p->local.cv);
     pthread_mutex_unlock(&p->local.mu);
     /* an evaluation still running (the study was interrupted) is left to
-     * the process's exit rather than waited for */
-    if (!p->local.has_task) pthread_join(p->local.thread, NULL);
-    else pthread_detach(p->local.thread);
+     * the process's exit rather than waited for; it still uses p, which is
+     * therefore not freed */
+    if (p->local.has_task) {
+      pthread_detach(p->local.thread);
+      detached = 1;
+    } else {
+      pthread_join(p->local.thread, NULL);
+    }
   }
   if (p->handlers) {
     sigaction(SIGINT, &p->old_int, NULL);
@@ -255,10 +259,10 @@ void sw_pool_close(swPool *p, int code) {
     if (p->nlost > 0 || (p->rank == 0 && stop_requested)) p->mpi->abort(code);
     else p->mpi->finalize();
   }
+  if (detached) return;
   free(p->task);
   free(p->started);
   free(p->lost);
-  free(p->done);
   free(p->local.P);
   free(p);
 }
