@@ -272,12 +272,6 @@ static int report_objective(const swCli *c, const swModel *m, const swExpectRun 
   return SW_EIO;
 }
 
-static double wall_seconds(void) {
-  struct timespec ts;
-  clock_gettime(CLOCK_MONOTONIC, &ts);
-  return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
-}
-
 /* ---- reading the command line ---- */
 
 /* --duration, --dt, --every: a time, or a bare number of seconds. */
@@ -765,18 +759,24 @@ static swModel *build_model(const swCli *c, double *stable, const char **dt_sour
 }
 
 /* "length=0.29999999999999999;strength=1", SI values, exact.  Caller frees. */
-static char *params_string(const swCli *c) {
-  const swProgram *p = c->p;
+char *sw_params_text(int n, const char *const *name, const double *value) {
   size_t size = 1;
-  for (int i = 0; i < p->nparam; i++) size += strlen(p->param[i].name) + 32;
+  for (int i = 0; i < n; i++) size += strlen(name[i]) + 32;
   char *text = malloc(size);
   if (!text) return NULL;
   size_t used = 0;
   text[0] = '\0';
-  for (int i = 0; i < p->nparam; i++)
-    used += (size_t)snprintf(text + used, size - used, "%s%s=%.17g", i ? ";" : "",
-                             p->param[i].name, c->P[i]);
+  for (int i = 0; i < n; i++)
+    used += (size_t)snprintf(text + used, size - used, "%s%s=%.17g", i ? ";" : "", name[i],
+                             value[i]);
   return text;
+}
+
+static char *params_string(const swCli *c) {
+  const swProgram *p = c->p;
+  const char *names[p->nparam > 0 ? p->nparam : 1];
+  for (int i = 0; i < p->nparam; i++) names[i] = p->param[i].name;
+  return sw_params_text(p->nparam, names, c->P);
 }
 
 /* ---- --info ---- */
@@ -1150,9 +1150,9 @@ static int run(const swCli *c, const swModel *m, const char *out) {
             sw_output_frames(o));
   swRunOptions ro = {.duration = c->duration, .every = c->every, .quiet = c->quiet,
                      .expect = expect, .resumed = c->restart != NULL};
-  double start = wall_seconds();
+  double start = sw_wall_seconds();
   int rc = sw_run(m, d, o, &ro);
-  double wall = wall_seconds() - start;
+  double wall = sw_wall_seconds() - start;
   /* the model's expectations: reported whatever the run's end, and a
    * failure is the run's verdict only when nothing else went wrong */
   int failed = sw_expect_report(m, expect, stderr, c->prog, c->quiet);

@@ -351,4 +351,11 @@ void sw_checkpoint_free(swCheckpoint *c);
 void sw_checkpoint_take(swCheckpoint *c, const swModel *m, const swData *d,
                         const swExpectRun *x, long frames);
 
+/* Seconds of a monotonic clock (run.c), for wall times. */
+double sw_wall_seconds(void);
+/* "name=value;..." of n params, values SI with 17 digits (exact); the
+ * record of a run's and a study's params (cli.c).  NULL when out of memory;
+ * the caller frees. */
+char *sw_params_text(int n, const char *const *name, const double *value);
+
 #endif

@@ -53,7 +53,7 @@ static void on_sigint(int sig) {
   interrupted = 1;
 }
 
-static double wall_seconds(void) {
+double sw_wall_seconds(void) {
   struct timespec ts;
   clock_gettime(CLOCK_MONOTONIC, &ts);
   return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
@@ -81,7 +81,7 @@ typedef struct {
 
 static void progress_update(swProgress *p, const swData *d, long k) {
   if (p->quiet || k < p->next_probe) return;
-  double now = wall_seconds(), elapsed = now - p->start;
+  double now = sw_wall_seconds(), elapsed = now - p->start;
   double rate = elapsed > 0 ? (double)k / elapsed : 0;
   long stride = (long)(rate * CLOCK_PROBE);
   p->next_probe = k + (stride > 1 ? stride : 1);
@@ -187,7 +187,7 @@ int sw_run(const swModel *m, swData *d, swOutput *out, const swRunOptions *ro) {
     if (rc == SW_OK) rc = checkpoint(m, d, out, ro, &p);
   }
   long k = 0, last_frame = 0;
-  p.start = p.last_line = wall_seconds();
+  p.start = p.last_line = sw_wall_seconds();
   while (rc == SW_OK && k < nsteps && !interrupted) {
     /* as many fused steps as fit before the next frame (at most 256, so
      * that SIGINT and the progress line stay responsive) and before the

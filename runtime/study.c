@@ -29,6 +29,7 @@
 #include <unistd.h>
 
 #include "sinew.h"
+#include "internal.h"
 #include "cmaes.h"
 #include "rng.h"
 #include "study.h"
@@ -366,16 +367,6 @@ static void plot(const swStudyOptions *o) {
 
 /* ---- the study ---- */
 
-static char *join_start(const swStudyOptions *o) {
-  size_t size = 1;
-  for (int i = 0; i < o->nparam; i++) size += strlen(o->name[i]) + 32;
-  char *s = malloc(size), *w = s;
-  if (!s) return NULL;
-  *w = 0;
-  for (int i = 0; i < o->nparam; i++)
-    w += sprintf(w, "%s%s=%.17g", i ? ";" : "", o->name[i], o->value[i]);
-  return s;
-}
 
 static char *join_varied(const swStudyOptions *o) {
   size_t size = 1;
@@ -478,7 +469,7 @@ int sw_study_run(const swStudyOptions *o) {
   const char **dname = malloc((size_t)s.nvar * sizeof *dname);
   const char **dunit = malloc((size_t)s.nvar * sizeof *dunit);
   double *dlo = malloc((size_t)s.nvar * sizeof *dlo), *dhi = malloc((size_t)s.nvar * sizeof *dhi);
-  char *start = join_start(o), *varied = join_varied(o);
+  char *start = sw_params_text(o->nparam, o->name, o->value), *varied = join_varied(o);
   char seed[32];
   snprintf(seed, sizeof seed, "%" PRIu64, o->seed);
   if (!s.var || !s.shown || !s.best_shown || !dname || !dunit || !dlo || !dhi || !start || !varied) {

@@ -38,6 +38,7 @@
 #include <unistd.h>
 
 #include "sinew.h"
+#include "internal.h"
 #include "study_pool.h"
 
 #define POLL_SLEEP_NS 1000000L      /* 1 ms between polls                   */
@@ -53,12 +54,6 @@ static void on_stop_signal(int sig) {
 }
 int sw_pool_interrupted(void) { return stop_requested != 0; }
 
-static double now(void) {
-  struct timespec ts;
-  clock_gettime(CLOCK_MONOTONIC, &ts);
-  return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
-}
-
 static void nap(void) {
   struct timespec ts = {0, POLL_SLEEP_NS};
   nanosleep(&ts, NULL);
@@ -67,9 +62,9 @@ static void nap(void) {
 /* One evaluation, timed, with the rank recorded. */
 static void evaluate(const swStudyOptions *o, int rank, const double *P, swStudyEval *r) {
   memset(r, 0, sizeof *r);
-  double t0 = now();
+  double t0 = sw_wall_seconds();
   o->eval(o->ctx, P, r);
-  r->wall = now() - t0;
+  r->wall = sw_wall_seconds() - t0;
   r->rank = rank;
 }
 
@@ -344,7 +339,7 @@ int sw_pool_run(swPool *p, long ntask, const long *index, const double *P, swPoo
       if (failed_on[pos] == w && p->size - p->nlost > 1) continue;   /* elsewhere */
       head++;
       p->task[w] = pos;
-      p->started[w] = now();
+      p->started[w] = sw_wall_seconds();
       if (w == 0) local_give(p, index[pos], P + pos * np);
       else p->mpi->send_task(w, index[pos], P + pos * np, np);
     }
@@ -383,7 +378,7 @@ int sw_pool_run(swPool *p, long ntask, const long *index, const double *P, swPoo
       if (cbrc != SW_OK) rc = cbrc;
     }
     /* remote evaluations that outlived the timeout: re-queued, rank lost */
-    double t = now(), limit = timeout_of(p);
+    double t = sw_wall_seconds(), limit = timeout_of(p);
     for (int v = 1; v < p->size; v++) {
       if (p->lost[v] || p->task[v] < 0 || t - p->started[v] <= limit) continue;
       long pos = p->task[v];
