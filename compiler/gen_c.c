@@ -148,6 +148,7 @@ static void emit_rod(FILE *out, swArena *a, const swSceneRod *r) {
   static const char *damp[] = {"SW_DAMP_NONE", "SW_DAMP_LINEAR", "SW_DAMP_ANALYTIC"};
   fprintf(out, "    rod.damping = %s;\n", damp[r->damping]);
   if (r->rigid) fputs("    rod.rigid = 1;\n", out);
+  if (r->implicit) fputs("    rod.implicit = 1;\n", out);
   if (r->variational) fputs("    rod.law = SW_LAW_VARIATIONAL;\n", out);
   emit_description(out, "rod", rod_kind_word(r->kind), r->material, r->loc);
   gen_assign_fields(out, a, "rod", f, gen_rod_fields(r, f));

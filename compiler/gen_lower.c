@@ -242,6 +242,7 @@ swSpec *gen_spec(const swScene *sc) {
       d.nelem = r->nelem;
       d.damping = r->damping;
       d.rigid = r->rigid;
+      d.implicit = r->implicit;
       d.law = r->variational ? SW_LAW_VARIATIONAL : SW_LAW_GAZZOLA;
       fill(&d, f, gen_rod_fields(r, f));
       sw_spec_add_rod(s, &d);

@@ -115,6 +115,7 @@ typedef struct {
   int id;                     /* the runtime's rod id (sw_spec_add_rod)    */
   int nelem;                  /* known at compile time                     */
   int rigid;                  /* rigid = true                              */
+  int implicit;               /* implicit = true (under integrator = imex) */
   int variational;            /* the variational constitutive law          */
   swValue start, direction, normal, length, radius_start, radius_end;
   swValue density, youngs, shear_modulus, poisson;

@@ -361,7 +361,7 @@ static const char *const rod_keys[] = {
   "material", "start", "from", "to", "direction", "normal", "length", "radius", "radius_start",
   "radius_end", "elements", "E", "G", "poisson", "density", "shear_hardening",
   "twist_hardening", "rest_curvature", "rest_strain", "damping", "rotational_damping",
-  "damping_model", "rigid", "variational",
+  "damping_model", "rigid", "variational", "implicit",
 };
 enum { NROD_KEYS = sizeof rod_keys / sizeof rod_keys[0] };
 
@@ -603,6 +603,23 @@ static void eval_rod(swSema *S, swSymbol *sym) {
     int truth = sema_truth(S, sc, rg, "'rigid'");
     if (truth < 0) ok = 0;
     else r.rigid = truth;
+  }
+  /* implicit = true: under integrator = imex the runtime kicks the rod's
+   * elasticity by the trapezoidal rule (a switch, like rigid) */
+  const swAst *im = sema_field(&f, "implicit");
+  if (im) {
+    int truth = sema_truth(S, sc, im, "'implicit'");
+    if (truth < 0) ok = 0;
+    else r.implicit = truth;
+    if (ok && r.implicit && r.rigid) {
+      diag_error(im->loc, "rod '%s' is rigid: it has no elasticity to make implicit", sym->name);
+      ok = 0;
+    } else if (ok && r.implicit && r.damping == SW_DAMP_ANALYTIC) {
+      diag_error(im->loc, "rod '%s': analytic damping is not supported on an implicit rod (use "
+                 "damping_model = linear, which the implicit kick integrates by the "
+                 "trapezoidal rule)", sym->name);
+      ok = 0;
+    }
   }
   const swValue *all[] = {&r.youngs, &r.density, &r.shear_modulus, &r.poisson, &r.start,
                           &r.direction, &r.normal, &r.length, &r.radius_start, &r.radius_end,

@@ -306,6 +306,7 @@ static void drift(const swModel *m, swData *d, double h) {
 static void kick(const swModel *m, swData *d, double h, double span) {
   const int n = m->nslot_elastic;
   compute_loads(m, d, h);
+  if (m->nimplicit) sw_implicit_kick(m, d, h); /* the implicit rods' loads (rod_implicit.c) */
   int lo, hi;
   sw_share_slots(m, d, n, &lo, &hi);
   if (m->has_exact_kick) /* the flags are free between the passes */
@@ -333,7 +334,7 @@ static void kick(const swModel *m, swData *d, double h, double span) {
 
 int sw_sweep_fits(const swModel *m) {
   return m->integrator != SW_PEFRL && m->nslot_elastic > SWEEP_BLOCK && !m->njoint && !m->nmuscle &&
-         !m->nrigid && !sw_has_env(m);
+         !m->nrigid && !m->nimplicit && !sw_has_env(m);
 }
 
 /* The window's last entries (the block's last slot) become its entry 0 (the

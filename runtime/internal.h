@@ -232,6 +232,15 @@ void sw_via_apply(const swModel *m, swData *d, int lo, int hi);
 void sw_via_reset(const swModel *m, swData *d);
 double sw_via_stable_dt(const swModel *m, int f);
 double sw_via_path(const swModel *m, const swData *d, int f);
+/* Implicit rods (rod_implicit.c): sw_implicit_setup lists the rods of
+ * wanted[r] != 0 that are elastic when the model's integrator is SW_IMEX
+ * (0: out of memory); sw_implicit_scratch is the doubles of swData's
+ * workspace; sw_implicit_kick, entered by every thread after the kick's
+ * loads, replaces those rods' loads by the trapezoidal rule's. */
+int sw_implicit_setup(swModel *m, const int *wanted);
+void sw_implicit_free(swModel *m);
+size_t sw_implicit_scratch(const swModel *m);
+void sw_implicit_kick(const swModel *m, swData *d, double h);
 /* Rigid rods (rigid.c).  sw_rigid_setup fills the rigid_* arrays of the
  * model (mass, principal inertia, body-frame nodes and element frames; called
  * by sw_compile once the rods, loads and boundary conditions are in);

@@ -233,6 +233,13 @@ static int check_rod(const swRodDesc *r, char *err, size_t errlen) {
     return sw_fail(err, errlen, "rod '%s': unknown damping kind %d", nm, (int)r->damping);
   if (r->rigid != 0 && r->rigid != 1)
     return sw_fail(err, errlen, "rod '%s': rigid must be 0 or 1, got %d", nm, r->rigid);
+  if (r->implicit != 0 && r->implicit != 1)
+    return sw_fail(err, errlen, "rod '%s': implicit must be 0 or 1, got %d", nm, r->implicit);
+  if (r->implicit && r->rigid)
+    return sw_fail(err, errlen, "rod '%s': a rigid rod has no elasticity to make implicit", nm);
+  if (r->implicit && r->damping == SW_DAMP_ANALYTIC && (r->gamma > 0 || r->gamma_rot > 0))
+    return sw_fail(err, errlen, "rod '%s': analytic damping is not supported on an implicit rod "
+                "(use linear damping, which the implicit kick integrates by the trapezoidal rule)", nm);
   if (r->law != SW_LAW_GAZZOLA && r->law != SW_LAW_VARIATIONAL)
     return sw_fail(err, errlen, "rod '%s': unknown constitutive law %d", nm, (int)r->law);
   if (r->rigid && r->damping == SW_DAMP_ANALYTIC && (r->gamma > 0 || r->gamma_rot > 0))
@@ -310,6 +317,7 @@ void sw_model_free(swModel *m) {
   free(m->joint_elem_a); free(m->joint_elem_b); free(m->joint_axis_a); free(m->joint_axis_b);
   free(m->joint_rest_rot); free(m->joint_angle0); free(m->joint_wave_dt); free(m->joint_limit_ref);
   sw_rigid_joints_free(m);
+  sw_implicit_free(m);
   if (sw_muscle_ops(m)) sw_muscle_ops(m)->free_model(m);
   if (sw_env_ops(m)) sw_env_ops(m)->free_model(m);
   rigid_free(m);
@@ -713,6 +721,14 @@ swModel *sw_compile(const swSpec *s, char *err, size_t errlen) {
       m->load[k].index = m->rod_nelem[m->load[k].rod] - (m->load[k].kind == SW_LOAD_TORQUE);
   if (!rigid_alloc(m, s)) goto oom;
   sw_rigid_setup(m);
+  { /* implicit rods, before the stable-dt estimates that leave them out */
+    int *wanted = calloc((size_t)nr, sizeof(int));
+    if (!wanted) goto oom;
+    for (int r = 0; r < nr; r++) wanted[r] = s->rod[r].implicit;
+    const int ok = sw_implicit_setup(m, wanted);
+    free(wanted);
+    if (!ok) goto oom;
+  }
   for (int r = 0; r < nr; r++) m->rod_wave_dt[r] = sw_stable_dt_rod(m, r);
 
   /* joints: copies of the descriptions, resolved by joint.c */
@@ -778,7 +794,7 @@ void sw_data_free(swData *d) {
   free(d->fil_activation); free(d->fil_stretch); free(d->fil_rate); free(d->fil_tension);
   free(d->ring_row);
   free(d->rigid_X); free(d->rigid_V); free(d->rigid_R); free(d->rigid_L); free(d->rigid_omega);
-  free(d->rigid_load); free(d->rigid_sys);
+  free(d->rigid_load); free(d->rigid_sys); free(d->implicit_sys);
   sw_probe_data_free(d);
   /* the contact grid's scratch (contact.c, through the environment's data_new) */
   free(d->contact_cell); free(d->contact_bucket); free(d->contact_sorted);
@@ -824,8 +840,9 @@ swData *sw_data_new(const swModel *m) {
   d->rigid_X = dalloc(3 * B); d->rigid_V = dalloc(3 * B); d->rigid_R = dalloc(9 * B);
   d->rigid_L = dalloc(3 * B); d->rigid_omega = dalloc(3 * B); d->rigid_load = dalloc(6 * B);
   d->rigid_sys = dalloc(sw_rigid_joints_scratch(m));
+  d->implicit_sys = dalloc(sw_implicit_scratch(m));
   if (!d->rigid_X || !d->rigid_V || !d->rigid_R || !d->rigid_L || !d->rigid_omega ||
-      !d->rigid_load || !d->rigid_sys ||
+      !d->rigid_load || !d->rigid_sys || !d->implicit_sys ||
       !sw_probe_data_new(m, d) ||
       (sw_env_ops(m) && !sw_env_ops(m)->data_new(m, d))) { /* the contact grid's scratch */
     sw_data_free(d);

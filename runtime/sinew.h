@@ -122,6 +122,11 @@ typedef struct {
                                  no deformation, so its stiffness sets no
                                  stable-dt limit; mass and inertia as if it
                                  were elastic                               */
+  int implicit;               /* 1: under SW_IMEX the rod's elasticity (shear,
+                                 stretch, bending, twist) and linear damping
+                                 are linearly implicit (rod_implicit.c), so
+                                 its stiffness sets no stable-dt limit;
+                                 explicit under the other integrators       */
   /* What the rod is, for the output's /rods/NAME group only (copied; NULL:
    * not written): its tissue ("bone", "tendon", "muscle filament", "rod"),
    * its material's name and the model line that made it ("arm.sinew:12"). */
@@ -535,6 +540,12 @@ typedef struct {
                                            implicit (SW_IMEX, rigid_joint.c) */
   int *rigid_block;          /* (nrigid)   the body's block in that system, -1 */
   int nrigid_block;          /* bodies in it                                 */
+  /* rods whose elasticity is linearly implicit (SW_IMEX, rod_implicit.c) */
+  int nimplicit;
+  int *rod_implicit;         /* (nrod)     1: the rod is one of them         */
+  int *implicit_rod;         /* (nimplicit) the rods, in rod order           */
+  size_t *implicit_adr;      /* (nimplicit+1) each one's first double in
+                                           swData.implicit_sys              */
   /* rigid rods (rigid.c).  A rod with swRodDesc.rigid keeps its nodes and
    * elements in the arrays above and moves as one rigid body b: node
    * x_i = X + R p_i, element frame Q_e = B_e R^T, with R the rotation from the
@@ -701,6 +712,7 @@ typedef struct {
   double *rigid_L;           /* (nrigid*3) angular momentum about X, lab, kg m^2/s */
   double *rigid_load;        /* (nrigid*6) a kick's force and torque on each body */
   double *rigid_sys;         /* the implicit joints' system (rigid_joint.c)    */
+  double *implicit_sys;      /* the implicit rods' banded systems (rod_implicit.c) */
   double *rigid_omega;       /* (nrigid*3) angular velocity, lab, rad/s        */
   /* muscles, updated with each force evaluation (activation once a step) */
   double *fil_activation;    /* (nfil)    a_k in [0, 1]                        */

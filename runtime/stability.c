@@ -105,6 +105,9 @@ double sw_integrator_stability_limit(swIntegrator integ, double zeta) {
 double sw_stable_dt_rod(const swModel *m, int r) {
   /* a rigid rod has no elastic waves; only its damping limits the step */
   if (sw_rod_is_rigid(m, r)) return sw_rigid_stable_dt(m, m->rod_rigid[r]);
+  /* an implicit rod's elasticity and linear damping are integrated by the
+   * trapezoidal rule (rod_implicit.c): nothing of its own bounds the step */
+  if (m->rod_implicit && m->rod_implicit[r]) return INFINITY;
   int n = m->rod_nelem[r], ea = m->elem_adr[r], va = m->vor_adr[r], na = m->node_adr[r];
   double dt = INFINITY;
   for (int i = 0; i < n; i++) {

@@ -1,0 +1,267 @@
+/* rod_implicit.c — elastic rods with linearly implicit elasticity (SW_IMEX).
+ *
+ * Design.  An explicit kick is stable while h w < 2 for the highest
+ * frequency w of the rod (stability.c).  On a soft, thick rod hardened in
+ * shear (Zhang et al. 2019, Suppl. Figs. 10-12: G x 25 and x 100) that
+ * frequency is the shear-rotation zig-zag, w^2 ~ (16/3) G/rho (1/l^2 + 1/r^2),
+ * which cuts the step 5 and 10 times below the unhardened rod's although the
+ * motion of interest is the same slow crawl.  A rod with swRodDesc.implicit
+ * under integrator = imex is kicked instead with the trapezoidal rule in its
+ * elastic loads and its linear damping, as rigid_joint.c does for joints
+ * between rigid bodies: with u = (v_0, w_0, v_1, w_1, ..., v_n) the rod's
+ * node velocities (lab) and element angular velocities (material), M the
+ * lumped masses and the kick's inertias J^/e, C the linear damping and K
+ * the tangent stiffness of the internal loads, all at the kick's
+ * configuration (the midpoint of position Verlet's step),
+ *   (M + h/2 C + h^2/4 K) du = h F,
+ * F the kick's total loads.  For a linear spring this is the implicit
+ * midpoint rule (rigid_joint.c shows why), unconditionally stable and
+ * second order; the loads themselves stay the exact ones of rod.c, only
+ * the correction is linearised, so a converged state is the explicit
+ * scheme's.  The step then sees only what stays explicit: friction,
+ * contact, joints, waves.
+ *
+ * K is the Gauss-Newton part of the rod's internal loads (terms of the load
+ * times a turn of the lever are dropped, as in rigid_joint.c: they are the
+ * strain smaller than what is kept):
+ *   shear/stretch of element i (Gazzola 2018, eq. 3.7), rate of the strain
+ *     sigma' = Q (v_{i+1} - v_i) / l^ + t x w_i,  t = Q (x_{i+1} - x_i) / l^,
+ *     so with G = [-Q/l^, [t]x, Q/l^] on (v_i, w_i, v_{i+1}):
+ *     K += l^ G^T (S^/e) G          (S^ without 1/e on variational rods);
+ *   bending/twist of domain j, rate kappa' = (w_{j+1} - w_j) / D^ (the
+ *     frames' difference dropped), H = [-I, I] / D^ on (w_j, w_{j+1}):
+ *     K += D^ H^T (B^/eps^3) H      (B^ on variational rods);
+ *   the clamp domain of boundary.c on a clamped end element: B^/(eps^3 D)
+ *     with D = l^/2 on its diagonal.
+ * Ordering the unknowns node, element, node, ... makes every element's
+ * nine unknowns contiguous and the matrix banded with half-bandwidth 8
+ * (element i reaches element i+1 through bending), so the system of a rod
+ * of n elements, 3 (2n + 1) unknowns, is factored by a banded Cholesky in
+ * O(n) every kick: about 13 (2n+1) 8^2 / 2 flops, 6e4 for the 50-element
+ * snake.  The factorisation is our own short loop rather than GSL's
+ * gsl_linalg_cholesky_band_decomp: it runs inside the step, where GSL's
+ * error handler (abort by default, or a global switch to turn it off)
+ * has no place, and it needs nothing GSL adds.
+ *
+ * The new velocities replace the loads the rod's slots would have had
+ * (F_eff = m dv / h, tau_eff = J^/e dw / h), so integrate.c's kick, its work
+ * booking and everything after it go on unchanged.  The ends a boundary
+ * condition holds are fixed in the system (du = 0 there) and sw_bc_kick
+ * sets them after, as for every rod.
+ */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+#include "sinew.h"
+#include "vec.h"
+#include "internal.h"
+
+#define BAND 8 /* half-bandwidth: element i's rotation reaches element i+1's */
+
+/* Unknowns of a rod of n elements: three per node and per element. */
+static size_t unknowns(int n) { return 3 * (2 * (size_t)n + 1); }
+
+/* Doubles of one rod's workspace: the band (BAND + 1 per row) and the
+ * right-hand side. */
+static size_t rod_scratch(int n) { return unknowns(n) * (BAND + 2); }
+
+int sw_implicit_setup(swModel *m, const int *wanted) {
+  m->rod_implicit = calloc((size_t)m->nrod, sizeof(int));
+  m->implicit_rod = calloc((size_t)m->nrod, sizeof(int));
+  m->implicit_adr = calloc((size_t)m->nrod + 1, sizeof(size_t));
+  if (!m->rod_implicit || !m->implicit_rod || !m->implicit_adr) return 0;
+  m->nimplicit = 0;
+  if (m->integrator != SW_IMEX) return 1;
+  for (int r = 0; r < m->nrod; r++) {
+    if (!wanted[r] || sw_rod_is_rigid(m, r)) continue;
+    m->rod_implicit[r] = 1;
+    m->implicit_rod[m->nimplicit] = r;
+    m->implicit_adr[m->nimplicit + 1] = m->implicit_adr[m->nimplicit] + rod_scratch(m->rod_nelem[r]);
+    m->nimplicit++;
+  }
+  return 1;
+}
+
+void sw_implicit_free(swModel *m) {
+  free(m->rod_implicit);
+  free(m->implicit_rod);
+  free(m->implicit_adr);
+}
+
+size_t sw_implicit_scratch(const swModel *m) {
+  return m->implicit_adr ? m->implicit_adr[m->nimplicit] : 0;
+}
+
+/* The band stores A(i, j), j <= i <= j + BAND, at A[i (BAND + 1) + i - j]. */
+static inline double *at(double *A, size_t i, size_t j) { return A + i * (BAND + 1) + (i - j); }
+
+/* A[o + a, o + b] += K[a][b] for the lower triangle of a k x k block. */
+static void add_block(double *A, size_t o, int k, const double *K) {
+  for (int a = 0; a < k; a++)
+    for (int b = 0; b <= a; b++) *at(A, o + (size_t)a, o + (size_t)b) += K[k * a + b];
+}
+
+/* In place: A = L L^T (banded lower triangle), then A x = b into b.
+ * Returns 0 if A is not positive definite (a non-finite state). */
+static int band_cholesky_solve(double *A, size_t N, double *b) {
+  for (size_t i = 0; i < N; i++) {
+    const size_t j0 = i > BAND ? i - BAND : 0;
+    for (size_t j = j0; j <= i; j++) {
+      double s = *at(A, i, j);
+      for (size_t k = j0; k < j; k++) s -= *at(A, i, k) * *at(A, j, k); /* j - BAND <= j0 */
+      if (j < i) *at(A, i, j) = s / *at(A, j, j);
+      else if (s > 0) *at(A, i, i) = sqrt(s);
+      else return 0;
+    }
+  }
+  for (size_t i = 0; i < N; i++) { /* L y = b */
+    double s = b[i];
+    for (size_t k = i > BAND ? i - BAND : 0; k < i; k++) s -= *at(A, i, k) * b[k];
+    b[i] = s / *at(A, i, i);
+  }
+  for (size_t i = N; i-- > 0;) { /* L^T x = y */
+    double s = b[i];
+    for (size_t k = i + 1; k <= i + BAND && k < N; k++) s -= *at(A, k, i) * b[k];
+    b[i] = s / *at(A, i, i);
+  }
+  return 1;
+}
+
+/* Shear/stretch of element i (global e, first node na + i) into the block
+ * of its nine unknowns at 6 i: h^2/4 l^ G^T S G (the header). */
+static void shear_block(const swModel *m, const swData *d, int law, int e, int node, double w,
+                        double *A, size_t o) {
+  double Q[9], x0[3], x1[3], dx[3], t[3];
+  sw_getQ(m, d->Q, e, Q);
+  sw_get3(m, d->x, node, x0);
+  sw_get3(m, d->x, node + 1, x1);
+  sw_v3_sub(dx, x1, x0);
+  const double il = m->inv_rest_len[e], l = m->rest_len[e];
+  sw_mat_vec(t, Q, dx);
+  for (int k = 0; k < 3; k++) t[k] *= il;
+  const double inv_e = law ? 1.0 : l / sqrt(sw_v3_dot(dx, dx));
+  /* G, 3 x 9: [-Q/l^, [t]x, Q/l^] */
+  double G[27] = {0};
+  for (int a = 0; a < 3; a++)
+    for (int k = 0; k < 3; k++) {
+      G[9 * a + k] = -Q[3 * a + k] * il;
+      G[9 * a + 6 + k] = Q[3 * a + k] * il;
+    }
+  G[9 * 0 + 3 + 1] = -t[2], G[9 * 0 + 3 + 2] = t[1]; /* [t]x, row by row */
+  G[9 * 1 + 3 + 0] = t[2], G[9 * 1 + 3 + 2] = -t[0];
+  G[9 * 2 + 3 + 0] = -t[1], G[9 * 2 + 3 + 1] = t[0];
+  double S[3], K[81];
+  for (int a = 0; a < 3; a++) S[a] = w * l * SW_AT(m, m->shear_stiff, e, a) * inv_e;
+  for (int p = 0; p < 9; p++)
+    for (int q = 0; q <= p; q++) {
+      double s = 0;
+      for (int a = 0; a < 3; a++) s += G[9 * a + p] * S[a] * G[9 * a + q];
+      K[9 * p + q] = s;
+    }
+  add_block(A, o, 9, K);
+}
+
+/* Bending/twist of domain v between the elements of nodes node .. node + 2, whose rotations
+ * are at o and o + 6: h^2/4 B^/(eps^3 D^) [[I, -I], [-I, I]]. */
+static void bend_block(const swModel *m, const swData *d, int law, int v, int node, double w,
+                       double *A, size_t o) {
+  double x0[3], x1[3], x2[3], a[3], b[3];
+  sw_get3(m, d->x, node, x0);
+  sw_get3(m, d->x, node + 1, x1);
+  sw_get3(m, d->x, node + 2, x2);
+  sw_v3_sub(a, x1, x0);
+  sw_v3_sub(b, x2, x1);
+  const double iD = m->inv_rest_vor_len[v];
+  const double eps = 0.5 * (sqrt(sw_v3_dot(a, a)) + sqrt(sw_v3_dot(b, b))) * iD;
+  const double inv_eps3 = law ? 1.0 : 1.0 / (eps * eps * eps);
+  for (int k = 0; k < 3; k++) {
+    const double kb = w * SW_AT(m, m->bend_stiff, v, k) * inv_eps3 * iD;
+    *at(A, o + (size_t)k, o + (size_t)k) += kb;
+    *at(A, o + 6 + (size_t)k, o + 6 + (size_t)k) += kb;
+    *at(A, o + 6 + (size_t)k, o + (size_t)k) -= kb;
+  }
+}
+
+/* Unknowns [o, o + 3) held by a boundary condition: du = 0 there. */
+static void hold(double *A, double *rhs, size_t N, size_t o) {
+  for (size_t i = o; i < o + 3; i++) {
+    for (size_t j = i > BAND ? i - BAND : 0; j < i; j++) *at(A, i, j) = 0;
+    for (size_t k = i + 1; k <= i + BAND && k < N; k++) *at(A, k, i) = 0;
+    *at(A, i, i) = 1;
+    rhs[i] = 0;
+  }
+}
+
+/* The boundary conditions on rod r: their unknowns held, and a clamp's
+ * domain (boundary.c) on its end element's diagonal. */
+static void rod_conditions(const swModel *m, const swData *d, int r, double w, double *A,
+                           double *rhs, size_t N) {
+  const int n = m->rod_nelem[r], law = m->rod_law[r] == SW_LAW_VARIATIONAL;
+  for (int k = 0; k < m->nbc; k++) {
+    const swBCDesc *b = &m->bc[k];
+    if (b->rod != r) continue;
+    const size_t on = b->end ? 6 * (size_t)n : 0, oe = b->end ? 6 * (size_t)n - 3 : 3;
+    if (b->kind == SW_BC_CLAMP) {
+      const int e = m->elem_adr[r] + (b->end ? n - 1 : 0);
+      const double eps = d->dilatation[e], D = 0.5 * m->rest_len[e];
+      const double inv_eps3 = law ? 1.0 : 1.0 / (eps * eps * eps);
+      for (int c = 0; c < 3; c++)
+        *at(A, oe + (size_t)c, oe + (size_t)c) += w * SW_AT(m, m->clamp_bend, e, c) * inv_eps3 / D;
+    }
+    if (b->kind == SW_BC_CLAMP || b->kind == SW_BC_VELOCITY) hold(A, rhs, N, on);
+    if (b->kind == SW_BC_OMEGA) hold(A, rhs, N, oe);
+  }
+}
+
+/* Rod r's kick: assemble, solve, and the effective loads into d->force and
+ * d->torque.  Returns 0 if the system could not be factored. */
+static int rod_kick(const swModel *m, swData *d, int r, double *A, double h) {
+  const int n = m->rod_nelem[r], na = m->node_adr[r], ea = m->elem_adr[r], va = m->vor_adr[r];
+  const int law = m->rod_law[r] == SW_LAW_VARIATIONAL, damped = m->rod_damping[r] == SW_DAMP_LINEAR;
+  const size_t N = unknowns(n);
+  double *rhs = A + N * (BAND + 1);
+  memset(A, 0, N * (BAND + 1) * sizeof(double));
+  const double w = 0.25 * h * h, c = damped ? 0.5 * h : 0.0;
+  for (int i = 0; i <= n; i++) { /* masses, damping and h F on the nodes */
+    const int s = na + i;
+    for (int k = 0; k < 3; k++) {
+      *at(A, 6 * (size_t)i + (size_t)k, 6 * (size_t)i + (size_t)k) += m->mass[s] + c * m->node_gamma[s];
+      rhs[6 * i + k] = h * SW_AT(m, d->force, s, k);
+    }
+  }
+  for (int i = 0; i < n; i++) { /* inertias J^/e, damping and h tau on the elements */
+    const int e = ea + i;
+    const double dil = sw_inertia_dilatation(m, d, e);
+    for (int k = 0; k < 3; k++) {
+      const size_t q = 6 * (size_t)i + 3 + (size_t)k;
+      *at(A, q, q) += SW_AT(m, m->inertia, e, k) / dil + c * SW_AT(m, m->elem_gamma, e, k);
+      rhs[q] = h * SW_AT(m, d->torque, e, k);
+    }
+    shear_block(m, d, law, e, na + i, w, A, 6 * (size_t)i);
+    if (i < n - 1) bend_block(m, d, law, va + i, na + i, w, A, 6 * (size_t)i + 3);
+  }
+  rod_conditions(m, d, r, w, A, rhs, N);
+  if (!band_cholesky_solve(A, N, rhs)) return 0;
+  for (int i = 0; i <= n; i++)
+    for (int k = 0; k < 3; k++) SW_AT(m, d->force, na + i, k) = m->mass[na + i] * rhs[6 * i + k] / h;
+  for (int i = 0; i < n; i++) {
+    const int e = ea + i;
+    const double dil = sw_inertia_dilatation(m, d, e);
+    for (int k = 0; k < 3; k++)
+      SW_AT(m, d->torque, e, k) = SW_AT(m, m->inertia, e, k) / dil * rhs[6 * i + 3 + k] / h;
+  }
+  return 1;
+}
+
+/* Every thread calls it after the loads of a kick, and solves the rods of
+ * its rank (rod k on thread k mod team): each rod's solve is its own, so
+ * the bits do not depend on the team.  A system that cannot be factored
+ * leaves the explicit loads, and the instability check reports the rod. */
+void sw_implicit_kick(const swModel *m, swData *d, double h) {
+  if (!m->nimplicit) return;
+  sw_team_barrier(d); /* every load of every slot is in */
+  const int size = d->team_size > 1 ? d->team_size : 1, rank = sw_team_rank(d);
+  for (int k = rank; k < m->nimplicit; k += size)
+    (void)rod_kick(m, d, m->implicit_rod[k], d->implicit_sys + m->implicit_adr[k], h);
+  sw_team_barrier(d); /* the effective loads, before any thread's kick reads them */
+}
