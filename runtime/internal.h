@@ -241,6 +241,11 @@ int sw_implicit_setup(swModel *m, const int *wanted);
 void sw_implicit_free(swModel *m);
 size_t sw_implicit_scratch(const swModel *m);
 void sw_implicit_kick(const swModel *m, swData *d, double h);
+/* The tangent stiffness K of rod r's internal loads in its band (the
+ * unknowns v_0, w_0, v_1, ..., v_n; A(i, j), j <= i <= j + SW_IMPLICIT_BAND,
+ * at A[i (SW_IMPLICIT_BAND + 1) + i - j]), for the tests. */
+#define SW_IMPLICIT_BAND 8
+void sw_implicit_stiffness(const swModel *m, const swData *d, int r, double *A);
 /* Rigid rods (rigid.c).  sw_rigid_setup fills the rigid_* arrays of the
  * model (mass, principal inertia, body-frame nodes and element frames; called
  * by sw_compile once the rods, loads and boundary conditions are in);

@@ -28,8 +28,9 @@
  *     sigma' = Q (v_{i+1} - v_i) / l^ + t x w_i,  t = Q (x_{i+1} - x_i) / l^,
  *     so with G = [-Q/l^, [t]x, Q/l^] on (v_i, w_i, v_{i+1}):
  *     K += l^ G^T (S^/e) G          (S^ without 1/e on variational rods);
- *   bending/twist of domain j, rate kappa' = (w_{j+1} - w_j) / D^ (the
- *     frames' difference dropped), H = [-I, I] / D^ on (w_j, w_{j+1}):
+ *   bending/twist of domain j, rate phi' = J_r^-1 w_{j+1} - J_l^-1 w_j
+ *     (phi = kappa D^, the inverse Jacobians of the SO(3) exponential),
+ *     H = [-J_l^-1, J_r^-1] / D^ on (w_j, w_{j+1}):
  *     K += D^ H^T (B^/eps^3) H      (B^ on variational rods);
  *   the clamp domain of boundary.c on a clamped end element: B^/(eps^3 D)
  *     with D = l^/2 on its diagonal.
@@ -56,7 +57,7 @@
 #include "vec.h"
 #include "internal.h"
 
-#define BAND 8 /* half-bandwidth: element i's rotation reaches element i+1's */
+#define BAND SW_IMPLICIT_BAND /* half-bandwidth: element i's rotation reaches element i+1's */
 
 /* Unknowns of a rod of n elements: three per node and per element. */
 static size_t unknowns(int n) { return 3 * (2 * (size_t)n + 1); }
@@ -161,25 +162,59 @@ static void shear_block(const swModel *m, const swData *d, int law, int e, int n
   add_block(A, o, 9, K);
 }
 
-/* Bending/twist of domain v between the elements of nodes node .. node + 2, whose rotations
- * are at o and o + 6: h^2/4 B^/(eps^3 D^) [[I, -I], [-I, I]]. */
-static void bend_block(const swModel *m, const swData *d, int law, int v, int node, double w,
+/* J^-1 = I + sgn [phi]x / 2 + beta [phi]x^2, row-major: the inverse Jacobian
+ * of the SO(3) exponential, right (sgn +1) or left (sgn -1) (vec.h). */
+static void dexpinv(const double *phi, double beta, double sgn, double *Jm) {
+  const double P[9] = {0, -phi[2], phi[1], phi[2], 0, -phi[0], -phi[1], phi[0], 0};
+  for (int a = 0; a < 3; a++)
+    for (int b = 0; b < 3; b++) {
+      double p2 = 0;
+      for (int c = 0; c < 3; c++) p2 += P[3 * a + c] * P[3 * c + b];
+      Jm[3 * a + b] = (a == b) + 0.5 * sgn * P[3 * a + b] + beta * p2;
+    }
+}
+
+/* Bending/twist of domain v between elements e and e + 1 (nodes node ..
+ * node + 2), whose rotations are at o and o + 6.  With phi the domain's
+ * rotation vector, Q_{e+1} = exp(-[phi]x) Q_e, a turn b of element e moves
+ * phi by -J_l^-1 b and one of element e + 1 by J_r^-1 b (rod.c, the
+ * variational law), so H = [-J_l^-1, J_r^-1] / D^ and the block is
+ * D^ H^T B' H, B' = B^/eps^3 (B^ on variational rods).  The frames' turn
+ * matters: on a bent rod with a hardened twist, dropping it (H = [-I, I])
+ * puts a twist stiffness of phi times G I3 / D^ on the pitch. */
+static void bend_block(const swModel *m, const swData *d, int law, int v, int e, int node, double w,
                        double *A, size_t o) {
-  double x0[3], x1[3], x2[3], a[3], b[3];
+  double x0[3], x1[3], x2[3], a[3], b[3], Qa[9], Qb[9], phi[3], Jl[9], Jr[9];
   sw_get3(m, d->x, node, x0);
   sw_get3(m, d->x, node + 1, x1);
   sw_get3(m, d->x, node + 2, x2);
   sw_v3_sub(a, x1, x0);
   sw_v3_sub(b, x2, x1);
+  sw_getQ(m, d->Q, e, Qa);
+  sw_getQ(m, d->Q, e + 1, Qb);
+  sw_frame_log(phi, Qa, Qb);
+  const double beta = sw_dexpinv_beta(sw_v3_dot(phi, phi));
+  dexpinv(phi, beta, -1.0, Jl);
+  dexpinv(phi, beta, 1.0, Jr);
   const double iD = m->inv_rest_vor_len[v];
   const double eps = 0.5 * (sqrt(sw_v3_dot(a, a)) + sqrt(sw_v3_dot(b, b))) * iD;
   const double inv_eps3 = law ? 1.0 : 1.0 / (eps * eps * eps);
-  for (int k = 0; k < 3; k++) {
-    const double kb = w * SW_AT(m, m->bend_stiff, v, k) * inv_eps3 * iD;
-    *at(A, o + (size_t)k, o + (size_t)k) += kb;
-    *at(A, o + 6 + (size_t)k, o + 6 + (size_t)k) += kb;
-    *at(A, o + 6 + (size_t)k, o + (size_t)k) -= kb;
-  }
+  double Bk[3];
+  for (int k = 0; k < 3; k++) Bk[k] = w * SW_AT(m, m->bend_stiff, v, k) * inv_eps3 * iD;
+  for (int p = 0; p < 3; p++)
+    for (int q = 0; q < 3; q++) {
+      double ll = 0, rl = 0, rr = 0; /* (Jl^T B Jl), -(Jr^T B Jl), (Jr^T B Jr) at (p, q) */
+      for (int k = 0; k < 3; k++) {
+        ll += Jl[3 * k + p] * Bk[k] * Jl[3 * k + q];
+        rl -= Jr[3 * k + p] * Bk[k] * Jl[3 * k + q];
+        rr += Jr[3 * k + p] * Bk[k] * Jr[3 * k + q];
+      }
+      if (q <= p) {
+        *at(A, o + (size_t)p, o + (size_t)q) += ll;
+        *at(A, o + 6 + (size_t)p, o + 6 + (size_t)q) += rr;
+      }
+      *at(A, o + 6 + (size_t)p, o + (size_t)q) += rl;
+    }
 }
 
 /* Unknowns [o, o + 3) held by a boundary condition: du = 0 there. */
@@ -192,36 +227,54 @@ static void hold(double *A, double *rhs, size_t N, size_t o) {
   }
 }
 
-/* The boundary conditions on rod r: their unknowns held, and a clamp's
- * domain (boundary.c) on its end element's diagonal. */
-static void rod_conditions(const swModel *m, const swData *d, int r, double w, double *A,
-                           double *rhs, size_t N) {
+/* The clamp domain of boundary.c on a clamped end element of rod r:
+ * B^/(eps^3 D), D = l^/2, on its diagonal. */
+static void clamp_blocks(const swModel *m, const swData *d, int r, double *A) {
   const int n = m->rod_nelem[r], law = m->rod_law[r] == SW_LAW_VARIATIONAL;
   for (int k = 0; k < m->nbc; k++) {
     const swBCDesc *b = &m->bc[k];
-    if (b->rod != r) continue;
-    const size_t on = b->end ? 6 * (size_t)n : 0, oe = b->end ? 6 * (size_t)n - 3 : 3;
-    if (b->kind == SW_BC_CLAMP) {
-      const int e = m->elem_adr[r] + (b->end ? n - 1 : 0);
-      const double eps = d->dilatation[e], D = 0.5 * m->rest_len[e];
-      const double inv_eps3 = law ? 1.0 : 1.0 / (eps * eps * eps);
-      for (int c = 0; c < 3; c++)
-        *at(A, oe + (size_t)c, oe + (size_t)c) += w * SW_AT(m, m->clamp_bend, e, c) * inv_eps3 / D;
-    }
-    if (b->kind == SW_BC_CLAMP || b->kind == SW_BC_VELOCITY) hold(A, rhs, N, on);
-    if (b->kind == SW_BC_OMEGA) hold(A, rhs, N, oe);
+    if (b->rod != r || b->kind != SW_BC_CLAMP) continue;
+    const size_t oe = b->end ? 6 * (size_t)n - 3 : 3;
+    const int e = m->elem_adr[r] + (b->end ? n - 1 : 0);
+    const double eps = d->dilatation[e], D = 0.5 * m->rest_len[e];
+    const double inv_eps3 = law ? 1.0 : 1.0 / (eps * eps * eps);
+    for (int c = 0; c < 3; c++) *at(A, oe + (size_t)c, oe + (size_t)c) += SW_AT(m, m->clamp_bend, e, c) * inv_eps3 / D;
   }
+}
+
+/* The unknowns the boundary conditions on rod r hold. */
+static void rod_holds(const swModel *m, int r, double *A, double *rhs, size_t N) {
+  const int n = m->rod_nelem[r];
+  for (int k = 0; k < m->nbc; k++) {
+    const swBCDesc *b = &m->bc[k];
+    if (b->rod != r) continue;
+    if (b->kind == SW_BC_CLAMP || b->kind == SW_BC_VELOCITY) hold(A, rhs, N, b->end ? 6 * (size_t)n : 0);
+    if (b->kind == SW_BC_OMEGA) hold(A, rhs, N, b->end ? 6 * (size_t)n - 3 : 3);
+  }
+}
+
+void sw_implicit_stiffness(const swModel *m, const swData *d, int r, double *A) {
+  const int n = m->rod_nelem[r], na = m->node_adr[r], ea = m->elem_adr[r], va = m->vor_adr[r];
+  const int law = m->rod_law[r] == SW_LAW_VARIATIONAL;
+  memset(A, 0, unknowns(n) * (BAND + 1) * sizeof(double));
+  for (int i = 0; i < n; i++) {
+    shear_block(m, d, law, ea + i, na + i, 1.0, A, 6 * (size_t)i);
+    if (i < n - 1) bend_block(m, d, law, va + i, ea + i, na + i, 1.0, A, 6 * (size_t)i + 3);
+  }
+  clamp_blocks(m, d, r, A);
 }
 
 /* Rod r's kick: assemble, solve, and the effective loads into d->force and
  * d->torque.  Returns 0 if the system could not be factored. */
 static int rod_kick(const swModel *m, swData *d, int r, double *A, double h) {
-  const int n = m->rod_nelem[r], na = m->node_adr[r], ea = m->elem_adr[r], va = m->vor_adr[r];
-  const int law = m->rod_law[r] == SW_LAW_VARIATIONAL, damped = m->rod_damping[r] == SW_DAMP_LINEAR;
-  const size_t N = unknowns(n);
-  double *rhs = A + N * (BAND + 1);
-  memset(A, 0, N * (BAND + 1) * sizeof(double));
-  const double w = 0.25 * h * h, c = damped ? 0.5 * h : 0.0;
+  const int n = m->rod_nelem[r], na = m->node_adr[r], ea = m->elem_adr[r];
+  const int damped = m->rod_damping[r] == SW_DAMP_LINEAR;
+  const size_t N = unknowns(n), NB = N * (BAND + 1);
+  double *rhs = A + NB;
+  const double c = damped ? 0.5 * h : 0.0;
+  /* A = M + h/2 C + h^2/4 K */
+  sw_implicit_stiffness(m, d, r, A);
+  for (size_t q = 0; q < NB; q++) A[q] *= 0.25 * h * h;
   for (int i = 0; i <= n; i++) { /* masses, damping and h F on the nodes */
     const int s = na + i;
     for (int k = 0; k < 3; k++) {
@@ -237,10 +290,8 @@ static int rod_kick(const swModel *m, swData *d, int r, double *A, double h) {
       *at(A, q, q) += SW_AT(m, m->inertia, e, k) / dil + c * SW_AT(m, m->elem_gamma, e, k);
       rhs[q] = h * SW_AT(m, d->torque, e, k);
     }
-    shear_block(m, d, law, e, na + i, w, A, 6 * (size_t)i);
-    if (i < n - 1) bend_block(m, d, law, va + i, na + i, w, A, 6 * (size_t)i + 3);
   }
-  rod_conditions(m, d, r, w, A, rhs, N);
+  rod_holds(m, r, A, rhs, N);
   if (!band_cholesky_solve(A, N, rhs)) return 0;
   for (int i = 0; i <= n; i++)
     for (int k = 0; k < 3; k++) SW_AT(m, d->force, na + i, k) = m->mass[na + i] * rhs[6 * i + k] / h;
