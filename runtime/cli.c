@@ -903,6 +903,16 @@ static void print_stiff_parts(const swModel *m) {
   }
   if (nimplicit)
     printf("  linearly implicit: the Hill damping of %d of %d muscle filaments\n", nimplicit, m->nfil);
+  int nrod_implicit = 0;
+  for (int r = 0; r < m->nrod; r++) nrod_implicit += m->rod_implicit[r];
+  if (nrod_implicit) {
+    printf("  %s: the elasticity and linear damping of %d rod%s:",
+           m->nimplicit ? "trapezoidal (implicit)" : "explicit, implicit only under imex",
+           nrod_implicit, nrod_implicit == 1 ? "" : "s");
+    for (int r = 0, k = 0; r < m->nrod && k < 8; r++)
+      if (m->rod_implicit[r]) printf("%s %s", k++ ? "," : "", m->rod_name[r]);
+    printf("%s\n", nrod_implicit > 8 ? ", ..." : "");
+  }
   int njimplicit = 0;
   for (int j = 0; j < m->njoint; j++) njimplicit += m->joint_implicit[j];
   if (njimplicit)
@@ -978,7 +988,7 @@ static void print_info(const swCli *c, const swModel *m, double stable, const ch
            isinf(m->rod_wave_dt[r]) ? "none" : format_time(a, sizeof a, m->rod_wave_dt[r]),
            m->rod_damping[r] == SW_DAMP_ANALYTIC ? ", analytic damping"
            : m->rod_damping[r] == SW_DAMP_LINEAR ? ", linear damping" : "",
-           m->nrigid && m->rod_rigid[r] >= 0 ? ", rigid" : "");
+           m->nrigid && m->rod_rigid[r] >= 0 ? ", rigid" : m->nimplicit && m->rod_implicit[r] ? ", implicit" : "");
   }
   printf("joints: %d\n", m->njoint);
   for (int j = 0; j < m->njoint; j++) {

@@ -232,9 +232,9 @@ void sw_via_apply(const swModel *m, swData *d, int lo, int hi);
 void sw_via_reset(const swModel *m, swData *d);
 double sw_via_stable_dt(const swModel *m, int f);
 double sw_via_path(const swModel *m, const swData *d, int f);
-/* Implicit rods (rod_implicit.c): sw_implicit_setup lists the rods of
- * wanted[r] != 0 that are elastic when the model's integrator is SW_IMEX
- * (0: out of memory); sw_implicit_scratch is the doubles of swData's
+/* Implicit rods (rod_implicit.c): sw_implicit_setup marks the elastic
+ * rods of wanted[r] != 0 and, when the model's integrator is SW_IMEX, lists
+ * them for the implicit kick (0: out of memory); sw_implicit_scratch is the doubles of swData's
  * workspace; sw_implicit_kick, entered by every thread after the kick's
  * loads, replaces those rods' loads by the trapezoidal rule's. */
 int sw_implicit_setup(swModel *m, const int *wanted);
@@ -243,7 +243,7 @@ size_t sw_implicit_scratch(const swModel *m);
 void sw_implicit_kick(const swModel *m, swData *d, double h);
 /* The tangent stiffness K of rod r's internal loads in its band (the
  * unknowns v_0, w_0, v_1, ..., v_n; A(i, j), j <= i <= j + SW_IMPLICIT_BAND,
- * at A[i (SW_IMPLICIT_BAND + 1) + i - j]), for the tests. */
+ * at A[i (SW_IMPLICIT_BAND + 1) + SW_IMPLICIT_BAND - (i - j)]), for the tests. */
 #define SW_IMPLICIT_BAND 8
 void sw_implicit_stiffness(const swModel *m, const swData *d, int r, double *A);
 /* Rigid rods (rigid.c).  sw_rigid_setup fills the rigid_* arrays of the

@@ -62,9 +62,9 @@
 /* Unknowns of a rod of n elements: three per node and per element. */
 static size_t unknowns(int n) { return 3 * (2 * (size_t)n + 1); }
 
-/* Doubles of one rod's workspace: the band (BAND + 1 per row) and the
- * right-hand side. */
-static size_t rod_scratch(int n) { return unknowns(n) * (BAND + 2); }
+/* Doubles of one rod's workspace: the band (BAND + 1 per row), the
+ * right-hand side and the factor's inverse diagonal. */
+static size_t rod_scratch(int n) { return unknowns(n) * (BAND + 3); }
 
 int sw_implicit_setup(swModel *m, const int *wanted) {
   m->rod_implicit = calloc((size_t)m->nrod, sizeof(int));
@@ -72,10 +72,10 @@ int sw_implicit_setup(swModel *m, const int *wanted) {
   m->implicit_adr = calloc((size_t)m->nrod + 1, sizeof(size_t));
   if (!m->rod_implicit || !m->implicit_rod || !m->implicit_adr) return 0;
   m->nimplicit = 0;
-  if (m->integrator != SW_IMEX) return 1;
   for (int r = 0; r < m->nrod; r++) {
     if (!wanted[r] || sw_rod_is_rigid(m, r)) continue;
-    m->rod_implicit[r] = 1;
+    m->rod_implicit[r] = 1; /* asked for; kicked implicitly under imex only */
+    if (m->integrator != SW_IMEX) continue;
     m->implicit_rod[m->nimplicit] = r;
     m->implicit_adr[m->nimplicit + 1] = m->implicit_adr[m->nimplicit] + rod_scratch(m->rod_nelem[r]);
     m->nimplicit++;
@@ -93,8 +93,11 @@ size_t sw_implicit_scratch(const swModel *m) {
   return m->implicit_adr ? m->implicit_adr[m->nimplicit] : 0;
 }
 
-/* The band stores A(i, j), j <= i <= j + BAND, at A[i (BAND + 1) + i - j]. */
-static inline double *at(double *A, size_t i, size_t j) { return A + i * (BAND + 1) + (i - j); }
+/* The band stores row i's A(i, j), i - BAND <= j <= i, left to right in
+ * A[i (BAND + 1) + BAND - (i - j)], the diagonal last; the first rows'
+ * places left of column 0 stay zero.  Each row is a contiguous window, so
+ * the factorisation's dot products run over consecutive doubles. */
+static inline double *at(double *A, size_t i, size_t j) { return A + i * (BAND + 1) + BAND - (i - j); }
 
 /* A[o + a, o + b] += K[a][b] for the lower triangle of a k x k block. */
 static void add_block(double *A, size_t o, int k, const double *K) {
@@ -102,28 +105,46 @@ static void add_block(double *A, size_t o, int k, const double *K) {
     for (int b = 0; b <= a; b++) *at(A, o + (size_t)a, o + (size_t)b) += K[k * a + b];
 }
 
-/* In place: A = L L^T (banded lower triangle), then A x = b into b.
- * Returns 0 if A is not positive definite (a non-finite state). */
-static int band_cholesky_solve(double *A, size_t N, double *b) {
+/* In place: A = L L^T (banded lower triangle), then A x = b into b, with
+ * inv[i] = 1 / L(i, i) (N doubles of scratch).  Returns 0 if A is not
+ * positive definite (a non-finite state).  Row i's window R_i holds
+ * L(i, i - BAND + c) at c, and for j = i - BAND + c
+ *   L(i, j) = (A(i, j) - sum_{t < c} L(i, i - BAND + t) L(j, i - BAND + t)) / L(j, j).
+ * The sums are formed the other way round: as soon as L(i, i - BAND + t)
+ * is known it is taken off every later place of the row (acc), so the
+ * chain of dependent operations through a row is one multiply-add and one
+ * multiplication per place rather than a whole sum (and a division); the
+ * solves likewise take each unknown off the rest of the right-hand side
+ * as soon as it is known.  The zero places of the first rows stand for the
+ * columns before 0. */
+static int band_cholesky_solve(double *restrict A, size_t N, double *restrict b,
+                               double *restrict inv) {
+  const size_t W = BAND + 1;
   for (size_t i = 0; i < N; i++) {
-    const size_t j0 = i > BAND ? i - BAND : 0;
-    for (size_t j = j0; j <= i; j++) {
-      double s = *at(A, i, j);
-      for (size_t k = j0; k < j; k++) s -= *at(A, i, k) * *at(A, j, k); /* j - BAND <= j0 */
-      if (j < i) *at(A, i, j) = s / *at(A, j, j);
-      else if (s > 0) *at(A, i, i) = sqrt(s);
-      else return 0;
+    double *restrict Ri = A + i * W;
+    const size_t c0 = i < BAND ? BAND - i : 0;
+    double acc[BAND], dg = Ri[BAND];
+    for (size_t c = 0; c < BAND; c++) acc[c] = Ri[c];
+    for (size_t t = c0; t < BAND; t++) {
+      const double l = acc[t] * inv[i - BAND + t];
+      Ri[t] = l;
+      dg -= l * l;
+      for (size_t c = t + 1; c < BAND; c++) acc[c] -= l * A[(i - BAND + c) * W + t + BAND - c];
     }
+    if (!(dg > 0)) return 0;
+    Ri[BAND] = sqrt(dg);
+    inv[i] = 1.0 / Ri[BAND];
   }
-  for (size_t i = 0; i < N; i++) { /* L y = b */
-    double s = b[i];
-    for (size_t k = i > BAND ? i - BAND : 0; k < i; k++) s -= *at(A, i, k) * b[k];
-    b[i] = s / *at(A, i, i);
+  for (size_t i = 0; i < N; i++) { /* L y = b: y_i, then off the rows below */
+    const double y = b[i] * inv[i];
+    b[i] = y;
+    for (size_t k = i + 1; k <= i + BAND && k < N; k++) b[k] -= A[k * W + BAND - (k - i)] * y;
   }
-  for (size_t i = N; i-- > 0;) { /* L^T x = y */
-    double s = b[i];
-    for (size_t k = i + 1; k <= i + BAND && k < N; k++) s -= *at(A, k, i) * b[k];
-    b[i] = s / *at(A, i, i);
+  for (size_t i = N; i-- > 0;) { /* L^T x = y: x_i, then off the rows above */
+    const double *restrict Ri = A + i * W;
+    const double x = b[i] * inv[i];
+    b[i] = x;
+    for (size_t c = i < BAND ? BAND - i : 0; c < BAND; c++) b[i - BAND + c] -= Ri[c] * x;
   }
   return 1;
 }
@@ -292,7 +313,7 @@ static int rod_kick(const swModel *m, swData *d, int r, double *A, double h) {
     }
   }
   rod_holds(m, r, A, rhs, N);
-  if (!band_cholesky_solve(A, N, rhs)) return 0;
+  if (!band_cholesky_solve(A, N, rhs, rhs + N)) return 0;
   for (int i = 0; i <= n; i++)
     for (int k = 0; k < 3; k++) SW_AT(m, d->force, na + i, k) = m->mass[na + i] * rhs[6 * i + k] / h;
   for (int i = 0; i < n; i++) {

@@ -542,7 +542,8 @@ typedef struct {
   int nrigid_block;          /* bodies in it                                 */
   /* rods whose elasticity is linearly implicit (SW_IMEX, rod_implicit.c) */
   int nimplicit;
-  int *rod_implicit;         /* (nrod)     1: the rod is one of them         */
+  int *rod_implicit;         /* (nrod)     1: the rod asks for it (elastic);
+                                           it is kicked so when nimplicit > 0 */
   int *implicit_rod;         /* (nimplicit) the rods, in rod order           */
   size_t *implicit_adr;      /* (nimplicit+1) each one's first double in
                                            swData.implicit_sys              */

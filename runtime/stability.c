@@ -107,7 +107,7 @@ double sw_stable_dt_rod(const swModel *m, int r) {
   if (sw_rod_is_rigid(m, r)) return sw_rigid_stable_dt(m, m->rod_rigid[r]);
   /* an implicit rod's elasticity and linear damping are integrated by the
    * trapezoidal rule (rod_implicit.c): nothing of its own bounds the step */
-  if (m->rod_implicit && m->rod_implicit[r]) return INFINITY;
+  if (m->nimplicit && m->rod_implicit[r]) return INFINITY;
   int n = m->rod_nelem[r], ea = m->elem_adr[r], va = m->vor_adr[r], na = m->node_adr[r];
   double dt = INFINITY;
   for (int i = 0; i < n; i++) {

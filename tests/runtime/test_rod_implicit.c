@@ -87,7 +87,7 @@ static double helix_tangent_error(swLaw law) {
   assert_true(K && fp && fm);
   sw_implicit_stiffness(m, d, id, K);
   double worst = 0, largest = 0, rest = 0, diag[3 * (2 * 8 + 1)];
-  for (int q = 0; q < N; q++) diag[q] = K[(size_t)q * (B + 1)];
+  for (int q = 0; q < N; q++) diag[q] = K[(size_t)q * (B + 1) + B];
   loads(m, d, n, fp);
   for (int q = 0; q < N; q++) rest = fmax(rest, fabs(fp[q]));
   const double dx = 1e-7, da = 1e-6;
@@ -102,7 +102,7 @@ static double helix_tangent_error(swLaw law) {
     for (int q = 0; q < N; q++) {
       const double fd = -(fp[q] - fm[q]) / (2 * del);
       const int i = q > p ? q : p, j = q > p ? p : q;
-      const double ours = i - j <= B ? K[(size_t)i * (B + 1) + (size_t)(i - j)] : 0.0;
+      const double ours = i - j <= B ? K[(size_t)i * (B + 1) + (size_t)(B - (i - j))] : 0.0;
       /* against the entry's natural scale sqrt(K_pp K_qq): the bending
        * entries are 1e5 times smaller than the stretching ones */
       worst = fmax(worst, fabs(fd - ours) / sqrt(diag[p] * diag[q]));
