@@ -99,12 +99,6 @@ size_t sw_implicit_scratch(const swModel *m) {
  * the factorisation's dot products run over consecutive doubles. */
 static inline double *at(double *A, size_t i, size_t j) { return A + i * (BAND + 1) + BAND - (i - j); }
 
-/* A[o + a, o + b] += K[a][b] for the lower triangle of a k x k block. */
-static void add_block(double *A, size_t o, int k, const double *K) {
-  for (int a = 0; a < k; a++)
-    for (int b = 0; b <= a; b++) *at(A, o + (size_t)a, o + (size_t)b) += K[k * a + b];
-}
-
 /* In place: A = L L^T (banded lower triangle), then A x = b into b, with
  * inv[i] = 1 / L(i, i) (N doubles of scratch).  Returns 0 if A is not
  * positive definite (a non-finite state).  Row i's window R_i holds
@@ -149,38 +143,50 @@ static int band_cholesky_solve(double *restrict A, size_t N, double *restrict b,
   return 1;
 }
 
-/* Shear/stretch of element i (global e, first node na + i) into the block
- * of its nine unknowns at 6 i: h^2/4 l^ G^T S G (the header). */
-static void shear_block(const swModel *m, const swData *d, int law, int e, int node, double w,
-                        double *A, size_t o) {
-  double Q[9], x0[3], x1[3], dx[3], t[3];
+/* Shear/stretch of element e (first node `node`) into the block of its
+ * nine unknowns at o: l^ G^T S G with G = [-Q/l^, [t]x, Q/l^] (the header),
+ * S = w S^/e (w S^ on variational rods), which is, with P = Q^T S Q / l^
+ * and C = Q^T S [t]x,
+ *   [ P    -C           -P ]
+ *   [ -C^T  l^[t]x^T S [t]x  C^T ]
+ *   [ -P    C            P ].
+ * t = sigma + d3 and e come from the rod pass of this kick (d->sigma,
+ * d->dilatation: the phased step's planes, so = 0). */
+static void shear_block(const swModel *m, const swData *d, int law, int e, double w, double *A,
+                        size_t o) {
+  double Q[9];
   sw_getQ(m, d->Q, e, Q);
-  sw_get3(m, d->x, node, x0);
-  sw_get3(m, d->x, node + 1, x1);
-  sw_v3_sub(dx, x1, x0);
-  const double il = m->inv_rest_len[e], l = m->rest_len[e];
-  sw_mat_vec(t, Q, dx);
-  for (int k = 0; k < 3; k++) t[k] *= il;
-  const double inv_e = law ? 1.0 : l / sqrt(sw_v3_dot(dx, dx));
-  /* G, 3 x 9: [-Q/l^, [t]x, Q/l^] */
-  double G[27] = {0};
+  const double l = m->rest_len[e], il = m->inv_rest_len[e];
+  const double t[3] = {SW_AT(m, d->sigma, e, 0), SW_AT(m, d->sigma, e, 1), SW_AT(m, d->sigma, e, 2) + 1.0};
+  const double f = law ? w : w / d->dilatation[e];
+  const double S[3] = {f * SW_AT(m, m->shear_stiff, e, 0), f * SW_AT(m, m->shear_stiff, e, 1),
+                       f * SW_AT(m, m->shear_stiff, e, 2)};
+  /* [t]x rows, and S [t]x */
+  const double T[9] = {0, -t[2], t[1], t[2], 0, -t[0], -t[1], t[0], 0};
+  double ST[9], P[9], C[9], R[9];
   for (int a = 0; a < 3; a++)
-    for (int k = 0; k < 3; k++) {
-      G[9 * a + k] = -Q[3 * a + k] * il;
-      G[9 * a + 6 + k] = Q[3 * a + k] * il;
+    for (int b = 0; b < 3; b++) ST[3 * a + b] = S[a] * T[3 * a + b];
+  for (int p = 0; p < 3; p++)
+    for (int q = 0; q < 3; q++) {
+      double sp = 0, sc = 0, sr = 0;
+      for (int a = 0; a < 3; a++) {
+        sp += Q[3 * a + p] * S[a] * Q[3 * a + q];
+        sc += Q[3 * a + p] * ST[3 * a + q];
+        sr += T[3 * a + p] * ST[3 * a + q];
+      }
+      P[3 * p + q] = sp * il, C[3 * p + q] = sc, R[3 * p + q] = sr * l;
     }
-  G[9 * 0 + 3 + 1] = -t[2], G[9 * 0 + 3 + 2] = t[1]; /* [t]x, row by row */
-  G[9 * 1 + 3 + 0] = t[2], G[9 * 1 + 3 + 2] = -t[0];
-  G[9 * 2 + 3 + 0] = -t[1], G[9 * 2 + 3 + 1] = t[0];
-  double S[3], K[81];
-  for (int a = 0; a < 3; a++) S[a] = w * l * SW_AT(m, m->shear_stiff, e, a) * inv_e;
-  for (int p = 0; p < 9; p++)
-    for (int q = 0; q <= p; q++) {
-      double s = 0;
-      for (int a = 0; a < 3; a++) s += G[9 * a + p] * S[a] * G[9 * a + q];
-      K[9 * p + q] = s;
+  for (size_t p = 0; p < 3; p++)
+    for (size_t q = 0; q < 3; q++) {
+      if (q <= p) {
+        *at(A, o + p, o + q) += P[3 * p + q];
+        *at(A, o + 3 + p, o + 3 + q) += R[3 * p + q];
+        *at(A, o + 6 + p, o + 6 + q) += P[3 * p + q];
+      }
+      *at(A, o + 3 + p, o + q) -= C[3 * q + p];
+      *at(A, o + 6 + p, o + q) -= P[3 * p + q];
+      *at(A, o + 6 + p, o + 3 + q) += C[3 * p + q];
     }
-  add_block(A, o, 9, K);
 }
 
 /* J^-1 = I + sgn [phi]x / 2 + beta [phi]x^2, row-major: the inverse Jacobian
@@ -195,35 +201,30 @@ static void dexpinv(const double *phi, double beta, double sgn, double *Jm) {
     }
 }
 
-/* Bending/twist of domain v between elements e and e + 1 (nodes node ..
- * node + 2), whose rotations are at o and o + 6.  With phi the domain's
+/* Bending/twist of domain v between elements v and v + 1 of the rod, whose
+ * rotations are at o and o + 6.  With phi = kappa D^ the domain's
  * rotation vector, Q_{e+1} = exp(-[phi]x) Q_e, a turn b of element e moves
  * phi by -J_l^-1 b and one of element e + 1 by J_r^-1 b (rod.c, the
  * variational law), so H = [-J_l^-1, J_r^-1] / D^ and the block is
  * D^ H^T B' H, B' = B^/eps^3 (B^ on variational rods).  The frames' turn
  * matters: on a bent rod with a hardened twist, dropping it (H = [-I, I])
- * puts a twist stiffness of phi times G I3 / D^ on the pitch. */
-static void bend_block(const swModel *m, const swData *d, int law, int v, int e, int node, double w,
-                       double *A, size_t o) {
-  double x0[3], x1[3], x2[3], a[3], b[3], Qa[9], Qb[9], phi[3], Jl[9], Jr[9];
-  sw_get3(m, d->x, node, x0);
-  sw_get3(m, d->x, node + 1, x1);
-  sw_get3(m, d->x, node + 2, x2);
-  sw_v3_sub(a, x1, x0);
-  sw_v3_sub(b, x2, x1);
-  sw_getQ(m, d->Q, e, Qa);
-  sw_getQ(m, d->Q, e + 1, Qb);
-  sw_frame_log(phi, Qa, Qb);
+ * puts a twist stiffness of phi times G I3 / D^ on the pitch.  kappa and
+ * eps come from the rod pass of this kick (d->kappa, d->vor_dilatation). */
+static void bend_block(const swModel *m, const swData *d, int law, int v, double w, double *A,
+                       size_t o) {
+  const double Dv = m->rest_vor_len[v], iD = m->inv_rest_vor_len[v];
+  const double phi[3] = {SW_AT(m, d->kappa, v, 0) * Dv, SW_AT(m, d->kappa, v, 1) * Dv,
+                         SW_AT(m, d->kappa, v, 2) * Dv};
+  double Jl[9], Jr[9];
   const double beta = sw_dexpinv_beta(sw_v3_dot(phi, phi));
   dexpinv(phi, beta, -1.0, Jl);
   dexpinv(phi, beta, 1.0, Jr);
-  const double iD = m->inv_rest_vor_len[v];
-  const double eps = 0.5 * (sqrt(sw_v3_dot(a, a)) + sqrt(sw_v3_dot(b, b))) * iD;
+  const double eps = d->vor_dilatation[v];
   const double inv_eps3 = law ? 1.0 : 1.0 / (eps * eps * eps);
   double Bk[3];
   for (int k = 0; k < 3; k++) Bk[k] = w * SW_AT(m, m->bend_stiff, v, k) * inv_eps3 * iD;
-  for (int p = 0; p < 3; p++)
-    for (int q = 0; q < 3; q++) {
+  for (size_t p = 0; p < 3; p++)
+    for (size_t q = 0; q < 3; q++) {
       double ll = 0, rl = 0, rr = 0; /* (Jl^T B Jl), -(Jr^T B Jl), (Jr^T B Jr) at (p, q) */
       for (int k = 0; k < 3; k++) {
         ll += Jl[3 * k + p] * Bk[k] * Jl[3 * k + q];
@@ -231,10 +232,10 @@ static void bend_block(const swModel *m, const swData *d, int law, int v, int e,
         rr += Jr[3 * k + p] * Bk[k] * Jr[3 * k + q];
       }
       if (q <= p) {
-        *at(A, o + (size_t)p, o + (size_t)q) += ll;
-        *at(A, o + 6 + (size_t)p, o + 6 + (size_t)q) += rr;
+        *at(A, o + p, o + q) += ll;
+        *at(A, o + 6 + p, o + 6 + q) += rr;
       }
-      *at(A, o + 6 + (size_t)p, o + (size_t)q) += rl;
+      *at(A, o + 6 + p, o + q) += rl;
     }
 }
 
@@ -275,12 +276,12 @@ static void rod_holds(const swModel *m, int r, double *A, double *rhs, size_t N)
 }
 
 void sw_implicit_stiffness(const swModel *m, const swData *d, int r, double *A) {
-  const int n = m->rod_nelem[r], na = m->node_adr[r], ea = m->elem_adr[r], va = m->vor_adr[r];
+  const int n = m->rod_nelem[r], ea = m->elem_adr[r], va = m->vor_adr[r];
   const int law = m->rod_law[r] == SW_LAW_VARIATIONAL;
   memset(A, 0, unknowns(n) * (BAND + 1) * sizeof(double));
   for (int i = 0; i < n; i++) {
-    shear_block(m, d, law, ea + i, na + i, 1.0, A, 6 * (size_t)i);
-    if (i < n - 1) bend_block(m, d, law, va + i, ea + i, na + i, 1.0, A, 6 * (size_t)i + 3);
+    shear_block(m, d, law, ea + i, 1.0, A, 6 * (size_t)i);
+    if (i < n - 1) bend_block(m, d, law, va + i, 1.0, A, 6 * (size_t)i + 3);
   }
   clamp_blocks(m, d, r, A);
 }
