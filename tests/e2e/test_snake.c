@@ -253,8 +253,9 @@ static void test_hardening(void **state) {
  * implicit (rod_implicit.c; sinewc --let implicit=true), at steps the
  * original snake's explicit scheme takes (its estimate is 121 us, and it
  * runs at 125 us, which this test checks; 40 and 125 us here) but the
- * hardened ones' explicit schemes do not (31 us for x25, 12 us for x100).  Asserted: the run completes, its strains stay
- * free of grid-scale oscillation (the bound of test_hardening, and no
+ * hardened ones' explicit schemes do not (31 us for x25, 15.7 us for
+ * x100).  Asserted: the run completes, its strains stay free of
+ * grid-scale oscillation (the bound of test_hardening, and no
  * rougher than twice the original's at 10 us), and its forward speed and
  * lateral excursion over 1-3 s are those of the explicit run of the same
  * snake at a step it is stable at (10 us and 5 us) within 0.5%. */
