@@ -300,6 +300,13 @@ static void test_hardening_implicit(void **state) {
                "--set", shear, "--set", twist, NULL);
       double worst[3], big[3];
       strain_grid_scale(out, 50, worst, big);
+      const double largest = fmax(big[0], fmax(big[1], big[2]));
+      for (int c = 0; c < 3; c++)
+        /* the shear along d1 (vertical) of a snake on flat ground is zero:
+         * exactly in the explicit runs, round-off in the implicit solve
+         * (below 1e-10, a millionth of the stretch), whose spectrum is then
+         * noise and not a mode: not measured (printed as -1) */
+        if (big[c] < 1e-6 * largest) worst[c] = -1;
       const double v = forward_speed(out), e = lateral_excursion(out, 1.0, 3.0);
       fprintf(stderr, "# %s: x%s, implicit at dt = %s: grid-scale content %.3e, %.3e, %.3e "
               "(original at 10 us: %.3e, %.3e, %.3e; largest strains %.1e, %.1e, %.1e); speed "
@@ -307,13 +314,8 @@ static void test_hardening_implicit(void **state) {
               "%.5f (%+.3f%%)\n", __func__, factors[h], dts[i], worst[0], worst[1], worst[2],
               orig_worst[0], orig_worst[1], orig_worst[2], big[0], big[1], big[2], v, v_ref,
               explicit_dts[h], 100 * (v / v_ref - 1), e, e_ref, 100 * (e / e_ref - 1));
-      const double largest = fmax(big[0], fmax(big[1], big[2]));
       for (int c = 0; c < 3; c++) {
-        /* the shear along d1 (vertical) of a snake on flat ground is zero:
-         * exactly in the explicit runs, round-off in the implicit solve
-         * (below 1e-10, a millionth of the stretch), whose spectrum is then
-         * noise and not a mode */
-        if (big[c] < 1e-6 * largest) continue;
+        if (worst[c] < 0) continue;
         assert_true(worst[c] < 1e-2);
         assert_true(worst[c] <= 2 * orig_worst[c] + 1e-12);
       }
