@@ -39,20 +39,23 @@
  * 18 unknowns, touching no other rigid body, since the ribs hang on the
  * elastic backbone by explicit joints).  Each group's block is symmetric
  * positive definite, 6 unknowns per body, and is assembled, factored by
- * dense Cholesky (Golub and Van Loan, Matrix Computations, 4th ed., sec.
- * 4.2) and solved on its own each kick, at sum (6 n_g)^3 / 3 flops instead
- * of (6 sum n_g)^3 / 3 for the whole (a chain of 10 bones is one group:
- * 60 unknowns, about 7e4 flops; the 4-pair snake's 8 groups of 18 cost
- * 64 times less than its 144 unknowns as one).  The groups are found once,
- * at setup, by union-find and numbered in the
- * order their bodies are first met in the joints, as the one system
- * numbered its bodies, and each group keeps its bodies in that order; so a
- * block is the whole system's rows and columns in the same order, and its
- * factor and solution are the whole's to the bit (the whole's factor is
- * block diagonal too: an entry outside the blocks is 0 less products with
- * a zero factor).  The bodies' new velocities replace the loads they would
- * have had (F_eff = M dV / h, tau_eff = I dw / h) and rigid.c's kick goes
- * on as before.  A joint that touches an elastic rod stays explicit.
+ * Cholesky (Golub and Van Loan, Matrix Computations, 4th ed., sec. 4.2)
+ * and solved on its own each kick: at most sum (6 n_g)^3 / 3 flops, dense,
+ * instead of (6 sum n_g)^3 / 3 for the whole (the 4-pair snake's 8 groups
+ * of 18 unknowns cost 64 times less than its 144 as one), and less within
+ * the group's envelope (cholesky_solve): a chain of n bones, whose rows
+ * reach back one body, costs about 6 n x 12^2 / 2 flops instead of
+ * (6 n)^3 / 3 (8 bones: 48 unknowns, 3.5e3 flops against 3.7e4).  The
+ * groups are found once, at setup, by union-find and numbered in the order
+ * their bodies are first met in the joints, as the one system numbered its
+ * bodies, and each group keeps its bodies in that order; so a block is the
+ * whole system's rows and columns in the same order, and its factor and
+ * solution are the whole's to the bit (the whole's factor is block
+ * diagonal too, and zero outside the envelope: an entry there is 0 less
+ * products with a zero factor, and so is each term the sums skip).  The
+ * bodies' new velocities replace the loads they would have had (F_eff =
+ * M dV / h, tau_eff = I dw / h) and rigid.c's kick goes on as before.  A
+ * joint that touches an elastic rod stays explicit.
  */
 #include <math.h>
 #include <stdlib.h>
@@ -126,6 +129,21 @@ static void number_groups(swModel *m, const int *order, int *root, int *group_of
   memcpy(next, jadr, (size_t)ngroup * sizeof(int));
   for (int j = 0; j < m->njoint; j++)
     if (m->joint_implicit[j]) m->rigid_group_joint[next[joint_group(m, root, group_of, j)]++] = j;
+  /* the envelope: the earliest block each is joined to, and the last block
+   * whose envelope reaches each */
+  for (int s = 0; s < nb; s++) m->rigid_block_env[s] = s;
+  for (int j = 0; j < m->njoint; j++) {
+    if (!m->joint_implicit[j]) continue;
+    const int ba = moving_body(m, m->joint[j].rod_a), bb = moving_body(m, m->joint[j].rod_b);
+    if (ba < 0 || bb < 0) continue;
+    const int sa = m->rigid_block[ba], sb = m->rigid_block[bb];
+    const int lo = sa < sb ? sa : sb, hi = sa < sb ? sb : sa;
+    if (lo < m->rigid_block_env[hi]) m->rigid_block_env[hi] = lo;
+  }
+  for (int s = 0; s < nb; s++) m->rigid_block_reach[s] = s;
+  for (int t = 0; t < nb; t++)
+    for (int s = m->rigid_block_env[t]; s < t; s++)
+      if (m->rigid_block_reach[s] < t) m->rigid_block_reach[s] = t;
 }
 
 int sw_rigid_joints_setup(swModel *m) {
@@ -136,9 +154,12 @@ int sw_rigid_joints_setup(swModel *m) {
   m->rigid_group_adr = malloc((B + 1) * sizeof(int));
   m->rigid_group_joint_adr = malloc((B + 1) * sizeof(int));
   m->rigid_group_joint = malloc(J * sizeof(int));
+  m->rigid_block_env = malloc(B * sizeof(int));
+  m->rigid_block_reach = malloc(B * sizeof(int));
   m->nrigid_block = m->nrigid_group = 0;
   if (!m->joint_implicit || !m->rigid_block || !m->rigid_block_body || !m->rigid_group_adr ||
-      !m->rigid_group_joint_adr || !m->rigid_group_joint)
+      !m->rigid_group_joint_adr || !m->rigid_group_joint || !m->rigid_block_env ||
+      !m->rigid_block_reach)
     return 0;
   for (int b = 0; b < m->nrigid; b++) m->rigid_block[b] = -1;
   m->rigid_group_adr[0] = m->rigid_group_joint_adr[0] = 0;
@@ -170,6 +191,8 @@ void sw_rigid_joints_free(swModel *m) {
   free(m->rigid_group_adr);
   free(m->rigid_group_joint_adr);
   free(m->rigid_group_joint);
+  free(m->rigid_block_env);
+  free(m->rigid_block_reach);
 }
 
 /* Doubles of swData's workspace: each group's matrix and right-hand side,
@@ -216,28 +239,48 @@ static void lever(const swModel *m, const swData *d, int b, int node, double *r)
 }
 
 /* In place: A = L L^T (lower triangle), then A x = rhs solved into rhs.
- * Returns 0 if A is not positive definite. */
-static int cholesky_solve(double *A, int n, double *rhs) {
+ * A is n x n, 6 rows a body, and by the joints the rows of body s are zero
+ * left of the rows of body env[s] (the earliest body joined to s, or s), so
+ * the rows of the bodies up to reach[s] (the last whose env is s or before)
+ * are the only ones with entries below the diagonal in the columns of s;
+ * env and reach number the bodies from base.  L has the same envelope (no
+ * fill-in outside it: George and Liu, Computer Solution of Large Sparse
+ * Positive Definite Systems, 1981, ch. 4), so the sums run inside it: the
+ * terms they skip are products with a zero factor, and the numbers are the
+ * dense factorisation's, bit for bit.  Returns 0 if A is not positive
+ * definite. */
+static int cholesky_solve(double *A, int n, double *rhs, const int *env, const int *reach,
+                          int base) {
   for (int j = 0; j < n; j++) {
+    const int sj = j / 6, fj = 6 * (env[sj] - base); /* row j's first column */
     double djj = A[(size_t)j * n + j];
-    for (int k = 0; k < j; k++) djj -= A[(size_t)j * n + k] * A[(size_t)j * n + k];
+    for (int k = fj; k < j; k++) djj -= A[(size_t)j * n + k] * A[(size_t)j * n + k];
     if (!(djj > 0)) return 0;
     const double ljj = sqrt(djj);
     A[(size_t)j * n + j] = ljj;
-    for (int i = j + 1; i < n; i++) {
-      double s = A[(size_t)i * n + j];
-      for (int k = 0; k < j; k++) s -= A[(size_t)i * n + k] * A[(size_t)j * n + k];
-      A[(size_t)i * n + j] = s / ljj;
+    for (int t = sj; t <= reach[sj] - base; t++) {
+      const int ft = 6 * (env[t] - base);
+      if (ft > j) continue; /* outside the envelope: L_ij = A_ij = 0 */
+      const int k0 = ft > fj ? ft : fj;
+      for (int i = t == sj ? j + 1 : 6 * t; i < 6 * t + 6; i++) {
+        double s = A[(size_t)i * n + j];
+        for (int k = k0; k < j; k++) s -= A[(size_t)i * n + k] * A[(size_t)j * n + k];
+        A[(size_t)i * n + j] = s / ljj;
+      }
     }
   }
   for (int i = 0; i < n; i++) { /* L y = rhs */
     double s = rhs[i];
-    for (int k = 0; k < i; k++) s -= A[(size_t)i * n + k] * rhs[k];
+    for (int k = 6 * (env[i / 6] - base); k < i; k++) s -= A[(size_t)i * n + k] * rhs[k];
     rhs[i] = s / A[(size_t)i * n + i];
   }
   for (int i = n - 1; i >= 0; i--) { /* L^T x = y */
+    const int si = i / 6;
     double s = rhs[i];
-    for (int k = i + 1; k < n; k++) s -= A[(size_t)k * n + i] * rhs[k];
+    for (int t = si; t <= reach[si] - base; t++) {
+      if (6 * (env[t] - base) > i) continue;
+      for (int k = t == si ? i + 1 : 6 * t; k < 6 * t + 6; k++) s -= A[(size_t)k * n + i] * rhs[k];
+    }
     rhs[i] = s / A[(size_t)i * n + i];
   }
   return 1;
@@ -309,7 +352,8 @@ static int group_kick(const swModel *m, const swData *d, double h, int g, double
         if (wlim > 0) add_block(A, n, bs, bt, sign * wlim, Jl, Jl);
       }
   }
-  if (!cholesky_solve(A, n, rhs)) return 0;
+  if (!cholesky_solve(A, n, rhs, m->rigid_block_env + first, m->rigid_block_reach + first, first))
+    return 0;
   for (int s = 0; s < nb; s++) { /* the loads that give du */
     const int b = m->rigid_block_body[first + s];
     double Il[9], dL[3];

@@ -541,6 +541,10 @@ typedef struct {
                                 one diagonal block of the system each       */
   int *rigid_group_adr;      /* (nrigid_group+1) first block of each group    */
   int *rigid_block_body;     /* (nrigid_block) the body of each block         */
+  int *rigid_block_env;      /* (nrigid_block) the earliest block joined to
+                                           each, or itself: the envelope     */
+  int *rigid_block_reach;    /* (nrigid_block) the last block whose envelope
+                                           reaches each, or itself           */
   int *rigid_group_joint_adr; /* (nrigid_group+1) first entry of each group
                                            in rigid_group_joint              */
   int *rigid_group_joint;    /* (implicit joints) each group's joints, in
