@@ -175,6 +175,7 @@ bench: deps
 	@sh bench/bench_snake.sh        # the snake scenes in full (~3 min)
 	@sh bench/bench_stiff.sh        # imex on the elbow and the bone chain (~5 min)
 	@sh bench/bench_implicit_snake.sh # the hardened snakes, explicit vs implicit rods (~4 min)
+	@sh bench/bench_rigid_groups.sh # the implicit rigid joints, before issue 13's groups and now (~5 min)
 	@sh bench/bench_study.sh        # a study's evaluations per second on 1, 2 and 4 MPI ranks (~1 min)
 
 # `make bench-sundials`: SUNDIALS's ARKODE (IMEX ARKStep, MRIStep) against

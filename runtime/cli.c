@@ -916,8 +916,9 @@ static void print_stiff_parts(const swModel *m) {
   int njimplicit = 0;
   for (int j = 0; j < m->njoint; j++) njimplicit += m->joint_implicit[j];
   if (njimplicit)
-    printf("  trapezoidal (implicit): %d of %d joints, those between rigid bodies (%d bodies)\n",
-           njimplicit, m->njoint, m->nrigid_block);
+    printf("  trapezoidal (implicit): %d of %d joints, those between rigid bodies (%d bod%s "
+           "in %d independent group%s)\n", njimplicit, m->njoint, m->nrigid_block,
+           m->nrigid_block == 1 ? "y" : "ies", m->nrigid_group, m->nrigid_group == 1 ? "" : "s");
   if (m->nfil > nimplicit) {
     double worst = INFINITY;
     for (int f = 0; f < m->nfil; f++)

@@ -265,8 +265,12 @@ void sw_rigid_kick(const swModel *m, swData *d, double h);
 double sw_rigid_stable_dt(const swModel *m, int b);
 double sw_rigid_joint_dt(const swModel *m, int b);
 /* Joints between rigid bodies under SW_IMEX (rigid_joint.c): setup marks
- * them (joint_implicit) and numbers their bodies (rigid_block); the kick
- * turns the bodies' loads into those of the trapezoidal step. */
+ * them (joint_implicit), finds the independent groups of bodies they join
+ * and numbers the bodies group by group (rigid_block, rigid_group_*); the
+ * kick turns the bodies' loads into those of the trapezoidal step, solving
+ * each group's block of the system on its own (0: a block that could not be
+ * factored, whose bodies keep their loads); scratch is the doubles of its
+ * workspace, swData.rigid_sys. */
 int sw_rigid_joints_setup(swModel *m);
 void sw_rigid_joints_free(swModel *m);
 size_t sw_rigid_joints_scratch(const swModel *m);

@@ -538,8 +538,22 @@ typedef struct {
   double *joint_wave_dt;     /* (njoint)   stable dt estimate of each joint  */
   int *joint_implicit;       /* (njoint)   1: between rigid bodies, linearly
                                            implicit (SW_IMEX, rigid_joint.c) */
-  int *rigid_block;          /* (nrigid)   the body's block in that system, -1 */
+  int *rigid_block;          /* (nrigid)   the body's block in that system, -1;
+                                           numbered group by group           */
   int nrigid_block;          /* bodies in it                                 */
+  int nrigid_group;          /* its independent groups: the connected
+                                components of the bodies under those joints,
+                                one diagonal block of the system each       */
+  int *rigid_group_adr;      /* (nrigid_group+1) first block of each group    */
+  int *rigid_block_body;     /* (nrigid_block) the body of each block         */
+  int *rigid_block_env;      /* (nrigid_block) the earliest block joined to
+                                           each, or itself: the envelope     */
+  int *rigid_block_reach;    /* (nrigid_block) the last block whose envelope
+                                           reaches each, or itself           */
+  int *rigid_group_joint_adr; /* (nrigid_group+1) first entry of each group
+                                           in rigid_group_joint              */
+  int *rigid_group_joint;    /* (implicit joints) each group's joints, in
+                                           joint order                       */
   /* rods whose elasticity is linearly implicit (SW_IMEX, rod_implicit.c) */
   int nimplicit;
   int *rod_implicit;         /* (nrod)     1: the rod asks for it (elastic);
