@@ -26,7 +26,7 @@
 
 static const char *const functions[] = {"sqrt", "sin", "cos", "tan", "ramp", "sine", "step",
                                         "table", "bspline", "exp", "piecewise", "max", "min",
-                                        "abs", "at", "mean_over", "max_over", "min_over"};
+                                        "abs", "round", "at", "mean_over", "max_over", "min_over"};
 enum { NFUNCTIONS = sizeof functions / sizeof functions[0] };
 
 static const char *describe_value(swSema *S, const swValue *v) {
@@ -530,11 +530,30 @@ static swValue eval_extreme(swSema *S, swScope *scope, const swAst *e) {
   return v;
 }
 
+/* round(x): the whole number nearest a plain number known when compiling,
+ * halves away from zero as ROD.at(f) picks its node (lround), so that a model
+ * can put a point exactly on a node: ROD.at(round(f * n) / n) of a rod of n
+ * elements.  A plain number only: the whole number nearest a length would
+ * depend on its unit. */
+static swValue eval_round(swSema *S, swScope *scope, const swAst *e) {
+  const swAst *args = ast_kid(e, 0);
+  if (!args || args->nkid != 1 || args->kid[0]->name) {
+    diag_error(e->loc, "round() takes one argument, a plain number");
+    return val_error();
+  }
+  swValue x = sema_expect(S, scope, ast_kid(args->kid[0], 0), 1, DIM_NONE,
+                          "the argument of round()");
+  if (x.kind == VAL_ERROR || !sema_require_const(S, &x, "the argument of round()"))
+    return val_error();
+  return val_num(S->a, round(x.v[0]), DIM_NONE, e->loc);
+}
+
 static swValue eval_call(swSema *S, swScope *scope, const swAst *e) {
   const char *fn = e->name;
   const swAst *args = ast_kid(e, 0);
   if (!strcmp(fn, "max") || !strcmp(fn, "min") || !strcmp(fn, "abs"))
     return eval_extreme(S, scope, e);
+  if (!strcmp(fn, "round")) return eval_round(S, scope, e);
   if (!strcmp(fn, "at") || !strcmp(fn, "mean_over") || !strcmp(fn, "max_over") ||
       !strcmp(fn, "min_over"))
     return sema_reduction(S, scope, e);
