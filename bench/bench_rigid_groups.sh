@@ -18,12 +18,8 @@ SIMT=${SW_BENCH_SIMT:-1}             # simulated seconds of each snake run
 CHAIN_T=${SW_BENCH_CHAIN_T:-0.01}    # of the bone chain, at its 100x step
 out=docs/benchmarks.md
 dir=build/bench/base-$BASE
-if [ ! -x "$dir/bin/sinewc" ]; then
-  rm -rf "$dir"
-  git worktree prune
-  git worktree add --detach "$dir" "$BASE" >/dev/null 2>&1
-  make -C "$dir" --no-print-directory bin/sinewc build/libsinewrt.a >/dev/null
-fi
+. bench/bench_base.sh
+bench_base "$dir" "$BASE"
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 # scene name, source, sinewc's extra arguments, the simulator's

@@ -12,12 +12,8 @@ RUNS=${SW_BENCH_RUNS:-9}
 DT=${SW_BENCH_DT:-668ns}            # the scene's own dt (half its stable estimate)
 out=docs/benchmarks.md
 dir=build/bench/base
-if [ ! -x "$dir/bin/sinewc" ]; then
-  rm -rf "$dir"
-  git worktree prune
-  git worktree add --detach "$dir" "$BASE" >/dev/null 2>&1
-  make -C "$dir" --no-print-directory bin/sinewc build/libsinewrt.a >/dev/null
-fi
+. bench/bench_base.sh
+bench_base "$dir" "$BASE"
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 "$dir/bin/sinewc" examples/elbow_flexion.sinew -o "$tmp/old"

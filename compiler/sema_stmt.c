@@ -86,11 +86,10 @@ static int joint_gap_ok(swSema *S, swScope *scope, const swFields *f, const swAs
   snprintf(pa, sizeof pa, "(%.4g, %.4g, %.4g) m", xa[0], xa[1], xa[2]);
   snprintf(pb, sizeof pb, "(%.4g, %.4g, %.4g) m", xb[0], xb[1], xb[2]);
   /* say so when a point's node is not where its coordinates are */
-  const swValue *ends2[2] = {a, b};
   const double *xs[2] = {xa, xb};
   char *notes[2] = {na, nb};
   for (int e = 0; e < 2; e++) {
-    const swValue *p = ends2[e];
+    const swValue *p = ends[e];
     if (p->kind != VAL_POINT) continue;
     double off = 0;
     for (int k = 0; k < 3; k++) off += (p->v[k] - xs[e][k]) * (p->v[k] - xs[e][k]);

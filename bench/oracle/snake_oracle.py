@@ -78,6 +78,18 @@ def terrain_h(x, mode):
 
 
 @njit(cache=True)
+def tangent_plane(xs, px, pz, r, mode):
+    """At abscissa xs of the surface z_s(x) = h(x) - r: its height, the unit
+    normal (nx, nz) there, and the distance of the point (px, pz) from that
+    tangent plane along it."""
+    h, hp = terrain_h(xs, mode)
+    zs = h - r
+    inv = 1.0 / np.sqrt(1.0 + hp * hp)
+    nx, nz = -hp * inv, inv
+    return zs, nx, nz, nx * (px - xs) + nz * (pz - zs)
+
+
+@njit(cache=True)
 def local_planes(element_position, r0, mode):
     """Foot point on the surface z_s(x) = h(x) - r, normal there, and the
     signed distance of each element centre along that normal."""
@@ -91,28 +103,14 @@ def local_planes(element_position, r0, mode):
         pz = element_position[2, k]
         r = r0
         xs = px
-        nx = 0.0
-        nz = 1.0
-        zs = 0.0
-        d = 0.0
         for it in range(6):
-            h, hp = terrain_h(xs, mode)
-            zs = h - r
-            inv = 1.0 / np.sqrt(1.0 + hp * hp)
-            nx = -hp * inv
-            nz = inv
-            d = nx * (px - xs) + nz * (pz - zs)
+            zs, nx, nz, d = tangent_plane(xs, px, pz, r, mode)
             xs_new = px - d * nx
             if abs(xs_new - xs) < 1e-13:
                 xs = xs_new
                 break
             xs = xs_new
-        h, hp = terrain_h(xs, mode)
-        zs = h - r
-        inv = 1.0 / np.sqrt(1.0 + hp * hp)
-        nx = -hp * inv
-        nz = inv
-        d = nx * (px - xs) + nz * (pz - zs)
+        zs, nx, nz, d = tangent_plane(xs, px, pz, r, mode)
         normals[0, k] = nx
         normals[2, k] = nz
         origins[0, k] = xs

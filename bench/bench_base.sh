@@ -1,0 +1,12 @@
+# bench_base.sh — sourced by the benchmarks that run a tree of an earlier
+# commit beside this one (bench_speedup.sh, bench_rigid_groups.sh).
+# bench_base DIR REV: DIR holds a git worktree of REV with its bin/sinewc and
+# runtime built by its own Makefile (once: kept while DIR/bin/sinewc exists).
+bench_base() {
+  if [ ! -x "$1/bin/sinewc" ]; then
+    rm -rf "$1"
+    git worktree prune
+    git worktree add --detach "$1" "$2" >/dev/null 2>&1
+    make -C "$1" --no-print-directory bin/sinewc build/libsinewrt.a >/dev/null
+  fi
+}
