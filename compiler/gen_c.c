@@ -111,6 +111,13 @@ static const char *rod_kind_word(swRodKind k) {
 }
 
 /* the rod's name as a comment after its index */
+/* A node a joint or a muscle's end holds: the number, or the expression of
+ * the params that moves it (ROD.at(param)), with its default's node beside. */
+static void gen_node(FILE *out, int node, const char *node_c) {
+  if (node_c) fprintf(out, "%s; /* %d at the defaults */", node_c, node);
+  else fprintf(out, "%d;", node);
+}
+
 static void rod_comment(FILE *out, const swScene *sc, int rod) {
   fputs("   /* ", out);
   gen_c_comment(out, sc->rod[rod].name, strlen(sc->rod[rod].name));
@@ -175,8 +182,9 @@ static void emit_muscle(FILE *out, swArena *a, const swScene *sc, int mi) {
   emit_description(out, "muscle", NULL, m->material, m->loc);
   for (int e = 0; e < 2; e++)
     if (m->attach_rod[e] >= 0) {
-      fprintf(out, "    muscle.attach_rod[%d] = %d; muscle.attach_node[%d] = %d;", e,
-              gen_rod_id(sc, m->attach_rod[e]), e, m->attach_node[e]);
+      fprintf(out, "    muscle.attach_rod[%d] = %d; muscle.attach_node[%d] = ", e,
+              gen_rod_id(sc, m->attach_rod[e]), e);
+      gen_node(out, m->attach_node[e], m->attach_node_c[e]);
       rod_comment(out, sc, m->attach_rod[e]);
     }
   if (m->nvia) fprintf(out, "    muscle.nvia = %d;\n", m->nvia);
@@ -317,12 +325,36 @@ static void emit_selection_members(FILE *out, const swScene *sc) {
   emit_bits(out, rest);
 }
 
+/* derive(): the quantities derived from the params (swSceneDerived), each
+ * traced to the model line that defines it; build() and objective() start
+ * with it. */
+static void emit_derived(FILE *out, const swScene *sc) {
+  if (!sc->nderived) return;
+  fputs("/* The quantities the model derives from the params P: its lets and rod\n"
+        " * geometry that a param changes, in the order they are defined. */\n"
+        "static void derive(const double *P, double *D) {\n", out);
+  for (int i = 0; i < sc->nderived; i++) {
+    const swSceneDerived *d = &sc->derived[i];
+    gen_origin(out, d->loc, "  ");
+    fprintf(out, "  D[%d] = %s;   /* ", i, d->text);
+    gen_c_comment(out, d->what, strlen(d->what));
+    fputs(" */\n", out);
+  }
+  fputs("}\n\n", out);
+}
+
+/* The start of a function over P: D, the derived quantities, when any. */
+static void open_derived(FILE *out, const swScene *sc) {
+  if (sc->nderived) fprintf(out, "  double D[%d];\n  derive(P, D);\n", sc->nderived);
+}
+
 static void emit_build(FILE *out, swArena *a, const swScene *sc) {
   fputs("/* Builds the scene from the param values P (SI units, in the order of\n"
         " * params[]).  Returns SW_OK or SW_EMODEL with a message in err. */\n"
         "static int build(swSpec *s, const double *P, char *err, size_t errlen) {\n"
         "  int ok = 1;\n"
         "  (void)P;\n", out);
+  open_derived(out, sc);
   /* the runtime numbers joints with its own (a muscle's attachments) */
   if (sc->njoint)
     fprintf(out, "  int joint_id[%d];   /* the runtime's id of each joint */\n", sc->njoint);
@@ -349,9 +381,11 @@ static void emit_build(FILE *out, swArena *a, const swScene *sc) {
     fputs("  {\n    swJointDesc joint;\n    sw_joint_desc_init(&joint);\n    joint.name = ", out);
     gen_c_string(out, j->name);
     fprintf(out, ";\n    joint.kind = %s;\n", kinds[j->kind]);
-    fprintf(out, "    joint.rod_a = %d; joint.node_a = %d;", gen_rod_id(sc, j->rod_a), j->node_a);
+    fprintf(out, "    joint.rod_a = %d; joint.node_a = ", gen_rod_id(sc, j->rod_a));
+    gen_node(out, j->node_a, j->node_a_c);
     rod_comment(out, sc, j->rod_a);
-    fprintf(out, "    joint.rod_b = %d; joint.node_b = %d;", gen_rod_id(sc, j->rod_b), j->node_b);
+    fprintf(out, "    joint.rod_b = %d; joint.node_b = ", gen_rod_id(sc, j->rod_b));
+    gen_node(out, j->node_b, j->node_b_c);
     if (j->rod_b >= 0) rod_comment(out, sc, j->rod_b);
     else fputs("   /* anchored in space */\n", out);
     if (j->undamped) fputs("    joint.undamped = 1;\n", out);
@@ -451,6 +485,7 @@ static void emit_objective(FILE *out, swArena *a, const swScene *sc) {
     }
   fputs(" */\nstatic void objective(const double *P, const double *R, double *value, "
         "double *penalty) {\n  (void)P;\n  (void)R;\n", out);
+  open_derived(out, sc);
   gen_origin(out, o->loc, "  ");
   fprintf(out, "  *value = %s;\n  *penalty = 0.0;\n", val_c(a, &o->value, 0));
   for (int i = 0; i < o->npenalty; i++) {
@@ -540,6 +575,7 @@ int gen_c(FILE *out, swArena *a, const swScene *sc, const swGenOptions *opt) {
     }
     fputs("};\n\n", out);
   }
+  emit_derived(out, sc);
   gen_env_heights(out, a, sc);
   emit_build(out, a, sc);
   emit_objective(out, a, sc);

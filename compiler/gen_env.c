@@ -140,6 +140,9 @@ void gen_env_heights(FILE *out, swArena *a, const swScene *sc) {
   if (sc->nparam)
     fprintf(out, "/* the param values the heights read (ctx), set by build() */\n"
             "static double height_P[%d];\n\n", sc->nparam);
+  if (sc->nderived)
+    fprintf(out, "/* the derived quantities the heights read, set by build() */\n"
+            "static double height_D[%d];\n\n", sc->nderived);
   for (int i = 0; i < sc->nground; i++) {
     const swSceneGround *g = &sc->ground[i];
     const swHeight *h = g->height;
@@ -153,7 +156,9 @@ void gen_env_heights(FILE *out, swArena *a, const swScene *sc) {
     fprintf(out, "), m; grad = (dh/dx, dh/dy) */\n"
             "static double height_%d(double x, double y, double grad[2], const void *ctx) {\n"
             "  const double *P = ctx;\n  (void)P;\n"
-            "  const dual X = {x, 1.0, 0.0}, Y = {y, 0.0, 1.0};\n  (void)X;\n  (void)Y;\n", i);
+            "%s"
+            "  const dual X = {x, 1.0, 0.0}, Y = {y, 0.0, 1.0};\n  (void)X;\n  (void)Y;\n", i,
+            sc->nderived ? "  const double *D = height_D;\n  (void)D;\n" : "");
     for (int l = 0; l < h->nlet; l++) {
       gen_origin(out, h->let_loc[l], "  ");
       fprintf(out, "  const dual let_%d = ", l);
@@ -200,6 +205,8 @@ void gen_env_build(FILE *out, swArena *a, const swScene *sc) {
   swLowField f[GEN_MAX_FIELDS];
   if (any_terrain(sc) && sc->nparam)
     fprintf(out, "\n  for (int i = 0; i < %d; i++) height_P[i] = P[i];\n", sc->nparam);
+  if (any_terrain(sc) && sc->nderived)
+    fprintf(out, "  for (int i = 0; i < %d; i++) height_D[i] = D[i];\n", sc->nderived);
   for (int i = 0; i < sc->nground; i++) {
     const swSceneGround *g = &sc->ground[i];
     open_block(out, g->loc, "swGroundDesc", "ground", g->name);

@@ -790,6 +790,7 @@ void sema_scene_free(swScene *scene) {
   free(scene->act);
   free(scene->joint);
   free(scene->param);
+  free(scene->derived);
   free(scene->muscle);
   free(scene->passive);
   free(scene->ground);

@@ -51,6 +51,8 @@ typedef struct swValue {
   swLoc loc;
   /* VAL_POINT */
   int rod, node;
+  const char *node_c;         /* the node's C expression when a param moves the
+                                 point (ROD.at(param)), NULL when constant   */
   /* VAL_SIGNAL */
   struct swSignalVal *sig;
   /* VAL_REF, VAL_WORD, VAL_TRUTH ("true" or "false") */
@@ -148,6 +150,7 @@ typedef struct {
   int via_rod[SW_MUSCLE_MAX_VIA];  /* scene rod index carrying each, -1 space */
   int attach_rod[2];          /* scene rod index tied at from / to, -1 none */
   int attach_node[2];
+  const char *attach_node_c[2];      /* param-dependent nodes' C text, or NULL */
   swSignalVal *activation;    /* NULL: not activated (the runtime's default) */
   swLoc activation_loc;       /* the activate statement                    */
   const char *material;       /* its material's name (NULL: none), output   */
@@ -174,6 +177,7 @@ typedef struct {
   swLoc loc;
   swJointKind kind;
   int rod_a, node_a, rod_b, node_b;
+  const char *node_a_c, *node_b_c;   /* param-dependent nodes' C text, or NULL */
   swValue anchor, axis, stiffness, damping, rot_stiffness, rot_damping;
   int undamped;               /* damping = 0 written: no damping at all     */
   /* limits; VAL_ERROR: not given */
@@ -324,6 +328,17 @@ typedef struct {
   swLoc loc;
 } swOutSelect;
 
+/* A quantity derived from the params (D[k] in the generated C): a let's
+ * component or a rod's geometry that depends on a param, computed once when
+ * the simulator builds the scene, so that what is written in terms of it
+ * (a point on that rod, a rib laid from that point) reads D[k] rather than
+ * repeating its expression. */
+typedef struct {
+  const char *text;           /* C over P and earlier D                    */
+  const char *what;           /* "let p1.xa.x", "rod p1.rib_a: length"      */
+  swLoc loc;
+} swSceneDerived;
+
 typedef struct {
   swSceneRod *rod;       int nrod, caprod;
   swSceneMuscle *muscle; int nmuscle, capmuscle;
@@ -333,6 +348,7 @@ typedef struct {
   swSceneAction *act;    int nact, capact;
   swSceneJoint *joint;   int njoint, capjoint;
   swSceneParam *param;   int nparam, capparam;
+  swSceneDerived *derived; int nderived, capderived;
   swSceneGround *ground; int nground, capground;
   swSceneFluid *fluid;   int nfluid, capfluid;
   swSceneContact *contact; int ncontact, capcontact;

@@ -386,16 +386,19 @@ int sema_positive(swSema *S, const swValue *v, const char *what, const char *uni
   return 1;
 }
 
-/* A position: a point on a rod, or a length vector.  When rod and node are
- * given they receive the rod and node of a point on a rod, -1 and 0 else. */
+/* A position: a point on a rod, or a length vector.  When rod, node and
+ * node_c are given they receive the rod, the node and the node's C text (NULL
+ * unless a param moves it) of a point on a rod; -1, 0 and NULL else. */
 swValue sema_position_on(swSema *S, swScope *scope, const swAst *e, const char *what, int *rod,
-                         int *node) {
+                         int *node, const char **node_c) {
   if (rod) *rod = -1;
   if (node) *node = 0;
+  if (node_c) *node_c = NULL;
   swValue v = sema_eval(S, scope, e);
   if (v.kind == VAL_POINT) {
     if (rod) *rod = v.rod;
     if (node) *node = v.node;
+    if (node_c) *node_c = v.node_c;
     v.kind = VAL_VEC;
     return v;
   }
@@ -407,7 +410,7 @@ swValue sema_position_on(swSema *S, swScope *scope, const swAst *e, const char *
 }
 
 swValue sema_position(swSema *S, swScope *scope, const swAst *e, const char *what) {
-  return sema_position_on(S, scope, e, what, NULL, NULL);
+  return sema_position_on(S, scope, e, what, NULL, NULL, NULL);
 }
 
 /* The damping kind of a definition with fields `damping` (and, on rods,
@@ -426,6 +429,42 @@ swDampingKind sema_damping_kind(swSema *S, swScope *sc, const swFields *f, int *
   else if (w && !strcmp(w, "analytic")) kind = SW_DAMP_ANALYTIC;
   if (!damped) diag_warning(dm->loc, "'damping_model' has no effect without 'damping'");
   return kind;
+}
+
+/* Each component of v that depends on a param through more than a bare
+ * P[k] or D[k] becomes a derived quantity D[k] of the scene (swSceneDerived),
+ * so that expressions built on it stay short: a rib laid from a point that a
+ * param moves, a tendon from that rib's end and a joint at that tendon's
+ * start would otherwise each repeat the whole chain.  what names it in the
+ * generated C. */
+static void derive(swSema *S, swValue *v, const char *what, swLoc loc) {
+  if (!v->c || (v->kind != VAL_NUM && v->kind != VAL_VEC && v->kind != VAL_POINT)) return;
+  for (int i = 0; i < v->n; i++)   /* a reduction of the run: the objective's own */
+    if (v->c[i] && strstr(v->c[i], "R[")) return;
+  const char **c = ast_alloc(S->a, (size_t)v->n * sizeof *c);
+  for (int i = 0; i < v->n; i++) {
+    c[i] = v->c[i];
+    int len = 0, k;
+    if (!c[i] || ((sscanf(c[i], "P[%d]%n", &k, &len) == 1 ||
+                   sscanf(c[i], "D[%d]%n", &k, &len) == 1) && c[i][len] == '\0'))
+      continue;
+    swScene *scn = S->scene;
+    if (scn->nderived == scn->capderived) {
+      scn->capderived = scn->capderived ? 2 * scn->capderived : 16;
+      scn->derived = realloc(scn->derived, (size_t)scn->capderived * sizeof *scn->derived);
+      if (!scn->derived) abort();
+    }
+    char name[512], ref[32];
+    if (v->n > 1) snprintf(name, sizeof name, "%s.%c", what, "xyz"[i < 3 ? i : 0]);
+    else snprintf(name, sizeof name, "%s", what);
+    swSceneDerived *d = &scn->derived[scn->nderived];
+    d->text = c[i];
+    d->what = ast_strdup(S->a, name, strlen(name));
+    d->loc = loc;
+    snprintf(ref, sizeof ref, "D[%d]", scn->nderived++);
+    c[i] = ast_strdup(S->a, ref, strlen(ref));
+  }
+  v->c = c;
 }
 
 static void eval_rod(swSema *S, swSymbol *sym) {
@@ -477,6 +516,10 @@ static void eval_rod(swSema *S, swSymbol *sym) {
     ok = 0;
     r.start = val_error();
   } else r.start = sema_position(S, sc, s0, start ? "'start'" : "'from'");
+  char field[512];
+  const char *name = sym->full ? sym->full : sym->name;
+  snprintf(field, sizeof field, "rod %s: start", name);
+  derive(S, &r.start, field, sym->loc);
   if (to) {
     if (dir || len) {
       diag_error(to->loc, "give either 'to', or 'direction' and 'length', not both");
@@ -484,7 +527,12 @@ static void eval_rod(swSema *S, swSymbol *sym) {
     }
     swValue end = sema_position(S, sc, to, "'to'");
     swValue d = val_binop(S->a, '-', end, r.start, to->loc);
+    /* a param that moves the ends: the axis and its length once each */
+    snprintf(field, sizeof field, "rod %s: to - from", name);
+    derive(S, &d, field, sym->loc);
     r.length = val_norm(S->a, d, to->loc);
+    snprintf(field, sizeof field, "rod %s: length", name);
+    derive(S, &r.length, field, sym->loc);
     if (r.length.kind == VAL_NUM && !(r.length.v[0] > 0)) {
       diag_error(to->loc, "'to' is the same point as the start, so the rod has no length");
       ok = 0;
@@ -631,6 +679,11 @@ static void eval_rod(swSema *S, swSymbol *sym) {
     sym->index = -1;
     return;
   }
+  /* a rod's points (start, end, at(f)) are built on these three */
+  snprintf(field, sizeof field, "rod %s: direction", name);
+  derive(S, &r.direction, field, sym->loc);
+  snprintf(field, sizeof field, "rod %s: length", name);
+  derive(S, &r.length, field, sym->loc);
   swScene *scn = S->scene;
   if (scn->nrod == scn->caprod) {
     scn->caprod = scn->caprod ? 2 * scn->caprod : 8;
@@ -680,6 +733,9 @@ static void eval_symbol(swSema *S, swSymbol *sym) {
     }
     sym->value = v;
     if (S->nlets && sym->scope == S->global && sym->main_file) let_override(S, sym);
+    char what[512];
+    snprintf(what, sizeof what, "let %s", sym->full ? sym->full : sym->name);
+    derive(S, &sym->value, what, sym->loc);
     break;
   }
   case SYM_MATERIAL:
@@ -708,6 +764,16 @@ void sema_eval_symbol(swSema *S, swSymbol *sym) {
   S->reducing = reducing;
 }
 
+/* A point whose node must be known when compiling (a load's, a boundary
+ * condition's, a probe's): 0 with an error naming what when a param moves it. */
+int sema_point_fixed(const swValue *p, const char *what) {
+  if (p->kind != VAL_POINT || !p->node_c) return 1;
+  diag_error(p->loc, "%s must be known when the model is compiled, but it depends on param '%s' "
+             "(a param may move a joint's or a muscle's point, not this one)", what,
+             p->param ? p->param : "?");
+  return 0;
+}
+
 swValue sema_rod_length(swSema *S, swSymbol *rod, swLoc loc) {
   sema_eval_symbol(S, rod);
   if (rod->index < 0 || rod->state != 2) return val_error();
@@ -716,16 +782,30 @@ swValue sema_rod_length(swSema *S, swSymbol *rod, swLoc loc) {
   return v;
 }
 
-/* node: >= 0 a node, -1 the last node, -2 the node nearest to frac */
-swValue sema_rod_point(swSema *S, swSymbol *rod, double frac, int node, swLoc loc) {
+/* node: >= 0 a node, -1 the last node, -2 the node nearest to frac.  A
+ * fraction that depends on a param (ROD.at(param)) moves the point: its
+ * position is then an expression of the params, and so is its node, which
+ * the generated simulator computes when it builds the scene, with the same
+ * lround the default's node is taken with here. */
+swValue sema_rod_point(swSema *S, swSymbol *rod, swValue f, int node, swLoc loc) {
   rod->used = 1;
   sema_eval_symbol(S, rod);
   if (rod->index < 0 || rod->state != 2) return val_error();
   const swSceneRod *r = &S->scene->rod[rod->index];
   int n = r->nelem;
+  const char *node_c = NULL;
   if (node == -1) node = n;
-  if (node == -2) node = (int)lround(frac * n);
-  swValue f = val_num(S->a, frac, DIM_NONE, loc);
+  if (node == -2) {
+    node = (int)lround(f.v[0] * n);
+    if (f.c && f.c[0]) {
+      char buf[4200];
+      if (snprintf(buf, sizeof buf, "(int)lround(%s * %d)", f.c[0], n) >= (int)sizeof buf) {
+        diag_error(loc, "expression is too long to generate");
+        return val_error();
+      }
+      node_c = ast_strdup(S->a, buf, strlen(buf));
+    }
+  }
   swValue dir = r->direction;
   /* direction is normalised by the runtime: do the same here */
   swValue unit = val_binop(S->a, '/', dir, val_norm(S->a, dir, loc), loc);
@@ -735,6 +815,7 @@ swValue sema_rod_point(swSema *S, swSymbol *rod, double frac, int node, swLoc lo
   p.kind = VAL_POINT;
   p.rod = rod->index;
   p.node = node;
+  p.node_c = node_c;
   p.loc = loc;
   return p;
 }

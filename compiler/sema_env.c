@@ -555,6 +555,7 @@ void sema_probe(swSema *S, swScope *scope, const swAst *fl) {
                  "velocity(rods) or mean_velocity(rods, window = T)");
       return;
     }
+    if (!sema_point_fixed(&v, "the point a probe reads")) return;
     p.kind = SW_PROBE_NODE;
     p.rod = scn->rod[v.rod].id;
     p.rod_name = scn->rod[v.rod].name;

@@ -543,9 +543,23 @@ static swValue eval_round(swSema *S, swScope *scope, const swAst *e) {
   }
   swValue x = sema_expect(S, scope, ast_kid(args->kid[0], 0), 1, DIM_NONE,
                           "the argument of round()");
-  if (x.kind == VAL_ERROR || !sema_require_const(S, &x, "the argument of round()"))
+  if (x.kind == VAL_ERROR) return val_error();
+  if (!val_is_const(&x) && !x.param) {   /* a reduction of the run */
+    sema_require_const(S, &x, "the argument of round()");
     return val_error();
-  return val_num(S->a, round(x.v[0]), DIM_NONE, e->loc);
+  }
+  swValue r = val_num(S->a, round(x.v[0]), DIM_NONE, e->loc);
+  if (x.c && x.c[0]) {   /* a param's: rounded when the simulator builds the scene */
+    char buf[4200];
+    if (snprintf(buf, sizeof buf, "round(%s)", x.c[0]) >= (int)sizeof buf) {
+      diag_error(e->loc, "expression is too long to generate");
+      return val_error();
+    }
+    r.c = ast_alloc(S->a, sizeof *r.c);
+    r.c[0] = ast_strdup(S->a, buf, strlen(buf));
+    r.param = x.param;
+  }
+  return r;
 }
 
 static swValue eval_call(swSema *S, swScope *scope, const swAst *e) {
@@ -642,8 +656,10 @@ static swValue eval_member(swSema *S, swScope *scope, const swAst *e) {
   }
   if (b.kind == VAL_REF && b.ref->kind == SYM_ROD) {
     static const char *const members[] = {"start", "end", "length", "at"};
-    if (!strcmp(e->name, "start")) return sema_rod_point(S, b.ref, 0, 0, e->loc);
-    if (!strcmp(e->name, "end")) return sema_rod_point(S, b.ref, 1, -1, e->loc);
+    if (!strcmp(e->name, "start"))
+      return sema_rod_point(S, b.ref, val_num(S->a, 0, DIM_NONE, e->loc), 0, e->loc);
+    if (!strcmp(e->name, "end"))
+      return sema_rod_point(S, b.ref, val_num(S->a, 1, DIM_NONE, e->loc), -1, e->loc);
     if (!strcmp(e->name, "length")) return sema_rod_length(S, b.ref, e->loc);
     const char *near = diag_suggest(e->name, members, 4);
     if (!strcmp(e->name, "at"))
@@ -701,12 +717,19 @@ static swValue eval_method(swSema *S, swScope *scope, const swAst *e) {
   }
   swValue f = sema_expect(S, scope, ast_kid(args->kid[0], 0), 1, DIM_NONE,
                           "the fraction in at()");
-  if (f.kind == VAL_ERROR || !sema_require_const(S, &f, "the fraction in at()")) return val_error();
-  if (!(f.v[0] >= 0 && f.v[0] <= 1)) {
-    diag_error(f.loc, "the fraction in at() must be between 0 and 1, got %g", f.v[0]);
+  if (f.kind == VAL_ERROR) return val_error();
+  if (!val_is_const(&f) && !f.param) {   /* a reduction of the run */
+    sema_require_const(S, &f, "the fraction in at()");
     return val_error();
   }
-  return sema_rod_point(S, b.ref, f.v[0], -2, e->loc);
+  /* a param's fraction is checked here at its default; the simulator refuses
+     a node off the rod when it builds the scene */
+  if (!(f.v[0] >= 0 && f.v[0] <= 1)) {
+    diag_error(f.loc, "the fraction in at() must be between 0 and 1, got %g%s", f.v[0],
+               f.param ? " with the params at their defaults" : "");
+    return val_error();
+  }
+  return sema_rod_point(S, b.ref, f, -2, e->loc);
 }
 
 static swValue eval_vector(swSema *S, swScope *scope, const swAst *e) {

@@ -106,8 +106,10 @@ int sema_positive(swSema *S, const swValue *v, const char *what, const char *uni
  * 3-vector of lengths */
 swValue sema_position(swSema *S, swScope *scope, const swAst *e, const char *what);
 swValue sema_position_on(swSema *S, swScope *scope, const swAst *e, const char *what, int *rod,
-                         int *node);   /* also the rod and node of a point on a rod */
-swValue sema_rod_point(swSema *S, swSymbol *rod, double frac, int node, swLoc loc);
+                         int *node, const char **node_c);   /* also the rod and node of a
+                                                               point on a rod */
+swValue sema_rod_point(swSema *S, swSymbol *rod, swValue frac, int node, swLoc loc);
+int sema_point_fixed(const swValue *p, const char *what);
 swValue sema_rod_length(swSema *S, swSymbol *rod, swLoc loc);
 
 /* sema_stmt.c */

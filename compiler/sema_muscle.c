@@ -83,13 +83,14 @@ static int eval_via(swSema *S, swScope *sc, const swSymbol *sym, const swAst *e,
     }
     int rod = -1, node = 0;
     if (base != item[i]) {
-      swValue b = sema_position_on(S, sc, base, what, &rod, &node);
+      swValue b = sema_position_on(S, sc, base, what, &rod, &node, NULL);
       if (b.kind == VAL_ERROR) {
         ok = 0;
         continue;
       }
     }
-    swValue v = sema_position_on(S, sc, item[i], what, base != item[i] ? NULL : &rod, &node);
+    swValue v = sema_position_on(S, sc, item[i], what, base != item[i] ? NULL : &rod, &node,
+                                 NULL);
     if (v.kind == VAL_ERROR) {
       ok = 0;
       continue;
@@ -199,9 +200,11 @@ void sema_eval_muscle(swSema *S, swSymbol *sym) {
     ok = 0;
   }
   /* a point on a rod ties the filaments there; a position leaves that end free */
-  m.start = from ? sema_position_on(S, sc, from, "'from'", &m.attach_rod[0], &m.attach_node[0])
+  m.start = from ? sema_position_on(S, sc, from, "'from'", &m.attach_rod[0], &m.attach_node[0],
+                                    &m.attach_node_c[0])
                  : val_error();
-  m.end = to ? sema_position_on(S, sc, to, "'to'", &m.attach_rod[1], &m.attach_node[1])
+  m.end = to ? sema_position_on(S, sc, to, "'to'", &m.attach_rod[1], &m.attach_node[1],
+                                &m.attach_node_c[1])
              : val_error();
   if (from && m.start.kind == VAL_ERROR) ok = 0;
   if (to && m.end.kind == VAL_ERROR) ok = 0;

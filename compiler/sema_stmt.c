@@ -288,6 +288,7 @@ void sema_joint(swSema *S, swScope *scope, const swAst *it) {
   if (b.kind == VAL_POINT) {
     j.rod_b = b.rod;
     j.node_b = b.node;
+    j.node_b_c = b.node_c;
     j.anchor = sema_vec3(S, 0, 0, 0, DIM_LENGTH, it->loc);
   } else if (b.kind == VAL_VEC || b.kind == VAL_NUM) {
     j.rod_b = -1;
@@ -302,6 +303,7 @@ void sema_joint(swSema *S, swScope *scope, const swAst *it) {
   if (a.kind == VAL_POINT) {
     j.rod_a = a.rod;
     j.node_a = a.node;
+    j.node_a_c = a.node_c;
     if (b.kind == VAL_POINT && a.rod == b.rod) {
       diag_error(it->loc, "a joint must connect two different rods");
       ok = 0;
@@ -477,6 +479,9 @@ void sema_action(swSema *S, swScope *scope, const swAst *it) {
     diag_error(p.loc, "'%s' applies to a point on a rod (rod.start, rod.end, rod.at(f))", word);
     return;
   }
+  char what[64];
+  snprintf(what, sizeof what, "the point of '%s'", word);
+  if (!sema_point_fixed(&p, what)) return;
   swSceneAction act;
   memset(&act, 0, sizeof act);
   act.loc = it->loc;

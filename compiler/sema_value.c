@@ -234,7 +234,19 @@ swValue val_binop(swArena *a, int op, swValue x, swValue y, swLoc loc) {
     if (shift_y != NOT_POW10) r.v[i] = decimal_shift(p, op == '*' ? shift_y : -shift_y);
     else if (shift_x != NOT_POW10) r.v[i] = decimal_shift(q, shift_x);
     int ix = x.n > 1 ? i : 0, iy = y.n > 1 ? i : 0;
-    if ((x.c && x.c[ix]) || (y.c && y.c[iy])) {
+    const char *cx = x.c ? x.c[ix] : NULL, *cy = y.c ? y.c[iy] : NULL;
+    /* identities keep the C short (x + 0, x - 0, x * 1, x / 1: x; x * 0: 0),
+       exact for the finite values a model's geometry has */
+    if (cx && !cy && (((op == '+' || op == '-') && q == 0) || ((op == '*' || op == '/') && q == 1))) {
+      set_c(a, &r, i, cx);
+      continue;
+    }
+    if (cy && !cx && ((op == '+' && p == 0) || (op == '*' && p == 1))) {
+      set_c(a, &r, i, cy);
+      continue;
+    }
+    if (op == '*' && ((cx && !cy && q == 0) || (cy && !cx && p == 0))) continue;
+    if (cx || cy) {
       char buf[4096];
       int len = snprintf(buf, sizeof buf, "(%s %c %s)", val_c(a, &x, ix), op, val_c(a, &y, iy));
       if (len >= (int)sizeof buf) {
