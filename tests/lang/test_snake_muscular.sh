@@ -3,8 +3,8 @@
 # muscular_snake.sinew, examples/snake_muscular.sinew and the study scenes
 # examples/study/*.sinew.
 #
-#   every scene compiles (the #STUDY lines are comments until the compiler
-#   takes ranges and objectives);
+#   every scene compiles, with the placement, span, amplitude and phase of
+#   each pair as params with ranges and the objective on;
 #   the four-pair snake of PyElastica's example runs 1 s of its 5 s and
 #   shows physics with a reference of its own:
 #     - the two muscles of each pair contract in antiphase: a pair bends the
@@ -27,7 +27,19 @@
 #   zero activation): its ribs' middles start on backbone nodes 33 and 68,
 #   at 0.33 and 0.68 m (the nodes i L / n of a straight rod, computed here),
 #   its joints pull with no force at t = 0, and it does not move either
-#   (2e-9 m as above).
+#   (2e-9 m as above);
+#   a pair moved by its params (--set pos1=0.2 --set span1=0.5: the
+#   simulator picks the nodes, lays the ribs and tendons there) runs bit
+#   for bit as the scene compiled with pos1 and span1 lets set to the same
+#   values (sinewc --let), 0.3 s;
+#   a short study of the one-pair snake (the scene with a 0.6 s run and the
+#   objective over 0.2-0.6 s; CMA-ES, 16 evaluations, under mpirun -np 2
+#   where it is installed): every evaluation succeeds, the designs move the
+#   pair (at least 10 different pairs of attachment nodes), the file is
+#   complete, and the best design run alone with --set (at the model's
+#   frame interval, which sets the fused chunks of steps a study's
+#   evaluation runs too) gives the objective the study recorded, to the
+#   last bit.
 # docs/validation.md, "Muscular snake", gives the figures (issue 13: the
 # zero-amplitude drift came from ribs laid off their joints' nodes, and the
 # backward motion from phases that made a wave from tail to head).
@@ -128,4 +140,62 @@ diag <"$TMP/py_ribs"
 drift rest1 "one pair"
 ok $? "the one-pair snake with zero amplitude does not move (drift < 2e-9 m)"
 diag <"$TMP/py_rest1"
+
+# ---- placement and span as run-time params ----
+sed 's/^param pos1 = \([0-9.]*\) in .*/let pos1 = \1;/; s/^param span1 = \([0-9.]*\) in .*/let span1 = \1;/' \
+  examples/study/snake_pairs1.sinew > "$TMP/lets1.sinew"
+grep -q '^let pos1 = ' "$TMP/lets1.sinew" && grep -q '^let span1 = ' "$TMP/lets1.sinew"
+ok $? "the let version of the one-pair scene is made"
+SINEW_PATH=$ROOT/models "$SINEWC" "$TMP/lets1.sinew" --let pos1=0.2 --let span1=0.5 -o "$TMP/lets1" \
+  2>"$TMP/err_lets1"
+"$TMP/lets1" --duration 0.3s --every 10ms --out "$TMP/lets1.h5" --quiet >"$TMP/lets1.out" 2>&1
+"$TMP/snake_pairs1" --duration 0.3s --every 10ms --out "$TMP/set1.h5" --quiet --set pos1=0.2 \
+  --set span1=0.5 --compare "$TMP/lets1.h5" --rtol 0 >"$TMP/cmp1" 2>&1
+ok $? "--set pos1=0.2 --set span1=0.5 runs bit for bit as the scene compiled with those lets"
+tail -1 "$TMP/cmp1" | diag
+
+# ---- a short study that moves the pair ----
+sed 's/duration = 5 s;/duration = 0.6 s;/; s|^maximize .*|maximize (at(x(com), 0.6 s) - at(x(com), 0.2 s)) / 0.4 s;|' \
+  examples/study/snake_pairs1.sinew > "$TMP/short1.sinew"
+SINEW_PATH=$ROOT/models "$SINEWC" "$TMP/short1.sinew" -o "$TMP/short1" 2>"$TMP/err_short1"
+ok $? "the short one-pair study scene compiles"
+diag <"$TMP/err_short1"
+export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
+RUN=""
+command -v mpirun >/dev/null && RUN="mpirun -np 2"
+(cd "$TMP" && $RUN ./short1 --optimize --budget 16 --seed 3 --study short1_study.h5 --quiet) \
+  >"$TMP/opt1" 2>&1
+ok $? "CMA-ES over the one pair's placement, span, amplitude and phase runs (${RUN:-one worker})"
+diag <"$TMP/opt1"
+/usr/bin/python3 -c "
+import sys, h5py, numpy as np
+f = h5py.File('$TMP/short1_study.h5', 'r')
+names = [n.decode() if isinstance(n, bytes) else n for n in f['evaluations/params'].attrs['names']]
+P = f['evaluations/params'][()]
+st = f['evaluations/status'][()]
+pos, span = P[:, names.index('pos1')], P[:, names.index('span1')]
+a = np.round(pos * (1 - span) * 100); b = np.round((pos * (1 - span) + span) * 100)
+nodes = set(zip(a.tolist(), b.tolist()))
+ib = int(f['best'].attrs['index'])
+print('status %s; %d evaluations, %d ok; %d different attachment pairs; best %d: %.4g m/s at %s'
+      % (f.attrs['status'], len(st), (st == 1).sum(), len(nodes), ib, f['best'].attrs['score'],
+         ', '.join('%s=%.6g' % (n, v) for n, v in zip(names, P[ib]))))
+units = [u.decode() if isinstance(u, bytes) else u for u in f['evaluations/params'].attrs['units']]
+with open('$TMP/best_set', 'w') as o:   # each value in the unit the study file gives it in
+    o.write(' '.join('--set %s=%.17g%s' % (n, v, u) for n, v, u in zip(names, P[ib], units)))
+print('objective %.17g' % f['evaluations/objective'][ib], file=open('$TMP/best_obj', 'w'))
+sys.exit(0 if str(f.attrs['status']).startswith('complete') and len(st) == 16 and (st == 1).all()
+         and len(nodes) >= 10 else 1)" >"$TMP/py_opt1" 2>&1
+ok $? "every evaluation succeeds, the designs move the pair, the study is complete"
+diag <"$TMP/py_opt1"
+# shellcheck disable=SC2046
+"$TMP/short1" --quiet --out "$TMP/best1.h5" $(cat "$TMP/best_set") >"$TMP/best1.out" 2>&1
+/usr/bin/python3 -c "
+import sys, h5py
+v = float(h5py.File('$TMP/best1.h5', 'r').attrs['objective'])
+ref = float(open('$TMP/best_obj').read().split()[1])
+print('best design run alone: %.17g m/s; the study recorded %.17g m/s' % (v, ref))
+sys.exit(0 if v == ref else 1)" >"$TMP/py_best1" 2>&1
+ok $? "the best design run alone with --set gives the objective the study recorded"
+diag <"$TMP/py_best1"
 done_testing

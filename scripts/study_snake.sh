@@ -1,0 +1,65 @@
+#!/bin/sh
+# study_snake.sh — the muscular snake's bottom-up study (Zhang et al. 2019,
+# Supplementary Note 4, Fig. 2): for 1 to 5 muscle-tendon pairs, and for the
+# continuum snake the muscular ones are measured against, CMA-ES looks for
+# the design that crawls fastest (examples/study/*.sinew: the params with
+# ranges and the objective are in the scenes).
+#
+#   scripts/study_snake.sh [--budget N] [--np N] [--out DIR] [ARCH ...]
+#
+# ARCH: continuum, 1, 2, 3, 4, 5 (default: all six).  Each optimisation runs
+# under `mpirun -np N` (default 2: every core of this machine) with seed 1
+# and writes DIR/ARCH_study.h5 (default DIR: study/) as its results arrive.
+# A study file that exists is continued (--resume), so an interrupted study
+# picks up where it stopped, and a complete one is left as it is (remove it
+# to run it again, with a larger --budget say).  DIR/walltime.txt gets a line per run:
+# ARCH, ranks, budget, wall seconds, evaluations.  Then
+# scripts/study_snake_report.py writes the table and plots of
+# docs/validation.md ("The muscular snake's study").
+set -e
+ROOT=$(cd "$(dirname "$0")/.." && pwd)
+BUDGET=300
+NP=2
+OUT=study
+while [ $# -gt 0 ]; do
+  case $1 in
+  --budget) BUDGET=$2; shift 2 ;;
+  --np) NP=$2; shift 2 ;;
+  --out) OUT=$2; shift 2 ;;
+  --*) echo "study_snake: unknown option $1" >&2; exit 2 ;;
+  *) break ;;
+  esac
+done
+ARCHS=${*:-continuum 1 2 3 4 5}
+export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMPI_MCA_rmaps_base_oversubscribe=1
+command -v mpirun >/dev/null || { echo "study_snake: mpirun is not installed (scripts/deps.sh mpi)" >&2; exit 1; }
+mkdir -p "$OUT"
+for a in $ARCHS; do
+  case $a in
+  continuum) scene=snake_continuum_opt ;;
+  [1-5]) scene=snake_pairs$a ;;
+  *) echo "study_snake: unknown architecture '$a' (continuum, 1 to 5)" >&2; exit 2 ;;
+  esac
+  sim=$OUT/$scene
+  SINEW_PATH=$ROOT/models "$ROOT/bin/sinewc" "$ROOT/examples/study/$scene.sinew" -o "$sim"
+  file=$OUT/${a}_study.h5
+  state=$( [ -e "$file" ] && /usr/bin/python3 -c "import h5py,sys; print(h5py.File(sys.argv[1])['/'].attrs['status'])" "$file" 2>/dev/null || echo none)
+  t0=$(date +%s.%N)
+  case $state in
+  none)
+    echo "study_snake: $scene, CMA-ES, budget $BUDGET, $NP ranks -> $file"
+    mpirun -np "$NP" "$sim" --optimize --budget "$BUDGET" --seed 1 --study "$file" --quiet || true ;;
+  complete*)
+    echo "study_snake: $file is complete; left as it is" ;;
+  *)
+    echo "study_snake: continuing $file ($state)"
+    mpirun -np "$NP" "$sim" --resume "$file" --quiet || true ;;
+  esac
+  t1=$(date +%s.%N)
+  case $state in complete*) ;; *)
+    n=$(/usr/bin/python3 -c "import h5py,sys; print(len(h5py.File(sys.argv[1])['evaluations/score']))" "$file")
+    awk -v a="$a" -v np="$NP" -v b="$BUDGET" -v t0="$t0" -v t1="$t1" -v n="$n" \
+      'BEGIN {printf "%s %d %d %.1f %d\n", a, np, b, t1 - t0, n}' >> "$OUT/walltime.txt" ;;
+  esac
+done
+/usr/bin/python3 "$ROOT/scripts/study_snake_report.py" "$OUT"
