@@ -219,6 +219,19 @@ demo: deps
 plots: deps
 	@sh scripts/plots.sh
 
+# `make study-snake`: the muscular snake's bottom-up study (Zhang et al. 2019,
+# Suppl. Note 4, Fig. 2; issue 13): CMA-ES over 1 to 5 muscle-tendon pairs
+# and over the continuum snake, 300 evaluations of 5 s each, under
+# `mpirun -np 2`; study files in study/ (an interrupted study continues
+# where it stopped), the table in study/report.md and the plots
+# docs/img/study_snake_*.png (~1.5 h on this machine's 2 cores; never part
+# of `make test`, whose test_snake_muscular runs a short study).
+# STUDY_ARGS="--budget 1000 --np 8" for a larger one, or a subset: "4 5".
+.PHONY: study-snake
+study-snake: deps
+	@$(MAKE) --no-print-directory all
+	@sh scripts/study_snake.sh --out study $(STUDY_ARGS)
+
 # `make tradeoff`: speed against accuracy, measured (docs/tradeoff.md): runs
 # scripts/sinew-study over the cantilever, the elbow (five compile-time
 # variants, 0.5 s against Verlet at 50 ns) and the snake, and rewrites the

@@ -32,7 +32,7 @@ while [ $# -gt 0 ]; do
 done
 ARCHS=${*:-continuum 1 2 3 4 5}
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMPI_MCA_rmaps_base_oversubscribe=1
-command -v mpirun >/dev/null || { echo "study_snake: mpirun is not installed (scripts/deps.sh mpi)" >&2; exit 1; }
+command -v mpirun >/dev/null || { echo "study_snake: mpirun is not installed (make deps installs openmpi-bin)" >&2; exit 1; }
 mkdir -p "$OUT"
 for a in $ARCHS; do
   case $a in
