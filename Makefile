@@ -176,7 +176,7 @@ bench: deps
 	@sh bench/bench_stiff.sh        # imex on the elbow and the bone chain (~5 min)
 	@sh bench/bench_implicit_snake.sh # the hardened snakes, explicit vs implicit rods (~4 min)
 	@sh bench/bench_rigid_groups.sh # the implicit rigid joints, before issue 13's groups and now (~5 min)
-	@sh bench/bench_study.sh        # a study's evaluations per second on 1, 2 and 4 MPI ranks (~1 min)
+	@sh bench/bench_study.sh        # a study's evaluations per second on 1, 2 and 4 MPI ranks, and the muscular snake's on 1 and 2 (~5 min)
 
 # `make bench-sundials`: SUNDIALS's ARKODE (IMEX ARKStep, MRIStep) against
 # the imex kick on a 1-D model of a biceps filament between its tendons
