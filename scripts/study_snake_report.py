@@ -44,6 +44,8 @@ def designs(f):
     names = [n.decode() if isinstance(n, bytes) else str(n)
              for n in f["evaluations/params"].attrs["names"]]
     P = f["evaluations/params"][()]
+    units = [u.decode() if isinstance(u, bytes) else str(u)
+             for u in f["evaluations/params"].attrs["units"]]
     score = f["evaluations/score"][()]
     status = f["evaluations/status"][()]
     k = 1
@@ -51,7 +53,8 @@ def designs(f):
     while "pos%d" % k in names:
         i = [names.index(s % k) for s in ("pos%d", "span%d", "amp%d", "phase%d")]
         a, b = attachments(P[:, i[0]], P[:, i[1]])
-        pairs.append(np.stack([a, b, P[:, i[2]], P[:, i[3]]], axis=1))
+        phase = P[:, i[3]] * (180 / np.pi if units[i[3]] == "rad" else 1.0)
+        pairs.append(np.stack([a, b, P[:, i[2]], phase], axis=1))
         k += 1
     return score, status, (np.stack(pairs, axis=1) if pairs else None)
 
@@ -93,19 +96,22 @@ def main():
             cont = float(f["best"].attrs["score"])
             sc = f["evaluations/score"][()]
             st = f["evaluations/status"][()]
-            best["continuum"] = (np.maximum.accumulate(np.where(np.isfinite(sc), sc, -np.inf)), None)
-            rows.append(("continuum", len(sc), int((st > 1).sum()), cont, None, None, None))
+            sc, st = sc[st != 0], st[st != 0]
+            best["continuum"] = (np.maximum.accumulate(np.where(st == 1, sc, -np.inf)), None)
+            rows.append(("continuum", len(sc), int((st != 1).sum()), cont, None, None, None))
     for a in ARCHS:
         path = os.path.join(d, "%s_study.h5" % a)
         if not os.path.exists(path):
             continue
         with h5py.File(path) as f:
             score, status, pairs = designs(f)
-            ib = int(f["best"].attrs["index"])
-        ok = np.isfinite(score)
+        done = status != 0                     # not pending (an interrupted study)
+        score, status, pairs = score[done], status[done], pairs[done]
+        ok = status == 1
         ov = overlapping(pairs) if pairs.shape[1] > 1 else np.zeros(len(score), bool)
         b_ov = score[ok & ov].max() if (ok & ov).any() else np.nan
         b_no = score[ok & ~ov].max() if (ok & ~ov).any() else np.nan
+        ib = int(np.argmax(np.where(ok, score, -np.inf)))   # the study's /best when complete
         best[a] = (np.maximum.accumulate(np.where(ok, score, -np.inf)), pairs[ib])
         rows.append((a, len(score), int((~ok).sum()), score[ib], bool(ov[ib]), b_ov, b_no))
     if not rows:

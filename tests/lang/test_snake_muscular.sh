@@ -33,8 +33,9 @@
 #   for bit as the scene compiled with pos1 and span1 lets set to the same
 #   values (sinewc --let), 0.3 s;
 #   a short study of the one-pair snake (the scene with a 0.6 s run and the
-#   objective over 0.2-0.6 s; CMA-ES, 16 evaluations, under mpirun -np 2
-#   where it is installed): every evaluation succeeds, the designs move the
+#   objective over 0.2-0.6 s, the lift penalty over 0-0.6 s; CMA-ES, 16
+#   evaluations, under mpirun -np 2 where it is installed): every
+#   evaluation succeeds, the designs move the
 #   pair (at least 10 different pairs of attachment nodes), the file is
 #   complete, and the best design run alone with --set (at the model's
 #   frame interval, which sets the fused chunks of steps a study's
@@ -155,7 +156,7 @@ ok $? "--set pos1=0.2 --set span1=0.5 runs bit for bit as the scene compiled wit
 tail -1 "$TMP/cmp1" | diag
 
 # ---- a short study that moves the pair ----
-sed 's/duration = 5 s;/duration = 0.6 s;/; s|^maximize .*|maximize (at(x(com), 0.6 s) - at(x(com), 0.2 s)) / 0.4 s;|' \
+sed 's/duration = 5 s;/duration = 0.6 s;/; s|^maximize .*|maximize (at(x(com), 0.6 s) - at(x(com), 0.2 s)) / 0.4 s;|; s|0 s, 5 s)|0 s, 0.6 s)|' \
   examples/study/snake_pairs1.sinew > "$TMP/short1.sinew"
 SINEW_PATH=$ROOT/models "$SINEWC" "$TMP/short1.sinew" -o "$TMP/short1" 2>"$TMP/err_short1"
 ok $? "the short one-pair study scene compiles"
