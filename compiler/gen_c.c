@@ -110,7 +110,6 @@ static const char *rod_kind_word(swRodKind k) {
   return w[k];
 }
 
-/* the rod's name as a comment after its index */
 /* A node a joint or a muscle's end holds: the number, or the expression of
  * the params that moves it (ROD.at(param)), with its default's node beside. */
 static void gen_node(FILE *out, int node, const char *node_c) {
@@ -118,6 +117,7 @@ static void gen_node(FILE *out, int node, const char *node_c) {
   else fprintf(out, "%d;", node);
 }
 
+/* the rod's name as a comment after its index */
 static void rod_comment(FILE *out, const swScene *sc, int rod) {
   fputs("   /* ", out);
   gen_c_comment(out, sc->rod[rod].name, strlen(sc->rod[rod].name));

@@ -455,8 +455,9 @@ static void derive(swSema *S, swValue *v, const char *what, swLoc loc) {
       if (!scn->derived) abort();
     }
     char name[512], ref[32];
-    if (v->n > 1) snprintf(name, sizeof name, "%s.%c", what, "xyz"[i < 3 ? i : 0]);
-    else snprintf(name, sizeof name, "%s", what);
+    if (v->n == 1) snprintf(name, sizeof name, "%s", what);
+    else if (v->n <= 3) snprintf(name, sizeof name, "%s.%c", what, "xyz"[i]);
+    else snprintf(name, sizeof name, "%s[%d]", what, i);
     swSceneDerived *d = &scn->derived[scn->nderived];
     d->text = c[i];
     d->what = ast_strdup(S->a, name, strlen(name));
