@@ -17,9 +17,16 @@ their attachment intervals share more than one node.  The reference's
 claim that non-overlapping arrangements are 25-60% slower than overlapping
 ones (Suppl. Note 4) is checked over every evaluated design: the best
 speed among designs whose pairs overlap against the best among those whose
-pairs do not.  Writes DIR/report.md and the plots docs/img/study_snake_*.png.
+pairs do not.  Each architecture's best design is run again from its
+simulator in DIR (as scripts/study_snake.sh left it), at the study's dt and
+at half of it, with output: the first must give the objective the study
+recorded, bit for bit; the second says how much of the speed is the step's;
+and the first's frames give the body's largest roll (the ribs' tilt about
+the body's axis) and the largest lift of its centre of mass.  Writes
+DIR/report.md and the plots docs/img/study_snake_*.png.
 """
 import os
+import subprocess
 import sys
 
 import h5py
@@ -71,6 +78,38 @@ def overlapping(pairs):
     return out
 
 
+def rerun(d, a, scene, f, dt=None):
+    """The best design of study file f run alone: its output file (made once)."""
+    out = os.path.join(d, "best_%s%s.h5" % (a, "_" + dt if dt else ""))
+    if not os.path.exists(out):
+        names = [n.decode() if isinstance(n, bytes) else str(n) for n in f["design/name"][()]]
+        units = [u.decode() if isinstance(u, bytes) else str(u)
+                 for u in f["evaluations/params"].attrs["units"]]
+        allnames = [n.decode() if isinstance(n, bytes) else str(n)
+                    for n in f["evaluations/params"].attrs["names"]]
+        best = f["best/params"][()]
+        args = [os.path.join(d, scene), "--quiet", "--out", out]
+        for n, v in zip(allnames, best):
+            if n in names:
+                args += ["--set", "%s=%.17g %s" % (n, v, units[allnames.index(n)])]
+        if dt:
+            args += ["--dt", dt]
+        subprocess.run(args, check=False, stdout=subprocess.DEVNULL)
+    return h5py.File(out, "r") if os.path.exists(out) else None
+
+
+def planarity(run):
+    """Largest rib tilt about the body axis (deg) and lift of the centre of mass (mm)."""
+    z = run["probes/com"][:, 2]
+    ribs = [k for k in run["rods"] if ".rib_" in k]
+    roll = 0.0
+    for r in ribs:
+        x = run["rods/%s/position" % r][()]
+        tip = x[:, -1] - x[:, 0]
+        roll = max(roll, np.degrees(np.arcsin(np.abs(tip[:, 2]) / np.linalg.norm(tip, axis=1))).max())
+    return roll, 1e3 * (z.max() - z[0])
+
+
 def wall_times(d):
     t = {}
     p = os.path.join(d, "walltime.txt")
@@ -79,6 +118,17 @@ def wall_times(d):
             a, np_, budget, secs, n = line.split()
             t.setdefault(a, []).append((int(np_), float(secs), int(n)))
     return t
+
+
+def check_best(d, a, scene, f, row):
+    """The best design run again: at the study's dt (the same objective, bit
+    for bit) and at half of it, and how planar its gait is."""
+    ib = int(f["best"].attrs["index"])
+    r20 = rerun(d, a, scene, f)
+    r10 = rerun(d, a, scene, f, "10us")
+    row["same"] = r20 is not None and float(r20.attrs["objective"]) == float(f["evaluations/objective"][ib])
+    row["obj10"] = float(r10.attrs["objective"]) if r10 is not None else np.nan
+    row["roll"], row["lift"] = planarity(r20) if r20 is not None else (np.nan, np.nan)
 
 
 def main():
@@ -90,52 +140,62 @@ def main():
     walls = wall_times(d)
     rows, best = [], {}
     cont = None
-    path = os.path.join(d, "continuum_study.h5")
-    if os.path.exists(path):
-        with h5py.File(path) as f:
-            cont = float(f["best"].attrs["score"])
-            sc = f["evaluations/score"][()]
-            st = f["evaluations/status"][()]
-            sc, st = sc[st != 0], st[st != 0]
-            best["continuum"] = (np.maximum.accumulate(np.where(st == 1, sc, -np.inf)), None)
-            rows.append(("continuum", len(sc), int((st != 1).sum()), cont, None, None, None))
-    for a in ARCHS:
+    for a in ["continuum"] + ARCHS:
         path = os.path.join(d, "%s_study.h5" % a)
         if not os.path.exists(path):
             continue
+        scene = "snake_continuum_opt" if a == "continuum" else "snake_pairs" + a
         with h5py.File(path) as f:
             score, status, pairs = designs(f)
-        done = status != 0                     # not pending (an interrupted study)
-        score, status, pairs = score[done], status[done], pairs[done]
-        ok = status == 1
-        ov = overlapping(pairs) if pairs.shape[1] > 1 else np.zeros(len(score), bool)
-        b_ov = score[ok & ov].max() if (ok & ov).any() else np.nan
-        b_no = score[ok & ~ov].max() if (ok & ~ov).any() else np.nan
-        ib = int(np.argmax(np.where(ok, score, -np.inf)))   # the study's /best when complete
-        best[a] = (np.maximum.accumulate(np.where(ok, score, -np.inf)), pairs[ib])
-        rows.append((a, len(score), int((~ok).sum()), score[ib], bool(ov[ib]), b_ov, b_no))
+            objective = f["evaluations/objective"][()]
+            penalty = f["evaluations/penalty"][()]
+            done = status != 0                     # not pending (an interrupted study)
+            score, status, objective, penalty = score[done], status[done], objective[done], penalty[done]
+            ok = status == 1
+            ib = int(np.argmax(np.where(ok, score, -np.inf)))   # the study's /best when complete
+            row = {"a": a, "n": len(score), "fail": int((~ok).sum()), "obj": objective[ib],
+                   "pen": penalty[ib], "score": score[ib], "ov": None}
+            if str(f.attrs["status"]).startswith("complete"):
+                check_best(d, a, scene, f, row)
+        if pairs is not None:
+            pairs = pairs[done]
+            ov = overlapping(pairs) if pairs.shape[1] > 1 else np.zeros(len(score), bool)
+            row["ov"] = bool(ov[ib])
+            row["b_ov"] = score[ok & ov].max() if (ok & ov).any() else np.nan
+            row["b_no"] = score[ok & ~ov].max() if (ok & ~ov).any() else np.nan
+            best[a] = (np.maximum.accumulate(np.where(ok, score, -np.inf)), pairs[ib])
+        else:
+            cont = row["obj"]
+            best[a] = (np.maximum.accumulate(np.where(ok, score, -np.inf)), None)
+        rows.append(row)
     if not rows:
         sys.exit("study_snake_report: no study files in %s" % d)
 
     # ---- the table ----
-    out = ["| snake | evaluations | failed | wall time (ranks) | best speed | of the continuum's "
-           "| best design overlaps | best overlapping / non-overlapping | non-overlapping slower by |",
-           "|---|--:|--:|--:|--:|--:|---|--:|--:|"]
-    for a, n, nfail, s, ov, b_ov, b_no in rows:
+    out = ["| snake | evaluations (failed) | wall time (ranks) | best speed | of the continuum's "
+           "| rerun = study | at 10 us | largest roll, lift | best overlaps | best overlapping / "
+           "non-overlapping | non-overlapping slower by |",
+           "|---|--:|--:|--:|--:|---|--:|--:|---|--:|--:|"]
+    for r in rows:
+        a = r["a"]
         wt = walls.get(a)
         wtxt = " + ".join("%.0f s (%d)" % (w[1], w[0]) for w in wt) if wt else "—"
-        share = "%.0f%%" % (100 * s / cont) if cont and a != "continuum" else "—"
+        share = "%.0f%%" % (100 * r["obj"] / cont) if cont and a != "continuum" else "—"
         name = "continuum (torque wave)" if a == "continuum" else "%s pair%s" % (a, "" if a == "1" else "s")
-        if ov is None:
-            out.append("| %s | %d | %d | %s | %.1f mm/s | %s | — | — | — |" % (name, n, nfail, wtxt, 1e3 * s, share))
-            continue
-        if a == "1":
-            cmp, slower = "—", "—"
+        speed = "%.1f mm/s" % (1e3 * r["obj"]) + (" (penalty %.1f)" % (1e3 * r["pen"]) if r["pen"] > 0 else "")
+        same = ("yes" if r["same"] else "no") if "same" in r else "—"
+        at10 = ("%.1f mm/s (%+.1f%%)" % (1e3 * r["obj10"], 100 * (r["obj10"] / r["obj"] - 1))
+                if "obj10" in r else "—")
+        plan = "%.1f deg, %.1f mm" % (r["roll"], r["lift"]) if "roll" in r else "—"
+        if r["ov"] is None or a == "1":
+            ovtxt, cmp, slower = ("—" if r["ov"] is None else "no"), "—", "—"
         else:
-            cmp = "%.1f / %.1f mm/s" % (1e3 * b_ov, 1e3 * b_no)
-            slower = "%.0f%%" % (100 * (1 - b_no / b_ov)) if b_ov > 0 and np.isfinite(b_no) else "—"
-        out.append("| %s | %d | %d | %s | %.1f mm/s | %s | %s | %s | %s |" %
-                   (name, n, nfail, wtxt, 1e3 * s, share, "yes" if ov else "no", cmp, slower))
+            ovtxt = "yes" if r["ov"] else "no"
+            cmp = "%.1f / %.1f mm/s" % (1e3 * r["b_ov"], 1e3 * r["b_no"])
+            slower = ("%.0f%%" % (100 * (1 - r["b_no"] / r["b_ov"]))
+                      if r["b_ov"] > 0 and np.isfinite(r["b_no"]) else "—")
+        out.append("| %s | %d (%d) | %s | %s | %s | %s | %s | %s | %s | %s | %s |" %
+                   (name, r["n"], r["fail"], wtxt, speed, share, same, at10, plan, ovtxt, cmp, slower))
     out.append("")
     out.append("Best designs (pair: attachments at backbone nodes a-b of %d, peak force, phase):" % N_BODY)
     out.append("")
@@ -151,7 +211,8 @@ def main():
     # ---- speed against the number of pairs, and the optimisations' paths ----
     fig, ax = plt.subplots(1, 2, figsize=(11, 4))
     ks = [int(a) for a in ARCHS if a in best]
-    ax[0].plot(ks, [1e3 * r[3] for r in rows if r[0] != "continuum"], "o-", label="muscular snake, best found")
+    ax[0].plot(ks, [1e3 * r["obj"] for r in rows if r["a"] != "continuum"], "o-",
+               label="muscular snake, best found")
     if cont:
         ax[0].axhline(1e3 * cont, color="k", ls="--", label="continuum snake, best found")
     ax[0].set_xlabel("muscle-tendon pairs")
@@ -164,7 +225,7 @@ def main():
         ax[1].plot(np.arange(1, len(y) + 1), np.where(np.isfinite(y), y, np.nan),
                    label=a if a == "continuum" else "%s pair%s" % (a, "" if a == "1" else "s"))
     ax[1].set_xlabel("evaluation")
-    ax[1].set_ylabel("best speed so far (mm/s)")
+    ax[1].set_ylabel("best score so far: speed - penalty (mm/s)")
     ax[1].legend()
     ax[1].set_title("CMA-ES, seed 1")
     fig.tight_layout()
