@@ -156,6 +156,7 @@ static void emit_rod(FILE *out, swArena *a, const swSceneRod *r) {
   fprintf(out, "    rod.damping = %s;\n", damp[r->damping]);
   if (r->rigid) fputs("    rod.rigid = 1;\n", out);
   if (r->implicit) fputs("    rod.implicit = 1;\n", out);
+  if (r->weightless) fputs("    rod.weightless = 1;   /* gravity = false */\n", out);
   if (r->variational) fputs("    rod.law = SW_LAW_VARIATIONAL;\n", out);
   emit_description(out, "rod", rod_kind_word(r->kind), r->material, r->loc);
   gen_assign_fields(out, a, "rod", f, gen_rod_fields(r, f));
@@ -179,6 +180,7 @@ static void emit_muscle(FILE *out, swArena *a, const swScene *sc, int mi) {
   static const char *damp[] = {"SW_DAMP_NONE", "SW_DAMP_LINEAR", "SW_DAMP_ANALYTIC"};
   if (m->has_damping) fprintf(out, "    muscle.damping = %s;\n", damp[m->damping]);
   if (m->variational) fputs("    muscle.law = SW_LAW_VARIATIONAL;\n", out);
+  if (m->weightless) fputs("    muscle.weightless = 1;   /* gravity = false */\n", out);
   emit_description(out, "muscle", NULL, m->material, m->loc);
   for (int e = 0; e < 2; e++)
     if (m->attach_rod[e] >= 0) {

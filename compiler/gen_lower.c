@@ -243,6 +243,7 @@ swSpec *gen_spec(const swScene *sc) {
       d.damping = r->damping;
       d.rigid = r->rigid;
       d.implicit = r->implicit;
+      d.weightless = r->weightless;
       d.law = r->variational ? SW_LAW_VARIATIONAL : SW_LAW_GAZZOLA;
       fill(&d, f, gen_rod_fields(r, f));
       sw_spec_add_rod(s, &d);
@@ -257,6 +258,7 @@ swSpec *gen_spec(const swScene *sc) {
     if (m->motor_units) d.motor_units = (int)m->motor_units;
     if (m->has_damping) d.damping = m->damping;
     if (m->variational) d.law = SW_LAW_VARIATIONAL;
+    d.weightless = m->weightless;
     for (int e = 0; e < 2; e++)
       if (m->attach_rod[e] >= 0) {
         d.attach_rod[e] = gen_rod_id(sc, m->attach_rod[e]);

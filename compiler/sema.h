@@ -118,6 +118,7 @@ typedef struct {
   int nelem;                  /* known at compile time                     */
   int rigid;                  /* rigid = true                              */
   int implicit;               /* implicit = true (under integrator = imex) */
+  int weightless;             /* gravity = false                           */
   int variational;            /* the variational constitutive law          */
   swValue start, direction, normal, length, radius_start, radius_end;
   swValue density, youngs, shear_modulus, poisson;
@@ -141,6 +142,7 @@ typedef struct {
   swValue density, youngs, shear_modulus, poisson;
   swValue shear_hardening, twist_hardening, gamma;
   int variational;            /* the filaments' law is the variational one */
+  int weightless;             /* gravity = false: not on the filaments     */
   int has_damping;            /* damping written: damping, gamma set       */
   swDampingKind damping;
   swValue sigma_max, size_ratio, twitch_small, twitch_large, hill_a, v_max, fibre_diameter;

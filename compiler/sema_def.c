@@ -33,6 +33,7 @@ void sema_missing(const swFields *f, swLoc loc, const char *fmt, ...) {
 void sema_fields(swSema *S, const swAst *body, int first, const char *what,
                  const char *const *keys, int nkeys, swFields *f) {
   (void)S;
+  if (nkeys > SEMA_MAX_FIELDS) abort();   /* a key table longer than swFields holds */
   f->keys = keys;
   f->nkeys = nkeys;
   f->damaged = body && body->damaged;
@@ -361,7 +362,7 @@ static const char *const rod_keys[] = {
   "material", "start", "from", "to", "direction", "normal", "length", "radius", "radius_start",
   "radius_end", "elements", "E", "G", "poisson", "density", "shear_hardening",
   "twist_hardening", "rest_curvature", "rest_strain", "damping", "rotational_damping",
-  "damping_model", "rigid", "variational", "implicit",
+  "damping_model", "rigid", "variational", "implicit", "gravity",
 };
 enum { NROD_KEYS = sizeof rod_keys / sizeof rod_keys[0] };
 
@@ -669,6 +670,13 @@ static void eval_rod(swSema *S, swSymbol *sym) {
                  "trapezoidal rule)", sym->name);
       ok = 0;
     }
+  }
+  /* gravity = false: gravity does not act on the rod (a switch, like rigid) */
+  const swAst *gv = sema_field(&f, "gravity");
+  if (gv) {
+    int truth = sema_truth(S, sc, gv, "'gravity'");
+    if (truth < 0) ok = 0;
+    else r.weightless = !truth;
   }
   const swValue *all[] = {&r.youngs, &r.density, &r.shear_modulus, &r.poisson, &r.start,
                           &r.direction, &r.normal, &r.length, &r.radius_start, &r.radius_end,

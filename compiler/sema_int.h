@@ -161,7 +161,7 @@ void sema_muscle_not_rod(swSema *S, const swSymbol *muscle, swLoc loc);
 
 /* Field table of a definition body: the entries under their keys, unknown
  * and repeated keys reported. */
-#define SEMA_MAX_FIELDS 32
+#define SEMA_MAX_FIELDS 48            /* keys of the longest table (the muscle's: 33) */
 typedef struct {
   const char *const *keys;
   int nkeys;

@@ -33,6 +33,7 @@ static const char *const muscle_keys[] = {
   "E", "G", "poisson", "density", "sigma_max", "size_ratio", "twitch_small", "twitch_large",
   "hill_a", "v_max", "fibre_diameter", "attach_stiffness", "attach_damping",
   "shear_hardening", "twist_hardening", "damping", "damping_model", "variational", "via",
+  "gravity",
   /* rod fields that a muscle does not take, refused with a reason below */
   "start", "direction", "length", "radius_start", "radius_end",
 };
@@ -179,6 +180,12 @@ void sema_eval_muscle(swSema *S, swSymbol *sym) {
   m.poisson = t.poisson;
   m.variational = t.variational;
   m.material = t.mat_name;
+  const swAst *gv = sema_field(&f, "gravity");   /* gravity = false: weightless filaments */
+  if (gv) {
+    int truth = sema_truth(S, sc, gv, "'gravity'");
+    if (truth < 0) ok = 0;
+    else m.weightless = !truth;
+  }
   if (!t.mat && !t.me && (!t.E_ast || !t.rho_ast)) {
     swMuscleDesc tissue;
     sw_muscle_desc_init(&tissue);

@@ -985,11 +985,12 @@ static void print_info(const swCli *c, const swModel *m, double stable, const ch
     printf("  %s: %d elements, length %.6g m, radius %.4g mm", m->rod_name[r], n, length,
            r0 * 1e3);
     if (r1 != r0) printf(" to %.4g mm", r1 * 1e3);
-    printf(", mass %.6g kg, stable dt %s%s%s\n", mass,
+    printf(", mass %.6g kg, stable dt %s%s%s%s\n", mass,
            isinf(m->rod_wave_dt[r]) ? "none" : format_time(a, sizeof a, m->rod_wave_dt[r]),
            m->rod_damping[r] == SW_DAMP_ANALYTIC ? ", analytic damping"
            : m->rod_damping[r] == SW_DAMP_LINEAR ? ", linear damping" : "",
-           m->nrigid && m->rod_rigid[r] >= 0 ? ", rigid" : m->nimplicit && m->rod_implicit[r] ? ", implicit" : "");
+           m->nrigid && m->rod_rigid[r] >= 0 ? ", rigid" : m->nimplicit && m->rod_implicit[r] ? ", implicit" : "",
+           m->weight && m->weight[na] == 0 && m->mass[na] > 0 ? ", weightless (no gravity)" : "");
   }
   printf("joints: %d\n", m->njoint);
   for (int j = 0; j < m->njoint; j++) {

@@ -129,11 +129,12 @@ double sw_signal_eval(const swSignal *s, double t) {
 
 /* Gravity into ext_force and zero into ext_torque over slots [lo, hi) of the
  * planes (padding included, where both stay zero); the loads are scratch, at
- * i - so (internal.h, "Scratch windows"). */
+ * i - so (internal.h, "Scratch windows").  Gravity acts on m->weight, the
+ * mass but on weightless rods, when some rod is weightless. */
 static void base_loads(const swModel *m, swData *d, int lo, int hi, int so) {
   const size_t S = (size_t)m->stride;
   const int NS = m->nslot;
-  const double *restrict mass = m->mass;
+  const double *restrict mass = m->weight ? m->weight : m->mass;
   for (int k = 0; k < 3; k++) {
     double *restrict ef = d->ext_force + k * S, *restrict et = d->ext_torque + k * S;
     const double g = m->has_gravity ? m->gravity[k] : 0.0;

@@ -237,6 +237,8 @@ static int check_rod(const swRodDesc *r, char *err, size_t errlen) {
     return sw_fail(err, errlen, "rod '%s': implicit must be 0 or 1, got %d", nm, r->implicit);
   if (r->implicit && r->rigid)
     return sw_fail(err, errlen, "rod '%s': a rigid rod has no elasticity to make implicit", nm);
+  if (r->weightless != 0 && r->weightless != 1)
+    return sw_fail(err, errlen, "rod '%s': weightless must be 0 or 1, got %d", nm, r->weightless);
   if (r->implicit && r->damping == SW_DAMP_ANALYTIC && (r->gamma > 0 || r->gamma_rot > 0))
     return sw_fail(err, errlen, "rod '%s': analytic damping is not supported on an implicit rod "
                 "(use linear damping, which the implicit kick integrates by the trapezoidal rule)", nm);
@@ -305,7 +307,7 @@ void sw_model_free(swModel *m) {
   }
   free(m->rod_name); free(m->rod_info); free(m->rod_nelem); free(m->node_adr); free(m->elem_adr);
   free(m->vor_adr); free(m->rod_wave_dt); free(m->rod_damping); free(m->rod_law);
-  free(m->mass); free(m->inv_mass); free(m->node_gamma); free(m->node_decay); free(m->elem_decay); free(m->node_kick); free(m->elem_kick); free(m->x0);
+  free(m->mass); free(m->weight); free(m->inv_mass); free(m->node_gamma); free(m->node_decay); free(m->elem_decay); free(m->node_kick); free(m->elem_kick); free(m->x0);
   free(m->rest_len); free(m->inv_rest_len); free(m->radius); free(m->shear_stiff); free(m->inertia);
   free(m->inv_inertia); free(m->rest_sigma); free(m->elem_gamma); free(m->Q0); free(m->clamp_bend);
   free(m->rest_vor_len); free(m->bend_stiff); free(m->rest_kappa);
@@ -704,6 +706,16 @@ swModel *sw_compile(const swSpec *s, char *err, size_t errlen) {
         SW_AT(m, m->elem_decay, e, k) = exp(-span * c);
         SW_AT(m, m->elem_kick, e, k) = c * s->dt > 1e-8 ? -expm1(-s->dt * c) / c : s->dt;
       }
+  }
+
+  /* gravity's mass: the lumped mass but on weightless rods (loads.c) */
+  for (int r = 0; r < nr; r++) {
+    if (!s->rod[r].weightless) continue;
+    if (!m->weight) {
+      if (!(m->weight = palloc(m, 1))) goto oom;
+      memcpy(m->weight, m->mass, sizeof(double) * (size_t)m->nslot);
+    }
+    for (int i = 0; i <= s->rod[r].nelem; i++) m->weight[m->node_adr[r] + i] = 0.0;
   }
 
   m->nload = s->nload;

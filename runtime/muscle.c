@@ -267,6 +267,7 @@ int sw_spec_add_muscle(swSpec *s, const swMuscleDesc *md) {
     r.shear_hardening = md->shear_hardening;
     r.twist_hardening = md->twist_hardening;
     r.law = md->law;
+    r.weightless = md->weightless;
     r.damping = md->damping;
     r.gamma = md->gamma;
     r.kind = "muscle filament";

@@ -127,6 +127,10 @@ typedef struct {
                                  are linearly implicit (rod_implicit.c), so
                                  its stiffness sets no stable-dt limit;
                                  explicit under the other integrators       */
+  int weightless;             /* 1: gravity does not act on the rod (mass
+                                 and inertia stay): a rig whose weight the
+                                 model leaves out, as PyElastica's snakes put
+                                 gravity on the body only                   */
   /* What the rod is, for the output's /rods/NAME group only (copied; NULL:
    * not written): its tissue ("bone", "tendon", "muscle filament", "rod"),
    * its material's name and the model line that made it ("arm.sinew:12"). */
@@ -246,6 +250,7 @@ typedef struct {
   double density, youngs, shear_modulus, poisson; /* filament tissue (as rods) */
   double shear_hardening, twist_hardening;
   swLaw law;                  /* the filaments' constitutive law              */
+  int weightless;             /* 1: gravity does not act on the filaments     */
   swDampingKind damping;      /* rod dissipation of each filament             */
   double gamma;
   double sigma_max;           /* peak isometric stress, Pa                    */
@@ -488,6 +493,9 @@ typedef struct {
   swDampingKind *rod_damping;
   /* per node slot; (3) marks three planes of stride */
   double *mass;              /* lumped node mass, kg                         */
+  double *weight;            /* the mass gravity acts on: mass, 0 on the
+                                nodes of weightless rods; NULL when no rod
+                                is weightless (gravity acts on mass)        */
   double *inv_mass;          /* (0 in ghost-free padding)                    */
   double *node_gamma;        /* gamma * Voronoi rest length, kg/s            */
   double *node_decay;        /* analytic damping decay factor                */

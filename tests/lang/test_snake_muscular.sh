@@ -27,7 +27,8 @@
 #   zero activation): its ribs' middles start on backbone nodes 33 and 68,
 #   at 0.33 and 0.68 m (the nodes i L / n of a straight rod, computed here),
 #   its joints pull with no force at t = 0, and it does not move either
-#   (2e-9 m as above);
+#   (2e-9 m as above), and its muscles, weightless as PyElastica's (gravity
+#   on the body only), hang level with the body's axis (within 0.1 mm);
 #   a pair moved by its params (--set pos1=0.2 --set span1=0.5: the
 #   simulator picks the nodes, lays the ribs and tendons there) runs bit
 #   for bit as the scene compiled with pos1 and span1 lets set to the same
@@ -137,6 +138,17 @@ print("largest joint force at t = 0: %.3g N" % f0)
 sys.exit(0 if worst < 1e-12 and f0 < 1e-6 else 1)'
 ok $? "the one-pair snake starts with its ribs on backbone nodes 33 and 68 and no joint force"
 diag <"$TMP/py_ribs"
+
+py level '
+r = 0.025
+worst = 0.0
+for k in ("p1.left", "p1.right"):
+    z = rest1["rods/%s.f01/position" % k][:, :, 2]
+    worst = max(worst, abs(z - r).max())
+    print("%s: its nodes from %.4f to %.4f mm off the axis height r over 0.2 s" % (k, 1e3 * (z.min() - r), 1e3 * (z.max() - r)))
+sys.exit(0 if worst < 1e-4 else 1)'
+ok $? "the weightless muscles hang level with the body's axis (within 0.1 mm; they sagged 7.8 mm with gravity on them)"
+diag <"$TMP/py_level"
 
 drift rest1 "one pair"
 ok $? "the one-pair snake with zero amplitude does not move (drift < 2e-9 m)"
