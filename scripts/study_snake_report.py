@@ -191,7 +191,8 @@ def main():
             ovtxt, cmp, slower = ("—" if r["ov"] is None else "no"), "—", "—"
         else:
             ovtxt = "yes" if r["ov"] else "no"
-            cmp = "%.1f / %.1f mm/s" % (1e3 * r["b_ov"], 1e3 * r["b_no"])
+            mm = lambda v: "%.1f" % (1e3 * v) if np.isfinite(v) else "none"
+            cmp = "%s / %s mm/s" % (mm(r["b_ov"]), mm(r["b_no"]))
             slower = ("%.0f%%" % (100 * (1 - r["b_no"] / r["b_ov"]))
                       if r["b_ov"] > 0 and np.isfinite(r["b_no"]) else "—")
         out.append("| %s | %d (%d) | %s | %s | %s | %s | %s | %s | %s | %s | %s |" %
