@@ -241,6 +241,7 @@ def main():
             ax[0][c].plot([a, b], [amp, amp], "-", lw=3, color="C%d" % i)
             ax[0][c].plot([a, b], [amp, amp], "|", ms=10, color="C%d" % i)
         ax[0][c].set_xlim(0, N_BODY)
+        ax[0][c].set_ylim(0, 520)                 # the box: 0 to 500 N
         ax[0][c].set_xlabel("vertebra (tail 0, head %d)" % N_BODY)
         ax[0][c].set_title("%d pair%s" % (k, "" if k == 1 else "s"))
     ax[0][0].set_ylabel("peak muscle force (N)")
