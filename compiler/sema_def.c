@@ -105,6 +105,7 @@ swValue sema_field_value(swSema *S, swScope *scope, const swFields *f, const cha
 static int units_only(const swAst *e, const swAst *num) {
   if (e == num || e->kind == AST_UNIT) return 1;
   if (e->kind == AST_NUM) return 0;
+  if (e->kind == AST_NEG) return units_only(e->kid[0], num);   /* -180 deg */
   if (e->kind == AST_BINOP && e->op == '^') return e->kid[0]->kind == AST_UNIT;
   if (e->kind == AST_APPLY || e->kind == AST_BINOP)
     return units_only(e->kid[0], num) && units_only(e->kid[1], num);
@@ -193,8 +194,8 @@ static void eval_param(swSema *S, swSymbol *sym) {
   /* "number unit-expression" on one line: keep the unit as written, for
    * --help ("0.34 m", "1 N s/m") */
   const swAst *e = def->kid[0], *num = e;
-  while (num->kind == AST_APPLY || (num->kind == AST_BINOP && num->op != '^' &&
-                                    num->op != '+' && num->op != '-'))
+  while (num->kind == AST_APPLY || num->kind == AST_NEG ||
+         (num->kind == AST_BINOP && num->op != '^' && num->op != '+' && num->op != '-'))
     num = num->kid[0];
   if (num->kind == AST_NUM && num != e && units_only(e, num) && e->loc.line == e->loc.end_line) {
     const swSource *f = diag_file(e->loc.file);

@@ -59,4 +59,19 @@ ok "$([ "$rc" -ne 0 ] && [ "$rc" -lt 128 ]; echo $?)" "a node off the rod fails 
 grep -q "joint 'flexor.f01.end': node_b 30 out of range for rod 'beam'" err
 ok $? "and names the joint, the node and the rod"
 diag < err
+
+# a negative default keeps its unit in --help and in a study file (the
+# muscular snake's phases, -180 deg, were shown in radians)
+cat > neg.sinew <<'EOF'
+param phase = -180.0 deg in (-180 deg, 180 deg);
+material stiff { E = 20 MPa; density = 1000 kg/m^3; }
+rod r { material = stiff; start = (0, 0, 0) m; direction = (1, 0, 0); length = 1 m;
+        radius = 1 cm; elements = 4; }
+torque r.end = (1, 0, 0) * sine(1 mN m, 1 Hz, phase = phase);
+simulate { duration = 1 ms; }
+EOF
+"$SINEWC" neg.sinew -o neg > /dev/null 2>&1
+./neg --help | grep -q '^  phase = -180 deg  *in (-180 deg, 180 deg)'
+ok $? "a negative default is shown in its own unit (-180 deg)"
+./neg --help | grep '^  phase' | diag
 done_testing
