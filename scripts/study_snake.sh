@@ -11,8 +11,11 @@
 # under `mpirun -np N` (default 2: every core of this machine) with seed 1
 # and writes DIR/ARCH_study.h5 (default DIR: study/) as its results arrive.
 # A study file that exists is continued (--resume), so an interrupted study
-# picks up where it stopped, and a complete one is left as it is (remove it
-# to run it again, with a larger --budget say).  DIR/walltime.txt gets a line per run:
+# picks up where it stopped, and one that spent its budget runs on when a
+# larger --budget is asked for (CMA-ES continues its generations: the same
+# result as one run with that budget); a complete one is left as it is.
+# The best-design runs of the report (DIR/best_*.h5) are made again only
+# when removed.  DIR/walltime.txt gets a line per run:
 # ARCH, ranks, budget, wall seconds, evaluations.  Then
 # scripts/study_snake_report.py writes the table and plots of
 # docs/validation.md ("The muscular snake's study").
@@ -44,11 +47,17 @@ for a in $ARCHS; do
   SINEW_PATH=$ROOT/models "$ROOT/bin/sinewc" "$ROOT/examples/study/$scene.sinew" -o "$sim"
   file=$OUT/${a}_study.h5
   state=$( [ -e "$file" ] && /usr/bin/python3 -c "import h5py,sys; print(h5py.File(sys.argv[1])['/'].attrs['status'])" "$file" 2>/dev/null || echo none)
+  had=$( [ -e "$file" ] && /usr/bin/python3 -c "import h5py,sys; print(int(h5py.File(sys.argv[1])['/'].attrs['samples']))" "$file" 2>/dev/null || echo 0)
+  # a study that spent its budget runs on when asked for a larger one
+  case $state in "complete: the budget"*) [ "$BUDGET" -gt "$had" ] && state="budget $had" ;; esac
   t0=$(date +%s.%N)
   case $state in
   none)
     echo "study_snake: $scene, CMA-ES, budget $BUDGET, $NP ranks -> $file"
     mpirun -np "$NP" "$sim" --optimize --budget "$BUDGET" --seed 1 --study "$file" --quiet || true ;;
+  "budget "*)
+    echo "study_snake: $file spent its budget of $had evaluations; running on to $BUDGET"
+    mpirun -np "$NP" "$sim" --resume "$file" --budget "$BUDGET" --quiet || true ;;
   complete*)
     echo "study_snake: $file is complete; left as it is" ;;
   *)
