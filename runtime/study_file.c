@@ -385,6 +385,7 @@ swStudyFile *sw_study_file_reopen(const swStudyFileInfo *in, swStudyRows *rows, 
   }
   rows->n = n[0];
   put_string(file, "status", "running");
+  put_long(file, "samples", o->samples);   /* a budget given again may have grown */
   return f;
 }
 

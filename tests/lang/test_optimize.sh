@@ -10,7 +10,8 @@
 #   - CMA-ES finds the design to 1e-6 m;
 #   - a study stopped with Ctrl-C and resumed gives the file of one that never
 #     stopped (tests/lang/study_same.py: every dataset and attribute, bit for
-#     bit, but wall_time and rank);
+#     bit, but wall_time and rank), and one that spent its budget and runs on
+#     with a larger one gives the file of one run with that budget;
 #   - `mpirun -np 1`, `-np 2` and `-np 4 --oversubscribe` give the same file,
 #     also when rank 1 hangs and its evaluation is re-queued;
 #   - a simulator built with --no-mpi sweeps alone and refuses mpirun;
@@ -20,6 +21,11 @@ cd "$ROOT" || exit 1
 scratch optimize
 PY=/usr/bin/python3
 SAME="$PY $ROOT/tests/lang/study_same.py"
+# same A B / pycheck <<EOF: the comparison's (or the check's) words as TAP
+# comments and its exit status as theirs (a pipe into diag would give
+# diag's, and the check would assert nothing)
+same() { $SAME "$1" "$2" >same.out 2>&1; r=$?; diag <same.out; return $r; }
+pycheck() { $PY - >py.out 2>&1; r=$?; diag <py.out; return $r; }
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMPI_MCA_rmaps_base_oversubscribe=1
 export PATH="$ROOT/scripts:$PATH"
 
@@ -45,7 +51,7 @@ cd "$TMP" || exit 1
 # ---- grid and Latin hypercube ----
 ./drop --sweep grid:3 --study grid.h5 --quiet 2>err
 ok $? "--sweep grid:3 runs"
-$PY - <<'EOF' 2>&1 | diag
+pycheck <<'EOF'
 import h5py, numpy as np, sys
 f = h5py.File("grid.h5", "r")
 P, s = f["evaluations/params"][()], f["evaluations/score"][()]
@@ -60,7 +66,7 @@ EOF
 ok $? "the grid holds its 9 designs, each scored as the closed form says (to 1e-12 m)"
 ./drop_nompi --sweep lhs:12 --seed 3 --study lhs.h5 --quiet 2>err
 ok $? "--sweep lhs:12 by the simulator without MPI"
-$PY - <<'EOF' 2>&1 | diag
+pycheck <<'EOF'
 import h5py, numpy as np, sys
 P = h5py.File("lhs.h5", "r")["evaluations/params"][()]
 lo, hi = np.array([0.5, 0.0]), np.array([1.5, 50.0])
@@ -75,7 +81,7 @@ ok $? "the Latin hypercube uses each of the 12 strata of both params once"
 ./drop --optimize --budget 400 --seed 5 --study opt.h5 2>opt.log
 ok $? "--optimize runs"
 tail -1 opt.log | diag
-$PY - <<'EOF' 2>&1 | diag
+pycheck <<'EOF'
 import h5py, sys
 f = h5py.File("opt.h5", "r")
 b = f["best/params"][()]
@@ -108,8 +114,13 @@ done_before=$($PY -c "import h5py; print((h5py.File('cut.h5','r')['evaluations/s
 ok $? "Ctrl-C stops the study after $done_before of 300 evaluations (exit $rc)"
 ./drop --resume cut.h5 --quiet 2>>cut.log
 ok $? "--resume continues it"
-$SAME whole.h5 cut.h5 2>&1 | diag
+same whole.h5 cut.h5
 ok $? "the resumed study's file equals the uninterrupted one's"
+./drop --optimize --budget 150 --seed 5 --dt 2us --study part.h5 --quiet 2>/dev/null
+./drop --resume part.h5 --budget 300 --quiet 2>>cut.log
+ok $? "a study that spent its budget of 150 runs on with --resume --budget 300"
+same whole.h5 part.h5
+ok $? "and its file equals the one run with 300 from the start (the budget attribute too)"
 ./drop --optimize --study cut.h5 --quiet 2>err; rc=$?
 [ $rc -eq 2 ] && grep -q "exists: continue it with --resume cut.h5" err
 ok $? "a study file is not overwritten (exit $rc)"
@@ -122,17 +133,17 @@ if command -v mpirun >/dev/null && ./drop --help >/dev/null; then
   for np in 1 2 4; do
     mpirun -np $np ./drop --optimize --budget 400 --seed 5 --study mpi$np.h5 --quiet 2>mpi.err
     ok $? "mpirun -np $np ./drop --optimize"
-    $SAME opt.h5 mpi$np.h5 2>&1 | diag
+    same opt.h5 mpi$np.h5
     ok $? "-np $np gives the same results as one process"
   done
   $PY -c "import h5py,numpy as np; print('ranks used with -np 2:', sorted(set(h5py.File('mpi2.h5')['evaluations/rank'][()])))" | diag
   mpirun -np 2 ./drop --sweep grid:4 --study gmpi.h5 --quiet 2>/dev/null &&
-    ./drop --sweep grid:4 --study g1.h5 --quiet && $SAME g1.h5 gmpi.h5 2>&1 | diag
+    ./drop --sweep grid:4 --study g1.h5 --quiet && same g1.h5 gmpi.h5
   ok $? "a grid sweep under mpirun -np 2 equals one process's"
   SINEW_STUDY_FAULT=hang:1:3 mpirun -np 2 ./drop --optimize --budget 400 --seed 5 \
     --study hang.h5 --eval-timeout 2s --quiet 2>hang.err
   grep "has not answered" hang.err | diag
-  $SAME opt.h5 hang.h5 2>&1 | diag
+  same opt.h5 hang.h5
   ok $? "rank 1 hangs on its 3rd evaluation: re-queued after 2 s, same results"
   mpirun -np 2 ./drop_nompi --sweep grid:2 --study nompi.h5 --quiet 2>err; rc=$?
   grep -q "built without MPI" err
