@@ -14,8 +14,8 @@
 # picks up where it stopped, and one that spent its budget runs on when a
 # larger --budget is asked for (CMA-ES continues its generations: the same
 # result as one run with that budget); a complete one is left as it is.
-# The best-design runs of the report (DIR/best_*.h5) are made again only
-# when removed.  DIR/walltime.txt gets a line per run:
+# The best-design runs of the report (DIR/best_*.h5) are made again after
+# a study has run.  DIR/walltime.txt gets a line per run:
 # ARCH, ranks, budget, wall seconds, evaluations.  Then
 # scripts/study_snake_report.py writes the table and plots of
 # docs/validation.md ("The muscular snake's study").
@@ -66,6 +66,7 @@ for a in $ARCHS; do
   esac
   t1=$(date +%s.%N)
   case $state in complete*) ;; *)
+    rm -f "$OUT/best_$a.h5" "$OUT/best_$a.xdmf" "$OUT/best_${a}_10us.h5" "$OUT/best_${a}_10us.xdmf"
     n=$(/usr/bin/python3 -c "import h5py,sys; print(len(h5py.File(sys.argv[1])['evaluations/score']))" "$file")
     awk -v a="$a" -v np="$NP" -v b="$BUDGET" -v t0="$t0" -v t1="$t1" -v n="$n" \
       'BEGIN {printf "%s %d %d %.1f %d\n", a, np, b, t1 - t0, n}' >> "$OUT/walltime.txt" ;;
