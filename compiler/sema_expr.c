@@ -122,6 +122,15 @@ int sema_require_const(swSema *S, const swValue *v, const char *what) {
   return 0;
 }
 
+/* A value the simulator knows when it builds the scene: a constant or an
+ * expression of params, not a reduction of the run (refused as such). */
+static int known_at_build(swSema *S, const swValue *v, const char *what) {
+  if (v->kind == VAL_ERROR) return 0;
+  if (val_is_const(v) || v->param) return 1;
+  sema_require_const(S, v, what);
+  return 0;
+}
+
 int sema_const_int(swSema *S, swValue v, const char *what, long lo, long hi, long *out) {
   if (v.kind == VAL_ERROR || !sema_require_const(S, &v, what)) return 0;
   double x = v.v[0];
@@ -543,11 +552,7 @@ static swValue eval_round(swSema *S, swScope *scope, const swAst *e) {
   }
   swValue x = sema_expect(S, scope, ast_kid(args->kid[0], 0), 1, DIM_NONE,
                           "the argument of round()");
-  if (x.kind == VAL_ERROR) return val_error();
-  if (!val_is_const(&x) && !x.param) {   /* a reduction of the run */
-    sema_require_const(S, &x, "the argument of round()");
-    return val_error();
-  }
+  if (!known_at_build(S, &x, "the argument of round()")) return val_error();
   swValue r = val_num(S->a, round(x.v[0]), DIM_NONE, e->loc);
   if (x.c && x.c[0]) {   /* a param's: rounded when the simulator builds the scene */
     char buf[4200];
@@ -717,11 +722,7 @@ static swValue eval_method(swSema *S, swScope *scope, const swAst *e) {
   }
   swValue f = sema_expect(S, scope, ast_kid(args->kid[0], 0), 1, DIM_NONE,
                           "the fraction in at()");
-  if (f.kind == VAL_ERROR) return val_error();
-  if (!val_is_const(&f) && !f.param) {   /* a reduction of the run */
-    sema_require_const(S, &f, "the fraction in at()");
-    return val_error();
-  }
+  if (!known_at_build(S, &f, "the fraction in at()")) return val_error();
   /* a param's fraction is checked here at its default; the simulator refuses
      a node off the rod when it builds the scene */
   if (!(f.v[0] >= 0 && f.v[0] <= 1)) {
