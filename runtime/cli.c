@@ -49,7 +49,7 @@
 typedef enum {
   OPT_OUT, OPT_DURATION, OPT_DT, OPT_INTEGRATOR, OPT_EVERY, OPT_SET, OPT_THREADS, OPT_COMPARE,
   OPT_RTOL, OPT_RESTART, OPT_SWEEP, OPT_OPTIMIZE, OPT_BUDGET, OPT_POPSIZE, OPT_SIGMA,
-  OPT_RESTARTS, OPT_SEED, OPT_STUDY, OPT_RESUME, OPT_EVAL_TIMEOUT, OPT_QUIET, OPT_INFO, OPT_HELP
+  OPT_RESTARTS, OPT_START, OPT_SEED, OPT_STUDY, OPT_RESUME, OPT_EVAL_TIMEOUT, OPT_QUIET, OPT_INFO, OPT_HELP
 } swOptionId;
 
 typedef struct {
@@ -77,6 +77,8 @@ static const swOption options[] = {
   {OPT_POPSIZE, "--popsize", "L", "--optimize: designs per generation"},
   {OPT_SIGMA, "--sigma", "F", "--optimize: initial step, a fraction of each range"},
   {OPT_RESTARTS, "--restarts", "K", "--optimize: restarts with doubled populations (IPOP)"},
+  {OPT_START, "--start", "FILE", "--optimize: start at the best design of the study FILE, "
+   "param by param of the same name"},
   {OPT_SEED, "--seed", "S", "random seed of --sweep lhs and --optimize"},
   {OPT_STUDY, "--study", "FILE", "HDF5 file of the sweep or optimisation"},
   {OPT_RESUME, "--resume", "FILE", "continue the sweep or optimisation FILE holds"},
@@ -462,6 +464,10 @@ static int read_study_option(swCli *c, swOptionId id, const char *value) {
                       "'%s'", value);
     return SW_OK;
   }
+  case OPT_START:
+    if (!value[0]) return complain(c, "--start: empty file name");
+    a->start = value;
+    return SW_OK;
   case OPT_STUDY:
     if (!value[0]) return complain(c, "--study: empty file name");
     a->study = value;
@@ -480,22 +486,26 @@ static int read_study_option(swCli *c, swOptionId id, const char *value) {
 /* The study options, together: which belong to which, and what cannot mix. */
 static int check_study_args(const swCli *c) {
   const swStudyArgs *a = &c->study;
-  int optimize_only = a->budget_given || a->popsize_given || a->sigma_given || a->restarts_given;
+  int optimize_only = a->budget_given || a->popsize_given || a->sigma_given || a->restarts_given ||
+                      a->start;
   if (a->resume && a->study)
     return complain(c, "--resume %s continues that file: --study %s cannot name another",
                     a->resume, a->study);
+  if (a->resume && a->start)
+    return complain(c, "--resume %s starts where that study stopped: leave out --start",
+                    a->resume);
   if (a->resume && a->kind_given)
     return complain(c, "--resume takes the sweep or optimisation from its file: leave out "
                     "--sweep and --optimize");
   if (!a->mode && !a->resume) {
     if (optimize_only || a->seed_given || a->study || a->eval_timeout > 0)
-      return complain(c, "--budget, --popsize, --sigma, --restarts, --seed, --study and "
-                      "--eval-timeout belong to --sweep or --optimize, which was not given");
+      return complain(c, "--budget, --popsize, --sigma, --restarts, --start, --seed, --study "
+                      "and --eval-timeout belong to --sweep or --optimize, which was not given");
     return SW_OK;
   }
   if (a->mode == 1 && optimize_only)
-    return complain(c, "--budget, --popsize, --sigma and --restarts belong to --optimize, not "
-                    "--sweep");
+    return complain(c, "--budget, --popsize, --sigma, --restarts and --start belong to "
+                    "--optimize, not --sweep");
   if (c->restart || c->golden || c->out_given || c->every_given || c->info)
     return complain(c, "a sweep or optimisation writes its study file (--study), not a run: "
                     "leave out --out, --every, --restart, --compare and --info");
@@ -583,7 +593,7 @@ static int parse_args(swCli *c, int argc, char **argv) {
     }
     case OPT_SWEEP: rc = read_sweep(c, value); break;
     case OPT_OPTIMIZE: case OPT_BUDGET: case OPT_POPSIZE: case OPT_SIGMA: case OPT_RESTARTS:
-    case OPT_SEED: case OPT_STUDY: case OPT_RESUME: case OPT_EVAL_TIMEOUT:
+    case OPT_START: case OPT_SEED: case OPT_STUDY: case OPT_RESUME: case OPT_EVAL_TIMEOUT:
       rc = read_study_option(c, opt->id, value);
       break;
     case OPT_QUIET: c->quiet = 1; break;
@@ -670,6 +680,7 @@ static void print_help(const swCli *c, const char *default_out) {
     case OPT_POPSIZE: def = "4 + floor(3 ln n), n the ranged params"; break;
     case OPT_SIGMA: def = "0.25"; break;
     case OPT_RESTARTS: def = "0"; break;
+    case OPT_START: def = "each param's value: its default, or --set"; break;
     case OPT_SEED: def = "1"; break;
     case OPT_STUDY: def = buf, snprintf(buf, sizeof buf, "%s_study.h5", p->name); break;
     case OPT_EVAL_TIMEOUT: def = "20 times the slowest evaluation, at least 60 s"; break;

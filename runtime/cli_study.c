@@ -6,7 +6,8 @@
  * model in this process (sw_evaluate: built from the design's params,
  * compiled, run for --duration without output, its objective sampled).  The
  * params a study varies are those with a range that --set does not fix; the
- * others keep their values.  What an evaluation depends on (the time step,
+ * others keep their values, and CMA-ES starts at them (or, with --start, at
+ * the best design of another study).  What an evaluation depends on (the time step,
  * duration and integrator, every param's start value, the model's hash and
  * the study's settings) is recorded in the study's file, and --resume takes
  * it all from there: a setting given again must agree with the file's (but
@@ -122,6 +123,53 @@ static int take_resumed(swStudyCall *c, swStudyArgs *a, int *vary) {
   return SW_OK;
 }
 
+/* " unit" of param i as printf's "%s%s", or nothing for a dimensionless one */
+#define SHOWN_UNIT(c, i) (c)->unit[i][0] ? " " : "", (c)->unit[i]
+
+/* --start: the varied params take the values of the best design the file
+ * holds, where it has a param of the same name (the others keep theirs). */
+static int take_start(swStudyCall *c, const char *path, const int *vary, const double *lo,
+                      const double *hi, const char *const *name) {
+  const swProgram *p = c->p;
+  const int np = p->nparam;
+  double *v = malloc(((size_t)np + 1) * sizeof *v);
+  int *found = malloc(((size_t)np + 1) * sizeof *found);
+  if (!v || !found) {
+    free(v);
+    free(found);
+    return say(c, SW_EIO, "out of memory");
+  }
+  char err[512];
+  long index = -1;
+  double score = NAN;
+  int rc = SW_OK, taken = 0, nvary = 0;
+  if (sw_study_file_best_design(path, np, name, c->unit, c->scale, v, found, &index, &score, err,
+                                sizeof err) != SW_OK)
+    rc = say(c, SW_EIO, "--start: %s", err);
+  for (int i = 0; i < np && rc == SW_OK; i++) {
+    nvary += vary[i];
+    if (!vary[i] || !found[i]) continue;
+    if (!(v[i] >= lo[i] && v[i] <= hi[i]))
+      rc = say(c, SW_EUSAGE, "--start %s: its best design has %s = %.9g%s%s, outside this "
+               "model's range (%.9g%s%s, %.9g%s%s)", path, name[i], v[i] / c->scale[i],
+               SHOWN_UNIT(c, i), lo[i] / c->scale[i], SHOWN_UNIT(c, i), hi[i] / c->scale[i],
+               SHOWN_UNIT(c, i));
+    c->P[i] = v[i];
+    taken++;
+  }
+  if (rc == SW_OK && !taken)
+    rc = say(c, SW_EUSAGE, "--start %s: none of the params this study varies is in that file",
+             path);
+  int rank = 0;
+  sw_study_launched(&rank, NULL);
+  if (rc == SW_OK && !c->quiet && rank == 0)
+    fprintf(stderr, "%s: starting at the best design of %s (evaluation %ld, score %.6g): %d of "
+            "the %d varied params\n", c->prog, path, index, score, taken, nvary);
+  free(v);
+  free(found);
+  return rc;
+}
+
 int sw_study_cli(swStudyCall *c) {
   const swProgram *p = c->p;
   swStudyArgs a = c->args;
@@ -158,6 +206,7 @@ int sw_study_cli(swStudyCall *c) {
   else if (rank == 0 && access(path, F_OK) == 0)
     rc = say(c, SW_EUSAGE, "the study file %s exists: continue it with --resume %s, or give "
              "another --study (or remove it)", path, path);
+  if (rc == SW_OK && a.start) rc = take_start(c, a.start, vary, lo, hi, name);
   char settings[256];
   run_settings(c, settings, sizeof settings);
   swStudyOptions o;

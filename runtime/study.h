@@ -95,6 +95,17 @@ typedef struct {
 } swStudySettings;
 int sw_study_file_settings(const char *path, swStudySettings *s, char *err, size_t errlen);
 
+/* The best design a study file holds, for --start: value[i] (SI) and
+ * found[i] = 1 for each of the nparam params name[] the file's study also
+ * varied or held, found[i] = 0 for the others.  The file stores values in
+ * the units its model showed them in; each must be this model's unit[i]
+ * (whose SI value is scale[i]) or another unit of the same dimension,
+ * else an error names the param.  *index and
+ * *score: the best evaluation's.  SW_OK, or SW_EIO with err. */
+int sw_study_file_best_design(const char *path, int nparam, const char *const *name,
+                              const char *const *unit, const double *scale, double *value,
+                              int *found, long *index, double *score, char *err, size_t errlen);
+
 /* ---- the command line's side (cli_study.c) ---- */
 #include "sinew.h"
 
@@ -108,6 +119,7 @@ typedef struct {
   uint64_t seed;
   double eval_timeout;
   const char *study, *resume;
+  const char *start;         /* --start: the study whose best design CMA-ES starts at */
   int kind_given, budget_given, popsize_given, sigma_given, restarts_given, seed_given;
 } swStudyArgs;
 

@@ -358,6 +358,102 @@ int sw_study_file_settings(const char *path, swStudySettings *s, char *err, size
   return SW_OK;
 }
 
+/* The strings of the 1-D attribute `attr` of dataset `ds`, n of them, into
+ * out[] (H5free_memory each); 0 if it is not that. */
+static int get_string_list(hid_t ds, const char *attr, char **out, hsize_t n) {
+  if (H5Aexists(ds, attr) <= 0) return 0;
+  hid_t a = H5Aopen(ds, attr, H5P_DEFAULT), sp = a >= 0 ? H5Aget_space(a) : -1;
+  hsize_t len = 0;
+  int ok = sp >= 0 && H5Sget_simple_extent_ndims(sp) == 1 &&
+           H5Sget_simple_extent_dims(sp, &len, NULL) == 1 && len == n;
+  hid_t t = string_type();
+  ok = ok && H5Aread(a, t, out) >= 0;
+  H5Tclose(t);
+  if (sp >= 0) H5Sclose(sp);
+  if (a >= 0) H5Aclose(a);
+  return ok;
+}
+
+int sw_study_file_best_design(const char *path, int nparam, const char *const *name,
+                              const char *const *unit, const double *scale, double *value,
+                              int *found, long *index, double *score, char *err, size_t errlen) {
+  H5Eset_auto2(H5E_DEFAULT, NULL, NULL);
+  for (int i = 0; i < nparam; i++) found[i] = 0;
+  hid_t file = open_unlocked(path, H5F_ACC_RDONLY);
+  if (file < 0) return fail(err, errlen, "cannot open the study file %s", path);
+  int rc = SW_OK;
+  hsize_t n = 0;
+  char **names = NULL, **units = NULL;
+  double *best = NULL;
+  long long idx = -1;
+  hid_t ds = H5Dopen2(file, "evaluations/params", H5P_DEFAULT);
+  hid_t sp = ds >= 0 ? H5Dget_space(ds) : -1;
+  hsize_t dims[2] = {0, 0};
+  if (sp < 0 || H5Sget_simple_extent_ndims(sp) != 2 ||
+      H5Sget_simple_extent_dims(sp, dims, NULL) != 2 || !(n = dims[1])) {
+    rc = fail(err, errlen, "%s is not a sinew study file (or is damaged)", path);
+    goto done;
+  }
+  names = calloc(n, sizeof *names), units = calloc(n, sizeof *units);
+  best = malloc(n * sizeof *best);
+  if (!names || !units || !best || !get_string_list(ds, "names", names, n) ||
+      !get_string_list(ds, "units", units, n)) {
+    rc = fail(err, errlen, "%s: the params' names and units cannot be read", path);
+    goto done;
+  }
+  hid_t bd = H5Dopen2(file, "best/params", H5P_DEFAULT);
+  hid_t bg = H5Gopen2(file, "best", H5P_DEFAULT);
+  int have = bd >= 0 && bg >= 0 &&
+             H5Dread(bd, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, best) >= 0 &&
+             !get_number(bg, "index", H5T_NATIVE_LLONG, &idx) &&
+             !get_number(bg, "score", H5T_NATIVE_DOUBLE, score);
+  if (bd >= 0) H5Dclose(bd);
+  if (bg >= 0) H5Gclose(bg);
+  if (!have) {
+    rc = fail(err, errlen, "%s has no best design: none of its evaluations has succeeded yet",
+              path);
+    goto done;
+  }
+  *index = (long)idx;
+  for (int i = 0; i < nparam && rc == SW_OK; i++)
+    for (hsize_t k = 0; k < n; k++) {
+      if (!names[k] || strcmp(names[k], name[i])) continue;
+      /* the file's unit to SI: this model's, or another of the same
+       * dimension (a model may show a param in mm that another showed in
+       * cm) */
+      const char *u = units[k] ? units[k] : "";
+      double s_file = scale[i], s_here;
+      if (strcmp(u, unit[i])) {
+        char q[96], why[160];
+        signed char dim_file[SW_NDIM], dim_here[SW_NDIM];
+        snprintf(q, sizeof q, "1 %s", u);
+        int bad = sw_parse_quantity(q, &s_file, dim_file, why, sizeof why);
+        snprintf(q, sizeof q, "1 %s", unit[i]);
+        bad = bad || sw_parse_quantity(q, &s_here, dim_here, why, sizeof why) ||
+              memcmp(dim_file, dim_here, sizeof dim_here);
+        if (bad)
+          rc = fail(err, errlen, "%s holds %s in '%s', which is not a unit of this model's %s "
+                    "(%s%s%s)", path, name[i], u[0] ? u : "no unit", name[i],
+                    unit[i][0] ? "shown in '" : "dimensionless", unit[i], unit[i][0] ? "'" : "");
+      }
+      value[i] = best[k] * s_file;
+      found[i] = 1;
+      break;
+    }
+done:
+  for (hsize_t k = 0; k < n; k++) {
+    if (names && names[k]) H5free_memory(names[k]);
+    if (units && units[k]) H5free_memory(units[k]);
+  }
+  free(names);
+  free(units);
+  free(best);
+  if (sp >= 0) H5Sclose(sp);
+  if (ds >= 0) H5Dclose(ds);
+  H5Fclose(file);
+  return rc;
+}
+
 swStudyFile *sw_study_file_reopen(const swStudyFileInfo *in, swStudyRows *rows, char *err,
                                   size_t errlen) {
   const swStudyOptions *o = in->o;

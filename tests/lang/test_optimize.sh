@@ -96,6 +96,60 @@ ok $? "CMA-ES finds h and x0 of the closed form to 1e-6 m"
 [ -s opt.png ] && [ "$(head -c 4 opt.png | od -An -tx1 | tr -d ' \n')" = 89504e47 ]
 ok $? "the summary plot opt.png is written (sinew-plot study)"
 
+# ---- --start: CMA-ES from another study's best design ----
+# A study started at opt.h5's best with a small step samples its first
+# generation around that design (SI values recorded as the start), in
+# whichever unit this model shows a param (x0 here in mm, there in cm).
+sed 's/param x0 = 10 cm in (0 cm, 50 cm);/param x0 = 100 mm in (0 mm, 500 mm);/' drop.sinew > drop_mm.sinew
+"$SINEWC" drop_mm.sinew -o drop_mm 2>err
+ok $? "the model with x0 in mm compiles"
+./drop_mm --optimize --start opt.h5 --sigma 0.01 --budget 24 --seed 7 --study warm.h5 2>warm.log
+ok $? "--optimize --start opt.h5 runs"
+grep "starting at the best design of opt.h5" warm.log | diag
+pycheck <<'EOF'
+import h5py, numpy as np, sys
+a, b = h5py.File("opt.h5", "r"), h5py.File("warm.h5", "r")
+names = [n.decode() if isinstance(n, bytes) else n for n in a["evaluations/params"].attrs["names"]]
+best = a["best/params"][()]
+h, x0 = best[names.index("height")], best[names.index("x0")] / 100          # cm -> m
+start = dict(kv.split("=") for kv in b.attrs["start"].split(";"))
+P, gen = b["evaluations/params"][()], b["evaluations/generation"][()]
+first = P[gen == 0]
+dh, dx = np.abs(first[:, 0] - h).max(), np.abs(first[:, 1] / 1000 - x0).max()   # mm -> m
+print(f"start recorded: height = {start['height']} m, x0 = {start['x0']} m (opt.h5's best: "
+      f"{h:.17g} m, {x0:.17g} m); generation 0 within {dh:.2e} m and {dx:.2e} m of it "
+      f"(sigma 0.01 of the ranges: 0.01 m and 0.005 m)")
+sys.exit(0 if float(start["height"]) == h and abs(float(start["x0"]) - x0) <= 1e-15 * x0
+         and dh < 0.05 and dx < 0.025 else 1)
+EOF
+ok $? "the start is opt.h5's best design in SI, and the first generation is sampled around it"
+./drop_mm --optimize --start opt.h5 --sigma 0.01 --budget 48 --seed 7 --study warm48.h5 --quiet 2>/dev/null
+./drop_mm --resume warm.h5 --budget 48 --quiet 2>err
+ok $? "a study started with --start runs on to a larger budget from its file alone"
+same warm48.h5 warm.h5
+ok $? "and equals the study run with that budget from the start"
+sed -e 's/param x0 = 10 cm in (0 cm, 50 cm);/param x0 = 0.1 in (0, 0.5);/' \
+    -e 's/(x0 - 5 cm,/(x0 * 1 m - 5 cm,/' drop.sinew > drop_nounit.sinew
+"$SINEWC" drop_nounit.sinew -o drop_nounit 2>err
+./drop_nounit --optimize --start opt.h5 --study nounit.h5 >out 2>err; rc=$?
+[ $rc -eq 4 ] && grep -q "holds x0 in 'cm', which is not a unit of this model's x0 (dimensionless)" err
+ok $? "--start refuses a param whose unit there is of another dimension, and names it (exit $rc)"
+diag < err
+sed 's/param height = 1.2 m in (0.5 m, 1.5 m);/param height = 1.2 m in (1.1 m, 1.5 m);/' drop.sinew > drop_high.sinew
+"$SINEWC" drop_high.sinew -o drop_high 2>err
+./drop_high --optimize --start opt.h5 --study high.h5 >out 2>err; rc=$?
+[ $rc -eq 2 ] && grep -q "outside this model's range" err
+ok $? "--start refuses a best design outside this model's range (exit $rc)"
+diag < err
+./drop --sweep grid:2 --start opt.h5 --study s.h5 >out 2>err; rc=$?
+[ $rc -eq 2 ] && grep -q "belong to --optimize" err
+ok $? "--start with --sweep is refused (exit $rc)"
+./drop --resume warm.h5 --start opt.h5 >out 2>err; rc=$?
+[ $rc -eq 2 ] && grep -q "leave out --start" err
+ok $? "--start with --resume is refused (exit $rc)"
+./drop --optimize --start grid.h5 --study fromgrid.h5 --budget 12 --quiet 2>err
+ok $? "--start takes a sweep's best design too"
+
 # ---- interrupted and resumed ----
 # at dt = 2 us an evaluation takes milliseconds: Ctrl-C comes mid-study
 ./drop --optimize --budget 300 --seed 5 --dt 2us --study whole.h5 --quiet 2>/dev/null
