@@ -77,8 +77,8 @@ static const swOption options[] = {
   {OPT_POPSIZE, "--popsize", "L", "--optimize: designs per generation"},
   {OPT_SIGMA, "--sigma", "F", "--optimize: initial step, a fraction of each range"},
   {OPT_RESTARTS, "--restarts", "K", "--optimize: restarts with doubled populations (IPOP)"},
-  {OPT_START, "--start", "FILE", "--optimize: start at the best design of the study FILE, "
-   "param by param of the same name"},
+  {OPT_START, "--start", "FILE|NAME=VALUE", "--optimize: start at the best design of the "
+   "study FILE, param by param of the same name, or start a param at VALUE (repeatable)"},
   {OPT_SEED, "--seed", "S", "random seed of --sweep lhs and --optimize"},
   {OPT_STUDY, "--study", "FILE", "HDF5 file of the sweep or optimisation"},
   {OPT_RESUME, "--resume", "FILE", "continue the sweep or optimisation FILE holds"},
@@ -113,6 +113,7 @@ typedef struct {
   int out_given, every_given;
   double *P;                 /* (nparam) param values, SI                   */
   char *overridden;          /* (nparam) set by --set                       */
+  char *started;             /* (nparam) given a start by --start NAME=VALUE */
   swStudyArgs study;         /* --sweep, --optimize, --resume and theirs     */
 } swCli;
 
@@ -344,11 +345,13 @@ static int read_integrator(swCli *c, const char *value) {
   return complain(c, "--integrator: unknown integrator '%s' (verlet, pefrl or imex)", value);
 }
 
-/* --set NAME=VALUE: VALUE must have the param's dimension. */
-static int read_set(swCli *c, const char *value) {
+/* --set NAME=VALUE (opt "--set": the param is fixed at VALUE) or --start
+ * NAME=VALUE (opt "--start": a study starts it there and varies it): VALUE
+ * must have the param's dimension. */
+static int read_param_value(swCli *c, const char *opt, const char *value) {
   const swProgram *p = c->p;
   const char *eq = strchr(value, '=');
-  if (!eq || eq == value) return complain(c, "--set: expected NAME=VALUE, got '%s'", value);
+  if (!eq || eq == value) return complain(c, "%s: expected NAME=VALUE, got '%s'", opt, value);
   size_t len = (size_t)(eq - value);
   int k = -1;
   for (int i = 0; i < p->nparam && k < 0; i++)
@@ -360,10 +363,11 @@ static int read_set(swCli *c, const char *value) {
       if (distance < best_distance) best = i, best_distance = distance;
     }
     if (best >= 0 && close_enough(best_distance, len))
-      return complain(c, "--set: unknown param '%.*s' (did you mean '%s'?)", (int)len, value,
+      return complain(c, "%s: unknown param '%.*s' (did you mean '%s'?)", opt, (int)len, value,
                       p->param[best].name);
     if (p->nparam == 0)
-      return complain(c, "--set: unknown param '%.*s' (the model has no params)", (int)len, value);
+      return complain(c, "%s: unknown param '%.*s' (the model has no params)", opt, (int)len,
+                      value);
     char list[512] = "";
     size_t used = 0;
     for (int i = 0; i < p->nparam && used < sizeof list; i++) {
@@ -371,7 +375,8 @@ static int read_set(swCli *c, const char *value) {
       if (n < 0) break;
       used += (size_t)n;
     }
-    return complain(c, "--set: unknown param '%.*s' (the params are: %s)", (int)len, value, list);
+    return complain(c, "%s: unknown param '%.*s' (the params are: %s)", opt, (int)len, value,
+                    list);
   }
 
   const swParam *q = &p->param[k];
@@ -380,18 +385,26 @@ static int read_set(swCli *c, const char *value) {
   double v;
   signed char dim[SW_NDIM];
   if (sw_parse_quantity(text, &v, dim, err, sizeof err))
-    return complain(c, "--set %s: %s", q->name, err);
+    return complain(c, "%s %s: %s", opt, q->name, err);
   if (memcmp(dim, q->dim, SW_NDIM)) {
     sw_dim_describe(expected, sizeof expected, q->dim);
     if (!memcmp(dim, DIM_NONE, SW_NDIM)) {
       if (q->unit && q->unit[0])
-        return complain(c, "--set %s: expected %s, got a number without a unit in '%s' "
-                        "(write e.g. '%s %s')", q->name, expected, text, text, q->unit);
-      return complain(c, "--set %s: expected %s, got a number without a unit in '%s'", q->name,
-                      expected, text);
+        return complain(c, "%s %s: expected %s, got a number without a unit in '%s' "
+                        "(write e.g. '%s %s')", opt, q->name, expected, text, text, q->unit);
+      return complain(c, "%s %s: expected %s, got a number without a unit in '%s'", opt,
+                      q->name, expected, text);
     }
-    return complain(c, "--set %s: expected %s, got %s in '%s'", q->name, expected,
+    return complain(c, "%s %s: expected %s, got %s in '%s'", opt, q->name, expected,
                     sw_dim_describe(got, sizeof got, dim), text);
+  }
+  if (!strcmp(opt, "--start")) {
+    if (!q->ranged)
+      return complain(c, "--start %s: the param has no range, so no study varies it (--set "
+                      "fixes a param)", q->name);
+    c->P[k] = v;
+    c->started[k] = 1;
+    return SW_OK;
   }
   c->P[k] = v;
   c->overridden[k] = 1;
@@ -465,7 +478,12 @@ static int read_study_option(swCli *c, swOptionId id, const char *value) {
     return SW_OK;
   }
   case OPT_START:
+    a->start_given = 1;
+    if (strchr(value, '=')) return read_param_value(c, "--start", value);
     if (!value[0]) return complain(c, "--start: empty file name");
+    if (a->start)
+      return complain(c, "--start %s: a study starts from one file, and --start %s was given",
+                      value, a->start);
     a->start = value;
     return SW_OK;
   case OPT_STUDY:
@@ -487,11 +505,11 @@ static int read_study_option(swCli *c, swOptionId id, const char *value) {
 static int check_study_args(const swCli *c) {
   const swStudyArgs *a = &c->study;
   int optimize_only = a->budget_given || a->popsize_given || a->sigma_given || a->restarts_given ||
-                      a->start;
+                      a->start_given;
   if (a->resume && a->study)
     return complain(c, "--resume %s continues that file: --study %s cannot name another",
                     a->resume, a->study);
-  if (a->resume && a->start)
+  if (a->resume && a->start_given)
     return complain(c, "--resume %s starts where that study stopped: leave out --start",
                     a->resume);
   if (a->resume && a->kind_given)
@@ -577,7 +595,7 @@ static int parse_args(swCli *c, int argc, char **argv) {
       if (!value[0]) rc = complain(c, "--restart: empty file name");
       c->restart = value;
       break;
-    case OPT_SET: rc = read_set(c, value); break;
+    case OPT_SET: rc = read_param_value(c, "--set", value); break;
     case OPT_THREADS: rc = read_threads(c, value); c->threads_set = 1; break;
     case OPT_COMPARE:
       if (!value[0]) rc = complain(c, "--compare: empty file name");
@@ -1259,6 +1277,7 @@ static int study(swCli *c) {
     unit[i] = units[i];
   }
   swStudyCall call = {.p = p, .prog = c->prog, .P = c->P, .overridden = c->overridden,
+                      .started = c->started,
                       .unit = unit, .scale = scale, .duration = c->duration, .dt = c->dt,
                       .duration_given = c->duration_given, .dt_given = c->dt_given,
                       .integrator = c->integrator, .quiet = c->quiet, .args = c->study};
@@ -1299,9 +1318,11 @@ int sw_main(const swProgram *p, int argc, char **argv) {
 
   c.P = malloc(((size_t)p->nparam + 1) * sizeof *c.P);
   c.overridden = calloc((size_t)p->nparam + 1, 1);
-  if (!c.P || !c.overridden) {
+  c.started = calloc((size_t)p->nparam + 1, 1);
+  if (!c.P || !c.overridden || !c.started) {
     free(c.P);
     free(c.overridden);
+    free(c.started);
     return complain(&c, "out of memory");
   }
   for (int i = 0; i < p->nparam; i++) c.P[i] = p->param[i].value;
@@ -1334,5 +1355,6 @@ int sw_main(const swProgram *p, int argc, char **argv) {
   }
   free(c.P);
   free(c.overridden);
+  free(c.started);
   return rc;
 }

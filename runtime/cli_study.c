@@ -148,7 +148,7 @@ static int take_start(swStudyCall *c, const char *path, const int *vary, const d
     rc = say(c, SW_EIO, "--start: %s", err);
   for (int i = 0; i < np && rc == SW_OK; i++) {
     nvary += vary[i];
-    if (!vary[i] || !found[i]) continue;
+    if (!vary[i] || !found[i] || c->started[i]) continue; /* --start NAME=VALUE wins */
     if (!(v[i] >= lo[i] && v[i] <= hi[i]))
       rc = say(c, SW_EUSAGE, "--start %s: its best design has %s = %.9g%s%s, outside this "
                "model's range (%.9g%s%s, %.9g%s%s)", path, name[i], v[i] / c->scale[i],
@@ -207,6 +207,16 @@ int sw_study_cli(swStudyCall *c) {
     rc = say(c, SW_EUSAGE, "the study file %s exists: continue it with --resume %s, or give "
              "another --study (or remove it)", path, path);
   if (rc == SW_OK && a.start) rc = take_start(c, a.start, vary, lo, hi, name);
+  for (int i = 0; i < np && rc == SW_OK; i++) { /* --start NAME=VALUE */
+    if (!c->started[i]) continue;
+    if (!vary[i])
+      rc = say(c, SW_EUSAGE, "--start %s: --set fixes it, so the study does not vary it",
+               name[i]);
+    else if (!(c->P[i] >= lo[i] && c->P[i] <= hi[i]))
+      rc = say(c, SW_EUSAGE, "--start %s = %.9g%s%s is outside its range (%.9g%s%s, %.9g%s%s)",
+               name[i], c->P[i] / c->scale[i], SHOWN_UNIT(c, i), lo[i] / c->scale[i],
+               SHOWN_UNIT(c, i), hi[i] / c->scale[i], SHOWN_UNIT(c, i));
+  }
   char settings[256];
   run_settings(c, settings, sizeof settings);
   swStudyOptions o;

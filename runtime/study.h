@@ -120,6 +120,7 @@ typedef struct {
   double eval_timeout;
   const char *study, *resume;
   const char *start;         /* --start: the study whose best design CMA-ES starts at */
+  int start_given;           /* --start FILE or NAME=VALUE                     */
   int kind_given, budget_given, popsize_given, sigma_given, restarts_given, seed_given;
 } swStudyArgs;
 
@@ -128,6 +129,7 @@ typedef struct {
   const char *prog;
   double *P;                 /* every param's value (defaults and --set), SI   */
   const char *overridden;    /* 1: given with --set                           */
+  const char *started;       /* 1: given a start with --start NAME=VALUE      */
   const char *const *unit;   /* the unit each param is shown in, its SI value  */
   const double *scale;
   double duration, dt;

@@ -149,6 +149,31 @@ ok $? "--start with --sweep is refused (exit $rc)"
 ok $? "--start with --resume is refused (exit $rc)"
 ./drop --optimize --start grid.h5 --study fromgrid.h5 --budget 12 --quiet 2>err
 ok $? "--start takes a sweep's best design too"
+./drop --optimize --start opt.h5 --start x0=20cm --study mixed.h5 --budget 6 --quiet 2>err
+ok $? "--start FILE with --start NAME=VALUE runs"
+pycheck <<'EOF'
+import h5py, sys
+a, b = h5py.File("opt.h5", "r"), h5py.File("mixed.h5", "r")
+names = [n.decode() if isinstance(n, bytes) else n for n in a["evaluations/params"].attrs["names"]]
+start = dict(kv.split("=") for kv in b.attrs["start"].split(";"))
+h = a["best/params"][()][names.index("height")]
+print(f"start: height = {start['height']} m (opt.h5's best {h:.17g} m), x0 = {start['x0']} m "
+      f"(--start x0=20cm); varied: {b.attrs['varied']}")
+sys.exit(0 if float(start["height"]) == h and float(start["x0"]) == 0.2
+         and b.attrs["varied"] == "height;x0" else 1)
+EOF
+ok $? "NAME=VALUE starts that param there (over the file's value), and it still varies"
+fails_start() {   # fails_start PATTERN DESCRIPTION ARGS...
+  pattern=$1 what=$2; shift 2
+  ./drop --optimize --study bad_start.h5 "$@" >out 2>err; rc=$?
+  [ $rc -eq 2 ] && grep -q -- "$pattern" err && [ ! -e bad_start.h5 ]
+  ok $? "$what (exit $rc, no study file)"
+  diag < err
+}
+fails_start "outside its range" "--start NAME=VALUE outside the range" --start x0=70cm
+fails_start "expected length" "--start NAME=VALUE without its unit" --start x0=7
+fails_start "does not vary it" "--start and --set of one param" --set x0=7cm --start x0=7cm
+fails_start "starts from one file" "two --start files" --start opt.h5 --start grid.h5
 
 # ---- interrupted and resumed ----
 # at dt = 2 us an evaluation takes milliseconds: Ctrl-C comes mid-study
