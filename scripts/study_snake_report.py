@@ -6,7 +6,9 @@ Supplementary Note 4 and Fig. 2).
   study_snake_report.py DIR [--img DIR]
 
 Design.  Reads DIR/continuum_study.h5 and DIR/K_study.h5 (K = 1..5 pairs)
-that scripts/study_snake.sh writes, and DIR/walltime.txt.  For each
+that scripts/study_snake.sh writes, DIR/K_chain.h5 and DIR/chain_sources.txt
+of its --chain (each stage started at the best design with one pair fewer),
+and DIR/walltime.txt.  For each
 architecture: the evaluations, how many failed, the wall time, the best
 forward speed (the scenes' objective, m/s) and its share of the continuum
 snake's.  For the muscular ones, each pair's attachments are recomputed
@@ -131,6 +133,28 @@ def check_best(d, a, scene, f, row):
     row["roll"], row["lift"] = planarity(r20) if r20 is not None else (np.nan, np.nan)
 
 
+def studies(d):
+    """The study files in d: (tag, path, scene, name), the continuum's first,
+    then each architecture's own study and its chained one."""
+    out = [("continuum", "continuum_study.h5", "snake_continuum_opt", "continuum (torque wave)")]
+    for k in ARCHS:
+        plural = "" if k == "1" else "s"
+        out.append((k, "%s_study.h5" % k, "snake_pairs" + k, "%s pair%s" % (k, plural)))
+        out.append((k + "c", "%s_chain.h5" % k, "snake_pairs" + k, "%s pair%s, chained" % (k, plural)))
+    return [(t, os.path.join(d, p), sc, n) for t, p, sc, n in out if os.path.exists(os.path.join(d, p))]
+
+
+def chain_sources(d):
+    """Where each stage of the chain started: {k: (file, score)}."""
+    src = {}
+    p = os.path.join(d, "chain_sources.txt")
+    if os.path.exists(p):
+        for line in open(p):
+            k, f, score = line.split()
+            src[k] = (f, float(score))
+    return src
+
+
 def main():
     if len(sys.argv) < 2:
         sys.exit(__doc__)
@@ -138,13 +162,10 @@ def main():
     img = sys.argv[sys.argv.index("--img") + 1] if "--img" in sys.argv else "docs/img"
     os.makedirs(img, exist_ok=True)
     walls = wall_times(d)
+    sources = chain_sources(d)
     rows, best = [], {}
     cont = None
-    for a in ["continuum"] + ARCHS:
-        path = os.path.join(d, "%s_study.h5" % a)
-        if not os.path.exists(path):
-            continue
-        scene = "snake_continuum_opt" if a == "continuum" else "snake_pairs" + a
+    for a, path, scene, name in studies(d):
         with h5py.File(path) as f:
             score, status, pairs = designs(f)
             objective = f["evaluations/objective"][()]
@@ -153,10 +174,13 @@ def main():
             score, status, objective, penalty = score[done], status[done], objective[done], penalty[done]
             ok = status == 1
             ib = int(np.argmax(np.where(ok, score, -np.inf)))   # the study's /best when complete
-            row = {"a": a, "n": len(score), "fail": int((~ok).sum()), "obj": objective[ib],
-                   "pen": penalty[ib], "score": score[ib], "ov": None}
+            row = {"a": a, "name": name, "n": len(score), "fail": int((~ok).sum()), "obj": objective[ib],
+                   "pen": penalty[ib], "score": score[ib], "ov": None,
+                   "status": str(f.attrs["status"]).split(":")[0]}
             if str(f.attrs["status"]).startswith("complete"):
                 check_best(d, a, scene, f, row)
+        if a.endswith("c") and a[:-1] in sources:
+            row["from"] = sources[a[:-1]]
         if pairs is not None:
             pairs = pairs[done]
             ov = overlapping(pairs) if pairs.shape[1] > 1 else np.zeros(len(score), bool)
@@ -181,7 +205,11 @@ def main():
         wt = walls.get(a)
         wtxt = " + ".join("%.0f s (%d)" % (w[1], w[0]) for w in wt) if wt else "—"
         share = "%.0f%%" % (100 * r["obj"] / cont) if cont and a != "continuum" else "—"
-        name = "continuum (torque wave)" if a == "continuum" else "%s pair%s" % (a, "" if a == "1" else "s")
+        name = r["name"]
+        if "from" in r:
+            name += " from %s (%.1f mm/s)" % (r["from"][0], 1e3 * r["from"][1])
+        if r["status"] != "complete":
+            name += " (%s)" % r["status"]
         speed = "%.1f mm/s" % (1e3 * r["obj"]) + (" (penalty %.1f)" % (1e3 * r["pen"]) if r["pen"] > 0 else "")
         same = ("yes" if r["same"] else "no") if "same" in r else "—"
         at10 = ("%.1f mm/s (%+.1f%%)" % (1e3 * r["obj10"], 100 * (r["obj10"] / r["obj"] - 1))
@@ -200,51 +228,62 @@ def main():
     out.append("")
     out.append("Best designs (pair: attachments at backbone nodes a-b of %d, peak force, phase):" % N_BODY)
     out.append("")
-    for a in ARCHS:
-        if a not in best:
+    for r in rows:
+        a = r["a"]
+        if a == "continuum":
             continue
         p = best[a][1]
-        out.append("- %s: " % a + "; ".join("%d-%d, %.0f N, %.0f deg" % tuple(r) for r in p))
+        out.append("- %s: " % r["name"] + "; ".join("%d-%d, %.0f N, %.0f deg" % tuple(q) for q in p))
     text = "\n".join(out) + "\n"
     open(os.path.join(d, "report.md"), "w").write(text)
     print(text)
 
     # ---- speed against the number of pairs, and the optimisations' paths ----
     fig, ax = plt.subplots(1, 2, figsize=(11, 4))
-    ks = [int(a) for a in ARCHS if a in best]
-    ax[0].plot(ks, [1e3 * r["obj"] for r in rows if r["a"] != "continuum"], "o-",
-               label="muscular snake, best found")
+    obj = {r["a"]: 1e3 * r["obj"] for r in rows}
+    own = [(int(k), obj[k]) for k in ARCHS if k in obj]
+    chained = [(int(k), obj[k + "c"]) for k in ARCHS if k + "c" in obj]
+    if chained and "1" in obj:                 # the chain begins at the one-pair study
+        chained = [(1, obj["1"])] + chained
+    if own:
+        ax[0].plot(*zip(*own), "o-", label="own study (CMA-ES from the scene's design)")
+    if chained:
+        ax[0].plot(*zip(*chained), "s--", label="chained (from the best with one pair fewer)")
     if cont:
-        ax[0].axhline(1e3 * cont, color="k", ls="--", label="continuum snake, best found")
+        ax[0].axhline(1e3 * cont, color="k", ls=":", label="continuum snake, best found")
     ax[0].set_xlabel("muscle-tendon pairs")
     ax[0].set_ylabel("forward speed of the centre of mass, 1-5 s (mm/s)")
     ax[0].set_xticks(range(1, 6))
-    ax[0].legend()
+    ax[0].legend(fontsize=8)
     ax[0].set_title("best speed against number of pairs")
-    for a, (path_, _) in best.items():
-        y = 1e3 * path_
+    for r in rows:
+        y = 1e3 * best[r["a"]][0]
         ax[1].plot(np.arange(1, len(y) + 1), np.where(np.isfinite(y), y, np.nan),
-                   label=a if a == "continuum" else "%s pair%s" % (a, "" if a == "1" else "s"))
+                   ls="--" if r["a"].endswith("c") else "-", label=r["name"])
     ax[1].set_xlabel("evaluation")
     ax[1].set_ylabel("best score so far: speed - penalty (mm/s)")
-    ax[1].legend()
+    ax[1].legend(fontsize=7)
     ax[1].set_title("CMA-ES, seed 1")
     fig.tight_layout()
     fig.savefig(os.path.join(img, "study_snake_speed.png"), dpi=110)
 
-    # ---- the best designs, as in the reference's Fig. 2c ----
-    n = len(ks)
-    fig, ax = plt.subplots(1, max(n, 1), figsize=(3.2 * max(n, 1), 3.2), sharey=True, squeeze=False)
-    for c, k in enumerate(ks):
-        p = best[str(k)][1]
-        for i, (a, b, amp, ph) in enumerate(p):
-            ax[0][c].plot([a, b], [amp, amp], "-", lw=3, color="C%d" % i)
-            ax[0][c].plot([a, b], [amp, amp], "|", ms=10, color="C%d" % i)
-        ax[0][c].set_xlim(0, N_BODY)
-        ax[0][c].set_ylim(0, 520)                 # the box: 0 to 500 N
-        ax[0][c].set_xlabel("vertebra (tail 0, head %d)" % N_BODY)
-        ax[0][c].set_title("%d pair%s" % (k, "" if k == 1 else "s"))
-    ax[0][0].set_ylabel("peak muscle force (N)")
+    # ---- the best designs, as in the reference's Fig. 2c: a row per kind ----
+    kinds = [k for k in ("", "c") if any(a + k in best for a in ARCHS if a + k != "1c")]
+    fig, ax = plt.subplots(len(kinds), 5, figsize=(16, 3.2 * len(kinds)), sharey=True, squeeze=False)
+    for row, kind in enumerate(kinds):
+        for c, k in enumerate(ARCHS):
+            tag = k + kind if not (kind == "c" and k == "1") else "1"
+            axis = ax[row][c]
+            axis.set_xlim(0, N_BODY)
+            axis.set_ylim(0, 520)                 # the box: 0 to 500 N
+            axis.set_title("%s pair%s%s" % (k, "" if k == "1" else "s", ", chained" if kind else ""))
+            axis.set_xlabel("vertebra (tail 0, head %d)" % N_BODY)
+            if tag not in best:
+                continue
+            for i, (a, b, amp, ph) in enumerate(best[tag][1]):
+                axis.plot([a, b], [amp, amp], "-", lw=3, color="C%d" % i)
+                axis.plot([a, b], [amp, amp], "|", ms=10, color="C%d" % i)
+        ax[row][0].set_ylabel("peak muscle force (N)")
     fig.tight_layout()
     fig.savefig(os.path.join(img, "study_snake_designs.png"), dpi=110)
 
