@@ -781,6 +781,7 @@ int sema_check_lets(swArena *arena, int file, swLetOverride *lets, int nlets, sw
   free(S.expects.scope);
   free(S.objectives.item);
   free(S.objectives.scope);
+  free(S.bad_probe);
   return diag_errors() - before;
 }
 

@@ -484,19 +484,17 @@ void sema_env(swSema *S, swScope *scope, const swAst *it) {
 
 static const char *const probe_funcs[] = {"centre_of_mass", "velocity", "mean_velocity"};
 
-void sema_probe(swSema *S, swScope *scope, const swAst *fl) {
+/* The probe `fl` declares into *out (its name checked by the caller);
+ * 0 when it is wrong (reported). */
+static int make_probe(swSema *S, swScope *scope, const swAst *fl, swSceneProbe *out) {
   const swAst *target = ast_kid(fl, 1), *e = ast_kid(fl, 0);
-  if (!target || target->kind != AST_NAME) {
-    diag_error(fl->loc, "a probe reads 'probe NAME = centre_of_mass(rods);'");
-    return;
-  }
   swScene *scn = S->scene;
   for (int i = 0; i < scn->nprobe; i++)
     if (!strcmp(scn->probe[i].name, target->name)) {
       char first[300];
       diag_error(target->loc, "probe '%s' is given twice (first at %s)", target->name,
                  diag_where_from(scn->probe[i].loc, target->loc, first, sizeof first));
-      return;
+      return 0;
     }
   swSceneProbe p;
   memset(&p, 0, sizeof p);
@@ -513,7 +511,7 @@ void sema_probe(swSema *S, swScope *scope, const swAst *fl) {
       if (near) diag_error(e->loc, "unknown probe '%s'; did you mean '%s'?", e->name, near);
       else diag_error(e->loc, "unknown probe '%s' (expected centre_of_mass, velocity, "
                       "mean_velocity or a point on a rod)", e->name);
-      return;
+      return 0;
     }
     p.kind = k == 0 ? SW_PROBE_COM : k == 1 ? SW_PROBE_COM_VELOCITY : SW_PROBE_MEAN_VELOCITY;
     const swAst *args = ast_kid(e, 0);
@@ -522,44 +520,61 @@ void sema_probe(swSema *S, swScope *scope, const swAst *fl) {
       const swAst *a = args->kid[i];
       if (a->kind == AST_ARG && a->name && k == 2 && !strcmp(a->name, "window")) {
         p.window = sema_expect(S, scope, a->kid[0], 1, DIM_TIME, "'window' of mean_velocity()");
-        if (p.window.kind == VAL_ERROR) return;
+        if (p.window.kind == VAL_ERROR) return 0;
         if (!(p.window.v[0] > 0)) {
           diag_error(p.window.loc, "'window' of mean_velocity() must be positive, got %g s",
                      p.window.v[0]);
-          return;
+          return 0;
         }
       } else if (a->kind == AST_ARG && !a->name && i == 0) {
         rods = a->kid[0];
       } else {
         diag_error(a->loc, "%s() takes the rods (a name, a list in parentheses or all)%s",
                    e->name, k == 2 ? " and window = T" : "");
-        return;
+        return 0;
       }
     }
     if (!rods) {
       diag_error(e->loc, "%s() needs the rods it reads: %s(all), %s(snake)", e->name, e->name,
                  e->name);
-      return;
+      return 0;
     }
     snprintf(what, sizeof what, "probe '%s'", p.name);
-    if (!sema_rod_list(S, scope, rods, ast_strdup(S->a, what, strlen(what)), &p.rods)) return;
+    if (!sema_rod_list(S, scope, rods, ast_strdup(S->a, what, strlen(what)), &p.rods)) return 0;
   } else {
     swValue v = sema_eval(S, scope, e);
     if (v.kind == VAL_WORD) {
       sema_report_unknown(S, scope, v.word, v.loc, "rod");
-      return;
+      return 0;
     }
-    if (v.kind == VAL_ERROR) return;
+    if (v.kind == VAL_ERROR) return 0;
     if (v.kind != VAL_POINT) {
       diag_error(e->loc, "a probe reads a point on a rod (snake.end), centre_of_mass(rods), "
                  "velocity(rods) or mean_velocity(rods, window = T)");
-      return;
+      return 0;
     }
-    if (!sema_point_fixed(&v, "the point a probe reads")) return;
+    if (!sema_point_fixed(&v, "the point a probe reads")) return 0;
     p.kind = SW_PROBE_NODE;
     p.rod = scn->rod[v.rod].id;
     p.rod_name = scn->rod[v.rod].name;
     p.node = v.node;
   }
-  *(swSceneProbe *)append((void **)&scn->probe, &scn->nprobe, &scn->capprobe, sizeof p) = p;
+  *out = p;
+  return 1;
+}
+
+void sema_probe(swSema *S, swScope *scope, const swAst *fl) {
+  const swAst *target = ast_kid(fl, 1);
+  if (!target || target->kind != AST_NAME) {
+    diag_error(fl->loc, "a probe reads 'probe NAME = centre_of_mass(rods);'");
+    return;
+  }
+  swSceneProbe p;
+  if (make_probe(S, scope, fl, &p)) {
+    swScene *scn = S->scene;
+    *(swSceneProbe *)append((void **)&scn->probe, &scn->nprobe, &scn->capprobe, sizeof p) = p;
+  } else {
+    *(const char **)append((void **)&S->bad_probe, &S->nbad_probe, &S->capbad_probe,
+                           sizeof(const char *)) = target->name;
+  }
 }

@@ -119,6 +119,8 @@ int sema_quantity(swSema *S, swScope *scope, const swAst *q, const char *who, sw
     int p;
     for (p = 0; p < scn->nprobe; p++)
       if (arg->kind == AST_NAME && !strcmp(scn->probe[p].name, arg->name)) break;
+    for (int i = 0; p == scn->nprobe && arg->kind == AST_NAME && i < S->nbad_probe; i++)
+      if (!strcmp(S->bad_probe[i], arg->name)) return 0; /* its declaration was reported */
     if (p == scn->nprobe) {
       const char *cands[64];
       int n = 0;

@@ -71,6 +71,10 @@ typedef struct {
   /* set while one of them is evaluated: a reduction (at, mean_over, ...)
    * is allowed there and nowhere else */
   int reducing;
+  /* probes whose declaration failed (already reported): a quantity that
+   * reads one is not reported again as naming no probe */
+  const char **bad_probe;
+  int nbad_probe, capbad_probe;
 } swSema;
 
 /* sema.c */
