@@ -49,7 +49,8 @@
 typedef enum {
   OPT_OUT, OPT_DURATION, OPT_DT, OPT_INTEGRATOR, OPT_EVERY, OPT_SET, OPT_THREADS, OPT_COMPARE,
   OPT_RTOL, OPT_RESTART, OPT_SWEEP, OPT_OPTIMIZE, OPT_BUDGET, OPT_POPSIZE, OPT_SIGMA,
-  OPT_RESTARTS, OPT_START, OPT_SEED, OPT_STUDY, OPT_RESUME, OPT_EVAL_TIMEOUT, OPT_QUIET, OPT_INFO, OPT_HELP
+  OPT_RESTARTS, OPT_START, OPT_SEED, OPT_STUDY, OPT_RESUME, OPT_EVAL_TIMEOUT, OPT_QUIET, OPT_INFO,
+  OPT_HELP
 } swOptionId;
 
 typedef struct {
@@ -477,15 +478,19 @@ static int read_study_option(swCli *c, swOptionId id, const char *value) {
                       "'%s'", value);
     return SW_OK;
   }
-  case OPT_START:
+  case OPT_START: {
     a->start_given = 1;
-    if (strchr(value, '=')) return read_param_value(c, "--start", value);
+    /* NAME=VALUE when what precedes '=' is a name, else a file's path */
+    size_t name_len = strspn(value, "abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ"
+                                    "0123456789_");
+    if (name_len && value[name_len] == '=') return read_param_value(c, "--start", value);
     if (!value[0]) return complain(c, "--start: empty file name");
     if (a->start)
       return complain(c, "--start %s: a study starts from one file, and --start %s was given",
                       value, a->start);
     a->start = value;
     return SW_OK;
+  }
   case OPT_STUDY:
     if (!value[0]) return complain(c, "--study: empty file name");
     a->study = value;
