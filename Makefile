@@ -229,7 +229,9 @@ plots: deps
 # where it stopped), the table in study/report.md and the plots
 # docs/img/study_snake_*.png (~1.5 h on this machine's 2 cores; never part
 # of `make test`, whose test_snake_muscular runs a short study).
-# STUDY_ARGS="--budget 1000 --np 8" for a larger one, or a subset: "4 5".
+# STUDY_ARGS="--budget 1000 --np 8" for a larger one, or a subset: "4 5";
+# STUDY_ARGS="--chain --budget 250" for the chained study (2 to 5 pairs,
+# each started at the best design with one pair fewer; ~1.2 h here).
 .PHONY: study-snake
 study-snake: deps
 	@$(MAKE) --no-print-directory all
