@@ -8,7 +8,8 @@ Supplementary Note 4 and Fig. 2).
 Design.  Reads DIR/continuum_study.h5 and DIR/K_study.h5 (K = 1..5 pairs)
 that scripts/study_snake.sh writes, DIR/K_chain.h5 and DIR/chain_sources.txt
 of its --chain (each stage started at the best design with one pair fewer),
-and DIR/walltime.txt.  For each
+and DIR/walltime.txt.  A chained stage's start design (the best design with
+one pair fewer, the new pair at 20 N) is run too: what the stage had to beat.  For each
 architecture: the evaluations, how many failed, the wall time, the best
 forward speed (the scenes' objective, m/s) and its share of the continuum
 snake's.  For the muscular ones, each pair's attachments are recomputed
@@ -100,6 +101,28 @@ def rerun(d, a, scene, f, dt=None):
     return h5py.File(out, "r") if os.path.exists(out) else None
 
 
+def start_speed(d, k, scene, src):
+    """The design a chained stage of k pairs started at, run alone: the best
+    design of src (one pair fewer) and pair k at 20 N, its other params at
+    the scene's values.  Its objective (m/s), or nan."""
+    out = os.path.join(d, "best_%sc_start.h5" % k)
+    if not os.path.exists(out) and os.path.exists(os.path.join(d, src)):
+        with h5py.File(os.path.join(d, src), "r") as f:
+            names = [n.decode() if isinstance(n, bytes) else str(n)
+                     for n in f["evaluations/params"].attrs["names"]]
+            units = [u.decode() if isinstance(u, bytes) else str(u)
+                     for u in f["evaluations/params"].attrs["units"]]
+            best = f["best/params"][()]
+        args = [os.path.join(d, scene), "--quiet", "--out", out, "--set", "amp%s=20 N" % k]
+        for n, u, v in zip(names, units, best):
+            args += ["--set", ("%s=%.17g %s" % (n, v, u)).strip()]
+        subprocess.run(args, check=False, stdout=subprocess.DEVNULL)
+    if not os.path.exists(out):
+        return np.nan
+    with h5py.File(out, "r") as r:
+        return float(r.attrs["objective"])
+
+
 def planarity(run):
     """Largest rib tilt about the body axis (deg) and lift of the centre of mass (mm)."""
     z = run["probes/com"][:, 2]
@@ -181,6 +204,7 @@ def main():
                 check_best(d, a, scene, f, row)
         if a.endswith("c") and a[:-1] in sources:
             row["from"] = sources[a[:-1]]
+            row["start"] = start_speed(d, a[:-1], scene, sources[a[:-1]][0])
         if pairs is not None:
             pairs = pairs[done]
             ov = overlapping(pairs) if pairs.shape[1] > 1 else np.zeros(len(score), bool)
@@ -207,7 +231,8 @@ def main():
         share = "%.0f%%" % (100 * r["obj"] / cont) if cont and a != "continuum" else "—"
         name = r["name"]
         if "from" in r:
-            name += " from %s (%.1f mm/s)" % (r["from"][0], 1e3 * r["from"][1])
+            name += " from %s (%.1f mm/s; the start design: %.1f mm/s)" % (
+                r["from"][0], 1e3 * r["from"][1], 1e3 * r["start"])
         if r["status"] != "complete":
             name += " (%s)" % r["status"]
         speed = "%.1f mm/s" % (1e3 * r["obj"]) + (" (penalty %.1f)" % (1e3 * r["pen"]) if r["pen"] > 0 else "")
