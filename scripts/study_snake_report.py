@@ -274,6 +274,11 @@ def main():
         ax[0].plot(*zip(*own), "o-", label="own study (CMA-ES from the scene's design)")
     if chained:
         ax[0].plot(*zip(*chained), "s--", label="chained (from the best with one pair fewer)")
+    starts = [(int(r["a"][:-1]), 1e3 * r["start"]) for r in rows
+              if "start" in r and np.isfinite(r["start"])]
+    if starts:
+        ax[0].plot(*zip(*starts), "x", color="C1", ms=8,
+                   label="a chained stage's start (best with one pair fewer, new pair at 20 N)")
     if cont:
         ax[0].axhline(1e3 * cont, color="k", ls=":", label="continuum snake, best found")
     ax[0].set_xlabel("muscle-tendon pairs")
