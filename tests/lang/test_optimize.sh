@@ -18,6 +18,7 @@
 #   - bad use is refused with one line and the exit code of the contract.
 . "$(dirname "$0")/tap.sh"
 cd "$ROOT" || exit 1
+case $SINEWC in /*) ;; *) SINEWC=$ROOT/$SINEWC ;; esac   # models are also compiled in $TMP
 scratch optimize
 PY=/usr/bin/python3
 SAME="$PY $ROOT/tests/lang/study_same.py"
