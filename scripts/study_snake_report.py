@@ -151,7 +151,9 @@ def check_best(d, a, scene, f, row):
     ib = int(f["best"].attrs["index"])
     r20 = rerun(d, a, scene, f)
     r10 = rerun(d, a, scene, f, "10us")
-    row["same"] = r20 is not None and float(r20.attrs["objective"]) == float(f["evaluations/objective"][ib])
+    want = float(f["evaluations/objective"][ib])
+    row["same"] = r20 is not None and float(r20.attrs["objective"]) == want
+    row["rediff"] = abs(float(r20.attrs["objective"]) / want - 1) if r20 is not None else np.nan
     row["obj10"] = float(r10.attrs["objective"]) if r10 is not None else np.nan
     row["roll"], row["lift"] = planarity(r20) if r20 is not None else (np.nan, np.nan)
 
@@ -236,7 +238,7 @@ def main():
         if r["status"] != "complete":
             name += " (%s)" % r["status"]
         speed = "%.1f mm/s" % (1e3 * r["obj"]) + (" (penalty %.1f)" % (1e3 * r["pen"]) if r["pen"] > 0 else "")
-        same = ("yes" if r["same"] else "no") if "same" in r else "—"
+        same = ("yes" if r["same"] else "%.0e apart" % r["rediff"]) if "same" in r else "—"
         at10 = ("%.1f mm/s (%+.1f%%)" % (1e3 * r["obj10"], 100 * (r["obj10"] / r["obj"] - 1))
                 if "obj10" in r else "—")
         plan = "%.1f deg, %.1f mm" % (r["roll"], r["lift"]) if "roll" in r else "—"
