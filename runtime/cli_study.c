@@ -6,9 +6,9 @@
  * model in this process (sw_evaluate: built from the design's params,
  * compiled, run for --duration without output, its objective sampled).  The
  * params a study varies are those with a range that --set does not fix; the
- * others keep their values, and CMA-ES starts at them (or, with --start, at
- * the best design of another study).  What an evaluation depends on (the time step,
- * duration and integrator, every param's start value, the model's hash and
+ * others keep their values.  CMA-ES starts at the params' values, or with
+ * --start at another study's best design or a given value.  What an
+ * evaluation depends on (the time step, duration and integrator, every param's start value, the model's hash and
  * the study's settings) is recorded in the study's file, and --resume takes
  * it all from there: a setting given again must agree with the file's (but
  * an optimisation's --budget, which may grow), so a resumed study is the
@@ -154,8 +154,7 @@ static int take_start(swStudyCall *c, const char *path, const int *vary, const d
                "model's range (%.9g%s%s, %.9g%s%s)", path, name[i], v[i] / c->scale[i],
                SHOWN_UNIT(c, i), lo[i] / c->scale[i], SHOWN_UNIT(c, i), hi[i] / c->scale[i],
                SHOWN_UNIT(c, i));
-    c->P[i] = v[i];
-    taken++;
+    else c->P[i] = v[i], taken++;
   }
   if (rc == SW_OK && !taken)
     rc = say(c, SW_EUSAGE, "--start %s: none of the params this study varies is in that file",

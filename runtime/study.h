@@ -99,9 +99,9 @@ int sw_study_file_settings(const char *path, swStudySettings *s, char *err, size
  * found[i] = 1 for each of the nparam params name[] the file's study also
  * varied or held, found[i] = 0 for the others.  The file stores values in
  * the units its model showed them in; each must be this model's unit[i]
- * (whose SI value is scale[i]) or another unit of the same dimension,
- * else an error names the param.  *index and
- * *score: the best evaluation's.  SW_OK, or SW_EIO with err. */
+ * (whose SI value is scale[i]) or another unit of the same dimension, else
+ * an error names the param.  *index and *score: the best evaluation's.
+ * SW_OK, or SW_EIO with err. */
 int sw_study_file_best_design(const char *path, int nparam, const char *const *name,
                               const char *const *unit, const double *scale, double *value,
                               int *found, long *index, double *score, char *err, size_t errlen);
