@@ -21,9 +21,11 @@
 # scripts/study_snake_report.py writes the table and plots of
 # docs/validation.md ("The muscular snake's study").
 #
-# --chain: the same question asked pair by pair.  An n-pair design is an
-# (n+1)-pair design whose extra pair pulls with 0 N, so the best (n+1)-pair
-# snake is at least as fast as the best n-pair one.  The chain runs the
+# --chain: the same question asked pair by pair.  An n-pair design is
+# nearly an (n+1)-pair design whose extra pair pulls with 0 N (the idle
+# pair's mass, stiffness and damping cost 1-2% of the speed from two pairs
+# up: docs/validation.md), so a stage starts next to a good design.  The
+# chain runs the
 # 1-pair study (DIR/1_study.h5), then for n = 2..5 an optimisation
 # (DIR/n_chain.h5) that starts (--start) at the best (n-1)-pair design
 # found so far (of DIR/(n-1)_study.h5 and DIR/(n-1)_chain.h5, whichever
