@@ -346,11 +346,12 @@ static int read_integrator(swCli *c, const char *value) {
   return complain(c, "--integrator: unknown integrator '%s' (verlet, pefrl or imex)", value);
 }
 
-/* --set NAME=VALUE (opt "--set": the param is fixed at VALUE) or --start
- * NAME=VALUE (opt "--start": a study starts it there and varies it): VALUE
- * must have the param's dimension. */
-static int read_param_value(swCli *c, const char *opt, const char *value) {
+/* --set NAME=VALUE (start 0: the param is fixed at VALUE) or --start
+ * NAME=VALUE (start 1: a study starts it there and varies it): VALUE must
+ * have the param's dimension. */
+static int read_param_value(swCli *c, int start, const char *value) {
   const swProgram *p = c->p;
+  const char *opt = start ? "--start" : "--set";
   const char *eq = strchr(value, '=');
   if (!eq || eq == value) return complain(c, "%s: expected NAME=VALUE, got '%s'", opt, value);
   size_t len = (size_t)(eq - value);
@@ -399,7 +400,7 @@ static int read_param_value(swCli *c, const char *opt, const char *value) {
     return complain(c, "%s %s: expected %s, got %s in '%s'", opt, q->name, expected,
                     sw_dim_describe(got, sizeof got, dim), text);
   }
-  if (!strcmp(opt, "--start")) {
+  if (start) {
     if (!q->ranged)
       return complain(c, "--start %s: the param has no range, so no study varies it (--set "
                       "fixes a param)", q->name);
@@ -483,7 +484,7 @@ static int read_study_option(swCli *c, swOptionId id, const char *value) {
     /* NAME=VALUE when what precedes '=' is a name, else a file's path */
     size_t name_len = strspn(value, "abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ"
                                     "0123456789_");
-    if (name_len && value[name_len] == '=') return read_param_value(c, "--start", value);
+    if (name_len && value[name_len] == '=') return read_param_value(c, 1, value);
     if (!value[0]) return complain(c, "--start: empty file name");
     if (a->start)
       return complain(c, "--start %s: a study starts from one file, and --start %s was given",
@@ -600,7 +601,7 @@ static int parse_args(swCli *c, int argc, char **argv) {
       if (!value[0]) rc = complain(c, "--restart: empty file name");
       c->restart = value;
       break;
-    case OPT_SET: rc = read_param_value(c, "--set", value); break;
+    case OPT_SET: rc = read_param_value(c, 0, value); break;
     case OPT_THREADS: rc = read_threads(c, value); c->threads_set = 1; break;
     case OPT_COMPARE:
       if (!value[0]) rc = complain(c, "--compare: empty file name");

@@ -8,11 +8,12 @@
  * params a study varies are those with a range that --set does not fix; the
  * others keep their values.  CMA-ES starts at the params' values, or with
  * --start at another study's best design or a given value.  What an
- * evaluation depends on (the time step, duration and integrator, every param's start value, the model's hash and
- * the study's settings) is recorded in the study's file, and --resume takes
- * it all from there: a setting given again must agree with the file's (but
- * an optimisation's --budget, which may grow), so a resumed study is the
- * one that was interrupted. */
+ * evaluation depends on (the time step, duration and integrator, every
+ * param's start value, the model's hash and the study's settings) is
+ * recorded in the study's file, and --resume takes it all from there: a
+ * setting given again must agree with the file's (but an optimisation's
+ * --budget, which may grow), so a resumed study is the one that was
+ * interrupted. */
 #include <errno.h>
 #include <inttypes.h>
 #include <math.h>
@@ -123,8 +124,15 @@ static int take_resumed(swStudyCall *c, swStudyArgs *a, int *vary) {
   return SW_OK;
 }
 
-/* " unit" of param i as printf's "%s%s", or nothing for a dimensionless one */
-#define SHOWN_UNIT(c, i) (c)->unit[i][0] ? " " : "", (c)->unit[i]
+/* A start value v (SI) of param i outside its range: SW_EUSAGE, with the
+ * message "HEAD NAME = V, outside ...'s range (LO, HI)" in the units shown. */
+static int out_of_range(const swStudyCall *c, int i, double v, const double *lo,
+                        const double *hi, const char *head, const char *whose) {
+  const char *u = c->unit[i], *sp = u[0] ? " " : "";
+  const double s = c->scale[i];
+  return say(c, SW_EUSAGE, "%s %s = %.9g%s%s, outside %s range (%.9g%s%s, %.9g%s%s)", head,
+             c->p->param[i].name, v / s, sp, u, whose, lo[i] / s, sp, u, hi[i] / s, sp, u);
+}
 
 /* --start: the varied params take the values of the best design the file
  * holds, where it has a param of the same name (the others keep theirs). */
@@ -149,12 +157,14 @@ static int take_start(swStudyCall *c, const char *path, const int *vary, const d
   for (int i = 0; i < np && rc == SW_OK; i++) {
     nvary += vary[i];
     if (!vary[i] || !found[i] || c->started[i]) continue; /* --start NAME=VALUE wins */
-    if (!(v[i] >= lo[i] && v[i] <= hi[i]))
-      rc = say(c, SW_EUSAGE, "--start %s: its best design has %s = %.9g%s%s, outside this "
-               "model's range (%.9g%s%s, %.9g%s%s)", path, name[i], v[i] / c->scale[i],
-               SHOWN_UNIT(c, i), lo[i] / c->scale[i], SHOWN_UNIT(c, i), hi[i] / c->scale[i],
-               SHOWN_UNIT(c, i));
-    else c->P[i] = v[i], taken++;
+    if (!(v[i] >= lo[i] && v[i] <= hi[i])) {
+      char head[320];
+      snprintf(head, sizeof head, "--start %s: its best design has", path);
+      rc = out_of_range(c, i, v[i], lo, hi, head, "this model's");
+    } else {
+      c->P[i] = v[i];
+      taken++;
+    }
   }
   if (rc == SW_OK && !taken)
     rc = say(c, SW_EUSAGE, "--start %s: none of the params this study varies is in that file",
@@ -212,9 +222,7 @@ int sw_study_cli(swStudyCall *c) {
       rc = say(c, SW_EUSAGE, "--start %s: --set fixes it, so the study does not vary it",
                name[i]);
     else if (!(c->P[i] >= lo[i] && c->P[i] <= hi[i]))
-      rc = say(c, SW_EUSAGE, "--start %s = %.9g%s%s is outside its range (%.9g%s%s, %.9g%s%s)",
-               name[i], c->P[i] / c->scale[i], SHOWN_UNIT(c, i), lo[i] / c->scale[i],
-               SHOWN_UNIT(c, i), hi[i] / c->scale[i], SHOWN_UNIT(c, i));
+      rc = out_of_range(c, i, c->P[i], lo, hi, "--start", "its");
   }
   char settings[256];
   run_settings(c, settings, sizeof settings);

@@ -51,11 +51,9 @@ def attachments(pos, span):
 
 def designs(f):
     """Per evaluation: (score m/s, ok, [(a, b, amp, phase) per pair])."""
-    names = [n.decode() if isinstance(n, bytes) else str(n)
-             for n in f["evaluations/params"].attrs["names"]]
+    names = texts(f["evaluations/params"].attrs["names"])
     P = f["evaluations/params"][()]
-    units = [u.decode() if isinstance(u, bytes) else str(u)
-             for u in f["evaluations/params"].attrs["units"]]
+    units = texts(f["evaluations/params"].attrs["units"])
     score = f["evaluations/score"][()]
     status = f["evaluations/status"][()]
     k = 1
@@ -81,20 +79,29 @@ def overlapping(pairs):
     return out
 
 
+def texts(values):
+    """An HDF5 list of names or units as str."""
+    return [v.decode() if isinstance(v, bytes) else str(v) for v in values]
+
+
+def best_sets(f, only=None):
+    """--set arguments giving the params of study file f's best design (those
+    named in only, if given) in the units the file holds them in."""
+    names = texts(f["evaluations/params"].attrs["names"])
+    units = texts(f["evaluations/params"].attrs["units"])
+    args = []
+    for n, u, v in zip(names, units, f["best/params"][()]):
+        if only is None or n in only:
+            args += ["--set", ("%s=%.17g %s" % (n, v, u)).strip()]
+    return args
+
+
 def rerun(d, a, scene, f, dt=None):
     """The best design of study file f run alone: its output file (made once)."""
     out = os.path.join(d, "best_%s%s.h5" % (a, "_" + dt if dt else ""))
     if not os.path.exists(out):
-        names = [n.decode() if isinstance(n, bytes) else str(n) for n in f["design/name"][()]]
-        units = [u.decode() if isinstance(u, bytes) else str(u)
-                 for u in f["evaluations/params"].attrs["units"]]
-        allnames = [n.decode() if isinstance(n, bytes) else str(n)
-                    for n in f["evaluations/params"].attrs["names"]]
-        best = f["best/params"][()]
         args = [os.path.join(d, scene), "--quiet", "--out", out]
-        for n, v in zip(allnames, best):
-            if n in names:
-                args += ["--set", "%s=%.17g %s" % (n, v, units[allnames.index(n)])]
+        args += best_sets(f, texts(f["design/name"][()]))
         if dt:
             args += ["--dt", dt]
         subprocess.run(args, check=False, stdout=subprocess.DEVNULL)
@@ -108,15 +115,9 @@ def start_speed(d, k, scene, src):
     out = os.path.join(d, "best_%sc_start.h5" % k)
     if not os.path.exists(out) and os.path.exists(os.path.join(d, src)):
         with h5py.File(os.path.join(d, src), "r") as f:
-            names = [n.decode() if isinstance(n, bytes) else str(n)
-                     for n in f["evaluations/params"].attrs["names"]]
-            units = [u.decode() if isinstance(u, bytes) else str(u)
-                     for u in f["evaluations/params"].attrs["units"]]
-            best = f["best/params"][()]
+            sets = best_sets(f)
         args = [os.path.join(d, scene), "--quiet", "--out", out, "--set", "amp%s=20 N" % k]
-        for n, u, v in zip(names, units, best):
-            args += ["--set", ("%s=%.17g %s" % (n, v, u)).strip()]
-        subprocess.run(args, check=False, stdout=subprocess.DEVNULL)
+        subprocess.run(args + sets, check=False, stdout=subprocess.DEVNULL)
     if not os.path.exists(out):
         return np.nan
     with h5py.File(out, "r") as r:
