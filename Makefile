@@ -23,14 +23,25 @@ OPT      = -O3 -march=native -fno-math-errno -fopenmp -g
 PORTABLE = -O3 -fno-math-errno -fopenmp -g
 CFLAGS  ?= $(OPT)
 SAN      = -O1 -g -fopenmp -fno-omit-frame-pointer -fsanitize=address,undefined -fno-sanitize-recover=all
-ALL_CFLAGS = $(STD) $(WARN) $(CFLAGS) -Iruntime $(PKG_CFLAGS)
-SAN_CFLAGS = $(STD) $(WARN) $(SAN) -Iruntime $(PKG_CFLAGS)
+# The runtime's rooms (docs/runtime.md): the public header's parts in
+# runtime/include/, what every file may include as "sinew.h"; a room's own
+# headers by name within it ("internal.h"), another room's by its path from
+# runtime/ ("engine/internal.h"), so the arrows between rooms show in the
+# includes (tests/lang/test_layout.sh checks them).
+RT_INC   = -Iruntime/include -Iruntime
+# The white-box tests and benchmarks reach the rooms' internal headers by name.
+TEST_INC = -Iruntime/engine -Iruntime/io -Iruntime/study
+ALL_CFLAGS = $(STD) $(WARN) $(CFLAGS) $(RT_INC) $(PKG_CFLAGS)
+SAN_CFLAGS = $(STD) $(WARN) $(SAN) $(RT_INC) $(PKG_CFLAGS)
 LIBS     = $(PKG_LIBS) -lm
 
-# study_mpi.c is the one runtime file that needs MPI: it is built on its own
-# (below), only where mpicc exists, and never into the libraries.
-RT_SRC   = $(filter-out runtime/study_mpi.c,$(wildcard runtime/*.c))
-RT_HDR   = $(wildcard runtime/*.h)
+# The runtime in its rooms: include/ (the public header), engine/, io/,
+# study/, sim/.  study/study_mpi.c is the one runtime file that needs MPI: it
+# is built on its own (below), only where mpicc exists, and never into the
+# libraries.
+RT_ROOMS = engine io study sim
+RT_SRC   = $(filter-out runtime/study/study_mpi.c,$(foreach r,$(RT_ROOMS),$(wildcard runtime/$(r)/*.c)))
+RT_HDR   = $(wildcard runtime/include/*.h) $(foreach r,$(RT_ROOMS),$(wildcard runtime/$(r)/*.h))
 RT_OBJ   = $(RT_SRC:runtime/%.c=build/rt/%.o)
 RT_SOBJ  = $(RT_SRC:runtime/%.c=build/asan/rt/%.o)
 RT_POBJ  = $(RT_SRC:runtime/%.c=build/portable/rt/%.o)
@@ -50,10 +61,10 @@ CC_SRC   = $(wildcard compiler/*.c)
 CC_HDR   = $(wildcard compiler/*.h) build/lang/sinew.tab.h
 CC_OBJ   = $(CC_SRC:compiler/%.c=build/cc/%.o) build/cc/sinew.tab.o build/cc/lex.yy.o
 CC_SOBJ  = $(CC_SRC:compiler/%.c=build/asan/cc/%.o) build/asan/cc/sinew.tab.o build/asan/cc/lex.yy.o
-CC_INC   = -Icompiler -Ibuild/lang -Iruntime
+CC_INC   = -Icompiler -Ibuild/lang -Iruntime/include
 # flex output is not written for our warning set
 GEN_WARN = -Wno-unused-function -Wno-sign-compare -Wno-missing-prototypes -Wno-unused-parameter
-# MPI (OpenMPI from Debian): where mpicc exists, runtime/study_mpi.c becomes
+# MPI (OpenMPI from Debian): where mpicc exists, runtime/study/study_mpi.c becomes
 # build/sinewrt_mpi.o, which sinewc links into every simulator beside the
 # runtime (with mpicc's libraries), so that `mpirun -np N SIM --optimize`
 # farms the evaluations out; without mpicc the simulators build and study on
@@ -93,28 +104,31 @@ build/lang build/cc build/asan/cc bin:
 deps:
 	@sh scripts/deps.sh
 
-build/rt/%.o: runtime/%.c $(RT_HDR) | build/rt
+build/rt/%.o: runtime/%.c $(RT_HDR)
+	@mkdir -p $(@D)
 	$(CC) $(ALL_CFLAGS) -c $< -o $@
-build/asan/rt/%.o: runtime/%.c $(RT_HDR) | build/asan/rt
+build/asan/rt/%.o: runtime/%.c $(RT_HDR)
+	@mkdir -p $(@D)
 	$(CC) $(SAN_CFLAGS) -c $< -o $@
 build/libsinewrt.a: $(RT_OBJ)
 	ar rcs $@ $^
 # for any x86-64 (like the portable library): it only passes messages
-build/sinewrt_mpi.o: runtime/study_mpi.c $(RT_HDR) | build/rt
-	$(CC) $(STD) $(WARN) $(PORTABLE) -Iruntime $(MPI_CFLAGS) -c $< -o $@
+build/sinewrt_mpi.o: runtime/study/study_mpi.c $(RT_HDR) | build/rt
+	$(CC) $(STD) $(WARN) $(PORTABLE) $(RT_INC) $(MPI_CFLAGS) -c $< -o $@
 build/asan/libsinewrt.a: $(RT_SOBJ)
 	ar rcs $@ $^
-build/portable/rt/%.o: runtime/%.c $(RT_HDR) | build/portable/rt
-	$(CC) $(STD) $(WARN) $(PORTABLE) -Iruntime $(PKG_CFLAGS) -c $< -o $@
+build/portable/rt/%.o: runtime/%.c $(RT_HDR)
+	@mkdir -p $(@D)
+	$(CC) $(STD) $(WARN) $(PORTABLE) $(RT_INC) $(PKG_CFLAGS) -c $< -o $@
 build/libsinewrt-portable.a: $(RT_POBJ)
 	ar rcs $@ $^
 
 build/tests/%: tests/runtime/%.c tests/runtime/testutil.h tests/runtime/h5read.h build/libsinewrt.a | build/tests
-	$(CC) $(ALL_CFLAGS) -Itests/runtime $< -o $@ build/libsinewrt.a $(LIBS) -lcmocka
+	$(CC) $(ALL_CFLAGS) $(TEST_INC) -Itests/runtime $< -o $@ build/libsinewrt.a $(LIBS) -lcmocka
 build/asan/tests/%: tests/runtime/%.c tests/runtime/testutil.h tests/runtime/h5read.h build/asan/libsinewrt.a | build/asan/tests
-	$(CC) $(SAN_CFLAGS) -Itests/runtime $< -o $@ build/asan/libsinewrt.a $(LIBS) -lcmocka
+	$(CC) $(SAN_CFLAGS) $(TEST_INC) -Itests/runtime $< -o $@ build/asan/libsinewrt.a $(LIBS) -lcmocka
 
-build/rt build/asan/rt build/portable/rt build/tests build/asan/tests build/bench:
+build/rt build/tests build/asan/tests build/bench:
 	@mkdir -p $@
 
 # `make test`: install what is missing, then build and run everything under
@@ -137,7 +151,7 @@ $(E2E_BIN): build/tests/test_%: tests/e2e/test_%.c tests/e2e/e2e.h tests/runtime
 # mpicc exists
 MPI_TEST = $(if $(MPI_OBJ),build/tests/mpi_study)
 build/tests/mpi_study: tests/mpi/mpi_study.c $(MPI_OBJ) build/libsinewrt.a | build/tests
-	$(CC) $(ALL_CFLAGS) $< -o $@ $(MPI_OBJ) build/libsinewrt.a $(LIBS) $(MPI_LIBS)
+	$(CC) $(ALL_CFLAGS) $(TEST_INC) $< -o $@ $(MPI_OBJ) build/libsinewrt.a $(LIBS) $(MPI_LIBS)
 # Three test files at a time on two cores: several wait on mpirun, xvfb or a
 # timeout much of their run (381 s of tests with -j2, 344 s with -j3, this
 # machine idle), which keeps `.ci/run` well inside its 10 minutes.
@@ -161,7 +175,7 @@ build/bench/bench_rigid: bench/bench_rigid.c bench/bench_util.h build/libsinewrt
 # replaces or appends its own section.
 BENCH_CONTACT = build/bench/bench_contact
 build/bench/bench_contact: bench/bench_contact.c bench/bench_util.h build/libsinewrt.a | build/bench
-	$(CC) $(ALL_CFLAGS) $< -o $@ build/libsinewrt.a $(LIBS)
+	$(CC) $(ALL_CFLAGS) $(TEST_INC) $< -o $@ build/libsinewrt.a $(LIBS)
 # bench_scaling (10^2 to 10^6 elements, one rod or many, 1 and 2 threads,
 # memory per element) replaces or appends its own section.
 BENCH_SCALING = build/bench/bench_scaling
@@ -259,7 +273,7 @@ install: bin/sinewc build/libsinewrt.a build/libsinewrt-portable.a $(MPI_OBJ)
 	install -m 644 build/libsinewrt.a $(DESTDIR)$(PREFIX)/lib/libsinewrt.a
 	install -m 644 build/libsinewrt-portable.a $(DESTDIR)$(PREFIX)/lib/libsinewrt-portable.a
 	@if [ -n "$(MPI_OBJ)" ]; then install -m 644 $(MPI_OBJ) $(DESTDIR)$(PREFIX)/lib/sinewrt_mpi.o; fi
-	install -m 644 runtime/sinew.h $(DESTDIR)$(PREFIX)/include/sinew/sinew.h
+	install -m 644 runtime/include/*.h $(DESTDIR)$(PREFIX)/include/sinew/
 	@if ls models/*.sinew >/dev/null 2>&1; then \
 	  install -m 644 models/*.sinew $(DESTDIR)$(PREFIX)/share/sinew/models/; fi
 

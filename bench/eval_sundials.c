@@ -15,7 +15,7 @@
  * elbow's explicit step.  The schemes compared, each over 0.2 s:
  *   verlet   position Verlet (drift h/2, kick h, drift h/2), tension explicit;
  *   imex     the same Verlet with the tension linearly implicit in the kick,
- *            in closed form (runtime/muscle.c, Rosenbrock-Euler):
+ *            in closed form (runtime/engine/muscle.c, Rosenbrock-Euler):
  *            T* = (T0 + c h p) / (1 + c h s), p = b.M^-1 F, s = b.M^-1 b;
  *   ark      ARKODE's ARKStep, additive Runge-Kutta: the tension (and in one
  *            variant the joint springs) implicit, solved by Newton with

@@ -14,7 +14,7 @@
  * and rods of component instances are reached as members (arm.humerus).
  * They are resolved to runtime rod ids here, since ids are fixed once a rod
  * or muscle is evaluated.  The terrain's height(x, y) is sema_terrain.c's.
- * Physics: runtime/sinew.h "environments" and docs/physics.md.
+ * Physics: runtime/include/sinew.h "environments" and docs/physics.md.
  */
 #include <math.h>
 #include <stdio.h>

@@ -7,7 +7,7 @@
  * Design.  The parser keeps the statement's words as they were written
  * (lang/sinew.y); this file checks them, resolves the quantity and turns
  * the statement into a swSceneExpect of constants, which gen_c.c prints into
- * build() and the simulator checks as it runs (runtime/expect.c).  A
+ * build() and the simulator checks as it runs (runtime/engine/expect.c).  A
  * quantity is one of angle(JOINT) (a hinge's angle), force(JOINT) (the size
  * of a joint's force), force(MUSCLE) (its tension), stretch(MUSCLE), and
  * x, y, z or size of a probe declared in `output` (a position or a velocity;

@@ -14,7 +14,7 @@
  * (sema_quantity) and times that are constants of the run (T >= 0, T0 <
  * T1).  A reduction becomes an entry of the scene's expectations with
  * `reduce` set, so the runtime samples it as it samples an expectation
- * (runtime/expect.c), and, in the expression, a value known only at the end
+ * (runtime/engine/expect.c), and, in the expression, a value known only at the end
  * of the run: NaN for the checker, R[k] in its C text; equal reductions
  * share an entry.  A let is evaluated where it is defined, so a reduction
  * in a let is refused even when the objective reads the let (sema_def.c).

@@ -15,9 +15,10 @@
  * runtime's header and library.  The C compiler is run with posix_spawn and
  * an argument vector, never through a shell, so no file name can become a
  * command.  The runtime is looked up next to the sinewc executable: the
- * source tree (bin/../runtime, bin/../build) or an installation
+ * source tree (bin/../runtime/include, bin/../build) or an installation
  * (bin/../include/sinew, bin/../lib); SINEW_RUNTIME overrides both with a
- * directory holding sinew.h and libsinewrt.a.  Exit codes follow SPEC.md:
+ * directory holding sinew.h (with its parts) and libsinewrt.a.  Exit codes
+ * as docs/compiler.md states them:
  * 0 ok, 1 model error, 2 usage error, 4 I/O error.
  */
 #include <ctype.h>
@@ -102,8 +103,8 @@ static int find_runtime(char *inc, char *lib, size_t len) {
   if (!slash) return 0;
   *slash = 0;   /* exe is now the bin directory */
   static const char *layouts[][2] = {
-    {"/../runtime", "/../build"},         /* source tree: bin/sinewc */
-    {"/../../runtime", "/.."},            /* source tree: build/asan/sinewc */
+    {"/../runtime/include", "/../build"}, /* source tree: bin/sinewc */
+    {"/../../runtime/include", "/.."},    /* source tree: build/asan/sinewc */
     {"/../include/sinew", "/../lib"},     /* make install */
   };
   for (size_t i = 0; i < sizeof layouts / sizeof layouts[0]; i++) {
@@ -152,7 +153,7 @@ static int run_cc(const char *csrc, const char *out, int portable, int no_mpi) {
   snprintf(libs, sizeof libs, "%s", SW_RT_LIBS);
   snprintf(mpilibs, sizeof mpilibs, "%s", SW_RT_MPI_LIBS);
   /* the study's MPI transport, built by `make` beside the library where
-   * mpicc exists (runtime/study_mpi.c) */
+   * mpicc exists (runtime/study/study_mpi.c) */
   snprintf(mpiobj, sizeof mpiobj, "%s/sinewrt_mpi.o", lib);
   int mpi = !no_mpi && mpilibs[0] && exists(mpiobj);
   char *argv[128];

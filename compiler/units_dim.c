@@ -1,7 +1,7 @@
 /* units_dim.c — dimension arithmetic for the checker.
  *
  * Design.  A dimension is a vector of small integer exponents over (kg, m, s,
- * rad), the base of the runtime's unit table (runtime/units.c), so the
+ * rad), the base of the runtime's unit table (runtime/io/units.c), so the
  * compiler and the simulator's --set agree on every unit.  The angle counts
  * as a dimension so that a bare number is refused where an angle is required
  * and an angle where a plain number is; elsewhere (curvature in rad/m or 1/m,

@@ -32,11 +32,14 @@ fi
 make --no-print-directory build/lang/sinew.tab.c build/lang/lex.yy.c >/dev/null
 mkdir -p "$OUT"
 SRC="tests/fuzz/fuzz_sinewc.c build/lang/sinew.tab.c build/lang/lex.yy.c"
-for f in compiler/*.c runtime/*.c; do
-  [ "$f" = compiler/sinewc.c ] || SRC="$SRC $f"      # sinewc.c has main()
+for f in compiler/*.c runtime/*/*.c; do
+  case $f in   # sinewc.c has main(); study_mpi.c needs MPI and is not in the library
+    compiler/sinewc.c|runtime/study/study_mpi.c) ;;
+    *) SRC="$SRC $f" ;;
+  esac
 done
 CFLAGS="-std=c11 -D_DEFAULT_SOURCE -O1 -g -fno-omit-frame-pointer -w
-        -Icompiler -Ibuild/lang -Iruntime $(pkg-config --cflags hdf5 gsl)"
+        -Icompiler -Ibuild/lang -Iruntime/include -Iruntime $(pkg-config --cflags hdf5 gsl)"
 LIBS="$(pkg-config --libs hdf5 gsl) -lm"
 echo "fuzz: building $OUT/fuzz_sinewc (ASan+UBSan) and $OUT/fuzz_sinewc.cmplog" >&2
 # shellcheck disable=SC2086

@@ -9,13 +9,13 @@ cc=${CC:-cc}
 flags="-std=c11 -D_DEFAULT_SOURCE -O3 -march=native -fno-math-errno -fopenmp"
 echo "Compiler: $($cc --version | head -1); flags: \`$flags\`; CPU: $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 's/^ *//')."
 echo
-for f in runtime/rod.c runtime/integrate.c runtime/loads.c runtime/muscle.c runtime/stability.c; do
+for f in runtime/engine/rod.c runtime/engine/integrate.c runtime/engine/loads.c runtime/engine/muscle.c runtime/engine/stability.c; do
   echo "\`$f\`:"
   echo
   echo '```'
   # each report line, with the function its loop is in (for a loop whose
   # first statement was inlined from vec.h, the report names vec.h)
-  $cc $flags -Iruntime -fopt-info-vec-optimized -c "$f" -o /dev/null 2>&1 |
+  $cc $flags -Iruntime/include -Iruntime -fopt-info-vec-optimized -c "$f" -o /dev/null 2>&1 |
     grep 'loop vectorized' | sed 's|^runtime/||' | sort -t: -k1,1 -k2,2n -u |
     while IFS=: read -r file line rest; do
       fn=$(awk -v n="$line" 'NR <= n && /^[a-z].*[a-z_0-9]+\((const|int|double|void|sw)/ { f = $0 }

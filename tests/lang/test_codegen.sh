@@ -5,7 +5,7 @@
 . "$(dirname "$0")/tap.sh"
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
-CFLAGS_RT="-I$ROOT/runtime $(pkg-config --cflags hdf5 gsl 2>/dev/null)"
+CFLAGS_RT="-I$ROOT/runtime/include $(pkg-config --cflags hdf5 gsl 2>/dev/null)"
 
 # 1. the same model gives the same bytes
 "$SINEWC_ASAN" "$ROOT/examples/pendulum.sinew" --emit-c -o "$tmp/p1.c"; ok $? "pendulum compiles to C"

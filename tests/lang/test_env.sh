@@ -9,7 +9,7 @@
 . "$(dirname "$0")/tap.sh"
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
-CFLAGS_RT="-I$ROOT/runtime $(pkg-config --cflags hdf5 gsl 2>/dev/null)"
+CFLAGS_RT="-I$ROOT/runtime/include $(pkg-config --cflags hdf5 gsl 2>/dev/null)"
 
 mkdir "$tmp/m"
 cat > "$tmp/m/env.sinew" <<'MODEL'

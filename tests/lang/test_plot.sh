@@ -6,7 +6,7 @@
 #   real output      examples/pendulum.sinew compiled and run for 20 ms
 #                    (a hinge, /joints/pivot/angle), and the same run
 #                    stopped by SIGINT (status "interrupted at ...")
-#   synthetic output h5py writes what SPEC.md promises for muscles
+#   synthetic output h5py writes what docs/runtime.md promises for muscles
 #                    (/muscles/NAME/force, stretch, activation, attribute
 #                    F_max), which the runtime does not write yet, plus a
 #                    file whose angle is a frame behind its /time
@@ -61,7 +61,7 @@ kill -INT $pid
 wait $pid
 ok "$([ $? -eq 130 ]; echo $?)" "the pendulum stopped by SIGINT exits 130"
 
-# ---- synthetic output with muscles (the schema of SPEC.md)
+# ---- synthetic output with muscles (the schema of docs/runtime.md)
 $PY - "$TMP" <<'EOF' 2>"$TMP/log"
 import sys, h5py, numpy as np
 d = sys.argv[1]

@@ -33,7 +33,7 @@ if grep -qw avx512f /proc/cpuinfo; then
 fi
 
 mkdir -p "$TMP/rt"
-cp runtime/sinew.h build/libsinewrt.a "$TMP/rt/"
+cp runtime/include/*.h build/libsinewrt.a "$TMP/rt/"
 SINEW_RUNTIME="$TMP/rt" "$SC" --portable examples/pendulum.sinew -o "$TMP/x" 2>"$TMP/err"
 rc=$?
 [ $rc -eq 4 ] && grep -q "libsinewrt-portable.a" "$TMP/err"; ok $? "--portable without its library: exit 4 naming it (got $rc)"

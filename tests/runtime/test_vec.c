@@ -1,5 +1,5 @@
 /* test_vec.c — unit tests of the 3-vector, frame and rotation algebra of
- * runtime/vec.h.
+ * runtime/engine/vec.h.
  *
  * Checks the sw_v3_* basics and the cross-product identities (Lagrange,
  * Jacobi, a x (b x c) = b (a.c) - c (a.b)); that sw_mat_vec and sw_matT_vec

@@ -18,7 +18,7 @@
  * (write_muscle_attrs); a probe is one dataset /probes/NAME [F, 3] whose
  * units follow its kind and whose attributes say what it measures
  * (write_probe_attrs).  The root group records how the file was made
- * (SPEC.md "Output (HDF5)") and a `status` attribute that reads "incomplete"
+ * (docs/runtime.md, "Running and output") and a `status` attribute that reads "incomplete"
  * until sw_output_close() replaces it with the caller's verdict; a model
  * with an objective also gets its value, penalty and score there
  * (sw_output_objective).  Beside the
@@ -41,7 +41,7 @@
 #include <time.h>
 
 #include "sinew.h"
-#include "internal.h"
+#include "engine/internal.h"
 #include "restart.h"
 #include "xdmf.h"
 

@@ -24,7 +24,7 @@
 #include <unistd.h>
 
 #include "sinew.h"
-#include "study.h"
+#include "study/study.h"
 
 static int say(const swStudyCall *c, int rc, const char *fmt, ...)
     __attribute__((format(printf, 3, 4)));

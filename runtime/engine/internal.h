@@ -358,22 +358,5 @@ void sw_contact_loads(const swModel *m, swData *d);
 void sw_contact_loads_with(const swModel *m, swData *d, swContactPhase phase);
 double sw_contact_energy(const swModel *m, const swData *d);
 double sw_contact_stable_dt(const swModel *m);
-/* ---- the checkpoint (restart.c) ----
- * A snapshot of every array of the state at a scheduled frame, kept in
- * memory by the run loop and written into the output file (restart.h). */
-typedef struct swCheckpoint swCheckpoint;
-swCheckpoint *sw_checkpoint_new(const swModel *m);
-void sw_checkpoint_free(swCheckpoint *c);
-/* Copies d (and the expectations' state x, may be NULL) as the state of the
- * file's frame `frames` - 1. */
-void sw_checkpoint_take(swCheckpoint *c, const swModel *m, const swData *d,
-                        const swExpectRun *x, long frames);
-
-/* Seconds of a monotonic clock (run.c), for wall times. */
-double sw_wall_seconds(void);
-/* "name=value;..." of n params, values SI with 17 digits (exact); the
- * record of a run's and a study's params (cli.c).  NULL when out of memory;
- * the caller frees. */
-char *sw_params_text(int n, const char *const *name, const double *value);
 
 #endif

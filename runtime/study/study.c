@@ -29,7 +29,7 @@
 #include <unistd.h>
 
 #include "sinew.h"
-#include "internal.h"
+#include "io/params.h"
 #include "cmaes.h"
 #include "rng.h"
 #include "study.h"

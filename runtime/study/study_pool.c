@@ -38,7 +38,6 @@
 #include <unistd.h>
 
 #include "sinew.h"
-#include "internal.h"
 #include "study_pool.h"
 
 #define POLL_SLEEP_NS 1000000L      /* 1 ms between polls                   */

@@ -26,7 +26,7 @@
 #include <string.h>
 
 #include "sinew.h"
-#include "internal.h"
+#include "engine/internal.h"
 
 swModel *sw_program_compile(const swProgram *p, const double *P, double dt, int integrator,
                             double every, double *stable, int *status, char *err, size_t errlen) {

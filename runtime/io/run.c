@@ -30,7 +30,7 @@
 #include <time.h>
 
 #include "sinew.h"
-#include "internal.h"
+#include "engine/internal.h"
 
 #define PROGRESS_AFTER 1.0      /* s of wall time before the first line   */
 #define PROGRESS_EVERY 0.5      /* s of wall time between lines           */

@@ -32,7 +32,7 @@
 #include <string.h>
 
 #include "sinew.h"
-#include "internal.h"
+#include "engine/internal.h"
 #include "restart.h"
 
 /* ---- what is saved ---- */

@@ -1,4 +1,4 @@
-/* cli.c — the command line of every generated simulator (SPEC.md "Commands"):
+/* cli.c — the command line of every generated simulator (docs/language.md, "The simulator's command line"):
  *   SIM [--out F.h5] [--duration T] [--dt DT] [--every T] [--set NAME=VALUE]...
  *       [--threads N] [--quiet] [--info] [--help]
  *
@@ -41,8 +41,9 @@
 #include <time.h>
 
 #include "sinew.h"
-#include "internal.h"
-#include "study.h"
+#include "engine/internal.h"
+#include "io/params.h"
+#include "study/study.h"
 
 /* ---- the options ---- */
 
@@ -791,20 +792,6 @@ static swModel *build_model(const swCli *c, double *stable, const char **dt_sour
   }
   *rc = SW_OK;
   return m;
-}
-
-/* "length=0.29999999999999999;strength=1", SI values, exact.  Caller frees. */
-char *sw_params_text(int n, const char *const *name, const double *value) {
-  size_t size = 1;
-  for (int i = 0; i < n; i++) size += strlen(name[i]) + 32;
-  char *text = malloc(size);
-  if (!text) return NULL;
-  size_t used = 0;
-  text[0] = '\0';
-  for (int i = 0; i < n; i++)
-    used += (size_t)snprintf(text + used, size - used, "%s%s=%.17g", i ? ";" : "", name[i],
-                             value[i]);
-  return text;
 }
 
 static char *params_string(const swCli *c) {

@@ -1,10 +1,20 @@
 /* restart.h — the checkpoint's file side, shared by output.c (which owns the
  * file) and restart.c; the only runtime header that includes hdf5.h.  The
- * in-memory side (sw_checkpoint_new/take/free) is in internal.h. */
+ * in-memory side is declared first: a snapshot of every array of the state
+ * at a scheduled frame, kept in memory by the run loop and written into the
+ * output file. */
 #ifndef SINEW_RESTART_H
 #define SINEW_RESTART_H
 #include <hdf5.h>
-#include "internal.h"
+#include "sinew.h"
+
+typedef struct swCheckpoint swCheckpoint;
+swCheckpoint *sw_checkpoint_new(const swModel *m);
+void sw_checkpoint_free(swCheckpoint *c);
+/* Copies d (and the expectations' state x, may be NULL) as the state of the
+ * file's frame `frames` - 1. */
+void sw_checkpoint_take(swCheckpoint *c, const swModel *m, const swData *d,
+                        const swExpectRun *x, long frames);
 
 /* Writes the snapshot to /restart of the file if it changed since it was
  * last written; SW_OK or SW_EIO. */

@@ -1,0 +1,381 @@
+/* sinew_model.h — part of sinew.h (include that): the compiled model, the
+ * state and the kernels.
+ *
+ * Design.  swModel is immutable once sw_compile() returns it; swData is the
+ * mutable state of one simulation of it; every kernel has the shape
+ * f(const swModel *m, swData *d) and nothing allocates inside a step.  The
+ * planar layout of the arrays is described at the top of sinew.h.
+ * Implemented in runtime/engine/. */
+#ifndef SINEW_MODEL_H
+#define SINEW_MODEL_H
+
+#include <stdio.h>
+#include "sinew_spec.h"
+
+/* ---- the compiled model (immutable) ---- */
+typedef struct {
+  /* sizes: nnode, nelem and nvor count real nodes, elements and domains;
+   * arrays are sized by stride (see Layout at the top) */
+  int nrod, nnode, nelem, nvor, nload, nbc, njoint;
+  int nslot;                 /* slots of all rods (= nnode)                  */
+  int nslot_elastic;         /* slots [0, nslot_elastic) are elastic rods'   */
+  int stride;                /* doubles per plane: nslot + 2 rounded up to a
+                                multiple of 8 (64-byte rows; a kernel at the
+                                last slot reads two past it)               */
+  int chunk;                 /* slots per chunk of the threaded kernels: a
+                                multiple of 8 fixed by the model alone, so
+                                that any thread count splits every loop and
+                                every sum the same way (docs/performance.md) */
+  /* options */
+  double dt;                 /* time step, s                                 */
+  swIntegrator integrator;
+  double gravity[3];         /* m/s^2                                        */
+  /* per rod (nrod) */
+  char **rod_name;
+  swRodInfo *rod_info;       /* kind, material, where (output.c)             */
+  int *rod_nelem;            /* n of each rod                                */
+  int *node_adr;             /* first node                                   */
+  int *elem_adr;             /* first element                                */
+  int *vor_adr;              /* first Voronoi domain                         */
+  double *rod_wave_dt;       /* stable dt estimate of each rod, s            */
+  swDampingKind *rod_damping;
+  /* per node slot; (3) marks three planes of stride */
+  double *mass;              /* lumped node mass, kg                         */
+  double *weight;            /* the mass gravity acts on: mass, 0 on the
+                                nodes of weightless rods; NULL when no rod
+                                is weightless (gravity acts on mass)        */
+  double *inv_mass;          /* (0 in ghost-free padding)                    */
+  double *node_gamma;        /* gamma * Voronoi rest length, kg/s            */
+  double *node_decay;        /* analytic damping decay factor                */
+  double *node_kick;         /* analytic damping kick length, s              */
+  double *x0;                /* (3) initial positions                        */
+  /* per element slot (ghost elements: rest lengths 1, stiffness 0) */
+  double *rest_len;          /* l^, m                                        */
+  double *inv_rest_len;      /* 1 / l^                                       */
+  double *radius;            /* m                                            */
+  double *shear_stiff;       /* (3) S^ = diag(4GA/3, 4GA/3, EA), N           */
+  double *inertia;           /* (3) J^ = rho l^ diag(I1, I2, I3)             */
+  double *inv_inertia;       /* (3)                                          */
+  double *rest_sigma;        /* (3) rest shear/stretch strain                */
+  double *elem_gamma;        /* (3) rotational dissipation, kg m^2/s         */
+  double *elem_decay;        /* (3) analytic damping decay factor            */
+  double *elem_kick;         /* (3) analytic damping kick length, s          */
+  double *Q0;                /* (9) initial directors                        */
+  double *clamp_bend;        /* (3) B^ of the element, for clamps            */
+  double *elem_ghost;        /* 1 at ghost element slots and padding, else 0  */
+  double *elem_variational;  /* 1 on the element and Voronoi slots of rods of
+                                SW_LAW_VARIATIONAL, else 0                   */
+  double *damp_linear;       /* 1 on the slots of rods with linear damping
+                                (loads.c)                                  */
+  double *kick_exact;        /* 1 where the kick integrates analytic damping
+                                exactly (Verlet, SW_DAMP_ANALYTIC), else 0   */
+  /* per Voronoi slot (ghost domains: rest length 1, stiffness 0) */
+  double *rest_vor_len;      /* D^, m                                        */
+  double *inv_rest_vor_len;  /* 1 / D^                                       */
+  double *bend_stiff;        /* (3) B^ = diag(EI1, EI2, GJ), N m^2           */
+  double *rest_kappa;        /* (3) 1/m                                      */
+  /* loads and boundary conditions */
+  swLoadDesc *load;          /* (nload)                                      */
+  swBCDesc *bc;              /* (nbc)                                        */
+  int bc_slot_order;         /* 1: the conditions' end nodes are in slot order */
+  swJointDesc *joint;        /* (njoint), names owned by the model, nodes,
+                                stiffness and damping resolved (joint.c)    */
+  char **joint_name;         /* (njoint)                                     */
+  int *joint_node_a;         /* (njoint)   global node on rod a              */
+  int *joint_node_b;         /* (njoint)   global node on rod b, -1 anchored */
+  int *joint_elem_a;         /* (njoint)   element of rod a taking couples   */
+  int *joint_elem_b;         /* (njoint)   element of rod b, -1 anchored     */
+  double *joint_axis_a;      /* (njoint*3) hinge axis, material frame of elem a */
+  double *joint_axis_b;      /* (njoint*3) of elem b; lab frame when anchored */
+  double *joint_rest_rot;    /* (njoint*9) Q_b Q_a^T at t = 0 (two rods)      */
+  double *joint_angle0;      /* (njoint)   hinge angle at t = 0, rad         */
+  double *joint_limit_ref;   /* (njoint*9) the limits' reference directions
+                                           (joint.c, "Limits")               */
+  double *joint_wave_dt;     /* (njoint)   stable dt estimate of each joint  */
+  int *joint_implicit;       /* (njoint)   1: between rigid bodies, linearly
+                                           implicit (SW_IMEX, rigid_joint.c) */
+  int *rigid_block;          /* (nrigid)   the body's block in that system, -1;
+                                           numbered group by group           */
+  int nrigid_block;          /* bodies in it                                 */
+  int nrigid_group;          /* its independent groups: the connected
+                                components of the bodies under those joints,
+                                one diagonal block of the system each       */
+  int *rigid_group_adr;      /* (nrigid_group+1) first block of each group    */
+  int *rigid_block_body;     /* (nrigid_block) the body of each block         */
+  int *rigid_block_env;      /* (nrigid_block) the earliest block joined to
+                                           each, or itself: the envelope     */
+  int *rigid_block_reach;    /* (nrigid_block) the last block whose envelope
+                                           reaches each, or itself           */
+  int *rigid_group_joint_adr; /* (nrigid_group+1) first entry of each group
+                                           in rigid_group_joint              */
+  int *rigid_group_joint;    /* (implicit joints) each group's joints, in
+                                           joint order                       */
+  /* rods whose elasticity is linearly implicit (SW_IMEX, rod_implicit.c) */
+  int nimplicit;
+  int *rod_implicit;         /* (nrod)     1: the rod asks for it (elastic);
+                                           it is kicked so when nimplicit > 0 */
+  int *implicit_rod;         /* (nimplicit) the rods, in rod order           */
+  size_t *implicit_adr;      /* (nimplicit+1) each one's first double in
+                                           swData.implicit_sys              */
+  /* rigid rods (rigid.c).  A rod with swRodDesc.rigid keeps its nodes and
+   * elements in the arrays above and moves as one rigid body b: node
+   * x_i = X + R p_i, element frame Q_e = B_e R^T, with R the rotation from the
+   * body frame (the principal axes of the inertia tensor) to the lab frame.
+   * Body b owns rows [rigid_node_adr[b], +nelem+1) of rigid_p and
+   * [rigid_elem_adr[b], +nelem) of rigid_B. */
+  int nvariational;          /* rods of SW_LAW_VARIATIONAL (0: rod.c's passes
+                                are Gazzola's alone)                        */
+  swLaw *rod_law;            /* (nrod)                                       */
+  int nrigid;
+  int *rod_rigid;            /* (nrod)      rigid body of each rod, -1 elastic */
+  int *rigid_rod;            /* (nrigid)    rod of each rigid body            */
+  int *rigid_fixed;          /* (nrigid)    1: clamped, never moves           */
+  int *rigid_node_adr;       /* (nrigid)    first row in rigid_p              */
+  int *rigid_elem_adr;       /* (nrigid)    first row in rigid_B              */
+  double *rigid_mass;        /* (nrigid)    M = sum of the node masses, kg    */
+  double *rigid_inertia;     /* (nrigid*3)  principal moments about X, kg m^2 */
+  double *rigid_X0;          /* (nrigid*3)  initial centre of mass, m         */
+  double *rigid_R0;          /* (nrigid*9)  initial R (columns: principal axes) */
+  double *rigid_p;           /* (rigid nodes*3)    node in the body frame, m  */
+  double *rigid_B;           /* (rigid elements*9) Q_e R, constant            */
+  /* muscles (muscle.c) */
+  int nmuscle, nfil;
+  char **muscle_name;        /* (nmuscle)                                    */
+  int *muscle_fil_adr;       /* (nmuscle+1) first filament of each muscle    */
+  swSignal *muscle_activation; /* (nmuscle)                                  */
+  const void *muscle_ops;    /* muscle.c's functions (NULL: no muscles)      */
+  const void *env_ops;       /* environment.c's (NULL: no environment)       */
+  int *fil_rod;              /* (nfil)     rod of each filament              */
+  int *fil_passive;          /* (nfil)     1: never contracts                */
+  double *fil_area;          /* (nfil)     rest cross-section A_k, m^2       */
+  double *fil_fmax;          /* (nfil)     peak isometric force, N           */
+  double *fil_l0;            /* (nfil)     rest length, m                    */
+  double *fil_tau;           /* (nfil)     activation time constant, s       */
+  double *fil_recruit;       /* (nfil*2)   C_{k-1}, C_k: recruitment window  */
+  double *fil_hill_a;        /* (nfil)     Hill a / F_qs                     */
+  double *fil_v_max;         /* (nfil)     v0 / l0, 1/s                      */
+  double *fil_fibres;        /* (nfil)     muscle fibres in the filament     */
+  double *fil_elem;          /* (1 plane)  1 at the element slots of filaments */
+  int *fil_implicit;         /* (nfil)     SW_FIL_* bits: Hill damping linearly
+                                           implicit (SW_IMEX), end nodes held */
+  int muscle_implicit;       /* some filament is implicit                    */
+  /* via rings (muscle_via.c): one per via point per filament, filament by
+   * filament, each filament's in path order */
+  int nring;
+  int *fil_ring_adr;         /* (nfil+1)   first ring of each filament        */
+  int *ring_elem;            /* (nring)    element slot carrying the point, -1: space */
+  double *ring_point;        /* (nring*3)  offset from that element's centre in
+                                           its material frame; the lab point
+                                           when fixed in space, m             */
+  double *ring_stiffness;    /* (nring)    N/m                                */
+  double *ring_damping;      /* (nring)    N s/m                              */
+  double *muscle_via;        /* (nmuscle*SW_MUSCLE_MAX_VIA*3) via points at t = 0 */
+  int *muscle_nvia;          /* (nmuscle)                                     */
+  /* environments (environment.c): resolved copies of the descriptions, in
+   * the order added; rod lists owned by the model (every rod listed when the
+   * description said 0) */
+  int nground, nfluid, ncontact, nwave, nprobe;
+  swGroundDesc *ground;      /* (nground)                                    */
+  swFluidDesc *fluid;        /* (nfluid)                                     */
+  swContactDesc *contact;    /* (ncontact)                                   */
+  swWaveDesc *wave;          /* (nwave)                                      */
+  swProbeDesc *probe;        /* (nprobe)                                     */
+  int nexpect;
+  swExpectDesc *expect;      /* (nexpect) copies, strings owned (expect.c)   */
+  /* fluid.c: fluid k acts on rows [fluid_row_adr[k], fluid_row_adr[k+1]), one
+   * row per element of its rods, in the order of its rod list */
+  int nfluidrow;
+  int *fluid_row_adr;        /* (nfluid+1) first row of each fluid           */
+  int *fluid_elem;           /* (nfluidrow) global element of the row         */
+  int *fluid_node;           /* (nfluidrow) its first node (second: +1)       */
+  int *fluid_first;          /* (nfluidrow) first node of its rod (the thread
+                                that owns it applies the row)                */
+  double *fluid_stokes;      /* (nfluidrow) 4 pi mu / ln(L/r), Pa s (Stokes)  */
+  double *fluid_cap;         /* (nfluidrow) exposed end-cap silhouette, m^2:
+                                pi r^2 / 2 per rod end on it (quadratic)     */
+  double *fluid_displaced;   /* (nfluidrow) rho_f pi r^2 l^, kg (buoyancy)    */
+  double fluid_dt;           /* step limit of the Stokes drag, s (INFINITY: none) */
+  /* wave.c: wave w owns rows [wave_node_adr[w], wave_node_adr[w+1]), one
+   * per node of its rod, in the rod's node order */
+  int *wave_node_adr;        /* (nwave+1)  first row of each wave             */
+  double *wave_s;            /* (rows)     s of the node (from the start, or
+                                from the end with `reverse`), m              */
+  double *wave_beta;         /* (rows)     beta(s), N m; 0 at the two end nodes */
+  double *wave_amp;          /* (rows*2)   beta cos(theta), beta sin(theta),
+                                theta = 2 pi s / lambda - phi               */
+  /* contact.c: the rows of contact c are [contact_row_adr[c],
+   * contact_row_adr[c+1]), its elements rod by rod (each rod once) */
+  int *contact_row_adr;      /* (ncontact+1) first row of each contact       */
+  int *contact_elem;         /* (rows)     global element                    */
+  int *contact_rod;          /* (rows)     its rod                           */
+  double *contact_arc;       /* (rows)     rest arc length from the rod's start
+                                           to the element's start, m         */
+  int contact_maxrows;       /* rows of the largest contact                  */
+  int contact_nbucket;       /* hash grid buckets, a power of two            */
+  int has_gravity;
+  int has_damping;
+  int has_exact_kick;        /* some rod's kick integrates its damping exactly */
+} swModel;
+
+/* ---- the state (mutable) ---- */
+typedef struct {
+  double time;
+  long step;
+  int threads;               /* OpenMP threads of a step (sw_set_threads; 1) */
+  void *team;                /* their barrier (integrate.c)                  */
+  int team_size;             /* threads of the step running now (1 outside)  */
+  double work;               /* work done on the rods by loads, boundaries
+                                and dissipation since t = 0, J            */
+  /* state, per slot in the layout of the model: x, v (3 planes, node
+   * slots), Q (9 planes), omega (3 planes, element slots) */
+  double *x, *v, *Q, *omega;
+  /* Derived and accumulated per slot.  The dilatation is kept with the
+   * state (the drift and the kick use it); the others are scratch of the
+   * step: they hold the current state's values after sw_internal_loads()
+   * (which sw_energy and sw_data_new call), not after sw_steps(), since a
+   * one-thread step may keep only a window of them (integrate.c, the fused
+   * sweep). */
+  double *dilatation;        /* e = l / l^ (1 at ghosts)                     */
+  /* derived per element slot */
+  double *length;            /* current length l                             */
+  double *sigma;             /* (3) shear/stretch strain, material           */
+  double *stress;            /* (3) internal force n = S^ (s-s0) / e (Gazzola)
+                                or S^ (s-s0) (variational), material        */
+  /* derived per Voronoi slot */
+  double *vor_dilatation;
+  double *kappa;             /* (3) curvature/twist, material frame          */
+  double *couple;            /* (3) the bending couple as Delta^h applies it:
+                                B^ (k - k0) / eps^3 (Gazzola), or
+                                (I + beta [phi]x^2) B^ (k - k0) (variational,
+                                rod.c)                                      */
+  /* accumulated loads */
+  double *force;             /* (3) total force on nodes, lab                */
+  double *torque;            /* (3) total couple on elements, material frame */
+  double *ext_force;         /* (3) external force, lab                      */
+  double *ext_torque;        /* (3) external couple, material frame          */
+  /* rod.c's scratch between its two passes: Q^T n of each element (lab) and
+   * half the transport couple kappa x c D^ of each domain (3 planes each) */
+  double *scratch_f, *scratch_h;
+  /* per-slot scratch of integrate.c and rod.c: scratch_flag (1 plane) holds
+   * the rod pass's bent-domain flags, then the kick's work per slot;
+   * scratch_phi (3 planes) the drift's rotation vectors, which muscle.c
+   * borrows while the loads are evaluated and the one-thread sweep uses for
+   * its bent-domain flags */
+  double *scratch_flag, *scratch_phi;
+  /* one partial sum per chunk (the kick's work), added in chunk order, and
+   * the work of each boundary condition in a kick (nbc) */
+  double *chunk_sum, *bc_work;
+  int kick_pending;          /* integrate.c: a kick whose work and rigid part */
+  double kick_h;             /* the next drift's leader adds (its h)          */
+  /* joint.c: each joint's loads, evaluated in parallel and applied in joint
+   * order (SW_JOINT_ROW doubles per joint) */
+  double *joint_scratch;
+  /* joints, updated with each force evaluation */
+  double *joint_force;       /* (njoint*3) force of the joint on rod a, lab, N */
+  double *joint_angle;       /* (njoint)  hinge angle, rad (0 for others)     */
+  double *joint_limit_torque; /* (njoint*3) the limit's couple on rod a's
+                                 element, lab, N m (0 inside the limits)     */
+  /* rigid bodies (rigid.c), the state the nodes and elements of a rigid rod
+   * are set from after every drift and kick */
+  double *rigid_X;           /* (nrigid*3) centre of mass, lab, m              */
+  double *rigid_V;           /* (nrigid*3) its velocity, m/s                   */
+  double *rigid_R;           /* (nrigid*9) rotation body -> lab, row-major     */
+  double *rigid_L;           /* (nrigid*3) angular momentum about X, lab, kg m^2/s */
+  double *rigid_load;        /* (nrigid*6) a kick's force and torque on each body */
+  double *rigid_sys;         /* the implicit joints' system (rigid_joint.c)    */
+  double *implicit_sys;      /* the implicit rods' banded systems (rod_implicit.c) */
+  double *rigid_omega;       /* (nrigid*3) angular velocity, lab, rad/s        */
+  /* muscles, updated with each force evaluation (activation once a step) */
+  double *fil_activation;    /* (nfil)    a_k in [0, 1]                        */
+  double *fil_stretch;       /* (nfil)    eta = l / l0                          */
+  double *fil_rate;          /* (nfil)    strain rate dl/dt / l0, 1/s           */
+  double *fil_tension;       /* (nfil)    T_k, N                                */
+  double *ring_row;          /* (nring*SW_RING_ROW) each ring's contact and
+                                           load, last evaluation (muscle_via.c) */
+  /* environments, updated with each force evaluation */
+  /* contact.c: the last evaluation's figures, and the hash grid's scratch */
+  int contact_pairs;         /* element pairs in contact                     */
+  double contact_max_overlap; /* deepest overlap r_a + r_b - D, m (0: none)  */
+  int *contact_cell;         /* (contact_maxrows*3) cell of each row         */
+  int *contact_bucket;       /* (contact_maxrows)   its bucket               */
+  int *contact_sorted;       /* (contact_maxrows)   rows by bucket           */
+  int *contact_start;        /* (contact_nbucket+1) first sorted row of each bucket */
+  int *contact_sorted_cell;  /* (contact_maxrows*3) cell of each sorted row  */
+  unsigned long long *contact_occupied; /* (contact_nbucket/64+1) bit set: bucket not empty */
+  /* probe.c: the centre-of-mass samples (t, X) that mean-velocity probes
+   * difference, a ring of SW_PROBE_RING per probe (probe.c) */
+  double *probe_ring;        /* (nprobe*SW_PROBE_RING*4) t, X of each sample  */
+  int *probe_head;           /* (nprobe)  slot of the oldest sample           */
+  int *probe_count;          /* (nprobe)  samples held                        */
+  /* instability report, filled when sw_step returns SW_EUNSTABLE */
+  char error[512];
+} swData;
+
+/* ---- access to the planar arrays (see Layout at the top) ---- */
+/* Component k of slot i of a per-slot array with planes of m->stride. */
+#define SW_AT(m, a, i, k) ((a)[(size_t)(k) * (size_t)(m)->stride + (size_t)(i)])
+static inline void sw_get3(const swModel *m, const double *a, int i, double out[3]) {
+  out[0] = SW_AT(m, a, i, 0); out[1] = SW_AT(m, a, i, 1); out[2] = SW_AT(m, a, i, 2);
+}
+static inline void sw_set3(const swModel *m, double *a, int i, const double in[3]) {
+  SW_AT(m, a, i, 0) = in[0]; SW_AT(m, a, i, 1) = in[1]; SW_AT(m, a, i, 2) = in[2];
+}
+static inline void sw_add3(const swModel *m, double *a, int i, const double in[3]) {
+  SW_AT(m, a, i, 0) += in[0]; SW_AT(m, a, i, 1) += in[1]; SW_AT(m, a, i, 2) += in[2];
+}
+/* Frame of slot i as a row-major 3x3 matrix (rows d1, d2, d3). */
+static inline void sw_getQ(const swModel *m, const double *Q, int i, double out[9]) {
+  for (int k = 0; k < 9; k++) out[k] = SW_AT(m, Q, i, k);
+}
+static inline void sw_setQ(const swModel *m, double *Q, int i, const double in[9]) {
+  for (int k = 0; k < 9; k++) SW_AT(m, Q, i, k) = in[k];
+}
+
+swModel *sw_compile(const swSpec *s, char *err, size_t errlen);
+void sw_model_free(swModel *m);
+swData *sw_data_new(const swModel *m);
+void sw_data_free(swData *d);
+void sw_reset(const swModel *m, swData *d);
+
+/* Kernels. */
+void sw_internal_loads(const swModel *m, swData *d);   /* rod.c: strains and internal loads */
+void sw_external_loads(const swModel *m, swData *d);   /* loads.c       */
+void sw_apply_bc_velocity(const swModel *m, swData *d, double t); /* boundary.c */
+int sw_step(const swModel *m, swData *d);              /* integrate.c   */
+int sw_steps(const swModel *m, swData *d, long k);     /* k steps, fused */
+/* Threads a step runs on (OpenMP; 1 by default).  The result does not depend
+ * on n: the kernels split their loops into the model's fixed chunks and add
+ * partial sums in chunk order.  Returns the count set (n < 1 counts as 1). */
+int sw_set_threads(swData *d, int n);                  /* integrate.c   */
+int sw_check_finite(const swModel *m, swData *d);      /* stability.c   */
+/* Sets the motion of rigid rod `rod` (rigid.c): centre-of-mass velocity V and
+ * angular velocity omega, lab frame; node and element velocities follow.
+ * Returns SW_OK, or SW_EUSAGE if the rod is not rigid or is clamped. */
+int sw_rigid_set_motion(const swModel *m, swData *d, int rod, const double V[3],
+                        const double omega[3]);
+
+/* The row of probe p for the current state (probe.c; what /probes/NAME
+ * gets).  A mean-velocity probe also records the sample it differences
+ * later, so call it once per frame, in time order (sw_reset forgets them). */
+void sw_probe_measure(const swModel *m, swData *d, int p, double out[3]);
+
+/* Energies (J): kinetic (translational + rotational), elastic
+ * (bend/twist + shear/stretch), and the work done on the system. */
+void sw_energy(const swModel *m, swData *d, double out[3]);
+
+/* Stable time step estimates, s (stability.c). */
+double sw_stable_dt(const swModel *m);
+double sw_stable_dt_rod(const swModel *m, int rod);
+double sw_stable_dt_joint(const swModel *m, int joint);
+
+/* The record of one run's expectations (created before the run, sampled by
+ * sw_run through swRunOptions.expect, reported after it). */
+typedef struct swExpectRun swExpectRun;
+swExpectRun *sw_expect_run_new(const swModel *m);
+void sw_expect_run_free(swExpectRun *r);
+/* Writes the report to f (quiet: the failures only); returns how many
+ * expectations failed (those the run did not reach are listed, not counted). */
+int sw_expect_report(const swModel *m, const swExpectRun *r, FILE *f, const char *prog,
+                     int quiet);
+
+#endif
