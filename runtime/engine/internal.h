@@ -6,16 +6,16 @@
 #include <stdatomic.h>
 #include "sinew.h"
 
-/* Shared helpers (model.c): grow an array to hold n+1 items (0: out of
+/* Shared helpers (spec.c): grow an array to hold n+1 items (0: out of
  * memory); write a message into err and return 0. */
 int sw_grow(void **p, int *cap, int n, size_t item);
 int sw_fail(char *err, size_t errlen, const char *fmt, ...) __attribute__((format(printf, 3, 4)));
-/* Expectations (expect.c): the spec's list (kept in swSpec by model.c), the
+/* Expectations (expect.c): the spec's list (kept in swSpec by spec.c), the
  * model's copies, and the run loop's hooks: sw_expect_next is the first step
  * after `step` at which one is sampled (LONG_MAX: none), sw_expect_sample
  * samples those due at d->step. */
 typedef struct { swExpectDesc *item; int n, cap; } swExpectList;
-swExpectList *sw_spec_expects(swSpec *s);                                   /* model.c */
+swExpectList *sw_spec_expects(swSpec *s);                                   /* spec.c */
 void sw_expect_list_free(swExpectList *l);
 int sw_expect_setup(swModel *m, const swExpectList *l, char *err, size_t errlen);
 void sw_expect_free(swModel *m);
@@ -168,7 +168,7 @@ double sw_joint_rot_bound_stiffness(const swJointDesc *jd);
 double sw_joint_rot_bound_damping(const swJointDesc *jd);
 int sw_joint_limit_tangent(const swModel *m, const swData *d, int j, double *g);
 /* Muscles (muscle.c).  The swSpec keeps its muscles in an opaque list that
- * muscle.c owns (sw_spec_muscles gives its slot; model.c frees it with
+ * muscle.c owns (sw_spec_muscles gives its slot; spec.c frees it with
  * sw_muscle_spec_free); sw_muscle_setup fills the model's muscle and filament
  * arrays after the rods are built (0 and a message on a bad muscle);
  * sw_muscle_reset sets the activations of t = 0; sw_muscle_advance moves the
@@ -203,9 +203,9 @@ typedef struct {
 static inline const swMuscleOps *sw_muscle_ops(const swModel *m) {
   return (const swMuscleOps *)m->muscle_ops;
 }
-swMuscleSpec **sw_spec_muscles(swSpec *s);                            /* model.c */
-const swMuscleOps **sw_spec_muscle_ops(swSpec *s);                    /* model.c */
-int sw_spec_nrod(const swSpec *s);                                    /* model.c */
+swMuscleSpec **sw_spec_muscles(swSpec *s);                            /* spec.c */
+const swMuscleOps **sw_spec_muscle_ops(swSpec *s);                    /* spec.c */
+int sw_spec_nrod(const swSpec *s);                                    /* spec.c */
 void sw_muscle_spec_free(swMuscleSpec *ms);
 int sw_muscle_check(const swMuscleSpec *ms, int nrod, char *err, size_t errlen);
 int sw_muscle_setup(swModel *m, const swMuscleSpec *ms, char *err, size_t errlen);
@@ -297,8 +297,8 @@ typedef struct {
   int (*data_new)(const swModel *m, swData *d); /* the contact grid's scratch */
 } swEnvOps;
 static inline const swEnvOps *sw_env_ops(const swModel *m) { return (const swEnvOps *)m->env_ops; }
-swEnvSpec **sw_spec_env(swSpec *s);                                   /* model.c */
-const swEnvOps **sw_spec_env_ops(swSpec *s);                          /* model.c */
+swEnvSpec **sw_spec_env(swSpec *s);                                   /* spec.c */
+const swEnvOps **sw_spec_env_ops(swSpec *s);                          /* spec.c */
 void sw_env_spec_free(swEnvSpec *e);
 int sw_env_check(const swEnvSpec *e, int nrod, char *err, size_t errlen);
 int sw_env_setup(swModel *m, const swEnvSpec *e, char *err, size_t errlen);

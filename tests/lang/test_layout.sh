@@ -1,7 +1,8 @@
 #!/bin/sh
 # test_layout.sh — the tree keeps the architecture docs/runtime.md maps:
 #   - every runtime file lives in a room: include/ (the public header and its
-#     parts), engine/, io/, study/, sim/; none is left at the top of runtime/;
+#     parts), engine/, io/, study/, sim/; none is left at the top of runtime/,
+#     and no two share a name (the archive's members are named by it);
 #   - the arrows between rooms run one way, sim -> study -> io -> engine,
 #     both in what a file includes (another room's header by its path,
 #     "engine/internal.h") and in what its object file links to (every sw_*
@@ -25,6 +26,11 @@ unknown=$(find runtime -mindepth 1 -maxdepth 1 -type d | sed 's|runtime/||' |
           grep -vx -e include -e engine -e io -e study -e sim)
 [ -z "$unknown" ]; ok $? "runtime/ holds the rooms include, engine, io, study, sim and no other"
 [ -n "$unknown" ] && echo "$unknown" | diag
+
+# the library is one archive, whose members are named by file name alone
+dup=$(ls runtime/*/*.c | xargs -n1 basename | sort | uniq -d)
+[ -z "$dup" ]; ok $? "no two runtime files share a name (libsinewrt.a's members would clash)"
+[ -n "$dup" ] && echo "$dup" | diag
 
 # ---- the arrows, in the includes and in the objects
 /usr/bin/python3 - "$TMP" <<'EOF'
@@ -92,7 +98,7 @@ echo "longest: $(wc -l runtime/*/*.[ch] compiler/*.[ch] lang/*.[ly] | grep -v ' 
 # ---- the map and the citations
 missing=""
 for f in runtime/*/*.[ch]; do
-  grep -q "$(basename "$f")" docs/runtime.md || missing="$missing $f"
+  grep -qF "\`$(basename "$f")\`" docs/runtime.md || missing="$missing $f"
 done
 [ -z "$missing" ]; ok $? "docs/runtime.md names every file of every room"
 [ -n "$missing" ] && echo "not named:$missing" | diag
