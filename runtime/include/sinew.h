@@ -26,7 +26,7 @@
  *
  * The header is in parts, one per room of the runtime that implements them
  * (docs/runtime.md, "The rooms"): sinew_spec.h, the description of a scene
- * (engine/model.c and the kernels' descriptors); sinew_model.h, the compiled
+ * (engine/spec.c and the kernels' descriptors); sinew_model.h, the compiled
  * model, the state and the kernels (engine/); sinew_io.h, output files, the
  * run loop and units (io/); sinew_program.h, a compiled model as a program:
  * params, objective, one evaluation and the command line (study/, sim/).

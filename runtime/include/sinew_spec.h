@@ -5,7 +5,7 @@
  * expectations, probes) by the generated code, then compiled by sw_compile()
  * (sinew_model.h).  The descriptors are plain structs the caller fills and
  * the spec copies; time signals scale any magnitude that varies.  Implemented
- * in runtime/engine/ (model.c keeps the spec, each kernel's file checks its
+ * in runtime/engine/ (spec.c keeps the spec, each kernel's file checks its
  * own descriptor). */
 #ifndef SINEW_SPEC_H
 #define SINEW_SPEC_H
