@@ -1,5 +1,5 @@
-/* sema_int.h — state shared by the checker's files (sema.c, sema_expr.c,
- * sema_def.c, sema_stmt.c, sema_muscle.c); not used outside the checker.
+/* sema_int.h — state shared by the checker's files (sema.c and the
+ * sema_*.c beside it); not used outside the checker.
  *
  * Design.  One swSema per compilation: the arena, the scene being built, the
  * global scope, the stack of files being imported (for cycle messages) and
@@ -54,7 +54,7 @@ typedef struct {
   int has_simulate, has_output;
   /* the items of a runnable scene imported for its definitions: its scene
    * statements (actions, simulate, output, expect, use, environments) are
-   * skipped (check_file) */
+   * skipped (sema_check_file) */
   int defs_only;
   /* the first import that could not be read: unknown names may be its */
   const swAst *failed_import;
@@ -77,16 +77,36 @@ typedef struct {
   int nbad_probe, capbad_probe;
 } swSema;
 
-/* sema.c */
+/* sema_scope.c: scopes and names */
+swScope *sema_scope_new(swSema *S, swScope *parent, const char *prefix);   /* an empty scope */
+/* `name` declared in `scope`; NULL after reporting a clash or a reserved name */
+swSymbol *sema_declare(swSema *S, swScope *scope, swSymKind kind, const char *name, swLoc loc,
+                       const swAst *def);
 swSymbol *sema_lookup(swSema *S, swScope *scope, const char *name);
 swSymbol *sema_lookup_local(swScope *scope, const char *name);
 void sema_report_unknown(swSema *S, swScope *scope, const char *name, swLoc loc,
                          const char *what);
 const char *sema_sym_noun(swSymKind kind);   /* "let", "component parameter", ... */
+
+/* sema_import.c: files, imports and the recorded model source */
+/* import "f" [as NAMESPACE]: the file found, read and checked into the scope */
+void sema_import(swSema *S, const swAst *item, swScope *scope);
+void sema_append_source(swSema *S, const char *text, size_t len);   /* to the model source */
+void sema_mark_done(swSema *S, const char *canon);   /* a path (or sema_done_key) as read */
+/* "PREFIX\x1fPATH": the key of a file imported into a scope */
+const char *sema_done_key(swSema *S, const swScope *scope, const char *canon);
+
+/* sema.c: the driver */
 void sema_items(swSema *S, swScope *scope, const swAst *items, int first);
+void sema_check_file(swSema *S, int file, swScope *scope);   /* a file's items, into scope */
 
 /* sema_expr.c */
 swValue sema_eval(swSema *S, swScope *scope, const swAst *e);
+/* an operand of arithmetic; an unknown name, a definition or a switch: reported, VAL_ERROR */
+swValue sema_operand(swSema *S, swScope *scope, const swAst *e);
+const char *sema_describe_value(swSema *S, const swValue *v);   /* "a time signal", ... */
+/* a constant or an expression of params (1); a reduction of the run is reported (0) */
+int sema_known_at_build(swSema *S, const swValue *v, const char *what);
 /* a value required to be a number (n == 1) or vector of n components with
  * dimension `want` (dim_fits); `what` names it in messages */
 swValue sema_expect(swSema *S, swScope *scope, const swAst *e, int n, swDim want,
@@ -101,11 +121,19 @@ const char *sema_word(swSema *S, swScope *scope, const swAst *e, const char *wha
  * and, for a name holding something else, where its value was written). */
 int sema_truth(swSema *S, swScope *scope, const swAst *e, const char *what);
 
+/* sema_call.c */
+swValue sema_eval_call(swSema *S, swScope *scope, const swAst *call);   /* a built-in function */
+
 /* sema_def.c */
 void sema_eval_symbol(swSema *S, swSymbol *sym);
 swValue sema_vec3(swSema *S, double x, double y, double z, swDim dim, swLoc loc);
 /* reports "WHAT must be positive" unless v is a positive number; 0 if not */
 int sema_positive(swSema *S, const swValue *v, const char *what, const char *unit);
+/* each component of v that a param reaches beyond a bare P[k] or D[k] made a D[k] of its own */
+void sema_derive(swSema *S, swValue *v, const char *what, swLoc loc);
+
+/* sema_rod.c: rods and the points on them */
+void sema_eval_rod(swSema *S, swSymbol *sym);   /* a rod, bone or tendon, into the scene */
 /* a position: a point on a rod (kept as VAL_VEC with its rod and node), or a
  * 3-vector of lengths */
 swValue sema_position(swSema *S, swScope *scope, const swAst *e, const char *what);
