@@ -78,6 +78,8 @@ MPI_LIBS   := $(shell mpicc --showme:link)
 MPI_OBJ    := build/sinewrt_mpi.o
 endif
 endif
+# (named again here: `all`'s line above is read before MPI_OBJ is set)
+all: $(MPI_OBJ)
 # the flags sinewc passes to the C compiler when it builds a simulator
 RT_LINK  = -DSW_RT_CFLAGS='"$(PKG_CFLAGS)"' -DSW_RT_LIBS='"$(PKG_LIBS) -lm"' \
            -DSW_RT_MPI_LIBS='"$(MPI_LIBS)"'

@@ -16,7 +16,7 @@ cd "$ROOT" || exit 1
 SC=$SINEWC_CHECK
 scratch let
 LIBS="$ROOT/build/libsinewrt.a $(pkg-config --libs hdf5 gsl 2>/dev/null) -lm"
-CFLAGS_RT="-I$ROOT/runtime $(pkg-config --cflags hdf5 gsl 2>/dev/null)"
+CFLAGS_RT="-I$ROOT/runtime/include $(pkg-config --cflags hdf5 gsl 2>/dev/null)"
 
 # ---- true and false through a let and a component parameter
 cat >"$TMP/switch.sinew" <<'MODEL'

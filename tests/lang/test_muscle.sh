@@ -9,7 +9,7 @@
 . "$(dirname "$0")/tap.sh"
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
-CFLAGS_RT="-I$ROOT/runtime $(pkg-config --cflags hdf5 gsl 2>/dev/null)"
+CFLAGS_RT="-I$ROOT/runtime/include $(pkg-config --cflags hdf5 gsl 2>/dev/null)"
 has() { grep -Fq -- "$1" "$tmp/arm.c"; }
 
 # rods: humerus 0; biceps (18 filaments) 1-18; forearm 19; brachialis (2) 20-21; hand 22

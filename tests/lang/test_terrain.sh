@@ -13,7 +13,7 @@
 . "$(dirname "$0")/tap.sh"
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
-CFLAGS_RT="-fopenmp -I$ROOT/runtime $(pkg-config --cflags hdf5 gsl 2>/dev/null)"
+CFLAGS_RT="-fopenmp -I$ROOT/runtime/include $(pkg-config --cflags hdf5 gsl 2>/dev/null)"
 LIBS_RT="$ROOT/build/libsinewrt.a $(pkg-config --libs hdf5 gsl 2>/dev/null) -lm -fopenmp"
 
 cat > "$tmp/hills.sinew" <<'MODEL'
