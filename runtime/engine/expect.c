@@ -17,7 +17,7 @@
  * value and the bounds, or not reached when the run ended before its time
  * (a shortened --duration); only failures count.
  *
- * Quantities are read as the output reads them (output.c): joints through
+ * Quantities are read as the output reads them (io/output_datasets.c): joints through
  * sw_joint_measure, muscles through muscle.c's table (their filaments' last
  * force evaluation),
  * probes through sw_probe_measure.  A mean-velocity probe keeps a ring of

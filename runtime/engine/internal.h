@@ -193,7 +193,7 @@ typedef struct {
   void (*pull)(const swModel *m, swData *d);     /*   a barrier each               */
   double (*stable_dt_filament)(const swModel *m, int f);
   /* a muscle's tension (its filaments' sum) and stretch (their end-to-end
-   * length over rest length, averaged by area), for output.c and expect.c */
+   * length over rest length, averaged by area), for the output and expect.c */
   double (*force)(const swModel *m, const swData *d, int mu);
   double (*stretch)(const swModel *m, const swData *d, int mu);
   /* the via rings' loads (muscle_via.c) into this thread's slots: in the

@@ -1,7 +1,7 @@
 /* probe.c — observables for /probes/NAME: the centre of mass of a set of
  * rods, its velocity, its mean velocity over a window, and one node.
  *
- * Design.  A probe is measured when a frame is written (output.c), never in
+ * Design.  A probe is measured when a frame is written (io/output.c), never in
  * the step, so it costs nothing between frames.  The centre of mass is
  * weighted by the lumped node masses, X = sum m_i x_i / sum m_i (the same
  * masses the integrator uses, so X moves exactly as the total momentum

@@ -14,7 +14,7 @@
 #include <stdio.h>
 #include "sinew_model.h"
 
-/* ---- output (output.c, the only file that touches HDF5) ---- */
+/* ---- output (io/output.c, output_datasets.c, output_attrs.c) ---- */
 typedef struct swOutput swOutput;
 typedef struct {
   const char *model_source;   /* full text, imports inlined (may be NULL)   */

@@ -32,7 +32,7 @@ typedef struct {
   double gravity[3];         /* m/s^2                                        */
   /* per rod (nrod) */
   char **rod_name;
-  swRodInfo *rod_info;       /* kind, material, where (output.c)             */
+  swRodInfo *rod_info;       /* kind, material, where (io/output_attrs.c)     */
   int *rod_nelem;            /* n of each rod                                */
   int *node_adr;             /* first node                                   */
   int *elem_adr;             /* first element                                */

@@ -1,6 +1,7 @@
 /* compare.c — SIM --compare GOLDEN.h5: a run against a stored one, dataset
- * by dataset.  With output.c, the only file of the runtime that includes
- * hdf5.h (this one reads, that one writes), and restart.c.
+ * by dataset.  One of the io/ files that include hdf5.h: this one reads a
+ * golden file, output.c and its siblings write a run's, restart.c its
+ * checkpoint.
  *
  * Design.  Every numeric dataset of the golden file but the checkpoint
  * /restart (the simulator's state, not a result) must exist in the run's

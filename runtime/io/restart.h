@@ -1,5 +1,5 @@
 /* restart.h — the checkpoint's file side, shared by output.c (which owns the
- * file) and restart.c; the only runtime header that includes hdf5.h.  The
+ * file) and restart.c; with output.h, the io/ headers that include hdf5.h.  The
  * in-memory side is declared first: a snapshot of every array of the state
  * at a scheduled frame, kept in memory by the run loop and written into the
  * output file. */

@@ -121,13 +121,13 @@ static void test_output_schema(void **state) {
   for (size_t i = 0; i < source_len; i++) source[i] = i % 64 == 63 ? '\n' : (char)('a' + i % 26);
   source[source_len] = '\0';
   const char *sha = "0b3c6f6c2e1f9d6a3e7b9c1d2f4a5b6c7d8e9f00112233445566778899aabbcc";
-  swOutputOptions opt = {source, sha, "strength=1;gain=2", duration, 1, 1};
+  swOutputOptions opt = {.model_source = source, .model_sha256 = sha, .params = "strength=1;gain=2", .duration = duration, .velocity = 1, .directors = 1};
   char err[256] = "";
   swOutput *out = sw_output_open(path, m, &opt, err, sizeof err);
   if (!out) fprintf(stderr, "# %s\n", err);
   assert_non_null(out);
 
-  swRunOptions ro = {duration, every, 1, NULL};
+  swRunOptions ro = {.duration = duration, .every = every, .quiet = 1};
   assert_int_equal(sw_run(m, d, out, &ro), SW_OK);
   fprintf(stderr, "# %s: %ld frames written, t = %.9g s after %ld steps\n", __func__,
           sw_output_frames(out), d->time, d->step);
@@ -259,11 +259,11 @@ static void test_frame_schedule(void **state) {
   swModel *m = falling_rod(1e-4);
   swData *d = sw_data_new(m);
   sw_reset(m, d);
-  swOutputOptions opt = {NULL, NULL, NULL, 1e-3, 0, 0};
+  swOutputOptions opt = {.duration = 1e-3};
   char err[256] = "";
   swOutput *out = sw_output_open(path, m, &opt, err, sizeof err);
   assert_non_null(out);
-  swRunOptions ro = {1e-3, 0, 1, NULL};
+  swRunOptions ro = {.duration = 1e-3, .quiet = 1};
   assert_int_equal(sw_run(m, d, out, &ro), SW_OK);
   fprintf(stderr, "# %s: every = 0: %ld frames for 10 steps\n", __func__, sw_output_frames(out));
   assert_int_equal(sw_output_frames(out), 11);
@@ -295,7 +295,7 @@ static void run_child(const char *path, int log_fd) {
   swModel *m = falling_rod(1e-4);
   swData *d = sw_data_new(m);
   sw_reset(m, d);
-  swOutputOptions opt = {"rod filament {}", "00", "", 1e4, 1, 0};
+  swOutputOptions opt = {.model_source = "rod filament {}", .model_sha256 = "00", .params = "", .duration = 1e4, .velocity = 1};
   char err[256];
   swOutput *out = sw_output_open(path, m, &opt, err, sizeof err);
   if (!out) {
@@ -303,7 +303,7 @@ static void run_child(const char *path, int log_fd) {
     fclose(log_file);
     _exit(91);
   }
-  swRunOptions ro = {1e4, 1e-2, 0, log_file};
+  swRunOptions ro = {.duration = 1e4, .every = 1e-2, .log = log_file};
   int rc = sw_run(m, d, out, &ro);
   char status[128];
   snprintf(status, sizeof status, "interrupted at t = %.9g s", d->time);
@@ -414,13 +414,13 @@ static void test_unstable_run_stops(void **state) {
   sw_reset(m, d);
   /* kink the middle node so the instability has a seed */
   SW_AT(m, d->x, m->node_adr[0] + 2, 2) += 1e-3;
-  swOutputOptions opt = {NULL, NULL, NULL, 2000 * dt, 0, 0};
+  swOutputOptions opt = {.duration = 2000 * dt};
   char err[256] = "";
   swOutput *out = sw_output_open(path, m, &opt, err, sizeof err);
   assert_non_null(out);
   FILE *log_file = tmpfile();
   assert_non_null(log_file);
-  swRunOptions ro = {2000 * dt, 0, 1, log_file};
+  swRunOptions ro = {.duration = 2000 * dt, .quiet = 1, .log = log_file};
   int rc = sw_run(m, d, out, &ro);
   char text[1024] = "";
   rewind(log_file);
@@ -495,7 +495,7 @@ static void test_parse_time(void **state) {
 static void test_unwritable_path(void **state) {
   (void)state;
   swModel *m = falling_rod(1e-4);
-  swOutputOptions opt = {NULL, NULL, NULL, 1, 0, 0};
+  swOutputOptions opt = {.duration = 1};
   char err[256] = "";
   const char *path = "/nonexistent-dir/x.h5";
   swOutput *out = sw_output_open(path, m, &opt, err, sizeof err);

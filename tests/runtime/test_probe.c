@@ -219,11 +219,11 @@ static void test_probe_output(void **state) {
   assert_true(fd >= 0);
   close(fd);
   char err[256] = "";
-  swOutputOptions opt = {NULL, NULL, NULL, 0.05, 0, 0};
+  swOutputOptions opt = {.duration = 0.05};
   swOutput *out = sw_output_open(path, m, &opt, err, sizeof err);
   if (!out) fprintf(stderr, "# %s\n", err);
   assert_non_null(out);
-  swRunOptions ro = {0.05, 0.01, 1, NULL};
+  swRunOptions ro = {.duration = 0.05, .every = 0.01, .quiet = 1};
   assert_int_equal(sw_run(m, d, out, &ro), SW_OK);
   const long frames = sw_output_frames(out);
   assert_int_equal(sw_output_close(out, "complete"), SW_OK);

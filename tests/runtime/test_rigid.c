@@ -720,11 +720,11 @@ static void test_output(void **state) {
   assert_true(fd >= 0);
   close(fd);
   char err[256] = "";
-  swOutputOptions opt = {NULL, NULL, NULL, 0.02, 1, 1};
+  swOutputOptions opt = {.duration = 0.02, .velocity = 1, .directors = 1};
   swOutput *out = sw_output_open(path, m, &opt, err, sizeof err);
   if (!out) fprintf(stderr, "# %s\n", err);
   assert_non_null(out);
-  swRunOptions ro = {0.02, 0.01, 1, NULL};
+  swRunOptions ro = {.duration = 0.02, .every = 0.01, .quiet = 1};
   assert_int_equal(sw_run(m, d, out, &ro), SW_OK);
   long frames = sw_output_frames(out);
   assert_int_equal(sw_output_close(out, "complete"), SW_OK);
