@@ -1,7 +1,7 @@
 /* cli_study.c — SIM --sweep, --optimize and --resume: the command line's side
  * of a study (study.c runs it).
  *
- * Design.  cli.c reads the options; this file turns them and the model's
+ * Design.  cli_options.c reads the options; this file turns them and the model's
  * ranged params into swStudyOptions, and each evaluation into a run of the
  * model in this process (sw_evaluate: built from the design's params,
  * compiled, run for --duration without output, its objective sampled).  The

@@ -110,7 +110,7 @@ int sw_study_file_best_design(const char *path, int nparam, const char *const *n
 #include "sinew.h"
 
 /* What --sweep, --optimize, --budget, --popsize, --sigma, --restarts,
- * --seed, --study, --resume and --eval-timeout asked for (cli.c). */
+ * --seed, --study, --resume and --eval-timeout asked for (cli_options.c). */
 typedef struct {
   int mode;                  /* 0: no study; 1: --sweep; 2: --optimize        */
   swStudyKind kind;
