@@ -129,6 +129,18 @@ static swModel *build_model(const swCli *c, double *stable, const char **dt_sour
             sw_cli_format_time(stable_text, sizeof stable_text, *stable));
     fflush(stderr);
   }
+  /* an activation outside [0, 1] is clamped (muscle.c): say so, once a
+   * muscle, since a param set here can push it there (the compiler warns
+   * of what the model's own values do) */
+  for (int mu = 0; mu < m->nmuscle; mu++) {
+    double lo, hi;
+    sw_signal_range(&m->muscle_activation[mu], &lo, &hi);
+    if (lo < 0 || hi > 1)
+      fprintf(stderr, "%s: warning: muscle '%s': its activation %s %g; it acts as %g "
+              "(activations are clamped to [0, 1])\n", c->prog, m->muscle_name[mu],
+              hi > 1 ? "reaches" : "goes down to", hi > 1 ? hi : lo, hi > 1 ? 1.0 : 0.0);
+  }
+  fflush(stderr);
   *rc = SW_OK;
   return m;
 }
