@@ -406,7 +406,9 @@ static int study(swCli *c) {
  * interval, which an evaluation hands sw_run too: the run loop ends its fused
  * chunks of steps at the frames, and a drift fused over two steps is not the
  * same floating-point sum as two, so another --every would change the last
- * bits.  The frames themselves only read the state. */
+ * bits.  Writing a frame changes nothing a step reads: the strains and joint
+ * forces it recomputes from the state are scratch the next step computes
+ * afresh. */
 static int take_replay(swCli *c) {
   const swProgram *p = c->p;
   if (c->every_given && c->every != p->every) {
