@@ -200,8 +200,8 @@ int sema_truth(swSema *S, swScope *scope, const swAst *e, const char *what) {
                sema_sym_noun(sym->kind), sym->name, val_kind_noun(&sym->value),
                diag_where(sym->value.loc, where, sizeof where));
   else if (sym)
-    diag_error(e->loc, "%s is true or false, but '%s' is a %s", what, sym->name,
-               sema_sym_noun(sym->kind));
+    diag_error(e->loc, "%s is true or false, but '%s' is %s", what, sym->name,
+               sema_sym_a_noun(sym->kind));
   else diag_error(e->loc, "%s is true or false, not %s", what, val_kind_noun(&v));
   return -1;
 }

@@ -87,6 +87,7 @@ swSymbol *sema_lookup_local(swScope *scope, const char *name);
 void sema_report_unknown(swSema *S, swScope *scope, const char *name, swLoc loc,
                          const char *what);
 const char *sema_sym_noun(swSymKind kind);   /* "let", "component parameter", ... */
+const char *sema_sym_a_noun(swSymKind kind); /* with its article: "a let", "an instance" */
 
 /* sema_import.c: files, imports and the recorded model source */
 /* import "f" [as NAMESPACE]: the file found, read and checked into the scope */

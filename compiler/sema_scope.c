@@ -78,12 +78,19 @@ const char *sema_sym_noun(swSymKind k) {
   return nouns[k];
 }
 
+const char *sema_sym_a_noun(swSymKind k) {
+  static const char *nouns[] = {"a param", "a let", "a component parameter", "a material",
+                                "a rod", "a joint", "a component", "an instance", "a muscle",
+                                "an environment"};
+  return nouns[k];
+}
+
 swSymbol *sema_declare(swSema *S, swScope *scope, swSymKind kind, const char *name, swLoc loc,
                        const swAst *def) {
   swSymbol *old = sema_lookup_local(scope, name);
   if (old) {
     char where[256];
-    diag_error(loc, "'%s' is already defined (as a %s at %s)", name, sema_sym_noun(old->kind),
+    diag_error(loc, "'%s' is already defined (as %s at %s)", name, sema_sym_a_noun(old->kind),
                diag_where(old->loc, where, sizeof where));
     return NULL;
   }
