@@ -402,10 +402,13 @@ static swSymbol *muscle_target(swSema *S, swScope *scope, const swAst *e, const 
   } else snprintf(list, sizeof list, " (there are no muscles here)");
   if (v.kind == VAL_WORD) {
     const char *near = diag_suggest(v.word, cands, n);
+    char hint[300];
     if (near) {
       sema_lookup(S, scope, near)->used = 1;
       diag_error(v.loc, "unknown muscle '%s'; did you mean '%s'?", v.word, near);
-    } else diag_error(v.loc, "unknown muscle '%s'%s", v.word, list);
+    } else if (sema_member_hint(scope, v.word, SYM_MUSCLE, hint, sizeof hint)[0])
+      diag_error(v.loc, "unknown muscle '%s'%s", v.word, hint);
+    else diag_error(v.loc, "unknown muscle '%s'%s", v.word, list);
     return NULL;
   }
   if (v.kind == VAL_REF && v.ref->kind == SYM_MUSCLE) {
