@@ -100,6 +100,14 @@ bin/sinewc: $(CC_OBJ) build/libsinewrt.a | bin
 	$(CC) $(ALL_CFLAGS) $(CC_OBJ) -o $@ build/libsinewrt.a $(LIBS)
 build/asan/sinewc: $(CC_SOBJ) build/asan/libsinewrt.a
 	$(CC) $(SAN_CFLAGS) $(CC_SOBJ) -o $@ build/asan/libsinewrt.a $(LIBS)
+# The fuzzing harness (tests/fuzz/fuzz_sinewc.c, docs/fuzzing.md) built with
+# the plain C compiler is a replay program, `fuzz_sinewc FILE...`: the front
+# end of sinewc (every compiler object but sinewc.o) under the sanitizers,
+# which tests/lang/test_fuzz_harness.sh runs on the seeds and regressions, so
+# that the harness scripts/fuzz.sh builds for AFL++ keeps building.
+FUZZ_SOBJ = $(filter-out build/asan/cc/sinewc.o,$(CC_SOBJ))
+build/asan/fuzz_sinewc: tests/fuzz/fuzz_sinewc.c $(FUZZ_SOBJ) build/asan/libsinewrt.a $(CC_HDR)
+	$(CC) $(SAN_CFLAGS) $(CC_INC) $< $(FUZZ_SOBJ) -o $@ build/asan/libsinewrt.a $(LIBS)
 build/lang build/cc build/asan/cc bin:
 	@mkdir -p $@
 
@@ -157,7 +165,8 @@ build/tests/mpi_study: tests/mpi/mpi_study.c $(MPI_OBJ) build/libsinewrt.a | bui
 # Three test files at a time on two cores: several wait on mpirun, xvfb or a
 # timeout much of their run (381 s of tests with -j2, 344 s with -j3, this
 # machine idle), which keeps `.ci/run` well inside its 10 minutes.
-check: $(TEST_BIN) $(TEST_SBIN) $(E2E_BIN) build/libsinewrt.a build/libsinewrt-portable.a $(MPI_OBJ) $(MPI_TEST) bin/sinewc build/asan/sinewc
+check: $(TEST_BIN) $(TEST_SBIN) $(E2E_BIN) build/libsinewrt.a build/libsinewrt-portable.a $(MPI_OBJ) $(MPI_TEST) bin/sinewc build/asan/sinewc \
+       build/asan/fuzz_sinewc
 	@mkdir -p build/validation   # measured tables the validation tests leave for `make plots`
 	@SINEWC=build/asan/sinewc CMOCKA_MESSAGE_OUTPUT=TAP prove -j3 --exec '' \
 	  $(E2E_BIN) $(TEST_BIN) $(TEST_SBIN) $(LANG_TESTS)

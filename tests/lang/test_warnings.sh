@@ -1,10 +1,11 @@
 #!/bin/sh
 # test_warnings.sh — every C file of the project compiles warning-free with
 # the Makefile's warning set (WARN: -Wall -Wextra and the rest): the runtime's
-# rooms, the compiler, the runtime and end-to-end tests, the benchmarks and
-# the MPI test driver (where mpi.h is).  Checked with -fsyntax-only, one file
-# at a time, so a warning names its file whatever make has built already;
-# the warnings only an optimiser finds show in the builds themselves.
+# rooms, the compiler, the runtime and end-to-end tests, the fuzzing harness,
+# the benchmarks and the MPI test driver (where mpi.h is).  Checked with
+# -fsyntax-only, one file at a time, so a warning names its file whatever make
+# has built already; the warnings only an optimiser finds show in the builds
+# themselves.
 . "$(dirname "$0")/tap.sh"
 cd "$ROOT" || exit 1
 scratch warnings
@@ -15,7 +16,8 @@ INC="-Iruntime/include -Iruntime -Iruntime/engine -Iruntime/io -Iruntime/study -
      -Itests/e2e -Ibench -Icompiler -Ibuild/lang $(pkg-config --cflags hdf5 gsl 2>/dev/null)"
 MPI_INC=$(mpicc --showme:compile 2>/dev/null)
 n=0
-for f in runtime/*/*.c compiler/*.c tests/runtime/*.c tests/e2e/*.c tests/mpi/*.c bench/*.c; do
+for f in runtime/*/*.c compiler/*.c tests/runtime/*.c tests/e2e/*.c tests/mpi/*.c tests/fuzz/*.c \
+         bench/*.c; do
   case $f in
     runtime/study/study_mpi.c|tests/mpi/*) [ -n "$MPI_INC" ] || continue; extra=$MPI_INC ;;
     bench/eval_sundials.c) [ -e /usr/include/arkode/arkode_arkstep.h ] || continue; extra= ;;
