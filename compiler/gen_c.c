@@ -633,6 +633,25 @@ int gen_check(const swScene *sc, double *stable_dt) {
                    "(set by rod '%s'); the run will likely become unstable", sc->dt, est,
                    m->rod_name[worst]);
   }
+  /* An activation the model drives outside [0, 1] through a param's default
+   * or a signal's values is clamped; a plain number out of range is warned
+   * of where it is read (sema_activate).  The runtime's muscles are the
+   * scene's, in order (gen_spec). */
+  for (int mu = 0; mu < sc->nmuscle && mu < m->nmuscle; mu++) {
+    const swSignalVal *act = sc->muscle[mu].activation;
+    if (!act) continue;
+    int listed = act->kind == SW_SIG_TABLE || act->kind == SW_SIG_BSPLINE;
+    int by_param = listed ? !val_is_const(&act->values)
+                          : !val_is_const(&act->a) || !val_is_const(&act->b);
+    if (act->kind == SW_SIG_CONST && !by_param) continue;
+    double lo, hi;
+    sw_signal_range(&m->muscle_activation[mu], &lo, &hi);
+    if (lo < 0 || hi > 1)
+      diag_warning(sc->muscle[mu].activation_loc, "the activation of muscle '%s' %s %g%s; it acts "
+                   "as %g (activations are clamped to [0, 1])", sc->muscle[mu].name,
+                   hi > 1 ? "reaches" : "goes down to", hi > 1 ? hi : lo,
+                   by_param ? " with the params' defaults" : "", hi > 1 ? 1.0 : 0.0);
+  }
   if (stable_dt) *stable_dt = m->nrod > 0 ? sw_stable_dt(m) : 0;
   sw_model_free(m);
   return 0;

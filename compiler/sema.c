@@ -125,9 +125,15 @@ static swSymbol *lookup_qualified(swSema *S, swScope *scope, const char *text, s
     sema_report_unknown(S, scope, head, loc, "name");
     return NULL;
   }
-  if (ns->kind != SYM_INSTANCE || !ns->members) {
-    diag_error(loc, "'%s' is a %s, not an imported namespace or an instance", head,
-               sema_sym_noun(ns->kind));
+  if (ns->kind == SYM_INSTANCE && !ns->members) {
+    /* a namespace whose import failed: that error is the one to read */
+    if (!diag_errors())
+      diag_error(loc, "'%s' has no components: its import gave none", head);
+    return NULL;
+  }
+  if (ns->kind != SYM_INSTANCE) {
+    diag_error(loc, "'%s' is %s, not an imported namespace or an instance", head,
+               sema_sym_a_noun(ns->kind));
     return NULL;
   }
   ns->used = 1;
@@ -151,7 +157,7 @@ static void instantiate(swSema *S, swScope *scope, const swAst *it) {
   if (!comp) return;   /* reported */
   comp->used = 1;
   if (comp->kind != SYM_COMPONENT) {
-    diag_error(it->loc, "'%s' is a %s, not a component", it->text, sema_sym_noun(comp->kind));
+    diag_error(it->loc, "'%s' is %s, not a component", it->text, sema_sym_a_noun(comp->kind));
     return;
   }
   /* a component whose body uses itself, directly or through others, would
@@ -348,12 +354,12 @@ static void let_not_found(swSema *S, swLetOverride *o) {
     snprintf(msg, sizeof msg, "--let %s: '%s' is a param, not a let: the simulator sets it when "
              "it runs (SIM --set %s=VALUE)", o->name, o->name, o->name);
   else if (g)
-    snprintf(msg, sizeof msg, "--let %s: '%s' is a %s of %s, not a top-level let of %s",
-             o->name, o->name, sema_sym_noun(g->kind), diag_where(g->loc, where, sizeof where),
+    snprintf(msg, sizeof msg, "--let %s: '%s' is %s of %s, not a top-level let of %s",
+             o->name, o->name, sema_sym_a_noun(g->kind), diag_where(g->loc, where, sizeof where),
              main_path);
   else if (inner)
-    snprintf(msg, sizeof msg, "--let %s: '%s' is a %s inside component instance '%.*s' (%s), "
-             "not a top-level let of %s", o->name, o->name, sema_sym_noun(inner->kind),
+    snprintf(msg, sizeof msg, "--let %s: '%s' is %s inside component instance '%.*s' (%s), "
+             "not a top-level let of %s", o->name, o->name, sema_sym_a_noun(inner->kind),
              (int)strlen(inner->scope->prefix) - 1, inner->scope->prefix,
              diag_where(inner->loc, where, sizeof where), main_path);
   else {

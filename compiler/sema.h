@@ -49,6 +49,10 @@ typedef struct swValue {
   const char **c;             /* (n) C expressions, NULL entries constant; NULL if all */
   const char *param;          /* a param it depends on (for messages)      */
   swLoc loc;
+  /* read through a component's parameter: its name and where its value is
+   * written (the default, or the use's argument), for a note on an error */
+  const char *via_formal;
+  swLoc formal_loc;
   /* VAL_POINT */
   int rod, node;
   const char *node_c;         /* the node's C expression when a param moves the

@@ -565,6 +565,14 @@ static int make_probe(swSema *S, swScope *scope, const swAst *fl, swSceneProbe *
 
 void sema_probe(swSema *S, swScope *scope, const swAst *fl) {
   const swAst *target = ast_kid(fl, 1);
+  if (target && target->kind == AST_UNIT) {   /* probe h = ...: h is the hour */
+    const swUnit *u = sw_unit_find(target->name, strlen(target->name));
+    char dim[64] = "";
+    if (u) sw_dim_describe(dim, sizeof dim, u->dim);
+    diag_error(target->loc, "'%s' is a unit, of %s, and cannot name a probe; call the probe "
+               "something else (e.g. 'height')", target->name, u ? dim : "a quantity");
+    return;
+  }
   if (!target || target->kind != AST_NAME) {
     diag_error(fl->loc, "a probe reads 'probe NAME = centre_of_mass(rods);'");
     return;

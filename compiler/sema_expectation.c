@@ -176,8 +176,8 @@ int sema_quantity(swSema *S, swScope *scope, const swAst *q, const char *who, sw
     return 1;
   }
   const char *reads = k == 0 ? "a hinge joint" : k == 1 ? "a joint or a muscle" : "a muscle";
-  if (sym) diag_error(arg->loc, "%s() reads %s; '%s' is a %s", q->name, reads, sym->name,
-                      sema_sym_noun(sym->kind));
+  if (sym) diag_error(arg->loc, "%s() reads %s; '%s' is %s", q->name, reads, sym->name,
+                      sema_sym_a_noun(sym->kind));
   else diag_error(arg->loc, "%s() reads %s, given by its name", q->name, reads);
   return 0;
 }

@@ -86,9 +86,16 @@ swValue sema_expect_value(swSema *S, swValue v, int n, swDim want, const char *w
     return val_error();
   }
   if (!dim_fits(want, v.dim)) {
-    diag_error(v.loc, "%s expects %s, got %s", what, dim_describe(S->a, want),
+    /* a component parameter's value is written elsewhere: say where */
+    char from[340] = "";
+    if (v.via_formal && v.formal_loc.line && v.formal_loc.line != v.loc.line) {
+      char where[300];
+      snprintf(from, sizeof from, "; it is the value of '%s', given at %s", v.via_formal,
+               diag_where_from(v.formal_loc, v.loc, where, sizeof where));
+    }
+    diag_error(v.loc, "%s expects %s, got %s%s", what, dim_describe(S->a, want),
                dim_is_none(v.dim) ? "dimensionless (a number without a unit)"
-                                  : dim_describe(S->a, v.dim));
+                                  : dim_describe(S->a, v.dim), from);
     return val_error();
   }
   if (v.kind == VAL_POINT) {
@@ -200,8 +207,8 @@ int sema_truth(swSema *S, swScope *scope, const swAst *e, const char *what) {
                sema_sym_noun(sym->kind), sym->name, val_kind_noun(&sym->value),
                diag_where(sym->value.loc, where, sizeof where));
   else if (sym)
-    diag_error(e->loc, "%s is true or false, but '%s' is a %s", what, sym->name,
-               sema_sym_noun(sym->kind));
+    diag_error(e->loc, "%s is true or false, but '%s' is %s", what, sym->name,
+               sema_sym_a_noun(sym->kind));
   else diag_error(e->loc, "%s is true or false, not %s", what, val_kind_noun(&v));
   return -1;
 }
@@ -216,7 +223,13 @@ static swValue symbol_value(swSema *S, swSymbol *sym, swLoc loc) {
   case SYM_FORMAL: {
     sema_eval_symbol(S, sym);
     swValue v = sym->value;
-    if (v.kind != VAL_ERROR) v.loc = loc;
+    if (v.kind != VAL_ERROR) {
+      if (sym->kind == SYM_FORMAL) {
+        v.via_formal = sym->name;
+        v.formal_loc = v.loc;
+      }
+      v.loc = loc;
+    }
     return v;
   }
   default: {

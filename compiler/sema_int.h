@@ -98,6 +98,14 @@ swSymbol *sema_lookup_local(swScope *scope, const char *name);
 void sema_report_unknown(swSema *S, swScope *scope, const char *name, swLoc loc,
                          const char *what);
 const char *sema_sym_noun(swSymKind kind);   /* "let", "component parameter", ... */
+const char *sema_sym_a_noun(swSymKind kind); /* with its article: "a let", "an instance" */
+/* Instances' members called `name` (of kind `kind`, -1 any) by full name,
+ * at most max; and the hint made of them ("; did you mean 'right.x'?"), ""
+ * when none (sema_scope.c). */
+int sema_members_named(const swScope *scope, const char *name, int kind, const char **out,
+                       int max);
+const char *sema_member_hint(const swScope *scope, const char *name, int kind, char *buf,
+                             size_t len);
 
 /* sema_import.c: files, imports and the recorded model source */
 /* import "f" [as NAMESPACE]: the file found, read and checked into the scope */

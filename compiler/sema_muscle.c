@@ -46,6 +46,29 @@ void sema_muscle_not_rod(swSema *S, const swSymbol *muscle, swLoc loc) {
              muscle->name);
 }
 
+/* A muscle's end written as a point on a rod moved by an offset
+ * (shank.end + (0, 0, 5) mm) is a position off the rod: the end would hang
+ * free there, not attached, so it is an error, as a joint's gap is (a free
+ * end is written as a position in space).  Returns 0 after reporting it. */
+static int end_on_body(swSema *S, swScope *sc, const swAst *e, const char *which,
+                       const char *what) {
+  const swAst *base = e;
+  while (base->kind == AST_BINOP && (base->op == '+' || base->op == '-')) base = base->kid[0];
+  if (base == e) return 1;
+  int rod = -1, node = 0;
+  swValue b = sema_position_on(S, sc, base, which, &rod, &node, NULL);
+  if (b.kind == VAL_ERROR || rod < 0) return 1;   /* reported already, or not a rod's point */
+  swValue v = sema_position_on(S, sc, e, which, NULL, NULL, NULL);
+  if (v.kind != VAL_VEC) return 1;
+  double gap = sqrt((v.v[0] - b.v[0]) * (v.v[0] - b.v[0]) + (v.v[1] - b.v[1]) * (v.v[1] - b.v[1]) +
+                    (v.v[2] - b.v[2]) * (v.v[2] - b.v[2]));
+  diag_error(e->loc, "%s of %s is %g mm off rod '%s' (a point on it moved by an offset), so "
+             "the muscle would hang free there instead of attaching; a muscle attaches at a "
+             "point on a rod (e.g. %s.at(0.95)), and a free end is a position in space",
+             which, what, gap * 1e3, S->scene->rod[rod].name, S->scene->rod[rod].name);
+  return 0;
+}
+
 /* The via points (`via = P;` or `via = (P1, P2, ...);`), each a point on a
  * rod, that point plus an offset (humerus.at(0.95) + (0, 0, 1) cm: the offset
  * is taken at t = 0 and the point is carried by that rod), or a position in
@@ -215,6 +238,8 @@ void sema_eval_muscle(swSema *S, swSymbol *sym) {
              : val_error();
   if (from && m.start.kind == VAL_ERROR) ok = 0;
   if (to && m.end.kind == VAL_ERROR) ok = 0;
+  if (from && m.start.kind != VAL_ERROR && !end_on_body(S, sc, from, "'from'", what)) ok = 0;
+  if (to && m.end.kind != VAL_ERROR && !end_on_body(S, sc, to, "'to'", what)) ok = 0;
   const swAst *via = sema_field(&f, "via");
   if (via && !eval_via(S, sc, sym, via, &m)) ok = 0;
   double axis[3] = {0, 0, 0};
@@ -377,10 +402,13 @@ static swSymbol *muscle_target(swSema *S, swScope *scope, const swAst *e, const 
   } else snprintf(list, sizeof list, " (there are no muscles here)");
   if (v.kind == VAL_WORD) {
     const char *near = diag_suggest(v.word, cands, n);
+    char hint[300];
     if (near) {
       sema_lookup(S, scope, near)->used = 1;
       diag_error(v.loc, "unknown muscle '%s'; did you mean '%s'?", v.word, near);
-    } else diag_error(v.loc, "unknown muscle '%s'%s", v.word, list);
+    } else if (sema_member_hint(scope, v.word, SYM_MUSCLE, hint, sizeof hint)[0])
+      diag_error(v.loc, "unknown muscle '%s'%s", v.word, hint);
+    else diag_error(v.loc, "unknown muscle '%s'%s", v.word, list);
     return NULL;
   }
   if (v.kind == VAL_REF && v.ref->kind == SYM_MUSCLE) {

@@ -168,8 +168,8 @@ static void select_named(swSema *S, swScope *scope, const swOutWord *w, const sw
     push_id(S, *muscles, sym->index);
     return;
   }
-  if (sym) diag_error(target->loc, "'%s' is written for %s; '%s' is a %s", w->word, reads, sym->name,
-                      sema_sym_noun(sym->kind));
+  if (sym) diag_error(target->loc, "'%s' is written for %s; '%s' is %s", w->word, reads, sym->name,
+                      sema_sym_a_noun(sym->kind));
   else diag_error(target->loc, "'%s' is written for %s, given by its name", w->word, reads);
 }
 

@@ -40,6 +40,48 @@ swSymbol *sema_lookup(swSema *S, swScope *scope, const char *name) {
   return NULL;
 }
 
+/* Instances' members (and theirs, three levels down) called `name`, of kind
+ * `kind` (-1: any), by their full names ("right.extensor"), for a hint where
+ * a bare name is unknown but an instance holds it. */
+static int members_named(const swScope *sc, const char *name, int kind, const char **out, int n,
+                         int max, int depth) {
+  for (int i = 0; sc && i < sc->n && n < max; i++) {
+    const swSymbol *s = sc->sym[i];
+    if (s->kind != SYM_INSTANCE || !s->members) continue;
+    const swSymbol *m = sema_lookup_local(s->members, name);
+    if (m && (kind < 0 || (int)m->kind == kind) && m->full) out[n++] = m->full;
+    if (depth > 0) n = members_named(s->members, name, kind, out, n, max, depth - 1);
+  }
+  return n;
+}
+
+int sema_members_named(const swScope *scope, const char *name, int kind, const char **out,
+                       int max) {
+  int n = 0;
+  for (const swScope *sc = scope; sc && n < max; sc = sc->parent)
+    n = members_named(sc, name, kind, out, n, max, 2);
+  return n;
+}
+
+/* " did you mean 'right.extensor'?" or " (an instance's: 'left.x', 'right.x')"
+ * into buf when instances hold `name`; "" otherwise. */
+const char *sema_member_hint(const swScope *scope, const char *name, int kind, char *buf,
+                             size_t len) {
+  const char *full[4];
+  int n = sema_members_named(scope, name, kind, full, 4);
+  buf[0] = '\0';
+  if (n == 1) snprintf(buf, len, "; did you mean '%s'?", full[0]);
+  else if (n > 1) {
+    snprintf(buf, len, " (instances hold it: ");
+    for (int i = 0; i < n; i++) {
+      strncat(buf, "'", len - strlen(buf) - 1);
+      strncat(buf, full[i], len - strlen(buf) - 1);
+      strncat(buf, i + 1 < n ? "', " : "')", len - strlen(buf) - 1);
+    }
+  }
+  return buf;
+}
+
 void sema_report_unknown(swSema *S, swScope *scope, const char *name, swLoc loc,
                          const char *what) {
   enum { MAXC = 512 };
@@ -58,8 +100,11 @@ void sema_report_unknown(swSema *S, swScope *scope, const char *name, swLoc loc,
     swSymbol *meant = sema_lookup(S, scope, near);
     if (meant) meant->used = 1;
   }
+  char hint[300];
   if (near) {
     diag_error(loc, "unknown %s '%s'; did you mean '%s'?", what, name, near);
+  } else if (sema_member_hint(scope, name, -1, hint, sizeof hint)[0]) {
+    diag_error(loc, "unknown %s '%s'%s", what, name, hint);
   } else if (S->failed_import) {   /* the cause is more likely the import */
     char where[300];
     const swLoc at = S->failed_import->loc;
@@ -78,12 +123,19 @@ const char *sema_sym_noun(swSymKind k) {
   return nouns[k];
 }
 
+const char *sema_sym_a_noun(swSymKind k) {
+  static const char *nouns[] = {"a param", "a let", "a component parameter", "a material",
+                                "a rod", "a joint", "a component", "an instance", "a muscle",
+                                "an environment"};
+  return nouns[k];
+}
+
 swSymbol *sema_declare(swSema *S, swScope *scope, swSymKind kind, const char *name, swLoc loc,
                        const swAst *def) {
   swSymbol *old = sema_lookup_local(scope, name);
   if (old) {
     char where[256];
-    diag_error(loc, "'%s' is already defined (as a %s at %s)", name, sema_sym_noun(old->kind),
+    diag_error(loc, "'%s' is already defined (as %s at %s)", name, sema_sym_a_noun(old->kind),
                diag_where(old->loc, where, sizeof where));
     return NULL;
   }

@@ -345,6 +345,12 @@ swValue val_func(swArena *a, const char *fn, swValue x, swLoc loc) {
                  dim_describe(a, x.dim));
       return val_error();
     }
+    /* a plain number is taken in radians; `let slope = 5;` meant as degrees
+     * would turn silently by 286 deg, so say which it is */
+    if (dim_is_none(x.dim))
+      diag_warning(loc, "%s() of the plain number %g takes it in radians (%g deg); give the "
+                   "angle its unit: %g rad, or %g deg if degrees were meant", fn, x.v[0],
+                   x.v[0] * 180 / M_PI, x.v[0], x.v[0]);
     r = !strcmp(fn, "sin") ? sin(x.v[0]) : !strcmp(fn, "cos") ? cos(x.v[0]) : tan(x.v[0]);
   }
   swValue v = val_num(a, r, dim, loc);

@@ -127,6 +127,49 @@ double sw_signal_eval(const swSignal *s, double t) {
   return 0.0;
 }
 
+/* The values a signal takes over all t (its period changes none of them):
+ * the ends of a ramp or a step, a sine's mean -+ its amplitude, a table's
+ * extreme values.  A clamped B-spline stays inside the hull of its
+ * coefficients but rarely touches it, so it is sampled, 64 points a knot
+ * span, which finds its extremes to about 1e-4 of their spread. */
+void sw_signal_range(const swSignal *s, double *lo, double *hi) {
+  double a = s->a, b = s->b;
+  switch (s->kind) {
+  case SW_SIG_CONST:
+    *lo = *hi = a;
+    return;
+  case SW_SIG_SINE:
+    if (s->freq == 0) a = b = s->a + s->b * sin(s->phase);
+    else { b = s->a + fabs(s->b); a = s->a - fabs(s->b); }
+    break;
+  case SW_SIG_TABLE:
+  case SW_SIG_BSPLINE: {
+    int n = s->npts;
+    if (n <= 0) { *lo = *hi = 0.0; return; }
+    a = b = s->values[0];
+    if (s->kind == SW_SIG_TABLE || n < 4) {  /* the values themselves */
+      for (int k = 1; k < n; k++) {
+        a = fmin(a, s->values[k]);
+        b = fmax(b, s->values[k]);
+      }
+      break;
+    }
+    int samples = 64 * (n - 3);              /* n - 3 knot spans */
+    for (int k = 0; k <= samples; k++) {
+      double v = bspline_uniform(s->values, n, (double)k / samples);
+      a = fmin(a, v);
+      b = fmax(b, v);
+    }
+    break;
+  }
+  case SW_SIG_RAMP:
+  case SW_SIG_STEP:
+    break;
+  }
+  *lo = fmin(a, b);
+  *hi = fmax(a, b);
+}
+
 /* Gravity into ext_force and zero into ext_torque over slots [lo, hi) of the
  * planes (padding included, where both stay zero); the loads are scratch, at
  * i - so (internal.h, "Scratch windows").  Gravity acts on m->weight, the

@@ -59,6 +59,9 @@ swSignal sw_signal_bspline(const double *c, int n, double t0, double duration);
 /* The same signal repeated with `period` (> 0) from its t0 on. */
 swSignal sw_signal_periodic(swSignal s, double period);
 double sw_signal_eval(const swSignal *s, double t);
+/* The least and the greatest value s takes (a B-spline's to about 1e-4 of
+ * its spread): what the compiler and the simulator check an activation by. */
+void sw_signal_range(const swSignal *s, double *lo, double *hi);
 
 /* ---- scene description ---- */
 typedef struct {

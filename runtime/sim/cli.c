@@ -3,10 +3,11 @@
  *       [--threads N] [--quiet] [--info] [--help]
  * This file is sw_main and what it does once the options are read: building
  * the model, a run and its summary, the objective's report, the entry into a
- * study.  The rest is by what it does: cli_options.c reads the options (the
- * table, values, "did you mean", the checks that they agree), cli_info.c
- * prints --help and --info, cli_study.c is the command line's side of
- * --sweep, --optimize and --resume; cli.h holds what they share.
+ * study, the run of one of a study's designs (--replay).  The rest is by
+ * what it does: cli_options.c reads the options (the table, values, "did
+ * you mean", the checks that they agree), cli_info.c prints --help and
+ * --info, cli_study.c is the command line's side of --sweep, --optimize,
+ * --resume and --replay; cli.h holds what they share.
  *
  * Design.  Nothing is built until the whole command line has been read
  * (cli_options.c).  The scene is then built by the program's build() from the
@@ -26,7 +27,11 @@
  * beside others (a sweep, an optimiser, the test suite), where one process
  * per core beats threads that meet at a barrier several times a step, and
  * because the results are the same bits for any N, so asking for more is
- * only ever a question of speed. */
+ * only ever a question of speed.  --replay runs a study's design as a run:
+ * the params, duration, dt and integrator its evaluation had, and the
+ * model's frame interval, which shaped the evaluation's chunks of steps, so
+ * that the objective the run prints is the one the study stored, to the
+ * bit (it says so, or warns). */
 #include <errno.h>
 #include <math.h>
 #include <omp.h>
@@ -129,6 +134,18 @@ static swModel *build_model(const swCli *c, double *stable, const char **dt_sour
             sw_cli_format_time(stable_text, sizeof stable_text, *stable));
     fflush(stderr);
   }
+  /* an activation outside [0, 1] is clamped (muscle.c): say so, once a
+   * muscle, since a param set here can push it there (the compiler warns
+   * of what the model's own values do) */
+  for (int mu = 0; mu < m->nmuscle; mu++) {
+    double lo, hi;
+    sw_signal_range(&m->muscle_activation[mu], &lo, &hi);
+    if (lo < 0 || hi > 1)
+      fprintf(stderr, "%s: warning: muscle '%s': its activation %s %g; it acts as %g "
+              "(activations are clamped to [0, 1])\n", c->prog, m->muscle_name[mu],
+              hi > 1 ? "reaches" : "goes down to", hi > 1 ? hi : lo, hi > 1 ? 1.0 : 0.0);
+  }
+  fflush(stderr);
   *rc = SW_OK;
   return m;
 }
@@ -176,9 +193,9 @@ static int report_objective(const swCli *c, const swModel *m, const swExpectRun 
   if (rc == SW_OK) rc = sw_objective(p, m, x, c->P, &value, &penalty, &score, why, sizeof why);
   else snprintf(why, sizeof why, "%s", rc == SW_EUNSTABLE ? "the run became unstable"
                 : rc == SW_EINTERRUPT ? "the run was interrupted" : "the run did not finish");
+  const char *u = p->objective_unit, *space = u[0] ? " " : "";
+  const double k = p->objective_scale > 0 ? p->objective_scale : 1;
   if (!c->quiet) {
-    const char *u = p->objective_unit, *space = u[0] ? " " : "";
-    const double k = p->objective_scale > 0 ? p->objective_scale : 1;
     if (rc == SW_OK)
       fprintf(stderr, "%s: objective: %s = %.9g%s%s; penalty %.9g%s%s; score %.9g%s%s\n",
               c->prog, p->objective_text, value / k, space, u, penalty / k, space, u,
@@ -186,6 +203,18 @@ static int report_objective(const swCli *c, const swModel *m, const swExpectRun 
     else fprintf(stderr, "%s: objective: %s: not reached (%s)\n", c->prog, p->objective_text,
                  why);
     fflush(stderr);
+  }
+  if (c->replay) { /* the study stores it in its unit, as value / k */
+    double here = value / k, there = c->replayed.objective;
+    if (rc == SW_OK && !memcmp(&here, &there, sizeof here)) {
+      if (!c->quiet)
+        fprintf(stderr, "%s: the objective is evaluation %ld's of %s, bit for bit (%.17g%s%s)\n",
+                c->prog, c->replayed.index, c->replay, here, space, u);
+    } else {
+      fprintf(stderr, "%s: warning: the objective %.17g%s%s is not evaluation %ld's of %s "
+              "(%.17g%s%s)\n", c->prog, here, space, u, c->replayed.index, c->replay, there,
+              space, u);
+    }
   }
   if (rc != SW_OK) value = penalty = score = NAN;
   if (sw_output_objective(o, p->objective_text, value, penalty, score,
@@ -336,35 +365,84 @@ static int run(const swCli *c, const swModel *m, const char *out) {
   return rc;
 }
 
-/* ---- a sweep or an optimisation (cli_study.c, study.c) ---- */
+/* ---- a sweep or an optimisation (cli_study.c, study.c), a replay ---- */
 
-static int study(swCli *c) {
+/* The SI unit of a dimension: "m", "Pa", "N m", "kg m^-1"; "" when
+ * dimensionless (from the name units.c gives it, "pressure (Pa)"). */
+static void si_unit_of(const signed char dim[SW_NDIM], char *buf, size_t len) {
+  char what[48];
+  sw_dim_describe(what, sizeof what, dim);
+  const char *open = strchr(what, '('), *close = strrchr(what, ')');
+  if (open && close > open) snprintf(buf, len, "%.*s", (int)(close - open - 1), open + 1);
+  else snprintf(buf, len, "%s", strcmp(what, "dimensionless") ? what : "");
+}
+
+/* What cli_study.c is handed: each param in the unit the model shows it in
+ * (1 unit = scale SI) and its SI unit, in arrays *mem holds (free it). */
+static int study_call(swCli *c, swStudyCall *call, void **mem) {
   const swProgram *p = c->p;
-  const int np = p->nparam;
-  const char **unit = malloc(((size_t)np + 1) * sizeof *unit);
-  char (*units)[48] = malloc(((size_t)np + 1) * sizeof *units);
-  double *scale = malloc(((size_t)np + 1) * sizeof *scale);
-  if (!unit || !units || !scale) {
-    free(unit);
-    free(units);
-    free(scale);
-    return sw_cli_complain(c, "out of memory");
-  }
-  /* each param in the unit the model shows it in: 1 unit = scale SI */
-  for (int i = 0; i < np; i++) {
+  const size_t np = (size_t)p->nparam + 1;
+  typedef char swUnitName[48];
+  char *m = malloc(np * (2 * sizeof(char *) + 2 * sizeof(swUnitName) + sizeof(double)));
+  *mem = m;
+  if (!m) return sw_cli_complain(c, "out of memory");
+  const char **unit = (const char **)m, **si_unit = unit + np;
+  double *scale = (double *)(si_unit + np);
+  swUnitName *units = (swUnitName *)(scale + np), *si_units = units + np;
+  for (int i = 0; i < p->nparam; i++) {
     double one = sw_cli_param_in_unit(&p->param[i], 1.0, units[i], sizeof units[i]);
     scale[i] = one != 0 && isfinite(one) ? 1.0 / one : 1.0;
     unit[i] = units[i];
+    si_unit_of(p->param[i].dim, si_units[i], sizeof si_units[i]);
+    si_unit[i] = si_units[i];
   }
-  swStudyCall call = {.p = p, .prog = c->prog, .P = c->P, .overridden = c->overridden,
-                      .started = c->started,
-                      .unit = unit, .scale = scale, .duration = c->duration, .dt = c->dt,
-                      .duration_given = c->duration_given, .dt_given = c->dt_given,
-                      .integrator = c->integrator, .quiet = c->quiet, .args = c->study};
-  int rc = sw_study_cli(&call);
-  free(unit);
-  free(units);
-  free(scale);
+  *call = (swStudyCall){.p = p, .prog = c->prog, .P = c->P, .overridden = c->overridden,
+                        .started = c->started, .unit = unit, .scale = scale,
+                        .si_unit = si_unit, .duration = c->duration, .dt = c->dt,
+                        .duration_given = c->duration_given, .dt_given = c->dt_given,
+                        .integrator = c->integrator, .quiet = c->quiet, .args = c->study};
+  return SW_OK;
+}
+
+static int study(swCli *c) {
+  swStudyCall call;
+  void *mem;
+  int rc = study_call(c, &call, &mem);
+  if (rc == SW_OK) rc = sw_study_cli(&call);
+  free(mem);
+  return rc;
+}
+
+/* --replay: the run of one design of a study, as sw_evaluate ran it: its
+ * params (cli_study.c), duration, dt and integrator, and the model's frame
+ * interval, which an evaluation hands sw_run too: the run loop ends its fused
+ * chunks of steps at the frames, and a drift fused over two steps is not the
+ * same floating-point sum as two, so another --every would change the last
+ * bits.  Writing a frame changes nothing a step reads: the strains and joint
+ * forces it recomputes from the state are scratch the next step computes
+ * afresh. */
+static int take_replay(swCli *c) {
+  const swProgram *p = c->p;
+  if (c->every_given && c->every != p->every) {
+    char mine[32], theirs[32];
+    return sw_cli_complain(c, "--replay %s: its evaluations stepped in the chunks the model's "
+                           "frame interval (%s) sets, which --every %s would change, and the "
+                           "objective's last bits with them: leave out --every", c->replay,
+                           sw_cli_format_time(theirs, sizeof theirs, p->every),
+                           sw_cli_format_time(mine, sizeof mine, c->every));
+  }
+  c->every = p->every;
+  swStudyCall call;
+  void *mem;
+  int rc = study_call(c, &call, &mem);
+  if (rc == SW_OK) rc = sw_study_replay(&call, c->replay, c->replay_index, &c->replayed);
+  if (rc == SW_OK) {
+    c->duration = call.duration;
+    c->dt = call.dt;
+    c->dt_given = call.dt_given;
+    c->integrator = call.integrator;
+  }
+  free(mem);
   return rc;
 }
 
@@ -413,6 +491,7 @@ int sw_main(const swProgram *p, int argc, char **argv) {
     sw_cli_complain(&c, "--compare: cannot read '%s': %s", c.golden, strerror(errno));
     rc = SW_EIO;
   }
+  if (rc == SW_OK && c.replay && !c.help) rc = take_replay(&c);
   if (rc == SW_OK && c.golden && same_file(c.out, c.golden))
     rc = sw_cli_complain(&c, "--compare %s: that is the file this run would write (--out); the run "
                          "would overwrite what it is compared with", c.golden);

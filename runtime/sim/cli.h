@@ -5,8 +5,8 @@
  * Design.  The command line is split by what its parts do: cli_options.c
  * reads argv into a swCli, cli_info.c prints --help and --info, cli.c is
  * sw_main (building the model, a run, the study entry) and cli_study.c
- * turns a study's options into swStudyOptions (it sees swStudyCall, from
- * study/study.h, not swCli).  A function called from another of these files
+ * turns a study's options into swStudyOptions and a study's design into a
+ * run's params (it sees swStudyCall, from study/study.h, not swCli).  A function called from another of these files
  * is declared here and named sw_cli_*; everything else stays static in its
  * file. */
 #ifndef SINEW_CLI_H
@@ -21,8 +21,8 @@
 typedef enum {
   OPT_OUT, OPT_DURATION, OPT_DT, OPT_INTEGRATOR, OPT_EVERY, OPT_SET, OPT_THREADS, OPT_COMPARE,
   OPT_RTOL, OPT_RESTART, OPT_SWEEP, OPT_OPTIMIZE, OPT_BUDGET, OPT_POPSIZE, OPT_SIGMA,
-  OPT_RESTARTS, OPT_START, OPT_SEED, OPT_STUDY, OPT_RESUME, OPT_EVAL_TIMEOUT, OPT_QUIET, OPT_INFO,
-  OPT_HELP
+  OPT_RESTARTS, OPT_START, OPT_SEED, OPT_STUDY, OPT_RESUME, OPT_REPLAY, OPT_EVAL_TIMEOUT, OPT_QUIET,
+  OPT_INFO, OPT_HELP
 } swOptionId;
 
 typedef struct {
@@ -62,6 +62,9 @@ typedef struct {
   char *overridden;          /* (nparam) set by --set                       */
   char *started;             /* (nparam) given a start by --start NAME=VALUE */
   swStudyArgs study;         /* --sweep, --optimize, --resume and theirs     */
+  const char *replay;        /* --replay: the study file, or NULL            */
+  long replay_index;         /* its evaluation, or -1: the best              */
+  swStudyDesign replayed;    /* that evaluation, as the file has it          */
 } swCli;
 
 /* ---- cli.c ---- */

@@ -133,6 +133,7 @@ void sw_cli_print_help(const swCli *c, const char *default_out) {
     case OPT_START: def = "each param's value: its default, or --set"; break;
     case OPT_SEED: def = "1"; break;
     case OPT_STUDY: def = buf, snprintf(buf, sizeof buf, "%s_study.h5", p->name); break;
+    case OPT_REPLAY: def = "best"; break;
     case OPT_EVAL_TIMEOUT: def = "20 times the slowest evaluation, at least 60 s"; break;
     default: break;
     }

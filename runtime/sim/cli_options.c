@@ -1,7 +1,8 @@
 /* cli_options.c — reading the simulator's command line: the table of
  * options, each option's value (times, threads, the integrator, --set and
- * --start param values, counts, sweep specs, the study options), "did you
- * mean" for a misspelt option, and the checks that the options agree.
+ * --start param values, counts, sweep specs, the study options, --replay's
+ * study and design), "did you mean" for a misspelt option, and the checks
+ * that the options agree.
  *
  * Design.  The options are one table (name, argument, help), from which both
  * the parser and --help (cli_info.c) are made, so they cannot disagree.  An
@@ -52,6 +53,8 @@ const swOption sw_cli_options[] = {
   {OPT_SEED, "--seed", "S", "random seed of --sweep lhs and --optimize"},
   {OPT_STUDY, "--study", "FILE", "HDF5 file of the sweep or optimisation"},
   {OPT_RESUME, "--resume", "FILE", "continue the sweep or optimisation FILE holds"},
+  {OPT_REPLAY, "--replay", "FILE [best|N]", "run one design of the study FILE, its best or "
+   "evaluation N (from 0), as evaluated (params, duration, dt, integrator) into a run file"},
   {OPT_EVAL_TIMEOUT, "--eval-timeout", "T", "under mpirun: re-queue an evaluation a rank holds "
    "longer than T"},
   {OPT_QUIET, "--quiet", NULL, "no progress line, notes or summary"},
@@ -307,11 +310,30 @@ static int read_study_option(swCli *c, swOptionId id, const char *value) {
   }
 }
 
+/* --replay FILE [best|N]: the design, when the next word names one. */
+static int read_replay(swCli *c, const char *value, int *i, int argc, char **argv) {
+  if (!value[0]) return sw_cli_complain(c, "--replay: empty file name");
+  c->replay = value;
+  c->replay_index = -1;
+  const char *next = *i + 1 < argc ? argv[*i + 1] : "";
+  if (!strcmp(next, "best")) ++*i;
+  else if (isdigit((unsigned char)next[0])) {
+    ++*i;
+    return read_count(c, "--replay FILE N: the evaluation", next, 0, 100000000, &c->replay_index);
+  }
+  return SW_OK;
+}
+
 /* The study options, together: which belong to which, and what cannot mix. */
 static int check_study_args(const swCli *c) {
   const swStudyArgs *a = &c->study;
   int optimize_only = a->budget_given || a->popsize_given || a->sigma_given || a->restarts_given ||
                       a->start_given;
+  if (c->replay && (a->mode || a->resume || a->study || optimize_only || a->seed_given ||
+                    a->eval_timeout > 0 || c->restart))
+    return sw_cli_complain(c, "--replay %s runs one design of that study as a new run: leave out "
+                           "--sweep, --optimize, --resume, --study, --budget, --popsize, --sigma, "
+                           "--restarts, --start, --seed, --eval-timeout and --restart", c->replay);
   if (a->resume && a->study)
     return sw_cli_complain(c, "--resume %s continues that file: --study %s cannot name another",
                            a->resume, a->study);
@@ -420,6 +442,7 @@ int sw_cli_parse_args(swCli *c, int argc, char **argv) {
     case OPT_START: case OPT_SEED: case OPT_STUDY: case OPT_RESUME: case OPT_EVAL_TIMEOUT:
       rc = read_study_option(c, opt->id, value);
       break;
+    case OPT_REPLAY: rc = read_replay(c, value, &i, argc, argv); break;
     case OPT_QUIET: c->quiet = 1; break;
     case OPT_INFO: c->info = 1; break;
     case OPT_HELP: c->help = 1; break;

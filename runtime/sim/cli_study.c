@@ -1,5 +1,6 @@
 /* cli_study.c — SIM --sweep, --optimize and --resume: the command line's side
- * of a study (study.c runs it).
+ * of a study (study.c runs it); and --replay, one design of a study run again
+ * as a run (cli.c runs it).
  *
  * Design.  cli_options.c reads the options; this file turns them and the model's
  * ranged params into swStudyOptions, and each evaluation into a run of the
@@ -13,7 +14,10 @@
  * recorded in the study's file, and --resume takes it all from there: a
  * setting given again must agree with the file's (but an optimisation's
  * --budget, which may grow), so a resumed study is the one that was
- * interrupted. */
+ * interrupted.  --replay takes the same record of the study, and one
+ * evaluation's params in SI, bit for bit (/evaluations/params_si), so that
+ * the run cli.c makes of them steps as that evaluation did and finds its
+ * objective to the bit. */
 #include <errno.h>
 #include <inttypes.h>
 #include <math.h>
@@ -59,34 +63,51 @@ static void run_settings(const swStudyCall *c, char *buf, size_t len) {
            c->dt_given ? c->dt : 0.0, c->integrator);
 }
 
+/* The settings of the study file `path` (for --resume or --replay: `opt`)
+ * into s: a study of this model, else SW_EIO. */
+static int read_settings(const swStudyCall *c, const char *opt, const char *path,
+                         swStudySettings *s) {
+  const swProgram *p = c->p;
+  char err[512];
+  if (access(path, R_OK) != 0)
+    return say(c, SW_EIO, "%s: cannot read '%s': %s", opt, path, strerror(errno));
+  if (sw_study_file_settings(path, s, err, sizeof err) != SW_OK)
+    return say(c, SW_EIO, "%s: %s", opt, err);
+  if (strcmp(s->model_sha256, p->sha256 ? p->sha256 : ""))
+    return say(c, SW_EIO, "%s: %s is a study of another model (model_sha256 %.12s..., this "
+               "model's %.12s...)", opt, path, s->model_sha256, p->sha256 ? p->sha256 : "");
+  return SW_OK;
+}
+
+/* The run of each evaluation (the file's run_settings) into c, checked
+ * against --duration, --dt and --integrator, which must agree or be left
+ * out. */
+static int take_run_settings(swStudyCall *c, const char *opt, const char *path,
+                             const swStudySettings *s) {
+  double duration = 0, dt = 0;
+  int integrator = -1;
+  if (sscanf(s->run_settings, "duration=%lf;dt=%lf;integrator=%d", &duration, &dt,
+             &integrator) != 3)
+    return say(c, SW_EIO, "%s: %s: unreadable run settings '%s'", opt, path, s->run_settings);
+  if ((c->duration_given && c->duration != duration) || (c->dt_given && c->dt != dt) ||
+      (c->integrator >= 0 && c->integrator != integrator))
+    return say(c, SW_EUSAGE, "%s %s: its evaluations ran with %s; --duration, --dt and "
+               "--integrator must agree or be left out", opt, path, s->run_settings);
+  c->duration = duration;
+  c->dt = dt;
+  c->dt_given = dt > 0;
+  c->integrator = integrator;
+  return SW_OK;
+}
+
 /* --resume: the settings, params and run of the file, checked against the
  * options given again. */
 static int take_resumed(swStudyCall *c, swStudyArgs *a, int *vary) {
   const swProgram *p = c->p;
   swStudySettings s;
-  char err[512];
-  if (access(a->resume, R_OK) != 0)
-    return say(c, SW_EIO, "--resume: cannot read '%s': %s", a->resume, strerror(errno));
-  if (sw_study_file_settings(a->resume, &s, err, sizeof err) != SW_OK)
-    return say(c, SW_EIO, "--resume: %s", err);
-  if (strcmp(s.model_sha256, p->sha256 ? p->sha256 : ""))
-    return say(c, SW_EIO, "--resume: %s is a study of another model (model_sha256 %.12s..., "
-               "this model's %.12s...)", a->resume, s.model_sha256, p->sha256 ? p->sha256 : "");
-  /* the run of each evaluation */
-  double duration = 0, dt = 0;
-  int integrator = -1;
-  if (sscanf(s.run_settings, "duration=%lf;dt=%lf;integrator=%d", &duration, &dt,
-             &integrator) != 3)
-    return say(c, SW_EIO, "--resume: %s: unreadable run settings '%s'", a->resume,
-               s.run_settings);
-  if ((c->duration_given && c->duration != duration) || (c->dt_given && c->dt != dt) ||
-      (c->integrator >= 0 && c->integrator != integrator))
-    return say(c, SW_EUSAGE, "--resume %s: its evaluations ran with %s; --duration, --dt and "
-               "--integrator must agree or be left out", a->resume, s.run_settings);
-  c->duration = duration;
-  c->dt = dt;
-  c->dt_given = dt > 0;
-  c->integrator = integrator;
+  int rc = read_settings(c, "--resume", a->resume, &s);
+  if (rc == SW_OK) rc = take_run_settings(c, "--resume", a->resume, &s);
+  if (rc != SW_OK) return rc;
   /* the study's settings */
   if (a->kind_given || a->seed_given || a->popsize_given || a->sigma_given ||
       a->restarts_given || (a->budget_given && s.kind != SW_STUDY_CMAES))
@@ -148,11 +169,10 @@ static int take_start(swStudyCall *c, const char *path, const int *vary, const d
     return say(c, SW_EIO, "out of memory");
   }
   char err[512];
-  long index = -1;
-  double score = NAN;
+  swStudyDesign d;
   int rc = SW_OK, taken = 0, nvary = 0;
-  if (sw_study_file_best_design(path, np, name, c->unit, c->scale, v, found, &index, &score, err,
-                                sizeof err) != SW_OK)
+  if (sw_study_file_design(path, -1, np, name, c->unit, c->scale, v, found, &d, err,
+                           sizeof err) != SW_OK)
     rc = say(c, SW_EIO, "--start: %s", err);
   for (int i = 0; i < np && rc == SW_OK; i++) {
     nvary += vary[i];
@@ -173,7 +193,7 @@ static int take_start(swStudyCall *c, const char *path, const int *vary, const d
   sw_study_launched(&rank, NULL);
   if (rc == SW_OK && !c->quiet && rank == 0)
     fprintf(stderr, "%s: starting at the best design of %s (evaluation %ld, score %.6g): %d of "
-            "the %d varied params\n", c->prog, path, index, score, taken, nvary);
+            "the %d varied params\n", c->prog, path, d.index, d.score, taken, nvary);
   free(v);
   free(found);
   return rc;
@@ -244,6 +264,7 @@ int sw_study_cli(swStudyCall *c) {
   o.name = name;
   o.unit = c->unit;
   o.scale = c->scale;
+  o.si_unit = c->si_unit;
   o.value = c->P;
   o.vary = vary;
   o.lo = lo;
@@ -262,5 +283,97 @@ int sw_study_cli(swStudyCall *c) {
   free(name);
   free(lo);
   free(hi);
+  return rc;
+}
+
+/* ---- --replay ---- */
+
+/* The varied params of the design (SI values v) in the units shown. */
+static void print_design(const swStudyCall *c, const double *v, const int *vary) {
+  for (int i = 0, n = 0; i < c->p->nparam; i++)
+    if (vary[i])
+      fprintf(stderr, "%s%s = %.9g%s%s", n++ ? ", " : "", c->p->param[i].name, v[i] / c->scale[i],
+              c->unit[i][0] ? " " : "", c->unit[i]);
+}
+
+/* Every param of design `index` of the study path, as evaluated: the
+ * varied ones from the design, the others (and all of them in a file
+ * without params_si, whose start is exact, SI) as the study held them. */
+static int take_design(swStudyCall *c, const char *path, long index, const swStudySettings *s,
+                       int *vary, swStudyDesign *d) {
+  const swProgram *p = c->p;
+  const int np = p->nparam;
+  double *v = malloc(((size_t)np + 1) * sizeof *v), *held = malloc(((size_t)np + 1) * sizeof *v);
+  int *found = malloc(((size_t)np + 1) * sizeof *found);
+  const char **name = malloc(((size_t)np + 1) * sizeof *name);
+  char fixed[sizeof s->fixed], varied[sizeof s->varied], err[512];
+  int rc = v && held && found && name ? SW_OK : say(c, SW_EIO, "out of memory");
+  for (int i = 0; i < np && rc == SW_OK; i++) {
+    name[i] = p->param[i].name;
+    held[i] = NAN;
+    vary[i] = 0;
+  }
+  memcpy(fixed, s->fixed, sizeof fixed);
+  memcpy(varied, s->varied, sizeof varied);
+  for (char *item = strtok(fixed, ";"); item && rc == SW_OK; item = strtok(NULL, ";")) {
+    char *eq = strchr(item, '=');
+    if (!eq) continue;
+    *eq = 0;
+    for (int i = 0; i < np; i++)
+      if (!strcmp(name[i], item)) held[i] = strtod(eq + 1, NULL);
+  }
+  for (char *item = strtok(varied, ";"); item && rc == SW_OK; item = strtok(NULL, ";"))
+    for (int i = 0; i < np; i++)
+      if (!strcmp(name[i], item)) vary[i] = 1;
+  if (rc == SW_OK &&
+      (rc = sw_study_file_design(path, index, np, name, c->unit, c->scale, v, found, d, err,
+                                 sizeof err)) != SW_OK)
+    say(c, rc, "--replay: %s", err);
+  else if (rc == SW_OK && d->status != SW_EVAL_OK)
+    rc = say(c, SW_EUSAGE, "--replay %s: evaluation %ld %s%s: it has no objective to reproduce",
+             path, d->index, d->status == SW_EVAL_PENDING ? "has not been evaluated" : "is ",
+             d->status == SW_EVAL_PENDING ? "" : sw_eval_status_name(d->status));
+  for (int i = 0; i < np && rc == SW_OK; i++) {
+    double want = !d->exact && !vary[i] && !isnan(held[i]) ? held[i] : v[i];
+    if (!found[i])
+      rc = say(c, SW_EIO, "--replay %s: its study has no param %s", path, name[i]);
+    else if (vary[i] && c->overridden[i])
+      rc = say(c, SW_EUSAGE, "--replay %s: the study varied %s, so the design sets it: leave out "
+               "--set %s", path, name[i], name[i]);
+    else if (c->overridden[i] && c->P[i] != want)
+      rc = say(c, SW_EUSAGE, "--replay %s: its evaluations ran with %s = %.17g (SI); --set must "
+               "agree or be left out", path, name[i], want);
+    else c->P[i] = want;
+  }
+  free(v);
+  free(held);
+  free(found);
+  free(name);
+  return rc;
+}
+
+int sw_study_replay(swStudyCall *c, const char *path, long index, swStudyDesign *d) {
+  const swProgram *p = c->p;
+  swStudySettings s;
+  int rc = read_settings(c, "--replay", path, &s);
+  if (rc == SW_OK) rc = take_run_settings(c, "--replay", path, &s);
+  if (rc != SW_OK) return rc;
+  if (!(c->duration > 0)) c->duration = p->duration;   /* as sw_evaluate takes it */
+  int *vary = calloc((size_t)p->nparam + 1, sizeof *vary);
+  if (!vary) return say(c, SW_EIO, "out of memory");
+  rc = take_design(c, path, index, &s, vary, d);
+  if (rc == SW_OK && !c->quiet) {
+    const char *u = p->objective_unit ? p->objective_unit : "";
+    fprintf(stderr, "%s: replaying evaluation %ld of %s%s (score %.9g%s%s): ", c->prog,
+            d->index, path, index < 0 ? ", its best" : "", d->score, u[0] ? " " : "", u);
+    print_design(c, c->P, vary);
+    fprintf(stderr, "\n");
+  }
+  if (rc == SW_OK && !d->exact)
+    fprintf(stderr, "%s: warning: --replay %s: the file has no /evaluations/params_si (it "
+            "predates it): its params are the values shown, converted to SI, which may differ "
+            "from those evaluated in the last bits, and the objective with them\n", c->prog, path);
+  fflush(stderr);
+  free(vary);
   return rc;
 }

@@ -15,8 +15,11 @@
  * --resume, which replays the stored scores through a fresh optimiser of
  * the same seed and evaluates only the designs the file lacks, continues
  * exactly where the interrupted study was: the designs it regenerates are
- * checked against the stored ones, bit for bit, before anything runs.
- * Every status but ok scores -infinity: an unstable design ranks last and
+ * checked against the stored ones, bit for bit, before anything runs (as
+ * shown, and in SI where the file has params_si; a file written before
+ * params_si gets the SI values of the designs so checked).  Every design is
+ * written in SI beside the units shown, so that --replay runs the very
+ * values evaluated.  Every status but ok scores -infinity: an unstable design ranks last and
  * the study goes on. */
 #include <errno.h>
 #include <inttypes.h>
@@ -125,7 +128,7 @@ static int on_result(void *ctx, long index, const double *P, const swStudyEval *
   const swStudyOptions *o = s->o;
   for (int i = 0; i < o->nparam; i++) s->shown[i] = shown_value(o, i, P[i]);
   double scale = objective_scale(o);
-  if (sw_study_file_write(s->file, index, s->generation, s->shown, r, scale) != SW_OK) {
+  if (sw_study_file_write(s->file, index, s->generation, s->shown, P, r, scale) != SW_OK) {
     fprintf(stderr, "%s: cannot write evaluation %ld to %s\n", o->prog, index, o->path);
     return SW_EIO;
   }
@@ -159,23 +162,37 @@ static int on_result(void *ctx, long index, const double *P, const swStudyEval *
 }
 
 /* A stored row: the design regenerated must be the one stored (in the units
- * shown, bit for bit), or the file is another study's. */
+ * shown, and in SI where the file has it, bit for bit), or the file is
+ * another study's. */
 static int check_stored(const swStudy *s, const swStudyRows *rows, long i, const double *P) {
   const swStudyOptions *o = s->o;
-  for (int p = 0; p < o->nparam; p++) {
-    double want = shown_value(o, p, P[p]), have = rows->P[i * o->nparam + p];
+  const double *si = rows->Psi && !isnan(rows->Psi[i * o->nparam]) ? rows->Psi + i * o->nparam
+                                                                    : NULL;
+  for (int k = 0; k < 2 * o->nparam; k++) {
+    int p = k % o->nparam;
+    if (k >= o->nparam && !si) break;
+    double want = k < o->nparam ? shown_value(o, p, P[p]) : P[p];
+    double have = k < o->nparam ? rows->P[i * o->nparam + p] : si[p];
     if (memcmp(&want, &have, sizeof want)) {
-      fprintf(stderr, "%s: --resume %s: design %ld of the file has %s = %.17g, this study "
+      fprintf(stderr, "%s: --resume %s: design %ld of the file has %s = %.17g%s, this study "
               "makes it %.17g: the file holds another study (another seed, range, start or "
-              "model)\n", o->prog, o->path, i, o->name[p], have, want);
+              "model)\n", o->prog, o->path, i, o->name[p], have, k < o->nparam ? "" : " (SI)",
+              want);
       return SW_EUSAGE;
     }
   }
   return SW_OK;
 }
 
-/* The stored row counts as this run's result (best, generation scores). */
-static void take_stored(swStudy *s, const swStudyRows *rows, long i) {
+/* The stored row counts as this run's result (best, generation scores); a
+ * file that predates params_si (or lacks the row) gets the design's SI
+ * values, the ones check_stored has just found stored in the units shown. */
+static int take_stored(swStudy *s, const swStudyRows *rows, long i, const double *P) {
+  if ((!rows->Psi || isnan(rows->Psi[i * s->o->nparam])) &&
+      sw_study_file_params_si(s->file, i, P) != SW_OK) {
+    fprintf(stderr, "%s: cannot write evaluation %ld to %s\n", s->o->prog, i, s->o->path);
+    return SW_EIO;
+  }
   double score = rows->status[i] == SW_EVAL_OK ? rows->score[i] : -INFINITY;
   if (s->gen_score) s->gen_score[i - s->gen_first] = score;
   if (rows->status[i] != SW_EVAL_OK) s->failures++;
@@ -186,6 +203,7 @@ static void take_stored(swStudy *s, const swStudyRows *rows, long i) {
     memcpy(s->best_shown, rows->P + i * s->o->nparam, (size_t)s->o->nparam * sizeof *s->best_shown);
   }
   s->done++;
+  return SW_OK;
 }
 
 /* Evaluates designs first..first+n-1 (rows of P) that the file does not
@@ -207,7 +225,7 @@ static int evaluate_batch(swStudy *s, swPool *pool, const swStudyRows *rows, lon
     const double *Pi = P + k * o->nparam;
     if (rows && i < rows->n && rows->status[i] != SW_EVAL_PENDING) {
       rc = check_stored(s, rows, i, Pi);
-      if (rc == SW_OK) take_stored(s, rows, i);
+      if (rc == SW_OK) rc = take_stored(s, rows, i, Pi);
       continue;
     }
     index[m] = i;

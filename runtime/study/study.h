@@ -22,6 +22,8 @@ typedef enum {
   SW_EVAL_INVALID = 3,    /* the params give no valid scene                   */
   SW_EVAL_FAILED = 4      /* anything else (out of memory, ...)               */
 } swEvalStatus;
+/* "pending", "ok", "unstable", "invalid", "failed" (study_file.c) */
+const char *sw_eval_status_name(int status);
 
 typedef struct {
   int status;             /* swEvalStatus                                    */
@@ -60,6 +62,8 @@ typedef struct {
   const char *const *name;
   const char *const *unit;   /* unit shown ("" for none)                     */
   const double *scale;       /* SI value of one unit                         */
+  const char *const *si_unit; /* the SI unit of each ("m", "Pa"; "" for none;
+                                NULL: none given), of /evaluations/params_si */
   const double *value;       /* SI: defaults and --set; the varied ones'
                                 values are the start of an optimisation     */
   const int *vary;           /* 1: ranged and not fixed by --set             */
@@ -95,16 +99,31 @@ typedef struct {
 } swStudySettings;
 int sw_study_file_settings(const char *path, swStudySettings *s, char *err, size_t errlen);
 
-/* The best design a study file holds, for --start: value[i] (SI) and
- * found[i] = 1 for each of the nparam params name[] the file's study also
- * varied or held, found[i] = 0 for the others.  The file stores values in
- * the units its model showed them in; each must be this model's unit[i]
+/* One design of a study file, for --start and --replay. */
+typedef struct {
+  long index;                /* its row (the best's, when asked for -1)       */
+  long rows;                 /* the rows of /evaluations                      */
+  int status;                /* swEvalStatus                                  */
+  double objective, penalty, score;   /* as stored: in the objective's unit  */
+  int exact;                 /* 1: the values are /evaluations/params_si's, the
+                                SI values evaluated, bit for bit; 0: the file
+                                predates params_si (or lacks that row): the
+                                values shown, converted to SI, which may
+                                differ from those evaluated in the last bits */
+} swStudyDesign;
+
+/* Design `index` of a study file (-1: its best, /best's index): value[i]
+ * (SI) and found[i] = 1 for each of the nparam params name[] the file's
+ * study also varied or held, found[i] = 0 for the others.  The values are
+ * /evaluations/params_si's; a file without it stores them in the units its
+ * model showed them in, converted here: each must be this model's unit[i]
  * (whose SI value is scale[i]) or another unit of the same dimension, else
- * an error names the param.  *index and *score: the best evaluation's.
- * SW_OK, or SW_EIO with err. */
-int sw_study_file_best_design(const char *path, int nparam, const char *const *name,
-                              const char *const *unit, const double *scale, double *value,
-                              int *found, long *index, double *score, char *err, size_t errlen);
+ * an error names the param (a unit of another dimension is refused either
+ * way).  SW_OK; SW_EUSAGE with err when there is no such row (or no best);
+ * SW_EIO with err when the file cannot be read as a study. */
+int sw_study_file_design(const char *path, long index, int nparam, const char *const *name,
+                         const char *const *unit, const double *scale, double *value,
+                         int *found, swStudyDesign *d, char *err, size_t errlen);
 
 /* ---- the command line's side (cli_study.c) ---- */
 #include "sinew.h"
@@ -132,6 +151,7 @@ typedef struct {
   const char *started;       /* 1: given a start with --start NAME=VALUE      */
   const char *const *unit;   /* the unit each param is shown in, its SI value  */
   const double *scale;
+  const char *const *si_unit; /* the SI unit of each param ("" for none)      */
   double duration, dt;
   int duration_given, dt_given, integrator, quiet;
   swStudyArgs args;
@@ -139,6 +159,15 @@ typedef struct {
 
 /* Runs the study the command line asked for; returns the exit code. */
 int sw_study_cli(swStudyCall *c);
+
+/* --replay PATH [best|N]: design `index` of the study PATH (-1: its best)
+ * into c: every param's value as evaluated (c->P) and the evaluations'
+ * duration, dt and integrator, checked against those the command line
+ * gave; prints the design (unless quiet).  The design, as the file has it,
+ * in *d.  SW_OK; SW_EUSAGE (no such evaluation, one that failed, a --set
+ * or run setting that disagrees); SW_EIO (not a study file, a study of
+ * another model). */
+int sw_study_replay(swStudyCall *c, const char *path, long index, swStudyDesign *d);
 
 /* 1 when this process was started by mpirun (or srun) with more than one
  * rank; its rank in *rank. */

@@ -8,8 +8,13 @@
  * several ranks in any order land where a serial run puts them: the files of
  * `-np 1` and `-np 2` hold the same values in every dataset but the two that
  * say how the work was done (wall_time, rank).  Rows not yet evaluated hold
- * the fill values: status `pending`, NaN, -1.  Params are stored in the units
- * the model shows them in (the `units` attribute); the study's settings are
+ * the fill values: status `pending`, NaN, -1.  Params are stored twice: in
+ * the units the model shows them in (`params`, its `units` attribute), for
+ * the reader, and in SI (`params_si`), the values evaluated bit for bit,
+ * which a quotient by a unit's scale need not give back, for --replay and
+ * --start; a file written before params_si still reads (the values shown,
+ * converted), and --resume fills it in from the designs it regenerates and
+ * checks against the stored ones.  The study's settings are
  * root attributes, and `status` reads "running" until the study ends.  The
  * file is flushed after every row, so an interrupted or killed study keeps
  * every result that arrived (docs/optimisation.md, "Study files").  Object
@@ -114,6 +119,17 @@ static int get_number(hid_t obj, const char *name, hid_t mtype, void *v) {
   return ok ? 0 : -1;
 }
 
+/* The 1-D string attribute `name` of n values (a param's names, units). */
+static int put_string_list(hid_t obj, const char *name, const char *const *values, hsize_t n) {
+  hid_t st = string_type(), sp = H5Screate_simple(1, &n, NULL);
+  hid_t a = H5Acreate2(obj, name, st, sp, H5P_DEFAULT, H5P_DEFAULT);
+  int ok = a >= 0 && H5Awrite(a, st, values) >= 0;
+  if (a >= 0) H5Aclose(a);
+  H5Sclose(sp);
+  H5Tclose(st);
+  return ok ? 0 : -1;
+}
+
 /* ---- datasets: rows of `width` values, first axis unlimited ---- */
 
 static int make_rows(hid_t loc, const char *name, hid_t ftype, int width, const void *fill,
@@ -160,6 +176,23 @@ static int put_row(hid_t loc, const char *name, long row, int width, hid_t mtype
   return ok ? 0 : -1;
 }
 
+/* Reads row `row` (width values; 0: a scalar row) of dataset `name`. */
+static int get_row(hid_t loc, const char *name, long row, int width, hid_t mtype, void *v) {
+  hid_t ds = H5Dopen2(loc, name, H5P_DEFAULT);
+  if (ds < 0) return -1;
+  int rank = width > 0 ? 2 : 1;
+  hsize_t dims[2] = {0, 0}, start[2] = {(hsize_t)row, 0}, count[2] = {1, (hsize_t)width};
+  hid_t fs = H5Dget_space(ds), ms = H5Screate_simple(rank, count, NULL);
+  int ok = H5Sget_simple_extent_ndims(fs) == rank && H5Sget_simple_extent_dims(fs, dims, NULL) ==
+           rank && row >= 0 && dims[0] > (hsize_t)row && (rank == 1 || dims[1] == count[1]) &&
+           H5Sselect_hyperslab(fs, H5S_SELECT_SET, start, NULL, count, NULL) >= 0 &&
+           H5Dread(ds, mtype, ms, fs, H5P_DEFAULT, v) >= 0;
+  H5Sclose(ms);
+  H5Sclose(fs);
+  H5Dclose(ds);
+  return ok ? 0 : -1;
+}
+
 /* Reads the whole dataset (rows x width) into a new buffer of `size` bytes
  * per value; *rows its length. */
 static void *get_rows(hid_t loc, const char *name, hid_t mtype, size_t size, long *rows) {
@@ -191,6 +224,21 @@ static hid_t new_group(hid_t loc, const char *name) {
 }
 
 static const char *const kind_names[] = {"grid", "lhs", "cmaes"};
+
+/* /evaluations/params_si: as params, in SI, its `units` the SI units. */
+static int make_params_si(hid_t ev, const swStudyOptions *o) {
+  const double nan = NAN;
+  const int np = o->nparam;
+  const char **si = malloc(((size_t)np + 1) * sizeof *si);
+  int bad = !si || make_rows(ev, "params_si", H5T_IEEE_F64LE, np, &nan, H5T_NATIVE_DOUBLE, NULL);
+  hid_t ds = bad ? -1 : H5Dopen2(ev, "params_si", H5P_DEFAULT);
+  for (int i = 0; si && i < np; i++) si[i] = o->si_unit && o->si_unit[i] ? o->si_unit[i] : "";
+  bad |= ds < 0 || put_string_list(ds, "names", o->name, (hsize_t)np) ||
+         put_string_list(ds, "units", si, (hsize_t)np);
+  if (ds >= 0) H5Dclose(ds);
+  free(si);
+  return bad ? -1 : 0;
+}
 
 /* The handle of an opened file (file < 0: it could not be opened). */
 static swStudyFile *new_handle(hid_t file, const swStudyOptions *o, const char *what, char *err,
@@ -274,18 +322,10 @@ swStudyFile *sw_study_file_create(const swStudyFileInfo *in, char *err, size_t e
     bad |= make_rows(ev, "rank", H5T_STD_I32LE, 0, &minus1, H5T_NATIVE_INT, NULL);
     /* the params' names and units, one per column */
     hid_t ds = H5Dopen2(ev, "params", H5P_DEFAULT);
-    hsize_t n = (hsize_t)o->nparam;
-    hid_t st = string_type(), sp = H5Screate_simple(1, &n, NULL);
-    const char *const lists[2][1] = {{"names"}, {"units"}};
-    for (int k = 0; k < 2 && ds >= 0; k++) {
-      hid_t a = H5Acreate2(ds, lists[k][0], st, sp, H5P_DEFAULT, H5P_DEFAULT);
-      bad |= a < 0 || H5Awrite(a, st, k == 0 ? (const void *)o->name : (const void *)o->unit) < 0;
-      if (a >= 0) H5Aclose(a);
-    }
-    H5Sclose(sp);
-    H5Tclose(st);
+    bad |= ds < 0 || put_string_list(ds, "names", o->name, (hsize_t)o->nparam) ||
+           put_string_list(ds, "units", o->unit, (hsize_t)o->nparam);
     if (ds >= 0) H5Dclose(ds);
-    else bad = 1;
+    bad |= make_params_si(ev, o);
     /* /design: one row per varied param */
     const double *lo = in->design_lo, *hi = in->design_hi;
     hsize_t nv = (hsize_t)in->nvar;
@@ -374,19 +414,45 @@ static int get_string_list(hid_t ds, const char *attr, char **out, hsize_t n) {
   return ok;
 }
 
-int sw_study_file_best_design(const char *path, int nparam, const char *const *name,
-                              const char *const *unit, const double *scale, double *value,
-                              int *found, long *index, double *score, char *err, size_t errlen) {
+/* Param k of the file (its unit u) as param i of this model (unit[i],
+ * scale[i]): the SI value of one of the file's units in *s_file, or -1 with
+ * err when u is of another dimension. */
+static int file_unit(const char *path, const char *pname, const char *u, const char *here,
+                     double scale_here, double *s_file, char *err, size_t errlen) {
+  *s_file = scale_here;
+  if (!strcmp(u, here)) return 0;
+  /* another unit of the same dimension (a model may show a param in mm that
+   * another showed in cm) */
+  char q[96], why[160];
+  signed char dim_file[SW_NDIM], dim_here[SW_NDIM];
+  double s_here;
+  snprintf(q, sizeof q, "1 %s", u);
+  int bad = sw_parse_quantity(q, s_file, dim_file, why, sizeof why);
+  snprintf(q, sizeof q, "1 %s", here);
+  bad = bad || sw_parse_quantity(q, &s_here, dim_here, why, sizeof why) ||
+        memcmp(dim_file, dim_here, sizeof dim_here);
+  if (bad)
+    fail(err, errlen, "%s holds %s in '%s', which is not a unit of this model's %s (%s%s%s)", path,
+         pname, u[0] ? u : "no unit", pname, here[0] ? "shown in '" : "dimensionless", here,
+         here[0] ? "'" : "");
+  return bad ? -1 : 0;
+}
+
+int sw_study_file_design(const char *path, long index, int nparam, const char *const *name,
+                         const char *const *unit, const double *scale, double *value,
+                         int *found, swStudyDesign *d, char *err, size_t errlen) {
   H5Eset_auto2(H5E_DEFAULT, NULL, NULL);
+  memset(d, 0, sizeof *d);
+  d->objective = d->penalty = d->score = NAN;
   for (int i = 0; i < nparam; i++) found[i] = 0;
   hid_t file = open_unlocked(path, H5F_ACC_RDONLY);
   if (file < 0) return fail(err, errlen, "cannot open the study file %s", path);
   int rc = SW_OK;
   hsize_t n = 0;
   char **names = NULL, **units = NULL;
-  double *best = NULL;
-  long long idx = -1;
-  hid_t ds = H5Dopen2(file, "evaluations/params", H5P_DEFAULT);
+  double *shown = NULL, *si = NULL;
+  hid_t ev = H5Gopen2(file, "evaluations", H5P_DEFAULT);
+  hid_t ds = ev >= 0 ? H5Dopen2(ev, "params", H5P_DEFAULT) : -1;
   hid_t sp = ds >= 0 ? H5Dget_space(ds) : -1;
   hsize_t dims[2] = {0, 0};
   if (sp < 0 || H5Sget_simple_extent_ndims(sp) != 2 ||
@@ -394,49 +460,52 @@ int sw_study_file_best_design(const char *path, int nparam, const char *const *n
     rc = fail(err, errlen, "%s is not a sinew study file (or is damaged)", path);
     goto done;
   }
+  d->rows = (long)dims[0];
   names = calloc(n, sizeof *names), units = calloc(n, sizeof *units);
-  best = malloc(n * sizeof *best);
-  if (!names || !units || !best || !get_string_list(ds, "names", names, n) ||
+  shown = malloc(n * sizeof *shown), si = malloc(n * sizeof *si);
+  if (!names || !units || !shown || !si || !get_string_list(ds, "names", names, n) ||
       !get_string_list(ds, "units", units, n)) {
     rc = fail(err, errlen, "%s: the params' names and units cannot be read", path);
     goto done;
   }
-  hid_t bd = H5Dopen2(file, "best/params", H5P_DEFAULT);
-  hid_t bg = H5Gopen2(file, "best", H5P_DEFAULT);
-  int have = bd >= 0 && bg >= 0 &&
-             H5Dread(bd, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, best) >= 0 &&
-             !get_number(bg, "index", H5T_NATIVE_LLONG, &idx) &&
-             !get_number(bg, "score", H5T_NATIVE_DOUBLE, score);
-  if (bd >= 0) H5Dclose(bd);
-  if (bg >= 0) H5Gclose(bg);
-  if (!have) {
-    rc = fail(err, errlen, "%s has no best design: none of its evaluations has succeeded yet",
-              path);
+  if (index < 0) {   /* the best */
+    long long idx = -1;
+    hid_t bg = H5Lexists(file, "best", H5P_DEFAULT) > 0 ? H5Gopen2(file, "best", H5P_DEFAULT) : -1;
+    int have = bg >= 0 && !get_number(bg, "index", H5T_NATIVE_LLONG, &idx);
+    if (bg >= 0) H5Gclose(bg);
+    if (!have) {
+      fail(err, errlen, "%s has no best design: none of its evaluations has succeeded yet", path);
+      rc = SW_EUSAGE;
+      goto done;
+    }
+    index = (long)idx;
+  }
+  if (index >= d->rows) {
+    fail(err, errlen, "%s holds %ld evaluation%s (0 to %ld): there is no evaluation %ld", path,
+         d->rows, d->rows == 1 ? "" : "s", d->rows - 1, index);
+    rc = SW_EUSAGE;
     goto done;
   }
-  *index = (long)idx;
+  d->index = index;
+  if (get_row(ev, "params", index, (int)n, H5T_NATIVE_DOUBLE, shown) ||
+      get_row(ev, "status", index, 0, H5T_NATIVE_INT, &d->status) ||
+      get_row(ev, "objective", index, 0, H5T_NATIVE_DOUBLE, &d->objective) ||
+      get_row(ev, "penalty", index, 0, H5T_NATIVE_DOUBLE, &d->penalty) ||
+      get_row(ev, "score", index, 0, H5T_NATIVE_DOUBLE, &d->score)) {
+    rc = fail(err, errlen, "%s: evaluation %ld cannot be read", path, index);
+    goto done;
+  }
+  /* a file of before params_si, or a row it lacks: the values shown */
+  d->exact = H5Lexists(ev, "params_si", H5P_DEFAULT) > 0 &&
+             !get_row(ev, "params_si", index, (int)n, H5T_NATIVE_DOUBLE, si) && !isnan(si[0]);
   for (int i = 0; i < nparam && rc == SW_OK; i++)
     for (hsize_t k = 0; k < n; k++) {
       if (!names[k] || strcmp(names[k], name[i])) continue;
-      /* the file's unit to SI: this model's, or another of the same
-       * dimension (a model may show a param in mm that another showed in
-       * cm) */
-      const char *u = units[k] ? units[k] : "";
-      double s_file = scale[i], s_here;
-      if (strcmp(u, unit[i])) {
-        char q[96], why[160];
-        signed char dim_file[SW_NDIM], dim_here[SW_NDIM];
-        snprintf(q, sizeof q, "1 %s", u);
-        int bad = sw_parse_quantity(q, &s_file, dim_file, why, sizeof why);
-        snprintf(q, sizeof q, "1 %s", unit[i]);
-        bad = bad || sw_parse_quantity(q, &s_here, dim_here, why, sizeof why) ||
-              memcmp(dim_file, dim_here, sizeof dim_here);
-        if (bad)
-          rc = fail(err, errlen, "%s holds %s in '%s', which is not a unit of this model's %s "
-                    "(%s%s%s)", path, name[i], u[0] ? u : "no unit", name[i],
-                    unit[i][0] ? "shown in '" : "dimensionless", unit[i], unit[i][0] ? "'" : "");
-      }
-      value[i] = best[k] * s_file;
+      double s_file;
+      if (file_unit(path, name[i], units[k] ? units[k] : "", unit[i], scale[i], &s_file, err,
+                    errlen))
+        rc = SW_EIO;
+      value[i] = d->exact ? si[k] : shown[k] * s_file;
       found[i] = 1;
       break;
     }
@@ -447,9 +516,11 @@ done:
   }
   free(names);
   free(units);
-  free(best);
+  free(shown);
+  free(si);
   if (sp >= 0) H5Sclose(sp);
   if (ds >= 0) H5Dclose(ds);
+  if (ev >= 0) H5Gclose(ev);
   H5Fclose(file);
   return rc;
 }
@@ -463,16 +534,28 @@ swStudyFile *sw_study_file_reopen(const swStudyFileInfo *in, swStudyRows *rows, 
   swStudyFile *f = new_handle(file, o, "open for writing", err, errlen);
   if (!f) return NULL;
   hid_t ev = H5Gopen2(file, "evaluations", H5P_DEFAULT);
-  long n[5] = {0};
+  long n[6] = {0};
+  int bad = ev < 0;
+  const size_t row = sizeof(double) * (size_t)o->nparam;
   if (ev >= 0) {
-    rows->P = get_rows(ev, "params", H5T_NATIVE_DOUBLE, sizeof(double) * (size_t)o->nparam, &n[0]);
+    rows->P = get_rows(ev, "params", H5T_NATIVE_DOUBLE, row, &n[0]);
     rows->status = get_rows(ev, "status", H5T_NATIVE_INT, sizeof(int), &n[1]);
     rows->objective = get_rows(ev, "objective", H5T_NATIVE_DOUBLE, sizeof(double), &n[2]);
     rows->penalty = get_rows(ev, "penalty", H5T_NATIVE_DOUBLE, sizeof(double), &n[3]);
     rows->score = get_rows(ev, "score", H5T_NATIVE_DOUBLE, sizeof(double), &n[4]);
+    /* params_si: up to as many rows (NaN beyond); a file without it gets it */
+    if (H5Lexists(ev, "params_si", H5P_DEFAULT) > 0) {
+      double *si = get_rows(ev, "params_si", H5T_NATIVE_DOUBLE, row, &n[5]);
+      rows->Psi = si && n[5] <= n[0] ? realloc(si, (size_t)n[0] * row + row) : NULL;
+      if (!rows->Psi) free(si);
+      bad |= !rows->Psi;
+      for (long k = n[5] * o->nparam; rows->Psi && k < n[0] * o->nparam; k++) rows->Psi[k] = NAN;
+    } else {
+      bad |= make_params_si(ev, o);
+    }
     H5Gclose(ev);
   }
-  if (!rows->P || !rows->status || !rows->objective || !rows->penalty || !rows->score ||
+  if (bad || !rows->P || !rows->status || !rows->objective || !rows->penalty || !rows->score ||
       n[1] != n[0] || n[2] != n[0] || n[3] != n[0] || n[4] != n[0]) {
     fail(err, errlen, "%s: the evaluations cannot be read (or their lengths differ)", o->path);
     sw_study_rows_free(rows);
@@ -487,6 +570,7 @@ swStudyFile *sw_study_file_reopen(const swStudyFileInfo *in, swStudyRows *rows, 
 
 void sw_study_rows_free(swStudyRows *rows) {
   free(rows->P);
+  free(rows->Psi);
   free(rows->status);
   free(rows->objective);
   free(rows->penalty);
@@ -495,13 +579,14 @@ void sw_study_rows_free(swStudyRows *rows) {
 }
 
 int sw_study_file_write(swStudyFile *f, long index, int generation, const double *Pshown,
-                        const swStudyEval *r, double shown_scale) {
+                        const double *Psi, const swStudyEval *r, double shown_scale) {
   hid_t ev = H5Gopen2(f->file, "evaluations", H5P_DEFAULT);
   if (ev < 0) return SW_EIO;
   double objective = r->objective / shown_scale, penalty = r->penalty / shown_scale;
   double score = r->status == SW_EVAL_OK ? r->score / shown_scale : -INFINITY;
   int status = r->status;
   int bad = put_row(ev, "params", index, f->nparam, H5T_NATIVE_DOUBLE, Pshown) ||
+            put_row(ev, "params_si", index, f->nparam, H5T_NATIVE_DOUBLE, Psi) ||
             put_row(ev, "objective", index, 0, H5T_NATIVE_DOUBLE, &objective) ||
             put_row(ev, "penalty", index, 0, H5T_NATIVE_DOUBLE, &penalty) ||
             put_row(ev, "score", index, 0, H5T_NATIVE_DOUBLE, &score) ||
@@ -513,6 +598,14 @@ int sw_study_file_write(swStudyFile *f, long index, int generation, const double
   H5Gclose(ev);
   if (bad || H5Fflush(f->file, H5F_SCOPE_LOCAL) < 0) return SW_EIO;
   return SW_OK;
+}
+
+int sw_study_file_params_si(swStudyFile *f, long index, const double *Psi) {
+  hid_t ev = H5Gopen2(f->file, "evaluations", H5P_DEFAULT);
+  if (ev < 0) return SW_EIO;
+  int bad = put_row(ev, "params_si", index, f->nparam, H5T_NATIVE_DOUBLE, Psi);
+  H5Gclose(ev);
+  return bad ? SW_EIO : SW_OK;
 }
 
 int sw_study_file_best(swStudyFile *f, long index, const double *Pshown, double score,

@@ -17,11 +17,12 @@ typedef struct {
 } swStudyFileInfo;
 
 /* The evaluations a file holds (for --resume): n rows, P in the units
- * shown, status swEvalStatus, objective/penalty/score in the objective's
- * unit. */
+ * shown, Psi in SI (NULL when the file predates /evaluations/params_si;
+ * a row of NaN where it lacks that row), status swEvalStatus,
+ * objective/penalty/score in the objective's unit. */
 typedef struct {
   long n;
-  double *P;
+  double *P, *Psi;
   int *status;
   double *objective, *penalty, *score;
 } swStudyRows;
@@ -30,15 +31,18 @@ swStudyFile *sw_study_file_create(const swStudyFileInfo *in, char *err, size_t e
 swStudyFile *sw_study_file_reopen(const swStudyFileInfo *in, swStudyRows *rows, char *err,
                                   size_t errlen);
 void sw_study_rows_free(swStudyRows *rows);
-/* Row `index`: the params as shown (units of the model), r's values divided
- * by shown_scale (the objective's unit). */
+/* Row `index`: the params as shown (units of the model) and in SI, r's
+ * values divided by shown_scale (the objective's unit). */
 int sw_study_file_write(swStudyFile *f, long index, int generation, const double *Pshown,
-                        const swStudyEval *r, double shown_scale);
+                        const double *Psi, const swStudyEval *r, double shown_scale);
+/* Row `index` of /evaluations/params_si alone (SI): --resume of a file
+ * that predates it fills it in for the rows it holds, from the designs
+ * regenerated and checked against them. */
+int sw_study_file_params_si(swStudyFile *f, long index, const double *Psi);
 int sw_study_file_best(swStudyFile *f, long index, const double *Pshown, double score,
                        double objective, double penalty);
 int sw_study_file_generation(swStudyFile *f, long g, double sigma, const double *mean, int nvar,
                              double best_score, long evaluations);
 int sw_study_file_attr(swStudyFile *f, const char *name, const char *value);
 int sw_study_file_close(swStudyFile *f, const char *status);
-const char *sw_eval_status_name(int status);
 #endif

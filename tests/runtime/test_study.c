@@ -9,6 +9,11 @@
  *   - a study interrupted after some evaluations and resumed gives the
  *     datasets of one that never stopped, bit for bit; a resume against a
  *     changed study is refused;
+ *   - every design is stored in SI too (/evaluations/params_si), the values
+ *     the evaluation was handed, bit for bit; sw_study_file_design reads a
+ *     row or the best from it, and from a file without it (written before
+ *     it) the values shown, converted; --resume of such a file gives it
+ *     params_si, equal to that of a study that had it all along;
  *   - bad settings are refused with a message, before anything runs. */
 #include <hdf5.h>
 #include <unistd.h>
@@ -29,6 +34,7 @@ static void path_of(char *buf, size_t len, const char *name) {
 static const char *const names[] = {"x", "y", "fixed"};
 static const char *const units[] = {"cm", "", "s"};
 static const double scales[] = {0.01, 1, 1};
+static const char *const si_units[] = {"m", "", "s"};
 static const double lo[] = {0, -1, 0}, hi[] = {0.04, 1, 0};
 
 typedef struct {
@@ -36,12 +42,15 @@ typedef struct {
   int interrupt_after;     /* > 0: the call after this many is "Ctrl-C"      */
   int fail_left;           /* designs with y < -0.5 are unstable             */
   double cx, cy;           /* the optimum                                    */
+  double (*seen)[3];       /* when set: every design handed to sphere()      */
+  int nseen;
 } swProblem;
 
 /* score = -((x - cx)^2 + 10 (y - cy)^2), in m/s as the model would say */
 static void sphere(void *ctx, const double *P, swStudyEval *r) {
   swProblem *p = ctx;
   p->calls++;
+  if (p->seen) memcpy(p->seen[p->nseen++], P, sizeof p->seen[0]);
   if (p->interrupt_after > 0 && p->calls > p->interrupt_after) {
     r->interrupted = 1;
     return;
@@ -77,6 +86,7 @@ static swStudyOptions options(const char *file, swStudyKind kind, swProblem *p,
   o.name = names;
   o.unit = units;
   o.scale = scales;
+  o.si_unit = si_units;
   o.value = value;
   o.vary = vary;
   o.lo = lo;
@@ -240,7 +250,8 @@ static void test_failures_rank_last(void **state) {
 /* Every dataset that says what was found (not wall_time and rank, which
  * say how) of two files, bit for bit. */
 static void assert_same_results(const char *a, const char *b) {
-  static const char *const ds[] = {"/evaluations/params", "/evaluations/objective",
+  static const char *const ds[] = {"/evaluations/params", "/evaluations/params_si",
+                                   "/evaluations/objective",
                                    "/evaluations/penalty", "/evaluations/score",
                                    "/evaluations/sim_time", "/cmaes/sigma", "/cmaes/mean",
                                    "/cmaes/best_score", "/best/params"};
@@ -313,6 +324,122 @@ static void test_resume(void **state) {
   assert_int_equal(s.calls, 0);
 }
 
+/* Deletes /evaluations/params_si: the file of a study written before it. */
+static void drop_params_si(const char *file) {
+  hid_t f = H5Fopen(file, H5F_ACC_RDWR, H5P_DEFAULT);
+  assert_true(f >= 0);
+  assert_true(H5Ldelete(f, "/evaluations/params_si", H5P_DEFAULT) >= 0);
+  H5Fclose(f);
+}
+
+static void test_params_si(void **state) {
+  (void)state;
+  char file[256];
+  path_of(file, sizeof file, "si.h5");
+  double seen[64][3];
+  swProblem p = {.cx = 0.03, .cy = 0.25, .seen = seen};
+  swStudyOptions o = options(file, SW_STUDY_CMAES, &p, start, vary2);
+  o.samples = 60;
+  assert_int_equal(sw_study_run(&o), SW_OK);
+  long n, m;
+  double *P = read_all(file, "/evaluations/params", H5T_NATIVE_DOUBLE, 3 * sizeof(double), &n);
+  double *S = read_all(file, "/evaluations/params_si", H5T_NATIVE_DOUBLE, 3 * sizeof(double), &m);
+  assert_int_equal(n, m);
+  assert_int_equal(n, p.nseen);
+  /* each row is a design sphere() was handed, and shown = SI / scale */
+  int lost = 0;
+  for (long i = 0; i < n; i++) {
+    int found = 0;
+    for (int k = 0; k < p.nseen && !found; k++) found = !memcmp(seen[k], S + 3 * i, sizeof seen[k]);
+    assert_true(found);
+    for (int j = 0; j < 3; j++) {
+      double shown = S[3 * i + j] / scales[j];
+      assert_memory_equal(&shown, P + 3 * i + j, sizeof shown);
+      lost += P[3 * i + j] * scales[j] != S[3 * i + j];
+    }
+  }
+  hid_t f = H5Fopen(file, H5F_ACC_RDONLY, H5P_DEFAULT);
+  hid_t ds = H5Dopen2(f, "/evaluations/params_si", H5P_DEFAULT);
+  hid_t a = H5Aopen(ds, "units", H5P_DEFAULT), t = H5Aget_type(a);
+  char *u[3] = {NULL, NULL, NULL};
+  hid_t mt = H5Tget_native_type(t, H5T_DIR_ASCEND);
+  assert_true(H5Aread(a, mt, u) >= 0);
+  assert_string_equal(u[0], "m");
+  assert_string_equal(u[1], "");
+  assert_string_equal(u[2], "s");
+  for (int j = 0; j < 3; j++) H5free_memory(u[j]);
+  H5Tclose(mt), H5Tclose(t), H5Aclose(a), H5Dclose(ds);
+  long best = (long)read_double_attr_of(f, "/best", "index");
+  H5Fclose(f);
+  fprintf(stderr, "# test_params_si: %ld designs, each stored in SI as evaluated; %d of %ld "
+          "values shown in cm miss it when multiplied back\n", n, lost, 3 * n);
+  /* reading a design: a row, the best, from params_si */
+  double v[3];
+  int got[3];
+  swStudyDesign d;
+  char err[256];
+  assert_int_equal(sw_study_file_design(file, 7, 3, names, units, scales, v, got, &d, err,
+                                        sizeof err), SW_OK);
+  assert_true(d.exact && d.index == 7 && d.rows == n && d.status == SW_EVAL_OK);
+  assert_memory_equal(v, S + 3 * 7, sizeof v);
+  assert_int_equal(sw_study_file_design(file, -1, 3, names, units, scales, v, got, &d, err,
+                                        sizeof err), SW_OK);
+  assert_int_equal(d.index, best);
+  assert_memory_equal(v, S + 3 * best, sizeof v);
+  assert_int_equal(sw_study_file_design(file, n, 3, names, units, scales, v, got, &d, err,
+                                        sizeof err), SW_EUSAGE);
+  fprintf(stderr, "# test_params_si: row %ld: %s\n", n, err);
+  /* a file of before params_si: the values shown, converted */
+  drop_params_si(file);
+  assert_int_equal(sw_study_file_design(file, 7, 3, names, units, scales, v, got, &d, err,
+                                        sizeof err), SW_OK);
+  assert_false(d.exact);
+  for (int j = 0; j < 3; j++) assert_true(v[j] == P[3 * 7 + j] * scales[j] && got[j]);
+  free(P);
+  free(S);
+}
+
+/* A study whose file has no params_si, resumed: the file gets it, and is
+ * then the file of the study that had it all along. */
+static void test_resume_without_si(void **state) {
+  (void)state;
+  char whole[256], cut[256];
+  path_of(whole, sizeof whole, "si_whole.h5");
+  path_of(cut, sizeof cut, "si_cut.h5");
+  swProblem p = {.cx = 0.03, .cy = 0.25, .fail_left = 1};
+  swStudyOptions o = options(whole, SW_STUDY_CMAES, &p, start, vary2);
+  o.samples = 60;
+  assert_int_equal(sw_study_run(&o), SW_OK);
+  swProblem q = {.cx = 0.03, .cy = 0.25, .fail_left = 1, .interrupt_after = 21};
+  o = options(cut, SW_STUDY_CMAES, &q, start, vary2);
+  o.samples = 60;
+  assert_int_equal(sw_study_run(&o), SW_EINTERRUPT);
+  drop_params_si(cut);
+  swProblem r = {.cx = 0.03, .cy = 0.25, .fail_left = 1};
+  o = options(cut, SW_STUDY_CMAES, &r, start, vary2);
+  o.samples = 60;
+  o.resume = 1;
+  assert_int_equal(sw_study_run(&o), SW_OK);
+  assert_same_results(whole, cut);
+  fprintf(stderr, "# test_resume_without_si: a file without params_si, interrupted after 21 "
+          "evaluations and resumed, holds the params_si of the study that never stopped\n");
+  /* and a stored design that is not the regenerated one in SI is refused */
+  hid_t f = H5Fopen(cut, H5F_ACC_RDWR, H5P_DEFAULT);
+  hid_t ds = H5Dopen2(f, "/evaluations/params_si", H5P_DEFAULT);
+  hsize_t at[2] = {3, 0}, one[2] = {1, 1};
+  hid_t fs = H5Dget_space(ds), ms = H5Screate_simple(2, one, NULL);
+  double nudged = nextafter(r.cx, 1);  /* any finite value but the design's */
+  H5Sselect_hyperslab(fs, H5S_SELECT_SET, at, NULL, one, NULL);
+  assert_true(H5Dwrite(ds, H5T_NATIVE_DOUBLE, ms, fs, H5P_DEFAULT, &nudged) >= 0);
+  H5Sclose(ms), H5Sclose(fs), H5Dclose(ds), H5Fclose(f);
+  swProblem s = {.cx = 0.03, .cy = 0.25, .fail_left = 1};
+  o = options(cut, SW_STUDY_CMAES, &s, start, vary2);
+  o.samples = 66;
+  o.resume = 1;
+  assert_int_equal(sw_study_run(&o), SW_EUSAGE);
+  assert_int_equal(s.calls, 0);
+}
+
 static void test_bad_settings(void **state) {
   (void)state;
   char file[256];
@@ -356,6 +483,8 @@ int main(void) {
     cmocka_unit_test(test_cmaes),
     cmocka_unit_test(test_failures_rank_last),
     cmocka_unit_test(test_resume),
+    cmocka_unit_test(test_params_si),
+    cmocka_unit_test(test_resume_without_si),
     cmocka_unit_test(test_bad_settings),
   };
   return cmocka_run_group_tests(tests, setup, teardown);
