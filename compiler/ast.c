@@ -62,6 +62,7 @@ swAst *ast_new(swArena *a, swAstKind kind, swLoc loc) {
   swAst *n = ast_alloc(a, sizeof *n);
   n->kind = kind;
   n->loc = loc;
+  n->depth = 1;
   return n;
 }
 
@@ -75,6 +76,7 @@ swAst *ast_push(swArena *a, swAst *parent, swAst *child) {
     parent->capkid = cap;
   }
   parent->kid[parent->nkid++] = child;
+  if (child && child->depth >= parent->depth) parent->depth = child->depth + 1;
   return parent;
 }
 

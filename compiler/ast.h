@@ -66,8 +66,16 @@ struct swAst {
   int nkid, capkid;
   int damaged;       /* a body (or a definition) that lost a field to a syntax
                         error: its "needs a field" checks stay silent       */
+  int depth;         /* levels of the tree from here down: 1 for a leaf    */
   swAst **kid;
 };
+
+/* The deepest expression the parser keeps: the checker and the generator
+ * walk expressions recursively, and a much deeper one overflows the stack
+ * (9000 minus signs in a row crashed sinewc; the fuzzer's sanitizer build,
+ * whose frames are larger, crashed from about 1000).  lang/sinew.y reports
+ * a deeper one and cuts it off. */
+#define AST_MAX_DEPTH 256
 
 /* The arena: every node and string of one compilation. */
 typedef struct swArena swArena;
@@ -77,7 +85,8 @@ void *ast_alloc(swArena *a, size_t size);
 char *ast_strdup(swArena *a, const char *s, size_t len);
 
 swAst *ast_new(swArena *a, swAstKind kind, swLoc loc);
-swAst *ast_push(swArena *a, swAst *parent, swAst *child);   /* returns parent */
+swAst *ast_push(swArena *a, swAst *parent, swAst *child);   /* returns parent;
+                                                               updates its depth */
 swAst *ast_kid(const swAst *n, int i);                      /* NULL if absent */
 const char *ast_kind_name(swAstKind kind);
 

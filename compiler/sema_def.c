@@ -452,10 +452,18 @@ static void eval_symbol(swSema *S, swSymbol *sym) {
     sym->value = val_error();
     return;
   }
+  if (S->nevaluating >= SEMA_MAX_DEF_CHAIN) {
+    /* not evaluated here: its own line (state 0) will evaluate it */
+    if (!S->eval_too_deep)
+      diag_error(sym->loc, "'%s' is needed by %d definitions evaluated inside one another, "
+                 "each using a name defined below it; define each name above the line that "
+                 "uses it", sym->name, SEMA_MAX_DEF_CHAIN);
+    S->eval_too_deep = 1;
+    sym->value = val_error();
+    return;
+  }
   sym->state = 1;
-  if (S->nevaluating < (int)(sizeof S->evaluating / sizeof S->evaluating[0]))
-    S->evaluating[S->nevaluating] = sym;
-  S->nevaluating++;
+  S->evaluating[S->nevaluating++] = sym;
   switch (sym->kind) {
   case SYM_PARAM:
     eval_param(S, sym);

@@ -383,8 +383,7 @@ static swValue eval_vector(swSema *S, swScope *scope, const swAst *e) {
   return v;
 }
 
-swValue sema_eval(swSema *S, swScope *scope, const swAst *e) {
-  if (!e) return val_error();
+static swValue eval_node(swSema *S, swScope *scope, const swAst *e) {
   switch (e->kind) {
   case AST_NUM:   /* NaN: a number the lexer reported out of range */
     return isnan(e->num) ? val_error() : val_num(S->a, e->num, DIM_NONE, e->loc);
@@ -448,4 +447,19 @@ swValue sema_eval(swSema *S, swScope *scope, const swAst *e) {
     diag_error(e->loc, "a %s is not a value", ast_kind_name(e->kind));
     return val_error();
   }
+}
+
+swValue sema_eval(swSema *S, swScope *scope, const swAst *e) {
+  if (!e) return val_error();
+  if (S->eval_depth >= SEMA_MAX_EVAL_DEPTH) {
+    if (!S->eval_too_deep)
+      diag_error(e->loc, "this value is nested more than %d levels deep through the definitions "
+                 "it uses; define each name above the line that uses it", SEMA_MAX_EVAL_DEPTH);
+    S->eval_too_deep = 1;
+    return val_error();
+  }
+  S->eval_depth++;
+  swValue v = eval_node(S, scope, e);
+  S->eval_depth--;
+  return v;
 }

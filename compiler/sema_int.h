@@ -19,6 +19,15 @@
 /* definitions and statements that component instances may add to a model:
  * nesting multiplies them (ten uses of a component that uses ten ...) */
 #define SEMA_MAX_EXPANDED 50000
+/* Definitions are evaluated in the order of the file, and one that uses a
+ * name defined further down evaluates that definition first, inside its own
+ * evaluation: 20000 lets, each using the one defined below it, overflowed
+ * the stack (so did 2000 such bones, whose evaluation takes more of it).
+ * Bounded: definitions evaluated inside one another, and sema_eval calls
+ * inside one another (an expression's levels, at most AST_MAX_DEPTH, and
+ * those of the definitions it evaluates on the way). */
+#define SEMA_MAX_DEF_CHAIN 64
+#define SEMA_MAX_EVAL_DEPTH 512
 
 /* Statements kept when met, with their scopes, and checked after the last
  * item (sema_later). */
@@ -59,8 +68,10 @@ typedef struct {
   /* the first import that could not be read: unknown names may be its */
   const swAst *failed_import;
   /* the symbols being evaluated, outermost first, to name a cycle */
-  swSymbol *evaluating[64];
+  swSymbol *evaluating[SEMA_MAX_DEF_CHAIN];
   int nevaluating;
+  int eval_depth;             /* sema_eval calls under way, against SEMA_MAX_EVAL_DEPTH */
+  int eval_too_deep;          /* the error of either bound, said once */
   /* output's selections, checked once every rod, joint and muscle is known */
   const swAst *output_item;
   swScope *output_scope;

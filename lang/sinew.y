@@ -36,6 +36,8 @@ void lex_done(yyscan_t scanner);
 }
 
 %code {
+#include <limits.h>
+#include <math.h>
 #include <stdio.h>
 #include <string.h>
 #include "lex.h"
@@ -53,6 +55,24 @@ void lex_done(yyscan_t scanner);
 
 #define A (st->arena)
 static swAst *node(struct swLexState *st, swAstKind k, swLoc loc) { return ast_new(st->arena, k, loc); }
+/* Every child is added here.  A value (number ... method call) nested deeper
+ * than AST_MAX_DEPTH is reported once and replaced, with every value that
+ * encloses it, by a number the checker passes over in silence (NaN, as for a
+ * number out of range), so no tree the checker walks is deeper than that and
+ * a few levels of fields and arguments. */
+#define AST_CUT (INT_MAX / 2)   /* depth of a replaced value, above any real one */
+static swAst *push(struct swLexState *st, swAst *parent, swAst *child) {
+  if (child && child->kind >= AST_NUM && child->kind <= AST_METHOD && child->depth > AST_MAX_DEPTH) {
+    if (child->depth < AST_CUT)
+      diag_error(child->loc, "this expression is nested more than %d levels deep; split it with "
+                 "let", AST_MAX_DEPTH);
+    swAst *cut = node(st, AST_NUM, child->loc);
+    cut->num = NAN;
+    cut->depth = AST_CUT;
+    child = cut;
+  }
+  return ast_push(st->arena, parent, child);
+}
 static swAst *named(struct swLexState *st, swAstKind k, swLoc loc, const char *name) {
   swAst *n = ast_new(st->arena, k, loc);
   n->name = name;
@@ -61,8 +81,8 @@ static swAst *named(struct swLexState *st, swAstKind k, swLoc loc, const char *n
 static swAst *binop(struct swLexState *st, int op, swAst *a, swAst *b, swLoc loc) {
   swAst *n = ast_new(st->arena, AST_BINOP, loc);
   n->op = op;
-  ast_push(st->arena, n, a);
-  ast_push(st->arena, n, b);
+  push(st, n, a);
+  push(st, n, b);
   return n;
 }
 static void sinew_yyerror(swLoc *loc, yyscan_t scanner, struct swLexState *st, const char *msg) {
@@ -108,7 +128,7 @@ file
 
 items
   : %empty                   { $$ = node(st, AST_FILE, @$); if (!st->root) st->root = $$; }
-  | items item               { $$ = $2 ? ast_push(A, $1, $2) : $1; }
+  | items item               { $$ = $2 ? push(st, $1, $2) : $1; }
   ;
 
 item
@@ -121,14 +141,14 @@ item
                                  diag_error(@3, "unexpected name '%s' after the file name, "
                                             "expected ';' or 'as NAME'", $3); }
   /* param NAME = expr; */
-  | PARAM IDENT '=' expr ';' { $$ = named(st, AST_PARAM, @2, $2); ast_push(A, $$, $4); }
+  | PARAM IDENT '=' expr ';' { $$ = named(st, AST_PARAM, @2, $2); push(st, $$, $4); }
   /* param NAME = expr in (LO, HI);   the range a study varies it over (the
      pair is checked by sema_def.c) */
   | PARAM IDENT '=' expr IN expr ';'
-                             { $$ = named(st, AST_PARAM, @2, $2); ast_push(A, $$, $4);
-                               ast_push(A, $$, ast_push(A, named(st, AST_ARG, @5, "in"), $6)); }
+                             { $$ = named(st, AST_PARAM, @2, $2); push(st, $$, $4);
+                               push(st, $$, push(st, named(st, AST_ARG, @5, "in"), $6)); }
   /* let NAME = expr; */
-  | LET IDENT '=' expr ';'   { $$ = named(st, AST_LET, @2, $2); ast_push(A, $$, $4); }
+  | LET IDENT '=' expr ';'   { $$ = named(st, AST_LET, @2, $2); push(st, $$, $4); }
   /* KIND NAME { fields }      material bone { E = 15 GPa; } */
   | IDENT IDENT body         { $$ = named(st, AST_DEF, @2, $2); $$->text = $1;
                                $$->kid = $3->kid; $$->nkid = $3->nkid; $$->capkid = $3->capkid;
@@ -144,18 +164,18 @@ item
   /* joint NAME = KIND(args) [{ fields }] */
   | JOINT IDENT '=' IDENT '(' args ')' body
                              { $$ = named(st, AST_JOINT, @2, $2); $$->text = $4;
-                               $$->damaged = $8->damaged; ast_push(A, $$, $6);
-                               for (int i = 0; i < $8->nkid; i++) ast_push(A, $$, $8->kid[i]); }
+                               $$->damaged = $8->damaged; push(st, $$, $6);
+                               for (int i = 0; i < $8->nkid; i++) push(st, $$, $8->kid[i]); }
   | JOINT IDENT '=' IDENT '(' args ')' ';'
-                             { $$ = named(st, AST_JOINT, @2, $2); $$->text = $4; ast_push(A, $$, $6); }
+                             { $$ = named(st, AST_JOINT, @2, $2); $$->text = $4; push(st, $$, $6); }
   /* component NAME(formals) { items } */
   | COMPONENT IDENT '(' formals ')' '{' items '}'
-                             { $$ = named(st, AST_COMPONENT, @2, $2); ast_push(A, $$, $4);
-                               for (int i = 0; i < $7->nkid; i++) ast_push(A, $$, $7->kid[i]); }
+                             { $$ = named(st, AST_COMPONENT, @2, $2); push(st, $$, $4);
+                               for (int i = 0; i < $7->nkid; i++) push(st, $$, $7->kid[i]); }
   /* use NAME = COMPONENT(args); */
   | USE IDENT '=' IDENT '(' args ')' ';'
                              { $$ = named(st, AST_USE, @2, $2); $$->text = $4;
-                               $$->loc = ast_span(@2, @7); ast_push(A, $$, $6); }
+                               $$->loc = ast_span(@2, @7); push(st, $$, $6); }
   /* use NAME = NAMESPACE.COMPONENT(args); */
   | USE IDENT '=' IDENT '.' IDENT '(' args ')' ';'
                              { $$ = named(st, AST_USE, @2, $2);
@@ -163,23 +183,23 @@ item
                                char *q = ast_alloc(A, n);
                                snprintf(q, n, "%s.%s", $4, $6);
                                $$->text = q;
-                               $$->loc = ast_span(@2, @9); ast_push(A, $$, $8); }
+                               $$->loc = ast_span(@2, @9); push(st, $$, $8); }
   /* ACTION operand;   ACTION operand = value;      clamp bar.start;  force bar.end = (0, 0, -1) N; */
-  | IDENT expr ';'           { $$ = node(st, AST_ACTION, @1); $$->text = $1; ast_push(A, $$, $2); }
+  | IDENT expr ';'           { $$ = node(st, AST_ACTION, @1); $$->text = $1; push(st, $$, $2); }
   | IDENT expr '=' expr ';'  { $$ = node(st, AST_ACTION, @1); $$->text = $1;
-                               ast_push(A, $$, $2); ast_push(A, $$, $4); }
+                               push(st, $$, $2); push(st, $$, $4); }
   /* simulate { fields } */
   | SIMULATE body            { $$ = $2; $$->kind = AST_SIMULATE; $$->loc = @1; }
   /* output "file.h5" [every T] [{ selections }] */
   | OUTPUT STRING every_opt body
                              { $$ = $4; $$->kind = AST_OUTPUT; $$->loc = ast_span(@1, @2); $$->text = $2;
                                swAst *every = $3;
-                               ast_push(A, $$, every);
+                               push(st, $$, every);
                                /* every goes first */
                                for (int i = $$->nkid - 1; i > 0; i--) $$->kid[i] = $$->kid[i - 1];
                                $$->kid[0] = every; }
   | OUTPUT STRING every_opt ';'
-                             { $$ = node(st, AST_OUTPUT, ast_span(@1, @2)); $$->text = $2; ast_push(A, $$, $3); }
+                             { $$ = node(st, AST_OUTPUT, ast_span(@1, @2)); $$->text = $2; push(st, $$, $3); }
   /* expect QUANTITY WORD expr WORD expr [WORD expr];
        expect angle(elbow) at 0.5 s in (-155 deg, -150 deg);
        expect force(biceps) over (0.2 s, 0.5 s) in (0 N, 300 N);
@@ -187,18 +207,18 @@ item
      the words (at/over, in/within, of) are checked by sema_expect.c; 'in' is
      a keyword, since `param NAME = V in (LO, HI)` takes it too */
   | EXPECT expr IDENT expr IN expr ';'
-                             { $$ = node(st, AST_EXPECT, ast_span(@1, @6)); ast_push(A, $$, $2);
-                               ast_push(A, $$, ast_push(A, named(st, AST_ARG, @3, $3), $4));
-                               ast_push(A, $$, ast_push(A, named(st, AST_ARG, @5, "in"), $6)); }
+                             { $$ = node(st, AST_EXPECT, ast_span(@1, @6)); push(st, $$, $2);
+                               push(st, $$, push(st, named(st, AST_ARG, @3, $3), $4));
+                               push(st, $$, push(st, named(st, AST_ARG, @5, "in"), $6)); }
   | EXPECT expr IDENT expr IDENT expr ';'
-                             { $$ = node(st, AST_EXPECT, ast_span(@1, @6)); ast_push(A, $$, $2);
-                               ast_push(A, $$, ast_push(A, named(st, AST_ARG, @3, $3), $4));
-                               ast_push(A, $$, ast_push(A, named(st, AST_ARG, @5, $5), $6)); }
+                             { $$ = node(st, AST_EXPECT, ast_span(@1, @6)); push(st, $$, $2);
+                               push(st, $$, push(st, named(st, AST_ARG, @3, $3), $4));
+                               push(st, $$, push(st, named(st, AST_ARG, @5, $5), $6)); }
   | EXPECT expr IDENT expr IDENT expr IDENT expr ';'
-                             { $$ = node(st, AST_EXPECT, ast_span(@1, @8)); ast_push(A, $$, $2);
-                               ast_push(A, $$, ast_push(A, named(st, AST_ARG, @3, $3), $4));
-                               ast_push(A, $$, ast_push(A, named(st, AST_ARG, @5, $5), $6));
-                               ast_push(A, $$, ast_push(A, named(st, AST_ARG, @7, $7), $8)); }
+                             { $$ = node(st, AST_EXPECT, ast_span(@1, @8)); push(st, $$, $2);
+                               push(st, $$, push(st, named(st, AST_ARG, @3, $3), $4));
+                               push(st, $$, push(st, named(st, AST_ARG, @5, $5), $6));
+                               push(st, $$, push(st, named(st, AST_ARG, @7, $7), $8)); }
   | error ';'                { $$ = NULL; yyerrok; }
   | error '}'                { $$ = NULL; yyerrok; }
   /* a statement whose ';' is missing: the next line's item is kept (no
@@ -221,19 +241,19 @@ body
 
 fields
   : %empty                   { $$ = node(st, AST_SIMULATE, @$); }
-  | fields field             { $$ = $2 ? ast_push(A, $1, $2) : $1; if (!$2) $$->damaged = 1; }
+  | fields field             { $$ = $2 ? push(st, $1, $2) : $1; if (!$2) $$->damaged = 1; }
   ;
 
 field
   /* key = value; */
-  : IDENT '=' expr ';'       { $$ = named(st, AST_FIELD, @1, $1); ast_push(A, $$, $3); }
+  : IDENT '=' expr ';'       { $$ = named(st, AST_FIELD, @1, $1); push(st, $$, $3); }
   /* what targets;            velocity all;  energy; */
   | IDENT exprlist ';'       { $$ = $2; $$->kind = AST_SELECT; $$->name = $1; $$->loc = @1; }
   | IDENT ';'                { $$ = named(st, AST_SELECT, @1, $1); }
   /* key(formals) = value;    height(x, y) = 0.1 m * sin(x / 1 m); */
-  | IDENT expr '=' expr ';'  { $$ = named(st, AST_FIELD, @1, $1); ast_push(A, $$, $4); ast_push(A, $$, $2); }
+  | IDENT expr '=' expr ';'  { $$ = named(st, AST_FIELD, @1, $1); push(st, $$, $4); push(st, $$, $2); }
   /* let NAME = value;         a name local to the body (terrain) */
-  | LET IDENT '=' expr ';'   { $$ = named(st, AST_LET, @2, $2); ast_push(A, $$, $4); }
+  | LET IDENT '=' expr ';'   { $$ = named(st, AST_LET, @2, $2); push(st, $$, $4); }
   | error ';'                { $$ = NULL; yyerrok; }
   /* a field whose ';' is missing: the next line's field is kept */
   | IDENT '=' expr error     { $$ = NULL; }
@@ -244,13 +264,13 @@ formals
   | formallist               { $$ = $1; }
   ;
 formallist
-  : formal                   { $$ = ast_push(A, node(st, AST_FORMALS, @1), $1); }
-  | formallist ',' formal    { $$ = ast_push(A, $1, $3); }
+  : formal                   { $$ = push(st, node(st, AST_FORMALS, @1), $1); }
+  | formallist ',' formal    { $$ = push(st, $1, $3); }
   ;
 /* NAME [= default] */
 formal
   : IDENT                    { $$ = named(st, AST_ARG, @1, $1); }
-  | IDENT '=' expr           { $$ = named(st, AST_ARG, @1, $1); ast_push(A, $$, $3); }
+  | IDENT '=' expr           { $$ = named(st, AST_ARG, @1, $1); push(st, $$, $3); }
   ;
 
 args
@@ -258,19 +278,19 @@ args
   | arglist                  { $$ = $1; }
   ;
 arglist
-  : arg                      { $$ = ast_push(A, node(st, AST_ARGS, @1), $1); }
-  | arglist ',' arg          { $$ = ast_push(A, $1, $3); }
+  : arg                      { $$ = push(st, node(st, AST_ARGS, @1), $1); }
+  | arglist ',' arg          { $$ = push(st, $1, $3); }
   ;
 /* value | name = value | condition: value */
 arg
-  : expr                     { $$ = ast_push(A, node(st, AST_ARG, @1), $1); }
-  | expr ':' expr            { $$ = node(st, AST_CASE, @$); ast_push(A, $$, $1); ast_push(A, $$, $3); }
-  | IDENT '=' expr           { $$ = named(st, AST_ARG, @1, $1); ast_push(A, $$, $3); }
+  : expr                     { $$ = push(st, node(st, AST_ARG, @1), $1); }
+  | expr ':' expr            { $$ = node(st, AST_CASE, @$); push(st, $$, $1); push(st, $$, $3); }
+  | IDENT '=' expr           { $$ = named(st, AST_ARG, @1, $1); push(st, $$, $3); }
   ;
 
 exprlist
-  : expr                     { $$ = ast_push(A, node(st, AST_ARGS, @1), $1); }
-  | exprlist ',' expr        { $$ = ast_push(A, $1, $3); }
+  : expr                     { $$ = push(st, node(st, AST_ARGS, @1), $1); }
+  | exprlist ',' expr        { $$ = push(st, $1, $3); }
   ;
 
 expr
@@ -278,7 +298,7 @@ expr
   | expr '-' expr            { $$ = binop(st, '-', $1, $3, @$); }
   | expr '*' expr            { $$ = binop(st, '*', $1, $3, @$); }
   | expr '/' expr            { $$ = binop(st, '/', $1, $3, @$); }
-  | '-' expr %prec NEG       { $$ = ast_push(A, node(st, AST_NEG, @$), $2); }
+  | '-' expr %prec NEG       { $$ = push(st, node(st, AST_NEG, @$), $2); }
   | expr '^' expr            { $$ = binop(st, '^', $1, $3, @$); }
   /* comparisons and logic, for piecewise(): x < 3 m and y >= 0 m */
   | expr '<' expr            { $$ = binop(st, '<', $1, $3, @$); }
@@ -289,7 +309,7 @@ expr
   | expr OR expr             { $$ = binop(st, '|', $1, $3, @$); }
   /* value unit: juxtaposition multiplies */
   | expr unit_factor %prec UNIT
-                             { $$ = node(st, AST_APPLY, @$); ast_push(A, $$, $1); ast_push(A, $$, $2); }
+                             { $$ = node(st, AST_APPLY, @$); push(st, $$, $1); push(st, $$, $2); }
   | primary                  { $$ = $1; }
   ;
 
@@ -312,15 +332,15 @@ primary
   | '(' expr ')'             { $$ = $2; }
   /* vector: (x, y, z) */
   | '(' expr ',' exprlist ')'
-                             { $$ = node(st, AST_VEC, @$); ast_push(A, $$, $2);
-                               for (int i = 0; i < $4->nkid; i++) ast_push(A, $$, $4->kid[i]); }
+                             { $$ = node(st, AST_VEC, @$); push(st, $$, $2);
+                               for (int i = 0; i < $4->nkid; i++) push(st, $$, $4->kid[i]); }
   /* call: ramp(0, 1, over = 0.1 s) */
-  | IDENT '(' args ')'       { $$ = named(st, AST_CALL, @$, $1); ast_push(A, $$, $3); }
+  | IDENT '(' args ')'       { $$ = named(st, AST_CALL, @$, $1); push(st, $$, $3); }
   /* member: humerus.end */
-  | primary '.' IDENT        { $$ = named(st, AST_MEMBER, @$, $3); ast_push(A, $$, $1); }
+  | primary '.' IDENT        { $$ = named(st, AST_MEMBER, @$, $3); push(st, $$, $1); }
   /* method: humerus.at(0.3) */
   | primary '.' IDENT '(' args ')'
-                             { $$ = named(st, AST_METHOD, @$, $3); ast_push(A, $$, $1); ast_push(A, $$, $5); }
+                             { $$ = named(st, AST_METHOD, @$, $3); push(st, $$, $1); push(st, $$, $5); }
   ;
 
 %%
