@@ -6,6 +6,9 @@
 #   scripts/fuzz.sh 3600     an hour
 #   FUZZ_JOBS=2 scripts/fuzz.sh   a main and a secondary instance (2 cores)
 #   FUZZ_FRESH=1 scripts/fuzz.sh  forget the previous run's corpus
+#   FUZZ_EXECS=10000000 scripts/fuzz.sh 10800
+#                            stop at about 10^7 executions (afl-fuzz -E), or
+#                            after the seconds given, whichever comes first
 #
 # Builds tests/fuzz/fuzz_sinewc.c with afl-clang-fast under ASan and UBSan
 # (persistent mode) plus a CmpLog build, runs afl-fuzz in an empty directory
@@ -86,6 +89,7 @@ allocator_may_return_null=1:detect_odr_violation=0:handle_segv=0:handle_sigbus=0
 handle_abort=0:handle_sigfpe=0:handle_sigill=0:quarantine_size_mb=16
 BIN="$ROOT/$OUT/fuzz_sinewc"
 ARGS="-i $ROOT/$IN -o $ROOT/$OUT/out -x $ROOT/tests/fuzz/sinew.dict -t 2000 -m none -V $SECONDS_TO_RUN"
+[ -z "${FUZZ_EXECS:-}" ] || ARGS="$ARGS -E $FUZZ_EXECS"
 echo "fuzz: running $JOBS afl-fuzz instance(s) for $SECONDS_TO_RUN s (log: $OUT/fuzz-*.log)" >&2
 pids=""
 i=0
