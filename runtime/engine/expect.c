@@ -6,12 +6,13 @@
  * a time is sampled at the step nearest it, k = round(t / dt), the same
  * counting run.c uses for frames, so it does not depend on the output's
  * `every`; one over a window [t0, t1] is sampled at every step whose time is
- * in it, and keeps the smallest and largest value.  run.c ends its fused
- * chunks of steps at those steps (sw_expect_next), so sampling costs one
- * quantity evaluation per due step and nothing else.  Ending a chunk moves
- * the trajectory by round-off, as a frame does (sw_steps fuses the kicks of
- * a chunk): the pendulum's positions with its window sampled at every step
- * differ from those without by 7e-15 m after 1.2 s.  The record of a run
+ * in it, and keeps the smallest and largest value.  run.c ends its chunks
+ * of steps at those steps (sw_expect_next) and reads the whole step between
+ * held ones (integrate.c, "Held steps"), so sampling costs a quantity
+ * evaluation and a half drift per due step and leaves the trajectory's bits
+ * as they are without it (until 2026-11 it moved them by round-off: the
+ * pendulum's positions by 7e-15 m after 1.2 s, a frog's toe height by 2x;
+ * tests/lang/test_invariance.sh).  The record of a run
  * (swExpectRun) is allocated before the run, never in a step.  The report
  * lists every expectation: passed with the value seen, failed with the
  * value and the bounds, or not reached when the run ended before its time

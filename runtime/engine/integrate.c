@@ -35,6 +35,7 @@
  */
 #include <math.h>
 #include <sched.h>
+#include <stdio.h>
 #include <string.h>
 #include "sinew.h"
 #include "vec.h"
@@ -471,7 +472,7 @@ static void pefrl_step(const swModel *m, swData *d) {
  * into *rc, which every thread reads after the barrier, so the whole team
  * leaves the loop together.  Then, if `more` steps follow, the muscles'
  * activations for the next one. */
-static void end_step(const swModel *m, swData *d, int whole, int due, int more, int *rc) {
+static void end_step(const swModel *m, swData *d, int count, int whole, int due, int more, int *rc) {
   const int n = m->nslot_elastic;
   if (due) { /* a count: any cut gives the same; one per thread, in its last chunk */
     int lo, hi;
@@ -481,7 +482,7 @@ static void end_step(const swModel *m, swData *d, int whole, int due, int more, 
     sw_team_barrier(d);
   }
   if (sw_team_leader(d)) {
-    d->step++;
+    d->step += count;
     d->time = ((double)d->step + (whole ? 0.0 : 0.5)) * m->dt;
     double suspect = m->nrigid;
     if (due)
@@ -499,51 +500,157 @@ static void end_step(const swModel *m, swData *d, int whole, int due, int more, 
  * the angular-momentum rescaling of two half drifts compose to that of one
  * drift to the scheme's order), so k steps cost k kicks and k + 1 drifts.
  * Between fused steps the state sits at the half step, t = (step + 1/2) h;
- * it is at a whole step when sw_steps returns.  Run by every thread of the
- * team (or by the caller alone); *rc is shared. */
-static void steps(const swModel *m, swData *d, long k, int *rc) {
+ * it is at a whole step when sw_steps returns.  With `hold` (sw_steps_held)
+ * the last step ends at its kick, its trailing half drift held back, and a
+ * call that starts held runs that half drift fused with its own first one
+ * and the held step's end (see "Held steps" below).  Run by every thread of
+ * the team (or by the caller alone); *rc is shared. */
+static void steps(const swModel *m, swData *d, long k, int hold, int *rc) {
   const double h = m->dt;
+  const int held = d->held; /* read by all before the leader clears it */
+  sw_team_barrier(d);
+  if (held) { /* the held step's trailing half drift and our first: one drift h */
+    drift(m, d, h);
+    end_step(m, d, 0, 0, check_due(d->step), 1, rc);
+    if (sw_team_leader(d)) d->held = 0;
+  }
   const long step0 = d->step; /* read by all before the leader moves it */
-  if (m->nmuscle) { /* activations of the first step (end_step does the rest) */
+  sw_team_barrier(d);
+  if (m->nmuscle && !held) { /* activations of the first step (end_step does the rest) */
     if (sw_team_leader(d)) sw_muscle_ops(m)->advance(m, d, (double)step0 * h, h);
     sw_team_barrier(d);
   }
-  if (m->integrator == SW_PEFRL) {
+  if (m->integrator == SW_PEFRL) { /* whole steps: nothing to hold */
     for (long i = 0; i < k && *rc == SW_OK; i++) {
       pefrl_step(m, d);
-      end_step(m, d, 1, check_due(step0 + i + 1), i < k - 1, rc);
+      end_step(m, d, 1, 1, check_due(step0 + i + 1), i < k - 1, rc);
     }
     return;
   }
-  drift(m, d, 0.5 * h);
+  if (!held) drift(m, d, 0.5 * h);
   const int fused = d->team_size <= 1 && sw_sweep_fits(m);
   for (long i = 0; i < k && *rc == SW_OK; i++) {
     const int last = i == k - 1;
+    if (last && hold) { /* the kick alone, its work and rigid part booked */
+      kick(m, d, h, h);
+      sw_team_barrier(d);
+      if (sw_team_leader(d)) {
+        finish_kick(m, d);
+        d->step++;
+        d->time = ((double)d->step - 0.5) * h; /* where the positions are */
+        d->held = 1;
+      }
+      sw_team_barrier(d);
+      break;
+    }
     if (fused) {
       sweep(m, d, h, h, last ? 0.5 * h : h);
     } else {
       kick(m, d, h, h);
       drift(m, d, last ? 0.5 * h : h);
     }
-    end_step(m, d, last, check_due(step0 + i + 1), !last, rc);
+    end_step(m, d, 1, last, check_due(step0 + i + 1), !last, rc);
   }
 }
 
-int sw_steps(const swModel *m, swData *d, long k) {
+static int run_steps(const swModel *m, swData *d, long k, int hold) {
   if (k <= 0) return SW_OK;
+  if (d->whole) {
+    snprintf(d->error, sizeof d->error, "a step was asked for between sw_whole_begin and sw_whole_end");
+    return SW_EUSAGE;
+  }
   int rc = SW_OK;
   if (d->threads <= 1) {
-    steps(m, d, k, &rc);
+    steps(m, d, k, hold, &rc);
     return rc;
   }
 #pragma omp parallel num_threads(d->threads)
   {
 #pragma omp single
     d->team_size = omp_get_num_threads(); /* the runtime may give fewer */
-    steps(m, d, k, &rc);
+    steps(m, d, k, hold, &rc);
   }
   d->team_size = 1;
   return rc;
+}
+
+int sw_steps(const swModel *m, swData *d, long k) { return run_steps(m, d, k, 0); }
+
+/* ---- Held steps ----
+ * Fusing the half drifts of two steps into one drift h saves a pass over
+ * the state every step (about a third of the step's time on a rod of 400
+ * elements), but one drift h is not the same floating-point operations as
+ * two drifts h/2: where a call of sw_steps ends, the trajectory's bits
+ * change.  The run loop ends its calls where it must read the state (a
+ * frame, an expectation's sample, 256 steps for Ctrl-C), so before
+ * 2026-11 `--every`, an `expect` line or an objective moved a sensitive
+ * outcome (a frog's toe height, by 2x).  Held steps keep the fusion across
+ * calls: sw_steps_held stops after the last step's kick; sw_whole_begin
+ * copies what a half drift moves (x, v, Q, omega, the dilatation, the rigid
+ * bodies' pose, the hinge angles' unwrapping), runs the half drift and the
+ * step's end, so that the state is exactly the one sw_steps would have
+ * returned, and sw_whole_end puts the copy back.  Whatever reads the whole
+ * state in between changes nothing a step reads (the strains and joint
+ * forces a frame recomputes are scratch the next kick computes afresh).
+ * PEFRL's steps are whole already: they are never held. */
+
+/* The hold's parts: per-slot planes, then per-body and per-joint rows. */
+#define HOLD_PLANES 19 /* x 3, v 3, Q 9, omega 3, dilatation 1 */
+size_t sw_hold_size(const swModel *m) {
+  return (size_t)HOLD_PLANES * (size_t)m->stride + 15 * (size_t)m->nrigid + (size_t)m->njoint +
+         (size_t)sw_nchunk(m, m->stride);
+}
+
+/* Copies the hold's arrays between d and the hold: `save` 1 into it, 0 back. */
+static void hold_copy(const swModel *m, swData *d, int save) {
+  const size_t S = (size_t)m->stride, B = (size_t)m->nrigid;
+  struct { double *a; size_t n; } part[] = {
+      {d->x, 3 * S}, {d->v, 3 * S}, {d->Q, 9 * S}, {d->omega, 3 * S}, {d->dilatation, S},
+      {d->rigid_X, 3 * B}, {d->rigid_R, 9 * B}, {d->rigid_omega, 3 * B},
+      {d->joint_angle, (size_t)m->njoint}, {d->chunk_sum, (size_t)sw_nchunk(m, m->stride)}};
+  double *p = d->hold;
+  for (size_t k = 0; k < sizeof part / sizeof *part; k++) {
+    if (part[k].n) memcpy(save ? p : part[k].a, save ? part[k].a : p, part[k].n * sizeof *p);
+    p += part[k].n;
+  }
+}
+
+int sw_steps_held(const swModel *m, swData *d, long k) {
+  return run_steps(m, d, k, m->integrator != SW_PEFRL);
+}
+
+/* The held step's trailing half drift and its end, as sw_steps ends. */
+static int complete_held(const swModel *m, swData *d) {
+  int rc = SW_OK;
+  drift(m, d, 0.5 * m->dt);
+  end_step(m, d, 0, 1, check_due(d->step), 0, &rc);
+  return rc;
+}
+
+int sw_whole_begin(const swModel *m, swData *d) {
+  if (!d->held || d->whole) return SW_OK;
+  hold_copy(m, d, 1);
+  d->whole = 1;
+  int rc = complete_held(m, d);
+  if (rc != SW_OK) d->whole = d->held = 0; /* left whole, for the diagnosis */
+  return rc;
+}
+
+void sw_whole_end(const swModel *m, swData *d) {
+  if (!d->whole) return;
+  hold_copy(m, d, 0);
+  d->time = ((double)d->step - 0.5) * m->dt;
+  d->whole = 0;
+}
+
+double sw_time(const swModel *m, const swData *d) {
+  return d->held && !d->whole ? (double)d->step * m->dt : d->time;
+}
+
+int sw_settle(const swModel *m, swData *d) {
+  if (!d->held || d->whole) return SW_OK;
+  d->held = 0;
+  return complete_held(m, d);
 }
 
 int sw_step(const swModel *m, swData *d) { return sw_steps(m, d, 1); }

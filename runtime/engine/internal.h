@@ -56,6 +56,7 @@ typedef struct {
   _Alignas(64) atomic_int generation;
 } swTeam;
 void sw_team_wait(swTeam *t, int size); /* integrate.c */
+size_t sw_hold_size(const swModel *m); /* integrate.c: doubles of swData.hold */
 static inline int sw_team_rank(const swData *d) { return d->team_size > 1 ? omp_get_thread_num() : 0; }
 static inline int sw_team_leader(const swData *d) { return sw_team_rank(d) == 0; }
 static inline void sw_team_barrier(swData *d) {

@@ -267,6 +267,11 @@ typedef struct {
   double *chunk_sum, *bc_work;
   int kick_pending;          /* integrate.c: a kick whose work and rigid part */
   double kick_h;             /* the next drift's leader adds (its h)          */
+  int held;                  /* integrate.c: the last step's trailing half
+                                drift is held back (sw_steps_held)           */
+  int whole;                 /* between sw_whole_begin and sw_whole_end       */
+  double *hold;              /* what the half drift of sw_whole_begin moves,
+                                kept for sw_whole_end                        */
   /* joint.c: each joint's loads, evaluated in parallel and applied in joint
    * order (SW_JOINT_ROW doubles per joint) */
   double *joint_scratch;
@@ -342,7 +347,22 @@ void sw_internal_loads(const swModel *m, swData *d);   /* rod.c: strains and int
 void sw_external_loads(const swModel *m, swData *d);   /* loads.c       */
 void sw_apply_bc_velocity(const swModel *m, swData *d, double t); /* boundary.c */
 int sw_step(const swModel *m, swData *d);              /* integrate.c   */
-int sw_steps(const swModel *m, swData *d, long k);     /* k steps, fused */
+int sw_steps(const swModel *m, swData *d, long k);     /* k whole steps  */
+/* A run's steps in calls of any length, bitwise those of one call (integrate.c,
+ * "Held steps").  sw_steps_held is sw_steps with the last step's trailing
+ * half drift held back: d->step counts that step, d->held is 1 and the
+ * positions are half a step behind it; the next sw_steps or sw_steps_held
+ * fuses the held half drift with its own first one, as one call would.
+ * Between sw_whole_begin and sw_whole_end the state is the whole step, for
+ * reading (a frame, an expectation's sample); sw_whole_begin runs the step's
+ * end (the stability check) and returns its status.  sw_settle makes a held
+ * state whole for good.  On a whole state the three do nothing. */
+int sw_steps_held(const swModel *m, swData *d, long k);
+int sw_whole_begin(const swModel *m, swData *d);
+void sw_whole_end(const swModel *m, swData *d);
+int sw_settle(const swModel *m, swData *d);
+/* The time of the steps taken, d->step dt when held, else d->time. */
+double sw_time(const swModel *m, const swData *d);
 /* Threads a step runs on (OpenMP; 1 by default).  The result does not depend
  * on n: the kernels split their loops into the model's fixed chunks and add
  * partial sums in chunk order.  Returns the count set (n < 1 counts as 1). */

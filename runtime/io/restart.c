@@ -9,12 +9,12 @@
  * slot and per chunk, the unwrapped hinge angles, the probes' rings of
  * samples, the implicit joints' system) and the scratch arrays as well, since
  * copying them costs little and leaves nothing to argue about; the scalars
- * (time, step, work, the pending kick) go as attributes, and so do the
- * expectations' running minima and maxima (expect.c).  Second, a checkpoint
- * is taken only at a frame of the run's schedule (a multiple of `every`
- * steps, or the end), where the run loop ends its fused chunks anyway
- * (run.c): continuing from there, every later step runs in the same chunks
- * as in the uninterrupted run.
+ * (time, step, work, the pending kick, whether the last step's half drift
+ * is held) go as attributes, and so do the expectations' running minima and
+ * maxima (expect.c).  Second, a checkpoint is taken of the held state at a
+ * frame of the run's schedule (a multiple of `every` steps, or the end;
+ * integrate.c, "Held steps"): continuing from there, the next step fuses
+ * the held half drift as the uninterrupted run does.
  *
  * The run loop copies the state into an in-memory snapshot at each scheduled
  * frame (a memcpy of the arrays: cheap beside writing the frame) and the
@@ -94,7 +94,7 @@ static double *saved_array(const swData *d, const swSaved *s) {
  * count, last step, minimum, maximum, last value and trapezoidal sum, as doubles (exact: steps and counts
  * are far below 2^53). */
 static size_t scalars_len(const swModel *m) {
-  return 6 + 2 * (size_t)m->nprobe + SW_EXPECT_SAVED * (size_t)m->nexpect;
+  return 7 + 2 * (size_t)m->nprobe + SW_EXPECT_SAVED * (size_t)m->nexpect;
 }
 
 struct swCheckpoint {
@@ -141,6 +141,7 @@ void sw_checkpoint_take(swCheckpoint *c, const swModel *m, const swData *d,
   *s++ = d->kick_pending;
   *s++ = d->kick_h;
   *s++ = (double)frames;
+  *s++ = d->held;
   for (int k = 0; k < m->nprobe; k++) {
     *s++ = d->probe_head[k];
     *s++ = d->probe_count[k];
@@ -164,7 +165,9 @@ static void checkpoint_put(const swCheckpoint *c, const swModel *m, swData *d, s
   d->work = s[2];
   d->kick_pending = (int)s[3];
   d->kick_h = s[4];
-  s += 6;
+  d->held = (int)s[6];
+  d->whole = 0;
+  s += 7;
   for (int k = 0; k < m->nprobe; k++) {
     d->probe_head[k] = (int)*s++;
     d->probe_count[k] = (int)*s++;

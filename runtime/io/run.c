@@ -14,11 +14,15 @@
  * twice a second; the wall clock is read on a stride of steps re-estimated
  * from the measured step rate, so a tiny rod does not pay a clock read per
  * step and a huge one is not left silent.  A model's expectations (expect.c)
- * are sampled at the steps they name: the fused chunks end there.  Frames
- * are scheduled on the step count since t = 0, and after each frame of the
- * schedule the output takes a checkpoint (restart.c), so a run continued
- * from its file (`resumed`) steps in the same chunks as one that never
- * stopped.  A silent run (swRunOptions.silent: sw_evaluate's, one of many
+ * are sampled at the steps they name: the chunks end there.  A chunk ends
+ * held (sw_steps_held, integrate.c), its last half drift fused with the
+ * next chunk's first as within a chunk, and the state is made whole only
+ * while it is read: so frames, samples and the 256-step cut leave the
+ * trajectory's bits alone, and `--every`, an `expect` line or an objective
+ * change nothing but what is read.  Frames are scheduled on the step count
+ * since t = 0, and after each frame of the schedule the output takes a
+ * checkpoint of the held state (restart.c), so a run continued from its
+ * file (`resumed`) fuses its steps as one that never stopped.  A silent run (swRunOptions.silent: sw_evaluate's, one of many
  * of a study) prints nothing at all; an instability's reason stays in
  * d->error. */
 #include <math.h>
@@ -156,8 +160,9 @@ int sw_run(const swModel *m, swData *d, swOutput *out, const swRunOptions *ro) {
             ro->duration, ro->every);
     return SW_EUSAGE;
   }
-  /* Counted from the present state, so a resumed run ends at `duration`. */
-  double remaining = ro->duration - d->time;
+  /* Counted from the present state, so a resumed run ends at `duration`
+   * (a held state's positions are half a step behind its count). */
+  double remaining = ro->duration - sw_time(m, d);
   long nsteps = 0;
   char why[256];
   if (remaining > 0 && sw_step_count(remaining, m->dt, &nsteps, why, sizeof why) != SW_OK) {
@@ -199,8 +204,11 @@ int sw_run(const swModel *m, swData *d, swOutput *out, const swRunOptions *ro) {
       long due = sw_expect_next(m, d->step);
       if (due - d->step < chunk) chunk = due - d->step;
     }
-    int step_rc = sw_steps(m, d, chunk);
+    /* held steps (integrate.c): the chunks' ends leave the bits alone */
+    int step_rc = sw_steps_held(m, d, chunk);
     k += chunk;
+    const int frame = d->step % every == 0 || k == nsteps;
+    if (step_rc == SW_OK && (frame || ro->expect)) step_rc = sw_whole_begin(m, d);
     if (step_rc == SW_OK && ro->expect) sw_expect_sample(m, d, ro->expect);
     if (step_rc != SW_OK) {
       progress_end(&p);
@@ -208,12 +216,20 @@ int sw_run(const swModel *m, swData *d, swOutput *out, const swRunOptions *ro) {
       rc = step_rc;
       break;
     }
-    if (d->step % every == 0 || k == nsteps) {
-      rc = write_frame(m, d, out, &p);
+    if (frame) rc = write_frame(m, d, out, &p);
+    sw_whole_end(m, d);
+    if (frame) { /* the held state: a continued run fuses as this one does */
       if (rc == SW_OK) rc = checkpoint(m, d, out, ro, &p);
       last_frame = k;
     }
     progress_update(&p, d, k);
+  }
+  /* the run ends at a whole step (its checkpoint keeps the held one) */
+  int settle_rc = sw_settle(m, d);
+  if (rc == SW_OK && settle_rc != SW_OK) {
+    progress_end(&p);
+    say(log, "sinew: %s\n", d->error[0] ? d->error : "the step failed");
+    rc = settle_rc;
   }
   if (rc == SW_OK && interrupted && k < nsteps) {
     if (last_frame != k) rc = write_frame(m, d, out, &p);

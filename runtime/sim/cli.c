@@ -111,12 +111,20 @@ static swModel *build_model(const swCli *c, double *stable, const char **dt_sour
   const swProgram *p = c->p;
   char err[512] = "";
   *dt_source = c->dt_given ? "--dt" : p->dt > 0 ? "from the model" : "half the stable estimate";
-  /* the step sw_evaluate takes too (evaluate.c) */
-  swModel *m = sw_program_compile(p, c->P, c->dt_given ? c->dt : 0, c->integrator, c->every,
+  /* the step sw_evaluate takes too (evaluate.c): shortened to divide the
+   * model's frame interval, never --every's, so that --every changes what is
+   * written and nothing else */
+  swModel *m = sw_program_compile(p, c->P, c->dt_given ? c->dt : 0, c->integrator, p->every,
                                   stable, rc, err, sizeof err);
   if (!m) {
     sw_cli_complain(c, "%s", err);
     return NULL;
+  }
+  if (!c->dt_given && !(p->dt > 0) && m->dt < 0.5 * *stable * (1 - 1e-12)) {
+    static char shortened[96];
+    snprintf(shortened, sizeof shortened, "half the stable estimate, shortened so that %.0f steps "
+             "span the model's frame interval", round(p->every / m->dt));
+    *dt_source = shortened;
   }
   long nsteps;
   char why[256];
@@ -144,6 +152,21 @@ static swModel *build_model(const swCli *c, double *stable, const char **dt_sour
       fprintf(stderr, "%s: warning: muscle '%s': its activation %s %g; it acts as %g "
               "(activations are clamped to [0, 1])\n", c->prog, m->muscle_name[mu],
               hi > 1 ? "reaches" : "goes down to", hi > 1 ? hi : lo, hi > 1 ? 1.0 : 0.0);
+  }
+  /* frames fall on steps (run.c): say where, when the interval asked for
+   * is not a whole number of them */
+  if (c->every > 0 && c->every < c->duration) {
+    double k = round(c->every / m->dt);
+    if (k < 1) k = 1;
+    if (fabs(k * m->dt - c->every) > 1e-9 * c->every) {
+      char every_text[32], dt_text[32], got_text[32];
+      fprintf(stderr, "%s: note: a frame every %s (%s) is %.4g steps of dt = %s; frames come "
+              "every %.0f steps, %s apart\n", c->prog,
+              sw_cli_format_time(every_text, sizeof every_text, c->every),
+              c->every_given ? "--every" : "the model's output", c->every / m->dt,
+              sw_cli_format_time(dt_text, sizeof dt_text, m->dt), k,
+              sw_cli_format_time(got_text, sizeof got_text, k * m->dt));
+    }
   }
   fflush(stderr);
   *rc = SW_OK;
@@ -287,16 +310,16 @@ static int run(const swCli *c, const swModel *m, const char *out) {
     sw_data_free(d);
     return SW_EIO;
   }
-  if (c->restart && !(d->time < c->duration - 0.5 * m->dt)) {
+  if (c->restart && !(sw_time(m, d) < c->duration - 0.5 * m->dt)) {
     sw_cli_complain(c, "--restart: %s already reaches t = %.9g s; give a longer --duration", out,
-                    d->time);
+                    sw_time(m, d));
     sw_output_close(o, "complete");
     sw_expect_run_free(expect);
     sw_data_free(d);
     return SW_EUSAGE;
   }
   if (c->restart && !c->quiet)
-    fprintf(stderr, "%s: continuing %s from t = %.9g s (frame %ld)\n", c->prog, out, d->time,
+    fprintf(stderr, "%s: continuing %s from t = %.9g s (frame %ld)\n", c->prog, out, sw_time(m, d),
             sw_output_frames(o));
   swRunOptions ro = {.duration = c->duration, .every = c->every, .quiet = c->quiet,
                      .expect = expect, .resumed = c->restart != NULL};
@@ -414,24 +437,12 @@ static int study(swCli *c) {
 }
 
 /* --replay: the run of one design of a study, as sw_evaluate ran it: its
- * params (cli_study.c), duration, dt and integrator, and the model's frame
- * interval, which an evaluation hands sw_run too: the run loop ends its fused
- * chunks of steps at the frames, and a drift fused over two steps is not the
- * same floating-point sum as two, so another --every would change the last
- * bits.  Writing a frame changes nothing a step reads: the strains and joint
- * forces it recomputes from the state are scratch the next step computes
- * afresh. */
+ * params (cli_study.c), duration, dt and integrator.  Any frame interval
+ * gives its steps: the run loop's held steps (integrate.c) leave the bits
+ * alone where it reads the state, and writing a frame changes nothing a step
+ * reads (the strains and joint forces it recomputes are scratch the next step
+ * computes afresh). */
 static int take_replay(swCli *c) {
-  const swProgram *p = c->p;
-  if (c->every_given && c->every != p->every) {
-    char mine[32], theirs[32];
-    return sw_cli_complain(c, "--replay %s: its evaluations stepped in the chunks the model's "
-                           "frame interval (%s) sets, which --every %s would change, and the "
-                           "objective's last bits with them: leave out --every", c->replay,
-                           sw_cli_format_time(theirs, sizeof theirs, p->every),
-                           sw_cli_format_time(mine, sizeof mine, c->every));
-  }
-  c->every = p->every;
   swStudyCall call;
   void *mem;
   int rc = study_call(c, &call, &mem);

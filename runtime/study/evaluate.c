@@ -10,9 +10,9 @@
  * the reductions its run sampled.  The reductions (at, mean_over, max_over,
  * min_over) are entries of the model's expectations with `reduce` set, so
  * expect.c samples them at the steps they name and the run loop ends its
- * fused chunks there; sw_evaluate hands sw_run the model's frame interval,
- * so the chunks are those of a plain run of the same params and the
- * objective it finds is, bit for bit, the one that run prints.  The
+ * calls of the step there, held (integrate.c, "Held steps"), so that the
+ * steps are those of a plain run of the same params with any frames and
+ * the objective it finds is, bit for bit, the one that run prints.  The
  * generated program supplies the arithmetic: objective(P, R, &value,
  * &penalty) over the params and the reductions' values.  The score (larger
  * is better) is value - penalty for maximize and -(value + penalty) for

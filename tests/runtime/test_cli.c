@@ -226,7 +226,7 @@ static void test_info(void **state) {
   expect_contains(r.out, "boundary conditions: 1 (1 clamped end, 0 prescribed velocities");
   expect_contains(r.out, "gravity: none\n");
   expect_contains(r.out, "integrator: position Verlet\n");
-  expect_contains(r.out, "(half the stable estimate; stable estimate ");
+  expect_contains(r.out, "(half the stable estimate, shortened so that 6 steps span the model's frame interval; stable estimate 386.25 us)");
   expect_contains(r.out, "memory: about ");
   expect_contains(r.out, "threads: 4 (--threads; ");
   expect_contains(r.out, "; results do not depend on it)\n");

@@ -11,7 +11,8 @@
  * planes of x, v, Q, omega and the derived strains and loads), the joint
  * records, the time and the work are compared bit for bit.  A run made
  * unstable on purpose must stop at the same step with the same message on
- * any number of threads. */
+ * any number of threads.  And a run's steps in held calls of any length,
+ * with the whole state read between them, give the bits of one call. */
 #include "testutil.h"
 #include "internal.h" /* sw_sweep_fits */
 
@@ -355,12 +356,95 @@ static void test_sweep(void **state) {
   sweep_case(1);
 }
 
+/* ---- held steps ----
+ * The run loop ends its calls of the step where it reads the state (frames,
+ * expectations' samples, every 256 steps) with sw_steps_held, and reads the
+ * whole step between sw_whole_begin and sw_whole_end (integrate.c, "Held
+ * steps").  Whatever the lengths of the calls and whatever is read in
+ * between (here sw_energy, which recomputes every strain and couple), the
+ * state must have the bits of one call of sw_steps, on 1 and 2 threads: for
+ * the scene above with both schemes (PEFRL is never held) and for the
+ * sweep's.  The derived arrays are compared after sw_energy recomputes them
+ * from the final state (the external loads, which it does not, are left
+ * out). */
+static int advance(const swModel *m, swData *d, long steps, int held) {
+  if (!held) return sw_steps(m, d, steps);
+  static const long len[] = {1, 7, 50, 3, 128, 2, 256};
+  int rc = SW_OK;
+  for (long done = 0, c = 0; done < steps && rc == SW_OK; c++) {
+    long k = len[c % 7] < steps - done ? len[c % 7] : steps - done;
+    rc = sw_steps_held(m, d, k);
+    done += k;
+    if (rc == SW_OK) rc = sw_whole_begin(m, d);
+    double e[3];
+    if (rc == SW_OK) sw_energy(m, d, e);
+    sw_whole_end(m, d);
+  }
+  const int settled = sw_settle(m, d);
+  return rc == SW_OK ? settled : rc;
+}
+
+static snapshot held_run(const swModel *m, int threads, long steps, int held, double energy[3]) {
+  swData *d = sw_data_new(m);
+  assert_non_null(d);
+  assert_int_equal(sw_set_threads(d, threads), threads);
+  snapshot s = {0};
+  s.rc = advance(m, d, steps, held);
+  assert_int_equal(d->held, 0);
+  sw_energy(m, d, energy);
+  s.time = d->time, s.work = d->work, s.step = d->step;
+  s.planes = copy_planes(m, d);
+  s.joints = malloc((4 * (size_t)m->njoint + 1) * sizeof(double));
+  assert_non_null(s.joints);
+  memcpy(s.joints, d->joint_force, 3 * (size_t)m->njoint * sizeof(double));
+  memcpy(s.joints + 3 * m->njoint, d->joint_angle, (size_t)m->njoint * sizeof(double));
+  sw_data_free(d);
+  return s;
+}
+
+static void held_case(swSpec *s, const char *what, long steps) {
+  swModel *m = sw_test_compile_at(s, 0.5);
+  double e1[3], en[3];
+  snapshot one = held_run(m, 1, steps, 0, e1);
+  assert_int_equal(one.rc, SW_OK);
+  for (int t = 1; t <= 2; t++) {
+    snapshot held = held_run(m, t, steps, 1, en);
+    assert_int_equal(held.rc, SW_OK);
+    const size_t n = snapshot_doubles(m) - 6 * (size_t)m->stride;
+    size_t differ = 0;
+    for (size_t i = 0; i < n; i++) differ += memcmp(&one.planes[i], &held.planes[i], sizeof(double)) != 0;
+    fprintf(stderr, "# %s, %ld steps in held calls of 1 to 256 steps on %d thread%s, the whole "
+            "state read between them: %zu of %zu doubles differ from one call; energy %.17g J\n",
+            what, steps, t, t > 1 ? "s" : "", differ, n, en[0] + en[1]);
+    assert_int_equal(differ, 0);
+    assert_memory_equal(e1, en, sizeof e1);
+    assert_memory_equal(one.joints, held.joints, 4 * (size_t)m->njoint * sizeof(double));
+    assert_memory_equal(&one.work, &held.work, sizeof one.work);
+    assert_memory_equal(&one.time, &held.time, sizeof one.time);
+    assert_int_equal(one.step, held.step);
+    free(held.planes);
+    free(held.joints);
+  }
+  free(one.planes);
+  free(one.joints);
+  sw_model_free(m);
+  sw_spec_free(s);
+}
+
+static void test_held(void **state) {
+  (void)state;
+  held_case(scene(SW_VERLET), "Verlet, joints, rigid body, ground, water, contact", 600);
+  held_case(scene(SW_PEFRL), "PEFRL (never held)", 200);
+  held_case(sweep_scene(0), "Verlet, the fused sweep", 400);
+}
+
 int main(void) {
   const struct CMUnitTest tests[] = {
       cmocka_unit_test(test_verlet),
       cmocka_unit_test(test_pefrl),
       cmocka_unit_test(test_unstable),
       cmocka_unit_test(test_sweep),
+      cmocka_unit_test(test_held),
   };
   return cmocka_run_group_tests_name("threads", tests, NULL, NULL);
 }
