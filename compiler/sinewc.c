@@ -16,8 +16,9 @@
  * an argument vector, never through a shell, so no file name can become a
  * command.  The runtime is looked up next to the sinewc executable: the
  * source tree (bin/../runtime/include, bin/../build) or an installation
- * (bin/../include/sinew, bin/../lib); SINEW_RUNTIME overrides both with a
- * directory holding sinew.h (with its parts) and libsinewrt.a.  Exit codes
+ * (bin/../include/sinew, bin/../lib); SINEW_RUNTIME overrides both with
+ * one directory holding the public header (sinew.h and the parts it
+ * includes, runtime_header below) and libsinewrt.a.  Exit codes
  * as docs/compiler.md states them:
  * 0 ok, 1 model error, 2 usage error, 4 I/O error.
  */
@@ -79,8 +80,20 @@ static void usage(FILE *out) {
           "  --version    print the version\n"
           "  --help       this text\n"
           "environment: SINEW_PATH (import search path), CC (C compiler, default cc),\n"
-          "             SINEW_RUNTIME (directory with sinew.h and libsinewrt.a)\n");
+          "             SINEW_RUNTIME: one directory holding the runtime, instead of\n"
+          "               the one found next to sinewc: its header sinew.h and the\n"
+          "               parts sinew.h includes (sinew_spec.h, sinew_model.h,\n"
+          "               sinew_io.h, sinew_program.h), and its library libsinewrt.a\n"
+          "               (libsinewrt-portable.a for --portable; sinewrt_mpi.o, if\n"
+          "               there, is linked for MPI studies unless --no-mpi)\n");
 }
+
+/* The runtime's public header: sinew.h and the parts it includes
+ * (runtime/include/, installed in PREFIX/include/sinew), all of which must
+ * sit in the one directory the generated C is compiled against. */
+static const char *const runtime_header[] = {"sinew.h", "sinew_spec.h", "sinew_model.h",
+                                             "sinew_io.h", "sinew_program.h"};
+enum { NHEADER = sizeof runtime_header / sizeof runtime_header[0] };
 
 static int exists(const char *path) {
   struct stat st;
@@ -134,8 +147,22 @@ static int split_flags(char *s, char **argv, int max) {
 static int run_cc(const char *csrc, const char *out, int portable, int no_mpi) {
   char inc[PATH_MAX], lib[PATH_MAX];
   if (!find_runtime(inc, lib, sizeof inc)) {
-    fprintf(stderr, "%s: cannot find the runtime (sinew.h and libsinewrt.a) next to this "
-            "executable; set SINEW_RUNTIME to their directory\n", progname);
+    fprintf(stderr, "%s: cannot find the runtime (sinew.h with its parts, and libsinewrt.a) "
+            "next to this executable; set SINEW_RUNTIME to their directory (sinewc --help)\n",
+            progname);
+    return 4;
+  }
+  /* a missing part would otherwise surface as the C compiler failing on
+   * the generated code, which reads as a bug in sinewc */
+  for (int i = 0; i < NHEADER; i++) {
+    char part[PATH_MAX + 32];
+    snprintf(part, sizeof part, "%s/%s", inc, runtime_header[i]);
+    if (exists(part)) continue;
+    fprintf(stderr, "%s: cannot find the runtime's header '%s' (sinew.h and its parts ", progname,
+            part);
+    for (int j = 1; j < NHEADER; j++)
+      fprintf(stderr, "%s%s", runtime_header[j], j + 1 < NHEADER ? ", " : "");
+    fprintf(stderr, " belong in one directory)\n");
     return 4;
   }
   const char *cc = getenv("CC");

@@ -3,7 +3,8 @@
 # Called by `make test`, `make demo`, `make bench` and `make plots` so that each works on a
 # fresh Debian machine.  docs/dependencies.md says why each package is here.
 # With arguments (PKG:PROBE ...), installs those instead: the heavy packages that only one
-# test or tool needs (ParaView, ffmpeg) are pulled in by that test, not by every build.
+# test or tool needs (ParaView, ffmpeg) are pulled in by that test or tool (test_paraview.sh,
+# test_movie.sh, `sinew-plot movie`), not by every build.
 set -e
 # package:probe-file pairs; a package is missing when its probe file is absent.
 PKGS="

@@ -10,15 +10,24 @@
 #            times the picture's scale (measured from the rod's length in
 #            pixels), and the rod must be as wide as its diameter at that
 #            scale
-#   movie    ffprobe counts the frames (real time at 30 fps; --fps and
-#            --speed; the 300-frame cap on a synthetic 20 s run), and
-#            reports the size and codec (h264 from libx264, or mpeg4)
+#   movie    the same 0.3 s run as a movie: ffprobe counts its frames
+#            against round(span x fps / speed) + 1 from the file's /time
+#            (real time at 30 fps; --fps and --speed; the 300-frame cap on a
+#            synthetic 20 s run), and reads its size, codec (h264 from
+#            libx264, or mpeg4), rate and duration, printed as TAP comments
+#   ffmpeg   not on PATH: the tool runs scripts/deps.sh beside itself (a
+#            stand-in deps.sh records the call and puts ffmpeg on PATH,
+#            and the movie is made), and says in one line, exit 1, what is
+#            missing and how to get it when it may not install
+#            (SINEW_NO_INSTALL=1; not root) or deps.sh leaves ffmpeg off
+#            PATH (the installed copy, without deps.sh: test_install.sh)
 #   errors   one line and the exit code for a file without rods, a missing
-#            file, no ffmpeg on PATH, bad options, an unwritable movie; Ctrl-C
-#            exits 130 and leaves neither a partial movie nor an ffmpeg
+#            file, bad options, an unwritable movie; Ctrl-C exits 130 and
+#            leaves neither a partial movie nor an ffmpeg
 #
 # ffmpeg is not one of `make test`'s base packages: this test installs it
-# when it is missing (scripts/deps.sh ffmpeg:/usr/bin/ffmpeg); its absence
+# when it is missing (scripts/deps.sh ffmpeg:/usr/bin/ffmpeg, as test_paraview
+# does for ParaView), so only a run of this test pulls it in; its absence
 # after that is a failure, not a skip.
 . "$(dirname "$0")/tap.sh"
 cd "$ROOT" || exit 1
@@ -95,33 +104,62 @@ awk -v w="$width" -v d="$diam" 'BEGIN { x = w - d; if (x < 0) x = -x; exit !(x <
 ok $? "the rod is as wide as its diameter: $width px against 2 r s = $diam px (within 2 px)"
 
 # ---- movie
-probe() {   # probe FILE: "codec width height frames rate" of the first video stream
+# probe FILE: "codec width height frames rate duration bytes" of the movie
+probe() {
   ffprobe -v error -count_frames -select_streams v:0 \
-    -show_entries stream=codec_name,width,height,nb_read_frames,r_frame_rate \
+    -show_entries stream=codec_name,width,height,nb_read_frames,r_frame_rate:format=duration,size \
     -of default=noprint_wrappers=1 "$1" |
-    awk -F= '{ v[$1] = $2 } END { print v["codec_name"], v["width"], v["height"], v["nb_read_frames"], v["r_frame_rate"] }'
+    awk -F= '{ v[$1] = $2 } END { print v["codec_name"], v["width"], v["height"],
+                                  v["nb_read_frames"], v["r_frame_rate"], v["duration"], v["size"] }'
+}
+# The frames a movie of the pendulum's run should have (sinew-plot's
+# movie_frame_index): K = round(span x fps / speed) + 1, where span is the
+# simulated time from the first of the F frames written to the last.
+$PY - "$TMP/pend.h5" >"$TMP/span" 2>"$TMP/log" <<'EOF'
+import sys, h5py
+with h5py.File(sys.argv[1], "r") as f:
+    t = f["time"][()]
+print(len(t), f"{t[-1] - t[0]:.6g}")
+EOF
+read -r nwritten span <"$TMP/span"
+expect_frames() {   # expect_frames FPS SPEED: K
+  awk -v s="$span" -v f="$1" -v v="$2" 'BEGIN { printf "%d\n", int(s * f / v + 0.5) + 1 }'
 }
 # movie DESCRIPTION EXPECTED ARGS...: exits 0 and ffprobe says EXPECTED
+# ("width height frames rate"), the codec h264 or mpeg4, and a duration of
+# frames / rate (to a frame); the figures are printed
 movie() {
   what=$1 want=$2; shift 2
   rm -f "$TMP/out.mp4"
   "$PLOT" movie "$@" -o "$TMP/out.mp4" >"$TMP/log" 2>&1
   rc=$?
-  got=$(probe "$TMP/out.mp4" 2>>"$TMP/log")
-  got_codec=${got%% *}
-  case $got_codec in h264|mpeg4) want="$got_codec $want" ;; esac
-  [ $rc -eq 0 ] && [ "$got" = "$want" ]
-  ok $? "$what: ffprobe says '$got'"
-  [ $rc -eq 0 ] && [ "$got" = "$want" ] || { echo "exit $rc; expected '$want'"; cat "$TMP/log"; } | diag
+  probe "$TMP/out.mp4" >"$TMP/probe" 2>>"$TMP/log"
+  read -r codec w h nframes rate dur bytes <"$TMP/probe"
+  got="$w $h $nframes $rate"
+  echo "# $what: ffprobe: $codec, ${w}x${h}, $nframes frames at $rate fps, $dur s, $bytes bytes"
+  [ $rc -eq 0 ] && [ "$got" = "$want" ] && { [ "$codec" = h264 ] || [ "$codec" = mpeg4 ]; } &&
+    awk -v d="$dur" -v k="$nframes" -v r="$rate" 'BEGIN { split(r, q, "/"); f = q[1] / q[2];
+      e = d - k / f; if (e < 0) e = -e; exit !(e <= 1 / f) }'
+  res=$?
+  ok $res "$what: ffprobe says '$codec $got', $dur s"
+  [ $res -eq 0 ] || { echo "exit $rc; expected '$want', h264 or mpeg4, $dur s = frames / rate"
+                      cat "$TMP/log"; } | diag
 }
+k=$(expect_frames 30 1)
+echo "# the pendulum wrote $nwritten frames over $span s: at 30 fps in real time," \
+  "round($span x 30 / 1) + 1 = $k movie frames"
+[ "$k" = 10 ]
+ok $? "0.3 s of run at 30 fps is 9 intervals, 10 frames: $k"
+diag <"$TMP/log"
 mkdir "$TMP/tmpdir"
-TMPDIR=$TMP/tmpdir movie "real time at 30 fps: 0.3 s is 9 intervals, 10 frames" \
-  "320 240 10 30/1" "$TMP/pend.h5" --size 320x240
+TMPDIR=$TMP/tmpdir movie "real time at 30 fps, $k frames" \
+  "320 240 $k 30/1" "$TMP/pend.h5" --size 320x240
 n=$(ls -A "$TMP/tmpdir" | wc -l)
 [ "$n" -eq 0 ]
 ok $? "the movie leaves no temporary file ($n in TMPDIR)"
-movie "--fps 20 --speed 0.5: 0.6 s of movie, 13 frames" "640 480 13 20/1" \
-  "$TMP/pend.h5" --fps 20 --speed 0.5 --size 640x480 --view 10,-80
+k=$(expect_frames 20 0.5)
+movie "--fps 20 --speed 0.5: 0.6 s of movie, round(0.3 x 20 / 0.5) + 1 = $k frames" \
+  "640 480 $k 20/1" "$TMP/pend.h5" --fps 20 --speed 0.5 --size 640x480 --view 10,-80
 
 # a 20 s run: 600 frames at 30 fps, so 300 at 299/20 fps
 $PY - "$TMP" <<'EOF' 2>"$TMP/log"
@@ -173,12 +211,51 @@ fails 4 "sinew-plot: $TMP/norods.h5: no rods (no dataset /rods/NAME/position)" \
 fails 4 "sinew-plot: $TMP/norods.h5: no rods (no dataset /rods/NAME/position)" \
   "frames of a file without rods" frames "$TMP/norods.h5" -o "$TMP/xframes"
 fails 4 "sinew-plot: $TMP/none.h5: no such file" "missing file" movie "$TMP/none.h5" -o "$TMP/x.mp4"
-# ffmpeg out of reach: an empty PATH (the script's interpreter is absolute)
+
+# ---- ffmpeg not on PATH: an empty PATH hides it (the script's interpreter
+# is absolute).  Where the tool may not install it: one line naming the
+# package and the command, exit 1.
 mkdir "$TMP/nobin"
+RUN="env PATH=$TMP/nobin SINEW_NO_INSTALL=1"
+fails 1 "sinew-plot: ffmpeg is missing and SINEW_NO_INSTALL forbids installing it: install Debian's ffmpeg package (apt-get install ffmpeg, as root)" \
+  "movie without ffmpeg on PATH, SINEW_NO_INSTALL=1" movie "$TMP/pend.h5" -o "$TMP/x.mp4"
+# (the installed sinew-plot, which has no deps.sh beside it: test_install.sh)
 RUN="env PATH=$TMP/nobin"
-fails 1 "sinew-plot: ffmpeg is missing: install Debian's ffmpeg package (apt-get install ffmpeg)" \
-  "movie without ffmpeg on PATH" movie "$TMP/pend.h5" -o "$TMP/x.mp4"
+if [ "$(id -u)" -eq 0 ]; then
+  # as root the tool runs scripts/deps.sh, which finds Debian's ffmpeg
+  # installed (above) and does nothing: ffmpeg is still off PATH
+  fails 1 "sinew-plot: ffmpeg is not on PATH, though Debian's ffmpeg package is installed (/usr/bin/ffmpeg): add /usr/bin to PATH" \
+    "movie without ffmpeg on PATH, as root: deps.sh runs, nothing to install" \
+    movie "$TMP/pend.h5" -o "$TMP/x.mp4"
+  # a stand-in deps.sh beside a copy of the script, reached through a
+  # symlink: called with the package and its probe, it puts ffmpeg on PATH,
+  # and the movie is made with it (the same 10 frames as the first movie)
+  mkdir "$TMP/standin" "$TMP/link"
+  cp "$PLOT" "$TMP/standin/sinew-plot"
+  ln -s "$TMP/standin/sinew-plot" "$TMP/link/sinew-plot"
+  cat >"$TMP/standin/deps.sh" <<'EOF'
+# stand-in for scripts/deps.sh: records its arguments and "installs" ffmpeg
+d=$(dirname "$0")
+echo "$*" >>"$d/deps.args"
+ln -s /usr/bin/ffmpeg "$d/ffmpeg"
+EOF
+  env PATH="$TMP/standin" "$TMP/link/sinew-plot" movie "$TMP/pend.h5" --size 160x120 \
+    -o "$TMP/y.mp4" >"$TMP/log" 2>&1
+  rc=$?
+  called=$(cat "$TMP/standin/deps.args" 2>/dev/null)
+  got=$(probe "$TMP/y.mp4" 2>>"$TMP/log" | cut -d' ' -f2-5)
+  [ $rc -eq 0 ] && [ "$called" = "ffmpeg:/usr/bin/ffmpeg" ] &&
+    [ "$got" = "160 120 $(expect_frames 30 1) 30/1" ]
+  res=$?
+  ok $res "movie without ffmpeg on PATH, as root: deps.sh beside the script is run with\
+ '$called', then the movie is made ('$got')"
+  [ $res -eq 0 ] || { echo "exit $rc"; cat "$TMP/log"; } | diag
+else
+  fails 1 "sinew-plot: ffmpeg is missing and only root can install it: install Debian's ffmpeg package (sudo apt-get install ffmpeg)" \
+    "movie without ffmpeg on PATH, not root" movie "$TMP/pend.h5" -o "$TMP/x.mp4"
+fi
 RUN=
+
 fails 2 "sinew-plot: --size 321x240: the movie's width and height must be even (4:2:0 video)" \
   "odd movie size" movie "$TMP/pend.h5" --size 321x240 -o "$TMP/x.mp4"
 fails 2 "sinew-plot: --view takes ELEV,AZIM in degrees (e.g. 20,-60), got '20'" \
