@@ -86,6 +86,33 @@ int sw_output_close(swOutput *o, const char *status);
 int sw_output_objective(swOutput *o, const char *text, double objective, double penalty,
                         double score, const char *units);
 long sw_output_frames(const swOutput *o);
+/* SIM --accuracy (accuracy.c): two runs of one model at steps dt and dt/2,
+ * observable by observable, frame by frame.  The observables are the probes
+ * (/probes/NAME, the largest difference of the vector) and the hinge angles
+ * (/joints/NAME/angle); each is held to its scale, its range over the finer
+ * run (its largest magnitude if it barely moves), and parts where the
+ * difference first exceeds tol times that scale.  The objective, when the
+ * files have one, is compared by value. */
+#define SW_ACCURACY_MAX 64
+typedef struct {
+  char name[96];             /* "probe toe", "joint right.knee_joint"      */
+  char units[32];            /* the dataset's, SI                           */
+  double worst;              /* largest difference over the frames          */
+  double scale;              /* the observable's scale (see above)          */
+  double part_time;          /* s, first frame past tol * scale; NAN: never */
+} swAccuracyItem;
+typedef struct {
+  int n, more;               /* items kept, and those past SW_ACCURACY_MAX  */
+  swAccuracyItem item[SW_ACCURACY_MAX];
+  long frames;               /* frames compared (the shorter file's)        */
+  long frames_coarse, frames_fine;
+  int has_objective;
+  double objective[2];       /* SI, coarse and fine (NaN: not reached)      */
+} swAccuracy;
+/* Fills a from the two files; SW_OK, or SW_EIO with the reason in err. */
+int sw_accuracy_compare(const char *coarse, const char *fine, double tol, swAccuracy *a,
+                        char *err, size_t errlen);
+
 /* SIM --compare (compare.c): every numeric dataset of the golden file against
  * the run's, within rtol of the dataset's largest magnitude; the report to
  * f.  Returns how many datasets differ or are missing, -1 when a file cannot

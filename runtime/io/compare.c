@@ -23,6 +23,7 @@
 #include <string.h>
 
 #include "sinew.h"
+#include "h5get.h"
 
 typedef struct {
   hid_t run;          /* the run's file                      */
@@ -32,8 +33,7 @@ typedef struct {
   int matched, differ, missing, read_errors;
 } swCompare;
 
-/* The dataset's `units` attribute, or "". */
-static void units_of(hid_t ds, char *buf, size_t len) {
+void sw_h5_units(hid_t ds, char *buf, size_t len) {
   buf[0] = 0;
   if (H5Aexists(ds, "units") <= 0) return;
   hid_t a = H5Aopen(ds, "units", H5P_DEFAULT);
@@ -61,8 +61,7 @@ static void units_of(hid_t ds, char *buf, size_t len) {
   H5Aclose(a);
 }
 
-/* All of a numeric dataset as doubles, with its extents; NULL on failure. */
-static double *read_all(hid_t ds, int *rank, hsize_t dims[8], size_t *count) {
+double *sw_h5_read_all(hid_t ds, int *rank, hsize_t dims[8], size_t *count) {
   hid_t space = H5Dget_space(ds);
   if (space < 0) return NULL;
   int r = H5Sget_simple_extent_ndims(space);
@@ -106,10 +105,10 @@ static void compare_dataset(swCompare *c, const char *name, hid_t golden) {
   int rg = 0, rr = 0;
   hsize_t dg[8] = {0}, dr[8] = {0};
   size_t ng = 0, nr = 0;
-  double *g = read_all(golden, &rg, dg, &ng);
-  double *r = run >= 0 ? read_all(run, &rr, dr, &nr) : NULL;
+  double *g = sw_h5_read_all(golden, &rg, dg, &ng);
+  double *r = run >= 0 ? sw_h5_read_all(run, &rr, dr, &nr) : NULL;
   char units[64] = "";
-  units_of(golden, units, sizeof units);
+  sw_h5_units(golden, units, sizeof units);
   if (!g || !r) {
     fprintf(c->f, "    FAILED /%s: cannot be read\n", name);
     c->read_errors++;

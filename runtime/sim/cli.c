@@ -247,7 +247,7 @@ static int report_objective(const swCli *c, const swModel *m, const swExpectRun 
   return SW_EIO;
 }
 
-static int run(const swCli *c, const swModel *m, const char *out) {
+int sw_cli_run(const swCli *c, const swModel *m, const char *out) {
   const swProgram *p = c->p;
   char err[512] = "";
   swData *d = sw_data_new(m);
@@ -388,6 +388,17 @@ static int run(const swCli *c, const swModel *m, const char *out) {
   return rc;
 }
 
+int sw_cli_simulate(const swCli *c) {
+  double stable = 0;
+  const char *dt_source = "";
+  int rc = SW_OK;
+  swModel *m = build_model(c, &stable, &dt_source, &rc);
+  if (!m) return rc;
+  rc = sw_cli_run(c, m, c->out);
+  sw_model_free(m);
+  return rc;
+}
+
 /* ---- a sweep or an optimisation (cli_study.c, study.c), a replay ---- */
 
 /* The SI unit of a dimension: "m", "Pa", "N m", "kg m^-1"; "" when
@@ -520,7 +531,8 @@ int sw_main(const swProgram *p, int argc, char **argv) {
     const char *dt_source = "";
     swModel *m = build_model(&c, &stable, &dt_source, &rc);
     if (m && c.info) sw_cli_print_info(&c, m, stable, dt_source, c.out);
-    else if (m) rc = run(&c, m, c.out);
+    else if (m && c.accuracy) rc = sw_cli_accuracy(&c, m);
+    else if (m) rc = sw_cli_run(&c, m, c.out);
     sw_model_free(m);
   }
   free(c.P);

@@ -6,7 +6,8 @@
  * reads argv into a swCli, cli_info.c prints --help and --info, cli.c is
  * sw_main (building the model, a run, the study entry) and cli_study.c
  * turns a study's options into swStudyOptions and a study's design into a
- * run's params (it sees swStudyCall, from study/study.h, not swCli).  A function called from another of these files
+ * run's params (it sees swStudyCall, from study/study.h, not swCli), and
+ * cli_accuracy.c runs a model again at smaller steps for --accuracy.  A function called from another of these files
  * is declared here and named sw_cli_*; everything else stays static in its
  * file. */
 #ifndef SINEW_CLI_H
@@ -21,7 +22,7 @@
 typedef enum {
   OPT_OUT, OPT_DURATION, OPT_DT, OPT_INTEGRATOR, OPT_EVERY, OPT_SET, OPT_THREADS, OPT_COMPARE,
   OPT_RTOL, OPT_RESTART, OPT_SWEEP, OPT_OPTIMIZE, OPT_BUDGET, OPT_POPSIZE, OPT_SIGMA,
-  OPT_RESTARTS, OPT_START, OPT_SEED, OPT_STUDY, OPT_RESUME, OPT_REPLAY, OPT_EVAL_TIMEOUT, OPT_QUIET,
+  OPT_RESTARTS, OPT_START, OPT_SEED, OPT_STUDY, OPT_RESUME, OPT_REPLAY, OPT_EVAL_TIMEOUT, OPT_ACCURACY, OPT_TOLERANCE, OPT_QUIET,
   OPT_INFO, OPT_HELP
 } swOptionId;
 
@@ -65,6 +66,8 @@ typedef struct {
   const char *replay;        /* --replay: the study file, or NULL            */
   long replay_index;         /* its evaluation, or -1: the best              */
   swStudyDesign replayed;    /* that evaluation, as the file has it          */
+  int accuracy;              /* --accuracy: the run again at dt/2, compared  */
+  double tolerance;          /* --tolerance: halve dt until within it (0: no) */
 } swCli;
 
 /* ---- cli.c ---- */
@@ -73,6 +76,17 @@ typedef struct {
 int sw_cli_complain(const swCli *c, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
 /* The threads of each step: --threads N, or for --threads auto by the model's size. */
 long sw_cli_threads_for(const swCli *c, const swModel *m);
+/* The run of c with m into out: output, expectations, objective, summary;
+ * returns the exit code. */
+int sw_cli_run(const swCli *c, const swModel *m, const char *out);
+/* Builds the model at c's step and runs it into c->out (sw_cli_run). */
+int sw_cli_simulate(const swCli *c);
+
+/* ---- cli_accuracy.c ---- */
+
+/* --accuracy: the run at m's step into c->out and at half of it, compared
+ * (and with --tolerance, halved on until two agree); returns the exit code. */
+int sw_cli_accuracy(const swCli *c, const swModel *m);
 
 /* ---- cli_options.c ---- */
 

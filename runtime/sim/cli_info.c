@@ -126,6 +126,7 @@ void sw_cli_print_help(const swCli *c, const char *default_out) {
     case OPT_THREADS: def = "1; the results are the same for any N"; break;
     case OPT_INTEGRATOR: def = "the model's"; break;
     case OPT_RTOL: def = "1e-9"; break;
+    case OPT_TOLERANCE: def = "none: one comparison, differences beyond 1% reported"; break;
     case OPT_BUDGET: def = "1000"; break;
     case OPT_POPSIZE: def = "4 + floor(3 ln n), n the ranged params"; break;
     case OPT_SIGMA: def = "0.25"; break;

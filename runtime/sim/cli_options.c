@@ -57,6 +57,10 @@ const swOption sw_cli_options[] = {
    "evaluation N (from 0), as evaluated (params, duration, dt, integrator) into a run file"},
   {OPT_EVAL_TIMEOUT, "--eval-timeout", "T", "under mpirun: re-queue an evaluation a rank holds "
    "longer than T"},
+  {OPT_ACCURACY, "--accuracy", NULL, "run again at dt/2 and report how much each probe, hinge "
+   "angle and the objective moved, and where the two runs part"},
+  {OPT_TOLERANCE, "--tolerance", "R", "--accuracy: halve dt until the observables of two runs "
+   "agree within R of their ranges (1% or 0.01), at most 4 times"},
   {OPT_QUIET, "--quiet", NULL, "no progress line, notes or summary"},
   {OPT_INFO, "--info", NULL, "print the compiled scene and exit"},
   {OPT_HELP, "--help", NULL, "print this help and exit"},
@@ -358,6 +362,18 @@ static int check_study_args(const swCli *c) {
   return SW_OK;
 }
 
+/* --tolerance: a fraction (0.01) or a percentage (1%), in (0, 1). */
+static int read_tolerance(swCli *c, const char *value) {
+  char *end;
+  double t = strtod(value, &end);
+  if (end != value && *end == '%' && !end[1]) t /= 100, end++;
+  if (end == value || *end || !(t > 0 && t < 1))
+    return sw_cli_complain(c, "--tolerance: expected a fraction in (0, 1) or a percentage "
+                           "(0.01 or 1%%), got '%s'", value);
+  c->tolerance = t;
+  return SW_OK;
+}
+
 static int unknown_option(const swCli *c, const char *arg, size_t len) {
   const char *bare = arg;             /* compared without its dashes */
   while (*bare == '-' && (size_t)(bare - arg) < len) bare++;
@@ -443,6 +459,8 @@ int sw_cli_parse_args(swCli *c, int argc, char **argv) {
       rc = read_study_option(c, opt->id, value);
       break;
     case OPT_REPLAY: rc = read_replay(c, value, &i, argc, argv); break;
+    case OPT_ACCURACY: c->accuracy = 1; break;
+    case OPT_TOLERANCE: rc = read_tolerance(c, value); break;
     case OPT_QUIET: c->quiet = 1; break;
     case OPT_INFO: c->info = 1; break;
     case OPT_HELP: c->help = 1; break;
@@ -455,5 +473,9 @@ int sw_cli_parse_args(swCli *c, int argc, char **argv) {
     return sw_cli_complain(c, "--restart %s continues that file: --out %s cannot name another",
                            c->restart, c->out);
   if (c->restart) c->out = c->restart;
+  if (c->tolerance > 0) c->accuracy = 1;
+  if (c->accuracy && (c->restart || c->replay || c->study.mode || c->study.resume))
+    return sw_cli_complain(c, "--accuracy runs the model afresh at two steps: leave out --restart, "
+                           "--replay, --sweep, --optimize and --resume");
   return check_study_args(c);
 }
