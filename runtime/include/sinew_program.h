@@ -80,6 +80,8 @@ typedef struct {
                           -(objective + penalty); -INFINITY when status != SW_OK */
   double sim_time;     /* s simulated                                       */
   long steps;
+  double dt;           /* s: the step it ran with (0 when the scene was not
+                          compiled)                                         */
   char message[256];   /* why it failed ("" when ok)                        */
 } swEvalResult;
 

@@ -57,6 +57,8 @@ const swOption sw_cli_options[] = {
    "evaluation N (from 0), as evaluated (params, duration, dt, integrator) into a run file"},
   {OPT_EVAL_TIMEOUT, "--eval-timeout", "T", "under mpirun: re-queue an evaluation a rank holds "
    "longer than T"},
+  {OPT_NO_RECHECK, "--no-recheck", NULL, "a study: skip the recheck of its 3 best designs at "
+   "dt/2 (how much the time step moves their objectives)"},
   {OPT_ACCURACY, "--accuracy", NULL, "run again at dt/2 and report how much each probe, hinge "
    "angle and the objective moved, and where the two runs part"},
   {OPT_TOLERANCE, "--tolerance", "R", "--accuracy: halve dt until the observables of two runs "
@@ -309,6 +311,9 @@ static int read_study_option(swCli *c, swOptionId id, const char *value) {
     return SW_OK;
   case OPT_EVAL_TIMEOUT:
     return read_time(c, "--eval-timeout", value, 1, &a->eval_timeout);
+  case OPT_NO_RECHECK:
+    a->no_recheck = 1;
+    return SW_OK;
   default:
     return SW_OK;
   }
@@ -334,10 +339,11 @@ static int check_study_args(const swCli *c) {
   int optimize_only = a->budget_given || a->popsize_given || a->sigma_given || a->restarts_given ||
                       a->start_given;
   if (c->replay && (a->mode || a->resume || a->study || optimize_only || a->seed_given ||
-                    a->eval_timeout > 0 || c->restart))
+                    a->eval_timeout > 0 || a->no_recheck || c->restart))
     return sw_cli_complain(c, "--replay %s runs one design of that study as a new run: leave out "
                            "--sweep, --optimize, --resume, --study, --budget, --popsize, --sigma, "
-                           "--restarts, --start, --seed, --eval-timeout and --restart", c->replay);
+                           "--restarts, --start, --seed, --eval-timeout, --no-recheck and "
+                           "--restart", c->replay);
   if (a->resume && a->study)
     return sw_cli_complain(c, "--resume %s continues that file: --study %s cannot name another",
                            a->resume, a->study);
@@ -348,9 +354,10 @@ static int check_study_args(const swCli *c) {
     return sw_cli_complain(c, "--resume takes the sweep or optimisation from its file: leave out "
                            "--sweep and --optimize");
   if (!a->mode && !a->resume) {
-    if (optimize_only || a->seed_given || a->study || a->eval_timeout > 0)
-      return sw_cli_complain(c, "--budget, --popsize, --sigma, --restarts, --start, --seed, --study "
-                             "and --eval-timeout belong to --sweep or --optimize, which was not given");
+    if (optimize_only || a->seed_given || a->study || a->eval_timeout > 0 || a->no_recheck)
+      return sw_cli_complain(c, "--budget, --popsize, --sigma, --restarts, --start, --seed, --study, "
+                             "--eval-timeout and --no-recheck belong to --sweep or --optimize, "
+                             "which was not given");
     return SW_OK;
   }
   if (a->mode == 1 && optimize_only)
@@ -456,6 +463,7 @@ int sw_cli_parse_args(swCli *c, int argc, char **argv) {
     case OPT_SWEEP: rc = read_sweep(c, value); break;
     case OPT_OPTIMIZE: case OPT_BUDGET: case OPT_POPSIZE: case OPT_SIGMA: case OPT_RESTARTS:
     case OPT_START: case OPT_SEED: case OPT_STUDY: case OPT_RESUME: case OPT_EVAL_TIMEOUT:
+    case OPT_NO_RECHECK:
       rc = read_study_option(c, opt->id, value);
       break;
     case OPT_REPLAY: rc = read_replay(c, value, &i, argc, argv); break;

@@ -17,7 +17,10 @@
  * interrupted.  --replay takes the same record of the study, and one
  * evaluation's params in SI, bit for bit (/evaluations/params_si), so that
  * the run cli.c makes of them steps as that evaluation did and finds its
- * objective to the bit. */
+ * objective to the bit.  The study's report rechecks its RECHECK_BEST best
+ * designs at dt/2 (study_recheck.c) unless --no-recheck: the evaluation is
+ * then handed the design's step halved as a --dt, so that a run of the
+ * design given that --dt reproduces the recheck's objective to the bit. */
 #include <errno.h>
 #include <inttypes.h>
 #include <math.h>
@@ -29,6 +32,8 @@
 
 #include "sinew.h"
 #include "study/study.h"
+
+#define RECHECK_BEST 3   /* the best designs a study rechecks at dt/2 (--help says 3) */
 
 static int say(const swStudyCall *c, int rc, const char *fmt, ...)
     __attribute__((format(printf, 3, 4)));
@@ -42,11 +47,38 @@ static int say(const swStudyCall *c, int rc, const char *fmt, ...) {
   return rc;
 }
 
-/* One evaluation: the model run with the design's params. */
-static void eval_model(void *ctx, const double *P, swStudyEval *r) {
+/* The step the study's evaluation of design P takes: --dt, else the
+ * model's, else the one sw_program_compile chooses for P (half its stable
+ * estimate, shortened to divide the frame interval); 0 when P gives no
+ * scene. */
+static double study_dt(const swStudyCall *c, const double *P) {
+  if (c->dt_given) return c->dt;
+  double stable;
+  int status;
+  char err[256];
+  swModel *m = sw_program_compile(c->p, P, 0, c->integrator, c->p->every, &stable, &status, err,
+                                  sizeof err);
+  double dt = m ? m->dt : 0;
+  sw_model_free(m);
+  return dt;
+}
+
+/* One evaluation: the model run with the design's params, at the study's
+ * step times dt_scale (the recheck at dt/2: the very step a run given
+ * --dt with that value takes, so that the two agree to the bit). */
+static void eval_model(void *ctx, const double *P, double dt_scale, swStudyEval *r) {
   const swStudyCall *c = ctx;
   swEvalResult e;
-  int rc = sw_evaluate(c->p, P, c->duration, c->dt_given ? c->dt : 0, c->integrator, &e);
+  double dt = c->dt_given ? c->dt : 0;
+  if (dt_scale != 1 && !((dt = study_dt(c, P) * dt_scale) > 0)) {
+    r->status = SW_EVAL_INVALID;
+    r->objective = r->penalty = NAN;
+    r->score = -INFINITY;
+    snprintf(r->message, sizeof r->message, "the design gives no scene to find its step in");
+    return;
+  }
+  int rc = sw_evaluate(c->p, P, c->duration, dt, c->integrator, &e);
+  r->dt = e.dt;
   r->status = rc == SW_OK ? SW_EVAL_OK : rc == SW_EUNSTABLE ? SW_EVAL_UNSTABLE
               : rc == SW_EMODEL ? SW_EVAL_INVALID : SW_EVAL_FAILED;
   r->interrupted = rc == SW_EINTERRUPT;
@@ -276,6 +308,8 @@ int sw_study_cli(swStudyCall *c) {
   o.model_name = p->name;
   o.model_sha256 = p->sha256 ? p->sha256 : "";
   o.run_settings = settings;
+  o.recheck = RECHECK_BEST;
+  o.no_recheck = a.no_recheck;
   o.eval = eval_model;
   o.ctx = c;
   if (rc == SW_OK) rc = sw_study_run(&o);

@@ -199,6 +199,7 @@ int sw_evaluate(const swProgram *p, const double *P, double duration, double dt,
     return eval_failed(r, status, "%s", err);
   }
   evaluate_model(p, m, values, duration > 0 ? duration : p->duration, r);
+  r->dt = m->dt;
   sw_model_free(m);
   free(values);
   return r->status;

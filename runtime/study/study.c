@@ -20,7 +20,9 @@
  * params_si gets the SI values of the designs so checked).  Every design is
  * written in SI beside the units shown, so that --replay runs the very
  * values evaluated.  Every status but ok scores -infinity: an unstable design ranks last and
- * the study goes on. */
+ * the study goes on.  Once the study is complete, its best designs are
+ * evaluated again at dt/2 and the report says how far each objective moved
+ * (study_recheck.c, fed every result as it is taken). */
 #include <errno.h>
 #include <inttypes.h>
 #include <math.h>
@@ -38,6 +40,7 @@
 #include "study.h"
 #include "study_file.h"
 #include "study_pool.h"
+#include "study_recheck.h"
 
 extern char **environ;
 
@@ -59,6 +62,7 @@ typedef struct {
   long best_index;
   double *best_shown;       /* (nparam) the best design, units shown          */
   int failures;
+  swRecheck *recheck;       /* its best designs at dt/2 (NULL: no recheck)     */
 } swStudy;
 
 static double shown_value(const swStudyOptions *o, int i, double si) {
@@ -136,6 +140,7 @@ static int on_result(void *ctx, long index, const double *P, const swStudyEval *
   double score = r->status == SW_EVAL_OK ? r->score / scale : -INFINITY;
   if (s->gen_score) s->gen_score[index - s->gen_first] = score;
   if (r->status != SW_EVAL_OK) s->failures++;
+  else sw_recheck_offer(s->recheck, index, P, score, r->objective / scale);
   int better = score > s->best_score || (score == s->best_score && index < s->best_index);
   if (r->status == SW_EVAL_OK && better) {
     s->best_score = score;
@@ -196,6 +201,7 @@ static int take_stored(swStudy *s, const swStudyRows *rows, long i, const double
   double score = rows->status[i] == SW_EVAL_OK ? rows->score[i] : -INFINITY;
   if (s->gen_score) s->gen_score[i - s->gen_first] = score;
   if (rows->status[i] != SW_EVAL_OK) s->failures++;
+  else sw_recheck_offer(s->recheck, i, P, score, rows->objective[i]);
   if (rows->status[i] == SW_EVAL_OK &&
       (score > s->best_score || (score == s->best_score && i < s->best_index))) {
     s->best_score = score;
@@ -232,7 +238,7 @@ static int evaluate_batch(swStudy *s, swPool *pool, const swStudyRows *rows, lon
     memcpy(todo + m * o->nparam, Pi, (size_t)o->nparam * sizeof *Pi);
     m++;
   }
-  if (rc == SW_OK && m > 0) rc = sw_pool_run(pool, m, index, todo, on_result, s);
+  if (rc == SW_OK && m > 0) rc = sw_pool_run(pool, m, index, todo, 1.0, on_result, s);
   free(index);
   free(todo);
   return rc;
@@ -385,6 +391,23 @@ static void plot(const swStudyOptions *o) {
 
 /* ---- the study ---- */
 
+/* The line that ends a study: how it ended, how many evaluations, the best. */
+static void report(const swStudy *s, const char *status, int rc) {
+  const swStudyOptions *o = s->o;
+  if (o->quiet && rc == SW_OK) return;
+  fprintf(stderr, "%s: %s: %ld of %ld evaluations in %s (%d failed)", o->prog, status, s->done,
+          s->total, o->path, s->failures);
+  if (s->best_index >= 0) {
+    fprintf(stderr, "; best: design %ld, score %.6g%s%s, at ", s->best_index, s->best_score,
+            o->objective_unit[0] ? " " : "", o->objective_unit);
+    print_design(o, s, s->best_shown, stderr);
+  }
+  fprintf(stderr, "\n");
+  if (rc == SW_EINTERRUPT)
+    fprintf(stderr, "%s: continue it with: %s --resume %s\n", o->prog, o->prog, o->path);
+  fflush(stderr);
+}
+
 
 static char *join_varied(const swStudyOptions *o) {
   size_t size = 1;
@@ -526,31 +549,30 @@ int sw_study_run(const swStudyOptions *o) {
   }
 
   char why[160] = "";
+  s.recheck = sw_recheck_new(o);
   rc = o->kind == SW_STUDY_CMAES ? run_cmaes(&s, pool, o->resume ? &rows : NULL, why, sizeof why)
                                  : run_sweep(&s, pool, o->resume ? &rows : NULL);
+  sw_recheck_stored(s.recheck, rows.recheck, rows.nrecheck);
   sw_study_rows_free(&rows);
   char status[256];
   if (rc == SW_OK && o->kind == SW_STUDY_CMAES) snprintf(status, sizeof status, "complete: %s", why);
   else if (rc == SW_OK) snprintf(status, sizeof status, "complete");
   else if (rc == SW_EINTERRUPT) snprintf(status, sizeof status, "interrupted");
   else snprintf(status, sizeof status, "failed (code %d)", rc);
-  if (sw_study_file_close(s.file, status) != SW_OK && rc == SW_OK) rc = SW_EIO;
-  s.file = NULL;
-  if (!o->quiet || rc != SW_OK) {
-    fprintf(stderr, "%s: %s: %ld of %ld evaluations in %s (%d failed)", o->prog, status, s.done,
-            s.total, o->path, s.failures);
-    if (s.best_index >= 0) {
-      fprintf(stderr, "; best: design %ld, score %.6g%s%s, at ", s.best_index, s.best_score,
-              o->objective_unit[0] ? " " : "", o->objective_unit);
-      print_design(o, &s, s.best_shown, stderr);
-    }
-    fprintf(stderr, "\n");
-    if (rc == SW_EINTERRUPT)
-      fprintf(stderr, "%s: continue it with: %s --resume %s\n", o->prog, o->prog, o->path);
+  report(&s, status, rc);
+  /* the study is complete: its best designs at dt/2, whose interruption
+   * leaves the study complete (--resume does the rest of the recheck) */
+  int recheck_rc = rc == SW_OK && s.recheck ? sw_recheck_run(s.recheck, pool, s.file) : SW_OK;
+  if (sw_study_file_close(s.file, status) != SW_OK && rc == SW_OK) {
+    fprintf(stderr, "%s: cannot write the study file %s as it closes\n", o->prog, o->path);
+    rc = SW_EIO;
   }
+  s.file = NULL;
+  if (rc == SW_OK) rc = recheck_rc;
   if (rc == SW_OK) plot(o);
 done:
   sw_pool_close(pool, rc == SW_OK ? SW_OK : rc);
+  sw_recheck_free(s.recheck);
   free(s.var);
   free(s.shown);
   free(s.best_shown);

@@ -32,14 +32,18 @@ typedef struct {
   double score;           /* larger is better; -INFINITY unless OK          */
   double sim_time;        /* s simulated                                     */
   double wall;            /* s of wall time the evaluation took              */
+  double dt;              /* s: the step it ran with (0: not compiled)       */
   int rank;               /* the MPI rank that ran it (0 without MPI)        */
   int interrupted;        /* Ctrl-C stopped it: not a result                 */
   char message[256];      /* why it failed ("" when OK)                      */
 } swStudyEval;
 
-/* Evaluates the design P (all nparam params, SI) into r. Called on one
- * thread at a time per process; must not print. */
-typedef void (*swStudyEvalFn)(void *ctx, const double *P, swStudyEval *r);
+/* Evaluates the design P (all nparam params, SI) into r, with everything as
+ * the study runs it but the time step: the step the study's evaluation of P
+ * takes, times dt_scale (1 for the study's designs; 0.5 for the recheck of
+ * its best at dt/2).  Called on one thread at a time per process; must not
+ * print. */
+typedef void (*swStudyEvalFn)(void *ctx, const double *P, double dt_scale, swStudyEval *r);
 
 typedef enum { SW_STUDY_GRID = 0, SW_STUDY_LHS, SW_STUDY_CMAES } swStudyKind;
 
@@ -75,6 +79,13 @@ typedef struct {
   /* the model, recorded and checked on --resume */
   const char *model_name, *model_sha256;
   const char *run_settings;  /* "duration=...;dt=...;integrator=..."          */
+  /* the recheck (study_recheck.c): once the study is complete, its best
+   * `recheck` distinct designs are evaluated again at dt/2 and the report
+   * says how much each objective moved (0: no recheck, the file's /recheck
+   * left as it is) */
+  int recheck;
+  int no_recheck;            /* --no-recheck: evaluate none, report those the
+                                file already holds for the best designs      */
   swStudyEvalFn eval;
   void *ctx;
 } swStudyOptions;
@@ -129,7 +140,8 @@ int sw_study_file_design(const char *path, long index, int nparam, const char *c
 #include "sinew.h"
 
 /* What --sweep, --optimize, --budget, --popsize, --sigma, --restarts,
- * --seed, --study, --resume and --eval-timeout asked for (cli_options.c). */
+ * --seed, --study, --resume, --eval-timeout and --no-recheck asked for
+ * (cli_options.c). */
 typedef struct {
   int mode;                  /* 0: no study; 1: --sweep; 2: --optimize        */
   swStudyKind kind;
@@ -137,6 +149,7 @@ typedef struct {
   double sigma;
   uint64_t seed;
   double eval_timeout;
+  int no_recheck;            /* --no-recheck                                  */
   const char *study, *resume;
   const char *start;         /* --start: the study whose best design CMA-ES starts at */
   int start_given;           /* --start FILE or NAME=VALUE                     */

@@ -17,13 +17,16 @@
  * checks against the stored ones.  The study's settings are
  * root attributes, and `status` reads "running" until the study ends.  The
  * file is flushed after every row, so an interrupted or killed study keeps
- * every result that arrived (docs/optimisation.md, "Study files").  Object
+ * every result that arrived (docs/optimisation.md, "The study file").  Once the
+ * study is complete, /recheck holds its best designs evaluated again at dt/2
+ * (study_recheck.c), rewritten whole each time, columns of a few rows.  Object
  * modification times are not recorded, so two studies of the same results
  * differ only where their timings do. */
 #include <hdf5.h>
 #include <inttypes.h>
 #include <math.h>
 #include <stdarg.h>
+#include <stddef.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -525,6 +528,118 @@ done:
   return rc;
 }
 
+/* ---- /recheck: the best designs at dt/2 ---- */
+
+/* The columns of /recheck: name, file and memory types, offset in a row,
+ * unit (NULL: none; "=": the objective's). */
+typedef struct {
+  const char *name;
+  hid_t ftype, mtype;
+  size_t offset;
+  const char *units;
+} swRecheckColumn;
+
+static int recheck_columns(const swStudyFile *f, swRecheckColumn col[9]) {
+  const swRecheckColumn c[9] = {
+    {"index", H5T_STD_I64LE, H5T_NATIVE_LONG, offsetof(swStudyRecheck, index), NULL},
+    {"dt", H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, offsetof(swStudyRecheck, dt), "s"},
+    {"objective", H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, offsetof(swStudyRecheck, objective), "="},
+    {"score", H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, offsetof(swStudyRecheck, score), "="},
+    {"status_half", f->status_type, f->status_type, offsetof(swStudyRecheck, status_half), NULL},
+    {"objective_half", H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE,
+     offsetof(swStudyRecheck, objective_half), "="},
+    {"score_half", H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, offsetof(swStudyRecheck, score_half), "="},
+    {"difference", H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, offsetof(swStudyRecheck, difference), NULL},
+    {"sensitive", H5T_STD_I8LE, H5T_NATIVE_INT, offsetof(swStudyRecheck, sensitive), NULL},
+  };
+  memcpy(col, c, sizeof c);
+  return 9;
+}
+
+/* Column `c` of n rows between the structs and a buffer of its values. */
+static void recheck_gather(const swStudyRecheck *rows, long n, const swRecheckColumn *c,
+                           unsigned char *buf) {
+  size_t size = H5Tget_size(c->mtype);
+  for (long i = 0; i < n; i++)
+    memcpy(buf + (size_t)i * size, (const unsigned char *)&rows[i] + c->offset, size);
+}
+
+static void recheck_scatter(swStudyRecheck *rows, long n, const swRecheckColumn *c,
+                            const unsigned char *buf) {
+  size_t size = H5Tget_size(c->mtype);
+  for (long i = 0; i < n; i++)
+    memcpy((unsigned char *)&rows[i] + c->offset, buf + (size_t)i * size, size);
+}
+
+/* The file's /recheck into rows->recheck, if it has one that reads. */
+static void read_recheck(swStudyFile *f, swStudyRows *rows) {
+  if (H5Lexists(f->file, "recheck", H5P_DEFAULT) <= 0) return;
+  hid_t g = H5Gopen2(f->file, "recheck", H5P_DEFAULT);
+  swRecheckColumn col[9];
+  int ncol = recheck_columns(f, col);
+  long n = -1;
+  swStudyRecheck *r = NULL;
+  int ok = g >= 0;
+  for (int k = 0; k < ncol && ok; k++) {
+    long len = 0;
+    unsigned char *buf = H5Lexists(g, col[k].name, H5P_DEFAULT) > 0 ?
+        get_rows(g, col[k].name, col[k].mtype, H5Tget_size(col[k].mtype), &len) : NULL;
+    if (k == 0) {
+      n = len;
+      r = calloc((size_t)n + 1, sizeof *r);
+    }
+    ok = buf && r && len == n;
+    if (ok) recheck_scatter(r, n, &col[k], buf);
+    free(buf);
+  }
+  if (g >= 0) H5Gclose(g);
+  if (!ok) {
+    free(r);
+    return;
+  }
+  rows->recheck = r;
+  rows->nrecheck = n;
+}
+
+int sw_study_file_recheck(swStudyFile *f, const swStudyRecheck *rows, long n, double tolerance,
+                          double floor) {
+  char units[64];
+  if (get_string(f->file, "objective_units", units, sizeof units)) units[0] = 0;
+  if (H5Lexists(f->file, "recheck", H5P_DEFAULT) > 0 && H5Ldelete(f->file, "recheck",
+                                                                 H5P_DEFAULT) < 0)
+    return SW_EIO;
+  if (n <= 0) return H5Fflush(f->file, H5F_SCOPE_LOCAL) < 0 ? SW_EIO : SW_OK;
+  hid_t g = new_group(f->file, "recheck");
+  if (g < 0) return SW_EIO;
+  int bad = put_double(g, "tolerance", tolerance) || put_double(g, "floor", floor) ||
+            put_double(g, "dt_scale", 0.5) ||
+            put_string(g, "description", "the study's best designs (best first) evaluated again "
+                       "with the time step halved, all else the same; sensitive: the objective "
+                       "moved by more than tolerance times max(|objective|, floor), or the "
+                       "design failed at dt/2");
+  swRecheckColumn col[9];
+  int ncol = recheck_columns(f, col);
+  unsigned char *buf = malloc((size_t)n * sizeof(double));
+  hsize_t len = (hsize_t)n;
+  hid_t space = H5Screate_simple(1, &len, NULL);
+  hid_t dcpl = H5Pcreate(H5P_DATASET_CREATE);
+  H5Pset_obj_track_times(dcpl, 0);
+  bad |= !buf;
+  for (int k = 0; k < ncol && !bad; k++) {
+    recheck_gather(rows, n, &col[k], buf);
+    hid_t ds = H5Dcreate2(g, col[k].name, col[k].ftype, space, H5P_DEFAULT, dcpl, H5P_DEFAULT);
+    bad |= ds < 0 || H5Dwrite(ds, col[k].mtype, H5S_ALL, H5S_ALL, H5P_DEFAULT, buf) < 0 ||
+           (col[k].units && put_string(ds, "units", col[k].units[0] == '=' ? units
+                                                                           : col[k].units));
+    if (ds >= 0) H5Dclose(ds);
+  }
+  H5Pclose(dcpl);
+  H5Sclose(space);
+  free(buf);
+  H5Gclose(g);
+  return bad || H5Fflush(f->file, H5F_SCOPE_LOCAL) < 0 ? SW_EIO : SW_OK;
+}
+
 swStudyFile *sw_study_file_reopen(const swStudyFileInfo *in, swStudyRows *rows, char *err,
                                   size_t errlen) {
   const swStudyOptions *o = in->o;
@@ -563,12 +678,14 @@ swStudyFile *sw_study_file_reopen(const swStudyFileInfo *in, swStudyRows *rows, 
     return NULL;
   }
   rows->n = n[0];
+  read_recheck(f, rows);
   put_string(file, "status", "running");
   put_long(file, "samples", o->samples);   /* a budget given again may have grown */
   return f;
 }
 
 void sw_study_rows_free(swStudyRows *rows) {
+  free(rows->recheck);
   free(rows->P);
   free(rows->Psi);
   free(rows->status);

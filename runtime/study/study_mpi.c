@@ -4,8 +4,9 @@
  * links beside libsinewrt.a (with mpicc's libraries), so that the runtime
  * and every simulator still build without MPI; study_pool.c finds this file
  * through a weak reference to sw_study_mpi_transport().  Rank 0 sends a
- * task as nparam + 1 doubles (the design's index first: exact below 2^53)
- * with TAG_TASK, or an empty TAG_STOP; a worker answers with its index and
+ * task as nparam + 2 doubles (the design's index first: exact below 2^53;
+ * then the factor of its time step, 1 or 0.5 for a recheck at dt/2) with
+ * TAG_TASK, or an empty TAG_STOP; a worker answers with its index and
  * swStudyEval as bytes (TAG_RESULT): the ranks of one study run one build of
  * one simulator, so the layout is the same everywhere.  Nothing here blocks
  * but MPI_Init: receives are MPI_Iprobe first, and sends are of a few
@@ -44,11 +45,12 @@ static int mpi_init(int *rank, int *size, char *err, size_t errlen) {
   return SW_OK;
 }
 
-static void mpi_send_task(int rank, long index, const double *P, int nparam) {
-  double buf[MAX_PARAMS + 1];
+static void mpi_send_task(int rank, long index, double dt_scale, const double *P, int nparam) {
+  double buf[MAX_PARAMS + 2];
   buf[0] = (double)index;
-  memcpy(buf + 1, P, (size_t)nparam * sizeof *P);
-  MPI_Send(buf, nparam + 1, MPI_DOUBLE, rank, TAG_TASK, MPI_COMM_WORLD);
+  buf[1] = dt_scale;
+  memcpy(buf + 2, P, (size_t)nparam * sizeof *P);
+  MPI_Send(buf, nparam + 2, MPI_DOUBLE, rank, TAG_TASK, MPI_COMM_WORLD);
 }
 
 static void mpi_send_stop(int rank) {
@@ -70,7 +72,7 @@ static int mpi_poll_result(int *rank, long *index, swStudyEval *r) {
   return 1;
 }
 
-static int mpi_poll_task(long *index, double *P, int nparam) {
+static int mpi_poll_task(long *index, double *dt_scale, double *P, int nparam) {
   int flag = 0;
   MPI_Status st;
   if (MPI_Iprobe(0, MPI_ANY_TAG, MPI_COMM_WORLD, &flag, &st) != MPI_SUCCESS || !flag) return 0;
@@ -78,10 +80,11 @@ static int mpi_poll_task(long *index, double *P, int nparam) {
     MPI_Recv(NULL, 0, MPI_DOUBLE, 0, TAG_STOP, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
     return -1;
   }
-  double buf[MAX_PARAMS + 1];
-  MPI_Recv(buf, nparam + 1, MPI_DOUBLE, 0, TAG_TASK, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
+  double buf[MAX_PARAMS + 2];
+  MPI_Recv(buf, nparam + 2, MPI_DOUBLE, 0, TAG_TASK, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
   *index = (long)buf[0];
-  memcpy(P, buf + 1, (size_t)nparam * sizeof *P);
+  *dt_scale = buf[1];
+  memcpy(P, buf + 2, (size_t)nparam * sizeof *P);
   return 1;
 }
 

@@ -9,7 +9,9 @@
  * through study_mpi.c.  Only the main thread calls MPI (MPI_THREAD_FUNNELED).
  * Results can arrive in any order; the study writes each at its index, and
  * since an evaluation's result depends only on its design, the study's
- * results do not depend on N or on which worker ran what.
+ * results do not depend on N or on which worker ran what.  A batch of tasks
+ * carries the factor of their time step (1; 0.5 for the recheck of the
+ * study's best designs at dt/2), which each worker hands the evaluation.
  *
  * Waiting is polling with 1 ms sleeps, on both sides: OpenMPI's blocking
  * receives spin, and with more ranks than cores (`--oversubscribe`) an idle
@@ -59,10 +61,11 @@ static void nap(void) {
 }
 
 /* One evaluation, timed, with the rank recorded. */
-static void evaluate(const swStudyOptions *o, int rank, const double *P, swStudyEval *r) {
+static void evaluate(const swStudyOptions *o, int rank, const double *P, double dt_scale,
+                     swStudyEval *r) {
   memset(r, 0, sizeof *r);
   double t0 = sw_wall_seconds();
-  o->eval(o->ctx, P, r);
+  o->eval(o->ctx, P, dt_scale, r);
   r->wall = sw_wall_seconds() - t0;
   r->rank = rank;
 }
@@ -76,6 +79,7 @@ typedef struct {
   int started;
   int has_task, has_result, quit;
   long index;
+  double dt_scale;
   double *P;
   swStudyEval result;
 } swLocal;
@@ -104,7 +108,7 @@ static void *local_main(void *arg) {
     if (l->quit) break;
     pthread_mutex_unlock(&l->mu);
     swStudyEval r;
-    evaluate(p->o, 0, l->P, &r);
+    evaluate(p->o, 0, l->P, l->dt_scale, &r);
     pthread_mutex_lock(&l->mu);
     l->result = r;
     l->has_task = 0;
@@ -114,11 +118,12 @@ static void *local_main(void *arg) {
   return NULL;
 }
 
-static void local_give(swPool *p, long index, const double *P) {
+static void local_give(swPool *p, long index, double dt_scale, const double *P) {
   swLocal *l = &p->local;
   pthread_mutex_lock(&l->mu);
   memcpy(l->P, P, (size_t)p->o->nparam * sizeof *P);
   l->index = index;
+  l->dt_scale = dt_scale;
   l->has_task = 1;
   pthread_cond_signal(&l->cv);
   pthread_mutex_unlock(&l->mu);
@@ -283,7 +288,8 @@ int sw_pool_serve(swPool *p) {
   long served = 0;
   for (;;) {
     long index;
-    int got = p->mpi->poll_task(&index, P, np);
+    double dt_scale = 1;
+    int got = p->mpi->poll_task(&index, &dt_scale, P, np);
     if (got < 0) break;
     if (got == 0) {
       nap();
@@ -291,7 +297,7 @@ int sw_pool_serve(swPool *p) {
     }
     maybe_fault(p->rank, ++served);
     swStudyEval r;
-    evaluate(p->o, p->rank, P, &r);
+    evaluate(p->o, p->rank, P, dt_scale, &r);
     p->mpi->send_result(index, &r);
   }
   free(P);
@@ -306,8 +312,8 @@ static double timeout_of(const swPool *p) {
   return t > TIMEOUT_FLOOR ? t : TIMEOUT_FLOOR;
 }
 
-int sw_pool_run(swPool *p, long ntask, const long *index, const double *P, swPoolResultFn cb,
-                void *ctx) {
+int sw_pool_run(swPool *p, long ntask, const long *index, const double *P, double dt_scale,
+                swPoolResultFn cb, void *ctx) {
   const int np = p->o->nparam;
   /* the queue: positions in the batch, in order; a re-queued one goes to
    * the front, so that results keep arriving close to the order asked */
@@ -339,8 +345,8 @@ int sw_pool_run(swPool *p, long ntask, const long *index, const double *P, swPoo
       head++;
       p->task[w] = pos;
       p->started[w] = sw_wall_seconds();
-      if (w == 0) local_give(p, index[pos], P + pos * np);
-      else p->mpi->send_task(w, index[pos], P + pos * np, np);
+      if (w == 0) local_give(p, index[pos], dt_scale, P + pos * np);
+      else p->mpi->send_task(w, index[pos], dt_scale, P + pos * np, np);
     }
     /* collect what has finished */
     int any = 0;

@@ -13,6 +13,8 @@
 #     unit's scale, as the study divides), whose params attribute (SI, 17
 #     digits) is that row of params_si, and which ends at the row's sim_time;
 #   - a study under mpirun -np 2 stores the same params_si and replays alike;
+#   - the study's recheck of its best design at dt/2, half the step the
+#     simulator chose for it, is a plain run's of that design at that --dt;
 #   - a study file of before params_si (the dataset deleted) still replays
 #     (the values shown, converted, with a warning), --resume gives it
 #     params_si again (the file then equals the original, bit for bit) and
@@ -93,6 +95,24 @@ sys.exit(0 if S.shape == P.shape == (12, 3) and names == ["release", "reach", "l
 EOF
 ok $? "the study stores params_si [12, 3] in rad, m, N beside params in deg, m, N"
 best=$($PY -c "import h5py; print(int(h5py.File('opt.h5','r')['best'].attrs['index']))")
+# the recheck at dt/2 of its best (the step the simulator chose for that
+# design, halved): a plain run of the design with --dt of that value
+pycheck <<'EOF'
+import h5py, subprocess, sys
+f = h5py.File("opt.h5", "r")
+ev, rc = f["evaluations"], f["recheck"]
+i, dt = int(rc["index"][0]), float(rc["dt"][0])
+names = [n.decode() if isinstance(n, bytes) else n for n in ev["params_si"].attrs["names"]]
+units = [n.decode() if isinstance(n, bytes) else n for n in ev["params_si"].attrs["units"]]
+sets = [a for n, u, v in zip(names, units, ev["params_si"][i]) for a in ("--set", f"{n}={float(v)!r}{u}")]
+subprocess.run(["./obj", *sets, "--dt", repr(dt / 2), "--out", "half.h5", "--quiet"], check=True)
+here = float(h5py.File("half.h5", "r").attrs["objective"]) / 0.01        # m -> cm
+there = float(rc["objective_half"][0])
+print(f"design {i} (the best) rechecked at dt/2 = {dt / 2!r} s (the chosen step halved): "
+      f"{there!r} cm; a run with --dt {dt / 2!r}: {here!r} cm; at dt: {float(rc['objective'][0])!r} cm")
+sys.exit(0 if i == int(f["best"].attrs["index"]) and here.hex() == there.hex() else 1)
+EOF
+ok $? "the study's recheck of its best at half the step it chose is a plain run's at that --dt, bit for bit"
 
 # ---- --replay: the best, a row, "best" ----
 ./obj --replay opt.h5 --out best.h5 2>best.log

@@ -13,8 +13,9 @@
 #include "sinew.h"
 #include "study.h"
 
-static void rosenbrock(void *ctx, const double *P, swStudyEval *r) {
+static void rosenbrock(void *ctx, const double *P, double dt_scale, swStudyEval *r) {
   (void)ctx;
+  (void)dt_scale;
   const char *ms = getenv("EVAL_MS");
   struct timespec ts = {0, (ms ? atol(ms) : 20) * 1000000L};
   nanosleep(&ts, NULL);

@@ -47,7 +47,8 @@ typedef struct {
 } swProblem;
 
 /* score = -((x - cx)^2 + 10 (y - cy)^2), in m/s as the model would say */
-static void sphere(void *ctx, const double *P, swStudyEval *r) {
+static void sphere(void *ctx, const double *P, double dt_scale, swStudyEval *r) {
+  (void)dt_scale;
   swProblem *p = ctx;
   p->calls++;
   if (p->seen) memcpy(p->seen[p->nseen++], P, sizeof p->seen[0]);
