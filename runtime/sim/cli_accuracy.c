@@ -160,7 +160,11 @@ static int compare_levels(const swCli *c, double dt, int level, double tol, int 
   }
   if (a->more) fprintf(stderr, "    (and %d more observables, not shown)\n", a->more);
   double obj_rel = 0;
-  if (a->has_objective && p->sense) {
+  const int objective = a->has_objective && p->sense && !(isnan(a->objective[0]) && isnan(a->objective[1]));
+  if (a->has_objective && p->sense && !objective)
+    fprintf(stderr, "    objective %s: not reached at either step (the runs end before the times "
+            "it reads)\n", p->objective_text);
+  if (objective) {
     const double k = p->objective_scale > 0 ? p->objective_scale : 1;
     const char *u = p->objective_unit, *sp = u[0] ? " " : "";
     const double o1 = a->objective[0], o2 = a->objective[1];
@@ -177,18 +181,20 @@ static int compare_levels(const swCli *c, double dt, int level, double tol, int 
               p->objective_text, o1 / k, sp, u, a_name, o2 / k, sp, u, b_name, 100 * obj_rel, ratio);
     if (!(obj_rel <= tol)) beyond++;
   }
-  const int count = a->n + (a->has_objective && p->sense);
+  const int count = a->n + objective;
   if (beyond == 0) {
     fprintf(stderr, "%s: accuracy: all %d observables agree within %.3g%% of their ranges between %s "
             "and %s\n", c->prog, count, 100 * tol, a_name, b_name);
   } else {
     char what[160] = "";
-    if (!(obj_rel <= tol) && !isnan(obj_rel))
-      snprintf(what, sizeof what, "the objective by %.2g%%", 100 * obj_rel);
+    if (isnan(obj_rel))
+      snprintf(what, sizeof what, " (the objective is not reached at one of them)");
+    else if (!(obj_rel <= tol))
+      snprintf(what, sizeof what, " (the objective by %.2g%%)", 100 * obj_rel);
     else if (worst)
-      snprintf(what, sizeof what, "%s by %.2g%% of its range", worst->name, 100 * worst->worst / worst->scale);
-    fprintf(stderr, "%s: accuracy: %d of %d observables differ by more than %.3g%% between %s and %s "
-            "(%s): the outcome is sensitive to the step\n", c->prog, beyond, count, 100 * tol,
+      snprintf(what, sizeof what, " (%s by %.2g%% of its range)", worst->name, 100 * worst->worst / worst->scale);
+    fprintf(stderr, "%s: accuracy: %d of %d observables differ by more than %.3g%% between %s and %s"
+            "%s: the outcome is sensitive to the step\n", c->prog, beyond, count, 100 * tol,
             a_name, b_name, what);
   }
   free(a);

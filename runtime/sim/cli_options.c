@@ -482,8 +482,8 @@ int sw_cli_parse_args(swCli *c, int argc, char **argv) {
                            c->restart, c->out);
   if (c->restart) c->out = c->restart;
   if (c->tolerance > 0) c->accuracy = 1;
-  if (c->accuracy && (c->restart || c->replay || c->study.mode || c->study.resume))
+  if (c->accuracy && (c->restart || c->study.mode || c->study.resume))
     return sw_cli_complain(c, "--accuracy runs the model afresh at two steps: leave out --restart, "
-                           "--replay, --sweep, --optimize and --resume");
+                           "--sweep, --optimize and --resume");
   return check_study_args(c);
 }

@@ -257,8 +257,9 @@ static void report(const swRecheck *k, const swStudyRecheck *rows, int nrows, do
     }
     fprintf(stderr, "%s: warning: %d of %s (design%s %s) %s by more than %g%%%s when the step "
             "is halved: the study ranked them by the step as much as by the design, and its "
-            "best may be a lucky sample; rerun it at a smaller --dt%s, or make the scene less "
-            "sensitive to the step (docs/optimisation.md, \"Rechecking the best designs\")\n",
+            "best may be a lucky sample; rerun it at a smaller --dt%s, see where a design's "
+            "runs part with --replay STUDY N --accuracy, or make the scene less sensitive to "
+            "the step (docs/optimisation.md, \"Rechecking the best designs\")\n",
             o->prog, nsensitive, which, nsensitive == 1 ? "" : "s", list,
             nsensitive == 1 ? "changes" : "change", 100 * TOLERANCE, nfailed ? " or fail" : "",
             dt);
