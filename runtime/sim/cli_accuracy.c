@@ -183,8 +183,12 @@ static int compare_levels(const swCli *c, double dt, int level, double tol, int 
   }
   const int count = a->n + objective;
   if (beyond == 0) {
-    fprintf(stderr, "%s: accuracy: all %d observables agree within %.3g%% of their ranges between %s "
-            "and %s\n", c->prog, count, 100 * tol, a_name, b_name);
+    if (count == 1)
+      fprintf(stderr, "%s: accuracy: the one observable agrees within %.3g%% of its range between %s "
+              "and %s\n", c->prog, 100 * tol, a_name, b_name);
+    else
+      fprintf(stderr, "%s: accuracy: all %d observables agree within %.3g%% of their ranges between "
+              "%s and %s\n", c->prog, count, 100 * tol, a_name, b_name);
   } else {
     char what[160] = "";
     if (isnan(obj_rel))
