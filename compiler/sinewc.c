@@ -328,7 +328,7 @@ static int parse_args(int argc, char **argv, swOptions *o) {
       static const char *const opts[] = {"-o", "--emit-c", "--check", "-Werror", "--help",
                                          "--version", "--eval-height", "--portable", "--let",
                                          "--no-mpi"};
-      const char *near = diag_suggest(a, opts, 9);
+      const char *near = diag_suggest(a, opts, sizeof opts / sizeof *opts);
       fprintf(stderr, "%s: unknown option '%s'%s%s%s\n", progname, a, near ? "; did you mean '" : "",
               near ? near : "", near ? "'?" : "");
       return 2;
