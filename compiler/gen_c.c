@@ -179,7 +179,8 @@ static void emit_muscle(FILE *out, swArena *a, const swScene *sc, int mi) {
   if (m->motor_units) fprintf(out, "    muscle.motor_units = %ld;\n", m->motor_units);
   static const char *damp[] = {"SW_DAMP_NONE", "SW_DAMP_LINEAR", "SW_DAMP_ANALYTIC"};
   if (m->has_damping) fprintf(out, "    muscle.damping = %s;\n", damp[m->damping]);
-  if (m->variational) fputs("    muscle.law = SW_LAW_VARIATIONAL;\n", out);
+  if (m->variational == 2) fputs("    muscle.law = SW_LAW_VARIATIONAL;   /* a muscle's default */\n", out);
+  else if (m->variational) fputs("    muscle.law = SW_LAW_VARIATIONAL;\n", out);
   if (m->weightless) fputs("    muscle.weightless = 1;   /* gravity = false */\n", out);
   emit_description(out, "muscle", NULL, m->material, m->loc);
   for (int e = 0; e < 2; e++)

@@ -109,7 +109,10 @@ typedef struct swScope {
 
 typedef struct swMaterial {
   swValue E, G, poisson, density;
-  int variational;            /* variational = true: the energy-consistent law */
+  int variational;            /* variational = true (1): the energy-consistent
+                                 law; false (0): Gazzola et al. 2018's; not
+                                 said (-1): each user's default (a rod
+                                 Gazzola's, a muscle the variational law) */
 } swMaterial;
 
 typedef enum { ROD_PLAIN, ROD_BONE, ROD_TENDON } swRodKind;
@@ -145,7 +148,9 @@ typedef struct {
   swValue start, end, normal, radius;
   swValue density, youngs, shear_modulus, poisson;
   swValue shear_hardening, twist_hardening, gamma;
-  int variational;            /* the filaments' law is the variational one */
+  int variational;            /* the filaments' law is the variational one:
+                                 1 as written, 2 by default (neither the
+                                 muscle nor its material says); 0 Gazzola's */
   int weightless;             /* gravity = false: not on the filaments     */
   int has_damping;            /* damping written: damping, gamma set       */
   swDampingKind damping;

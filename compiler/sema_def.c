@@ -288,10 +288,16 @@ static void eval_material(swSema *S, swSymbol *sym) {
   if (m->poisson.kind == VAL_NUM && !(m->poisson.v[0] > -1 && m->poisson.v[0] <= 0.5))
     diag_error(m->poisson.loc, "poisson must be in (-1, 0.5], got %g", m->poisson.v[0]);
   /* variational = true: rods of this material take the law whose loads are
-   * the gradient of their elastic energy (the runtime's rod.c); a switch,
-   * so fixed when compiling, through a let or component parameter too */
+   * the gradient of their elastic energy (the runtime's rod.c); false:
+   * Gazzola et al. 2018's.  A switch, so fixed when compiling, through a let
+   * or component parameter too.  Unsaid (-1), a rod takes Gazzola's law and
+   * a muscle the variational one (sema_tissue's callers) */
   const swAst *var = sema_field(&f, "variational");
-  m->variational = var ? sema_truth(S, sym->scope, var, "'variational'") > 0 : 0;
+  m->variational = -1;
+  if (var) {
+    int truth = sema_truth(S, sym->scope, var, "'variational'");
+    if (truth >= 0) m->variational = truth;
+  }
   sym->material = m;
 }
 
@@ -351,7 +357,7 @@ int sema_tissue(swSema *S, swScope *sc, const swFields *f, swTissue *t) {
     int truth = sema_truth(S, sc, var, "'variational'");
     if (truth < 0) ok = 0;
     else t->variational = truth;
-  } else if (mat) t->variational = mat->variational;
+  } else t->variational = mat ? mat->variational : -1;
   if (t->E_ast && t->youngs.kind == VAL_NUM) sema_positive(S, &t->youngs, "E", "Pa");
   if (t->rho_ast && t->density.kind == VAL_NUM) sema_positive(S, &t->density, "density", "kg/m^3");
   return ok;

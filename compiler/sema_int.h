@@ -244,7 +244,8 @@ typedef struct {
   const char *mat_name;       /* its full name (NULL: none)                */
   const swAst *me, *E_ast, *rho_ast;   /* the fields, when written         */
   swValue youngs, density, shear_modulus, poisson;   /* VAL_ERROR: not given */
-  int variational;            /* 1: the variational law, written or the material's */
+  int variational;            /* the law, written or the material's: 1
+                                 variational, 0 Gazzola's, -1 said by neither */
 } swTissue;
 int sema_tissue(swSema *S, swScope *sc, const swFields *f, swTissue *t);
 

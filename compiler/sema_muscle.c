@@ -201,7 +201,12 @@ void sema_eval_muscle(swSema *S, swSymbol *sym) {
   m.density = t.density;
   m.shear_modulus = t.shear_modulus;
   m.poisson = t.poisson;
-  m.variational = t.variational;
+  /* unsaid (neither the muscle nor its material): the variational law (2:
+   * by default), as Gazzola's stiffens without bound as a filament shortens
+   * (n ~ 1/e, c ~ 1/eps^3) and soft tissue under its own active stress, tens
+   * of times its E, is squeezed and spins up (docs/physics.md, "Muscles and
+   * the constitutive law"); `variational = false` keeps the reference's law */
+  m.variational = t.variational < 0 ? 2 : t.variational;
   m.material = t.mat_name;
   const swAst *gv = sema_field(&f, "gravity");   /* gravity = false: weightless filaments */
   if (gv) {

@@ -55,7 +55,7 @@ void sema_eval_rod(swSema *S, swSymbol *sym) {
   r.density = t.density.kind || t.mat ? t.density : val_num(S->a, 1000, DIM_DENSITY, loc);
   r.shear_modulus = t.shear_modulus.kind ? t.shear_modulus : val_num(S->a, 0, DIM_PRESSURE, loc);
   r.poisson = t.poisson.kind ? t.poisson : val_num(S->a, 0.5, DIM_NONE, loc);
-  r.variational = t.variational;
+  r.variational = t.variational > 0;   /* unsaid: Gazzola et al. 2018's law */
   r.material = t.mat_name;
   r.has_material = t.mat != NULL || (t.E_ast && t.rho_ast);
   if (!t.mat && !t.me && !t.E_ast && !t.rho_ast)

@@ -17,7 +17,7 @@
 void sw_data_free(swData *d) {
   if (!d) return;
   free(d->x); free(d->v); free(d->Q); free(d->omega);
-  free(d->length); free(d->dilatation);
+  free(d->length); free(d->dilatation); free(d->shortest); free(d->shortest_time);
   free(d->sigma); free(d->stress); free(d->vor_dilatation); free(d->kappa); free(d->couple);
   free(d->force); free(d->torque); free(d->ext_force); free(d->ext_torque);
   free(d->scratch_f); free(d->scratch_h); free(d->scratch_flag); free(d->scratch_phi);
@@ -39,6 +39,7 @@ swData *sw_data_new(const swModel *m) {
   if (!d) return NULL;
   d->x = sw_palloc(m, 3); d->v = sw_palloc(m, 3); d->Q = sw_palloc(m, 9); d->omega = sw_palloc(m, 3);
   d->length = sw_palloc(m, 1); d->dilatation = sw_palloc(m, 1);
+  d->shortest = sw_palloc(m, 1); d->shortest_time = sw_palloc(m, 1);
   d->sigma = sw_palloc(m, 3); d->stress = sw_palloc(m, 3);
   d->vor_dilatation = sw_palloc(m, 1); d->kappa = sw_palloc(m, 3); d->couple = sw_palloc(m, 3);
   d->force = sw_palloc(m, 3); d->torque = sw_palloc(m, 3);
@@ -60,6 +61,7 @@ swData *sw_data_new(const swModel *m) {
   d->ring_row = sw_dalloc(SW_RING_ROW * (size_t)m->nring);
   d->hold = sw_dalloc(sw_hold_size(m));
   if (!d->x || !d->v || !d->Q || !d->omega || !d->length || !d->dilatation ||
+      !d->shortest || !d->shortest_time ||
       !d->sigma || !d->stress || !d->vor_dilatation || !d->kappa ||
       !d->couple || !d->force || !d->torque || !d->ext_force || !d->ext_torque ||
       !d->scratch_f || !d->scratch_h || !d->scratch_flag || !d->scratch_phi ||
@@ -96,7 +98,10 @@ void sw_reset(const swModel *m, swData *d) {
   memcpy(d->Q, m->Q0, 9 * plane);
   memset(d->v, 0, 3 * plane);
   memset(d->omega, 0, 3 * plane);
-  for (int i = 0; i < m->stride; i++) d->dilatation[i] = d->vor_dilatation[i] = 1.0;
+  for (int i = 0; i < m->stride; i++) {
+    d->dilatation[i] = d->vor_dilatation[i] = d->shortest[i] = 1.0;
+    d->shortest_time[i] = 0;
+  }
   if (m->nrigid) sw_rigid_reset(m, d);
   sw_probe_reset(m, d);
   d->contact_pairs = 0; /* contact.c's figures are those of the last evaluation */

@@ -147,8 +147,14 @@ double sw_bc_energy(const swModel *m, const swData *d);               /* boundar
 /* Largest h * omega for which the integrator is stable on the damped
  * oscillator x'' = -omega^2 x - c x', as a function of zeta = c / (2 omega). */
 double sw_integrator_stability_limit(swIntegrator integ, double zeta); /* stability.c */
-/* How many elastic slots of [lo, hi) sw_check_finite would flag. */
-int sw_check_slots(const swModel *m, const swData *d, int lo, int hi);  /* stability.c */
+/* How many elastic slots of [lo, hi) sw_check_finite would flag; records
+ * each element's shortest (d->shortest) on the way. */
+int sw_check_slots(const swModel *m, swData *d, int lo, int hi);  /* stability.c */
+/* The stable step of elastic rod r's elasticity (its zig-zag bound, as
+ * sw_stable_dt_rod's without the filaments' and rings' terms) with every
+ * element at dilatation e and every Voronoi domain at eps, under the rod's
+ * law: what the report of an unstable run quotes for a shortened rod. */
+double sw_stable_dt_rod_at(const swModel *m, int r, double e, double eps);  /* stability.c */
 /* Joints (joint.c).  sw_joint_setup resolves the defaults and the rest
  * geometry of m->joint into the joint_* arrays (called by sw_compile after the
  * rods are built); sw_joint_rows and sw_joint_apply add the joint loads to d->force/d->torque

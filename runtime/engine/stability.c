@@ -43,6 +43,7 @@
  */
 #include <math.h>
 #include <stdio.h>
+#include <string.h>
 #include "sinew.h"
 #include "vec.h"
 #include "internal.h"
@@ -102,51 +103,103 @@ double sw_integrator_stability_limit(swIntegrator integ, double zeta) {
   return last_limit;
 }
 
+/* Element i of elastic rod r at rest, what its zig-zag bounds are made of:
+ * rest length l, radius, density, E, the shear modulus with its hardening
+ * Gs, the shorter Voronoi rest length D beside it (or l at an end) and the
+ * twist modulus Gt with its hardening. */
+typedef struct {
+  double l, rad, rho, E, Gs, D, Gt;
+} elemRest;
+
+static elemRest elem_rest(const swModel *m, int r, int i) {
+  const int n = m->rod_nelem[r], e = m->elem_adr[r] + i, va = m->vor_adr[r];
+  elemRest p;
+  p.l = m->rest_len[e];
+  p.rad = m->radius[e];
+  double A = SW_PI * p.rad * p.rad;
+  double rhoA = SW_AT(m, m->inertia, e, 0) / (p.l * p.rad * p.rad / 4.0) ; /* rho A from J^ = rho l A r^2/4 */
+  p.rho = rhoA / A;
+  p.E = SW_AT(m, m->shear_stiff, e, 2) / A;
+  p.Gs = SW_AT(m, m->shear_stiff, e, 0) / (A * 4.0 / 3.0);
+  /* the Voronoi domains on either side (or the element itself at the ends) */
+  p.D = p.l;
+  p.Gt = p.Gs;
+  if (i > 0) p.D = fmin(p.D, m->rest_vor_len[va + i - 1]);
+  if (i < n - 1) p.D = fmin(p.D, m->rest_vor_len[va + i]);
+  int v = va + (i < n - 1 ? i : i - 1);
+  if (n > 1) p.Gt = SW_AT(m, m->bend_stiff, v, 2) / (2.0 * SW_AT(m, m->bend_stiff, v, 0)) * p.E;
+  return p;
+}
+
+/* The damping ratio of element i's linear dissipation at frequency w (0
+ * without it). */
+static double elem_zeta(const swModel *m, int r, int i, double w) {
+  if (m->rod_damping[r] != SW_DAMP_LINEAR) return 0;
+  const int na = m->node_adr[r], e = m->elem_adr[r] + i;
+  double c = fmax(m->node_gamma[na + i] * m->inv_mass[na + i],
+                  m->node_gamma[na + i + 1] * m->inv_mass[na + i + 1]);
+  /* the element's rotational rate: the same up to round-off under the
+   * default mass-proportional damping, larger with rotational_damping */
+  for (int k = 0; k < 3; k++) {
+    double ce = SW_AT(m, m->elem_gamma, e, k) * SW_AT(m, m->inv_inertia, e, k);
+    if (ce > c * (1 + 1e-9)) c = ce;
+  }
+  return c / (2 * w);
+}
+
 double sw_stable_dt_rod(const swModel *m, int r) {
   /* a rigid rod has no elastic waves; only its damping limits the step */
   if (sw_rod_is_rigid(m, r)) return sw_rigid_stable_dt(m, m->rod_rigid[r]);
   /* an implicit rod's elasticity and linear damping are integrated by the
    * trapezoidal rule (rod_implicit.c): nothing of its own bounds the step */
   if (m->nimplicit && m->rod_implicit[r]) return INFINITY;
-  int n = m->rod_nelem[r], ea = m->elem_adr[r], va = m->vor_adr[r], na = m->node_adr[r];
+  int n = m->rod_nelem[r];
   double dt = INFINITY;
   for (int i = 0; i < n; i++) {
-    int e = ea + i;
-    double l = m->rest_len[e], rad = m->radius[e];
-    double A = SW_PI * rad * rad;
-    double rhoA = SW_AT(m, m->inertia, e, 0) / (l * rad * rad / 4.0) ; /* rho A from J^ = rho l A r^2/4 */
-    double rho = rhoA / A;
-    double E = SW_AT(m, m->shear_stiff, e, 2) / A;
-    double Gs = SW_AT(m, m->shear_stiff, e, 0) / (A * 4.0 / 3.0);
-    /* the Voronoi domains on either side (or the element itself at the ends) */
-    double D = l, Gt = Gs;
-    if (i > 0) D = fmin(D, m->rest_vor_len[va + i - 1]);
-    if (i < n - 1) D = fmin(D, m->rest_vor_len[va + i]);
-    int v = va + (i < n - 1 ? i : i - 1);
-    if (n > 1) Gt = SW_AT(m, m->bend_stiff, v, 2) / (2.0 * SW_AT(m, m->bend_stiff, v, 0)) * E;
+    const elemRest p = elem_rest(m, r, i);
+    const double l = p.l, rad = p.rad, rho = p.rho, E = p.E, Gs = p.Gs, D = p.D, Gt = p.Gt;
     double w2_axial = 4 * E / (rho * l * l);
     double w2_shear = 16.0 / 3.0 * Gs / rho * (1 / (l * l) + 1 / (rad * rad)) + 4 * E / (rho * l * D);
     double w2_twist = 4 * Gt / (rho * l * D);
     double w = sqrt(fmax(w2_axial, fmax(w2_shear, w2_twist)));
-    /* damping ratio of the linear dissipation at that frequency */
-    double zeta = 0;
-    if (m->rod_damping[r] == SW_DAMP_LINEAR) {
-      double c = fmax(m->node_gamma[na + i] * m->inv_mass[na + i],
-                      m->node_gamma[na + i + 1] * m->inv_mass[na + i + 1]);
-      /* the element's rotational rate: the same up to round-off under the
-       * default mass-proportional damping, larger with rotational_damping */
-      for (int k = 0; k < 3; k++) {
-        double ce = SW_AT(m, m->elem_gamma, e, k) * SW_AT(m, m->inv_inertia, e, k);
-        if (ce > c * (1 + 1e-9)) c = ce;
-      }
-      zeta = c / (2 * w);
-    }
-    double lim = 0.95 * sw_integrator_stability_limit(m->integrator, zeta) / w;
+    double lim = 0.95 * sw_integrator_stability_limit(m->integrator, elem_zeta(m, r, i, w)) / w;
     if (lim < dt) dt = lim;
   }
   /* a muscle filament's Hill damping (muscle.c) */
   for (int f = 0; f < m->nfil; f++)
     if (m->fil_rod[f] == r) dt = fmin(dt, 0.95 * sw_muscle_ops(m)->stable_dt_filament(m, f));
+  return dt;
+}
+
+/* The same bound away from rest, at dilatation e of every element and eps
+ * of every Voronoi domain, the rod kept straight.  Linearising each law about
+ * that state (docs/physics.md, "Muscles and the constitutive law"):
+ *   Gazzola's n = S^ (s - s0) / e, c = B^ k / eps^3, J^ / e:
+ *     stretch      dn3/de = S^3 (1 + s0_3) / e^2      axial      x (1+s0_3) / e^2
+ *     shear        dn1/ds1 = S^1 / e                  lateral    x 1 / e
+ *     shear couple (l^ e) (S^1 e theta / e), J^ / e  rotation   x e^2
+ *     bend, twist  B^ / eps^3, J^ / e                           x e / eps^3
+ *   the variational law (no 1/e, no 1/eps^3, Simo's J^): only the shear
+ *   couple's lever, x e^2.
+ * The compression's own geometric stiffness is left out (it is what buckles
+ * a compressed rod, at a rate no step changes).  At e = eps = 1 and s0 = 0
+ * this is sw_stable_dt_rod's bound without the filaments' terms. */
+double sw_stable_dt_rod_at(const swModel *m, int r, double e, double eps) {
+  if (sw_rod_is_rigid(m, r) || (m->nimplicit && m->rod_implicit[r])) return INFINITY;
+  const int var = m->rod_law[r] == SW_LAW_VARIATIONAL, n = m->rod_nelem[r];
+  double dt = INFINITY;
+  for (int i = 0; i < n; i++) {
+    const elemRest p = elem_rest(m, r, i);
+    const double s03 = SW_AT(m, m->rest_sigma, m->elem_adr[r] + i, 2);
+    const double axial = var ? 1 : (1 + s03) / (e * e), lateral = var ? 1 : 1 / e;
+    const double turn = e * e, bend = var ? 1 : e / (eps * eps * eps);
+    double w2_axial = 4 * p.E / (p.rho * p.l * p.l) * axial;
+    double w2_shear = 16.0 / 3.0 * p.Gs / p.rho * (lateral / (p.l * p.l) + turn / (p.rad * p.rad)) +
+                      4 * p.E / (p.rho * p.l * p.D) * bend;
+    double w2_twist = 4 * p.Gt / (p.rho * p.l * p.D) * bend;
+    double w = sqrt(fmax(w2_axial, fmax(w2_shear, w2_twist)));
+    dt = fmin(dt, 0.95 * sw_integrator_stability_limit(m->integrator, elem_zeta(m, r, i, w)) / w);
+  }
   return dt;
 }
 
@@ -258,12 +311,16 @@ double sw_stable_dt(const swModel *m) {
 /* How many elastic slots in [lo, hi) sw_check_finite would object to: the
  * same tests with the same arithmetic, as one vector loop, so that a threaded
  * step checks its own chunks and calls the full check (which finds the rod
- * and writes the message) only when something is wrong. */
-int sw_check_slots(const swModel *m, const swData *d, int lo, int hi) {
+ * and writes the message) only when something is wrong.  On the way, each
+ * element's shortest (d->shortest, with the time), which the message quotes:
+ * a step that fails below the stable estimate usually fails because a rod
+ * was squeezed far from rest, and by then it may have lengthened again. */
+int sw_check_slots(const swModel *m, swData *d, int lo, int hi) {
   const size_t S = (size_t)m->stride;
-  const double dt = m->dt, wmax2 = 0.25 / (dt * dt);
+  const double dt = m->dt, wmax2 = 0.25 / (dt * dt), t = d->time;
   const double *restrict x = d->x, *restrict v = d->v, *restrict w = d->omega;
-  const double *restrict rl = m->rest_len, *restrict ghost = m->elem_ghost;
+  const double *restrict rl = m->rest_len, *restrict ghost = m->elem_ghost, *restrict dil = d->dilatation;
+  double *restrict shortest = d->shortest, *restrict when = d->shortest_time;
   int bad = 0;
 #pragma omp simd reduction(+ : bad)
   for (int i = lo; i < hi; i++) {
@@ -275,8 +332,67 @@ int sw_check_slots(const swModel *m, const swData *d, int lo, int hi) {
     const sw3 wi = sw3_load(w, S, i);
     const double w2 = sw3_dot(wi, wi);
     bad += (!(sum - sum == 0.0)) | (real & (!(dv2 <= lim * lim))) | (real & (!(w2 <= wmax2)));
+    const int shorter = real & (dil[i] < shortest[i]);
+    shortest[i] = shorter ? dil[i] : shortest[i];
+    when[i] = shorter ? t : when[i];
   }
   return bad;
+}
+
+/* A factor as the report prints it: whole above 10, two digits below. */
+static void factor_text(char *out, size_t len, double f) {
+  if (f >= 10) snprintf(out, len, "%.0f", f);
+  else snprintf(out, len, "%.2g", f);
+}
+
+/* What the report adds when a rod fails at a step below the stable
+ * estimate, which the rest state then does not explain: how short the rod
+ * had become (its shortest element, now or at a check), the stable step of
+ * the rod at that length (sw_stable_dt_rod_at), and on Gazzola's law, which
+ * stiffens without bound as e -> 0, what the law does there and the way out.
+ * Appended to msg (of size len). */
+static void explain_below_estimate(const swModel *m, const swData *d, int r, char *msg, size_t len) {
+  const int ea = m->elem_adr[r], na = m->node_adr[r], n = m->rod_nelem[r];
+  double e_min = INFINITY, t_min = d->time;
+  int i_min = 0;
+  for (int i = 0; i < n; i++) {
+    double x0[3], x1[3], dx[3];
+    sw_get3(m, d->x, na + i, x0);
+    sw_get3(m, d->x, na + i + 1, x1);
+    sw_v3_sub(dx, x1, x0);
+    const double now = sqrt(sw_v3_dot(dx, dx)) / m->rest_len[ea + i];
+    if (now < e_min) { e_min = now; t_min = d->time; i_min = i; }
+    if (d->shortest[ea + i] < e_min) { e_min = d->shortest[ea + i]; t_min = d->shortest_time[ea + i]; i_min = i; }
+  }
+  if (!(e_min > 0 && e_min < INFINITY)) return; /* nothing finite to say */
+  const int gazzola = m->rod_law[r] != SW_LAW_VARIATIONAL;
+  const double dt_at = sw_stable_dt_rod_at(m, r, e_min, e_min);
+  size_t k = strlen(msg);
+  k += (size_t)snprintf(msg + k, k < len ? len - k : 0,
+                        ". As dt is below the estimate, the rest state does not explain it: the rod had "
+                        "shortened to %.2g%% of its rest length (element %d, t = %.6g s)",
+                        100 * e_min, i_min, t_min);
+  const double s03 = SW_AT(m, m->rest_sigma, ea + i_min, 2);
+  if (gazzola && e_min < 0.5 && k < len) {
+    /* n3 = S^3 (e - 1 - s0_3) / e and its slope S^3 (1 + s0_3) / e^2, in
+     * units of the rest ones (the element kept straight) */
+    char push[32], stiff[32];
+    factor_text(push, sizeof push, (1 + s03 - e_min) / e_min);
+    factor_text(stiff, sizeof stiff, (1 + s03) / (e_min * e_min));
+    k += (size_t)snprintf(msg + k, len - k,
+                          ", where Gazzola et al. 2018's law (n = S^ s / e, c = B^ k / eps^3) pushes "
+                          "back with %s times E A and is %s times as stiff in stretch as at rest",
+                          push, stiff);
+  }
+  if (k < len && isfinite(dt_at)) /* an implicit rod's elasticity bounds nothing */
+    k += (size_t)snprintf(msg + k, len - k,
+                          "; the rod's stable dt at that length is %.2g s (%.2g s at rest), %s", dt_at,
+                          sw_stable_dt_rod_at(m, r, 1, 1),
+                          dt_at > m->dt ? "still above dt, so the step is not the cause"
+                                        : "and dt is above it");
+  if (gazzola && e_min < 0.5 && k < len)
+    snprintf(msg + k, len - k, ". The variational law (`variational = true` on its material, the "
+             "default for muscles) keeps the loads bounded as a rod shortens");
 }
 
 int sw_check_finite(const swModel *m, swData *d) {
@@ -323,10 +439,12 @@ int sw_check_finite(const swModel *m, swData *d) {
       int elem = bad < n ? bad : n - 1; /* a node's element: the one it starts */
       char speed[64] = "";
       if (val > 0) snprintf(speed, sizeof speed, " (relative speed %.3g m/s)", val);
+      const double estimate = sw_stable_dt(m);
       snprintf(d->error, sizeof d->error,
                "rod '%s' became unstable at element %d, t = %.9g s: %s%s; "
                "dt = %.3g s, stable dt estimate %.3g s",
-               m->rod_name[r], elem, d->time, what, speed, m->dt, sw_stable_dt(m));
+               m->rod_name[r], elem, d->time, what, speed, m->dt, estimate);
+      if (m->dt <= estimate && !sw_rod_is_rigid(m, r)) explain_below_estimate(m, d, r, d->error, sizeof d->error);
       return SW_EUNSTABLE;
     }
   }

@@ -236,6 +236,11 @@ typedef struct {
    * one-thread step may keep only a window of them (integrate.c, the fused
    * sweep). */
   double *dilatation;        /* e = l / l^ (1 at ghosts)                     */
+  /* The shortest each element has been: its least dilatation at the
+   * stability checks (every 8 steps) since sw_reset, and when; what the
+   * report of an unstable run quotes (stability.c).  Per element slot. */
+  double *shortest;          /* least e seen (1 at ghosts)                   */
+  double *shortest_time;     /* the time of the check that saw it, s         */
   /* derived per element slot */
   double *length;            /* current length l                             */
   double *sigma;             /* (3) shear/stretch strain, material           */
@@ -313,7 +318,7 @@ typedef struct {
   int *probe_head;           /* (nprobe)  slot of the oldest sample           */
   int *probe_count;          /* (nprobe)  samples held                        */
   /* instability report, filled when sw_step returns SW_EUNSTABLE */
-  char error[512];
+  char error[1024];
 } swData;
 
 /* ---- access to the planar arrays (see Layout at the top) ---- */

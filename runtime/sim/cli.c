@@ -334,7 +334,7 @@ int sw_cli_run(const swCli *c, const swModel *m, const char *out) {
   if (failed && rc == SW_OK) rc = SW_EEXPECT;
 
   /* The file says how the run ended. */
-  char status[600];
+  char status[1100];
   const char *verdict;
   switch (rc) {
   case SW_OK:

@@ -338,9 +338,10 @@ static void print_stiff_parts(const swModel *m) {
   }
 }
 
-/* The rods' constitutive law (rod.c): Gazzola's unless a material says
- * variational; the elastic ones of each law are named (rigid rods have
- * none). */
+/* The rods' constitutive law (rod.c): Gazzola's unless the spec asks for
+ * the variational one (the language's default for muscles, and whatever a
+ * material, rod or muscle says); the elastic ones of each law are named
+ * (rigid rods have none). */
 static void print_law(const swModel *m) {
   int nelastic = 0;
   for (int r = 0; r < m->nrod; r++) nelastic += !(m->nrigid && m->rod_rigid[r] >= 0);

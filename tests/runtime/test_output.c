@@ -433,7 +433,7 @@ static void test_unstable_run_stops(void **state) {
   assert_int_equal(rc, SW_EUNSTABLE);
   assert_true(strncmp(text, "sinew: ", 7) == 0);
   assert_non_null(strstr(text, d->error));
-  char status[600];
+  char status[1100];   /* "unstable: " and d->error */
   snprintf(status, sizeof status, "unstable: %s", d->error);
   assert_int_equal(sw_output_close(out, status), SW_OK);
 

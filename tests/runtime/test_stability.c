@@ -7,8 +7,18 @@
  * more than 1e3 or the run reports SW_EUNSTABLE.  The estimate must be safe
  * (below the true limit) for slender, thick, shear-hardened (x10^4, the
  * reference's hardening study) and PEFRL rods, and tight (within 1.5x of the
- * limit) for position Verlet. */
+ * limit) for position Verlet.
+ *
+ * Away from rest (sw_stable_dt_rod_at): a rod laid at a fraction e of its
+ * rest length with the rest strain s0_3 = e - 1, so that it is unstressed
+ * there, is bisected the same way; the estimate at that length must be safe
+ * and tight under Gazzola's law, whose stiffness grows as the rod shortens
+ * (the estimate falls by about 1/e), and under the variational law, whose
+ * does not.  A rod squeezed far from rest under Gazzola's law, at a step
+ * below its estimate, is reported with how short it became and what the
+ * law does there. */
 #include "testutil.h"
+#include "internal.h"
 
 typedef struct {
   const char *label;
@@ -135,6 +145,155 @@ static void test_instability_is_reported(void **state) {
   sw_model_free(m);
 }
 
+/* ---- away from rest ---- */
+
+/* The slender rod laid at e times its rest length (unstressed there: s0_3 =
+ * e - 1) under `law`, at dt = factor x its estimate at that length. */
+static swModel *make_short_rod(double e, swLaw law, double factor, double *estimate) {
+  swSpec *s = sw_spec_new();
+  swRodDesc r;
+  sw_rod_desc_init(&r);
+  r.name = "probe";
+  r.nelem = 40;
+  r.length = 1.0;
+  r.radius_start = r.radius_end = 0.01;
+  r.density = 1000;
+  r.youngs = 1e6;
+  r.rest_sigma[2] = e - 1;
+  r.law = law;
+  sw_spec_add_rod(s, &r);
+  swModel *m0 = sw_test_compile(s);
+  double est = sw_stable_dt_rod_at(m0, 0, e, e);
+  if (estimate) *estimate = est;
+  if (estimate) estimate[1] = sw_stable_dt_rod_at(m0, 0, 1, 1);
+  sw_model_free(m0);
+  sw_spec_set_dt(s, factor * est);
+  swModel *m = sw_test_compile(s);
+  sw_spec_free(s);
+  return m;
+}
+
+/* Its nodes drawn together about node 0 to e times their rest spacing. */
+static void shorten(const swModel *m, swData *d, double e) {
+  double x0[3], x[3];
+  sw_get3(m, d->x, m->node_adr[0], x0);
+  for (int i = 0; i <= m->rod_nelem[0]; i++) {
+    sw_get3(m, d->x, m->node_adr[0] + i, x);
+    for (int k = 0; k < 3; k++) x[k] = x0[k] + e * (x[k] - x0[k]);
+    sw_set3(m, d->x, m->node_adr[0] + i, x);
+  }
+  sw_internal_loads(m, d); /* the dilatation the drift and kick use */
+}
+
+static int short_runs_stable(double e, swLaw law, double factor, int steps) {
+  swModel *m = make_short_rod(e, law, factor, NULL);
+  swData *d = sw_data_new(m);
+  shorten(m, d, e);
+  unsigned seed = 12345;
+  for (int i = 0; i <= m->rod_nelem[0]; i++)
+    for (int k = 0; k < 3; k++) {
+      seed = seed * 1103515245u + 12345u;
+      SW_AT(m, d->v, m->node_adr[0] + i, k) = 1e-6 * ((double)(seed >> 8) / (1u << 24) - 0.5);
+    }
+  for (int i = 0; i < m->rod_nelem[0]; i++)
+    for (int k = 0; k < 3; k++) {
+      seed = seed * 1103515245u + 12345u;
+      SW_AT(m, d->omega, m->elem_adr[0] + i, k) = 1e-4 * ((double)(seed >> 8) / (1u << 24) - 0.5);
+    }
+  double en[3];
+  sw_energy(m, d, en);
+  double e0 = en[0] + en[1];
+  int ok = 1;
+  for (int k = 0; k < steps && ok; k++) ok = sw_step(m, d) == SW_OK;
+  if (ok) {
+    sw_energy(m, d, en);
+    ok = isfinite(en[0] + en[1]) && en[0] + en[1] < 1e3 * e0;
+  }
+  sw_data_free(d);
+  sw_model_free(m);
+  return ok;
+}
+
+/* The measured limit over the estimate at e, and the estimate over the rest
+ * one. */
+static void check_short(const char *label, double e, swLaw law, double *limit, double *ratio) {
+  int steps = sw_test_sanitized() ? 1000 : 3000;
+  assert_true(short_runs_stable(e, law, 0.95, steps));
+  double lo = 0.95, hi = 4.0;
+  assert_false(short_runs_stable(e, law, hi, steps));
+  for (int it = 0; it < 12; it++) {
+    double mid = 0.5 * (lo + hi);
+    if (short_runs_stable(e, law, mid, steps)) lo = mid; else hi = mid;
+  }
+  double est[2];
+  swModel *m = make_short_rod(e, law, 1.0, est);
+  sw_model_free(m);
+  fprintf(stderr, "# %s: %s at e = %g: estimate %.4g s (%.3g of the rest one), measured limit %.4f x estimate\n",
+          __func__, label, e, est[0], est[0] / est[1], lo);
+  *limit = lo;
+  *ratio = est[0] / est[1];
+}
+
+static void test_estimate_shortened(void **state) {
+  (void)state;
+  double limit, ratio;
+  /* Gazzola's law at a quarter of the rest length: the bending row, x e /
+   * eps^3 = 16, takes over from the shear couple's (x e^2) that bounds this
+   * rod at rest, and the bound falls to about half; at a tenth, x 100, to
+   * about a fifth; the bound goes as e from there */
+  check_short("Gazzola", 0.25, SW_LAW_GAZZOLA, &limit, &ratio);
+  assert_true(limit >= 1.0 && limit <= 1.5);
+  assert_true(ratio < 0.6);
+  check_short("Gazzola", 0.1, SW_LAW_GAZZOLA, &limit, &ratio);
+  assert_true(limit >= 1.0 && limit <= 1.5);
+  assert_true(ratio < 0.25);
+  /* at 2 %, the frog's filaments' regime (tests/scenes/frog_leg), x 2500 */
+  check_short("Gazzola", 0.02, SW_LAW_GAZZOLA, &limit, &ratio);
+  assert_true(limit >= 1.0 && limit <= 1.5);
+  assert_true(ratio < 0.05);
+  /* the variational law: no stiffening, the rest bound or above */
+  check_short("variational", 0.25, SW_LAW_VARIATIONAL, &limit, &ratio);
+  assert_true(limit >= 1.0 && limit <= 1.5);
+  assert_true(ratio >= 1.0);
+}
+
+/* A Gazzola rod squeezed to 2 % of its rest length (unstressed: the rest
+ * strain), at a step below its rest estimate but above the one at that
+ * length, goes unstable; the report says how short it was, what Gazzola's
+ * law does there and the stable dt at that length, and names the way out. */
+static void test_short_rod_is_explained(void **state) {
+  (void)state;
+  const double e = 0.02;
+  double est[2];
+  swModel *m0 = make_short_rod(e, SW_LAW_GAZZOLA, 1.0, est);
+  sw_model_free(m0);
+  /* 3x the estimate at 2 %, still below the rest estimate */
+  const double f = 3.0;
+  assert_true(f * est[0] < 0.5 * est[1]);
+  swModel *m = make_short_rod(e, SW_LAW_GAZZOLA, f, NULL);
+  assert_true(m->dt <= sw_stable_dt(m));
+  swData *d = sw_data_new(m);
+  shorten(m, d, e);
+  SW_AT(m, d->v, m->node_adr[0] + 15, 1) = 1e-6;
+  int rc = SW_OK;
+  for (int k = 0; k < 100000 && rc == SW_OK; k++) rc = sw_step(m, d);
+  fprintf(stderr, "# %s: after %ld steps: %s\n", __func__, d->step, d->error);
+  assert_int_equal(rc, SW_EUNSTABLE);
+  assert_non_null(strstr(d->error, "rod 'probe' became unstable"));
+  const char *at = strstr(d->error, "the rod had shortened to ");
+  assert_non_null(at);
+  double percent = 100;
+  assert_int_equal(sscanf(at, "the rod had shortened to %lf%% of its rest length", &percent), 1);
+  assert_true(percent <= 100 * e); /* as laid, or shorter by the time it failed */
+  assert_non_null(strstr(d->error, "Gazzola et al. 2018's law (n = S^ s / e, c = B^ k / eps^3)"));
+  assert_non_null(strstr(d->error, "times as stiff in stretch as at rest"));
+  assert_non_null(strstr(d->error, "; the rod's stable dt at that length is "));
+  assert_non_null(strstr(d->error, "at rest), and dt is above it"));
+  assert_non_null(strstr(d->error, "`variational = true`"));
+  sw_data_free(d);
+  sw_model_free(m);
+}
+
 /* The integrator limits on the model oscillator: Verlet h w < 2 exactly. */
 static void test_oscillator_limits(void **state) {
   (void)state;
@@ -162,6 +321,8 @@ int main(void) {
       cmocka_unit_test(test_estimate_thick),
       cmocka_unit_test(test_estimate_hardened),
       cmocka_unit_test(test_estimate_pefrl),
+      cmocka_unit_test(test_estimate_shortened),
+      cmocka_unit_test(test_short_rod_is_explained),
   };
   return cmocka_run_group_tests_name("stability", tests, NULL, NULL);
 }
