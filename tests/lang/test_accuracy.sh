@@ -24,7 +24,7 @@ scratch accuracy
 cd "$TMP" || exit 1
 
 # the values of a dataset, one a line (h5dump, 17 digits)
-vals() { h5dump -y -w 0 -m %.17g -d "$2" "$1" | sed -n '/DATA {/,/^ *}/p' | sed '1d;$d' |
+vals() { h5dump -A 0 -y -w 0 -m %.17g -d "$2" "$1" | sed -n '/DATA {/,/^ *}/p' | sed '1d;$d' |
          tr ',' '\n' | grep -Eo -- '-?[0-9][0-9.e+-]*'; }
 # the largest |a - b| of two such columns, in degrees (3 digits)
 maxdiff_deg() { paste "$1" "$2" | awk '{d = $1 - $2; if (d < 0) d = -d; if (d > m) m = d}

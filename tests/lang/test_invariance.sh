@@ -8,7 +8,7 @@
 #     frames fall) and --every 7 ms,
 #   - with its expect, maximize and penalty lines removed,
 #   - with one probe fewer in its output (output selection),
-#   - on 2 threads,
+#   - on 2 threads (over 20 ms),
 # and the last frame's positions of the foot, the knee's angle and the
 # work done (17 digits, h5dump) must be the same bits in every run; --every
 # leaves dt as it is (--info).
@@ -21,23 +21,24 @@ cp "$ROOT"/tests/scenes/frog_leg/*.sinew .
 grep -v '^expect\|^maximize\|^penalty\|^# \.\.\. without\|^# body over\|^# golden\|^# the study' frog.sinew >bare.sinew
 grep -v 'probe body' frog.sinew >fewer.sinew
 for m in frog bare fewer; do "$SINEWC" $m.sinew -o $m 2>>err || echo "$m failed" >>err; done
-[ ! -s err ] || grep -v warning err | grep -q .; [ $? -ne 0 ]
+! grep -q failed err
 ok $? "the frog leg and its two variants compile"
 diag <err
 
-# the last row of a dataset, 17 digits
+# the last frame of a dataset, one value a line, 17 digits (h5dump)
 last() {
   n=$(h5ls "$1$2" | sed 's/.*{\([0-9]*\).*/\1/')
-  h5dump -y -w 0 -m %.17g -d "$2" -s "$((n - 1))" -c 1 "$1" 2>/dev/null |
-    sed -n '/DATA {/,/^ *}/p' | sed '1d;$d' | tr -d ' \n'
-  [ "$2" = /joints/right.knee_joint/angle ] || return 0
+  h5dump -A 0 -y -w 0 -m %.17g -d "$2" "$1" | sed -n '/DATA {/,/^ *}/p' | sed '1d;$d' |
+    tr ',' '\n' | grep -Eo -- '-?[0-9][0-9.e+-]*' >vals.tmp
+  total=$(wc -l <vals.tmp)
+  [ "$n" -gt 0 ] && tail -n "$((total / n))" vals.tmp | tr '\n' ' '
 }
 state() { echo "$(last "$1" /rods/right.foot/position) $(last "$1" /joints/right.knee_joint/angle) $(last "$1" /diagnostics/energy)"; }
 
 ./frog --duration 0.1s --quiet --out a.h5 2>a.log; ok $? "as written"
 ref=$(state a.h5)
 echo "# last frame: $ref" | cut -c1-300
-[ -n "$ref" ]; ok $? "its last frame is read"
+[ "$(echo "$ref" | wc -w)" = 25 ]; ok $? "its last frame is read (7 nodes x 3, an angle, 3 energies)"
 check() {   # check NAME FILE: the same last frame
   s=$(state "$2")
   [ "$s" = "$ref" ]; r=$?
@@ -52,7 +53,12 @@ check "--every 0.3 ms" b.h5
 ./frog --duration 0.1s --every 7ms --quiet --out c.h5 2>/dev/null; check "--every 7 ms" c.h5
 ./bare --duration 0.1s --quiet --out d.h5 2>/dev/null; check "without its expect, maximize and penalty lines" d.h5
 ./fewer --duration 0.1s --quiet --out e.h5 2>/dev/null; check "with one probe fewer" e.h5
-./frog --duration 0.1s --threads 2 --quiet --out f.h5 2>/dev/null; check "on 2 threads" f.h5
+# on 2 threads, over 20 ms (a step of this small scene is a few barriers;
+# on a loaded machine two spinning threads wait long for each other)
+./frog --duration 20ms --quiet --out g.h5 2>/dev/null
+ref=$(state g.h5)
+./frog --duration 20ms --every 0.3ms --threads 2 --quiet --out f.h5 2>/dev/null
+check "on 2 threads with --every 0.3 ms (20 ms)" f.h5
 dt1=$(./frog --info | grep '^dt:'); dt2=$(./frog --info --every 0.3ms 2>/dev/null | grep '^dt:')
 echo "# $dt1"
 [ -n "$dt1" ] && [ "$dt1" = "$dt2" ]
