@@ -650,7 +650,11 @@ double sw_time(const swModel *m, const swData *d) {
 int sw_settle(const swModel *m, swData *d) {
   if (!d->held || d->whole) return SW_OK;
   d->held = 0;
-  return complete_held(m, d);
+  const int rc = complete_held(m, d);
+  /* the joints as a reading of the whole step measured them (a frame's), so
+   * that the state a run ends in is the one its last frame shows */
+  for (int j = 0; rc == SW_OK && j < m->njoint; j++) sw_joint_measure(m, d, j);
+  return rc;
 }
 
 int sw_step(const swModel *m, swData *d) { return sw_steps(m, d, 1); }
