@@ -4,7 +4,7 @@
 A ```text block whose first line starts with "$ " is a session: its "$ "
 lines are commands, the lines after each its output as the page shows it.
 The commands run in order, one scratch directory per page (bin, examples,
-models and scripts of ROOT linked into it, so "bin/sinewc examples/x.sinew"
+models, scripts and tests of ROOT linked into it, so "bin/sinewc examples/x.sinew"
 reads as on the page), stdout and stderr together.  A command passes when
 its exit code is the one the page says (0 unless the text after the block
 says "(exit N", for its last command), and every shown line is found in what it printed, in order
@@ -29,7 +29,7 @@ def ok(cond, what, diag=""):
 for doc in docs:
     text = open(os.path.join(root, doc), encoding="utf-8").read()
     scratch = tempfile.mkdtemp(prefix="sinew-doc-")
-    for d in ("bin", "examples", "models", "scripts", "build"):
+    for d in ("bin", "examples", "models", "scripts", "build", "tests"):
         os.symlink(os.path.join(root, d), os.path.join(scratch, d))
     for m in re.finditer(r"```text\n(.*?)```", text, re.S):
         body, after = m.group(1), text[m.end():m.end() + 200]

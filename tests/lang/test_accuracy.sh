@@ -13,7 +13,9 @@
 #   (c) the frog-like hind leg of tests/scenes/frog_leg (a new user's
 #       model: rigid bones, hinges with limits, a muscle over a via point,
 #       ground friction) is reported sensitive to the step, with the time
-#       its runs part; its objective at both steps is printed;
+#       its runs part; its objective at both steps is printed; and it is
+#       chaotic: a change of 1e-12 in a param at the same step moves its toe
+#       by millimetres, which stiffer muscle tissue removes;
 #   (d) misuse: a tolerance outside (0, 1), --accuracy with --restart or a
 #       study.
 # The measured figures are printed as TAP comments.
@@ -102,6 +104,28 @@ grep -q "frog: accuracy: .* of .* observables differ by more than 1% between dt 
 ok $? "it is reported sensitive to the step, with where the toe's runs part"
 grep -q "^    objective maximize max_over(z(toe), 0 s, 0.25 s) - at(z(toe), 0 s): " f.log
 ok $? "with its objective at both steps"
+
+# chaos, not the step: at a fixed step, strength changed by one part in
+# 10^12 moves the toe by millimetres within 0.1 s (the change grows ~10^13
+# times), as halving the step does; with stiffer muscle tissue (1 MPa, the
+# filaments no longer crumple under their active stress) the same change
+# stays below a micrometre
+toe() { h5dump -A 0 -y -w 0 -m %.17g -d /probes/toe "$1" | sed -n '/DATA {/,/^ *}/p' | sed '1d;$d' |
+        tr ',' '\n' | grep -Eo -- '-?[0-9][0-9.e+-]*' | paste - - -; }
+toediff() { toe "$1" >t1; toe "$2" >t2
+            paste t1 t2 | awk '{d = sqrt(($1-$4)^2 + ($2-$5)^2 + ($3-$6)^2); if (d > m) m = d}
+                               END {printf "%.3g\n", m * 1000}'; }
+./frog --duration 0.1s --quiet --out c0.h5 2>/dev/null
+./frog --duration 0.1s --quiet --set strength=0.5000000000005 --out c1.h5 2>/dev/null
+soft=$(toediff c0.h5 c1.h5)
+sed 's/E = 10 kPa/E = 1 MPa/' leg.sinew >leg1.sinew && sed 's/"leg.sinew"/"leg1.sinew"/' frog.sinew >stiff.sinew &&
+  "$SINEWC" stiff.sinew -o stiff 2>/dev/null
+./stiff --duration 0.1s --quiet --out s0.h5 2>/dev/null
+./stiff --duration 0.1s --quiet --set strength=0.5000000000005 --out s1.h5 2>/dev/null
+stiff=$(toediff s0.h5 s1.h5)
+echo "# strength + 1e-12 relative, same step, 0.1 s: the toe moves by up to $soft mm (10 kPa tissue), $stiff mm (1 MPa)"
+awk -v a="$soft" -v b="$stiff" 'BEGIN {exit !(a > 1 && b < 1e-3)}'
+ok $? "the frog leg is chaotic (a 1e-12 change moves its toe > 1 mm), and not with stiffer muscle tissue (< 1 um)"
 
 # ---- (d) misuse
 ./pend --accuracy --tolerance 2 2>e1; r=$?
