@@ -578,8 +578,8 @@ int sw_steps(const swModel *m, swData *d, long k) { return run_steps(m, d, k, 0)
 
 /* ---- Held steps ----
  * Fusing the half drifts of two steps into one drift h saves a pass over
- * the state every step (about a third of the step's time on a rod of 400
- * elements), but one drift h is not the same floating-point operations as
+ * the state every step (unfused steps took 1.7x as long on rods of 25 to
+ * 800 elements, docs/runtime.md, "Held steps"), but one drift h is not the same floating-point operations as
  * two drifts h/2: where a call of sw_steps ends, the trajectory's bits
  * change.  The run loop ends its calls where it must read the state (a
  * frame, an expectation's sample, 256 steps for Ctrl-C), so before
