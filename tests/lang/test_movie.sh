@@ -272,24 +272,31 @@ fails 2 "sinew-plot: no output file: give -o OUT.mp4" "movie without -o" movie "
 fails 2 "sinew-plot: movie takes exactly one file" "movie of two files" \
   movie "$TMP/pend.h5" "$TMP/long.h5" -o "$TMP/x.mp4"
 # Ctrl-C, as a terminal sends it (SIGINT to the foreground process group),
-# 2 s into a movie of 12,000 frames: exit 130, one line, no partial movie,
-# no ffmpeg left running
+# into a movie of 12,000 frames once its ffmpeg runs (on a loaded machine the
+# imports alone may take seconds; a fixed delay then hit them): exit 130,
+# one line, no partial movie, no ffmpeg left running
 $PY - "$PLOT" "$TMP" <<'EOF' >"$TMP/measure" 2>"$TMP/log"
 import os, signal, subprocess, sys, time
 plot, d = sys.argv[1], sys.argv[2]
-p = subprocess.Popen([plot, "movie", f"{d}/long.h5", "-o", f"{d}/x.mp4", "--size", "160x120",
-                      "--fps", "30", "--speed", "0.05"],
-                     stderr=subprocess.PIPE, start_new_session=True)
-time.sleep(2)
-os.killpg(p.pid, signal.SIGINT)
-err = p.communicate(timeout=30)[1].decode().strip()
 def cmdline(pid):
     try:
         with open(f"/proc/{pid}/cmdline", "rb") as fh:
             return fh.read()
     except OSError:
         return b""
-left = [p for p in os.listdir("/proc") if p.isdigit() and f"{d}/x.mp4".encode() in cmdline(p)]
+def encoding():
+    return [q for q in os.listdir("/proc") if q.isdigit() and f"{d}/x.mp4".encode() in cmdline(q)
+            and b"ffmpeg" in cmdline(q)]
+p = subprocess.Popen([plot, "movie", f"{d}/long.h5", "-o", f"{d}/x.mp4", "--size", "160x120",
+                      "--fps", "30", "--speed", "0.05"],
+                     stderr=subprocess.PIPE, start_new_session=True)
+deadline = time.time() + 120
+while not encoding() and p.poll() is None and time.time() < deadline:
+    time.sleep(0.05)
+time.sleep(0.5)
+os.killpg(p.pid, signal.SIGINT)
+err = p.communicate(timeout=60)[1].decode().strip()
+left = [q for q in os.listdir("/proc") if q.isdigit() and f"{d}/x.mp4".encode() in cmdline(q)]
 print(p.returncode, int(os.path.exists(f"{d}/x.mp4")), int(bool(left)), err.replace("\n", " | "))
 EOF
 read -r rc partial running msg <"$TMP/measure"
