@@ -11,6 +11,11 @@
 #                            crashes or hangs outright; its queue is then
 #                            replayed through build/asan/fuzz_sinewc
 #                            (docs/fuzzing.md, "Campaigns")
+#   FUZZ_TIMEOUT=200 scripts/fuzz.sh  an input slower than 200 ms is a hang
+#                            (default 2000): keeps inputs that take the front
+#                            end half a second (nested component uses, up
+#                            to SEMA_MAX_EXPANDED) out of the queue, where
+#                            they stalled run 8 (docs/fuzzing.md)
 #   FUZZ_EXECS=10000000 scripts/fuzz.sh 10800
 #                            stop at about 10^7 executions (afl-fuzz -E), or
 #                            after the seconds given, whichever comes first
@@ -98,7 +103,7 @@ export ASAN_OPTIONS=abort_on_error=1:detect_leaks=0:malloc_context_size=0:symbol
 allocator_may_return_null=1:detect_odr_violation=0:handle_segv=0:handle_sigbus=0:\
 handle_abort=0:handle_sigfpe=0:handle_sigill=0:quarantine_size_mb=16
 BIN="$ROOT/$OUT/fuzz_sinewc"
-ARGS="-i $ROOT/$IN -o $ROOT/$OUT/out -x $ROOT/tests/fuzz/sinew.dict -t 2000 -m none -V $SECONDS_TO_RUN"
+ARGS="-i $ROOT/$IN -o $ROOT/$OUT/out -x $ROOT/tests/fuzz/sinew.dict -t ${FUZZ_TIMEOUT:-2000} -m none -V $SECONDS_TO_RUN"
 [ -z "${FUZZ_EXECS:-}" ] || ARGS="$ARGS -E $FUZZ_EXECS"
 echo "fuzz: running $JOBS afl-fuzz instance(s) for $SECONDS_TO_RUN s (log: $OUT/fuzz-*.log)" >&2
 pids=""
