@@ -144,7 +144,7 @@ static inline __attribute__((always_inline)) void drift_frames_law(const swModel
     const sw3 dx = sw3_sub(sw3_load(x, S, i + 1), sw3_load(x, S, i));
     const sw3 dv = sw3_sub(sw3_load(v, S, i + 1), sw3_load(v, S, i));
     const double inv_e_old = 1.0 / dil[i];
-    const double e_new = ghost[i] != 0.0 ? 1.0 : sqrt(sw3_dot(dx, dx)) * irl[i];
+    const double e_new = sw_select(ghost[i] != 0.0, 1.0, sqrt(sw3_dot(dx, dx)) * irl[i]);
     const double ratio = e_new * inv_e_old;
     /* (1/h) integral of e dt over the drift, in units of e_old: Simpson's
      * rule (PEFRL) or the trapezoidal rule (Verlet) */
@@ -153,7 +153,7 @@ static inline __attribute__((always_inline)) void drift_frames_law(const swModel
                                   : 0.5 * (1.0 + ratio);
     /* a variational rod's inertia is J^, not J^ / e: w = J^-1 L stays */
     const int fixed_inertia = law && var[i] != 0.0;
-    const double mean = fixed_inertia ? 1.0 : mean_e, scale = fixed_inertia ? 1.0 : ratio;
+    const double mean = sw_select(fixed_inertia, 1.0, mean_e), scale = sw_select(fixed_inertia, 1.0, ratio);
     const double sh = h * mean;
     const sw3 wi = sw3_load(w, S, i), phi = {sh * wi.x, sh * wi.y, 2.0 * sh * wi.z};
     const double psi = -sh * wi.z; /* |psi| <= |phi| / 2: small with phi */
@@ -165,11 +165,11 @@ static inline __attribute__((always_inline)) void drift_frames_law(const swModel
     const swFrame Qn = turn_about_d3(Qa, c, sn);
     /* a frame turning by more than the series allows keeps its old value
      * (and its w unturned) here and is turned after the loop */
-    sw_frame_store(Q, S, i, (swFrame){small ? Qn.d1 : Qo.d1, small ? Qn.d2 : Qo.d2,
-                                      small ? Qn.d3 : Qo.d3});
+    sw_frame_store(Q, S, i, (swFrame){sw3_select(small, Qn.d1, Qo.d1), sw3_select(small, Qn.d2, Qo.d2),
+                                      sw3_select(small, Qn.d3, Qo.d3)});
     sw3_store(rot, S, i - so, phi);
     turned += !small;
-    const double cw = small ? c : 1.0, sw = small ? sn : 0.0;
+    const double cw = sw_select(small, c, 1.0), sw = sw_select(small, sn, 0.0);
     sw3_store(w, S, i, sw3_scale((sw3){cw * wi.x + sw * wi.y, cw * wi.y - sw * wi.x, wi.z}, scale));
     dil[i] = e_new;
   }
@@ -227,20 +227,20 @@ static inline __attribute__((always_inline)) void kick_slots_law(const swModel *
       const double Fi = F[i - so], Ti = T[i - so], efi = ef[i - so], eti = et[i - so];
       const double vo = v[i];
       const double vd = vo * ndec[i] + Fi * im[i] * nkick[i], vp = vo + h * Fi * im[i];
-      const double vn = ex ? vd : vp;
+      const double vn = sw_select(ex, vd, vp);
       v[i] = vn;
       /* elements: (J^/e) dw/dt = tau (Gazzola 2018, eq. 3.7b, the couples
        * of rod.c without the dilatation-rate term, which the drift
        * integrates); J^ dw/dt = tau on variational rods (rod.c) */
-      const double wo = w[i], e = law && var[i] != 0.0 ? 1.0 : dil[i]; /* sw_inertia_dilatation */
+      const double wo = w[i], e = sw_select(law && var[i] != 0.0, 1.0, dil[i]); /* sw_inertia_dilatation */
       const double wd = wo * edec[i] + Ti * iJ[i] * e * ekick[i], wp = wo + h * Ti * iJ[i] * e;
-      const double wn = ex ? wd : wp;
+      const double wn = sw_select(ex, wd, wp);
       w[i] = wn;
       /* the midpoint rule, h F . (v_old + v_new) / 2 */
-      const double booked = ex ? 0.5 * ((mass[i] * (vn - vo) - h * (Fi - efi)) * (vo + vn) +
-                                        (J[i] / e * (wn - wo) - h * (Ti - eti)) * (wo + wn))
-                               : 0.5 * h * (efi * (vo + vn) + eti * (wo + wn));
-      work[i] = k ? work[i] + booked : booked;
+      const double booked = sw_select(ex, 0.5 * ((mass[i] * (vn - vo) - h * (Fi - efi)) * (vo + vn) +
+                                                 (J[i] / e * (wn - wo) - h * (Ti - eti)) * (wo + wn)),
+                                      0.5 * h * (efi * (vo + vn) + eti * (wo + wn)));
+      work[i] = sw_select(k != 0, work[i] + booked, booked);
     }
   }
 }

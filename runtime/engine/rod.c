@@ -76,7 +76,7 @@ typedef struct {
  * rods and may coincide, so it counts as unit length. */
 static inline double elem_length(vorArrays a, size_t S, int i) {
   const sw3 dx = sw3_sub(sw3_load(a.x, S, i + 1), sw3_load(a.x, S, i));
-  return a.ghost[i] != 0.0 ? 1.0 : sqrt(sw3_dot(dx, dx));
+  return sw_select(a.ghost[i] != 0.0, 1.0, sqrt(sw3_dot(dx, dx)));
 }
 
 /* Domain i from its curvature kv = kappa (1/m) and the lengths l, l1 of its
@@ -89,7 +89,7 @@ static inline void domain_couple(vorArrays a, size_t S, int i, sw3 kv, double l,
                                  int var, double beta) {
   const double inv_D = a.iD[i];
   const double eps = 0.5 * (l + l1) * inv_D;
-  const double inv_eps3 = law && var ? 1.0 : 1.0 / (eps * eps * eps);
+  const double inv_eps3 = sw_select(law && var, 1.0, 1.0 / (eps * eps * eps));
   const sw3 Bi = sw3_load(a.B, S, i), kv0 = sw3_load(a.k0, S, i);
   const sw3 c = {Bi.x * (kv.x - kv0.x) * inv_eps3, Bi.y * (kv.y - kv0.y) * inv_eps3,
                  Bi.z * (kv.z - kv0.z) * inv_eps3};
@@ -100,7 +100,7 @@ static inline void domain_couple(vorArrays a, size_t S, int i, sw3 kv, double l,
   sw3_store(a.hh, S, j, (sw3){0.5 * h.x * a.D[i], 0.5 * h.y * a.D[i], 0.5 * h.z * a.D[i]});
   if (law) {
     /* beta phi x (phi x c) = beta D^2 kappa x (kappa x c), zero on Gazzola's domains */
-    const double b = var ? beta * a.D[i] * a.D[i] : 0.0;
+    const double b = sw_select(var, beta * a.D[i] * a.D[i], 0.0);
     const sw3 kkc = sw3_cross(kv, h);
     sw3_store(a.cpl, S, j, (sw3){c.x + b * kkc.x, c.y + b * kkc.y, c.z + b * kkc.z});
   } else {
@@ -134,11 +134,11 @@ static inline __attribute__((always_inline)) void element_pass_law(const swModel
 #pragma omp simd
   for (int i = lo; i < hi; i++) {
     const sw3 dx = sw3_sub(sw3_load(x, S, i + 1), sw3_load(x, S, i));
-    const double l = ghost[i] != 0.0 ? 1.0 : sqrt(sw3_dot(dx, dx));
+    const double l = sw_select(ghost[i] != 0.0, 1.0, sqrt(sw3_dot(dx, dx)));
     const double inv_l = 1.0 / l, inv_rl = irl[i];
     const double e = l * inv_rl, inv_e = rl[i] * inv_l;
     const int v = law && var[i] != 0.0;
-    const double inv_e_law = v ? 1.0 : inv_e;
+    const double inv_e_law = sw_select(v, 1.0, inv_e);
     const swFrame Qi = sw_frame_load(Q, S, i);
     const sw3 Qdx = sw_frame_apply(Qi, dx);
     /* sigma = Q dx / l^ - d3,  n = S^ (sigma - sigma0) / e (variational: no 1/e) */

@@ -19,6 +19,8 @@
 #define SW_VEC_H
 
 #include <math.h>
+#include <stdint.h>
+#include <string.h>
 
 #define SW_PI 3.14159265358979323846
 
@@ -172,6 +174,29 @@ static inline double sw3_dot(sw3 a, sw3 b) { return a.x * b.x + a.y * b.y + a.z 
 static inline sw3 sw3_cross(sw3 a, sw3 b) {
   return (sw3){a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
 }
+/* c ? a : b in the loop bodies, c being 0 or 1, with both a and b computed
+ * and no branch.  GCC compiles ?: on computed values as control flow and
+ * moves the arithmetic of each value into its arm; under its default
+ * -ftrapping-math it may then vectorize the loop only where the vector unit
+ * can mask that arithmetic lane by lane, which AVX-512 can and AVX2 cannot
+ * (at -march=x86-64-v3 the loops were left scalar, "control flow in loop";
+ * docs/performance.md).  Selected on the bits through a mask, the values are
+ * computed on every lane and the selection is a blend at every instruction
+ * set; the result is a or b exactly, as with ?:. */
+static inline double sw_select(int c, double a, double b) {
+  uint64_t ua, ub;
+  memcpy(&ua, &a, sizeof ua);
+  memcpy(&ub, &b, sizeof ub);
+  const uint64_t mask = (uint64_t)0 - (uint64_t)(c != 0);
+  const uint64_t r = (ua & mask) | (ub & ~mask);
+  double x;
+  memcpy(&x, &r, sizeof x);
+  return x;
+}
+static inline sw3 sw3_select(int c, sw3 a, sw3 b) {
+  return (sw3){sw_select(c, a.x, b.x), sw_select(c, a.y, b.y), sw_select(c, a.z, b.z)};
+}
+
 /* Q a (lab -> material) and Q^T a (material -> lab) */
 static inline sw3 sw_frame_apply(swFrame Q, sw3 a) {
   return (sw3){sw3_dot(Q.d1, a), sw3_dot(Q.d2, a), sw3_dot(Q.d3, a)};
