@@ -116,8 +116,9 @@ static inline swFrame turn_about_d3(swFrame Q, double c, double sn) {
  * its entries at once rather than the old and the new frame, eighteen,
  * which it spilled to the stack (most with AVX2's sixteen vector
  * registers; docs/performance.md). */
-static inline void drift_column(double *restrict Q, size_t S, int i, int k, int small, sw3 phi, swRodrigues r,
-                                double c, double sn) {
+static inline __attribute__((always_inline)) void drift_column(double *restrict Q, size_t S, int i, int k,
+                                                              int small, sw3 phi, swRodrigues r, double c,
+                                                              double sn) {
   const sw3 col = {Q[k * S + i], Q[(3 + k) * S + i], Q[(6 + k) * S + i]};
   const sw3 q = sw_rodrigues_column(col, phi, r.a, r.b);
   const sw3 turned = {q.x * c + q.y * sn, q.y * c - q.x * sn, q.z}; /* turn_about_d3 */
