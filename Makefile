@@ -177,6 +177,28 @@ BENCH_BIN = build/bench/bench_rod
 BENCH_FLAGS = -DSW_BENCH_CFLAGS='"$(CC) $(STD) $(CFLAGS)"'
 build/bench/bench_rod: bench/bench_rod.c build/libsinewrt.a | build/bench
 	$(CC) $(ALL_CFLAGS) $(BENCH_FLAGS) $< -o $@ build/libsinewrt.a $(LIBS)
+# The x86-64 levels side by side (bench/bench_isa.sh): the runtime and
+# bench_rod built for x86-64-v3 (AVX2 and FMA: most laptops, AMD Zen 2 and 3)
+# and for x86-64-v4 (AVX-512), both with the generic tuning, so that on a
+# CPU that runs both the one difference between them is the instruction set.
+# Built by `make bench` only (bench/bench_isa.sh builds and runs the v4 one
+# only where the CPU has AVX-512).
+ISA_OPT = -O3 -fno-math-errno -fopenmp -g
+RT_V3OBJ = $(RT_SRC:runtime/%.c=build/v3/rt/%.o)
+RT_V4OBJ = $(RT_SRC:runtime/%.c=build/v4/rt/%.o)
+build/v3/rt/%.o: runtime/%.c $(RT_HDR)
+	@mkdir -p $(@D)
+	$(CC) $(STD) $(WARN) -march=x86-64-v3 $(ISA_OPT) $(RT_INC) $(PKG_CFLAGS) -c $< -o $@
+build/v4/rt/%.o: runtime/%.c $(RT_HDR)
+	@mkdir -p $(@D)
+	$(CC) $(STD) $(WARN) -march=x86-64-v4 $(ISA_OPT) $(RT_INC) $(PKG_CFLAGS) -c $< -o $@
+build/libsinewrt-v3.a: $(RT_V3OBJ)
+	ar rcs $@ $^
+build/libsinewrt-v4.a: $(RT_V4OBJ)
+	ar rcs $@ $^
+build/bench/bench_rod_v3 build/bench/bench_rod_v4: build/bench/bench_rod_%: bench/bench_rod.c build/libsinewrt-%.a | build/bench
+	$(CC) $(STD) $(WARN) -march=x86-64-$* $(ISA_OPT) $(RT_INC) $(PKG_CFLAGS) \
+	  -DSW_BENCH_CFLAGS='"$(CC) $(STD) -march=x86-64-$* $(ISA_OPT)"' $< -o $@ build/libsinewrt-$*.a $(LIBS)
 # bench_rigid (one bone elastic vs rigid) replaces or appends its own section
 # of the report bench_rod has just written.
 BENCH_RIGID = build/bench/bench_rigid
@@ -195,6 +217,7 @@ build/bench/bench_scaling: bench/bench_scaling.c bench/bench_util.h build/libsin
 bench: deps
 	@$(MAKE) --no-print-directory $(BENCH_BIN) $(BENCH_RIGID) $(BENCH_CONTACT) $(BENCH_SCALING) bin/sinewc
 	@./$(BENCH_BIN) docs/benchmarks.md
+	@sh bench/bench_isa.sh docs/benchmarks.md   # bench_rod at x86-64-v3 and -v4, side by side (~2 min)
 	@./$(BENCH_RIGID) docs/benchmarks.md
 	@./$(BENCH_CONTACT) docs/benchmarks.md
 	@./$(BENCH_SCALING) docs/benchmarks.md   # ~2 min

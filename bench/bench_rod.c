@@ -562,9 +562,56 @@ static void write_report(FILE *f, const Machine *mc, const Cost *verlet, const C
   fprintf(f, "\n%d of %d judged rows meet the target.\n", met, judged);
 }
 
+/* `bench_rod --verlet N...`: the Verlet rows of the sizes given and nothing
+ * else, for bench/bench_isa.sh, which runs two builds of this program
+ * (x86-64-v3 and -v4) row by row, interleaved: a first line "# cycles: "
+ * and what they are, then one line a size, "n ns_median ns_min
+ * cycles_median" (cycles "nan" when there is no source). */
+static int verlet_rows(int count, char **sizes) {
+  cycles_init();
+  Machine mc;
+  machine_describe(&mc);
+  printf("# cycles: %s\n", mc.cycles_note);
+  for (int i = 0; i < count; i++) {
+    char *end;
+    const long n = strtol(sizes[i], &end, 10);
+    if (*end || n < 2 || n > 1000000) die("--verlet: not a number of elements: %s", sizes[i]);
+    const Cost c = bench_step((int)n, SW_VERLET);
+    printf("%d %.4f %.4f %.2f\n", c.n, c.ns_median, c.ns_min, c.cyc_median);
+    fflush(stdout);
+  }
+  if (perf_fd >= 0) close(perf_fd);
+  return 0;
+}
+
+/* `bench_rod --cpu`: what the CPU runs, for bench/bench_isa.sh, which
+ * builds and runs the x86-64-v4 benchmark only where it can: lines "model
+ * NAME", "avx2 yes|no", "avx512f yes|no", "x86-64-v3 yes|no" and
+ * "x86-64-v4 yes|no" (the levels as GCC's __builtin_cpu_supports knows
+ * them: v3 is AVX2, FMA, BMI1/2, F16C, LZCNT and MOVBE, v4 adds AVX-512
+ * F, BW, CD, DQ and VL; all "no" off x86). */
+static int cpu_report(void) {
+  Machine mc;
+  machine_describe(&mc);
+  int avx2 = 0, avx512f = 0, v3 = 0, v4 = 0;
+#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
+  __builtin_cpu_init();
+  avx2 = __builtin_cpu_supports("avx2") != 0;
+  avx512f = __builtin_cpu_supports("avx512f") != 0;
+  v3 = __builtin_cpu_supports("x86-64-v3") != 0;
+  v4 = __builtin_cpu_supports("x86-64-v4") != 0;
+#endif
+  printf("model %s\navx2 %s\navx512f %s\nx86-64-v3 %s\nx86-64-v4 %s\n", mc.cpu, avx2 ? "yes" : "no",
+         avx512f ? "yes" : "no", v3 ? "yes" : "no", v4 ? "yes" : "no");
+  return 0;
+}
+
 int main(int argc, char **argv) {
+  if (argc > 1 && strcmp(argv[1], "--verlet") == 0) return verlet_rows(argc - 2, argv + 2);
+  if (argc == 2 && strcmp(argv[1], "--cpu") == 0) return cpu_report();
   if (argc > 2) {
-    fprintf(stderr, "usage: %s [report.md]\n", argv[0]);
+    fprintf(stderr, "usage: %s [report.md]\n       %s --verlet N...\n       %s --cpu\n", argv[0], argv[0],
+            argv[0]);
     return SW_EUSAGE;
   }
   cycles_init();

@@ -109,6 +109,25 @@ static inline swFrame turn_about_d3(swFrame Q, double c, double sn) {
                    sw3_sub(sw3_scale(Q.d2, c), sw3_scale(Q.d1, sn)), Q.d3};
 }
 
+/* Column k of the frame of slot i, (d1_k, d2_k, d3_k), through the drift's
+ * two turns, exp(-[phi]x) by Rodrigues' series r (vec.h) and then
+ * turn_about_d3's, where `small`; else left as it is (drift_frames).  The
+ * frame is turned a column at a time, so that the loop body holds three of
+ * its entries at once rather than the old and the new frame, eighteen,
+ * which it spilled to the stack (most with AVX2's sixteen vector
+ * registers; docs/performance.md). */
+static inline __attribute__((always_inline)) void drift_column(double *restrict Q, size_t S, int i, int k,
+                                                              int small, sw3 phi, swRodrigues r, double c,
+                                                              double sn) {
+  const sw3 col = {Q[k * S + i], Q[(3 + k) * S + i], Q[(6 + k) * S + i]};
+  const sw3 q = sw_rodrigues_column(col, phi, r.a, r.b);
+  const sw3 turned = {q.x * c + q.y * sn, q.y * c - q.x * sn, q.z}; /* turn_about_d3 */
+  const sw3 out = sw3_select(small, turned, col);
+  Q[k * S + i] = out.x;
+  Q[(3 + k) * S + i] = out.y;
+  Q[(6 + k) * S + i] = out.z;
+}
+
 /* Frames turn with the angular momentum held (see drift()) over the element
  * slots [lo, hi), after the nodes have moved.  The drift is the exact free
  * rotation of each element, an axisymmetric body (J^ = J1 (1, 1, 2), a
@@ -144,7 +163,7 @@ static inline __attribute__((always_inline)) void drift_frames_law(const swModel
     const sw3 dx = sw3_sub(sw3_load(x, S, i + 1), sw3_load(x, S, i));
     const sw3 dv = sw3_sub(sw3_load(v, S, i + 1), sw3_load(v, S, i));
     const double inv_e_old = 1.0 / dil[i];
-    const double e_new = ghost[i] != 0.0 ? 1.0 : sqrt(sw3_dot(dx, dx)) * irl[i];
+    const double e_new = sw_select(ghost[i] != 0.0, 1.0, sqrt(sw3_dot(dx, dx)) * irl[i]);
     const double ratio = e_new * inv_e_old;
     /* (1/h) integral of e dt over the drift, in units of e_old: Simpson's
      * rule (PEFRL) or the trapezoidal rule (Verlet) */
@@ -153,23 +172,21 @@ static inline __attribute__((always_inline)) void drift_frames_law(const swModel
                                   : 0.5 * (1.0 + ratio);
     /* a variational rod's inertia is J^, not J^ / e: w = J^-1 L stays */
     const int fixed_inertia = law && var[i] != 0.0;
-    const double mean = fixed_inertia ? 1.0 : mean_e, scale = fixed_inertia ? 1.0 : ratio;
+    const double mean = sw_select(fixed_inertia, 1.0, mean_e), scale = sw_select(fixed_inertia, 1.0, ratio);
     const double sh = h * mean;
     const sw3 wi = sw3_load(w, S, i), phi = {sh * wi.x, sh * wi.y, 2.0 * sh * wi.z};
     const double psi = -sh * wi.z; /* |psi| <= |phi| / 2: small with phi */
-    const swFrame Qo = sw_frame_load(Q, S, i);
     const int small = sw_frame_small_turn(phi);
-    const swFrame Qa = sw_frame_rotate_small(Qo, phi);
-    const swRodrigues r = sw_rodrigues_series(psi * psi);
+    const swRodrigues rot_phi = sw_rodrigues_series(sw3_dot(phi, phi)), r = sw_rodrigues_series(psi * psi);
     const double c = 1.0 - r.b * psi * psi, sn = r.a * psi; /* cos, sin psi */
-    const swFrame Qn = turn_about_d3(Qa, c, sn);
     /* a frame turning by more than the series allows keeps its old value
      * (and its w unturned) here and is turned after the loop */
-    sw_frame_store(Q, S, i, (swFrame){small ? Qn.d1 : Qo.d1, small ? Qn.d2 : Qo.d2,
-                                      small ? Qn.d3 : Qo.d3});
+    drift_column(Q, S, i, 0, small, phi, rot_phi, c, sn);
+    drift_column(Q, S, i, 1, small, phi, rot_phi, c, sn);
+    drift_column(Q, S, i, 2, small, phi, rot_phi, c, sn);
     sw3_store(rot, S, i - so, phi);
     turned += !small;
-    const double cw = small ? c : 1.0, sw = small ? sn : 0.0;
+    const double cw = sw_select(small, c, 1.0), sw = sw_select(small, sn, 0.0);
     sw3_store(w, S, i, sw3_scale((sw3){cw * wi.x + sw * wi.y, cw * wi.y - sw * wi.x, wi.z}, scale));
     dil[i] = e_new;
   }
@@ -197,52 +214,62 @@ static inline __attribute__((always_inline)) void drift_frames(const swModel *m,
   else drift_frames_law(m, d, h, lo, hi, so, simpson, 0);
 }
 
-/* Velocities of the elastic slots [lo, hi) under the loads (scratch, at
- * i - so), and the work booked over the kick (see kick()) slot by slot into
- * work[i] (summed by chunk in kick(), so that the sum does not depend on
- * the threads).  One loop per kind of model: with `exact_any` 0 (no rod
- * integrates its damping exactly, the common case) the loop carries no
- * exact path at all. */
-static inline __attribute__((always_inline)) void kick_slots_law(const swModel *m, swData *d, double h,
+/* Component k of the velocities of the elastic slots [lo, hi) under the
+ * loads (scratch, at i - so), and the work booked over the kick (see
+ * kick()) slot by slot into work[i]: the first component (`first`) starts
+ * it, the others add theirs.  One loop per kind of model: with `exact_any`
+ * 0 (no rod integrates its damping exactly, the common case) the loop
+ * carries no exact path at all. */
+static inline __attribute__((always_inline)) void kick_component(const swModel *m, swData *d, double h,
                                                                int lo, int hi, int so, double *restrict work,
-                                                               const int exact_any, const int law) {
+                                                               int k, const int first, const int exact_any,
+                                                               const int law) {
   const size_t S = (size_t)m->stride;
   const double *restrict im = m->inv_mass, *restrict mass = m->mass;
   const double *restrict ndec = m->node_decay, *restrict nkick = m->node_kick;
   const double *restrict exact = m->kick_exact, *restrict dil = d->dilatation;
   const double *restrict var = m->elem_variational;
-  for (int k = 0; k < 3; k++) {
-    double *restrict v = d->v + k * S, *restrict w = d->omega + k * S;
-    const double *restrict F = d->force + k * S, *restrict T = d->torque + k * S;
-    const double *restrict ef = d->ext_force + k * S, *restrict et = d->ext_torque + k * S;
-    const double *restrict iJ = m->inv_inertia + k * S, *restrict J = m->inertia + k * S;
-    const double *restrict edec = m->elem_decay + k * S, *restrict ekick = m->elem_kick + k * S;
+  double *restrict v = d->v + k * S, *restrict w = d->omega + k * S;
+  const double *restrict F = d->force + k * S, *restrict T = d->torque + k * S;
+  const double *restrict ef = d->ext_force + k * S, *restrict et = d->ext_torque + k * S;
+  const double *restrict iJ = m->inv_inertia + k * S, *restrict J = m->inertia + k * S;
+  const double *restrict edec = m->elem_decay + k * S, *restrict ekick = m->elem_kick + k * S;
 #pragma omp simd
-    for (int i = lo; i < hi; i++) {
-      /* nodes: m dv/dt = F; analytically damped rods (Verlet) integrate
-       * dv/dt = a - c v exactly with a held (model.c), and book the work of
-       * loads and dissipation together as the non-internal impulse times
-       * the mean velocity */
-      const int ex = exact_any && exact[i] != 0.0;
-      const double Fi = F[i - so], Ti = T[i - so], efi = ef[i - so], eti = et[i - so];
-      const double vo = v[i];
-      const double vd = vo * ndec[i] + Fi * im[i] * nkick[i], vp = vo + h * Fi * im[i];
-      const double vn = ex ? vd : vp;
-      v[i] = vn;
-      /* elements: (J^/e) dw/dt = tau (Gazzola 2018, eq. 3.7b, the couples
-       * of rod.c without the dilatation-rate term, which the drift
-       * integrates); J^ dw/dt = tau on variational rods (rod.c) */
-      const double wo = w[i], e = law && var[i] != 0.0 ? 1.0 : dil[i]; /* sw_inertia_dilatation */
-      const double wd = wo * edec[i] + Ti * iJ[i] * e * ekick[i], wp = wo + h * Ti * iJ[i] * e;
-      const double wn = ex ? wd : wp;
-      w[i] = wn;
-      /* the midpoint rule, h F . (v_old + v_new) / 2 */
-      const double booked = ex ? 0.5 * ((mass[i] * (vn - vo) - h * (Fi - efi)) * (vo + vn) +
-                                        (J[i] / e * (wn - wo) - h * (Ti - eti)) * (wo + wn))
-                               : 0.5 * h * (efi * (vo + vn) + eti * (wo + wn));
-      work[i] = k ? work[i] + booked : booked;
-    }
+  for (int i = lo; i < hi; i++) {
+    /* nodes: m dv/dt = F; analytically damped rods (Verlet) integrate
+     * dv/dt = a - c v exactly with a held (model.c), and book the work of
+     * loads and dissipation together as the non-internal impulse times the
+     * mean velocity */
+    const int ex = exact_any && exact[i] != 0.0;
+    const double Fi = F[i - so], Ti = T[i - so], efi = ef[i - so], eti = et[i - so];
+    const double vo = v[i];
+    const double vd = vo * ndec[i] + Fi * im[i] * nkick[i], vp = vo + h * Fi * im[i];
+    const double vn = sw_select(ex, vd, vp);
+    v[i] = vn;
+    /* elements: (J^/e) dw/dt = tau (Gazzola 2018, eq. 3.7b, the couples of
+     * rod.c without the dilatation-rate term, which the drift integrates);
+     * J^ dw/dt = tau on variational rods (rod.c) */
+    const double wo = w[i], e = sw_select(law && var[i] != 0.0, 1.0, dil[i]); /* sw_inertia_dilatation */
+    const double wd = wo * edec[i] + Ti * iJ[i] * e * ekick[i], wp = wo + h * Ti * iJ[i] * e;
+    const double wn = sw_select(ex, wd, wp);
+    w[i] = wn;
+    /* the midpoint rule, h F . (v_old + v_new) / 2 */
+    const double booked = sw_select(ex, 0.5 * ((mass[i] * (vn - vo) - h * (Fi - efi)) * (vo + vn) +
+                                               (J[i] / e * (wn - wo) - h * (Ti - eti)) * (wo + wn)),
+                                    0.5 * h * (efi * (vo + vn) + eti * (wo + wn)));
+    work[i] = first ? booked : work[i] + booked;
   }
+}
+
+/* The three components of the kick over slots [lo, hi) (kick_component),
+ * the work of each slot summed in component order into work[i] (and by
+ * chunk in kick(), so that the sum does not depend on the threads). */
+static inline __attribute__((always_inline)) void kick_slots_law(const swModel *m, swData *d, double h,
+                                                               int lo, int hi, int so, double *restrict work,
+                                                               const int exact_any, const int law) {
+  kick_component(m, d, h, lo, hi, so, work, 0, 1, exact_any, law);
+  kick_component(m, d, h, lo, hi, so, work, 1, 0, exact_any, law);
+  kick_component(m, d, h, lo, hi, so, work, 2, 0, exact_any, law);
 }
 
 static inline __attribute__((always_inline)) void kick_slots(const swModel *m, swData *d, double h,

@@ -176,14 +176,22 @@ void sw_signal_range(const swSignal *s, double *lo, double *hi) {
  * mass but on weightless rods, when some rod is weightless. */
 static void base_loads(const swModel *m, swData *d, int lo, int hi, int so) {
   const size_t S = (size_t)m->stride;
-  const int NS = m->nslot;
   const double *restrict mass = m->weight ? m->weight : m->mass;
+  /* [lo, top) under gravity, [top, hi) not (the padding, or no gravity): two
+   * loops rather than a condition per slot (vec.h, sw_select) */
+  int top = m->has_gravity ? (hi < m->nslot ? hi : m->nslot) : lo;
+  if (top < lo) top = lo;
   for (int k = 0; k < 3; k++) {
     double *restrict ef = d->ext_force + k * S, *restrict et = d->ext_torque + k * S;
-    const double g = m->has_gravity ? m->gravity[k] : 0.0;
+    const double g = m->gravity[k];
 #pragma omp simd
-    for (int i = lo; i < hi; i++) {
-      ef[i - so] = m->has_gravity && i < NS ? mass[i] * g : 0.0;
+    for (int i = lo; i < top; i++) {
+      ef[i - so] = mass[i] * g;
+      et[i - so] = 0.0;
+    }
+#pragma omp simd
+    for (int i = top; i < hi; i++) {
+      ef[i - so] = 0.0;
       et[i - so] = 0.0;
     }
   }
@@ -226,8 +234,8 @@ static void finish_loads(const swModel *m, swData *d, int lo, int hi, int so) {
 #pragma omp simd
       for (int i = lo; i < hi; i++) {
         const int node = lin[i] != 0.0, elem = (lin[i] != 0.0) & (ghost[i] == 0.0);
-        ef[i - so] = node ? ef[i - so] - ng[i] * v[i] : ef[i - so];
-        et[i - so] = elem ? et[i - so] - eg[i] * w[i] : et[i - so];
+        ef[i - so] = sw_select(node, ef[i - so] - ng[i] * v[i], ef[i - so]);
+        et[i - so] = sw_select(elem, et[i - so] - eg[i] * w[i], et[i - so]);
       }
     }
 #pragma omp simd

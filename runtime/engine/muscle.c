@@ -583,7 +583,7 @@ static void filament_rates(const swModel *m, swData *d, int lo, int hi) {
   for (int e = lo; e < hi; e++) {
     const sw3 dx = sw3_sub(sw3_load(x, S, e + 1), sw3_load(x, S, e));
     const sw3 dv = sw3_sub(sw3_load(v, S, e + 1), sw3_load(v, S, e));
-    q[e] = pull[e] != 0.0 ? sw3_dot(dx, dv) / len[e] : 0.0;
+    q[e] = sw_select(pull[e] != 0.0, sw3_dot(dx, dv) / len[e], 0.0);
   }
 }
 
@@ -655,9 +655,10 @@ static void filament_pull(const swModel *m, swData *d, int lo, int hi) {
       const int before_pulls = pull[i - 1] != 0.0, own_pulls = pull[i] != 0.0;
       const double before = T_e[i - 1] / len[i - 1] * (xk[i] - xk[i - 1]);
       const double after = T_e[i] / len[i] * (xk[i + 1] - xk[i]);
-      const double Fi = before_pulls ? F[i] - before : F[i], efi = before_pulls ? ef[i] - before : ef[i];
-      F[i] = own_pulls ? Fi + after : Fi;
-      ef[i] = own_pulls ? efi + after : efi;
+      const double Fi = sw_select(before_pulls, F[i] - before, F[i]);
+      const double efi = sw_select(before_pulls, ef[i] - before, ef[i]);
+      F[i] = sw_select(own_pulls, Fi + after, Fi);
+      ef[i] = sw_select(own_pulls, efi + after, efi);
     }
   }
 }

@@ -68,6 +68,7 @@
  * compiler knows the stores of a slot do not feed the loads of another. */
 typedef struct {
   const double *restrict x, *restrict ghost, *restrict D, *restrict iD, *restrict B, *restrict k0;
+  const double *restrict len;                                        /* scratch, at i - so */
   double *restrict kap, *restrict cpl, *restrict vdil, *restrict hh; /* scratch, at i - so */
   int so;
 } vorArrays;
@@ -76,7 +77,7 @@ typedef struct {
  * rods and may coincide, so it counts as unit length. */
 static inline double elem_length(vorArrays a, size_t S, int i) {
   const sw3 dx = sw3_sub(sw3_load(a.x, S, i + 1), sw3_load(a.x, S, i));
-  return a.ghost[i] != 0.0 ? 1.0 : sqrt(sw3_dot(dx, dx));
+  return sw_select(a.ghost[i] != 0.0, 1.0, sqrt(sw3_dot(dx, dx)));
 }
 
 /* Domain i from its curvature kv = kappa (1/m) and the lengths l, l1 of its
@@ -89,7 +90,7 @@ static inline void domain_couple(vorArrays a, size_t S, int i, sw3 kv, double l,
                                  int var, double beta) {
   const double inv_D = a.iD[i];
   const double eps = 0.5 * (l + l1) * inv_D;
-  const double inv_eps3 = law && var ? 1.0 : 1.0 / (eps * eps * eps);
+  const double inv_eps3 = sw_select(law && var, 1.0, 1.0 / (eps * eps * eps));
   const sw3 Bi = sw3_load(a.B, S, i), kv0 = sw3_load(a.k0, S, i);
   const sw3 c = {Bi.x * (kv.x - kv0.x) * inv_eps3, Bi.y * (kv.y - kv0.y) * inv_eps3,
                  Bi.z * (kv.z - kv0.z) * inv_eps3};
@@ -100,7 +101,7 @@ static inline void domain_couple(vorArrays a, size_t S, int i, sw3 kv, double l,
   sw3_store(a.hh, S, j, (sw3){0.5 * h.x * a.D[i], 0.5 * h.y * a.D[i], 0.5 * h.z * a.D[i]});
   if (law) {
     /* beta phi x (phi x c) = beta D^2 kappa x (kappa x c), zero on Gazzola's domains */
-    const double b = var ? beta * a.D[i] * a.D[i] : 0.0;
+    const double b = sw_select(var, beta * a.D[i] * a.D[i], 0.0);
     const sw3 kkc = sw3_cross(kv, h);
     sw3_store(a.cpl, S, j, (sw3){c.x + b * kkc.x, c.y + b * kkc.y, c.z + b * kkc.z});
   } else {
@@ -134,11 +135,11 @@ static inline __attribute__((always_inline)) void element_pass_law(const swModel
 #pragma omp simd
   for (int i = lo; i < hi; i++) {
     const sw3 dx = sw3_sub(sw3_load(x, S, i + 1), sw3_load(x, S, i));
-    const double l = ghost[i] != 0.0 ? 1.0 : sqrt(sw3_dot(dx, dx));
+    const double l = sw_select(ghost[i] != 0.0, 1.0, sqrt(sw3_dot(dx, dx)));
     const double inv_l = 1.0 / l, inv_rl = irl[i];
     const double e = l * inv_rl, inv_e = rl[i] * inv_l;
     const int v = law && var[i] != 0.0;
-    const double inv_e_law = v ? 1.0 : inv_e;
+    const double inv_e_law = sw_select(v, 1.0, inv_e);
     const swFrame Qi = sw_frame_load(Q, S, i);
     const sw3 Qdx = sw_frame_apply(Qi, dx);
     /* sigma = Q dx / l^ - d3,  n = S^ (sigma - sigma0) / e (variational: no 1/e) */
@@ -159,31 +160,40 @@ static inline __attribute__((always_inline)) void element_pass_law(const swModel
   }
 }
 
-/* Voronoi pass over slots [lo, hi), after the element pass of [lo, hi):
+/* Domain i of the Voronoi pass, l1 being the length of element i + 1:
  * kappa = log(Q_{i+1} Q_i^T) / D^ (a ghost domain's is never used: its
- * stiffness is zero), the bending couple and the transport term; returns
- * how many real domains were bent past the logarithm's series (flagged in
- * flag[i - so]).  law as for the element pass. */
+ * stiffness is zero), the bending couple and the transport term.  Returns
+ * 1, and flags it in flag[i - so], if it is a real domain bent past the
+ * logarithm's series, else 0.  law as for the element pass. */
+static inline __attribute__((always_inline)) int voronoi_domain(vorArrays va, const double *restrict Q,
+                                                                const double *restrict var, size_t S, int i,
+                                                                double l1, double *restrict flag,
+                                                                const int law) {
+  const swSmallLog lg = sw_frame_log_small(sw_frame_load(Q, S, i), sw_frame_load(Q, S, i + 1));
+  const sw3 kv = sw3_scale(lg.phi, va.iD[i]);
+  const int redo = (lg.small == 0) & (va.ghost[i] == 0.0) & (va.ghost[i + 1] == 0.0);
+  flag[i - va.so] = redo;
+  const double beta = law ? sw_dexpinv_beta_small(sw3_dot(lg.phi, lg.phi)) : 0.0;
+  domain_couple(va, S, i, kv, va.len[i - va.so], l1, law, law && var[i] != 0.0, beta);
+  return redo;
+}
+
+/* Voronoi pass over slots [lo, hi), after the element pass of [lo, hi),
+ * whose lengths it reads; the last domain's second element is the next
+ * range's, so its length is computed here (elem_length).  Returns how many
+ * real domains were bent past the logarithm's series. */
 static inline __attribute__((always_inline)) int voronoi_pass_law(const swModel *m, swData *d, int lo, int hi,
                                                                   int so, double *restrict flag,
                                                                   const int law) {
   const size_t S = (size_t)m->stride;
-  const double *restrict Q = d->Q, *restrict ghost = m->elem_ghost, *restrict len = d->length;
-  const double *restrict var = m->elem_variational;
-  const vorArrays va = {d->x, ghost, m->rest_vor_len, m->inv_rest_vor_len, m->bend_stiff, m->rest_kappa,
-                        d->kappa, d->couple, d->vor_dilatation, d->scratch_h, so};
+  const double *restrict Q = d->Q, *restrict var = m->elem_variational;
+  const vorArrays va = {d->x, m->elem_ghost, m->rest_vor_len, m->inv_rest_vor_len, m->bend_stiff, m->rest_kappa,
+                        d->length, d->kappa, d->couple, d->vor_dilatation, d->scratch_h, so};
+  if (lo >= hi) return 0;
   int bent = 0;
 #pragma omp simd reduction(+ : bent)
-  for (int i = lo; i < hi; i++) {
-    const swSmallLog lg = sw_frame_log_small(sw_frame_load(Q, S, i), sw_frame_load(Q, S, i + 1));
-    const sw3 kv = sw3_scale(lg.phi, m->inv_rest_vor_len[i]);
-    const int redo = (lg.small == 0) & (ghost[i] == 0.0) & (ghost[i + 1] == 0.0);
-    flag[i - so] = redo;
-    bent += redo;
-    const double beta = law ? sw_dexpinv_beta_small(sw3_dot(lg.phi, lg.phi)) : 0.0;
-    domain_couple(va, S, i, kv, len[i - so], elem_length(va, S, i + 1), law, law && var[i] != 0.0, beta);
-  }
-  return bent;
+  for (int i = lo; i < hi - 1; i++) bent += voronoi_domain(va, Q, var, S, i, va.len[i + 1 - so], flag, law);
+  return bent + voronoi_domain(va, Q, var, S, hi - 1, elem_length(va, S, hi), flag, law);
 }
 
 static void element_pass(const swModel *m, swData *d, int lo, int hi, int so) {
@@ -214,9 +224,8 @@ void sw_rod_pass(const swModel *m, swData *d, int lo, int hi, int so, double *fl
   }
   if (!bent) return;
   const size_t S = (size_t)m->stride;
-  const double *restrict len = d->length;
   const vorArrays va = {d->x, m->elem_ghost, m->rest_vor_len, m->inv_rest_vor_len, m->bend_stiff, m->rest_kappa,
-                        d->kappa, d->couple, d->vor_dilatation, d->scratch_h, so};
+                        d->length, d->kappa, d->couple, d->vor_dilatation, d->scratch_h, so};
   for (int i = lo; i < hi; i++) {
     if (flag[i - so] == 0.0) continue;
     double Qa[9], Qb[9], phi[3];
@@ -227,7 +236,7 @@ void sw_rod_pass(const swModel *m, swData *d, int lo, int hi, int so, double *fl
     const sw3 kv = {phi[0] * inv_D, phi[1] * inv_D, phi[2] * inv_D};
     const int var = m->nvariational && m->elem_variational[i] != 0.0;
     const double beta = var ? sw_dexpinv_beta(sw_v3_dot(phi, phi)) : 0.0;
-    domain_couple(va, S, i, kv, len[i - so], elem_length(va, S, i + 1), var, var, beta);
+    domain_couple(va, S, i, kv, va.len[i - so], elem_length(va, S, i + 1), var, var, beta);
   }
 }
 

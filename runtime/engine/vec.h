@@ -19,6 +19,8 @@
 #define SW_VEC_H
 
 #include <math.h>
+#include <stdint.h>
+#include <string.h>
 
 #define SW_PI 3.14159265358979323846
 
@@ -172,6 +174,29 @@ static inline double sw3_dot(sw3 a, sw3 b) { return a.x * b.x + a.y * b.y + a.z 
 static inline sw3 sw3_cross(sw3 a, sw3 b) {
   return (sw3){a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
 }
+/* c ? a : b in the loop bodies, c being 0 or 1, with both a and b computed
+ * and no branch.  GCC compiles ?: on computed values as control flow and
+ * moves the arithmetic of each value into its arm; under its default
+ * -ftrapping-math it may then vectorize the loop only where the vector unit
+ * can mask that arithmetic lane by lane, which AVX-512 can and AVX2 cannot
+ * (at -march=x86-64-v3 the loops were left scalar, "control flow in loop";
+ * docs/performance.md).  Selected on the bits through a mask, the values are
+ * computed on every lane and the selection is a blend at every instruction
+ * set; the result is a or b exactly, as with ?:. */
+static inline double sw_select(int c, double a, double b) {
+  uint64_t ua, ub;
+  memcpy(&ua, &a, sizeof ua);
+  memcpy(&ub, &b, sizeof ub);
+  const uint64_t mask = (uint64_t)0 - (uint64_t)(c != 0);
+  const uint64_t r = (ua & mask) | (ub & ~mask);
+  double x;
+  memcpy(&x, &r, sizeof x);
+  return x;
+}
+static inline sw3 sw3_select(int c, sw3 a, sw3 b) {
+  return (sw3){sw_select(c, a.x, b.x), sw_select(c, a.y, b.y), sw_select(c, a.z, b.z)};
+}
+
 /* Q a (lab -> material) and Q^T a (material -> lab) */
 static inline sw3 sw_frame_apply(swFrame Q, sw3 a) {
   return (sw3){sw3_dot(Q.d1, a), sw3_dot(Q.d2, a), sw3_dot(Q.d3, a)};
@@ -231,14 +256,17 @@ static inline double sw_dexpinv_beta(double th2) {
   return 1.0 / th2 - cos(0.5 * th) / (2.0 * th * sin(0.5 * th));
 }
 
+/* One column c of a frame (c = (d1_k, d2_k, d3_k)) turned by Rodrigues'
+ * formula with the coefficients a, b of sw_rodrigues_coeffs:
+ * c - a phi x c + b phi x (phi x c), as sw_rotate_frame turns it.  With the
+ * series' a, b, the small-angle side of exp(-[phi]x) Q, exact where
+ * |phi|^2 < 1e-2 (sw_frame_small_turn); integrate.c turns the frames that
+ * turn by more with sw_rotate_frame. */
 static inline sw3 sw_rodrigues_column(sw3 c, sw3 phi, double a, double b) {
   const sw3 pc = sw3_cross(phi, c), ppc = sw3_cross(phi, pc);
   return (sw3){c.x - a * pc.x + b * ppc.x, c.y - a * pc.y + b * ppc.y, c.z - a * pc.z + b * ppc.z};
 }
 
-/* The small-angle side of sw_rotate_frame on a frame held as a value:
- * exp(-[phi]x) Q, exact where |phi|^2 < 1e-2 (sw_frame_small_turn); the
- * caller redoes the others with sw_rotate_frame (integrate.c). */
 /* One Newton step of the polar decomposition towards the nearest rotation,
  * Q <- (3 I - Q Q^T) Q / 2, written as d_i += E_ij d_j / 2 with the small
  * E = I - Q Q^T (E_ij = delta_ij - d_i . d_j): it takes an error eps in
@@ -258,14 +286,5 @@ static inline swFrame sw_frame_orthonormalize(swFrame Q) {
 }
 
 static inline int sw_frame_small_turn(sw3 phi) { return sw3_dot(phi, phi) < 1e-2; }
-static inline swFrame sw_frame_rotate_small(swFrame Q, sw3 phi) {
-  const swRodrigues r = sw_rodrigues_series(sw3_dot(phi, phi));
-  const double a = r.a, b = r.b;
-  /* each column c of Q: c - a phi x c + b phi x (phi x c) */
-  const sw3 cx = sw_rodrigues_column((sw3){Q.d1.x, Q.d2.x, Q.d3.x}, phi, a, b);
-  const sw3 cy = sw_rodrigues_column((sw3){Q.d1.y, Q.d2.y, Q.d3.y}, phi, a, b);
-  const sw3 cz = sw_rodrigues_column((sw3){Q.d1.z, Q.d2.z, Q.d3.z}, phi, a, b);
-  return (swFrame){{cx.x, cy.x, cz.x}, {cx.y, cy.y, cz.y}, {cx.z, cy.z, cz.z}};
-}
 
 #endif
