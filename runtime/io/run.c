@@ -22,9 +22,9 @@
  * change nothing but what is read.  Frames are scheduled on the step count
  * since t = 0, and after each frame of the schedule the output takes a
  * checkpoint of the held state (restart.c), so a run continued from its
- * file (`resumed`) fuses its steps as one that never stopped.  A silent run (swRunOptions.silent: sw_evaluate's, one of many
- * of a study) prints nothing at all; an instability's reason stays in
- * d->error. */
+ * file (`resumed`) fuses its steps as one that never stopped.  A silent
+ * run (swRunOptions.silent: sw_evaluate's, one of many of a study) prints
+ * nothing at all; an instability's reason stays in d->error. */
 #include <math.h>
 #include <signal.h>
 #include <stdarg.h>
