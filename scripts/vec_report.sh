@@ -1,12 +1,13 @@
 #!/bin/sh
-# vec_report.sh — what GCC's vectorizer did with the hot loops of the step
-# (rod.c, integrate.c, loads.c, muscle.c, stability.c) at the flags of `make`: each
-# loop of those files that it vectorized, with the vector width, as
-# -fopt-info-vec-optimized reports it.  Printed as Markdown for
-# docs/performance.md ("What the vectorizer did").
+# vec_report.sh [MARCH] — what GCC's vectorizer did with the hot loops of the
+# step (rod.c, integrate.c, loads.c, muscle.c, stability.c) at the flags of
+# `make`, for -march=MARCH (native unless given; x86-64-v3 and x86-64-v4 are
+# the levels `make bench` compares): each loop of those files that it
+# vectorized, with the vector width, as -fopt-info-vec-optimized reports it.
+# Printed as Markdown for docs/performance.md ("What the vectorizer did").
 set -eu
 cc=${CC:-cc}
-flags="-std=c11 -D_DEFAULT_SOURCE -O3 -march=native -fno-math-errno -fopenmp"
+flags="-std=c11 -D_DEFAULT_SOURCE -O3 -march=${1:-native} -fno-math-errno -fopenmp"
 echo "Compiler: $($cc --version | head -1); flags: \`$flags\`; CPU: $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 's/^ *//')."
 echo
 for f in runtime/engine/rod.c runtime/engine/integrate.c runtime/engine/loads.c runtime/engine/muscle.c runtime/engine/stability.c; do
