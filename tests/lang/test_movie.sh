@@ -289,7 +289,10 @@ def encoding():
             and b"ffmpeg" in cmdline(q)]
 p = subprocess.Popen([plot, "movie", f"{d}/long.h5", "-o", f"{d}/x.mp4", "--size", "160x120",
                       "--fps", "30", "--speed", "0.05"],
-                     stderr=subprocess.PIPE, start_new_session=True)
+                     stderr=subprocess.PIPE, start_new_session=True,
+                     # a shell's `cmd &` starts tests with SIGINT ignored, and
+                     # Python then installs no KeyboardInterrupt handler
+                     preexec_fn=lambda: signal.signal(signal.SIGINT, signal.SIG_DFL))
 deadline = time.time() + 120
 while not encoding() and p.poll() is None and time.time() < deadline:
     time.sleep(0.05)
