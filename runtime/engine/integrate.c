@@ -294,7 +294,7 @@ static void finish_kick(const swModel *m, swData *d) {
   const int n = m->nslot_elastic;
   for (int c = 0; c < sw_nchunk(m, n); c++) d->work += d->chunk_sum[c];
   for (int k = 0; k < m->nbc; k++) d->work += d->bc_work[k];
-  if (m->nrigid) sw_rigid_kick(m, d, d->kick_h);
+  if (m->nrigid) sw_rigid_kick(m, d, d->kick_h); /* its loads: sw_rigid_loads in kick() */
   d->kick_pending = 0;
 }
 
@@ -335,6 +335,12 @@ static void kick(const swModel *m, swData *d, double h, double span) {
   const int n = m->nslot_elastic;
   compute_loads(m, d, h);
   if (m->nimplicit) sw_implicit_kick(m, d, h); /* the implicit rods' loads (rod_implicit.c) */
+  if (m->nrigid) { /* the bodies' loads, and the implicit joints' (rigid_joint.c), which
+                      replace those of the elastic nodes joined to bodies */
+    sw_team_barrier(d);
+    if (sw_team_leader(d)) sw_rigid_loads(m, d, h);
+    sw_team_barrier(d);
+  }
   int lo, hi;
   sw_share_slots(m, d, n, &lo, &hi);
   if (m->has_exact_kick) /* the flags are free between the passes */

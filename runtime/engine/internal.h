@@ -259,7 +259,9 @@ void sw_implicit_stiffness(const swModel *m, const swData *d, int r, double *A);
  * sw_rigid_reset puts the bodies at rest at t = 0; sw_rigid_internal stands
  * for rod.c's kernels on rigid rod r (no internal loads, rest strains);
  * sw_rigid_drift and sw_rigid_kick are the bodies' parts of integrate.c's
- * drift and kick; sw_rigid_stable_dt is body b's own bound (linear damping
+ * drift and kick, the kick's loads taken by sw_rigid_loads (the bodies' and
+ * the implicit joints' solve, before the elastic slots are kicked, since it
+ * changes the loads of the nodes joined to bodies); sw_rigid_stable_dt is body b's own bound (linear damping
  * only) and sw_rigid_joint_dt the bound of all joints on it (stability.c). */
 static inline int sw_rod_is_rigid(const swModel *m, int r) {
   return m->nrigid > 0 && m->rod_rigid[r] >= 0;
@@ -268,15 +270,17 @@ void sw_rigid_setup(swModel *m);
 void sw_rigid_reset(const swModel *m, swData *d);
 void sw_rigid_internal(const swModel *m, swData *d, int r);
 void sw_rigid_drift(const swModel *m, swData *d, double h);
+void sw_rigid_loads(const swModel *m, swData *d, double h);
 void sw_rigid_kick(const swModel *m, swData *d, double h);
 double sw_rigid_stable_dt(const swModel *m, int b);
 double sw_rigid_joint_dt(const swModel *m, int b);
-/* Joints between rigid bodies under SW_IMEX (rigid_joint.c): setup marks
- * them (joint_implicit), finds the independent groups of bodies they join
- * and numbers the bodies group by group (rigid_block, rigid_group_*); the
- * kick turns the bodies' loads into those of the trapezoidal step, solving
- * each group's block of the system on its own (0: a block that could not be
- * factored, whose bodies keep their loads); scratch is the doubles of its
+/* Joints on rigid bodies under SW_IMEX (rigid_joint.c): setup marks those
+ * between bodies, space and free elastic nodes (joint_implicit), finds the
+ * independent groups of bodies and nodes they join and numbers them group
+ * by group (rigid_block*, joint_block, rigid_group_*); the kick turns the
+ * members' loads into those of the trapezoidal step, solving each group's
+ * block of the system on its own (0: a block that could not be factored,
+ * whose members keep their loads); scratch is the doubles of its
  * workspace, swData.rigid_sys. */
 int sw_rigid_joints_setup(swModel *m);
 void sw_rigid_joints_free(swModel *m);

@@ -374,13 +374,16 @@ static void body_loads(const swModel *m, const swData *d, int b, double *load) {
   }
 }
 
-void sw_rigid_kick(const swModel *m, swData *d, double h) {
+void sw_rigid_loads(const swModel *m, swData *d, double h) {
   for (int b = 0; b < m->nrigid; b++)
     if (!m->rigid_fixed[b]) body_loads(m, d, b, d->rigid_load + 6 * b);
   /* imex: the loads that give the trapezoidal step of the stiff joints; a
    * system that cannot be factored has a non-finite state, which the
    * step's check reports, so the explicit loads stand */
   if (m->nrigid_block) sw_rigid_joints_kick(m, d, h, d->rigid_load);
+}
+
+void sw_rigid_kick(const swModel *m, swData *d, double h) {
   double work = 0;
   for (int b = 0; b < m->nrigid; b++) {
     if (m->rigid_fixed[b]) continue;

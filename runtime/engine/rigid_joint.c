@@ -54,8 +54,33 @@
  * diagonal too, and zero outside the envelope: an entry there is 0 less
  * products with a zero factor, and so is each term the sums skip).  The
  * bodies' new velocities replace the loads they would have had (F_eff =
- * M dV / h, tau_eff = I dw / h) and rigid.c's kick goes on as before.  A
- * joint that touches an elastic rod stays explicit.
+ * M dV / h, tau_eff = I dw / h) and rigid.c's kick goes on as before.
+ *
+ * Elastic attachments (issue 31).  A joint between a rigid body and a node
+ * of an elastic rod (the muscular snake's ribs hinged on its backbone, the
+ * tendons on the ribs joined to the muscle filaments; tendons on rigid
+ * bones) is as stiff as one between two bodies, and its explicit bound was
+ * what held the snake's step (25 us, against 54 us for the filaments and 77
+ * us for the backbone).  Such a joint is in the system too: its elastic side
+ * is a member of the group with six unknowns like a body's, the node's
+ * velocity (mass m_i) and the angular velocity of the joint's element (lab
+ * inertia Q^T diag(J^/e) Q, the element's kick of integrate.c written in the
+ * lab frame), with lever r = 0 since the joint sits on the node.  The rod's
+ * own loads on that node and element (elasticity, damping, the other
+ * joints, muscles, environments) stay explicit and are part of F, so the
+ * member's row is that of the explicit kick plus the joint's implicit
+ * spring: an IMEX splitting in which the stiff joint spring no longer
+ * bounds the step and the rod's own bound (stability.c) is unchanged, since
+ * h^2/4 K only adds to the mass the explicit loads act on.  The new
+ * velocities replace the node's force and, when a joint couples the
+ * element's rotation (hinge, fixed, a limit), its torque (F_eff = m_i dv / h,
+ * tau_eff = (J^/e) Q dw / h), before integrate.c's kick of the elastic
+ * slots, which therefore follows the solve (sw_rigid_loads).  A node is
+ * eligible when its rod is kicked explicitly by integrate.c's plain kick:
+ * not rigid, not an implicit rod (rod_implicit.c solves its own system),
+ * not integrated with exact (analytic) damping, and not held by a boundary
+ * condition.  A joint between two elastic rods, or an elastic rod and space,
+ * stays explicit (it would merge the rods' systems).
  */
 #include <math.h>
 #include <stdlib.h>
@@ -77,66 +102,105 @@ static int holds_still(const swModel *m, int rod) {
   return rod < 0 || (sw_rod_is_rigid(m, rod) && m->rigid_fixed[m->rod_rigid[rod]]);
 }
 
-/* The representative of body b's set (union-find with path halving:
+/* Whether node `node` (and element `elem`) of elastic rod `rod` can be an
+ * attachment of the system (the header): kicked by integrate.c's plain
+ * kick and held by no boundary condition. */
+static int elastic_attachable(const swModel *m, int rod, int node, int elem) {
+  if (rod < 0 || sw_rod_is_rigid(m, rod) || m->rod_implicit[rod]) return 0;
+  if (m->kick_exact[node] != 0.0 || m->kick_exact[elem] != 0.0) return 0;
+  for (int k = 0; k < m->nbc; k++)
+    if (m->bc[k].rod == rod && sw_bc_node(m, &m->bc[k]) == node) return 0;
+  return 1;
+}
+
+/* A joint's side at setup: a moving body, an attachment, or still. */
+typedef struct {
+  int body, node, elem; /* body >= 0, or node >= 0 (and elem), or neither: still */
+  int ok;               /* it can be in the system */
+} Side;
+
+static Side joint_side(const swModel *m, int j, int side) {
+  const swJointDesc *jd = &m->joint[j];
+  const int rod = side ? jd->rod_b : jd->rod_a;
+  const int node = side ? m->joint_node_b[j] : m->joint_node_a[j];
+  const int elem = side ? m->joint_elem_b[j] : m->joint_elem_a[j];
+  Side s = {moving_body(m, rod), -1, -1, 0};
+  if (s.body >= 0 || holds_still(m, rod)) s.ok = 1;
+  else if (elastic_attachable(m, rod, node, elem)) s.node = node, s.elem = elem, s.ok = 1;
+  return s;
+}
+
+/* The representative of member s's set (union-find with path halving:
  * Tarjan and van Leeuwen, J. ACM 31, 1984). */
-static int find_root(int *parent, int b) {
-  while (parent[b] != b) b = parent[b] = parent[parent[b]];
-  return b;
+static int find_root(int *parent, int s) {
+  while (parent[s] != s) s = parent[s] = parent[parent[s]];
+  return s;
 }
 
-/* The group of implicit joint j: that of a moving body on it. */
-static int joint_group(const swModel *m, const int *root, const int *group_of, int j) {
-  const int ba = moving_body(m, m->joint[j].rod_a);
-  return group_of[root[ba >= 0 ? ba : moving_body(m, m->joint[j].rod_b)]];
-}
-
-/* The groups of the system, and its bodies and joints numbered group by
- * group (the header).  order[s] is the body the one system numbered s
- * (first met in the joints); root, group_of and next are scratch of nrigid
- * ints. */
-static void number_groups(swModel *m, const int *order, int *root, int *group_of, int *next) {
+/* The groups of the system, its members and joints numbered group by group
+ * (the header).  On entry the members are numbered in the order the joints
+ * first meet them (the one system's numbering, which the groups keep):
+ * member[2 j + side] is that number of joint j's side (-1: still), and
+ * body, node and elem describe each member; root, group_of and next are
+ * scratch of nb ints.  On return m->joint_block holds the blocks. */
+static void number_groups(swModel *m, const int *member, const int *body, const int *node,
+                          const int *elem, int *root, int *group_of, int *next) {
   const int nb = m->nrigid_block;
-  for (int b = 0; b < m->nrigid; b++) root[b] = b, group_of[b] = -1;
+  for (int s = 0; s < nb; s++) root[s] = s, group_of[s] = -1;
   for (int j = 0; j < m->njoint; j++) { /* the edges */
-    if (!m->joint_implicit[j]) continue;
-    const int ba = moving_body(m, m->joint[j].rod_a), bb = moving_body(m, m->joint[j].rod_b);
-    if (ba < 0 || bb < 0) continue; /* to space or a fixed body */
-    const int ra = find_root(root, ba), rb = find_root(root, bb);
+    const int sa = member[2 * j], sb = member[2 * j + 1];
+    if (!m->joint_implicit[j] || sa < 0 || sb < 0) continue; /* to space or a fixed body */
+    const int ra = find_root(root, sa), rb = find_root(root, sb);
     if (ra != rb) root[ra > rb ? ra : rb] = ra < rb ? ra : rb;
   }
-  for (int b = 0; b < m->nrigid; b++) root[b] = find_root(root, b);
-  /* the groups, in the order of their first body */
-  int ngroup = 0;
+  for (int s = 0; s < nb; s++) root[s] = find_root(root, s);
+  int ngroup = 0; /* the groups, in the order of their first member */
   for (int s = 0; s < nb; s++)
-    if (group_of[root[order[s]]] < 0) group_of[root[order[s]]] = ngroup++;
+    if (group_of[root[s]] < 0) group_of[root[s]] = ngroup++;
   m->nrigid_group = ngroup;
-  /* the blocks: sorted by group, each group's bodies in the one system's
+  /* the blocks: sorted by group, each group's members in the one system's
    * order (a counting sort) */
-  int *adr = m->rigid_group_adr, *jadr = m->rigid_group_joint_adr;
+  int *adr = m->rigid_group_adr, *jadr = m->rigid_group_joint_adr, *block = root;
   for (int g = 0; g <= ngroup; g++) adr[g] = jadr[g] = 0;
-  for (int s = 0; s < nb; s++) adr[group_of[root[order[s]]] + 1]++;
+  for (int s = 0; s < nb; s++) adr[group_of[root[s]] + 1]++;
   for (int g = 0; g < ngroup; g++) adr[g + 1] += adr[g];
   memcpy(next, adr, (size_t)ngroup * sizeof(int));
   for (int s = 0; s < nb; s++) {
-    const int b = order[s], block = next[group_of[root[b]]]++;
-    m->rigid_block[b] = block;
-    m->rigid_block_body[block] = b;
+    const int k = next[group_of[root[s]]]++;
+    block[s] = k; /* root[s] is read no more for s */
+    m->rigid_block_body[k] = body[s];
+    m->rigid_block_node[k] = node[s];
+    m->rigid_block_elem[k] = elem[s];
+    m->rigid_block_rot[k] = 0;
+    if (body[s] >= 0) m->rigid_block[body[s]] = k;
   }
-  /* the joints likewise, each group's in joint order */
-  for (int j = 0; j < m->njoint; j++)
-    if (m->joint_implicit[j]) jadr[joint_group(m, root, group_of, j) + 1]++;
+  for (int q = 0; q < 2 * m->njoint; q++) m->joint_block[q] = member[q] >= 0 ? block[member[q]] : -1;
+  /* the joints likewise, each group's in joint order; the group of a joint
+   * is that of a member on it */
+  for (int j = 0; j < m->njoint; j++) {
+    if (!m->joint_implicit[j]) continue;
+    const int *jb = m->joint_block + 2 * j, k = jb[0] >= 0 ? jb[0] : jb[1];
+    int g = 0;
+    while (adr[g + 1] <= k) g++;
+    next[j] = g; /* next is read no more as the blocks' counter */
+    jadr[g + 1]++;
+    /* a member whose element's rotation a joint couples */
+    const swJointDesc *jd = &m->joint[j];
+    if (jd->kind != SW_JOINT_SPHERICAL || sw_joint_limited(jd))
+      for (int side = 0; side < 2; side++)
+        if (jb[side] >= 0) m->rigid_block_rot[jb[side]] = 1;
+  }
   for (int g = 0; g < ngroup; g++) jadr[g + 1] += jadr[g];
-  memcpy(next, jadr, (size_t)ngroup * sizeof(int));
-  for (int j = 0; j < m->njoint; j++)
-    if (m->joint_implicit[j]) m->rigid_group_joint[next[joint_group(m, root, group_of, j)]++] = j;
+  for (int j = 0, *fill = group_of; j < m->njoint; j++) { /* group_of: a cursor per group */
+    if (j == 0) memcpy(fill, jadr, (size_t)ngroup * sizeof(int));
+    if (m->joint_implicit[j]) m->rigid_group_joint[fill[next[j]]++] = j;
+  }
   /* the envelope: the earliest block each is joined to, and the last block
    * whose envelope reaches each */
   for (int s = 0; s < nb; s++) m->rigid_block_env[s] = s;
   for (int j = 0; j < m->njoint; j++) {
-    if (!m->joint_implicit[j]) continue;
-    const int ba = moving_body(m, m->joint[j].rod_a), bb = moving_body(m, m->joint[j].rod_b);
-    if (ba < 0 || bb < 0) continue;
-    const int sa = m->rigid_block[ba], sb = m->rigid_block[bb];
+    const int sa = m->joint_block[2 * j], sb = m->joint_block[2 * j + 1];
+    if (!m->joint_implicit[j] || sa < 0 || sb < 0) continue;
     const int lo = sa < sb ? sa : sb, hi = sa < sb ? sb : sa;
     if (lo < m->rigid_block_env[hi]) m->rigid_block_env[hi] = lo;
   }
@@ -148,46 +212,76 @@ static void number_groups(swModel *m, const int *order, int *root, int *group_of
 
 int sw_rigid_joints_setup(swModel *m) {
   const size_t J = (size_t)(m->njoint ? m->njoint : 1), B = (size_t)(m->nrigid ? m->nrigid : 1);
+  const size_t NB = B + 2 * J; /* members: at most every body and every joint's two sides */
   m->joint_implicit = calloc(J, sizeof(int));
+  m->joint_block = malloc(2 * J * sizeof(int));
   m->rigid_block = malloc(B * sizeof(int));
-  m->rigid_block_body = malloc(B * sizeof(int));
-  m->rigid_group_adr = malloc((B + 1) * sizeof(int));
-  m->rigid_group_joint_adr = malloc((B + 1) * sizeof(int));
+  m->rigid_block_body = malloc(NB * sizeof(int));
+  m->rigid_block_node = malloc(NB * sizeof(int));
+  m->rigid_block_elem = malloc(NB * sizeof(int));
+  m->rigid_block_rot = malloc(NB * sizeof(int));
+  m->rigid_group_adr = malloc((NB + 1) * sizeof(int));
+  m->rigid_group_joint_adr = malloc((NB + 1) * sizeof(int));
   m->rigid_group_joint = malloc(J * sizeof(int));
-  m->rigid_block_env = malloc(B * sizeof(int));
-  m->rigid_block_reach = malloc(B * sizeof(int));
-  m->nrigid_block = m->nrigid_group = 0;
-  if (!m->joint_implicit || !m->rigid_block || !m->rigid_block_body || !m->rigid_group_adr ||
+  m->rigid_block_env = malloc(NB * sizeof(int));
+  m->rigid_block_reach = malloc(NB * sizeof(int));
+  m->nrigid_block = m->nrigid_group = m->nrigid_attach = 0;
+  if (!m->joint_implicit || !m->joint_block || !m->rigid_block || !m->rigid_block_body ||
+      !m->rigid_block_node || !m->rigid_block_elem || !m->rigid_block_rot || !m->rigid_group_adr ||
       !m->rigid_group_joint_adr || !m->rigid_group_joint || !m->rigid_block_env ||
       !m->rigid_block_reach)
     return 0;
   for (int b = 0; b < m->nrigid; b++) m->rigid_block[b] = -1;
+  for (size_t q = 0; q < 2 * J; q++) m->joint_block[q] = -1;
   m->rigid_group_adr[0] = m->rigid_group_joint_adr[0] = 0;
   if (m->integrator != SW_IMEX) return 1;
-  /* the bodies in the order the joints first meet them (the one system's
-   * numbering, which the groups keep), into rigid_block_body */
-  for (int j = 0; j < m->njoint; j++) {
-    const swJointDesc *jd = &m->joint[j];
-    const int ba = moving_body(m, jd->rod_a), bb = moving_body(m, jd->rod_b);
-    const int a_ok = ba >= 0 || holds_still(m, jd->rod_a), b_ok = bb >= 0 || holds_still(m, jd->rod_b);
-    if (!a_ok || !b_ok || (ba < 0 && bb < 0)) continue; /* an elastic side, or nothing moves */
-    m->joint_implicit[j] = 1;
-    if (ba >= 0 && m->rigid_block[ba] < 0) m->rigid_block_body[m->rigid_block[ba] = m->nrigid_block++] = ba;
-    if (bb >= 0 && m->rigid_block[bb] < 0) m->rigid_block_body[m->rigid_block[bb] = m->nrigid_block++] = bb;
-  }
-  if (!m->nrigid_block) return 1;
-  int *scratch = malloc(4 * B * sizeof(int));
+  /* the members in the order the joints first meet them: member[2 j + side]
+   * their number, body/node/elem what each is */
+  int *scratch = malloc((2 * J + 7 * NB) * sizeof(int));
   if (!scratch) return 0;
-  memcpy(scratch, m->rigid_block_body, (size_t)m->nrigid_block * sizeof(int));
-  number_groups(m, scratch, scratch + B, scratch + 2 * B, scratch + 3 * B);
+  int *member = scratch, *body = member + 2 * J, *node = body + NB, *elem = node + NB;
+  int *first = elem + NB; /* rigid bodies' numbers (nrigid <= NB) */
+  int nb = 0;
+  for (int b = 0; b < m->nrigid; b++) first[b] = -1;
+  for (int j = 0; j < m->njoint; j++) {
+    const Side s[2] = {joint_side(m, j, 0), joint_side(m, j, 1)};
+    member[2 * j] = member[2 * j + 1] = -1;
+    /* both sides in reach, and a rigid body moving on one of them */
+    if (!s[0].ok || !s[1].ok || (s[0].body < 0 && s[1].body < 0)) continue;
+    m->joint_implicit[j] = 1;
+    for (int side = 0; side < 2; side++) {
+      int k = -1;
+      if (s[side].body >= 0) {
+        k = first[s[side].body];
+      } else if (s[side].node >= 0) {
+        for (int t = 0; t < nb && k < 0; t++)
+          if (body[t] < 0 && node[t] == s[side].node && elem[t] == s[side].elem) k = t;
+      } else {
+        continue; /* still */
+      }
+      if (k < 0) { /* a new member */
+        k = nb++;
+        body[k] = s[side].body, node[k] = s[side].node, elem[k] = s[side].elem;
+        if (s[side].body >= 0) first[s[side].body] = k;
+        else m->nrigid_attach++;
+      }
+      member[2 * j + side] = k;
+    }
+  }
+  m->nrigid_block = nb;
+  if (nb) number_groups(m, member, body, node, elem, first, first + NB, first + 2 * NB);
   free(scratch);
   return 1;
 }
 
 void sw_rigid_joints_free(swModel *m) {
   free(m->joint_implicit);
+  free(m->joint_block);
   free(m->rigid_block);
   free(m->rigid_block_body);
+  free(m->rigid_block_node);
+  free(m->rigid_block_elem);
+  free(m->rigid_block_rot);
   free(m->rigid_group_adr);
   free(m->rigid_group_joint_adr);
   free(m->rigid_group_joint);
@@ -295,28 +389,64 @@ static void lab_inertia(const swModel *m, const swData *d, int b, double *Il) {
                       R[3 * i + 2] * I[2] * R[3 * k + 2];
 }
 
+/* The lab inertia Q^T diag(J^/e) Q of elastic element e: its kick
+ * (J^/e) dw/dt = tau (integrate.c) in the lab frame. */
+static void element_inertia(const swModel *m, const swData *d, int e, double *Il) {
+  double Q[9];
+  sw_getQ(m, d->Q, e, Q);
+  const double dil = sw_inertia_dilatation(m, d, e);
+  const double J[3] = {SW_AT(m, m->inertia, e, 0) / dil, SW_AT(m, m->inertia, e, 1) / dil,
+                       SW_AT(m, m->inertia, e, 2) / dil};
+  for (int i = 0; i < 3; i++)
+    for (int k = 0; k < 3; k++)
+      Il[3 * i + k] = Q[i] * J[0] * Q[k] + Q[3 + i] * J[1] * Q[3 + k] + Q[6 + i] * J[2] * Q[6 + k];
+}
+
+/* Member k's mass, lab inertia and loads (F, tau) in lab components: a
+ * body's from load[], an attachment's from its node's force and its
+ * element's torque (material components, turned to the lab). */
+static void member_inertia(const swModel *m, const swData *d, int k, const double *load,
+                           double *mass, double *Il, double *F) {
+  const int b = m->rigid_block_body[k];
+  if (b >= 0) {
+    *mass = m->rigid_mass[b];
+    lab_inertia(m, d, b, Il);
+    memcpy(F, load + 6 * b, 6 * sizeof(double));
+    return;
+  }
+  const int i = m->rigid_block_node[k], e = m->rigid_block_elem[k];
+  double Q[9], t[3];
+  *mass = m->mass[i];
+  element_inertia(m, d, e, Il);
+  sw_get3(m, d->force, i, F);
+  sw_getQ(m, d->Q, e, Q);
+  sw_get3(m, d->torque, e, t);
+  sw_matT_vec(F + 3, Q, t);
+}
+
 /* The trapezoidal loads of group g (the header): its system assembled into
- * A (n x n, n = 6 x its bodies) and rhs, factored and solved, and the loads
- * of its bodies replaced.  Returns 0 if the block could not be factored. */
-static int group_kick(const swModel *m, const swData *d, double h, int g, double *A,
-                      double *rhs, double *load) {
+ * A (n x n, n = 6 x its members) and rhs, factored and solved, and the
+ * loads of its members replaced: a body's in load[], an attachment's node
+ * force and, when a joint couples its element's rotation, element torque.
+ * Returns 0 if the block could not be factored. */
+static int group_kick(const swModel *m, swData *d, double h, int g, double *A, double *rhs,
+                      double *load) {
   const int first = m->rigid_group_adr[g], nb = m->rigid_group_adr[g + 1] - first, n = 6 * nb;
   memset(A, 0, (size_t)n * n * sizeof(double));
   for (int s = 0; s < nb; s++) { /* mass, and the right-hand side h F */
-    const int b = m->rigid_block_body[first + s];
-    double Il[9];
-    lab_inertia(m, d, b, Il);
+    double M, Il[9], F[6];
+    member_inertia(m, d, first + s, load, &M, Il, F);
     for (int i = 0; i < 3; i++) {
-      A[(size_t)(6 * s + i) * n + 6 * s + i] = m->rigid_mass[b];
+      A[(size_t)(6 * s + i) * n + 6 * s + i] = M;
       for (int k = 0; k < 3; k++) A[(size_t)(6 * s + 3 + i) * n + 6 * s + 3 + k] = Il[3 * i + k];
     }
-    for (int i = 0; i < 6; i++) rhs[6 * s + i] = h * load[6 * b + i];
+    for (int i = 0; i < 6; i++) rhs[6 * s + i] = h * F[i];
   }
   static const double I3[9] = {1, 0, 0, 0, 1, 0, 0, 0, 1};
   for (int q = m->rigid_group_joint_adr[g]; q < m->rigid_group_joint_adr[g + 1]; q++) {
     const int j = m->rigid_group_joint[q];
     const swJointDesc *jd = &m->joint[j];
-    const int body[2] = {moving_body(m, jd->rod_a), moving_body(m, jd->rod_b)};
+    const int *block = m->joint_block + 2 * j;
     const int node[2] = {m->joint_node_a[j], m->joint_node_b[j]};
     /* the rotation's projector: the hinge's axis carried by side a */
     double P[9];
@@ -333,9 +463,10 @@ static int group_kick(const swModel *m, const swData *d, double h, int g, double
                             ? 0.0 : 0.25 * h * h * jd->rot_stiffness + 0.5 * h * jd->rot_damping;
     double Jp[2][18], Jr[2][18], Jl[18] = {0}, gl[3] = {0, 0, 0};
     for (int side = 0; side < 2; side++) {
-      if (body[side] < 0) continue;
-      double r[3];
-      lever(m, d, body[side], node[side], r);
+      if (block[side] < 0) continue;
+      const int b = m->rigid_block_body[block[side]];
+      double r[3] = {0, 0, 0}; /* an attachment's joint sits on its node */
+      if (b >= 0) lever(m, d, b, node[side], r);
       side_maps(r, P, Jp[side], Jr[side]);
     }
     /* the limit's rate map, one row [0, g^T], the same on both sides */
@@ -344,9 +475,9 @@ static int group_kick(const swModel *m, const swData *d, double h, int g, double
     for (int k = 0; k < 3; k++) Jl[3 + k] = gl[k];
     for (int s = 0; s < 2; s++)
       for (int t = 0; t < 2; t++) {
-        if (body[s] < 0 || body[t] < 0) continue;
+        if (block[s] < 0 || block[t] < 0) continue;
         const double sign = s == t ? 1.0 : -1.0; /* rates are side b minus side a */
-        const int bs = m->rigid_block[body[s]] - first, bt = m->rigid_block[body[t]] - first;
+        const int bs = block[s] - first, bt = block[t] - first;
         add_block(A, n, bs, bt, sign * wpos, Jp[s], Jp[t]);
         if (wrot > 0) add_block(A, n, bs, bt, sign * wrot, Jr[s], Jr[t]);
         if (wlim > 0) add_block(A, n, bs, bt, sign * wlim, Jl, Jl);
@@ -355,13 +486,24 @@ static int group_kick(const swModel *m, const swData *d, double h, int g, double
   if (!cholesky_solve(A, n, rhs, m->rigid_block_env + first, m->rigid_block_reach + first, first))
     return 0;
   for (int s = 0; s < nb; s++) { /* the loads that give du */
-    const int b = m->rigid_block_body[first + s];
-    double Il[9], dL[3];
-    lab_inertia(m, d, b, Il);
+    const int k = first + s, b = m->rigid_block_body[k];
+    double M, Il[9], F[6], dL[3];
+    member_inertia(m, d, k, load, &M, Il, F);
     sw_mat_vec(dL, Il, rhs + 6 * s + 3);
-    for (int i = 0; i < 3; i++) {
-      load[6 * b + i] = m->rigid_mass[b] * rhs[6 * s + i] / h;
-      load[6 * b + 3 + i] = dL[i] / h;
+    if (b >= 0) {
+      for (int i = 0; i < 3; i++) {
+        load[6 * b + i] = M * rhs[6 * s + i] / h;
+        load[6 * b + 3 + i] = dL[i] / h;
+      }
+      continue;
+    }
+    const int i = m->rigid_block_node[k], e = m->rigid_block_elem[k];
+    for (int c = 0; c < 3; c++) SW_AT(m, d->force, i, c) = M * rhs[6 * s + c] / h;
+    if (m->rigid_block_rot[k]) { /* tau_eff = (J^/e) Q dw / h, material components */
+      double Q[9], t[3];
+      sw_getQ(m, d->Q, e, Q);
+      sw_mat_vec(t, Q, dL);
+      for (int c = 0; c < 3; c++) SW_AT(m, d->torque, e, c) = t[c] / h;
     }
   }
   return 1;
@@ -369,9 +511,11 @@ static int group_kick(const swModel *m, const swData *d, double h, int g, double
 
 /* load[6 b .. 6 b + 5] = (F, tau) of every moving body, on entry the kick's
  * loads; on return, for the bodies of the system, the loads that give the
- * trapezoidal velocities (the header), group by group.  Returns 0 if a
- * group's block could not be factored (not positive definite: a non-finite
- * state); that group's bodies keep their loads, the others are solved. */
+ * trapezoidal velocities (the header), group by group, and likewise the
+ * force and torque of each attachment's node and element in d.  Returns 0
+ * if a group's block could not be factored (not positive definite: a
+ * non-finite state); that group's members keep their loads, the others are
+ * solved. */
 int sw_rigid_joints_kick(const swModel *m, swData *d, double h, double *load) {
   int ok = 1;
   double *A = d->rigid_sys;

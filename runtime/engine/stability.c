@@ -33,9 +33,10 @@
  * A rigid rod (rigid.c) has no elastic waves: its own bound is its linear
  * damping's alone, and a joint side on it is bounded by the body's effective
  * mass and inertia at the joint, all the body's joints summed
- * (sw_rigid_joint_dt).  A joint between rigid bodies under SW_IMEX is
- * integrated by the trapezoidal rule (rigid_joint.c) and bounds nothing but
- * its limit, if it has one (implicit_limit_dt).
+ * (sw_rigid_joint_dt).  A joint on a rigid body under SW_IMEX (to another
+ * body, space, or a free node of an elastic rod) is integrated by the
+ * trapezoidal rule (rigid_joint.c) and bounds nothing but its limit, if it
+ * has one (implicit_limit_dt); the elastic rod keeps its own bound.
  *
  * The estimate is the oscillator limit times 0.95: the zig-zag analysis
  * ignores the half-mass end nodes, and a shear-hardened rod was measured to
@@ -273,17 +274,18 @@ static double joint_side_dt(const swModel *m, const swJointDesc *jd, int rod, in
  * a step that enters and leaves contact within a swing of the limit's own
  * frequency chatters (measured: a rigid pendulum pressed on a stiff hinge
  * limit settles at 0.5 of 2 / w and never settles at 0.9), so the limit
- * keeps its explicit bound, w^2 = s k_l / I_min of each moving body. */
-static double implicit_limit_dt(const swModel *m, const swJointDesc *jd) {
+ * keeps its explicit bound, w^2 = s k_l / I_min of each moving body, or of
+ * the element of an elastic side (its bending inertia J^_1). */
+static double implicit_limit_dt(const swModel *m, int j) {
+  const swJointDesc *jd = &m->joint[j];
   if (!sw_joint_limited(jd)) return INFINITY;
   const int s = jd->rod_b >= 0 ? 2 : 1;
   double dt = INFINITY;
   for (int side = 0; side < 2; side++) {
-    const int rod = side ? jd->rod_b : jd->rod_a;
-    if (rod < 0 || !sw_rod_is_rigid(m, rod)) continue;
-    const int b = m->rod_rigid[rod];
-    if (m->rigid_fixed[b]) continue;
-    const double Imin = m->rigid_inertia[3 * b];
+    const int k = m->joint_block[2 * j + side];
+    if (k < 0) continue; /* space or a fixed body */
+    const int b = m->rigid_block_body[k];
+    const double Imin = b >= 0 ? m->rigid_inertia[3 * b] : SW_AT(m, m->inertia, m->rigid_block_elem[k], 0);
     const double w = sqrt(s * jd->limit_stiffness / Imin), c = s * jd->limit_damping / Imin;
     if (w > 0) dt = fmin(dt, 0.95 * sw_integrator_stability_limit(m->integrator, c / (2 * w)) / w);
   }
@@ -291,7 +293,7 @@ static double implicit_limit_dt(const swModel *m, const swJointDesc *jd) {
 }
 
 double sw_stable_dt_joint(const swModel *m, int j) {
-  if (m->joint_implicit[j]) return implicit_limit_dt(m, &m->joint[j]); /* rigid_joint.c */
+  if (m->joint_implicit[j]) return implicit_limit_dt(m, j); /* rigid_joint.c */
   const swJointDesc *jd = &m->joint[j];
   int s = m->joint_node_b[j] >= 0 ? 2 : 1;
   double dt = joint_side_dt(m, jd, jd->rod_a, m->joint_node_a[j], m->joint_elem_a[j], s);

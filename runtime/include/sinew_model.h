@@ -92,16 +92,27 @@ typedef struct {
   double *joint_limit_ref;   /* (njoint*9) the limits' reference directions
                                            (joint.c, "Limits")               */
   double *joint_wave_dt;     /* (njoint)   stable dt estimate of each joint  */
-  int *joint_implicit;       /* (njoint)   1: between rigid bodies, linearly
-                                           implicit (SW_IMEX, rigid_joint.c) */
+  int *joint_implicit;       /* (njoint)   1: linearly implicit (SW_IMEX,
+                                           rigid_joint.c): a rigid body on one
+                                           side, a body, space or a free
+                                           elastic node on the other         */
+  int *joint_block;          /* (njoint*2) the block of each side of an
+                                           implicit joint, -1 when it holds
+                                           still                             */
   int *rigid_block;          /* (nrigid)   the body's block in that system, -1;
                                            numbered group by group           */
-  int nrigid_block;          /* bodies in it                                 */
+  int nrigid_block;          /* members in it: bodies and attachments        */
+  int nrigid_attach;         /* attachments: elastic nodes joined to bodies  */
   int nrigid_group;          /* its independent groups: the connected
                                 components of the bodies under those joints,
                                 one diagonal block of the system each       */
   int *rigid_group_adr;      /* (nrigid_group+1) first block of each group    */
-  int *rigid_block_body;     /* (nrigid_block) the body of each block         */
+  int *rigid_block_body;     /* (nrigid_block) the body of each block, -1 for
+                                           an attachment                     */
+  int *rigid_block_node;     /* (nrigid_block) an attachment's node, -1      */
+  int *rigid_block_elem;     /* (nrigid_block) an attachment's element, -1   */
+  int *rigid_block_rot;      /* (nrigid_block) 1: a joint couples the
+                                           attachment's element rotation     */
   int *rigid_block_env;      /* (nrigid_block) the earliest block joined to
                                            each, or itself: the envelope     */
   int *rigid_block_reach;    /* (nrigid_block) the last block whose envelope

@@ -322,10 +322,15 @@ static void print_stiff_parts(const swModel *m) {
   }
   int njimplicit = 0;
   for (int j = 0; j < m->njoint; j++) njimplicit += m->joint_implicit[j];
-  if (njimplicit)
-    printf("  trapezoidal (implicit): %d of %d joints, those between rigid bodies (%d bod%s "
-           "in %d independent group%s)\n", njimplicit, m->njoint, m->nrigid_block,
-           m->nrigid_block == 1 ? "y" : "ies", m->nrigid_group, m->nrigid_group == 1 ? "" : "s");
+  if (njimplicit) {
+    const int nbody = m->nrigid_block - m->nrigid_attach;
+    printf("  trapezoidal (implicit): %d of %d joints, those on a rigid body to a body, space "
+           "or a free node of an elastic rod (%d bod%s", njimplicit, m->njoint, nbody,
+           nbody == 1 ? "y" : "ies");
+    if (m->nrigid_attach)
+      printf(" and %d rod node%s", m->nrigid_attach, m->nrigid_attach == 1 ? "" : "s");
+    printf(" in %d independent group%s)\n", m->nrigid_group, m->nrigid_group == 1 ? "" : "s");
+  }
   if (m->nfil > nimplicit) {
     double worst = INFINITY;
     for (int f = 0; f < m->nfil; f++)

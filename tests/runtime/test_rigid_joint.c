@@ -1,8 +1,9 @@
-/* test_rigid_joint.c — the system of the joints between rigid bodies under
- * imex (rigid_joint.c) solved group by group: the groups found on a scene of
+/* test_rigid_joint.c — the system of the joints on rigid bodies under imex
+ * (rigid_joint.c) solved group by group: the groups found on a scene of
  * independent groups (a hinged chain of three bones with a limit, a star of
  * three on spherical joints, a bone welded to space by a fixed joint, and a
- * bone hung on an elastic rod, which is in no group) and their envelopes;
+ * bone hinged to the free end of an elastic rod, whose node is the group's
+ * other member) and their envelopes;
  * and the kick and a whole run solved by blocks, within their envelopes,
  * against the same solved as one dense system over all the bodies (the
  * solve before the groups): the same numbers, bit for bit, and what a kick
@@ -59,11 +60,12 @@ static swJointDesc joint_of(swJointKind kind, int rod_a, int node_a, int rod_b, 
  * y, a1 hinged to space, a limit of +-0.01 rad on a2-a3 that gravity
  * drives it past), a star B (b1 and b2 hung from space at either end and
  * meeting where b3 hangs from both, on spherical joints), C (welded to
- * space by a fixed joint) and D (rigid, hinged to the elastic rod E, which
- * hangs from space): the groups {a1, a2, a3}, {b1, b2, b3}, {c} per copy,
- * D in none.  The joints of A and B interleave, so the one system numbered
- * their bodies a1, b1, a2, b2, b3, c, a3; b2 is joined to none before it,
- * b3 to b1, so B's envelope is not monotone. */
+ * space by a fixed joint) and D (rigid, hinged to the free end of the
+ * elastic rod E, which hangs from space): the groups {a1, a2, a3},
+ * {b1, b2, b3}, {c} and {E's end node, d} per copy.  The joints of A and B
+ * interleave, so the one system numbered their bodies a1, b1, a2, b2, b3,
+ * c, a3; b2 is joined to none before it, b3 to b1, so B's envelope is not
+ * monotone.  E's joint to space stays explicit (no body on it). */
 static swModel *groups_scene(int copies, swSpec **spec) {
   static const double along[3] = {1, 0, 0}, back[3] = {-1, 0, 0}, down[3] = {0, 0, -1};
   swSpec *s = sw_spec_new();
@@ -127,16 +129,20 @@ static swModel *groups_scene(int copies, swSpec **spec) {
 
 /* The model's groups and their workspace, swapped in and out whole. */
 typedef struct {
-  int *block, *block_body, *env, *reach, *adr, *joint_adr, *joint;
+  int *block, *block_body, *block_node, *block_elem, *block_rot, *joint_block, *env, *reach, *adr,
+      *joint_adr, *joint;
   int ngroup;
   double *sys; /* a swData's workspace for them */
 } Grouping;
 
 static void swap_grouping(swModel *m, swData *d, Grouping *g) {
-  Grouping now = {m->rigid_block, m->rigid_block_body, m->rigid_block_env, m->rigid_block_reach,
+  Grouping now = {m->rigid_block, m->rigid_block_body, m->rigid_block_node, m->rigid_block_elem,
+                  m->rigid_block_rot, m->joint_block, m->rigid_block_env, m->rigid_block_reach,
                   m->rigid_group_adr, m->rigid_group_joint_adr, m->rigid_group_joint,
                   m->nrigid_group, d->rigid_sys};
   m->rigid_block = g->block, m->rigid_block_body = g->block_body, m->rigid_block_env = g->env;
+  m->rigid_block_node = g->block_node, m->rigid_block_elem = g->block_elem;
+  m->rigid_block_rot = g->block_rot, m->joint_block = g->joint_block;
   m->rigid_block_reach = g->reach;
   m->rigid_group_adr = g->adr;
   m->rigid_group_joint_adr = g->joint_adr, m->rigid_group_joint = g->joint;
@@ -144,35 +150,50 @@ static void swap_grouping(swModel *m, swData *d, Grouping *g) {
   *g = now;
 }
 
-/* The bodies as one group, numbered as the one system numbered them (in
+/* The members as one group, numbered as the one system numbered them (in
  * the order the joints first meet them), and its envelope the whole matrix:
  * the dense factorisation of the one system. */
 static Grouping one_group(const swModel *m) {
   Grouping w;
   const int nb = m->nrigid_block;
+  int *renum = malloc((size_t)nb * sizeof(int));
   w.block = malloc((size_t)m->nrigid * sizeof(int));
   w.block_body = malloc((size_t)nb * sizeof(int));
+  w.block_node = malloc((size_t)nb * sizeof(int));
+  w.block_elem = malloc((size_t)nb * sizeof(int));
+  w.block_rot = malloc((size_t)nb * sizeof(int));
+  w.joint_block = malloc(2 * (size_t)m->njoint * sizeof(int));
   w.env = calloc((size_t)nb, sizeof(int));
   w.reach = malloc((size_t)nb * sizeof(int));
   w.adr = malloc(2 * sizeof(int));
   w.joint_adr = malloc(2 * sizeof(int));
   w.joint = malloc((size_t)m->njoint * sizeof(int));
   w.sys = malloc(((size_t)36 * nb * nb + 6 * (size_t)nb) * sizeof(double));
-  assert_true(w.block && w.block_body && w.env && w.reach && w.adr && w.joint_adr && w.joint && w.sys);
+  assert_true(renum && w.block && w.block_body && w.block_node && w.block_elem && w.block_rot &&
+              w.joint_block && w.env && w.reach && w.adr && w.joint_adr && w.joint && w.sys);
   for (int b = 0; b < m->nrigid; b++) w.block[b] = -1;
+  for (int k = 0; k < nb; k++) renum[k] = -1;
   int n = 0, nj = 0;
   for (int j = 0; j < m->njoint; j++) {
+    w.joint_block[2 * j] = w.joint_block[2 * j + 1] = -1;
     if (!m->joint_implicit[j]) continue;
     w.joint[nj++] = j;
-    const int rods[2] = {m->joint[j].rod_a, m->joint[j].rod_b};
     for (int side = 0; side < 2; side++) {
-      const int r = rods[side];
-      if (r < 0 || m->rod_rigid[r] < 0 || m->rigid_fixed[m->rod_rigid[r]]) continue;
-      const int b = m->rod_rigid[r];
-      if (w.block[b] < 0) w.block_body[w.block[b] = n++] = b;
+      const int k = m->joint_block[2 * j + side];
+      if (k < 0) continue;
+      if (renum[k] < 0) {
+        renum[k] = n++;
+        w.block_body[renum[k]] = m->rigid_block_body[k];
+        w.block_node[renum[k]] = m->rigid_block_node[k];
+        w.block_elem[renum[k]] = m->rigid_block_elem[k];
+        w.block_rot[renum[k]] = m->rigid_block_rot[k];
+        if (m->rigid_block_body[k] >= 0) w.block[m->rigid_block_body[k]] = renum[k];
+      }
+      w.joint_block[2 * j + side] = renum[k];
     }
   }
   assert_int_equal(n, nb);
+  free(renum);
   for (int s = 0; s < nb; s++) w.reach[s] = nb - 1;
   w.adr[0] = 0, w.adr[1] = nb;
   w.joint_adr[0] = 0, w.joint_adr[1] = nj;
@@ -181,7 +202,8 @@ static Grouping one_group(const swModel *m) {
 }
 
 static void free_grouping(Grouping *g) {
-  free(g->block), free(g->block_body), free(g->env), free(g->reach), free(g->adr), free(g->joint_adr), free(g->joint);
+  free(g->block), free(g->block_body), free(g->block_node), free(g->block_elem), free(g->block_rot);
+  free(g->joint_block), free(g->env), free(g->reach), free(g->adr), free(g->joint_adr), free(g->joint);
   free(g->sys);
 }
 
@@ -195,7 +217,8 @@ static long differ(const double *a, const double *b, size_t n, double *worst) {
   return rows;
 }
 
-/* The groups of one copy, in order of their first body, and D in none. */
+/* The groups of one copy, in order of their first member, D's with E's
+ * end node. */
 static void test_groups(void **state) {
   (void)state;
   swSpec *s;
@@ -206,30 +229,43 @@ static void test_groups(void **state) {
   fprintf(stderr, "# %s: %d bodies in the system, %d groups, first blocks %d %d %d %d\n",
           __func__, m->nrigid_block, m->nrigid_group, m->rigid_group_adr[0],
           m->rigid_group_adr[1], m->rigid_group_adr[2], m->rigid_group_adr[3]);
-  assert_int_equal(m->nrigid_block, 7);
-  assert_int_equal(m->nrigid_group, 3);
-  const int adr[4] = {0, 3, 6, 7};
-  for (int g = 0; g <= 3; g++) assert_int_equal(m->rigid_group_adr[g], adr[g]);
-  /* within a group, the one system's order (a1, b1, a2, b2, b3, c, a3) */
-  const int block[8] = {0, 1, 2, 3, 4, 5, 6, -1};
+  assert_int_equal(m->nrigid_block, 9);
+  assert_int_equal(m->nrigid_attach, 1);
+  assert_int_equal(m->nrigid_group, 4);
+  const int adr[5] = {0, 3, 6, 7, 9};
+  for (int g = 0; g <= 4; g++) assert_int_equal(m->rigid_group_adr[g], adr[g]);
+  /* within a group, the one system's order (a1, b1, a2, b2, b3, c, a3,
+   * E's end node, d) */
+  const int block[8] = {0, 1, 2, 3, 4, 5, 6, 8};
   for (int r = 0; r < 8; r++) {
     assert_int_equal(m->rigid_block[body[r]], block[r]);
-    if (block[r] >= 0) assert_int_equal(m->rigid_block_body[block[r]], body[r]);
+    assert_int_equal(m->rigid_block_body[block[r]], body[r]);
+    assert_int_equal(m->rigid_block_node[block[r]], -1);
   }
+  /* the attachment: rod E's last node and element, its rotation coupled by
+   * the hinge */
+  const int er = 8, ne = m->rod_nelem[er];
+  assert_int_equal(m->rigid_block_body[7], -1);
+  assert_int_equal(m->rigid_block_node[7], m->node_adr[er] + ne);
+  assert_int_equal(m->rigid_block_elem[7], m->elem_adr[er] + ne - 1);
+  assert_int_equal(m->rigid_block_rot[7], 1);
   /* the envelope: a2 joined to a1, a3 to a2, b3 to b1 (and b2), b2 to none
-   * before it; and the last block reaching each */
-  const int env[7] = {0, 0, 1, 3, 4, 3, 6}, reach[7] = {1, 2, 2, 5, 5, 5, 6};
-  for (int k = 0; k < 7; k++) {
+   * before it, d to E's node; and the last block reaching each */
+  const int env[9] = {0, 0, 1, 3, 4, 3, 6, 7, 7}, reach[9] = {1, 2, 2, 5, 5, 5, 6, 8, 8};
+  for (int k = 0; k < 9; k++) {
     assert_int_equal(m->rigid_block_env[k], env[k]);
     assert_int_equal(m->rigid_block_reach[k], reach[k]);
   }
-  /* joints: base A, base B1, A12, base B2, B13, C, B23, A23 implicit (0-7);
-   * E's two explicit */
-  const int joints[8] = {0, 2, 7, 1, 3, 4, 6, 5}, jadr[4] = {0, 3, 7, 8};
-  for (int g = 0; g <= 3; g++) assert_int_equal(m->rigid_group_joint_adr[g], jadr[g]);
-  for (int q = 0; q < 8; q++) assert_int_equal(m->rigid_group_joint[q], joints[q]);
-  assert_int_equal(m->joint_implicit[8] + m->joint_implicit[9], 0);
-  assert_int_equal(sw_rigid_joints_scratch(m), 2 * (18 * 18 + 18) + 6 * 6 + 6);
+  /* joints: base A, base B1, A12, base B2, B13, C, B23, A23 implicit (0-7),
+   * E to space explicit (8), D on E implicit (9) */
+  const int joints[9] = {0, 2, 7, 1, 3, 4, 6, 5, 9}, jadr[5] = {0, 3, 7, 8, 9};
+  for (int g = 0; g <= 4; g++) assert_int_equal(m->rigid_group_joint_adr[g], jadr[g]);
+  for (int q = 0; q < 9; q++) assert_int_equal(m->rigid_group_joint[q], joints[q]);
+  assert_int_equal(m->joint_implicit[8], 0);
+  assert_int_equal(m->joint_implicit[9], 1);
+  assert_int_equal(m->joint_block[2 * 9], 7);
+  assert_int_equal(m->joint_block[2 * 9 + 1], 8);
+  assert_int_equal(sw_rigid_joints_scratch(m), 2 * (18 * 18 + 18) + 6 * 6 + 6 + 12 * 12 + 12);
   sw_model_free(m);
   sw_spec_free(s);
 }
@@ -245,7 +281,7 @@ static void test_blocks_as_whole(void **state) {
   const long nsteps = sw_test_sanitized() ? 200 : 1000;
   swSpec *s;
   swModel *m = groups_scene(copies, &s);
-  assert_int_equal(m->nrigid_group, 3 * copies);
+  assert_int_equal(m->nrigid_group, 4 * copies);
   swData *blocks = sw_data_new(m), *whole = sw_data_new(m);
   assert_non_null(blocks);
   assert_non_null(whole);
@@ -281,21 +317,37 @@ static void test_blocks_as_whole(void **state) {
   assert_int_equal(rows, 0);
   assert_true(limit > 0); /* the limit was in the system */
 
-  /* one kick, from the same state and loads; and its cost each way */
+  /* one kick, from the same state and loads (the attachments' in the
+   * nodes' forces and elements' torques, restored before each); and its
+   * cost each way */
   const int nb = m->nrigid;
+  const size_t S3 = 3 * (size_t)m->stride, bytes = S3 * sizeof(double);
   double *load = malloc(6 * (size_t)nb * sizeof(double)), *lb = malloc(6 * (size_t)nb * sizeof(double)),
-         *lw = malloc(6 * (size_t)nb * sizeof(double));
-  assert_true(load && lb && lw);
+         *lw = malloc(6 * (size_t)nb * sizeof(double)), *ft = malloc(4 * bytes);
+  assert_true(load && lb && lw && ft);
   for (int i = 0; i < 6 * nb; i++) load[i] = 1e-3 * sin(1.0 + i); /* N and N m */
+  for (size_t i = 0; i < S3; i++) blocks->force[i] = 1e-3 * cos(1.0 + (double)i);
+  for (size_t i = 0; i < S3; i++) blocks->torque[i] = 1e-5 * cos(2.0 + (double)i);
+  memcpy(ft, blocks->force, bytes), memcpy(ft + S3, blocks->torque, bytes);
   const double h = m->dt;
   memcpy(lb, load, 6 * (size_t)nb * sizeof(double));
   memcpy(lw, load, 6 * (size_t)nb * sizeof(double));
   assert_int_equal(sw_rigid_joints_kick(m, blocks, h, lb), 1);
+  memcpy(ft + 2 * S3, blocks->force, bytes), memcpy(ft + 3 * S3, blocks->torque, bytes);
+  memcpy(blocks->force, ft, bytes), memcpy(blocks->torque, ft + S3, bytes);
   swap_grouping(m, blocks, &w);
   assert_int_equal(sw_rigid_joints_kick(m, blocks, h, lw), 1);
   swap_grouping(m, blocks, &w);
   worst = 0;
   rows = differ(lb, lw, 6 * (size_t)nb, &worst);
+  rows += differ(ft + 2 * S3, blocks->force, S3, &worst);
+  rows += differ(ft + 3 * S3, blocks->torque, S3, &worst);
+  /* the attachments' loads were replaced */
+  long changed = 0;
+  for (int k = 0; k < m->nrigid_block; k++)
+    if (m->rigid_block_node[k] >= 0)
+      changed += memcmp(ft + 2 * S3 + m->rigid_block_node[k], ft + m->rigid_block_node[k], sizeof(double)) != 0;
+  assert_int_equal(changed, m->nrigid_attach);
   double t_blocks = 1e30, t_whole = 1e30;
   for (int round = 0; round < 3; round++) { /* interleaved, the best of three of 20 ms each */
     long reps = 0;
@@ -322,7 +374,7 @@ static void test_blocks_as_whole(void **state) {
           "as one system (%.1f x)\n", __func__, m->nrigid_block, 6 * m->nrigid_block,
           m->nrigid_group, rows, 6 * nb, worst, 1e6 * t_blocks, 1e6 * t_whole, t_whole / t_blocks);
   assert_int_equal(rows, 0);
-  free(load), free(lb), free(lw);
+  free(load), free(lb), free(lw), free(ft);
   free_grouping(&w);
   sw_data_free(blocks);
   sw_data_free(whole);
