@@ -329,7 +329,12 @@ const char *diag_suggest(const char *name, const char *const *cands, int n) {
   int limit = len <= 3 ? 1 : len <= 6 ? 2 : 3;
   for (int i = 0; i < n; i++) {
     if (!cands[i] || !strcmp(cands[i], name)) continue;
-    int dist = sw_edit_distance(name, strlen(name), cands[i]);
+    /* the distance is at least the difference of the lengths: a candidate
+     * that cannot come within the limit, or beat the best so far, is not
+     * measured (the answer is the same, the first closest within it) */
+    const int gap = abs((int)strlen(cands[i]) - len);
+    if (gap > limit || gap >= best_d) continue;
+    int dist = sw_edit_distance(name, (size_t)len, cands[i]);
     if (dist < best_d) {
       best_d = dist;
       best = cands[i];
