@@ -289,36 +289,48 @@ void sw_rigid_joints_free(swModel *m) {
   free(m->rigid_block_reach);
 }
 
-/* Doubles of swData's workspace: each group's matrix and right-hand side,
- * one group after another. */
+/* Doubles of swData's workspace: each group's matrix, right-hand side and
+ * the factorisation's column (cholesky_solve), one group after another. */
 size_t sw_rigid_joints_scratch(const swModel *m) {
   size_t len = 0;
   for (int g = 0; g < m->nrigid_group; g++) {
     const size_t n = 6 * (size_t)(m->rigid_group_adr[g + 1] - m->rigid_group_adr[g]);
-    len += n * n + n;
+    len += n * n + 2 * n;
   }
   return len;
 }
 
-/* A[rows of s, cols of t] += w * Ms^T Mt, with Ms, Mt 3x6 (row-major). */
-static void add_block(double *A, int n, int s, int t, double w, const double *Ms, const double *Mt) {
-  for (int i = 0; i < 6; i++)
-    for (int k = 0; k < 6; k++) {
-      double sum = 0;
-      for (int c = 0; c < 3; c++) sum += Ms[6 * c + i] * Mt[6 * c + k];
-      A[(size_t)(6 * s + i) * (size_t)n + (size_t)(6 * t + k)] += w * sum;
+/* One joint's terms of the block (rows of member s, columns of member t):
+ * wp Js^T Jt + wr Rs^T Rt + wl Ls^T Lt for its rate maps (3x6, row-major),
+ * the position's J = [I, X] (X = -[r]x, side_map), the rotation's R =
+ * [0, P] and the limit's L = [0, g^T] (the same on both sides, so their
+ * products PtP = P^T P and ggT = g g^T come in once per joint), each
+ * weight signed by the sides.  Written out for these shapes, the products
+ * with the zero and unit blocks of the maps left out: each entry is the sum
+ * over c of the maps' rows in the same order as the full product, so the
+ * numbers are the same; it costs a fifth of the generic 6x3x6 product. */
+static void add_pair(double *A, int n, int s, int t, double wp, double wr, double wl,
+                     const double *Js, const double *Jt, const double *PtP, const double *ggT) {
+  double *B = A + (size_t)(6 * s) * (size_t)n + (size_t)(6 * t);
+  for (int i = 0; i < 3; i++) {
+    double *Bi = B + (size_t)i * (size_t)n, *Bq = B + (size_t)(3 + i) * (size_t)n;
+    Bi[i] += wp; /* I^T I */
+    for (int k = 0; k < 3; k++) {
+      Bi[3 + k] += wp * Jt[6 * i + 3 + k]; /* I^T Xt */
+      Bq[k] += wp * Js[6 * k + 3 + i];     /* Xs^T I */
+      double xx = 0;                       /* Xs^T Xt */
+      for (int c = 0; c < 3; c++) xx += Js[6 * c + 3 + i] * Jt[6 * c + 3 + k];
+      Bq[3 + k] += wp * xx;
+      if (wr != 0) Bq[3 + k] += wr * PtP[3 * i + k]; /* 0: no rotation term */
+      if (wl != 0) Bq[3 + k] += wl * ggT[3 * i + k]; /* 0: no limit in contact */
     }
+  }
 }
 
-/* The side's 3x6 rate maps: position, the node's velocity J = [I, -[r]x];
- * rotation, the element's angular velocity [0, P]. */
-static void side_maps(const double *r, const double *P, double *Jpos, double *Jrot) {
+/* The side's 3x6 position rate map, the node's velocity J = [I, -[r]x]. */
+static void side_map(const double *r, double *Jpos) {
   memset(Jpos, 0, 18 * sizeof(double));
-  memset(Jrot, 0, 18 * sizeof(double));
-  for (int c = 0; c < 3; c++) {
-    Jpos[6 * c + c] = 1;
-    for (int k = 0; k < 3; k++) Jrot[6 * c + 3 + k] = P[3 * c + k];
-  }
+  for (int c = 0; c < 3; c++) Jpos[6 * c + c] = 1;
   /* -[r]x w = w x r: row c of -[r]x */
   Jpos[6 * 0 + 4] = r[2], Jpos[6 * 0 + 5] = -r[1];
   Jpos[6 * 1 + 3] = -r[2], Jpos[6 * 1 + 5] = r[0];
@@ -333,49 +345,67 @@ static void lever(const swModel *m, const swData *d, int b, int node, double *r)
 }
 
 /* In place: A = L L^T (lower triangle), then A x = rhs solved into rhs.
- * A is n x n, 6 rows a body, and by the joints the rows of body s are zero
- * left of the rows of body env[s] (the earliest body joined to s, or s), so
- * the rows of the bodies up to reach[s] (the last whose env is s or before)
- * are the only ones with entries below the diagonal in the columns of s;
- * env and reach number the bodies from base.  L has the same envelope (no
- * fill-in outside it: George and Liu, Computer Solution of Large Sparse
- * Positive Definite Systems, 1981, ch. 4), so the sums run inside it: the
- * terms they skip are products with a zero factor, and the numbers are the
- * dense factorisation's, bit for bit.  Returns 0 if A is not positive
- * definite. */
-static int cholesky_solve(double *A, int n, double *rhs, const int *env, const int *reach,
-                          int base) {
+ * A is n x n, 6 rows a member, and by the joints the rows of member s are
+ * zero left of the rows of member env[s] (the earliest member joined to s,
+ * or s), so the rows of the members up to reach[s] (the last whose env is s
+ * or before) are the only ones with entries below the diagonal in the
+ * columns of s; env and reach number the members from base.  L has the
+ * same envelope (no fill-in outside it: George and Liu, Computer Solution
+ * of Large Sparse Positive Definite Systems, 1981, ch. 4).
+ *
+ * The factorisation is right-looking (Golub and Van Loan, sec. 4.2.8, the
+ * outer-product form): once column j of L is known, L(i, j) L(k, j) is
+ * taken off every A(i, k), j < k <= i, of the rows that reach column j.
+ * The updates of one column are independent of one another and run as
+ * vector operations, where the left-looking form's dot products were
+ * chains of dependent multiply-adds (the muscular snake's groups of 36
+ * unknowns spent most of their kick there).  Column j is copied out (col,
+ * n doubles of scratch) so that the update of a row reads it contiguously,
+ * and kept in row j of A's upper triangle (L^T) as well as in the lower,
+ * so that both solves are vector updates along rows: L y = b column by
+ * column (b(i) -= L(i, j) y(j), L's column j being L^T's row j), and
+ * L^T x = y likewise (b(k) -= L(i, k) x(i), along L's row i).  Every
+ * number is taken off in an order set by the rows and columns alone, so a
+ * group's solve gives the bits of the same rows within one system over all
+ * the groups (whose extra entries are zeros).  The diagonal keeps
+ * 1 / L(j, j), the solves' only use of it.
+ * Returns 0 if A is not positive definite. */
+static int cholesky_solve(double *restrict A, int n, double *restrict rhs, double *restrict col,
+                          const int *env, const int *reach, int base) {
   for (int j = 0; j < n; j++) {
-    const int sj = j / 6, fj = 6 * (env[sj] - base); /* row j's first column */
-    double djj = A[(size_t)j * n + j];
-    for (int k = fj; k < j; k++) djj -= A[(size_t)j * n + k] * A[(size_t)j * n + k];
+    const int sj = j / 6, last = 6 * (reach[sj] - base) + 5; /* the last row reaching j */
+    double *restrict Aj = A + (size_t)j * n;
+    const double djj = Aj[j];
     if (!(djj > 0)) return 0;
-    const double ljj = sqrt(djj);
-    A[(size_t)j * n + j] = ljj;
-    for (int t = sj; t <= reach[sj] - base; t++) {
-      const int ft = 6 * (env[t] - base);
-      if (ft > j) continue; /* outside the envelope: L_ij = A_ij = 0 */
-      const int k0 = ft > fj ? ft : fj;
-      for (int i = t == sj ? j + 1 : 6 * t; i < 6 * t + 6; i++) {
-        double s = A[(size_t)i * n + j];
-        for (int k = k0; k < j; k++) s -= A[(size_t)i * n + k] * A[(size_t)j * n + k];
-        A[(size_t)i * n + j] = s / ljj;
-      }
+    const double inv = 1.0 / sqrt(djj);
+    Aj[j] = inv;
+    for (int i = j + 1; i <= last; i++) { /* L(i, j), 0 outside the envelope */
+      const int inside = 6 * (env[i / 6] - base) <= j;
+      col[i] = inside ? A[(size_t)i * n + j] * inv : 0.0;
+      A[(size_t)i * n + j] = Aj[i] = col[i];
+    }
+    for (int i = j + 1; i <= last; i++) {
+      if (col[i] == 0.0) continue; /* nothing to take off row i */
+      const double lij = col[i];
+      double *restrict Ai = A + (size_t)i * n;
+#pragma omp simd
+      for (int k = j + 1; k <= i; k++) Ai[k] -= lij * col[k];
     }
   }
-  for (int i = 0; i < n; i++) { /* L y = rhs */
-    double s = rhs[i];
-    for (int k = 6 * (env[i / 6] - base); k < i; k++) s -= A[(size_t)i * n + k] * rhs[k];
-    rhs[i] = s / A[(size_t)i * n + i];
+  for (int j = 0; j < n; j++) { /* L y = rhs, column by column */
+    const double *restrict Lj = A + (size_t)j * n; /* row j of L^T: column j of L */
+    const int last = 6 * (reach[j / 6] - base) + 5;
+    const double y = rhs[j] * Lj[j];
+    rhs[j] = y;
+#pragma omp simd
+    for (int i = j + 1; i <= last; i++) rhs[i] -= Lj[i] * y;
   }
-  for (int i = n - 1; i >= 0; i--) { /* L^T x = y */
-    const int si = i / 6;
-    double s = rhs[i];
-    for (int t = si; t <= reach[si] - base; t++) {
-      if (6 * (env[t] - base) > i) continue;
-      for (int k = t == si ? i + 1 : 6 * t; k < 6 * t + 6; k++) s -= A[(size_t)k * n + i] * rhs[k];
-    }
-    rhs[i] = s / A[(size_t)i * n + i];
+  for (int i = n - 1; i >= 0; i--) { /* L^T x = y, column by column of L^T */
+    const double *restrict Li = A + (size_t)i * n; /* row i of L */
+    const double x = rhs[i] * Li[i];
+    rhs[i] = x;
+#pragma omp simd
+    for (int k = 6 * (env[i / 6] - base); k < i; k++) rhs[k] -= Li[k] * x;
   }
   return 1;
 }
@@ -461,29 +491,35 @@ static int group_kick(const swModel *m, swData *d, double h, int g, double *A, d
     const double wpos = 0.25 * h * h * jd->stiffness + 0.5 * h * jd->damping;
     const double wrot = jd->kind == SW_JOINT_SPHERICAL
                             ? 0.0 : 0.25 * h * h * jd->rot_stiffness + 0.5 * h * jd->rot_damping;
-    double Jp[2][18], Jr[2][18], Jl[18] = {0}, gl[3] = {0, 0, 0};
+    double Jp[2][18], gl[3] = {0, 0, 0};
     for (int side = 0; side < 2; side++) {
       if (block[side] < 0) continue;
       const int b = m->rigid_block_body[block[side]];
       double r[3] = {0, 0, 0}; /* an attachment's joint sits on its node */
       if (b >= 0) lever(m, d, b, node[side], r);
-      side_maps(r, P, Jp[side], Jr[side]);
+      side_map(r, Jp[side]);
     }
     /* the limit's rate map, one row [0, g^T], the same on both sides */
     const double wlim = sw_joint_limit_tangent(m, d, j, gl)
                             ? 0.25 * h * h * jd->limit_stiffness + 0.5 * h * jd->limit_damping : 0.0;
-    for (int k = 0; k < 3; k++) Jl[3 + k] = gl[k];
+    double PtP[9], ggT[9]; /* the rotation's and the limit's products, once */
+    for (int i = 0; i < 3; i++)
+      for (int k = 0; k < 3; k++) {
+        double pp = 0, gg = 0;
+        for (int c = 0; c < 3; c++) pp += P[3 * c + i] * P[3 * c + k];
+        gg += gl[i] * gl[k];
+        PtP[3 * i + k] = pp, ggT[3 * i + k] = gg;
+      }
     for (int s = 0; s < 2; s++)
       for (int t = 0; t < 2; t++) {
         if (block[s] < 0 || block[t] < 0) continue;
         const double sign = s == t ? 1.0 : -1.0; /* rates are side b minus side a */
-        const int bs = block[s] - first, bt = block[t] - first;
-        add_block(A, n, bs, bt, sign * wpos, Jp[s], Jp[t]);
-        if (wrot > 0) add_block(A, n, bs, bt, sign * wrot, Jr[s], Jr[t]);
-        if (wlim > 0) add_block(A, n, bs, bt, sign * wlim, Jl, Jl);
+        add_pair(A, n, block[s] - first, block[t] - first, sign * wpos, sign * wrot, sign * wlim,
+                 Jp[s], Jp[t], PtP, ggT);
       }
   }
-  if (!cholesky_solve(A, n, rhs, m->rigid_block_env + first, m->rigid_block_reach + first, first))
+  if (!cholesky_solve(A, n, rhs, rhs + n, m->rigid_block_env + first, m->rigid_block_reach + first,
+                      first))
     return 0;
   for (int s = 0; s < nb; s++) { /* the loads that give du */
     const int k = first + s, b = m->rigid_block_body[k];
@@ -523,7 +559,7 @@ int sw_rigid_joints_kick(const swModel *m, swData *d, double h, double *load) {
     const size_t n = 6 * (size_t)(m->rigid_group_adr[g + 1] - m->rigid_group_adr[g]);
     double *rhs = A + n * n;
     ok &= group_kick(m, d, h, g, A, rhs, load);
-    A = rhs + n;
+    A = rhs + 2 * n;
   }
   return ok;
 }

@@ -168,7 +168,7 @@ static Grouping one_group(const swModel *m) {
   w.adr = malloc(2 * sizeof(int));
   w.joint_adr = malloc(2 * sizeof(int));
   w.joint = malloc((size_t)m->njoint * sizeof(int));
-  w.sys = malloc(((size_t)36 * nb * nb + 6 * (size_t)nb) * sizeof(double));
+  w.sys = malloc(((size_t)36 * nb * nb + 12 * (size_t)nb) * sizeof(double));
   assert_true(renum && w.block && w.block_body && w.block_node && w.block_elem && w.block_rot &&
               w.joint_block && w.env && w.reach && w.adr && w.joint_adr && w.joint && w.sys);
   for (int b = 0; b < m->nrigid; b++) w.block[b] = -1;
@@ -265,7 +265,7 @@ static void test_groups(void **state) {
   assert_int_equal(m->joint_implicit[9], 1);
   assert_int_equal(m->joint_block[2 * 9], 7);
   assert_int_equal(m->joint_block[2 * 9 + 1], 8);
-  assert_int_equal(sw_rigid_joints_scratch(m), 2 * (18 * 18 + 18) + 6 * 6 + 6 + 12 * 12 + 12);
+  assert_int_equal(sw_rigid_joints_scratch(m), 2 * (18 * 18 + 36) + 6 * 6 + 12 + 12 * 12 + 24);
   sw_model_free(m);
   sw_spec_free(s);
 }
