@@ -285,6 +285,7 @@ double sw_rigid_joint_dt(const swModel *m, int b);
 int sw_rigid_joints_setup(swModel *m);
 void sw_rigid_joints_free(swModel *m);
 size_t sw_rigid_joints_scratch(const swModel *m);
+int sw_rigid_group_unknowns(const swModel *m, int g); /* group g's unknowns */
 int sw_rigid_joints_kick(const swModel *m, swData *d, double h, double *load);
 /* Environments (environment.c).  The swSpec keeps them in an opaque slot
  * (sw_spec_env); sw_env_check validates them in sw_compile, sw_env_setup

@@ -62,10 +62,12 @@
  * bones) is as stiff as one between two bodies, and its explicit bound was
  * what held the snake's step (25 us, against 54 us for the filaments and 77
  * us for the backbone).  Such a joint is in the system too: its elastic side
- * is a member of the group with six unknowns like a body's, the node's
- * velocity (mass m_i) and the angular velocity of the joint's element (lab
- * inertia Q^T diag(J^/e) Q, the element's kick of integrate.c written in the
- * lab frame), with lever r = 0 since the joint sits on the node.  The rod's
+ * is a member of the group with the node's velocity (mass m_i) as unknowns
+ * and, when a joint turns the element (hinge, fixed, a limit), the angular
+ * velocity of the joint's element (lab inertia Q^T diag(J^/e) Q, the
+ * element's kick of integrate.c written in the lab frame): six unknowns
+ * like a body's, or three; its lever is r = 0 since the joint sits on the
+ * node.  The rod's
  * own loads on that node and element (elasticity, damping, the other
  * joints, muscles, environments) stay explicit and are part of F, so the
  * member's row is that of the explicit kick plus the joint's implicit
@@ -191,6 +193,14 @@ static void number_groups(swModel *m, const int *member, const int *body, const 
         if (jb[side] >= 0) m->rigid_block_rot[jb[side]] = 1;
   }
   for (int g = 0; g < ngroup; g++) jadr[g + 1] += jadr[g];
+  /* each member's unknowns in its group: a body's six, an attachment's
+   * three of its node, and three of its element when a joint turns it */
+  for (int g = 0; g < ngroup; g++)
+    for (int k = adr[g], off = 0; k < adr[g + 1]; k++) {
+      m->rigid_block_dof[k] = m->rigid_block_body[k] >= 0 || m->rigid_block_rot[k] ? 6 : 3;
+      m->rigid_block_off[k] = off;
+      off += m->rigid_block_dof[k];
+    }
   for (int j = 0, *fill = group_of; j < m->njoint; j++) { /* group_of: a cursor per group */
     if (j == 0) memcpy(fill, jadr, (size_t)ngroup * sizeof(int));
     if (m->joint_implicit[j]) m->rigid_group_joint[fill[next[j]]++] = j;
@@ -220,6 +230,8 @@ int sw_rigid_joints_setup(swModel *m) {
   m->rigid_block_node = malloc(NB * sizeof(int));
   m->rigid_block_elem = malloc(NB * sizeof(int));
   m->rigid_block_rot = malloc(NB * sizeof(int));
+  m->rigid_block_off = malloc(NB * sizeof(int));
+  m->rigid_block_dof = malloc(NB * sizeof(int));
   m->rigid_group_adr = malloc((NB + 1) * sizeof(int));
   m->rigid_group_joint_adr = malloc((NB + 1) * sizeof(int));
   m->rigid_group_joint = malloc(J * sizeof(int));
@@ -227,7 +239,8 @@ int sw_rigid_joints_setup(swModel *m) {
   m->rigid_block_reach = malloc(NB * sizeof(int));
   m->nrigid_block = m->nrigid_group = m->nrigid_attach = 0;
   if (!m->joint_implicit || !m->joint_block || !m->rigid_block || !m->rigid_block_body ||
-      !m->rigid_block_node || !m->rigid_block_elem || !m->rigid_block_rot || !m->rigid_group_adr ||
+      !m->rigid_block_node || !m->rigid_block_elem || !m->rigid_block_rot ||
+      !m->rigid_block_off || !m->rigid_block_dof || !m->rigid_group_adr ||
       !m->rigid_group_joint_adr || !m->rigid_group_joint || !m->rigid_block_env ||
       !m->rigid_block_reach)
     return 0;
@@ -282,6 +295,8 @@ void sw_rigid_joints_free(swModel *m) {
   free(m->rigid_block_node);
   free(m->rigid_block_elem);
   free(m->rigid_block_rot);
+  free(m->rigid_block_off);
+  free(m->rigid_block_dof);
   free(m->rigid_group_adr);
   free(m->rigid_group_joint_adr);
   free(m->rigid_group_joint);
@@ -289,12 +304,17 @@ void sw_rigid_joints_free(swModel *m) {
   free(m->rigid_block_reach);
 }
 
+int sw_rigid_group_unknowns(const swModel *m, int g) {
+  const int last = m->rigid_group_adr[g + 1] - 1;
+  return last < m->rigid_group_adr[g] ? 0 : m->rigid_block_off[last] + m->rigid_block_dof[last];
+}
+
 /* Doubles of swData's workspace: each group's matrix, right-hand side and
  * the factorisation's column (cholesky_solve), one group after another. */
 size_t sw_rigid_joints_scratch(const swModel *m) {
   size_t len = 0;
   for (int g = 0; g < m->nrigid_group; g++) {
-    const size_t n = 6 * (size_t)(m->rigid_group_adr[g + 1] - m->rigid_group_adr[g]);
+    const size_t n = sw_rigid_group_unknowns(m, g);
     len += n * n + 2 * n;
   }
   return len;
@@ -305,19 +325,24 @@ size_t sw_rigid_joints_scratch(const swModel *m) {
  * the position's J = [I, X] (X = -[r]x, side_map), the rotation's R =
  * [0, P] and the limit's L = [0, g^T] (the same on both sides, so their
  * products PtP = P^T P and ggT = g g^T come in once per joint), each
- * weight signed by the sides.  Written out for these shapes, the products
+ * weight signed by the sides; the blocks start at rows os and columns ot,
+ * ds and dt unknowns (3: an attachment whose rotation no joint turns, X =
+ * 0 there since its lever is 0).  Written out for these shapes, the products
  * with the zero and unit blocks of the maps left out: each entry is the sum
  * over c of the maps' rows in the same order as the full product, so the
  * numbers are the same; it costs a fifth of the generic 6x3x6 product. */
-static void add_pair(double *A, int n, int s, int t, double wp, double wr, double wl,
-                     const double *Js, const double *Jt, const double *PtP, const double *ggT) {
-  double *B = A + (size_t)(6 * s) * (size_t)n + (size_t)(6 * t);
+static void add_pair(double *A, int n, int os, int ds, int ot, int dt, double wp, double wr,
+                     double wl, const double *Js, const double *Jt, const double *PtP,
+                     const double *ggT) {
+  double *B = A + (size_t)os * (size_t)n + (size_t)ot;
   for (int i = 0; i < 3; i++) {
     double *Bi = B + (size_t)i * (size_t)n, *Bq = B + (size_t)(3 + i) * (size_t)n;
     Bi[i] += wp; /* I^T I */
     for (int k = 0; k < 3; k++) {
-      Bi[3 + k] += wp * Jt[6 * i + 3 + k]; /* I^T Xt */
+      if (dt == 6) Bi[3 + k] += wp * Jt[6 * i + 3 + k]; /* I^T Xt */
+      if (ds < 6) continue; /* a member of three unknowns: its node alone */
       Bq[k] += wp * Js[6 * k + 3 + i];     /* Xs^T I */
+      if (dt < 6) continue;
       double xx = 0;                       /* Xs^T Xt */
       for (int c = 0; c < 3; c++) xx += Js[6 * c + 3 + i] * Jt[6 * c + 3 + k];
       Bq[3 + k] += wp * xx;
@@ -345,13 +370,14 @@ static void lever(const swModel *m, const swData *d, int b, int node, double *r)
 }
 
 /* In place: A = L L^T (lower triangle), then A x = rhs solved into rhs.
- * A is n x n, 6 rows a member, and by the joints the rows of member s are
- * zero left of the rows of member env[s] (the earliest member joined to s,
- * or s), so the rows of the members up to reach[s] (the last whose env is s
- * or before) are the only ones with entries below the diagonal in the
- * columns of s; env and reach number the members from base.  L has the
- * same envelope (no fill-in outside it: George and Liu, Computer Solution
- * of Large Sparse Positive Definite Systems, 1981, ch. 4).
+ * A is n x n, member s's unknowns at rows off[s] .. off[s] + dof[s] - 1,
+ * and by the joints the rows of member s are zero left of the rows of
+ * member env[s] (the earliest member joined to s, or s), so the rows of the
+ * members up to reach[s] (the last whose env is s or before) are the only
+ * ones with entries below the diagonal in the columns of s; env and reach
+ * number the members from base.  L has the same envelope (no fill-in
+ * outside it: George and Liu, Computer Solution of Large Sparse Positive
+ * Definite Systems, 1981, ch. 4).
  *
  * The factorisation is right-looking (Golub and Van Loan, sec. 4.2.8, the
  * outer-product form): once column j of L is known, L(i, j) L(k, j) is
@@ -371,18 +397,22 @@ static void lever(const swModel *m, const swData *d, int b, int node, double *r)
  * 1 / L(j, j), the solves' only use of it.
  * Returns 0 if A is not positive definite. */
 static int cholesky_solve(double *restrict A, int n, double *restrict rhs, double *restrict col,
-                          const int *env, const int *reach, int base) {
-  for (int j = 0; j < n; j++) {
-    const int sj = j / 6, last = 6 * (reach[sj] - base) + 5; /* the last row reaching j */
+                          const int *env, const int *reach, const int *off, const int *dof,
+                          int base) {
+  for (int sj = 0, j = 0; j < n; j++) {
+    if (j == off[sj] + dof[sj]) sj++; /* the member of column j */
+    const int rl = reach[sj] - base, last = off[rl] + dof[rl] - 1; /* the last row reaching j */
     double *restrict Aj = A + (size_t)j * n;
     const double djj = Aj[j];
     if (!(djj > 0)) return 0;
     const double inv = 1.0 / sqrt(djj);
     Aj[j] = inv;
-    for (int i = j + 1; i <= last; i++) { /* L(i, j), 0 outside the envelope */
-      const int inside = 6 * (env[i / 6] - base) <= j;
-      col[i] = inside ? A[(size_t)i * n + j] * inv : 0.0;
-      A[(size_t)i * n + j] = Aj[i] = col[i];
+    for (int t = sj; t <= rl; t++) { /* L(i, j) of member t's rows, 0 outside the envelope */
+      const int inside = off[env[t] - base] <= j;
+      for (int i = t == sj ? j + 1 : off[t]; i < off[t] + dof[t]; i++) {
+        col[i] = inside ? A[(size_t)i * n + j] * inv : 0.0;
+        A[(size_t)i * n + j] = Aj[i] = col[i];
+      }
     }
     for (int i = j + 1; i <= last; i++) {
       if (col[i] == 0.0) continue; /* nothing to take off row i */
@@ -392,20 +422,24 @@ static int cholesky_solve(double *restrict A, int n, double *restrict rhs, doubl
       for (int k = j + 1; k <= i; k++) Ai[k] -= lij * col[k];
     }
   }
-  for (int j = 0; j < n; j++) { /* L y = rhs, column by column */
+  for (int sj = 0, j = 0; j < n; j++) { /* L y = rhs, column by column */
+    if (j == off[sj] + dof[sj]) sj++;
     const double *restrict Lj = A + (size_t)j * n; /* row j of L^T: column j of L */
-    const int last = 6 * (reach[j / 6] - base) + 5;
+    const int rl = reach[sj] - base, last = off[rl] + dof[rl] - 1;
     const double y = rhs[j] * Lj[j];
     rhs[j] = y;
 #pragma omp simd
     for (int i = j + 1; i <= last; i++) rhs[i] -= Lj[i] * y;
   }
-  for (int i = n - 1; i >= 0; i--) { /* L^T x = y, column by column of L^T */
+  int si = 0; /* L^T x = y, column by column of L^T, from the last member */
+  while (off[si] + dof[si] < n) si++;
+  for (int i = n - 1; i >= 0; i--) {
+    if (i < off[si]) si--;
     const double *restrict Li = A + (size_t)i * n; /* row i of L */
     const double x = rhs[i] * Li[i];
     rhs[i] = x;
 #pragma omp simd
-    for (int k = 6 * (env[i / 6] - base); k < i; k++) rhs[k] -= Li[k] * x;
+    for (int k = off[env[si] - base]; k < i; k++) rhs[k] -= Li[k] * x;
   }
   return 1;
 }
@@ -455,22 +489,26 @@ static void member_inertia(const swModel *m, const swData *d, int k, const doubl
 }
 
 /* The trapezoidal loads of group g (the header): its system assembled into
- * A (n x n, n = 6 x its members) and rhs, factored and solved, and the
+ * A (n x n, n its members' unknowns) and rhs, factored and solved, and the
  * loads of its members replaced: a body's in load[], an attachment's node
  * force and, when a joint couples its element's rotation, element torque.
  * Returns 0 if the block could not be factored. */
 static int group_kick(const swModel *m, swData *d, double h, int g, double *A, double *rhs,
                       double *load) {
-  const int first = m->rigid_group_adr[g], nb = m->rigid_group_adr[g + 1] - first, n = 6 * nb;
+  const int first = m->rigid_group_adr[g], nb = m->rigid_group_adr[g + 1] - first;
+  const int n = sw_rigid_group_unknowns(m, g);
+  const int *off = m->rigid_block_off + first, *dof = m->rigid_block_dof + first;
   memset(A, 0, (size_t)n * n * sizeof(double));
   for (int s = 0; s < nb; s++) { /* mass, and the right-hand side h F */
     double M, Il[9], F[6];
     member_inertia(m, d, first + s, load, &M, Il, F);
+    const size_t o = (size_t)off[s];
     for (int i = 0; i < 3; i++) {
-      A[(size_t)(6 * s + i) * n + 6 * s + i] = M;
-      for (int k = 0; k < 3; k++) A[(size_t)(6 * s + 3 + i) * n + 6 * s + 3 + k] = Il[3 * i + k];
+      A[(o + i) * n + o + i] = M;
+      if (dof[s] == 6)
+        for (int k = 0; k < 3; k++) A[(o + 3 + i) * n + o + 3 + k] = Il[3 * i + k];
     }
-    for (int i = 0; i < 6; i++) rhs[6 * s + i] = h * F[i];
+    for (int i = 0; i < dof[s]; i++) rhs[o + i] = h * F[i];
   }
   static const double I3[9] = {1, 0, 0, 0, 1, 0, 0, 0, 1};
   for (int q = m->rigid_group_joint_adr[g]; q < m->rigid_group_joint_adr[g + 1]; q++) {
@@ -514,28 +552,30 @@ static int group_kick(const swModel *m, swData *d, double h, int g, double *A, d
       for (int t = 0; t < 2; t++) {
         if (block[s] < 0 || block[t] < 0) continue;
         const double sign = s == t ? 1.0 : -1.0; /* rates are side b minus side a */
-        add_pair(A, n, block[s] - first, block[t] - first, sign * wpos, sign * wrot, sign * wlim,
+        const int bs = block[s] - first, bt = block[t] - first;
+        add_pair(A, n, off[bs], dof[bs], off[bt], dof[bt], sign * wpos, sign * wrot, sign * wlim,
                  Jp[s], Jp[t], PtP, ggT);
       }
   }
   if (!cholesky_solve(A, n, rhs, rhs + n, m->rigid_block_env + first, m->rigid_block_reach + first,
-                      first))
+                      off, dof, first))
     return 0;
   for (int s = 0; s < nb; s++) { /* the loads that give du */
     const int k = first + s, b = m->rigid_block_body[k];
-    double M, Il[9], F[6], dL[3];
+    const double *du = rhs + off[s];
+    double M, Il[9], F[6], dL[3] = {0, 0, 0};
     member_inertia(m, d, k, load, &M, Il, F);
-    sw_mat_vec(dL, Il, rhs + 6 * s + 3);
+    if (dof[s] == 6) sw_mat_vec(dL, Il, du + 3);
     if (b >= 0) {
       for (int i = 0; i < 3; i++) {
-        load[6 * b + i] = M * rhs[6 * s + i] / h;
+        load[6 * b + i] = M * du[i] / h;
         load[6 * b + 3 + i] = dL[i] / h;
       }
       continue;
     }
     const int i = m->rigid_block_node[k], e = m->rigid_block_elem[k];
-    for (int c = 0; c < 3; c++) SW_AT(m, d->force, i, c) = M * rhs[6 * s + c] / h;
-    if (m->rigid_block_rot[k]) { /* tau_eff = (J^/e) Q dw / h, material components */
+    for (int c = 0; c < 3; c++) SW_AT(m, d->force, i, c) = M * du[c] / h;
+    if (dof[s] == 6) { /* tau_eff = (J^/e) Q dw / h, material components */
       double Q[9], t[3];
       sw_getQ(m, d->Q, e, Q);
       sw_mat_vec(t, Q, dL);
@@ -556,7 +596,7 @@ int sw_rigid_joints_kick(const swModel *m, swData *d, double h, double *load) {
   int ok = 1;
   double *A = d->rigid_sys;
   for (int g = 0; g < m->nrigid_group; g++) {
-    const size_t n = 6 * (size_t)(m->rigid_group_adr[g + 1] - m->rigid_group_adr[g]);
+    const size_t n = (size_t)sw_rigid_group_unknowns(m, g);
     double *rhs = A + n * n;
     ok &= group_kick(m, d, h, g, A, rhs, load);
     A = rhs + 2 * n;

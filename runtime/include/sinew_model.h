@@ -113,6 +113,10 @@ typedef struct {
   int *rigid_block_elem;     /* (nrigid_block) an attachment's element, -1   */
   int *rigid_block_rot;      /* (nrigid_block) 1: a joint couples the
                                            attachment's element rotation     */
+  int *rigid_block_off;      /* (nrigid_block) its first unknown in its group */
+  int *rigid_block_dof;      /* (nrigid_block) its unknowns: 6 (a body, or an
+                                           attachment a joint turns), 3 (an
+                                           attachment's node alone)          */
   int *rigid_block_env;      /* (nrigid_block) the earliest block joined to
                                            each, or itself: the envelope     */
   int *rigid_block_reach;    /* (nrigid_block) the last block whose envelope

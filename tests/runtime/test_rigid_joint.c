@@ -129,20 +129,22 @@ static swModel *groups_scene(int copies, swSpec **spec) {
 
 /* The model's groups and their workspace, swapped in and out whole. */
 typedef struct {
-  int *block, *block_body, *block_node, *block_elem, *block_rot, *joint_block, *env, *reach, *adr,
-      *joint_adr, *joint;
+  int *block, *block_body, *block_node, *block_elem, *block_rot, *block_off, *block_dof,
+      *joint_block, *env, *reach, *adr, *joint_adr, *joint;
   int ngroup;
   double *sys; /* a swData's workspace for them */
 } Grouping;
 
 static void swap_grouping(swModel *m, swData *d, Grouping *g) {
   Grouping now = {m->rigid_block, m->rigid_block_body, m->rigid_block_node, m->rigid_block_elem,
-                  m->rigid_block_rot, m->joint_block, m->rigid_block_env, m->rigid_block_reach,
+                  m->rigid_block_rot, m->rigid_block_off, m->rigid_block_dof, m->joint_block,
+                  m->rigid_block_env, m->rigid_block_reach,
                   m->rigid_group_adr, m->rigid_group_joint_adr, m->rigid_group_joint,
                   m->nrigid_group, d->rigid_sys};
   m->rigid_block = g->block, m->rigid_block_body = g->block_body, m->rigid_block_env = g->env;
   m->rigid_block_node = g->block_node, m->rigid_block_elem = g->block_elem;
   m->rigid_block_rot = g->block_rot, m->joint_block = g->joint_block;
+  m->rigid_block_off = g->block_off, m->rigid_block_dof = g->block_dof;
   m->rigid_block_reach = g->reach;
   m->rigid_group_adr = g->adr;
   m->rigid_group_joint_adr = g->joint_adr, m->rigid_group_joint = g->joint;
@@ -162,6 +164,8 @@ static Grouping one_group(const swModel *m) {
   w.block_node = malloc((size_t)nb * sizeof(int));
   w.block_elem = malloc((size_t)nb * sizeof(int));
   w.block_rot = malloc((size_t)nb * sizeof(int));
+  w.block_off = malloc((size_t)nb * sizeof(int));
+  w.block_dof = malloc((size_t)nb * sizeof(int));
   w.joint_block = malloc(2 * (size_t)m->njoint * sizeof(int));
   w.env = calloc((size_t)nb, sizeof(int));
   w.reach = malloc((size_t)nb * sizeof(int));
@@ -170,6 +174,7 @@ static Grouping one_group(const swModel *m) {
   w.joint = malloc((size_t)m->njoint * sizeof(int));
   w.sys = malloc(((size_t)36 * nb * nb + 12 * (size_t)nb) * sizeof(double));
   assert_true(renum && w.block && w.block_body && w.block_node && w.block_elem && w.block_rot &&
+              w.block_off && w.block_dof &&
               w.joint_block && w.env && w.reach && w.adr && w.joint_adr && w.joint && w.sys);
   for (int b = 0; b < m->nrigid; b++) w.block[b] = -1;
   for (int k = 0; k < nb; k++) renum[k] = -1;
@@ -187,6 +192,7 @@ static Grouping one_group(const swModel *m) {
         w.block_node[renum[k]] = m->rigid_block_node[k];
         w.block_elem[renum[k]] = m->rigid_block_elem[k];
         w.block_rot[renum[k]] = m->rigid_block_rot[k];
+        w.block_dof[renum[k]] = m->rigid_block_dof[k];
         if (m->rigid_block_body[k] >= 0) w.block[m->rigid_block_body[k]] = renum[k];
       }
       w.joint_block[2 * j + side] = renum[k];
@@ -194,6 +200,7 @@ static Grouping one_group(const swModel *m) {
   }
   assert_int_equal(n, nb);
   free(renum);
+  for (int k = 0, off = 0; k < nb; k++) w.block_off[k] = off, off += w.block_dof[k];
   for (int s = 0; s < nb; s++) w.reach[s] = nb - 1;
   w.adr[0] = 0, w.adr[1] = nb;
   w.joint_adr[0] = 0, w.joint_adr[1] = nj;
@@ -203,6 +210,7 @@ static Grouping one_group(const swModel *m) {
 
 static void free_grouping(Grouping *g) {
   free(g->block), free(g->block_body), free(g->block_node), free(g->block_elem), free(g->block_rot);
+  free(g->block_off), free(g->block_dof);
   free(g->joint_block), free(g->env), free(g->reach), free(g->adr), free(g->joint_adr), free(g->joint);
   free(g->sys);
 }
