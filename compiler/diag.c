@@ -89,6 +89,7 @@ void diag_set_name(int id, const char *name) {
 
 int diag_nfiles(void) { return nfiles; }
 int diag_errors(void) { return nerrors; }
+int diag_stopped(void) { return stopped; }
 int diag_warnings(void) { return nwarnings; }
 void diag_set_werror(int on) { werror = on; }
 

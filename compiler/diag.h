@@ -45,6 +45,9 @@ void diag_plain(const char *fmt, ...) __attribute__((format(printf, 1, 2)));
 /* Print pending diagnostics sorted by file, line and column. */
 void diag_flush(void);
 int diag_errors(void);
+/* Whether the error limit was reached: nothing more is reported, so the
+ * checker may stop (sema.c does, item by item). */
+int diag_stopped(void);
 int diag_warnings(void);
 void diag_set_werror(int on);
 
