@@ -217,7 +217,8 @@ build/bench/bench_scaling: bench/bench_scaling.c bench/bench_util.h build/libsin
 bench: deps
 	@$(MAKE) --no-print-directory $(BENCH_BIN) $(BENCH_RIGID) $(BENCH_CONTACT) $(BENCH_SCALING) bin/sinewc
 	@./$(BENCH_BIN) docs/benchmarks.md
-	@sh bench/bench_isa.sh docs/benchmarks.md   # bench_rod at x86-64-v3 and -v4, before issue 31 and now, side by side (~5 min, ~3 more the first time)
+	@sh bench/bench_isa.sh docs/benchmarks.md   # bench_rod at x86-64-v3 and -v4, before issue 31 and now, side by side, and the vectorizer on aarch64 (~6 min, ~3 more the first time)
+	@sh bench/bench_pyelastica.sh docs/benchmarks.md   # PyElastica's Verlet against bench_rod's, n = 50, 100, 200, interleaved (~6 min; only with PyElastica's source in SW_PYELASTICA or build/pyelastica)
 	@./$(BENCH_RIGID) docs/benchmarks.md
 	@./$(BENCH_CONTACT) docs/benchmarks.md
 	@./$(BENCH_SCALING) docs/benchmarks.md   # ~2 min

@@ -15,7 +15,10 @@
 # (docs/benchmarks.md), which `make bench` runs.  SW_BENCH_ISA_ROUNDS (5),
 # SW_BENCH_ISA_SIZES ("25 50 100 200 400 800") and SW_BENCH_ISA_BASE (the
 # commit; empty: no before columns) change the run (~5 min, and ~3 min
-# more the first time, to build the code before).
+# more the first time, to build the code before).  The section ends with
+# the subsection "aarch64": what GCC's vectorizer does with the same loops
+# for 64-bit Arm (scripts/vec_report.sh --table, ~1 min; it installs the
+# cross compiler when missing).
 set -eu
 out=${1:-docs/benchmarks.md}
 ROUNDS=${SW_BENCH_ISA_ROUNDS:-5}
@@ -125,5 +128,20 @@ awk -v sizes="$SIZES" -v v4="$has_v4" -v target="$TARGET" -v base="$BASE" '
              ns("base_v4", m), ns("v4", m), cyc("v3", m), cyc("v4", m), ratio, ratio <= target ? "yes" : "no"
     }
   }' "$tmp/rows" >> "$section"
+# the same loops for 64-bit Arm, compiled only (scripts/vec_report.sh --table)
+{
+  echo
+  echo "### aarch64"
+  echo
+  echo "The step's files compiled (not run) for 64-bit Arm by Debian's cross compiler,"
+  echo "$(aarch64-linux-gnu-gcc --version 2>/dev/null | head -1 || echo "aarch64-linux-gnu-gcc"), at the flags of \`make\` with"
+  echo "\`-march=armv8-a\` (NEON: two doubles a vector, every 64-bit Arm) and"
+  echo "\`-march=armv8.2-a+sve\` (SVE: vectors as long as the CPU makes them, \"variable\"),"
+  echo "beside the two x86-64 levels above: for each function GCC emits, how many loops"
+  echo "it vectorized and the widest vector (\`scripts/vec_report.sh --table\`, from"
+  echo "\`-fopt-info-vec\`; a loop is counted in the function it was inlined into)."
+  echo
+  sh scripts/vec_report.sh --table
+} >> "$section"
 python3 scripts/put_section.py "$out" "$title" "$(cat "$section")"
 cat "$section"

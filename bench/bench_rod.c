@@ -16,7 +16,10 @@
  * (which ticks at the nominal clock, not the current one), else "n/a"; the
  * report says which.  The same Markdown document goes to stdout and to the
  * file named by argv[1]: its structure (sections, rows, columns) is fixed, so
- * two runs differ only in their figures, machine, date and commit.
+ * two runs differ only in their figures, machine, date and commit.  The
+ * modes --verlet, --tip and --cpu serve the scripts that run this program
+ * (bench_isa.sh, bench_pyelastica.sh): rows of one size, the cantilever's
+ * tip after a number of steps, what the CPU runs.
  */
 #include <errno.h>
 #include <math.h>
@@ -179,9 +182,16 @@ static swModel *compile_or_die(const swSpec *s) {
   return m;
 }
 
-/* A rod of n elements along x, clamped at its start, under gravity, stepped
- * with integ at half its stable time step. */
-static swModel *bench_model(int n, swIntegrator integ) {
+/* How the start of bench_model's rod is held: sinew's clamp (the end node and
+ * the end cross-section, with a clamp domain of half an element between that
+ * cross-section and element 0: boundary.c), or as PyElastica's OneEndFixedBC
+ * holds it (node 0 and element 0's frame, the velocity and the angular
+ * velocity of both held at zero), for the comparison of `--tip`. */
+typedef enum { END_CLAMP, END_PYELASTICA } EndKind;
+
+/* A rod of n elements along x, held at its start by `end`, under gravity,
+ * stepped with integ at dt, or at half its stable time step when dt <= 0. */
+static swModel *bench_model_held(int n, swIntegrator integ, EndKind end, double dt) {
   swSpec *s = sw_spec_new();
   if (!s) die("out of memory");
   swRodDesc r;
@@ -197,22 +207,33 @@ static swModel *bench_model(int n, swIntegrator integ) {
   r.law = bench_law;
   int rod = sw_spec_add_rod(s, &r);
   if (rod < 0) die("sw_spec_add_rod failed");
-  swBCDesc clamp;
-  memset(&clamp, 0, sizeof clamp);
-  clamp.kind = SW_BC_CLAMP;
-  clamp.rod = rod;
-  clamp.end = 0;
-  clamp.signal = sw_signal_const(1);
-  if (sw_spec_add_bc(s, &clamp) < 0) die("sw_spec_add_bc failed");
+  const swBCKind held[2][2] = {{SW_BC_CLAMP, SW_BC_CLAMP}, {SW_BC_VELOCITY, SW_BC_OMEGA}};
+  for (int k = 0; k < (end == END_CLAMP ? 1 : 2); k++) {
+    swBCDesc bc;
+    memset(&bc, 0, sizeof bc);   /* vec = 0: held at rest */
+    bc.kind = held[end][k];
+    bc.rod = rod;
+    bc.end = 0;
+    bc.signal = sw_signal_const(1);
+    if (sw_spec_add_bc(s, &bc) < 0) die("sw_spec_add_bc failed");
+  }
   const double g[3] = {0, 0, -9.81};
   sw_spec_set_gravity(s, g);
   sw_spec_set_integrator(s, integ);
-  swModel *estimate = compile_or_die(s);   /* only for its stable dt */
-  sw_spec_set_dt(s, 0.5 * sw_stable_dt(estimate));
-  sw_model_free(estimate);
+  if (dt <= 0) {
+    swModel *estimate = compile_or_die(s);   /* only for its stable dt */
+    dt = 0.5 * sw_stable_dt(estimate);
+    sw_model_free(estimate);
+  }
+  sw_spec_set_dt(s, dt);
   swModel *m = compile_or_die(s);
   sw_spec_free(s);
   return m;
+}
+
+/* The benchmark's rod: clamped, at half its stable step. */
+static swModel *bench_model(int n, swIntegrator integ) {
+  return bench_model_held(n, integ, END_CLAMP, 0);
 }
 
 /* ---- timing ---- */
@@ -584,6 +605,36 @@ static int verlet_rows(int count, char **sizes) {
   return 0;
 }
 
+/* `bench_rod --tip N STEPS [DT]`: where the cantilever's free end is after
+ * STEPS Verlet steps from rest, for bench/bench_pyelastica.sh, which runs the
+ * same rod in PyElastica and compares.  Lines "dt DT" (bench_rod's step for
+ * n = N unless DT is given; both ends use it) and "clamp N STEPS x y z" (sinew's clamp, the rod timed
+ * above) and "pyelastica N STEPS x y z" (the start held as PyElastica's
+ * OneEndFixedBC holds it), positions in m to 17 digits. */
+static int tip_rows(const char *size, const char *count, const char *step) {
+  char *end1, *end2, *end3 = "";
+  const long n = strtol(size, &end1, 10), steps = strtol(count, &end2, 10);
+  double dt = step ? strtod(step, &end3) : 0;
+  if (*end1 || n < 2 || n > 1000000) die("--tip: not a number of elements: %s", size);
+  if (*end2 || steps < 0) die("--tip: not a number of steps: %s", count);
+  if (*end3 || (step && !(dt > 0))) die("--tip: not a time step: %s", step);
+  for (int k = 0; k < 2; k++) {
+    swModel *m = bench_model_held((int)n, SW_VERLET, k ? END_PYELASTICA : END_CLAMP, dt);
+    dt = m->dt;
+    if (!k) printf("dt %.17g\n", dt);
+    swData *d = sw_data_new(m);
+    if (!d) die("sw_data_new failed");
+    sw_reset(m, d);
+    kernel_step(m, d, steps);
+    double x[3];
+    sw_get3(m, d->x, m->node_adr[0] + (int)n, x);
+    printf("%s %ld %ld %.17g %.17g %.17g\n", k ? "pyelastica" : "clamp", n, steps, x[0], x[1], x[2]);
+    sw_data_free(d);
+    sw_model_free(m);
+  }
+  return 0;
+}
+
 /* `bench_rod --cpu`: what the CPU runs, for bench/bench_isa.sh, which
  * builds and runs the x86-64-v4 benchmark only where it can: lines "model
  * NAME", "avx2 yes|no", "avx512f yes|no", "x86-64-v3 yes|no" and
@@ -609,9 +660,11 @@ static int cpu_report(void) {
 int main(int argc, char **argv) {
   if (argc > 1 && strcmp(argv[1], "--verlet") == 0) return verlet_rows(argc - 2, argv + 2);
   if (argc == 2 && strcmp(argv[1], "--cpu") == 0) return cpu_report();
+  if ((argc == 4 || argc == 5) && strcmp(argv[1], "--tip") == 0)
+    return tip_rows(argv[2], argv[3], argc == 5 ? argv[4] : NULL);
   if (argc > 2) {
-    fprintf(stderr, "usage: %s [report.md]\n       %s --verlet N...\n       %s --cpu\n", argv[0], argv[0],
-            argv[0]);
+    fprintf(stderr, "usage: %s [report.md]\n       %s --verlet N...\n       %s --tip N STEPS [DT]\n       %s --cpu\n",
+            argv[0], argv[0], argv[0], argv[0]);
     return SW_EUSAGE;
   }
   cycles_init();

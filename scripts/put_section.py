@@ -13,7 +13,9 @@ text = open(path).read()
 section = f"## {title}\n\n{body.strip()}\n"
 pat = re.compile(r"## " + re.escape(title) + r"\n.*?(?=\n## |\Z)", re.S)
 if pat.search(text):
-    text = pat.sub(lambda _: section.rstrip("\n"), text)
+    # the match ends before the newline that precedes the next heading, so
+    # the section keeps its own newline: a blank line before that heading
+    text = pat.sub(lambda _: section, text)
 else:
     text = text.rstrip("\n") + "\n\n" + section
 open(path, "w").write(text)
