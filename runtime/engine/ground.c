@@ -69,8 +69,12 @@
  *
  * The elements of a rod are visited in order and each sees its nodes' loads
  * as they were before this ground acted: what the previous element has just
- * put on the shared node is subtracted (`carry`), so no scratch storage is
- * needed and nothing is allocated in the step.
+ * put on the shared node is subtracted (`carry`).  What does not depend on
+ * the loads (contact, surface, directions, slip) is computed first for a
+ * block of elements, as a vector loop into arrays on the stack, so that the
+ * chain from one element's loads to the next holds only the loads'
+ * arithmetic (see "a rod on a ground" below); nothing is allocated in the
+ * step.
  */
 #include <math.h>
 
@@ -79,13 +83,13 @@
 #include "internal.h"
 
 /* Gazzola 2018's slip function: 1 (static) up to v_eps, 0 (kinetic) beyond
- * 2 v_eps, linear in between. */
-static double slip_function(double speed, double v_eps) {
-  if (speed <= v_eps) return 1.0;
-  return fmax(0.0, 2.0 - speed / v_eps);
+ * 2 v_eps, linear in between (without a branch: vec.h, sw_select). */
+static inline double slip_function(double speed, double v_eps) {
+  return sw_select(speed <= v_eps, 1.0, sw_max(0.0, 2.0 - speed / v_eps));
 }
 
-static double sign_of(double x) { return x > 0 ? 1.0 : (x < 0 ? -1.0 : 0.0); }
+/* 1, -1 or 0 (also for a NaN), as a number, without a branch. */
+static inline double sign_of(double x) { return (double)((x > 0) - (x < 0)); }
 
 /* The surface under point c: unit normal n out of the ground and the gap of c
  * above it along n (see the design note for the terrain's approximation). */
@@ -115,114 +119,217 @@ void sw_ground_setup(swModel *m) {
 }
 
 /* Coulomb friction along one direction against the slip u along it, under
- * normal force N: kinetic with mu_kp (u > 0) or mu_km (u < 0), at most
- * m_h |u| (m_h: the mass the friction moves along the direction over the
- * step, m / h, so that it never reverses the slip within one step), then
- * static against the remaining load T + kinetic with mu_sp (load > 0) or
- * mu_sm (load < 0), blended by the slip function.  Returns the friction
- * along the direction. */
-static double coulomb(double u, double speed, double T, double N, double v_eps, double m_h,
-                      double mu_kp, double mu_km, double mu_sp, double mu_sm) {
-  double phi = slip_function(fabs(u), v_eps);
-  double share = speed > 0 ? u / speed : 0.0; /* u/|u| = sign(u) along a single direction */
-  double kinetic = -(1.0 - phi) * (u > 0 ? mu_kp : mu_km) * N * share;
-  if (fabs(kinetic) > m_h * fabs(u)) kinetic = -m_h * u;
-  double rest = T + kinetic;
-  double cap = phi * (rest > 0 ? mu_sp : mu_sm) * N;
-  return kinetic - sign_of(rest) * fmin(fabs(rest), cap);
+ * normal force N: kinetic, -(1 - phi) mu_k N u / |u_s|, with mu_kp (u > 0)
+ * or mu_km (u < 0), at most m_h |u| (m_h: the mass the friction moves along
+ * the direction over the step, m / h, so that it never reverses the slip
+ * within one step), then static against the remaining load T + kinetic, at
+ * most phi mu_s N with mu_sp (load > 0) or mu_sm (load < 0); phi the slip
+ * function of |u| (design note).  In two parts: what the slip alone decides
+ * (coulomb_slip), which the element loop computes for a block of elements
+ * at once, and the friction under N and T (coulomb_load), which waits for
+ * the loads. */
+typedef struct {
+  double phi;     /* slip function of |u|                                   */
+  double kinetic; /* -(1 - phi) mu_k, mu_k by the sign of u                 */
+  double share;   /* u / |u_s|: the slip's direction cosine (u/|u| alone)   */
+  double limit;   /* m_h |u|: the largest kinetic friction that keeps u's sign */
+  double stop;    /* -m_h u: the friction that stops the slip in one step  */
+} swSlip;
+
+static inline swSlip coulomb_slip(double u, double speed, double v_eps, double m_h, double mu_kp,
+                                  double mu_km) {
+  const double phi = slip_function(fabs(u), v_eps);
+  return (swSlip){phi, -(1.0 - phi) * sw_select(u > 0, mu_kp, mu_km), sw_select(speed > 0, u / speed, 0.0),
+                  m_h * fabs(u), -m_h * u};
 }
 
-/* One element e (nodes ia, ia+1) of a rod on ground g; wa, wb: the shares of
- * the nodes' loads the element takes (1/2, or 1 at a rod end); carry: the
- * force this ground has already put on node ia (from the previous element),
- * replaced by the force it puts on node ia+1.  Returns 1 when in contact. */
-static int ground_element(const swModel *m, swData *d, const swGroundDesc *g, int e, int ia,
-                          double wa, double wb, double carry[3]) {
-  const int ib = ia + 1;
-  double xa[3], xb[3], c[3], vc[3], n[3];
-  sw_get3(m, d->x, ia, xa);
-  sw_get3(m, d->x, ib, xb);
-  for (int k = 0; k < 3; k++) {
-    c[k] = 0.5 * (xa[k] + xb[k]);
-    vc[k] = 0.5 * (SW_AT(m, d->v, ia, k) + SW_AT(m, d->v, ib, k));
-  }
-  const double r = m->radius[e];
-  const double pen = r - surface_gap(g, c, n);
-  const double tol = g->contact_tolerance > 0 ? g->contact_tolerance : 1e-6 * r;
-  if (!(pen >= -tol)) return 0;
+static inline double coulomb_load(swSlip s, double T, double N, double mu_sp, double mu_sm) {
+  double kinetic = s.kinetic * N * s.share;
+  kinetic = fabs(kinetic) > s.limit ? s.stop : kinetic;
+  const double rest = T + kinetic;
+  const double cap = s.phi * (rest > 0 ? mu_sp : mu_sm) * N;
+  return kinetic - sign_of(rest) * sw_min(fabs(rest), cap);
+}
 
+static double coulomb(double u, double speed, double T, double N, double v_eps, double m_h,
+                      double mu_kp, double mu_km, double mu_sp, double mu_sm) {
+  return coulomb_load(coulomb_slip(u, speed, v_eps, m_h, mu_kp, mu_km), T, N, mu_sp, mu_sm);
+}
+
+/* ---- a rod on a ground, a block of elements at a time ----
+ *
+ * Element i of a rod (nodes i, i+1) takes the share wa of node i's loads
+ * and wb of node i+1's (1/2, or 1 at a rod end) and sees them as they were
+ * before this ground acted, so its loads wait for the previous element's
+ * (`carry`, design note): a chain through the rod that no reordering of the
+ * loop removes and keeps the bits.  Everything else an element needs, its
+ * contact, the surface, the directions a and b, the slip and what the slip
+ * decides of the friction (coulomb_slip), depends on the state alone: the
+ * first pass computes it for a block of elements as one vector loop into
+ * the arrays below (on the stack: nothing is allocated in the step), and
+ * the second walks the chain with only the loads' arithmetic left in it.
+ * The operations and their order are those of one element at a time. */
+#define GROUND_BLOCK 64
+
+typedef struct {
+  double phi[GROUND_BLOCK], kinetic[GROUND_BLOCK], share[GROUND_BLOCK], limit[GROUND_BLOCK],
+      stop[GROUND_BLOCK];
+} swSlipBlock;
+
+typedef struct {
+  double contact[GROUND_BLOCK];  /* 1: p >= -tol                            */
+  double n[3][GROUND_BLOCK];     /* the surface's normal                    */
+  double spring[GROUND_BLOCK];   /* k_w max(p, 0)                           */
+  double damper[GROUND_BLOCK];   /* gamma_w v_c . n                         */
+  double axis[GROUND_BLOCK];     /* 1: the tangent has a part in the surface */
+  double a[3][GROUND_BLOCK];     /* in-plane axial direction                */
+  double b[3][GROUND_BLOCK];     /* sideways, a x n                         */
+  double u[3][GROUND_BLOCK];     /* slip velocity of the centre, in the surface */
+  double me[GROUND_BLOCK];       /* the element's mass, wa m_a + wb m_b     */
+  double mb[GROUND_BLOCK];       /* the mass the sideways friction moves    */
+  double tq[GROUND_BLOCK];       /* contact point: r tau_a / J_a            */
+  double ta[GROUND_BLOCK];       /* rolling: tau_a, the couple about a      */
+  swSlipBlock sa, sb, sr;        /* forward, sideways, rolling              */
+} swGroundBlock;
+
+static inline void slip_store(swSlipBlock *b, int j, swSlip s) {
+  b->phi[j] = s.phi, b->kinetic[j] = s.kinetic, b->share[j] = s.share, b->limit[j] = s.limit,
+  b->stop[j] = s.stop;
+}
+static inline swSlip slip_load(const swSlipBlock *b, int j) {
+  return (swSlip){b->phi[j], b->kinetic[j], b->share[j], b->limit[j], b->stop[j]};
+}
+
+/* Elements [i0, i1) of a rod of n elements (first node na, first element
+ * ea) into blk from entry 0: the first pass.  `terrain`: the surface comes
+ * from blk's n and from gap[] (the terrain's height function is a call,
+ * made before, element by element); else the plane's.  `spin`: the ground
+ * has contact_point or rolling friction, which read the element's spin. */
+static inline __attribute__((always_inline)) void ground_geometry(const swModel *m, const swData *d,
+                                                                const swGroundDesc *g, int n, int na,
+                                                                int ea, int i0, int i1,
+                                                                const double *restrict gap,
+                                                                swGroundBlock *restrict blk,
+                                                                const int terrain, const int spin) {
+  const size_t S = (size_t)m->stride;
+  const double *restrict x = d->x, *restrict v = d->v, *restrict Q = d->Q, *restrict omega = d->omega;
+  const double *restrict tau = d->torque, *restrict dil = d->dilatation, *restrict J = m->inertia;
+  const double *restrict radius = m->radius, *restrict mass = m->mass, *restrict var = m->elem_variational;
+  const double inv_h = 1.0 / m->dt, ve = g->slip_velocity, ct = g->contact_tolerance;
+  const double *mk = g->mu_kinetic;
+  const sw3 plane = {g->normal[0], g->normal[1], g->normal[2]};
+  const sw3 origin = {g->origin[0], g->origin[1], g->origin[2]};
+  const int cp = g->contact_point, variational = m->nvariational > 0;
+#pragma omp simd
+  for (int i = i0; i < i1; i++) {
+    const int j = i - i0, ia = na + i, e = ea + i;
+    const double wa = sw_select(i == 0, 1.0, 0.5), wb = sw_select(i == n - 1, 1.0, 0.5);
+    const sw3 xa = sw3_load(x, S, ia), xb = sw3_load(x, S, ia + 1);
+    const sw3 va = sw3_load(v, S, ia), vb = sw3_load(v, S, ia + 1);
+    const sw3 c = {0.5 * (xa.x + xb.x), 0.5 * (xa.y + xb.y), 0.5 * (xa.z + xb.z)};
+    const sw3 vc = {0.5 * (va.x + vb.x), 0.5 * (va.y + vb.y), 0.5 * (va.z + vb.z)};
+    const double r = radius[e];
+    /* the surface below c (surface_gap) and the penetration p = r - gap */
+    const sw3 nrm = terrain ? (sw3){blk->n[0][j], blk->n[1][j], blk->n[2][j]} : plane;
+    const double pen = r - (terrain ? gap[j] : sw3_dot(sw3_sub(c, origin), nrm));
+    const double tol = sw_select(ct > 0, ct, 1e-6 * r);
+    blk->contact[j] = sw_select(pen >= -tol, 1.0, 0.0);
+    sw3_store(&blk->n[0][0], GROUND_BLOCK, j, nrm);
+    const double vn = sw3_dot(vc, nrm);
+    blk->spring[j] = g->stiffness * sw_max(pen, 0.0);
+    blk->damper[j] = g->damping * vn;
+    /* in-plane axial direction a and sideways direction b = a x n */
+    const sw3 t = sw3_sub(xb, xa);
+    const double tn = sw3_dot(t, nrm);
+    const sw3 along = {t.x - tn * nrm.x, t.y - tn * nrm.y, t.z - tn * nrm.z};
+    const double alen = sqrt(sw3_dot(along, along)), tlen = sqrt(sw3_dot(t, t));
+    blk->axis[j] = sw_select(alen > 1e-9 * tlen, 1.0, 0.0);
+    const sw3 a = sw3_scale(along, 1.0 / alen), b = sw3_cross(a, nrm);
+    sw3_store(&blk->a[0][0], GROUND_BLOCK, j, a);
+    sw3_store(&blk->b[0][0], GROUND_BLOCK, j, b);
+    const sw3 u = {vc.x - vn * nrm.x, vc.y - vn * nrm.y, vc.z - vn * nrm.z};
+    sw3_store(&blk->u[0][0], GROUND_BLOCK, j, u);
+    const double ua = sw3_dot(u, a), me = wa * mass[ia] + wb * mass[ia + 1];
+    double ub = sw3_dot(u, b), mb = me, slip = sqrt(sw3_dot(u, u));
+    if (spin) {
+      /* the element's spin and couple in the lab frame */
+      const swFrame Qe = sw_frame_load(Q, S, e);
+      const sw3 wl = sw_frame_apply_t(Qe, sw3_load(omega, S, e));
+      const sw3 tl = sw_frame_apply_t(Qe, sw3_load(tau, S, e));
+      const double Ja = J[2 * S + e] / sw_select(variational && var[e] != 0.0, 1.0, dil[e]);
+      const double wla = sw3_dot(wl, a), tla = sw3_dot(tl, a);
+      /* the contact point -r n slips sideways at u_b - r w_a and moves as
+       * a mass 1 / (1 / m_e + r^2 / J_a) (design note) */
+      const double ubc = ub - r * wla;
+      const double mbc = 1.0 / (1.0 / me + r * r / Ja);
+      blk->tq[j] = r * tla / Ja;
+      ub = sw_select(cp, ubc, ub);
+      mb = sw_select(cp, mbc, mb);
+      slip = sw_select(cp, sqrt(ua * ua + ubc * ubc), slip);
+      /* rolling resistance about a */
+      const double rate = r * wla, mr = g->mu_rolling * r;
+      blk->ta[j] = tla;
+      slip_store(&blk->sr, j, coulomb_slip(rate, fabs(rate), ve, Ja * inv_h / r, mr, mr));
+    }
+    blk->me[j] = me;
+    blk->mb[j] = mb;
+    /* forward = along the tangent: mu[0] for slip (or load) along +a */
+    slip_store(&blk->sa, j, coulomb_slip(ua, slip, ve, me * inv_h, mk[0], mk[1]));
+    slip_store(&blk->sb, j, coulomb_slip(ub, slip, ve, mb * inv_h, mk[2], mk[2]));
+  }
+}
+
+/* The second pass: element i (entry j of blk) under its nodes' loads, the
+ * chain through the rod (carry: the force this ground has put on node i,
+ * replaced by the one it puts on node i+1).  Normal response: Gazzola 2018
+ * eq. 4.8; friction: design note. */
+static void ground_loads_element(const swModel *m, swData *d, const swGroundDesc *g, const swGroundBlock *blk,
+                                 int j, int e, int ia, double wa, double wb, double carry[3]) {
+  const int ib = ia + 1;
+  const double n[3] = {blk->n[0][j], blk->n[1][j], blk->n[2][j]};
+  const double spring = blk->spring[j];
   /* the element's share of its other loads (Gazzola 2018, eq. 4.8: F_perp) */
   double F[3];
   for (int k = 0; k < 3; k++)
     F[k] = wa * (SW_AT(m, d->force, ia, k) - carry[k]) + wb * SW_AT(m, d->force, ib, k);
-  const double Fn = sw_v3_dot(F, n), vn = sw_v3_dot(vc, n);
-  const double balance = fmax(0.0, -Fn), spring = g->stiffness * fmax(pen, 0.0);
-  const double normal_ext = fmax(balance - g->damping * vn, -spring); /* never pulls */
+  const double Fn = sw_v3_dot(F, n);
+  const double balance = sw_max(0.0, -Fn);
+  const double normal_ext = sw_max(balance - blk->damper[j], -spring); /* never pulls */
   const double N = spring + normal_ext;
-
-  /* in-plane axial direction a and sideways direction b = a x n */
-  double t[3], a[3], b[3];
-  sw_v3_sub(t, xb, xa);
-  double tn = sw_v3_dot(t, n);
-  for (int k = 0; k < 3; k++) a[k] = t[k] - tn * n[k];
-  double alen = sw_v3_norm(a), tlen = sw_v3_norm(t);
   double friction[3] = {0, 0, 0}, couple[3] = {0, 0, 0};
-  double u[3], T[3]; /* slip velocity and tangential load, in the surface */
-  for (int k = 0; k < 3; k++) {
-    u[k] = vc[k] - vn * n[k];
-    T[k] = F[k] - Fn * n[k];
-  }
-  const double *mk = g->mu_kinetic, *ms = g->mu_static, ve = g->slip_velocity;
-  if (N > 0 && alen > 1e-9 * tlen) {
-    sw_v3_scale(a, a, 1.0 / alen);
-    sw_v3_cross(b, a, n);
-    /* the element's spin and couples in the lab frame (contact point and
-     * rolling resistance) */
-    double Q[9], wl[3] = {0, 0, 0}, tl[3] = {0, 0, 0};
-    if (g->contact_point || g->mu_rolling > 0) {
-      double w[3], tau[3];
-      sw_getQ(m, d->Q, e, Q);
-      sw_get3(m, d->omega, e, w);
-      sw_get3(m, d->torque, e, tau);
-      sw_matT_vec(wl, Q, w);
-      sw_matT_vec(tl, Q, tau);
-    }
-    const double ua = sw_v3_dot(u, a);
-    const double me = wa * m->mass[ia] + wb * m->mass[ib], inv_h = 1.0 / m->dt;
-    double ub = sw_v3_dot(u, b), Tb = sw_v3_dot(T, b), mb = me;
-    if (g->contact_point) {
-      /* the contact point -r n slips sideways at u_b - r w_a; a force f
-       * along b there also turns the element about a by -r f, so it moves
-       * the point as a mass 1 / (1 / m_e + r^2 / J_a) would, and the load
-       * that accelerates the point, as a force there, is
-       * (T_b / m_e - r tau_a / J_a) / (1 / m_e + r^2 / J_a) (design note) */
-      const double Ja = SW_AT(m, m->inertia, e, 2) / sw_inertia_dilatation(m, d, e);
-      ub -= r * sw_v3_dot(wl, a);
-      mb = 1.0 / (1.0 / me + r * r / Ja);
-      Tb = (Tb / me - r * sw_v3_dot(tl, a) / Ja) * mb;
-    }
-    /* forward = along the tangent: mu[0] for slip (or load) along +a */
-    const double slip = g->contact_point ? sqrt(ua * ua + ub * ub) : sw_v3_norm(u);
-    double fa = coulomb(ua, slip, sw_v3_dot(T, a), N, ve, me * inv_h, mk[0], mk[1], ms[0], ms[1]);
-    double fb = coulomb(ub, slip, Tb, N, ve, mb * inv_h, mk[2], mk[2], ms[2], ms[2]);
+  double T[3]; /* tangential load, in the surface */
+  for (int k = 0; k < 3; k++) T[k] = F[k] - Fn * n[k];
+  const double *ms = g->mu_static;
+  if (N > 0 && blk->axis[j] != 0.0) {
+    const double a[3] = {blk->a[0][j], blk->a[1][j], blk->a[2][j]};
+    const double b[3] = {blk->b[0][j], blk->b[1][j], blk->b[2][j]};
+    double Tb = sw_v3_dot(T, b);
+    /* contact point: the load that accelerates the point, as a force there,
+     * (T_b / m_e - r tau_a / J_a) / (1 / m_e + r^2 / J_a) (design note) */
+    if (g->contact_point) Tb = (Tb / blk->me[j] - blk->tq[j]) * blk->mb[j];
+    const double fa = coulomb_load(slip_load(&blk->sa, j), sw_v3_dot(T, a), N, ms[0], ms[1]);
+    const double fb = coulomb_load(slip_load(&blk->sb, j), Tb, N, ms[2], ms[2]);
     for (int k = 0; k < 3; k++) friction[k] = fa * a[k] + fb * b[k];
-    double cl[3] = {0, 0, 0}; /* the couple in the lab frame */
-    if (g->contact_point)
-      for (int k = 0; k < 3; k++) cl[k] = -r * fb * a[k];
-    if (g->mu_rolling > 0) {
-      /* rolling resistance about a (design note) */
-      double wa_rate = sw_v3_dot(wl, a);
-      double mr = g->mu_rolling * r;
-      double Jh = SW_AT(m, m->inertia, e, 2) / sw_inertia_dilatation(m, d, e) * inv_h / r;
-      double ca = coulomb(r * wa_rate, fabs(r * wa_rate), sw_v3_dot(tl, a), N, ve, Jh, mr, mr, mr,
-                          mr);
-      for (int k = 0; k < 3; k++) cl[k] += ca * a[k];
+    if (g->contact_point || g->mu_rolling > 0) {
+      const double r = m->radius[e];
+      double cl[3] = {0, 0, 0}, Q[9]; /* the couple in the lab frame */
+      if (g->contact_point)
+        for (int k = 0; k < 3; k++) cl[k] = -r * fb * a[k];
+      if (g->mu_rolling > 0) {
+        /* rolling resistance about a (design note) */
+        double mr = g->mu_rolling * r;
+        double ca = coulomb_load(slip_load(&blk->sr, j), blk->ta[j], N, mr, mr);
+        for (int k = 0; k < 3; k++) cl[k] += ca * a[k];
+      }
+      sw_getQ(m, d->Q, e, Q);
+      sw_mat_vec(couple, Q, cl);
     }
-    if (g->contact_point || g->mu_rolling > 0) sw_mat_vec(couple, Q, cl);
   } else if (N > 0) {
     /* element standing on end: no axis in the surface, isotropic friction
      * with the sideways coefficients, along the slip (or, at rest, along the
      * tangential load) */
+    const double u[3] = {blk->u[0][j], blk->u[1][j], blk->u[2][j]};
+    const double *mk = g->mu_kinetic;
     double us = sw_v3_norm(u), Ts = sw_v3_norm(T), dir[3];
     const double *src = us > 0 ? u : T;
     double len = us > 0 ? us : Ts;
@@ -230,7 +337,8 @@ static int ground_element(const swModel *m, swData *d, const swGroundDesc *g, in
       sw_v3_scale(dir, src, 1.0 / len);
       double ud = sw_v3_dot(u, dir);
       double mh = (wa * m->mass[ia] + wb * m->mass[ib]) / m->dt;
-      double f = coulomb(ud, fabs(ud), sw_v3_dot(T, dir), N, ve, mh, mk[2], mk[2], ms[2], ms[2]);
+      double f = coulomb(ud, fabs(ud), sw_v3_dot(T, dir), N, g->slip_velocity, mh, mk[2], mk[2], ms[2],
+                         ms[2]);
       sw_v3_scale(friction, dir, f);
     }
   }
@@ -247,21 +355,51 @@ static int ground_element(const swModel *m, swData *d, const swGroundDesc *g, in
     SW_AT(m, d->ext_torque, e, k) += couple[k];
     SW_AT(m, d->torque, e, k) += couple[k];
   }
-  return 1;
+}
+
+/* Rod r on ground g, block by block: the two passes above. */
+static void ground_rod(const swModel *m, swData *d, const swGroundDesc *g, int r) {
+  const int n = m->rod_nelem[r], na = m->node_adr[r], ea = m->elem_adr[r];
+  const int spin = g->contact_point || g->mu_rolling > 0;
+  swGroundBlock blk;
+  double gap[GROUND_BLOCK];
+  double carry[3] = {0, 0, 0};
+  for (int i0 = 0; i0 < n; i0 += GROUND_BLOCK) {
+    const int i1 = i0 + GROUND_BLOCK < n ? i0 + GROUND_BLOCK : n;
+    if (g->height) {
+      /* the terrain under each centre, a call each (surface_gap) */
+      for (int i = i0; i < i1; i++) {
+        double c[3], nrm[3];
+        for (int k = 0; k < 3; k++)
+          c[k] = 0.5 * (SW_AT(m, d->x, na + i, k) + SW_AT(m, d->x, na + i + 1, k));
+        gap[i - i0] = surface_gap(g, c, nrm);
+        for (int k = 0; k < 3; k++) blk.n[k][i - i0] = nrm[k];
+      }
+      if (spin) ground_geometry(m, d, g, n, na, ea, i0, i1, gap, &blk, 1, 1);
+      else ground_geometry(m, d, g, n, na, ea, i0, i1, gap, &blk, 1, 0);
+    } else {
+      if (spin) ground_geometry(m, d, g, n, na, ea, i0, i1, gap, &blk, 0, 1);
+      else ground_geometry(m, d, g, n, na, ea, i0, i1, gap, &blk, 0, 0);
+    }
+    for (int i = i0; i < i1; i++) {
+      const int j = i - i0;
+      if (blk.contact[j] == 0.0) {
+        carry[0] = carry[1] = carry[2] = 0;
+        continue;
+      }
+      double wa = i == 0 ? 1.0 : 0.5, wb = i == n - 1 ? 1.0 : 0.5;
+      ground_loads_element(m, d, g, &blk, j, ea + i, na + i, wa, wb, carry);
+    }
+  }
 }
 
 void sw_ground_loads(const swModel *m, swData *d, int lo, int hi) {
   for (int q = 0; q < m->nground; q++) {
     const swGroundDesc *g = &m->ground[q];
     for (int j = 0; j < g->nrods; j++) {
-      const int r = g->rods[j], n = m->rod_nelem[r], na = m->node_adr[r], ea = m->elem_adr[r];
-      if (na < lo || na >= hi) continue; /* another thread's rod */
-      double carry[3] = {0, 0, 0};
-      for (int i = 0; i < n; i++) {
-        double wa = i == 0 ? 1.0 : 0.5, wb = i == n - 1 ? 1.0 : 0.5;
-        if (!ground_element(m, d, g, ea + i, na + i, wa, wb, carry))
-          carry[0] = carry[1] = carry[2] = 0;
-      }
+      const int r = g->rods[j];
+      if (m->node_adr[r] < lo || m->node_adr[r] >= hi) continue; /* another thread's rod */
+      ground_rod(m, d, g, r);
     }
   }
 }

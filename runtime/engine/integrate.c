@@ -65,8 +65,7 @@ static void compute_loads(const swModel *m, swData *d, double h) {
   sw_team_barrier(d);
   sw_rod_gather(m, d, lo, hi, 0); /* (B) */
   if (m->nrigid) { /* no deformation, no internal loads (rigid.c) */
-    if (sw_team_leader(d))
-      for (int b = 0; b < m->nrigid; b++) sw_rigid_internal(m, d, m->rigid_rod[b]);
+    if (sw_team_leader(d)) sw_rigid_clear_loads(m, d);
     sw_team_barrier(d);
   }
   if (m->nbc) {

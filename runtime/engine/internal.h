@@ -257,7 +257,9 @@ void sw_implicit_stiffness(const swModel *m, const swData *d, int r, double *A);
  * model (mass, principal inertia, body-frame nodes and element frames; called
  * by sw_compile once the rods, loads and boundary conditions are in);
  * sw_rigid_reset puts the bodies at rest at t = 0; sw_rigid_internal stands
- * for rod.c's kernels on rigid rod r (no internal loads, rest strains);
+ * for rod.c's kernels on rigid rod r (no internal loads, rest strains), and
+ * sw_rigid_clear_loads for them in a step's loads (integrate.c: the loads
+ * zeroed on all rigid slots, the rest strains left as sw_reset set them);
  * sw_rigid_drift and sw_rigid_kick are the bodies' parts of integrate.c's
  * drift and kick, the kick's loads taken by sw_rigid_loads (the bodies' and
  * the implicit joints' solve, before the elastic slots are kicked, since it
@@ -269,6 +271,7 @@ static inline int sw_rod_is_rigid(const swModel *m, int r) {
 void sw_rigid_setup(swModel *m);
 void sw_rigid_reset(const swModel *m, swData *d);
 void sw_rigid_internal(const swModel *m, swData *d, int r);
+void sw_rigid_clear_loads(const swModel *m, swData *d);
 void sw_rigid_drift(const swModel *m, swData *d, double h);
 void sw_rigid_loads(const swModel *m, swData *d, double h);
 void sw_rigid_kick(const swModel *m, swData *d, double h);

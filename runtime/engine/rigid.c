@@ -54,7 +54,7 @@
 /* ---- 3x3 algebra that vec.h does not have ---- */
 
 /* C = A^T B */
-static void mat_T_mul(double *C, const double *A, const double *B) {
+static inline void mat_T_mul(double *C, const double *A, const double *B) {
   double T[9];
   for (int i = 0; i < 3; i++)
     for (int j = 0; j < 3; j++) T[3 * i + j] = A[i] * B[j] + A[3 + i] * B[3 + j] + A[6 + i] * B[6 + j];
@@ -118,7 +118,7 @@ static void reorthonormalise(double *R) {
 }
 
 /* w = R diag(1/I) R^T L: the lab angular velocity of the body. */
-static void angular_velocity(double *w, const double *R, const double *I, const double *L) {
+static inline void angular_velocity(double *w, const double *R, const double *I, const double *L) {
   double pi[3];
   sw_matT_vec(pi, R, L);
   for (int k = 0; k < 3; k++) pi[k] /= I[k];
@@ -327,6 +327,26 @@ void sw_rigid_internal(const swModel *m, swData *d, int r) {
       memcpy(&SW_AT(m, d->kappa, va, k), &SW_AT(m, m->rest_kappa, va, k), (size_t)(n - 1) * sizeof(double));
     }
     for (int j = va; j < va + n - 1; j++) d->vor_dilatation[j] = 1.0;
+  }
+}
+
+/* sw_rigid_internal as a step needs it: the internal loads of every rigid
+ * rod, zero, in one pass over their slots, [nslot_elastic, nslot) (model.c
+ * lays them out after the elastic rods'), instead of a rod at a time.  That
+ * range holds the rods' nodes, all of them, and their elements with one
+ * ghost each, whose torque is zero already (nothing acts on a ghost:
+ * loads.c adds a zero there) and stays so.  The rest strains are left
+ * alone: sw_internal_loads (sw_reset) set them and nothing in a step changes
+ * them on a rigid rod.  A step used to write them again, 14 to 20 calls of
+ * memset and memcpy on a few doubles per rod and kick, which cost the
+ * muscular snake's 24 bodies about 2.5% of its step (docs/benchmarks.md,
+ * "The muscular snake's step"). */
+void sw_rigid_clear_loads(const swModel *m, swData *d) {
+  const size_t S = (size_t)m->stride, lo = (size_t)m->nslot_elastic;
+  const size_t bytes = (size_t)(m->nslot - m->nslot_elastic) * sizeof(double);
+  for (int k = 0; k < 3; k++) {
+    memset(d->force + k * S + lo, 0, bytes);
+    memset(d->torque + k * S + lo, 0, bytes);
   }
 }
 

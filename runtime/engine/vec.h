@@ -197,6 +197,22 @@ static inline sw3 sw3_select(int c, sw3 a, sw3 b) {
   return (sw3){sw_select(c, a.x, b.x), sw_select(c, a.y, b.y), sw_select(c, a.z, b.z)};
 }
 
+/* max and min of two numbers, inline: x > y ? x : y and x < y ? x : y, one
+ * instruction each (maxsd, minsd).  x86-64 has no instruction with C's
+ * fmax, which returns the number when one argument is a NaN, so GCC
+ * compiles fmax to a call into libm unless told that there are no NaNs
+ * (-ffinite-math-only): a per-element loop paid a call for each, and the
+ * ground's friction, a chain of dependent operations from one element to
+ * the next, the call's latency too (docs/benchmarks.md, "The muscular
+ * snake's step").  For numbers these are glibc's fmax and fmin to the bit,
+ * signed zeros included (x86-64 glibc computes them with maxsd and minsd:
+ * fmax(0.0, -0.0) is -0.0 in both) and when x is a NaN; when y is a NaN
+ * they return it, where fmax and fmin return x.  Use them where a NaN
+ * argument means that the state is lost anyway (a NaN load makes its node's
+ * velocity NaN, which the step's check reports). */
+static inline double sw_max(double x, double y) { return x > y ? x : y; }
+static inline double sw_min(double x, double y) { return x < y ? x : y; }
+
 /* Q a (lab -> material) and Q^T a (material -> lab) */
 static inline sw3 sw_frame_apply(swFrame Q, sw3 a) {
   return (sw3){sw3_dot(Q.d1, a), sw3_dot(Q.d2, a), sw3_dot(Q.d3, a)};
