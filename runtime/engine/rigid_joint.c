@@ -32,17 +32,20 @@
  *   contact switches on and off there, a limit still bounds the step
  *   (stability.c, implicit_limit_dt); the tangent keeps a resting contact
  *   converging up to that bound.
- * The system couples only the bodies the joints connect: it is block
- * diagonal over the connected components of the graph whose vertices are
- * the moving bodies and whose edges are the implicit joints, here called
- * groups (in the muscular snake, a rib and the two tendons on it: 3 bodies,
- * 18 unknowns, touching no other rigid body, since the ribs hang on the
- * elastic backbone by explicit joints).  Each group's block is symmetric
- * positive definite, 6 unknowns per body, and is assembled, factored by
+ * The system couples only the members the joints connect (the moving
+ * bodies, and the elastic attachments below): it is block diagonal over the
+ * connected components of the graph whose vertices are the members and
+ * whose edges are the implicit joints, here called groups (in the muscular
+ * snake, a rib, the two tendons on it, the backbone node it hangs on and
+ * the two filament ends on the tendons: 3 bodies and 3 attachments, 30
+ * unknowns, touching no other group, since the rods between are explicit).
+ * Each group's block is symmetric positive definite, 6 unknowns per body,
+ * and is assembled, factored by
  * Cholesky (Golub and Van Loan, Matrix Computations, 4th ed., sec. 4.2)
  * and solved on its own each kick: at most sum (6 n_g)^3 / 3 flops, dense,
  * instead of (6 sum n_g)^3 / 3 for the whole (the 4-pair snake's 8 groups
- * of 18 unknowns cost 64 times less than its 144 as one), and less within
+ * of 18 unknowns, before the attachments, cost 64 times less than its 144
+ * as one), and less within
  * the group's envelope (cholesky_solve): a chain of n bones, whose rows
  * reach back one body, costs about 6 n x 12^2 / 2 flops instead of
  * (6 n)^3 / 3 (8 bones: 48 unknowns, 3.5e3 flops against 3.7e4).  The
