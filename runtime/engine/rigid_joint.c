@@ -253,12 +253,15 @@ int sw_rigid_joints_setup(swModel *m) {
   if (m->integrator != SW_IMEX) return 1;
   /* the members in the order the joints first meet them: member[2 j + side]
    * their number, body/node/elem what each is */
-  int *scratch = malloc((2 * J + 7 * NB) * sizeof(int));
+  const size_t S = (size_t)m->stride;
+  int *scratch = malloc((2 * J + 7 * NB + S) * sizeof(int));
   if (!scratch) return 0;
   int *member = scratch, *body = member + 2 * J, *node = body + NB, *elem = node + NB;
   int *first = elem + NB; /* rigid bodies' numbers (nrigid <= NB) */
+  int *at_node = first + 4 * NB; /* the attachment on each node slot, or -1 */
   int nb = 0;
   for (int b = 0; b < m->nrigid; b++) first[b] = -1;
+  for (size_t i = 0; i < S; i++) at_node[i] = -1;
   for (int j = 0; j < m->njoint; j++) {
     const Side s[2] = {joint_side(m, j, 0), joint_side(m, j, 1)};
     member[2 * j] = member[2 * j + 1] = -1;
@@ -270,8 +273,7 @@ int sw_rigid_joints_setup(swModel *m) {
       if (s[side].body >= 0) {
         k = first[s[side].body];
       } else if (s[side].node >= 0) {
-        for (int t = 0; t < nb && k < 0; t++)
-          if (body[t] < 0 && node[t] == s[side].node && elem[t] == s[side].elem) k = t;
+        k = at_node[s[side].node]; /* its element is the node's (joint.c), the same for all */
       } else {
         continue; /* still */
       }
@@ -279,7 +281,7 @@ int sw_rigid_joints_setup(swModel *m) {
         k = nb++;
         body[k] = s[side].body, node[k] = s[side].node, elem[k] = s[side].elem;
         if (s[side].body >= 0) first[s[side].body] = k;
-        else m->nrigid_attach++;
+        else at_node[s[side].node] = k, m->nrigid_attach++;
       }
       member[2 * j + side] = k;
     }
