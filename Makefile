@@ -253,18 +253,46 @@ build/bench/eval_sundials: bench/eval_sundials.c bench/bench_util.h | build/benc
 	$(CC) $(STD) $(WARN) -O3 -march=native -g -DEVAL_SUNDIALS_BUILD='"Debian libsundials-dev"' \
 	  $< -o $@ $(SUNDIALS_LIBS)
 
-# `make demo`: compile the elbow flexion with sinewc, run it (about a minute),
-# show what the file holds and plot the elbow angle.
+# `make demo`: the elbow of examples/elbow_flexion.sinew (0.5 s) in its
+# fastest configuration within 1% of the 50 ns reference (docs/tradeoff.md,
+# "Elbow flexion"): the scene as it is (coarser rods or rigid bones move the
+# force by 3% or more), imex at dt = 2 us, 500 steps per 1 ms frame, just
+# under the stable estimate (2.01 us) that --info prints.  It prints --info,
+# runs the scene (~8 s of one core), compares the elbow angle and the long
+# head's force with the reference's curves stored in DEMO_REF and plots both
+# runs into build/demo/elbow_flexion.png; its last line says how long the run
+# took and how far it is from the reference (more than 1% is a failure).
 DEMO_MODEL = examples/elbow_flexion.sinew
+DEMO_RUN = --integrator imex --dt 2us
+DEMO_REF = examples/reference/elbow_flexion_50ns.csv
 demo: deps
 	@$(MAKE) --no-print-directory bin/sinewc
 	@mkdir -p build/demo
 	./bin/sinewc $(DEMO_MODEL) -o build/demo/sim
-	./build/demo/sim --info | grep -v '\.f[0-9][0-9]'
-	./build/demo/sim --out build/demo/elbow_flexion.h5
-	@h5ls -r build/demo/elbow_flexion.h5 | grep -v '\.f[0-9][0-9]'
-	scripts/sinew-plot angle build/demo/elbow_flexion.h5 --joint arm.elbow -o build/demo/elbow_angle.png
-	@echo "demo: wrote build/demo/elbow_flexion.h5 and build/demo/elbow_angle.png"
+	./build/demo/sim $(DEMO_RUN) --info | grep -v '\.f[0-9][0-9]'
+	@echo "./build/demo/sim $(DEMO_RUN) --out build/demo/elbow_flexion.h5"; \
+	  t0=$$(date +%s.%N); \
+	  ./build/demo/sim $(DEMO_RUN) --out build/demo/elbow_flexion.h5 || exit $$?; \
+	  t1=$$(date +%s.%N); \
+	  scripts/demo_elbow.py compare build/demo/elbow_flexion.h5 $(DEMO_REF) \
+	    -o build/demo/elbow_flexion.png --within 1 --wall $$(awk "BEGIN { print $$t1 - $$t0 }")
+
+# `make demo-reference`: run the reference of `make demo` again (position
+# Verlet, the scene's integrator, at 50 ns: ~5 min of one core) and store its
+# curves in DEMO_REF, for when the scene or the model has changed
+# (tests/lang/test_demo_reference.sh fails then).
+.PHONY: demo-reference
+demo-reference: deps
+	@$(MAKE) --no-print-directory bin/sinewc
+	@mkdir -p build/demo
+	./bin/sinewc $(DEMO_MODEL) -o build/demo/sim_reference
+	@echo "./build/demo/sim_reference --dt 50ns --quiet --out build/demo/reference_50ns.h5"; \
+	  t0=$$(date +%s.%N); \
+	  ./build/demo/sim_reference --dt 50ns --quiet --out build/demo/reference_50ns.h5 || exit $$?; \
+	  t1=$$(date +%s.%N); \
+	  scripts/demo_elbow.py reference build/demo/reference_50ns.h5 -o $(DEMO_REF) \
+	    --command "bin/sinewc $(DEMO_MODEL) -o SIM && SIM --dt 50ns" \
+	    --wall $$(awk "BEGIN { print $$t1 - $$t0 }")
 
 # `make plots`: the figures of docs/img/ from the outputs that exist
 # (scripts/plots.sh says which inputs it found and which it skipped).
