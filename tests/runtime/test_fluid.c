@@ -26,22 +26,10 @@ static double norm3(const double *v) { return sqrt(v[0] * v[0] + v[1] * v[1] + v
 
 static swRodDesc rod_along(const char *name, int n, double length, double radius, double density,
                            double youngs, const double start[3], const double dir[3]) {
-  swRodDesc r;
-  sw_rod_desc_init(&r);
-  r.name = name;
-  r.nelem = n;
-  r.length = length;
-  r.radius_start = r.radius_end = radius;
+  swRodDesc r = sw_test_rod(name, n, length, radius, start, dir, NULL);
   r.density = density;
   r.youngs = youngs;
   r.poisson = 0.5;
-  for (int k = 0; k < 3; k++) {
-    r.start[k] = start[k];
-    r.direction[k] = dir[k];
-  }
-  double nrm[3] = {0, 1, 0};
-  if (fabs(dir[1]) > 0.9 * norm3(dir)) nrm[1] = 0, nrm[2] = 1;
-  for (int k = 0; k < 3; k++) r.normal[k] = nrm[k];
   return r;
 }
 

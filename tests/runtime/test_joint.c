@@ -39,24 +39,7 @@ static const double GRAV = 9.81;
 
 static swRodDesc rod_along(const char *name, int n, double length, double radius,
                            const double start[3], const double dir[3]) {
-  swRodDesc r;
-  sw_rod_desc_init(&r);
-  r.name = name;
-  r.nelem = n;
-  r.length = length;
-  r.radius_start = r.radius_end = radius;
-  for (int k = 0; k < 3; k++) {
-    r.start[k] = start[k];
-    r.direction[k] = dir[k];
-  }
-  /* a normal not parallel to the direction */
-  double nrm[3] = {0, 1, 0};
-  if (fabs(dir[1]) > 0.9 * sqrt(dir[0] * dir[0] + dir[1] * dir[1] + dir[2] * dir[2])) {
-    nrm[1] = 0;
-    nrm[2] = 1;
-  }
-  for (int k = 0; k < 3; k++) r.normal[k] = nrm[k];
-  return r;
+  return sw_test_rod(name, n, length, radius, start, dir, NULL);
 }
 
 static swRodDesc steel(swRodDesc r) {

@@ -41,20 +41,7 @@ static double dist(const double *a, const double *b) {
 
 static swRodDesc rod_along(const char *name, int n, double length, double radius,
                            const double start[3], const double dir[3]) {
-  swRodDesc r;
-  sw_rod_desc_init(&r);
-  r.name = name;
-  r.nelem = n;
-  r.length = length;
-  r.radius_start = r.radius_end = radius;
-  for (int k = 0; k < 3; k++) {
-    r.start[k] = start[k];
-    r.direction[k] = dir[k];
-  }
-  double nrm[3] = {0, 1, 0};
-  if (fabs(dir[1]) > 0.9 * norm3(dir)) nrm[1] = 0, nrm[2] = 1;
-  for (int k = 0; k < 3; k++) r.normal[k] = nrm[k];
-  return r;
+  return sw_test_rod(name, n, length, radius, start, dir, NULL);
 }
 
 static swRodDesc bone(const char *name, int n, const double start[3], const double dir[3],

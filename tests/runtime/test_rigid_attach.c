@@ -26,29 +26,17 @@
 
 static const double GRAV = 9.81;
 
-static swRodDesc rod_along(const char *name, int n, double length, double radius,
-                           const double start[3], const double dir[3]) {
-  swRodDesc r;
-  sw_rod_desc_init(&r);
-  r.name = name;
-  r.nelem = n;
-  r.length = length;
-  r.radius_start = r.radius_end = radius;
-  for (int k = 0; k < 3; k++) r.start[k] = start[k], r.direction[k] = dir[k];
-  r.normal[0] = 0, r.normal[1] = 1, r.normal[2] = 0; /* dir has no y here */
-  return r;
-}
-
 /* The scene (the header) under integrator `integ`, at dt (0: half the
  * stable estimate). */
 static swModel *bone_and_rod(swIntegrator integ, double dt, swSpec **sout) {
   swSpec *s = sw_spec_new();
   const double o[3] = {0, 0, 0}, dir_a[3] = {0.3, 0, -1}, dir_b[3] = {1, 0, -0.5};
   const double la = 0.34, na = sqrt(dir_a[0] * dir_a[0] + dir_a[2] * dir_a[2]);
-  swRodDesc a = rod_along("bone", 20, la, 0.0105, o, dir_a);
+  static const double ny[3] = {0, 1, 0}; /* normal to dir_a and dir_b */
+  swRodDesc a = sw_test_rod("bone", 20, la, 0.0105, o, dir_a, ny);
   a.youngs = 15e9, a.density = 1750, a.rigid = 1;
   const double end[3] = {la * dir_a[0] / na, 0, la * dir_a[2] / na};
-  swRodDesc b = rod_along("rod", 10, 0.3, 0.005, end, dir_b);
+  swRodDesc b = sw_test_rod("rod", 10, 0.3, 0.005, end, dir_b, ny);
   b.youngs = 1e7, b.density = 1100;
   sw_spec_add_rod(s, &a);
   sw_spec_add_rod(s, &b);

@@ -94,6 +94,27 @@ static inline swBCDesc sw_test_clamp(int rod, int end) {
   return b;
 }
 
+/* A rod of n elements from start along dir (length, radius), its normal
+ * `normal`, or when that is NULL y (z when dir is within 26 deg of y);
+ * material and the rest as sw_rod_desc_init leaves them. */
+static inline swRodDesc sw_test_rod(const char *name, int n, double length, double radius,
+                                    const double start[3], const double dir[3],
+                                    const double normal[3]) {
+  swRodDesc r;
+  sw_rod_desc_init(&r);
+  r.name = name;
+  r.nelem = n;
+  r.length = length;
+  r.radius_start = r.radius_end = radius;
+  const double along_y = fabs(dir[1]) > 0.9 * sqrt(dir[0] * dir[0] + dir[1] * dir[1] + dir[2] * dir[2]);
+  const double nrm[3] = {0, along_y ? 0 : 1, along_y ? 1 : 0};
+  for (int k = 0; k < 3; k++) {
+    r.start[k] = start[k], r.direction[k] = dir[k];
+    r.normal[k] = normal ? normal[k] : nrm[k];
+  }
+  return r;
+}
+
 static inline swLoadDesc sw_test_load(swLoadKind kind, int rod, int index, double x, double y, double z) {
   swLoadDesc l;
   memset(&l, 0, sizeof l);
