@@ -28,20 +28,10 @@ static const double RE = 1e7, RRHO = 1000, RL = 0.1, RR = 0.005;
 
 static swRodDesc rod_desc(const char *name, int n, double length, double radius,
                           const double start[3], const double dir[3], const double normal[3]) {
-  swRodDesc r;
-  sw_rod_desc_init(&r);
-  r.name = name;
-  r.nelem = n;
-  r.length = length;
-  r.radius_start = r.radius_end = radius;
+  swRodDesc r = sw_test_rod(name, n, length, radius, start, dir, normal);
   r.density = RRHO;
   r.youngs = RE;
   r.poisson = 0.5;
-  for (int k = 0; k < 3; k++) {
-    r.start[k] = start[k];
-    r.direction[k] = dir[k];
-    r.normal[k] = normal[k];
-  }
   return r;
 }
 
