@@ -19,7 +19,7 @@ old=$1 rounds=${2:-5}
 root=$(cd "$(dirname "$0")/.." && pwd)
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
-mkdir -p "$tmp/tree"
+mkdir -p "$tmp/tree" "$tmp/cpu"
 git -C "$root" archive "$old" | tar -x -C "$tmp/tree"
 make -C "$tmp/tree" -j1 bin/sinewc >/dev/null 2>&1
 sizes="50 100 200"
@@ -39,12 +39,12 @@ for n in $sizes; do
   steps=$((20000 * 50 / n))
   echo "$dt $steps" > "$tmp/run.$n"
 done
-run() { # run WHO KIND N DURATION: appends the CPU seconds to $tmp/WHO.KIND.N[.0]
+run() { # run WHO KIND N DURATION: appends the CPU seconds to $tmp/cpu/WHO.KIND.N[.0]
   set -- "$1" "$2" "$3" "$4" $(cat "$tmp/run.$3")
   x=$([ "$4" = 0 ] && echo .0 || true)
   /usr/bin/time -f '%U %S' -o "$tmp/time" "$tmp/$1.$2.$3" --integrator imex --dt "$5us" --duration "$4" \
-    --quiet --out "$tmp/$1.$2.$3$x.h5" >/dev/null 2>&1
-  awk '{ print $1 + $2 }' "$tmp/time" >> "$tmp/$1.$2.$3$x"
+    --quiet --out "$tmp/out.$1.$2.$3$x.h5" >/dev/null 2>&1
+  awk '{ print $1 + $2 }' "$tmp/time" >> "$tmp/cpu/$1.$2.$3$x"
 }
 r=0
 while [ $r -lt "$rounds" ]; do
@@ -60,7 +60,7 @@ while [ $r -lt "$rounds" ]; do
 done
 median() { sort -g "$1" | awk '{ a[NR] = $1 } END { print NR % 2 ? a[(NR + 1) / 2] : (a[NR / 2] + a[NR / 2 + 1]) / 2 }'; }
 cost() { # cost WHO KIND N: us of CPU per step
-  awk -v t="$(median "$tmp/$1.$2.$3")" -v z="$(median "$tmp/$1.$2.$3.0")" -v s="$(cut -d' ' -f2 "$tmp/run.$3")" \
+  awk -v t="$(median "$tmp/cpu/$1.$2.$3")" -v z="$(median "$tmp/cpu/$1.$2.$3.0")" -v s="$(cut -d' ' -f2 "$tmp/run.$3")" \
     'BEGIN { printf "%.2f", 1e6 * (t - z) / s }'
 }
 echo "CPU: $(sed -n 's/^model name[^:]*: //p' /proc/cpuinfo | head -1), $(nproc) logical CPUs, load average $(cut -d' ' -f1-3 /proc/loadavg); $(date +%F); old $(git -C "$root" rev-parse --short "$old"), new $(git -C "$root" rev-parse --short HEAD)$(git -C "$root" diff --quiet HEAD -- runtime || echo ' (modified)'); $rounds rounds, medians of CPU us per step"
@@ -70,7 +70,7 @@ echo "|---|---|---|---|---|---|---|---|---|---|---|"
 for n in $sizes; do
   set -- $(cat "$tmp/run.$n")
   oi=$(cost old imp $n) oe=$(cost old exp $n) ni=$(cost new imp $n) ne=$(cost new exp $n)
-  moved=$(/usr/bin/python3 "$root/scripts/compare_h5.py" "$tmp/old.imp.$n.h5" "$tmp/new.imp.$n.h5" 2>&1 | tail -1 | sed 's/|/\\|/g' || true)
+  moved=$(/usr/bin/python3 "$root/scripts/compare_h5.py" "$tmp/out.old.imp.$n.h5" "$tmp/out.new.imp.$n.h5" 2>&1 | tail -1 | sed 's/|/\\|/g' || true)
   awk -v n=$n -v dt="$1" -v s="$2" -v oi=$oi -v oe=$oe -v ni=$ni -v ne=$ne -v mv="$moved" 'BEGIN {
     printf "| %d | %s | %d | %.2f | %.2f | %.2f | %.2f | %.2f | %.2f | %s | %s |\n", n, dt, s, oi, oe, oi / oe, ni, ne, ni / ne, ni / ne <= 1.5 ? "yes" : "no", mv }'
 done
