@@ -38,8 +38,13 @@
  * nine unknowns contiguous and the matrix banded with half-bandwidth 8
  * (element i reaches element i+1 through bending), so the system of a rod
  * of n elements, N = 3 (2n + 1) unknowns, is factored and solved by a
- * banded Cholesky in O(n) every kick: about N (BAND^2/2 + 2 BAND)
- * multiply-adds, 1.5e4 for the 50-element snake.  The factorisation is our own short loop rather than GSL's
+ * banded L D L^T in O(n) every kick: about N (BAND^2/2 + 2 BAND)
+ * multiply-adds, 1.5e4 for the 50-element snake.  L D L^T rather than
+ * Cholesky's L L^T (issue 31): no square root on the chain of dependent
+ * operations that runs from each row's pivot to the next, which is what
+ * bounds the factorisation's time once its loops are unrolled (the
+ * inverse and the square root were a sixth of the implicit step).  The
+ * factorisation is our own short loop rather than GSL's
  * gsl_linalg_cholesky_band_decomp: it runs inside the step, where GSL's
  * error handler (abort by default, or a global switch to turn it off)
  * has no place, and it needs nothing GSL adds.
@@ -62,9 +67,11 @@
 /* Unknowns of a rod of n elements: three per node and per element. */
 static size_t unknowns(int n) { return 3 * (2 * (size_t)n + 1); }
 
-/* Doubles of one rod's workspace: the band (BAND + 1 per row), the
- * right-hand side and the factor's inverse diagonal. */
-static size_t rod_scratch(int n) { return unknowns(n) * (BAND + 3); }
+/* Doubles of one rod's workspace: the band (BAND + 1 per row) with BAND
+ * rows of zeros before and after it, the right-hand side with BAND zeros
+ * before and after, and the factor's inverse diagonal with BAND zeros
+ * before (band_ldlt_solve). */
+static size_t rod_scratch(int n) { return (unknowns(n) + 2 * BAND) * (BAND + 3) - BAND; }
 
 int sw_implicit_setup(swModel *m, const int *wanted) {
   m->rod_implicit = calloc((size_t)m->nrod, sizeof(int));
@@ -99,46 +106,62 @@ size_t sw_implicit_scratch(const swModel *m) {
  * the factorisation's dot products run over consecutive doubles. */
 static inline double *at(double *A, size_t i, size_t j) { return A + i * (BAND + 1) + BAND - (i - j); }
 
-/* In place: A = L L^T (banded lower triangle), then A x = b into b, with
- * inv[i] = 1 / L(i, i) (N doubles of scratch).  Returns 0 if A is not
+/* In place: A = L D L^T (L unit lower triangular and banded, D diagonal),
+ * then A x = b into b, with inv[i] = 1 / D(i).  Returns 0 if A is not
  * positive definite (a non-finite state).  Row i's window R_i holds
- * L(i, i - BAND + c) at c, and for j = i - BAND + c
- *   L(i, j) = (A(i, j) - sum_{t < c} L(i, i - BAND + t) L(j, i - BAND + t)) / L(j, j).
- * The sums are formed the other way round: as soon as L(i, i - BAND + t)
- * is known it is taken off every later place of the row (acc), so the
- * chain of dependent operations through a row is one multiply-add and one
- * multiplication per place rather than a whole sum (and a division); the
- * solves likewise take each unknown off the rest of the right-hand side
- * as soon as it is known.  The zero places of the first rows stand for the
- * columns before 0. */
-static int band_cholesky_solve(double *restrict A, size_t N, double *restrict b,
-                               double *restrict inv) {
+ * L(i, i - BAND + c) at c and D(i) at BAND; with g(i, j) = L(i, j) D(j),
+ * for j = i - BAND + c
+ *   g(i, j) = A(i, j) - sum_{t < c} g(i, i - BAND + t) L(j, i - BAND + t),
+ *   L(i, j) = g(i, j) / D(j),
+ *   D(i) = A(i, i) - sum_{t < BAND} g(i, i - BAND + t) L(i, i - BAND + t).
+ * The sums are formed the other way round: as soon as g(i, i - BAND + t)
+ * is known it is taken off every later place of the row (acc).  No square
+ * root (L L^T's would be L D^1/2): the chain from one row's pivot to the
+ * next is one division, one multiplication and one multiply-subtract.  The
+ * solves, L y = b, then L^T x = D^-1 y, are the sums of the rows,
+ *   y_i = b_i - sum_{t < BAND} L(i, i - BAND + t) y_{i - BAND + t},
+ *   x_i = y_i / D(i) - sum_{k = i + BAND .. i + 1} L(k, i) x_k,
+ * the unknown just found carried to the next row (prev) rather than read
+ * back from memory.  Every row runs the same BAND places: A has BAND rows
+ * of zeros before row 0 and after row N - 1, b BAND zeros before and after,
+ * inv BAND before, so the places left of column 0 and right of N - 1 add
+ * zeros and the loops have fixed counts, fully unrolled: acc then lives in
+ * registers (with a variable count it was a stack array, and each of its
+ * updates a store and a load on the chain). */
+static int band_ldlt_solve(double *restrict A, size_t N, double *restrict b,
+                           double *restrict inv) {
   const size_t W = BAND + 1;
   for (size_t i = 0; i < N; i++) {
     double *restrict Ri = A + i * W;
-    const size_t c0 = i < BAND ? BAND - i : 0;
     double acc[BAND], dg = Ri[BAND];
+#pragma GCC unroll 8
     for (size_t c = 0; c < BAND; c++) acc[c] = Ri[c];
-    for (size_t t = c0; t < BAND; t++) {
-      const double l = acc[t] * inv[i - BAND + t];
+#pragma GCC unroll 8
+    for (size_t t = 0; t < BAND; t++) {
+      const double g = acc[t], l = g * inv[i - BAND + t];
       Ri[t] = l;
-      dg -= l * l;
-      for (size_t c = t + 1; c < BAND; c++) acc[c] -= l * A[(i - BAND + c) * W + t + BAND - c];
+      dg -= g * l;
+#pragma GCC unroll 8
+      for (size_t c = t + 1; c < BAND; c++) acc[c] -= g * A[(i - BAND + c) * W + t + BAND - c];
     }
     if (!(dg > 0)) return 0;
-    Ri[BAND] = sqrt(dg);
-    inv[i] = 1.0 / Ri[BAND];
+    Ri[BAND] = dg;
+    inv[i] = 1.0 / dg;
   }
-  for (size_t i = 0; i < N; i++) { /* L y = b: y_i, then off the rows below */
-    const double y = b[i] * inv[i];
-    b[i] = y;
-    for (size_t k = i + 1; k <= i + BAND && k < N; k++) b[k] -= A[k * W + BAND - (k - i)] * y;
-  }
-  for (size_t i = N; i-- > 0;) { /* L^T x = y: x_i, then off the rows above */
+  double prev = 0;
+  for (size_t i = 0; i < N; i++) { /* L y = b */
     const double *restrict Ri = A + i * W;
-    const double x = b[i] * inv[i];
-    b[i] = x;
-    for (size_t c = i < BAND ? BAND - i : 0; c < BAND; c++) b[i - BAND + c] -= Ri[c] * x;
+    double y = b[i];
+#pragma GCC unroll 8
+    for (size_t t = 0; t < BAND - 1; t++) y -= Ri[t] * b[i - BAND + t];
+    b[i] = prev = y - Ri[BAND - 1] * prev;
+  }
+  prev = 0;
+  for (size_t i = N; i-- > 0;) { /* L^T x = D^-1 y */
+    double x = b[i] * inv[i];
+#pragma GCC unroll 8
+    for (size_t k = i + BAND; k > i + 1; k--) x -= A[k * W + BAND - (k - i)] * b[k];
+    b[i] = prev = x - A[(i + 1) * W + BAND - 1] * prev;
   }
   return 1;
 }
@@ -289,11 +312,15 @@ void sw_implicit_stiffness(const swModel *m, const swData *d, int r, double *A) 
 
 /* Rod r's kick: assemble, solve, and the effective loads into d->force and
  * d->torque.  Returns 0 if the system could not be factored. */
-static int rod_kick(const swModel *m, swData *d, int r, double *A, double h) {
+static int rod_kick(const swModel *m, swData *d, int r, double *ws, double h) {
   const int n = m->rod_nelem[r], na = m->node_adr[r], ea = m->elem_adr[r];
   const int damped = m->rod_damping[r] == SW_DAMP_LINEAR;
-  const size_t N = unknowns(n), NB = N * (BAND + 1);
-  double *rhs = A + NB;
+  const size_t N = unknowns(n), NB = N * (BAND + 1), PB = BAND * (BAND + 1);
+  /* the workspace (rod_scratch): zeros, band, zeros, zeros, rhs, zeros, zeros, inv */
+  double *A = ws + PB, *rhs = A + NB + PB + BAND, *inv = rhs + N + 2 * BAND;
+  memset(ws, 0, PB * sizeof(double));
+  memset(A + NB, 0, (PB + BAND) * sizeof(double));
+  memset(rhs + N, 0, 2 * BAND * sizeof(double));
   const double c = damped ? 0.5 * h : 0.0;
   /* A = M + h/2 C + h^2/4 K */
   sw_implicit_stiffness(m, d, r, A);
@@ -315,7 +342,7 @@ static int rod_kick(const swModel *m, swData *d, int r, double *A, double h) {
     }
   }
   rod_holds(m, r, A, rhs, N);
-  if (!band_cholesky_solve(A, N, rhs, rhs + N)) return 0;
+  if (!band_ldlt_solve(A, N, rhs, inv)) return 0;
   for (int i = 0; i <= n; i++)
     for (int k = 0; k < 3; k++) SW_AT(m, d->force, na + i, k) = m->mass[na + i] * rhs[6 * i + k] / h;
   for (int i = 0; i < n; i++) {
