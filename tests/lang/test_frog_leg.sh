@@ -9,8 +9,9 @@
 #   figures are not asserted: the scene is chaotic (README.md there).
 #
 #   With the reference law stated (`variational = false` on its material),
-#   the run the user reported, dt = 4 us, goes unstable below the stable
-#   estimate, and the report says why: how short the filament was squeezed,
+#   a run below the stable estimate goes unstable as the user's did (at
+#   4 us; here 3 us, see below), and the report says why: how short the
+#   filament was squeezed,
 #   what Gazzola's law does there, the stable dt at that length (above dt:
 #   the step is not the cause), and the way out.  The same law fails at
 #   strength 1 at the default step.
@@ -53,14 +54,18 @@ ok $? "the reference law stated on the muscle's material"
 "$TMP/ref/frog" --info | grep -q '^constitutive law: Gazzola et al. 2018 .*, all 3 elastic rods$'
 ok $? "its filaments take Gazzola et al. 2018's law"
 
-(cd "$TMP/ref" && ./frog --quiet --dt 4us --out ref.h5) >"$TMP/run" 2>&1; rc=$?
-[ "$rc" -eq 3 ]; ok $? "dt = 4 us: unstable (exit $rc), as the user saw"
+# The user's run was at 4 us.  Since the joints from the bones to the
+# filaments' ends are implicit under imex (issue 31), the run at exactly
+# 4 us happens to reach the end (the scene is chaotic: README.md there);
+# at 3 us and 5 us it fails as before, the filament squeezed to under 1%.
+(cd "$TMP/ref" && ./frog --quiet --dt 3us --out ref.h5) >"$TMP/run" 2>&1; rc=$?
+[ "$rc" -eq 3 ]; ok $? "dt = 3 us: unstable (exit $rc), as the user saw at 4 us"
 diag <"$TMP/run"
 msg=$(grep '^sinew: ' "$TMP/run")
 has() { printf '%s\n' "$msg" | grep -q -- "$1"; }
 has "rod 'right.extensor.f0[123]' became unstable at element [0-9]*, t = [0-9.]* s: "
 ok $? "the report names the filament, the element and the time"
-has "; dt = 4e-06 s, stable dt estimate 1.03e-05 s\. As dt is below the estimate, the rest state does not explain it: "
+has "; dt = 3e-06 s, stable dt estimate 1.03e-05 s\. As dt is below the estimate, the rest state does not explain it: "
 ok $? "it says that dt is below the estimate"
 has "the rod had shortened to [0-9.e+-]*% of its rest length (element [0-9]*, t = [0-9.]* s)"
 ok $? "it says how short the filament was squeezed, where and when"
@@ -73,8 +78,8 @@ ok $? "it names the way out"
 # the figures: squeezed below 5 %, stiffer by over 400 (1/e^2), a stable dt
 # at that length below the rest one and above dt
 printf '%s\n' "$msg" | sed 's/.*shortened to \([0-9.e+-]*\)% .* is \([0-9.]*\) times as stiff.* length is \([0-9.e+-]*\) s (\([0-9.e+-]*\) s at rest).*/\1 \2 \3 \4/' |
-  awk '{ exit !($1 < 5 && $2 > 400 && $3 > 4e-6 && $3 < $4) }'
-ok $? "its figures: under 5 % of the rest length, over 400 times as stiff, 4 us < dt at that length < dt at rest"
+  awk '{ exit !($1 < 5 && $2 > 400 && $3 > 3e-6 && $3 < $4) }'
+ok $? "its figures: under 5 % of the rest length, over 400 times as stiff, 3 us < dt at that length < dt at rest"
 
 (cd "$TMP/ref" && ./frog --quiet --set strength=1 --out ref1.h5) >"$TMP/run" 2>&1; rc=$?
 [ "$rc" -eq 3 ] && grep -q 'the rod had shortened to ' "$TMP/run"
