@@ -229,6 +229,7 @@ bench: deps
 	@sh bench/bench_implicit_snake.sh # the hardened snakes, explicit vs implicit rods (~4 min)
 	@sh bench/bench_rigid_groups.sh # the implicit rigid joints, before issue 13's groups and now (~5 min)
 	@sh bench/bench_study.sh        # a study's evaluations per second on 1, 2 and 4 MPI ranks, and the muscular snake's on 1 and 2 (~5 min)
+	@sh bench/bench_time_to_solution.sh # each study of Zhang et al. 2019: its step checked against a quarter of it, its whole simulated time run (~8 min of CPU; 16 min on a shared machine)
 
 # `make bench-sundials`: SUNDIALS's ARKODE (IMEX ARKStep, MRIStep) against
 # the imex kick on a 1-D model of a biceps filament between its tendons
