@@ -27,20 +27,10 @@ static double norm3(const double *v) { return sqrt(v[0] * v[0] + v[1] * v[1] + v
 
 static swRodDesc steel_rod(const char *name, int n, double length, const double start[3],
                            const double dir[3], const double normal[3]) {
-  swRodDesc r;
-  sw_rod_desc_init(&r);
-  r.name = name;
-  r.nelem = n;
-  r.length = length;
-  r.radius_start = r.radius_end = R;
+  swRodDesc r = sw_test_rod(name, n, length, R, start, dir, normal);
   r.density = RHO;
   r.youngs = 200e9;
   r.poisson = 0.3;
-  for (int k = 0; k < 3; k++) {
-    r.start[k] = start[k];
-    r.direction[k] = dir[k];
-    r.normal[k] = normal[k];
-  }
   return r;
 }
 
