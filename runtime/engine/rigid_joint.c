@@ -185,8 +185,12 @@ static void number_groups(swModel *m, const int *member, const int *body, const 
   for (int j = 0; j < m->njoint; j++) {
     if (!m->joint_implicit[j]) continue;
     const int *jb = m->joint_block + 2 * j, k = jb[0] >= 0 ? jb[0] : jb[1];
-    int g = 0;
-    while (adr[g + 1] <= k) g++;
+    int g = 0, hi = ngroup - 1; /* the group whose blocks hold k: adr[g] <= k < adr[g + 1] */
+    while (g < hi) {
+      const int mid = (g + hi + 1) / 2;
+      if (adr[mid] <= k) g = mid;
+      else hi = mid - 1;
+    }
     next[j] = g; /* next is read no more as the blocks' counter */
     jadr[g + 1]++;
     /* a member whose element's rotation a joint couples */
