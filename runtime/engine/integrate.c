@@ -334,8 +334,9 @@ static void kick(const swModel *m, swData *d, double h, double span) {
   const int n = m->nslot_elastic;
   compute_loads(m, d, h);
   if (m->nimplicit) sw_implicit_kick(m, d, h); /* the implicit rods' loads (rod_implicit.c) */
-  if (m->nrigid) { /* the bodies' loads, and the implicit joints' (rigid_joint.c), which
-                      replace those of the elastic nodes joined to bodies */
+  if (m->nrigid || m->nrigid_block) { /* the bodies' loads, and the implicit joints'
+                      (rigid_joint.c), which replace those of the elastic nodes joined
+                      to bodies and of the implicit rods they join (joint_ports.c) */
     sw_team_barrier(d);
     if (sw_team_leader(d)) sw_rigid_loads(m, d, h);
     sw_team_barrier(d);

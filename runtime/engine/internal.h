@@ -253,6 +253,16 @@ void sw_implicit_kick(const swModel *m, swData *d, double h);
  * at A[i (SW_IMPLICIT_BAND + 1) + SW_IMPLICIT_BAND - (i - j)]), for the tests. */
 #define SW_IMPLICIT_BAND 8
 void sw_implicit_stiffness(const swModel *m, const swData *d, int r, double *A);
+/* Rod r as a member of the joints' system (joint_ports.c): its unknowns
+ * (node, element, node, ...); sw_implicit_solve_many factors this kick's
+ * system and solves it for nc right-hand sides in X (row-major, N x nc),
+ * column 0 overwritten with h F (0: not factored); sw_implicit_apply sets
+ * the rod's loads to those that give the velocity changes du (every
+ * stride-th double). */
+size_t sw_implicit_unknowns(const swModel *m, int r);
+int sw_implicit_solve_many(const swModel *m, swData *d, int r, double h, double *X, int nc);
+void sw_implicit_apply(const swModel *m, swData *d, int r, const double *du, size_t stride,
+                       double h);
 /* Rigid rods (rigid.c).  sw_rigid_setup fills the rigid_* arrays of the
  * model (mass, principal inertia, body-frame nodes and element frames; called
  * by sw_compile once the rods, loads and boundary conditions are in);
@@ -290,6 +300,21 @@ void sw_rigid_joints_free(swModel *m);
 size_t sw_rigid_joints_scratch(const swModel *m);
 int sw_rigid_group_unknowns(const swModel *m, int g); /* group g's unknowns */
 int sw_rigid_joints_kick(const swModel *m, swData *d, double h, double *load);
+/* Implicit rods and leaves in that system (joint_ports.c): a rod member k's
+ * block S and right-hand side S p0 into A (n x n, its unknowns from off)
+ * and rhs, with its workspace ws (sw_port_member_scratch doubles; 0: the
+ * rod's system could not be factored), and after the solve its loads from
+ * its ports' velocity changes pu; a leaf's elimination into its port's
+ * block Aqq (leading dimension n) and right-hand side bq, and its velocity
+ * change from the port's uq, in its workspace (SW_LEAF_WS doubles). */
+size_t sw_port_member_scratch(const swModel *m, int k);
+int sw_port_member_assemble(const swModel *m, swData *d, double h, int k, double *ws, double *A,
+                            int n, int off, double *rhs);
+void sw_port_member_finish(const swModel *m, swData *d, double h, int k, double *ws,
+                           const double *pu);
+#define SW_LEAF_WS 114
+int sw_leaf_condense(double *ws, int da, int dq, double *Aqq, int n, double *bq);
+void sw_leaf_recover(double *ws, int da, int dq, const double *uq);
 /* Environments (environment.c).  The swSpec keeps them in an opaque slot
  * (sw_spec_env); sw_env_check validates them in sw_compile, sw_env_setup
  * puts resolved copies and each kind's derived data in the model, sw_env_free

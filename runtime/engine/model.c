@@ -378,8 +378,6 @@ swModel *sw_compile(const swSpec *s, char *err, size_t errlen) {
       return NULL;
     }
   }
-  if (!sw_rigid_joints_setup(m)) goto oom;
-  for (int j = 0; j < m->njoint; j++) m->joint_wave_dt[j] = sw_stable_dt_joint(m, j);
   m->muscle_ops = s->muscle_ops;
   m->env_ops = s->env_ops;
   if ((s->muscle_ops && !s->muscle_ops->setup(m, s->muscles, err, errlen)) ||
@@ -388,6 +386,10 @@ swModel *sw_compile(const swSpec *s, char *err, size_t errlen) {
     sw_model_free(m);
     return NULL;
   }
+  /* after the muscles: which filaments take the implicit tension decides
+   * which of their joints can be implicit (rigid_joint.c) */
+  if (!sw_rigid_joints_setup(m)) goto oom;
+  for (int j = 0; j < m->njoint; j++) m->joint_wave_dt[j] = sw_stable_dt_joint(m, j);
   return m;
 
 oom:

@@ -107,8 +107,9 @@ size_t sw_implicit_scratch(const swModel *m) {
 static inline double *at(double *A, size_t i, size_t j) { return A + i * (BAND + 1) + BAND - (i - j); }
 
 /* In place: A = L D L^T (L unit lower triangular and banded, D diagonal),
- * then A x = b into b, with inv[i] = 1 / D(i).  Returns 0 if A is not
- * positive definite (a non-finite state).  Row i's window R_i holds
+ * inv[i] = 1 / D(i) (band_ldlt_factor, which returns 0 if A is not
+ * positive definite: a non-finite state); then A x = b into b
+ * (band_ldlt_solve).  Row i's window R_i holds
  * L(i, i - BAND + c) at c and D(i) at BAND; with g(i, j) = L(i, j) D(j),
  * for j = i - BAND + c
  *   g(i, j) = A(i, j) - sum_{t < c} g(i, i - BAND + t) L(j, i - BAND + t),
@@ -128,8 +129,7 @@ static inline double *at(double *A, size_t i, size_t j) { return A + i * (BAND +
  * zeros and the loops have fixed counts, fully unrolled: acc then lives in
  * registers (with a variable count it was a stack array, and each of its
  * updates a store and a load on the chain). */
-static int band_ldlt_solve(double *restrict A, size_t N, double *restrict b,
-                           double *restrict inv) {
+static int band_ldlt_factor(double *restrict A, size_t N, double *restrict inv) {
   const size_t W = BAND + 1;
   for (size_t i = 0; i < N; i++) {
     double *restrict Ri = A + i * W;
@@ -148,6 +148,12 @@ static int band_ldlt_solve(double *restrict A, size_t N, double *restrict b,
     Ri[BAND] = dg;
     inv[i] = 1.0 / dg;
   }
+  return 1;
+}
+
+static void band_ldlt_solve(const double *restrict A, size_t N, double *restrict b,
+                            const double *restrict inv) {
+  const size_t W = BAND + 1;
   double prev = 0;
   for (size_t i = 0; i < N; i++) { /* L y = b */
     const double *restrict Ri = A + i * W;
@@ -163,7 +169,36 @@ static int band_ldlt_solve(double *restrict A, size_t N, double *restrict b,
     for (size_t k = i + BAND; k > i + 1; k--) x -= A[k * W + BAND - (k - i)] * b[k];
     b[i] = prev = x - A[(i + 1) * W + BAND - 1] * prev;
   }
-  return 1;
+}
+
+/* The same solves for nc right-hand sides at once, X row-major (row i's nc
+ * values contiguous, so each step of the sums is one vector operation over
+ * the right-hand sides: the ports of rod_ports.c).  Plain loops with the
+ * band cut at the ends: no padding around X. */
+static void band_ldlt_solve_many(const double *restrict A, size_t N, double *restrict X, size_t nc,
+                                 const double *restrict inv) {
+  const size_t W = BAND + 1;
+  for (size_t i = 0; i < N; i++) { /* L Y = X */
+    const double *restrict Ri = A + i * W;
+    double *restrict Xi = X + i * nc;
+    for (size_t j = i > BAND ? i - BAND : 0; j < i; j++) {
+      const double l = Ri[BAND - (i - j)];
+      const double *restrict Xj = X + j * nc;
+#pragma omp simd
+      for (size_t c = 0; c < nc; c++) Xi[c] -= l * Xj[c];
+    }
+  }
+  for (size_t i = N; i-- > 0;) { /* L^T X = D^-1 Y */
+    double *restrict Xi = X + i * nc;
+#pragma omp simd
+    for (size_t c = 0; c < nc; c++) Xi[c] *= inv[i];
+    for (size_t k = i + 1; k <= i + BAND && k < N; k++) {
+      const double l = A[k * W + BAND - (k - i)];
+      const double *restrict Xk = X + k * nc;
+#pragma omp simd
+      for (size_t c = 0; c < nc; c++) Xi[c] -= l * Xk[c];
+    }
+  }
 }
 
 /* Shear/stretch of element e into the block of its
@@ -310,9 +345,11 @@ void sw_implicit_stiffness(const swModel *m, const swData *d, int r, double *A) 
   clamp_blocks(m, d, r, A);
 }
 
-/* Rod r's kick: assemble, solve, and the effective loads into d->force and
- * d->torque.  Returns 0 if the system could not be factored. */
-static int rod_kick(const swModel *m, swData *d, int r, double *ws, double h) {
+/* Rod r's system of this kick, A = M + h/2 C + h^2/4 K and rhs = h F,
+ * assembled and factored in its workspace ws (rod_scratch); *rhs_out and
+ * *inv_out point into it.  Returns 0 if A could not be factored. */
+static int rod_factor(const swModel *m, const swData *d, int r, double *ws, double h,
+                      double **rhs_out, double **inv_out) {
   const int n = m->rod_nelem[r], na = m->node_adr[r], ea = m->elem_adr[r];
   const int damped = m->rod_damping[r] == SW_DAMP_LINEAR;
   const size_t N = unknowns(n), NB = N * (BAND + 1), PB = BAND * (BAND + 1);
@@ -342,17 +379,52 @@ static int rod_kick(const swModel *m, swData *d, int r, double *ws, double h) {
     }
   }
   rod_holds(m, r, A, rhs, N);
-  if (!band_ldlt_solve(A, N, rhs, inv)) return 0;
+  *rhs_out = rhs, *inv_out = inv;
+  return band_ldlt_factor(A, N, inv);
+}
+
+void sw_implicit_apply(const swModel *m, swData *d, int r, const double *du, size_t stride,
+                       double h) {
+  const int n = m->rod_nelem[r], na = m->node_adr[r], ea = m->elem_adr[r];
   for (int i = 0; i <= n; i++)
-    for (int k = 0; k < 3; k++) SW_AT(m, d->force, na + i, k) = m->mass[na + i] * rhs[6 * i + k] / h;
+    for (int k = 0; k < 3; k++)
+      SW_AT(m, d->force, na + i, k) = m->mass[na + i] * du[(6 * (size_t)i + (size_t)k) * stride] / h;
   for (int i = 0; i < n; i++) {
     const int e = ea + i;
     const double dil = sw_inertia_dilatation(m, d, e);
     for (int k = 0; k < 3; k++)
-      SW_AT(m, d->torque, e, k) = SW_AT(m, m->inertia, e, k) / dil * rhs[6 * i + 3 + k] / h;
+      SW_AT(m, d->torque, e, k) =
+          SW_AT(m, m->inertia, e, k) / dil * du[(6 * (size_t)i + 3 + (size_t)k) * stride] / h;
   }
+}
+
+/* Rod r's kick: assemble, solve, and the effective loads into d->force and
+ * d->torque.  Returns 0 if the system could not be factored. */
+static int rod_kick(const swModel *m, swData *d, int r, double *ws, double h) {
+  double *rhs, *inv;
+  if (!rod_factor(m, d, r, ws, h, &rhs, &inv)) return 0;
+  const size_t PB = BAND * (BAND + 1);
+  band_ldlt_solve(ws + PB, unknowns(m->rod_nelem[r]), rhs, inv);
+  sw_implicit_apply(m, d, r, rhs, 1, h);
   return 1;
 }
+
+static double *rod_workspace(const swModel *m, swData *d, int r) {
+  for (int k = 0; k < m->nimplicit; k++)
+    if (m->implicit_rod[k] == r) return d->implicit_sys + m->implicit_adr[k];
+  return NULL;
+}
+
+int sw_implicit_solve_many(const swModel *m, swData *d, int r, double h, double *X, int nc) {
+  double *ws = rod_workspace(m, d, r), *rhs, *inv;
+  if (!ws || !rod_factor(m, d, r, ws, h, &rhs, &inv)) return 0;
+  const size_t N = unknowns(m->rod_nelem[r]), PB = BAND * (BAND + 1);
+  for (size_t i = 0; i < N; i++) X[i * (size_t)nc] = rhs[i];
+  band_ldlt_solve_many(ws + PB, N, X, (size_t)nc, inv);
+  return 1;
+}
+
+size_t sw_implicit_unknowns(const swModel *m, int r) { return unknowns(m->rod_nelem[r]); }
 
 /* Every thread calls it after the loads of a kick, and solves the rods of
  * its rank (rod k on thread k mod team): each rod's solve is its own, so
@@ -363,6 +435,7 @@ void sw_implicit_kick(const swModel *m, swData *d, double h) {
   sw_team_barrier(d); /* every load of every slot is in */
   const int size = d->team_size > 1 ? d->team_size : 1, rank = sw_team_rank(d);
   for (int k = rank; k < m->nimplicit; k += size)
-    (void)rod_kick(m, d, m->implicit_rod[k], d->implicit_sys + m->implicit_adr[k], h);
+    if (m->rod_block[m->implicit_rod[k]] < 0) /* else a member of rigid_joint.c's system */
+      (void)rod_kick(m, d, m->implicit_rod[k], d->implicit_sys + m->implicit_adr[k], h);
   sw_team_barrier(d); /* the effective loads, before any thread's kick reads them */
 }

@@ -275,7 +275,8 @@ static double joint_side_dt(const swModel *m, const swJointDesc *jd, int rod, in
  * frequency chatters (measured: a rigid pendulum pressed on a stiff hinge
  * limit settles at 0.5 of 2 / w and never settles at 0.9), so the limit
  * keeps its explicit bound, w^2 = s k_l / I_min of each moving body, or of
- * the element of an elastic side (its bending inertia J^_1). */
+ * the element of an elastic side (its bending inertia J^_1: an attachment's
+ * or an implicit rod's port's). */
 static double implicit_limit_dt(const swModel *m, int j) {
   const swJointDesc *jd = &m->joint[j];
   if (!sw_joint_limited(jd)) return INFINITY;
@@ -284,8 +285,8 @@ static double implicit_limit_dt(const swModel *m, int j) {
   for (int side = 0; side < 2; side++) {
     const int k = m->joint_block[2 * j + side];
     if (k < 0) continue; /* space or a fixed body */
-    const int b = m->rigid_block_body[k];
-    const double Imin = b >= 0 ? m->rigid_inertia[3 * b] : SW_AT(m, m->inertia, m->rigid_block_elem[k], 0);
+    const int b = m->rigid_block_body[k], e = side ? m->joint_elem_b[j] : m->joint_elem_a[j];
+    const double Imin = b >= 0 ? m->rigid_inertia[3 * b] : SW_AT(m, m->inertia, e, 0);
     const double w = sqrt(s * jd->limit_stiffness / Imin), c = s * jd->limit_damping / Imin;
     if (w > 0) dt = fmin(dt, 0.95 * sw_integrator_stability_limit(m->integrator, c / (2 * w)) / w);
   }

@@ -121,6 +121,20 @@ typedef struct {
                                            each, or itself: the envelope     */
   int *rigid_block_reach;    /* (nrigid_block) the last block whose envelope
                                            reaches each, or itself           */
+  int *rigid_block_rod;      /* (nrigid_block) an implicit rod taking part
+                                           through its ports (joint_ports.c), -1 */
+  int *rigid_block_port_adr; /* (nrigid_block+1) a rod member's first port   */
+  int *rigid_block_leaf;     /* (nrigid_block) an attachment joined only to
+                                           one port: that port (eliminated
+                                           first, joint_ports.c), else -1     */
+  int nrigid_port;           /* ports: nodes of implicit rods in the system  */
+  int *rigid_port_node;      /* (nrigid_port) the node                       */
+  int *rigid_port_elem;      /* (nrigid_port) its element                    */
+  int *rigid_port_rot;       /* (nrigid_port) 1: a joint turns the element   */
+  int *rigid_port_off;       /* (nrigid_port) first unknown in its member    */
+  int *joint_port;           /* (njoint*2) the port of a side on an implicit
+                                           rod, -1                            */
+  int *rod_block;            /* (nrod)     an implicit rod's member, -1      */
   int *rigid_group_joint_adr; /* (nrigid_group+1) first entry of each group
                                            in rigid_group_joint              */
   int *rigid_group_joint;    /* (implicit joints) each group's joints, in

@@ -1,0 +1,205 @@
+/* joint_ports.c — implicit rods and leaf attachments in the joints' system.
+ *
+ * Design.  rigid_joint.c integrates the stiff joints on rigid bodies with
+ * the trapezoidal rule, one dense symmetric block per group of members.
+ * An implicit rod (rod_implicit.c) is kicked with the trapezoidal rule in
+ * its own elasticity, so a stiff joint on one of its nodes (the arm's
+ * tendons on the bones, the bones on each other, the muscle filaments on
+ * the tendons: 5e5 N/m on nodes of a few grams) would be the only stiff
+ * term left explicit.  Here such a rod joins the system as one member
+ * whose unknowns are its ports, the velocities of the nodes (and, when a
+ * joint turns it, of the elements) that implicit joints touch.
+ *
+ * Substructuring (static condensation; Przemieniecki, Theory of Matrix
+ * Structural Analysis, 1968, ch. 9).  Write the rod's trapezoidal system
+ * A du = h F (rod_implicit.c, banded) and E the map from its unknowns to
+ * its ports' lab velocities, p = E^T du (a node's three components as they
+ * are; an element's material angular velocity turned to the lab,
+ * w_lab = Q^T w, so E holds Q there).  The joints add J^T W J to the whole
+ * system and act on the rod only through its ports: A du + E g = h F with
+ * g the joints' part on the ports.  So
+ *   du = du0 - Z g,  du0 = A^-1 h F,  Z = A^-1 E,
+ *   p = p0 - C g,    p0 = E^T du0,    C = E^T Z,
+ * and g = S (p0 - p) with S = C^-1, the rod's stiffness as its ports see
+ * it within one kick.  In the group's system the rod is therefore a member
+ * with "mass" S and right-hand side S p0, exactly as a body has M and
+ * h F = M du0: the group is assembled, factored and solved as before, and
+ * then du = du0 - Z g gives every unknown of the rod, whose loads become
+ * those of that velocity change (sw_implicit_apply).  The exact solution
+ * of the one linear system, rods and joints together (Z and C are exact
+ * up to round-off); the banded factorisation is done once and solved for
+ * 1 + ports right-hand sides at once (rod_implicit.c, as vector operations
+ * across them): about 2 N (2 BAND + 1)(p + 1) flops for N unknowns and p
+ * port unknowns, 3.2e4 for a bone of 20 elements with 12.
+ *
+ * Leaves.  A muscle's filaments hang on a tendon's end by a joint each:
+ * members of three unknowns whose only neighbour is one port.  In the
+ * group's dense block they would widen its envelope to all of them (18
+ * per head on the arm).  Such a leaf a is eliminated before the group's
+ * factorisation (block Gaussian elimination of a vertex of degree one,
+ * which causes no fill: George and Liu 1981, ch. 5): with its block A_aa,
+ * its coupling C_a = A_aq to the port and its right-hand side b_a,
+ *   A_qq -= C_a^T A_aa^-1 C_a,  b_q -= C_a^T A_aa^-1 b_a,
+ * and after the solve u_a = A_aa^-1 (b_a - C_a u_q).  rigid_joint.c
+ * assembles the leaves' blocks; the algebra is here.
+ */
+#include <math.h>
+#include <string.h>
+#include "sinew.h"
+#include "vec.h"
+#include "internal.h"
+
+/* A rod member's unknowns in its group: its ports' (3 per node, 3 more
+ * when a joint turns the element). */
+static int member_ports(const swModel *m, int k) { return m->rigid_block_dof[k]; }
+
+size_t sw_port_member_scratch(const swModel *m, int k) {
+  const size_t N = sw_implicit_unknowns(m, m->rigid_block_rod[k]), p = (size_t)member_ports(m, k);
+  return N * (p + 1) + p * p + 2 * p;
+}
+
+/* In place: the lower triangle of the n x n SPD matrix C (row-major) turns
+ * into its Cholesky factor L.  Returns 0 if C is not positive definite. */
+static int small_cholesky(double *C, int n) {
+  for (int j = 0; j < n; j++) {
+    double djj = C[j * n + j];
+    for (int k = 0; k < j; k++) djj -= C[j * n + k] * C[j * n + k];
+    if (!(djj > 0)) return 0;
+    const double ljj = sqrt(djj);
+    C[j * n + j] = ljj;
+    for (int i = j + 1; i < n; i++) {
+      double s = C[i * n + j];
+      for (int k = 0; k < j; k++) s -= C[i * n + k] * C[j * n + k];
+      C[i * n + j] = s / ljj;
+    }
+  }
+  return 1;
+}
+
+/* L L^T x = b in place, b with nc values per row (row-major, n x nc). */
+static void small_solve(const double *L, int n, double *b, int nc) {
+  for (int i = 0; i < n; i++) {
+    for (int k = 0; k < i; k++)
+      for (int c = 0; c < nc; c++) b[i * nc + c] -= L[i * n + k] * b[k * nc + c];
+    for (int c = 0; c < nc; c++) b[i * nc + c] /= L[i * n + i];
+  }
+  for (int i = n - 1; i >= 0; i--) {
+    for (int k = i + 1; k < n; k++)
+      for (int c = 0; c < nc; c++) b[i * nc + c] -= L[k * n + i] * b[k * nc + c];
+    for (int c = 0; c < nc; c++) b[i * nc + c] /= L[i * n + i];
+  }
+}
+
+/* E^T of column c of X (N x nc): the ports' lab velocities, into out[p]. */
+static void ports_of(const swModel *m, const swData *d, int k, const double *X, int nc, int c,
+                     double *out) {
+  const int r = m->rigid_block_rod[k], na = m->node_adr[r], ea = m->elem_adr[r];
+  for (int q = m->rigid_block_port_adr[k]; q < m->rigid_block_port_adr[k + 1]; q++) {
+    const size_t i = (size_t)(m->rigid_port_node[q] - na);
+    const int o = m->rigid_port_off[q];
+    for (int a = 0; a < 3; a++) out[o + a] = X[(6 * i + (size_t)a) * (size_t)nc + (size_t)c];
+    if (!m->rigid_port_rot[q]) continue;
+    const size_t e = (size_t)(m->rigid_port_elem[q] - ea);
+    double Q[9];
+    sw_getQ(m, d->Q, m->rigid_port_elem[q], Q);
+    for (int b = 0; b < 3; b++) { /* w_lab = Q^T w */
+      double s = 0;
+      for (int a = 0; a < 3; a++) s += Q[3 * a + b] * X[(6 * e + 3 + (size_t)a) * (size_t)nc + (size_t)c];
+      out[o + 3 + b] = s;
+    }
+  }
+}
+
+int sw_port_member_assemble(const swModel *m, swData *d, double h, int k, double *ws, double *A,
+                            int n, int off, double *rhs) {
+  const int r = m->rigid_block_rod[k], p = member_ports(m, k), nc = p + 1;
+  const int na = m->node_adr[r], ea = m->elem_adr[r];
+  const size_t N = sw_implicit_unknowns(m, r);
+  double *X = ws, *S = X + N * (size_t)nc, *p0 = S + (size_t)p * (size_t)p, *C = p0 + p;
+  memset(X, 0, N * (size_t)nc * sizeof(double));
+  for (int q = m->rigid_block_port_adr[k]; q < m->rigid_block_port_adr[k + 1]; q++) { /* E */
+    const size_t i = (size_t)(m->rigid_port_node[q] - na);
+    const int o = 1 + m->rigid_port_off[q];
+    for (int a = 0; a < 3; a++) X[(6 * i + (size_t)a) * (size_t)nc + (size_t)(o + a)] = 1;
+    if (!m->rigid_port_rot[q]) continue;
+    const size_t e = (size_t)(m->rigid_port_elem[q] - ea);
+    double Q[9];
+    sw_getQ(m, d->Q, m->rigid_port_elem[q], Q);
+    for (int a = 0; a < 3; a++)
+      for (int b = 0; b < 3; b++) X[(6 * e + 3 + (size_t)a) * (size_t)nc + (size_t)(o + 3 + b)] = Q[3 * a + b];
+  }
+  if (!sw_implicit_solve_many(m, d, r, h, X, nc)) return 0; /* du0, Z */
+  ports_of(m, d, k, X, nc, 0, p0);
+  for (int c = 0; c < p; c++) { /* C = E^T Z, column by column, into S */
+    ports_of(m, d, k, X, nc, 1 + c, C);
+    for (int a = 0; a < p; a++) S[a * p + c] = C[a];
+  }
+  for (int a = 0; a < p; a++) /* symmetric up to round-off */
+    for (int c = 0; c < a; c++) S[a * p + c] = S[c * p + a] = 0.5 * (S[a * p + c] + S[c * p + a]);
+  if (!small_cholesky(S, p)) return 0;
+  /* S = C^-1, column by column of the identity */
+  double *Ainv = A + (size_t)off * (size_t)n + off; /* the member's diagonal block, zero here */
+  for (int a = 0; a < p; a++) Ainv[(size_t)a * (size_t)n + a] = 1;
+  for (int c = 0; c < p; c++) {
+    for (int a = 0; a < p; a++) C[a] = Ainv[(size_t)a * (size_t)n + c];
+    small_solve(S, p, C, 1);
+    for (int a = 0; a < p; a++) Ainv[(size_t)a * (size_t)n + c] = C[a];
+  }
+  for (int a = 0; a < p; a++) { /* S kept for the finish; rhs = S p0 */
+    double s = 0;
+    for (int c = 0; c < p; c++) {
+      S[a * p + c] = Ainv[(size_t)a * (size_t)n + c];
+      s += S[a * p + c] * p0[c];
+    }
+    rhs[off + a] = s;
+  }
+  return 1;
+}
+
+void sw_port_member_finish(const swModel *m, swData *d, double h, int k, double *ws,
+                           const double *pu) {
+  const int r = m->rigid_block_rod[k], p = member_ports(m, k), nc = p + 1;
+  const size_t N = sw_implicit_unknowns(m, r);
+  double *X = ws, *S = X + N * (size_t)nc, *p0 = S + (size_t)p * (size_t)p, *g = p0 + p;
+  for (int a = 0; a < p; a++) { /* g = S (p0 - p) */
+    double s = 0;
+    for (int c = 0; c < p; c++) s += S[a * p + c] * (p0[c] - pu[c]);
+    g[a] = s;
+  }
+  for (size_t i = 0; i < N; i++) { /* du = du0 - Z g, into column 0 */
+    double *Xi = X + i * (size_t)nc, s = Xi[0];
+    for (int c = 0; c < p; c++) s -= Xi[1 + c] * g[c];
+    Xi[0] = s;
+  }
+  sw_implicit_apply(m, d, r, X, (size_t)nc, h);
+}
+
+/* A leaf's workspace (SW_LEAF_WS doubles): A_aa (da x da), C_a (da x dq),
+ * X_a = A_aa^-1 C_a, b_a; see the header. */
+int sw_leaf_condense(double *ws, int da, int dq, double *Aqq, int n, double *bq) {
+  double *Aaa = ws, *Ca = ws + 36, *Xa = ws + 72, *ba = ws + 108;
+  if (!small_cholesky(Aaa, da)) return 0;
+  memcpy(Xa, Ca, (size_t)(da * dq) * sizeof(double));
+  small_solve(Aaa, da, Xa, dq);
+  small_solve(Aaa, da, ba, 1);
+  for (int i = 0; i < dq; i++) {
+    for (int c = 0; c < dq; c++) {
+      double s = 0;
+      for (int a = 0; a < da; a++) s += Ca[a * dq + i] * Xa[a * dq + c];
+      Aqq[(size_t)i * (size_t)n + c] -= s;
+    }
+    double s = 0;
+    for (int a = 0; a < da; a++) s += Ca[a * dq + i] * ba[a];
+    bq[i] -= s;
+  }
+  return 1;
+}
+
+void sw_leaf_recover(double *ws, int da, int dq, const double *uq) {
+  double *Xa = ws + 72, *ba = ws + 108; /* u_a = A_aa^-1 b_a - X_a u_q, into b_a */
+  for (int a = 0; a < da; a++) {
+    double s = ba[a];
+    for (int c = 0; c < dq; c++) s -= Xa[a * dq + c] * uq[c];
+    ba[a] = s;
+  }
+}
