@@ -206,6 +206,11 @@ typedef struct {
   /* the via rings' loads (muscle_via.c) into this thread's slots: in the
    * tensions' phase, before an implicit filament reads its loads */
   void (*rings)(const swModel *m, swData *d);
+  /* a filament in the joints' system (m->fil_system): its tension from its
+   * end nodes' velocity changes (NULL: held), the pull on its other nodes
+   * adjusted to it (joint_ports.c, after the system's solve) */
+  void (*system_tension)(const swModel *m, swData *d, int f, const double *dv_start,
+                         const double *dv_end);
 } swMuscleOps;
 static inline const swMuscleOps *sw_muscle_ops(const swModel *m) {
   return (const swMuscleOps *)m->muscle_ops;
@@ -304,17 +309,19 @@ int sw_rigid_joints_kick(const swModel *m, swData *d, double h, double *load);
  * block S and right-hand side S p0 into A (n x n, its unknowns from off)
  * and rhs, with its workspace ws (sw_port_member_scratch doubles; 0: the
  * rod's system could not be factored), and after the solve its loads from
- * its ports' velocity changes pu; a leaf's elimination into its port's
- * block Aqq (leading dimension n) and right-hand side bq, and its velocity
- * change from the port's uq, in its workspace (SW_LEAF_WS doubles). */
+ * its ports' velocity changes pu; a unit of leaves (one, or a filament's
+ * two ends) eliminated into its ports' blocks of A and rhs, and its
+ * velocity changes from the ports' in u, in its workspace. */
 size_t sw_port_member_scratch(const swModel *m, int k);
 int sw_port_member_assemble(const swModel *m, swData *d, double h, int k, double *ws, double *A,
                             int n, int off, double *rhs);
 void sw_port_member_finish(const swModel *m, swData *d, double h, int k, double *ws,
                            const double *pu);
-#define SW_LEAF_WS 114
-int sw_leaf_condense(double *ws, int da, int dq, double *Aqq, int n, double *bq);
-void sw_leaf_recover(double *ws, int da, int dq, const double *uq);
+#define SW_LEAF_WS 444 /* a unit of leaves: up to 12 unknowns joined to up to 12 of ports */
+int sw_leaf_condense(double *ws, int du, int dQ, int np, const int *qoff, const int *qdof, double *A,
+                     int n, double *rhs);
+void sw_leaf_recover(double *ws, int du, int dQ, int np, const int *qoff, const int *qdof,
+                     const double *u);
 /* Environments (environment.c).  The swSpec keeps them in an opaque slot
  * (sw_spec_env); sw_env_check validates them in sw_compile, sw_env_setup
  * puts resolved copies and each kind's derived data in the model, sw_env_free

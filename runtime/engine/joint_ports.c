@@ -42,6 +42,17 @@
  *   A_qq -= C_a^T A_aa^-1 C_a,  b_q -= C_a^T A_aa^-1 b_a,
  * and after the solve u_a = A_aa^-1 (b_a - C_a u_q).  rigid_joint.c
  * assembles the leaves' blocks; the algebra is here.
+ *
+ * Filaments.  A muscle filament's implicit Hill damping (muscle.c) is a
+ * dashpot c b b^T across its nodes.  Solved per filament with free end
+ * masses, it takes up the joints' forces on its ends and hands them on
+ * explicitly, which held the arm to 46 us with every joint implicit.  When
+ * both ends of a filament are leaves (or one is clamped), muscle.c
+ * eliminates the interior nodes and leaves the system the dashpot between
+ * the ends, h c' b_e b_e^T: the two leaves are eliminated together as one
+ * unit of six unknowns joined to two ports (the same algebra with C = A_uQ
+ * over both ports, which couples them), and the tension then follows from
+ * the ends' velocity changes (system_tension in muscle.c).
  */
 #include <math.h>
 #include <string.h>
@@ -174,32 +185,40 @@ void sw_port_member_finish(const swModel *m, swData *d, double h, int k, double 
   sw_implicit_apply(m, d, r, X, (size_t)nc, h);
 }
 
-/* A leaf's workspace (SW_LEAF_WS doubles): A_aa (da x da), C_a (da x dq),
- * X_a = A_aa^-1 C_a, b_a; see the header. */
-int sw_leaf_condense(double *ws, int da, int dq, double *Aqq, int n, double *bq) {
-  double *Aaa = ws, *Ca = ws + 36, *Xa = ws + 72, *ba = ws + 108;
-  if (!small_cholesky(Aaa, da)) return 0;
-  memcpy(Xa, Ca, (size_t)(da * dq) * sizeof(double));
-  small_solve(Aaa, da, Xa, dq);
-  small_solve(Aaa, da, ba, 1);
-  for (int i = 0; i < dq; i++) {
-    for (int c = 0; c < dq; c++) {
+/* A unit's workspace (SW_LEAF_WS doubles): A_uu (du x du) at 0, its
+ * coupling C (du x dQ) to its np ports at 144 (the ports' columns one after
+ * another, qdof[p] each), X = A_uu^-1 C at 288, b at 432; qoff[p] is port
+ * p's first unknown in the group's dense block A (n x n). */
+int sw_leaf_condense(double *ws, int du, int dQ, int np, const int *qoff, const int *qdof, double *A,
+                     int n, double *rhs) {
+  double *Auu = ws, *C = ws + 144, *X = ws + 288, *b = ws + 432;
+  if (!small_cholesky(Auu, du)) return 0;
+  memcpy(X, C, (size_t)(du * dQ) * sizeof(double));
+  small_solve(Auu, du, X, dQ);
+  small_solve(Auu, du, b, 1);
+  for (int p1 = 0, c1 = 0; p1 < np; c1 += qdof[p1++])
+    for (int i = 0; i < qdof[p1]; i++) {
+      double *Ai = A + (size_t)(qoff[p1] + i) * (size_t)n;
+      for (int p2 = 0, c2 = 0; p2 < np; c2 += qdof[p2++])
+        for (int c = 0; c < qdof[p2]; c++) {
+          double s = 0;
+          for (int a = 0; a < du; a++) s += C[a * dQ + c1 + i] * X[a * dQ + c2 + c];
+          Ai[qoff[p2] + c] -= s;
+        }
       double s = 0;
-      for (int a = 0; a < da; a++) s += Ca[a * dq + i] * Xa[a * dq + c];
-      Aqq[(size_t)i * (size_t)n + c] -= s;
+      for (int a = 0; a < du; a++) s += C[a * dQ + c1 + i] * b[a];
+      rhs[qoff[p1] + i] -= s;
     }
-    double s = 0;
-    for (int a = 0; a < da; a++) s += Ca[a * dq + i] * ba[a];
-    bq[i] -= s;
-  }
   return 1;
 }
 
-void sw_leaf_recover(double *ws, int da, int dq, const double *uq) {
-  double *Xa = ws + 72, *ba = ws + 108; /* u_a = A_aa^-1 b_a - X_a u_q, into b_a */
-  for (int a = 0; a < da; a++) {
-    double s = ba[a];
-    for (int c = 0; c < dq; c++) s -= Xa[a * dq + c] * uq[c];
-    ba[a] = s;
+void sw_leaf_recover(double *ws, int du, int dQ, int np, const int *qoff, const int *qdof,
+                     const double *u) {
+  double *X = ws + 288, *b = ws + 432; /* u_a = A_uu^-1 b_a - X u_Q, into b */
+  for (int a = 0; a < du; a++) {
+    double s = b[a];
+    for (int p = 0, c0 = 0; p < np; c0 += qdof[p++])
+      for (int c = 0; c < qdof[p]; c++) s -= X[a * dQ + c0 + c] * u[qoff[p] + c];
+    b[a] = s;
   }
 }

@@ -193,11 +193,15 @@ static double muscle_stretch(const swModel *m, const swData *d, int mu) {
   return s / w;
 }
 
+static void system_tension(const swModel *m, swData *d, int f, const double *dv_start,
+                           const double *dv_end);
+
 static const swMuscleOps muscle_ops = {sw_muscle_check,  sw_muscle_setup,     sw_muscle_free,
                                        sw_muscle_spec_free, sw_muscle_reset, sw_muscle_advance,
                                        sw_muscle_loads,  muscle_rates,        muscle_tensions,
                                        muscle_pull,      sw_stable_dt_filament,
-                                       muscle_force,     muscle_stretch,      muscle_rings};
+                                       muscle_force,     muscle_stretch,      muscle_rings,
+                                       system_tension};
 
 int sw_spec_add_muscle(swSpec *s, const swMuscleDesc *md) {
   *sw_spec_muscle_ops(s) = &muscle_ops;
@@ -616,6 +620,80 @@ static double implicit_tension(const swModel *m, const swData *d, int f, double 
   return T > 0 ? T : 0;
 }
 
+/* A filament whose ends are leaves of the joints' system (joint_ports.c,
+ * m->fil_system): the same solve with its two end nodes left out of p and
+ * s, since their velocity changes come from that system, which takes the
+ * rest of the tension, c' (b_ends . dv_ends), as a dashpot of its own:
+ *   T = T_int + c' b_e . dv_e,  T_int = (T0 + c h p_int) / (1 + c h s_int),
+ *   c' = c / (1 + c h s_int),
+ * the elimination of the interior nodes' dv = h M^-1 (F - T b) from the
+ * Rosenbrock-Euler equations above.  Stores T_int, c' and the ends' b in
+ * d->fil_sys and returns T_int, pulled on every node until the system's
+ * solve gives T (system_tension). */
+static double system_part(const swModel *m, swData *d, int f, double T0, double eta, double edot,
+                          double h) {
+  const int r = m->fil_rod[f], lo = m->elem_adr[r], n = m->rod_nelem[r];
+  double c = h > 0 ? tension_slope(m, f, eta, edot, d->fil_activation[f]) / m->fil_l0[f] : 0;
+  if (!(c > 0)) c = 0;
+  double p = 0, s = 0, t_before[3] = {0, 0, 0}, *sys = d->fil_sys + 8 * (size_t)f;
+  for (int i = 0; i <= n; i++) { /* node lo + i: b_i = t_{i-1} - t_i */
+    double t[3] = {0, 0, 0}, b[3], F[3];
+    if (i < n) {
+      sw_get3(m, d->x, lo + i + 1, t);
+      double xi[3];
+      sw_get3(m, d->x, lo + i, xi);
+      sw_v3_sub(t, t, xi);
+      sw_v3_scale(t, t, 1.0 / d->length[lo + i]);
+    }
+    sw_v3_sub(b, t_before, t);
+    memcpy(t_before, t, sizeof t);
+    if (i == 0 || i == n) { /* the ends: the system's */
+      memcpy(sys + (i ? 5 : 2), b, sizeof b);
+      continue;
+    }
+    sw_get3(m, d->force, lo + i, F);
+    p += m->inv_mass[lo + i] * sw_v3_dot(b, F);
+    s += m->inv_mass[lo + i] * sw_v3_dot(b, b);
+  }
+  sys[0] = (T0 + c * h * p) / (1.0 + c * h * s);
+  sys[1] = c / (1.0 + c * h * s);
+  return sys[0];
+}
+
+/* The filament's tension once its ends' dv are known (the header of
+ * system_part), floored at 0 as the law is, and the pull on its interior
+ * nodes made that of T rather than T_int: node i gets -(T - T_int) b_i. */
+static void system_tension(const swModel *m, swData *d, int f, const double *dv_start,
+                           const double *dv_end) {
+  const double *sys = d->fil_sys + 8 * (size_t)f;
+  double T = sys[0];
+  if (dv_start) T += sys[1] * sw_v3_dot(sys + 2, dv_start);
+  if (dv_end) T += sys[1] * sw_v3_dot(sys + 5, dv_end);
+  if (!(T > 0)) T = 0;
+  const double dT = T - sys[0];
+  d->fil_tension[f] = T;
+  const int r = m->fil_rod[f], lo = m->elem_adr[r], n = m->rod_nelem[r];
+  double t_before[3];
+  sw_get3(m, d->x, lo + 1, t_before);
+  double x0[3];
+  sw_get3(m, d->x, lo, x0);
+  sw_v3_sub(t_before, t_before, x0);
+  sw_v3_scale(t_before, t_before, 1.0 / d->length[lo]);
+  for (int i = 1; i < n; i++) {
+    double t[3], xi[3];
+    sw_get3(m, d->x, lo + i + 1, t);
+    sw_get3(m, d->x, lo + i, xi);
+    sw_v3_sub(t, t, xi);
+    sw_v3_scale(t, t, 1.0 / d->length[lo + i]);
+    for (int k = 0; k < 3; k++) { /* -dT b_i = dT (t_i - t_{i-1}) */
+      const double dF = dT * (t[k] - t_before[k]);
+      SW_AT(m, d->force, lo + i, k) += dF;
+      SW_AT(m, d->ext_force, lo + i, k) += dF;
+    }
+    memcpy(t_before, t, sizeof t);
+  }
+}
+
 static void filament_tension(const swModel *m, swData *d, int f, double u, double h) {
   const int r = m->fil_rod[f], lo = m->elem_adr[r], hi = lo + m->rod_nelem[r];
   const double *len = d->length, *q = d->scratch_phi;
@@ -629,7 +707,8 @@ static void filament_tension(const swModel *m, swData *d, int f, double u, doubl
   const double inv_l0 = 1.0 / m->fil_l0[f];
   const double eta = l * inv_l0, edot = ldot * inv_l0;
   double T = sw_muscle_tension(m, f, eta, edot, d->fil_activation[f]);
-  if (h > 0 && m->fil_implicit[f]) T = implicit_tension(m, d, f, T, eta, edot, h);
+  if (m->fil_system && m->fil_system[f]) T = system_part(m, d, f, T, eta, edot, h);
+  else if (h > 0 && m->fil_implicit[f]) T = implicit_tension(m, d, f, T, eta, edot, h);
   d->fil_stretch[f] = eta;
   d->fil_rate[f] = edot;
   d->fil_tension[f] = T;

@@ -149,22 +149,54 @@ static Side joint_side(const swModel *m, int j, int side) {
   return s;
 }
 
-/* Whether joint j ties a filament with the implicit Hill tension (muscle.c)
- * to a port of an implicit rod.  That tension is solved per filament with
- * its end nodes as free masses under the kick's loads, the joints' springs
- * among them, so it takes up the joint's force at once; with the joint in
- * this system as well, the joint's stiffness reaches the tendon through the
- * tension explicitly (measured on the arm with every bone and tendon
- * implicit: the 0.5 s flexion within 0.17 % at 40 us, 42-120 % off from 48
- * us up, with no bound in the estimate).  Such joints stay explicit, so
- * their own bound (stability.c) holds the step. */
-static int hill_on_port(const swModel *m, int j, const Side *s) {
+/* Filaments with the implicit Hill tension (muscle.c) joined to ports.
+ * That tension is solved per filament with its end nodes as free masses
+ * under the kick's loads, the joints' springs among them, so it takes up a
+ * joint's force at once; with the joint in this system as well, the
+ * joint's stiffness reaches the rod through the tension explicitly
+ * (measured on the arm with every bone and tendon implicit: the 0.5 s
+ * flexion within 0.17 % at 40 us, 42-120 % off from 48 us up).  So a
+ * filament whose ends are each joined to one port, or clamped, is solved
+ * in the system (joint_ports.c, m->fil_system): its ends become one
+ * eliminated pair with the filament's damping between them.  ready[f]
+ * says so; a joint of any other implicit filament to a port stays
+ * explicit, and its own bound (stability.c) holds the step. */
+static void hill_ready(const swModel *m, const int *fil_of_rod, int *ready) {
+  for (int f = 0; f < m->nfil; f++) ready[f] = m->fil_implicit[f] != 0;
+  const size_t nf = m->nfil > 0 ? (size_t)m->nfil : 1;
+  int *seen = calloc(2 * nf, sizeof(int)); /* joints per end */
+  if (!seen) {
+    for (int f = 0; f < m->nfil; f++) ready[f] = 0;
+    return;
+  }
+  for (int j = 0; j < m->njoint; j++)
+    for (int side = 0; side < 2; side++) {
+      const int rod = side ? m->joint[j].rod_b : m->joint[j].rod_a;
+      const int f = rod >= 0 ? fil_of_rod[rod] : -1;
+      if (f < 0 || !ready[f]) continue;
+      const int node = side ? m->joint_node_b[j] : m->joint_node_a[j], na = m->node_adr[rod];
+      const int end = node == na ? 0 : node == na + m->rod_nelem[rod] ? 1 : -1;
+      const Side other = joint_side(m, j, 1 - side);
+      if (end < 0 || other.rod < 0 || seen[2 * f + end]++) ready[f] = 0;
+    }
+  for (int f = 0; f < m->nfil; f++) { /* an end without a joint must be clamped */
+    const int bits = m->fil_implicit[f];
+    if (ready[f] && !seen[2 * f] && !(bits & SW_FIL_HELD_START)) ready[f] = 0;
+    if (ready[f] && !seen[2 * f + 1] && !(bits & SW_FIL_HELD_END)) ready[f] = 0;
+    if (ready[f] && !seen[2 * f] && !seen[2 * f + 1]) ready[f] = 0; /* no joint at all */
+  }
+  free(seen);
+}
+
+/* Whether joint j ties an implicit filament that is not ready to a port. */
+static int hill_on_port(const swModel *m, int j, const Side *s, const int *fil_of_rod,
+                        const int *ready) {
   if (s[0].rod < 0 && s[1].rod < 0) return 0;
   const int rods[2] = {m->joint[j].rod_a, m->joint[j].rod_b};
   for (int side = 0; side < 2; side++) {
     if (s[side].node < 0 || s[side].rod >= 0) continue; /* not an attachment */
-    for (int f = 0; f < m->nfil; f++)
-      if (m->fil_rod[f] == rods[side] && m->fil_implicit[f]) return 1;
+    const int f = fil_of_rod[rods[side]];
+    if (f >= 0 && m->fil_implicit[f] && !ready[f]) return 1;
   }
   return 0;
 }
@@ -184,7 +216,7 @@ static int find_root(int *parent, int s) {
  * scratch of nb ints.  On return m->joint_block holds the blocks. */
 static void number_groups(swModel *m, const int *member, const int *body, const int *node,
                           const int *elem, const int *rod, const int *rdof, const int *leaf,
-                          int *root, int *group_of, int *next) {
+                          const int *partner, int *root, int *group_of, int *next) {
   const int nb = m->nrigid_block;
   for (int s = 0; s < nb; s++) root[s] = s, group_of[s] = -1;
   for (int j = 0; j < m->njoint; j++) { /* the edges */
@@ -193,6 +225,11 @@ static void number_groups(swModel *m, const int *member, const int *body, const 
     const int ra = find_root(root, sa), rb = find_root(root, sb);
     if (ra != rb) root[ra > rb ? ra : rb] = ra < rb ? ra : rb;
   }
+  for (int s = 0; s < nb; s++) /* a filament's two ends, eliminated together */
+    if (partner[s] > s) {
+      const int ra = find_root(root, s), rb = find_root(root, partner[s]);
+      if (ra != rb) root[ra > rb ? ra : rb] = ra < rb ? ra : rb;
+    }
   for (int s = 0; s < nb; s++) root[s] = find_root(root, s);
   int ngroup = 0; /* the groups, in the order of their first member */
   for (int s = 0; s < nb; s++)
@@ -326,6 +363,58 @@ static void find_leaves(const swModel *m, int nb, const int *member, const int *
     if (leaf[k] == -2) leaf[k] = -1;
 }
 
+/* The rod member that port q belongs to: the last block whose first port
+ * is at or before q (rigid_block_port_adr is non-decreasing). */
+static int port_member(const swModel *m, int q) {
+  int lo = 0, hi = m->nrigid_block - 1;
+  while (lo < hi) {
+    const int mid = (lo + hi + 1) / 2;
+    if (m->rigid_block_port_adr[mid] <= q) lo = mid;
+    else hi = mid - 1;
+  }
+  return lo;
+}
+
+/* The filaments solved in the system (hill_ready): m->fil_system, and
+ * their end leaves paired (partner, -1) and marked with the filament (lfil,
+ * -1), members numbered as setup met them. */
+static void pair_leaves(swModel *m, int nb, const int *member, const int *leaf,
+                        const int *fil_of_rod, const int *ready, int *partner, int *lfil) {
+  for (int k = 0; k < nb; k++) partner[k] = lfil[k] = -1;
+  for (int j = 0; j < m->njoint; j++) {
+    if (!m->joint_implicit[j]) continue;
+    for (int side = 0; side < 2; side++) {
+      const int rod = side ? m->joint[j].rod_b : m->joint[j].rod_a, k = member[2 * j + side];
+      const int f = rod >= 0 ? fil_of_rod[rod] : -1;
+      if (f < 0 || !ready[f] || k < 0 || leaf[k] < 0) continue;
+      m->fil_system[f] = 1;
+      lfil[k] = f;
+    }
+  }
+  for (int k = 0; k < nb; k++) /* the filament's other end, if it is a leaf too */
+    for (int t = k + 1; t < nb && lfil[k] >= 0; t++)
+      if (lfil[t] == lfil[k]) partner[k] = t, partner[t] = k;
+}
+
+/* A pair's elimination couples its two ports' members: the envelope takes
+ * that edge too, and the reach follows. */
+static void pair_envelope(swModel *m) {
+  const int nb = m->nrigid_block;
+  int changed = 0;
+  for (int k = 0; k < nb; k++) {
+    const int t = m->rigid_block_partner[k];
+    if (t <= k) continue;
+    const int a = port_member(m, m->rigid_block_leaf[k]), b = port_member(m, m->rigid_block_leaf[t]);
+    const int lo = a < b ? a : b, hi = a < b ? b : a;
+    if (lo < m->rigid_block_env[hi]) m->rigid_block_env[hi] = lo, changed = 1;
+  }
+  if (!changed) return;
+  for (int s = 0; s < nb; s++) m->rigid_block_reach[s] = s;
+  for (int t = 0; t < nb; t++)
+    for (int s = m->rigid_block_env[t]; s < t; s++)
+      if (m->rigid_block_reach[s] < t) m->rigid_block_reach[s] = t;
+}
+
 int sw_rigid_joints_setup(swModel *m) {
   const size_t J = (size_t)(m->njoint ? m->njoint : 1), B = (size_t)(m->nrigid ? m->nrigid : 1);
   const size_t R = (size_t)(m->nrod ? m->nrod : 1);
@@ -343,6 +432,9 @@ int sw_rigid_joints_setup(swModel *m) {
   m->rigid_block_dof = malloc(NB * sizeof(int));
   m->rigid_block_rod = malloc(NB * sizeof(int));
   m->rigid_block_leaf = malloc(NB * sizeof(int));
+  m->rigid_block_partner = malloc(NB * sizeof(int));
+  m->rigid_block_fil = malloc(NB * sizeof(int));
+  m->fil_system = calloc((size_t)(m->nfil ? m->nfil : 1), sizeof(int));
   m->rigid_block_port_adr = malloc((NB + 1) * sizeof(int));
   m->rigid_port_node = malloc(2 * J * sizeof(int));
   m->rigid_port_elem = malloc(2 * J * sizeof(int));
@@ -357,6 +449,7 @@ int sw_rigid_joints_setup(swModel *m) {
   if (!m->joint_implicit || !m->joint_block || !m->joint_port || !m->rod_block || !m->rigid_block ||
       !m->rigid_block_body || !m->rigid_block_node || !m->rigid_block_elem || !m->rigid_block_rot ||
       !m->rigid_block_off || !m->rigid_block_dof || !m->rigid_block_rod || !m->rigid_block_leaf ||
+      !m->rigid_block_partner || !m->rigid_block_fil || !m->fil_system ||
       !m->rigid_block_port_adr || !m->rigid_port_node || !m->rigid_port_elem ||
       !m->rigid_port_rot || !m->rigid_port_off || !m->rigid_group_adr ||
       !m->rigid_group_joint_adr || !m->rigid_group_joint || !m->rigid_block_env ||
@@ -370,7 +463,8 @@ int sw_rigid_joints_setup(swModel *m) {
   /* the members in the order the joints first meet them: member[2 j + side]
    * their number, body/node/elem/rod what each is; the ports likewise */
   const size_t S = (size_t)m->stride;
-  int *scratch = malloc((2 * J + 11 * NB + 2 * S + 10 * J + R) * sizeof(int));
+  const size_t F = (size_t)(m->nfil ? m->nfil : 1);
+  int *scratch = malloc((2 * J + 11 * NB + 2 * S + 10 * J + 2 * R + F) * sizeof(int));
   if (!scratch) return 0;
   int *member = scratch, *body = member + 2 * J, *node = body + NB, *elem = node + NB;
   int *rod = elem + NB, *rdof = rod + NB, *leaf = rdof + NB;
@@ -379,7 +473,10 @@ int sw_rigid_joints_setup(swModel *m) {
   int *port_at = at_node + S;    /* the port on each node slot, or -1 */
   int *pmember = port_at + S, *pnode = pmember + 2 * J, *pelem = pnode + 2 * J;
   int *prot = pelem + 2 * J, *porder = prot + 2 * J; /* 2 J + NB: number_ports' */
-  int *rod_first = porder + 2 * J + NB;
+  int *rod_first = porder + 2 * J + NB, *fil_of_rod = rod_first + R, *ready = fil_of_rod + R;
+  for (size_t r = 0; r < R; r++) fil_of_rod[r] = -1;
+  for (int f = 0; f < m->nfil; f++) fil_of_rod[m->fil_rod[f]] = f;
+  hill_ready(m, fil_of_rod, ready);
   int nb = 0, np = 0;
   for (int b = 0; b < m->nrigid; b++) first[b] = -1;
   for (size_t i = 0; i < S; i++) at_node[i] = port_at[i] = -1;
@@ -390,7 +487,7 @@ int sw_rigid_joints_setup(swModel *m) {
     /* both sides in reach, and a rigid body or an implicit rod moving on one */
     if (!s[0].ok || !s[1].ok) continue;
     if (s[0].body < 0 && s[1].body < 0 && s[0].rod < 0 && s[1].rod < 0) continue;
-    if (hill_on_port(m, j, s)) continue;
+    if (hill_on_port(m, j, s, fil_of_rod, ready)) continue;
     m->joint_implicit[j] = 1;
     for (int side = 0; side < 2; side++) {
       int k = -1;
@@ -423,9 +520,17 @@ int sw_rigid_joints_setup(swModel *m) {
   m->nrigid_block = nb;
   m->nrigid_port = np;
   find_leaves(m, nb, member, node, rod, leaf);
-  if (nb) number_groups(m, member, body, node, elem, rod, rdof, leaf, first, first + NB, first + 2 * NB);
+  int *partner = at_node, *lfil = port_at; /* the node maps are read no more (S >= nb) */
+  pair_leaves(m, nb, member, leaf, fil_of_rod, ready, partner, lfil);
+  if (nb) number_groups(m, member, body, node, elem, rod, rdof, leaf, partner, first, first + NB,
+                        first + 2 * NB);
   /* block[] of number_groups: its root array, first[0 .. nb) */
+  for (int k = 0; k < nb; k++) {
+    m->rigid_block_partner[first[k]] = partner[k] >= 0 ? first[partner[k]] : -1;
+    m->rigid_block_fil[first[k]] = lfil[k];
+  }
   if (np) number_ports(m, np, pmember, pnode, pelem, prot, first, porder);
+  pair_envelope(m);
   free(scratch);
   return 1;
 }
@@ -449,6 +554,9 @@ void sw_rigid_joints_free(swModel *m) {
   free(m->rod_block);
   free(m->rigid_block_rod);
   free(m->rigid_block_leaf);
+  free(m->rigid_block_partner);
+  free(m->rigid_block_fil);
+  free(m->fil_system);
   free(m->rigid_block_port_adr);
   free(m->rigid_port_node);
   free(m->rigid_port_elem);
@@ -656,18 +764,6 @@ static void member_inertia(const swModel *m, const swData *d, int k, const doubl
   sw_matT_vec(F + 3, Q, t);
 }
 
-/* The rod member that port q belongs to: the last block whose first port
- * is at or before q (rigid_block_port_adr is non-decreasing). */
-static int port_member(const swModel *m, int q) {
-  int lo = 0, hi = m->nrigid_block - 1;
-  while (lo < hi) {
-    const int mid = (lo + hi + 1) / 2;
-    if (m->rigid_block_port_adr[mid] <= q) lo = mid;
-    else hi = mid - 1;
-  }
-  return lo;
-}
-
 /* Where a joint's side writes in group g's system: the matrix (A, or a
  * leaf's own block or coupling, joint_ports.c), its leading dimension, and
  * the side's first unknown and count there. */
@@ -686,6 +782,58 @@ static SideSlot side_slot(const swModel *m, int j, int side, int first) {
   if (q >= 0) t.off += m->rigid_port_off[q], t.dof = m->rigid_port_rot[q] ? 6 : 3;
   t.block -= first;
   return t;
+}
+
+/* A leaf's unit (joint_ports.c): the leaf itself, or it and its partner,
+ * whose lower block owns the workspace; the leaf's rows in it (ro), its
+ * port's columns in the coupling (co), the unit's unknowns (du) and ports'
+ * (dQ), and for the elimination the ports' places in the dense block. */
+typedef struct {
+  double *ws;
+  int owner, ro, co, du, dQ, np, qoff[2], qdof[2];
+} Unit;
+
+static int port_dof(const swModel *m, int q) { return m->rigid_port_rot[q] ? 6 : 3; }
+
+static Unit leaf_unit(const swModel *m, int first, double *leaf_ws, int k) {
+  const int *off = m->rigid_block_off, *dof = m->rigid_block_dof;
+  const int p = m->rigid_block_partner[k];
+  Unit u;
+  u.owner = p >= 0 && p < k ? p : k;
+  const int mate = u.owner == k ? p : k; /* the owner's partner, or -1 */
+  u.ws = leaf_ws + (size_t)off[u.owner] * SW_LEAF_WS;
+  u.ro = u.owner == k ? 0 : dof[u.owner];
+  u.co = u.owner == k ? 0 : port_dof(m, m->rigid_block_leaf[u.owner]);
+  u.np = mate >= 0 ? 2 : 1;
+  u.du = u.dQ = 0;
+  for (int i = 0; i < u.np; i++) {
+    const int leaf = i ? mate : u.owner, q = m->rigid_block_leaf[leaf];
+    u.qdof[i] = port_dof(m, q);
+    u.qoff[i] = off[port_member(m, q)] + m->rigid_port_off[q];
+    u.du += dof[leaf];
+    u.dQ += u.qdof[i];
+  }
+  (void)first;
+  return u;
+}
+
+/* The dashpot of a filament in the system (muscle.c, system_part) between
+ * its end leaves: h c' b b^T on the unit's rows of each end's node. */
+static void unit_dashpot(const swModel *m, const swData *d, double h, int first, double *leaf_ws,
+                         int k) {
+  const int f = m->rigid_block_fil[k];
+  if (f < 0) return;
+  const Unit u = leaf_unit(m, first, leaf_ws, k);
+  const double *sys = d->fil_sys + 8 * (size_t)f, w = h * sys[1];
+  double b[12] = {0};
+  const int ends[2] = {u.owner, m->rigid_block_partner[u.owner]};
+  for (int i = 0; i < u.np; i++) {
+    const int leaf = ends[i], start = m->rigid_block_node[leaf] == m->node_adr[m->fil_rod[f]];
+    const int ro = leaf == u.owner ? 0 : m->rigid_block_dof[u.owner];
+    for (int c = 0; c < 3; c++) b[ro + c] = sys[(start ? 2 : 5) + c];
+  }
+  for (int i = 0; i < u.du; i++)
+    for (int c = 0; c < u.du; c++) u.ws[i * u.du + c] += w * b[i] * b[c];
 }
 
 /* The trapezoidal loads of group g (the header): its system assembled into
@@ -714,10 +862,11 @@ static int group_kick(const swModel *m, swData *d, double h, int g, double *A, d
     double M, Il[9], F[6];
     member_inertia(m, d, k, load, &M, Il, F);
     const int leaf = m->rigid_block_leaf[k] >= 0;
-    double *B = leaf ? leaf_ws + (size_t)off[s] * SW_LEAF_WS : A; /* a leaf's A_aa, C_a, b_a */
-    const size_t ld = leaf ? (size_t)dof[s] : (size_t)n, o = leaf ? 0 : (size_t)off[s];
-    double *b = leaf ? B + 108 : rhs + o;
-    if (leaf) memset(B, 0, 108 * sizeof(double));
+    const Unit u = leaf ? leaf_unit(m, first, leaf_ws, k) : (Unit){0};
+    double *B = leaf ? u.ws : A; /* a leaf's unit: A_uu, C, X, b */
+    const size_t ld = leaf ? (size_t)u.du : (size_t)n, o = leaf ? (size_t)u.ro : (size_t)off[s];
+    double *b = leaf ? B + 432 + o : rhs + o;
+    if (leaf && u.owner == k) memset(B, 0, SW_LEAF_WS * sizeof(double));
     for (int i = 0; i < 3; i++) {
       B[(o + i) * ld + o + i] = M;
       if (dof[s] == 6)
@@ -768,10 +917,10 @@ static int group_kick(const swModel *m, swData *d, double h, int g, double *A, d
         const SideSlot *ss = &side[s], *st = &side[t];
         if (ss->block < 0 || st->block < 0) continue;
         const double sign = s == t ? 1.0 : -1.0; /* rates are side b minus side a */
-        if (ss->leaf >= 0) { /* a leaf's own block (t = s) or its coupling C_a to the port */
-          double *L = leaf_ws + (size_t)ss->leaf * SW_LEAF_WS;
-          if (s == t) add_pair(L, ss->dof, 0, ss->dof, 0, ss->dof, wpos, wrot, wlim, Jp[s], Jp[t], PtP, ggT);
-          else add_pair(L + 36, st->dof, 0, ss->dof, 0, st->dof, -wpos, -wrot, -wlim, Jp[s], Jp[t], PtP, ggT);
+        if (ss->leaf >= 0) { /* a leaf's own block (t = s) or its coupling to the port */
+          const Unit u = leaf_unit(m, first, leaf_ws, first + ss->block);
+          if (s == t) add_pair(u.ws, u.du, u.ro, ss->dof, u.ro, ss->dof, wpos, wrot, wlim, Jp[s], Jp[t], PtP, ggT);
+          else add_pair(u.ws + 144, u.dQ, u.ro, ss->dof, u.co, st->dof, -wpos, -wrot, -wlim, Jp[s], Jp[t], PtP, ggT);
           continue;
         }
         if (st->leaf >= 0) continue; /* C_a^T: the leaf's elimination uses C_a */
@@ -779,12 +928,11 @@ static int group_kick(const swModel *m, swData *d, double h, int g, double *A, d
                  Jp[s], Jp[t], PtP, ggT);
       }
   }
-  for (int s = nd; s < nb; s++) { /* the leaves eliminated into their ports */
-    const int k = first + s, pq = m->rigid_block_leaf[k], dq = m->rigid_port_rot[pq] ? 6 : 3;
-    const int o = off[port_member(m, pq) - first] + m->rigid_port_off[pq];
-    if (!sw_leaf_condense(leaf_ws + (size_t)off[s] * SW_LEAF_WS, dof[s], dq,
-                          A + (size_t)o * n + o, n, rhs + o))
-      return 0;
+  for (int s = nd; s < nb; s++) { /* the leaves' units eliminated into their ports */
+    const Unit u = leaf_unit(m, first, leaf_ws, first + s);
+    if (u.owner != first + s) continue;
+    unit_dashpot(m, d, h, first, leaf_ws, first + s);
+    if (!sw_leaf_condense(u.ws, u.du, u.dQ, u.np, u.qoff, u.qdof, A, n, rhs)) return 0;
   }
   if (!cholesky_solve(A, n, rhs, rhs + n, m->rigid_block_env + first, m->rigid_block_reach + first,
                       off, dof, first))
@@ -797,13 +945,10 @@ static int group_kick(const swModel *m, swData *d, double h, int g, double *A, d
       continue;
     }
     const double *du = rhs + off[s];
-    const int pq = m->rigid_block_leaf[k];
-    if (pq >= 0) {
-      const int dq = m->rigid_port_rot[pq] ? 6 : 3;
-      const int o = off[port_member(m, pq) - first] + m->rigid_port_off[pq];
-      double *L = leaf_ws + (size_t)off[s] * SW_LEAF_WS;
-      sw_leaf_recover(L, dof[s], dq, rhs + o);
-      du = L + 108;
+    if (m->rigid_block_leaf[k] >= 0) { /* a unit's velocities, once, by its owner */
+      const Unit u = leaf_unit(m, first, leaf_ws, k);
+      if (u.owner == k) sw_leaf_recover(u.ws, u.du, u.dQ, u.np, u.qoff, u.qdof, rhs);
+      du = u.ws + 432 + u.ro;
     }
     double M, Il[9], F[6], dL[3] = {0, 0, 0};
     member_inertia(m, d, k, load, &M, Il, F);
@@ -823,6 +968,18 @@ static int group_kick(const swModel *m, swData *d, double h, int g, double *A, d
       sw_mat_vec(t, Q, dL);
       for (int c = 0; c < 3; c++) SW_AT(m, d->torque, e, c) = t[c] / h;
     }
+  }
+  for (int s = nd; s < nb; s++) { /* the filaments in the system: their tension */
+    const int k = first + s, f = m->rigid_block_fil[k];
+    const Unit u = leaf_unit(m, first, leaf_ws, k);
+    if (f < 0 || u.owner != k) continue;
+    const double *dv[2] = {NULL, NULL}; /* start, end: NULL when clamped */
+    const int ends[2] = {k, m->rigid_block_partner[k]};
+    for (int i = 0; i < u.np; i++) {
+      const int start = m->rigid_block_node[ends[i]] == m->node_adr[m->fil_rod[f]];
+      dv[start ? 0 : 1] = u.ws + 432 + (i ? m->rigid_block_dof[k] : 0);
+    }
+    sw_muscle_ops(m)->system_tension(m, d, f, dv[0], dv[1]);
   }
   return 1;
 }

@@ -127,6 +127,10 @@ typedef struct {
   int *rigid_block_leaf;     /* (nrigid_block) an attachment joined only to
                                            one port: that port (eliminated
                                            first, joint_ports.c), else -1     */
+  int *rigid_block_partner;  /* (nrigid_block) the leaf eliminated with this
+                                           one (a filament's other end), -1   */
+  int *rigid_block_fil;      /* (nrigid_block) a leaf's filament when that
+                                           filament is in the system, -1      */
   int nrigid_port;           /* ports: nodes of implicit rods in the system  */
   int *rigid_port_node;      /* (nrigid_port) the node                       */
   int *rigid_port_elem;      /* (nrigid_port) its element                    */
@@ -135,6 +139,9 @@ typedef struct {
   int *joint_port;           /* (njoint*2) the port of a side on an implicit
                                            rod, -1                            */
   int *rod_block;            /* (nrod)     an implicit rod's member, -1      */
+  int *fil_system;           /* (nfil or 1) 1: the filament's implicit Hill
+                                           damping is solved within that
+                                           system, its ends being leaves      */
   int *rigid_group_joint_adr; /* (nrigid_group+1) first entry of each group
                                            in rigid_group_joint              */
   int *rigid_group_joint;    /* (implicit joints) each group's joints, in
@@ -329,6 +336,9 @@ typedef struct {
   double *fil_stretch;       /* (nfil)    eta = l / l0                          */
   double *fil_rate;          /* (nfil)    strain rate dl/dt / l0, 1/s           */
   double *fil_tension;       /* (nfil)    T_k, N                                */
+  double *fil_sys;           /* (nfil*8)  a filament in the joints' system:
+                                           T without its ends' part, c', and
+                                           b at its start and end nodes      */
   double *ring_row;          /* (nring*SW_RING_ROW) each ring's contact and
                                            load, last evaluation (muscle_via.c) */
   /* environments, updated with each force evaluation */

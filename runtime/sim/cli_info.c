@@ -323,12 +323,23 @@ static void print_stiff_parts(const swModel *m) {
   int njimplicit = 0;
   for (int j = 0; j < m->njoint; j++) njimplicit += m->joint_implicit[j];
   if (njimplicit) {
-    const int nbody = m->nrigid_block - m->nrigid_attach;
-    printf("  trapezoidal (implicit): %d of %d joints, those on a rigid body to a body, space "
-           "or a free node of an elastic rod (%d bod%s", njimplicit, m->njoint, nbody,
-           nbody == 1 ? "y" : "ies");
+    int nbody = 0, nrods = 0, nfil = 0;
+    for (int k = 0; k < m->nrigid_block; k++) {
+      nbody += m->rigid_block_body[k] >= 0;
+      nrods += m->rigid_block_rod[k] >= 0;
+    }
+    for (int f = 0; f < m->nfil; f++) nfil += m->fil_system[f];
+    printf("  trapezoidal (implicit): %d of %d joints, those on a rigid body or an implicit rod to "
+           "a body, an implicit rod, space, a clamped node or a free node of an elastic rod (",
+           njimplicit, m->njoint);
+    const char *sep = "";
+    if (nbody) printf("%d bod%s", nbody, nbody == 1 ? "y" : "ies"), sep = ", ";
+    if (nrods)
+      printf("%s%d implicit rod%s through %d node%s", sep, nrods, nrods == 1 ? "" : "s",
+             m->nrigid_port, m->nrigid_port == 1 ? "" : "s"), sep = ", ";
     if (m->nrigid_attach)
-      printf(" and %d rod node%s", m->nrigid_attach, m->nrigid_attach == 1 ? "" : "s");
+      printf("%s%d rod node%s", sep, m->nrigid_attach, m->nrigid_attach == 1 ? "" : "s");
+    if (nfil) printf(", the Hill damping of %d filament%s between their ends", nfil, nfil == 1 ? "" : "s");
     printf(" in %d independent group%s)\n", m->nrigid_group, m->nrigid_group == 1 ? "" : "s");
   }
   if (m->nfil > nimplicit) {

@@ -19,7 +19,7 @@
 #     writes a PNG, exits 5 under --within below its difference, and a
 #     malformed reference is one line and exit 4, never a traceback.
 # When the scene or the model changes on purpose, `make demo-reference`
-# stores a new reference (~5 min).  About 10 s of one core.
+# stores a new reference (~5 min).  About 12 s of one core.
 . "$(dirname "$0")/tap.sh"
 cd "$ROOT" || exit 1
 scratch demo-ref
@@ -157,4 +157,31 @@ rc=$?
   grep -q "^demo_elbow: $TMP/bad.csv:20: expected three numbers, got '0.019,oops,1'$" "$TMP/out"
 ok $? "a malformed reference: exit 4, one line naming the file and line"
 diag <"$TMP/out"
+# ---- every bone and tendon implicit, with every joint and the filaments'
+# Hill damping in the joints' system (docs/physics.md, "Joints on implicit
+# rods"): the same scene at 100 us, 2000 times the reference's step, stays
+# within 1% of its curves over the first 200 ms (the biceps' build-up and
+# the start of the swing), and at 50 us it is closer.
+"$SC" "$MODEL" --let implicit_bones=true --let implicit_tendons=true -o "$TMP/imp" >"$TMP/log" 2>&1 &&
+  "$TMP/imp" --info --integrator imex >"$TMP/info" 2>&1 &&
+  grep -q "79 of 79 joints.*7 implicit rods through 15 nodes, 72 rod nodes, the Hill damping of 36 filaments" "$TMP/info"
+ok $? "implicit bones and tendons: all 79 joints and 36 filaments' damping in the system (--info)"
+grep "joints, those" "$TMP/info" | diag
+"$TMP/imp" --quiet --integrator imex --dt 100us --duration 200ms --out "$TMP/imp100.h5" >"$TMP/log" 2>&1 &&
+  agree "$TMP/imp100.h5" 0.2 0.01 >"$TMP/agree100" 2>&1
+ok $? "implicit bones and tendons at 100 us: the first 200 ms within 1% of the stored curves"
+cat "$TMP/log" "$TMP/agree100" | diag
+"$TMP/imp" --quiet --integrator imex --dt 50us --duration 200ms --out "$TMP/imp50.h5" >"$TMP/log" 2>&1 &&
+  agree "$TMP/imp50.h5" 0.2 0.01 >"$TMP/agree50" 2>&1
+ok $? "and at 50 us as well"
+cat "$TMP/log" "$TMP/agree50" | diag
+$PY - "$TMP/agree100" "$TMP/agree50" >"$TMP/ratio" 2>&1 <<'EOF'
+import re, sys
+e = [max([float(x) for x in re.findall(r"(?:angle|force) ([0-9.e+-]+)", open(p).read())] or [1e9])
+     for p in sys.argv[1:]]
+print(f"largest relative difference at 100 us {e[0]:.3g}, at 50 us {e[1]:.3g}: ratio {e[0] / e[1]:.3g}")
+sys.exit(0 if e[1] < 0.75 * e[0] else 1)
+EOF
+ok $? "halving the step to 50 us shrinks the difference (by at least a quarter)"
+diag <"$TMP/ratio"
 done_testing
