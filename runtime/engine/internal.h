@@ -260,12 +260,14 @@ void sw_implicit_kick(const swModel *m, swData *d, double h);
 void sw_implicit_stiffness(const swModel *m, const swData *d, int r, double *A);
 /* Rod r as a member of the joints' system (joint_ports.c): its unknowns
  * (node, element, node, ...); sw_implicit_solve_many factors this kick's
- * system and solves it for nc right-hand sides in X (row-major, N x nc),
- * column 0 overwritten with h F (0: not factored); sw_implicit_apply sets
- * the rod's loads to those that give the velocity changes du (every
- * stride-th double). */
+ * system and solves it for the right-hand sides in X (row-major, N rows of
+ * ld doubles, ld a multiple of SW_SOLVE_BLOCK, with SW_IMPLICIT_BAND rows
+ * of zeros before and after), column 0 overwritten with h F (0: not
+ * factored); sw_implicit_apply sets the rod's loads to those that give the
+ * velocity changes du (every stride-th double). */
+#define SW_SOLVE_BLOCK 4
 size_t sw_implicit_unknowns(const swModel *m, int r);
-int sw_implicit_solve_many(const swModel *m, swData *d, int r, double h, double *X, int nc);
+int sw_implicit_solve_many(const swModel *m, swData *d, int r, double h, double *X, int ld);
 void sw_implicit_apply(const swModel *m, swData *d, int r, const double *du, size_t stride,
                        double h);
 /* Rigid rods (rigid.c).  sw_rigid_setup fills the rigid_* arrays of the

@@ -64,9 +64,18 @@
  * when a joint turns the element). */
 static int member_ports(const swModel *m, int k) { return m->rigid_block_dof[k]; }
 
+/* The row length of a rod member's right-hand sides: 1 + its ports'
+ * unknowns, rounded up to whole blocks of the solve (rod_implicit.c). */
+static int rhs_row(const swModel *m, int k) {
+  const int B = SW_SOLVE_BLOCK;
+  return (member_ports(m, k) + 1 + B - 1) / B * B;
+}
+
+/* The workspace: X (N rows of rhs_row with SW_IMPLICIT_BAND rows of zeros
+ * before and after), S (p x p), p0 and g (p each). */
 size_t sw_port_member_scratch(const swModel *m, int k) {
   const size_t N = sw_implicit_unknowns(m, m->rigid_block_rod[k]), p = (size_t)member_ports(m, k);
-  return N * (p + 1) + p * p + 2 * p;
+  return (N + 2 * SW_IMPLICIT_BAND) * (size_t)rhs_row(m, k) + p * p + 2 * p;
 }
 
 /* In place: the lower triangle of the n x n SPD matrix C (row-major) turns
@@ -87,19 +96,29 @@ static int small_cholesky(double *C, int n) {
   return 1;
 }
 
-/* L L^T x = b in place, b with nc values per row (row-major, n x nc). */
-static void small_solve(const double *L, int n, double *b, int nc) {
+/* L L^T x = b in place, b with nc values per row, rows ld doubles apart. */
+static void small_solve_ld(const double *L, int n, double *b, int nc, int ld) {
   for (int i = 0; i < n; i++) {
-    for (int k = 0; k < i; k++)
-      for (int c = 0; c < nc; c++) b[i * nc + c] -= L[i * n + k] * b[k * nc + c];
-    for (int c = 0; c < nc; c++) b[i * nc + c] /= L[i * n + i];
+    double *bi = b + (size_t)i * (size_t)ld;
+    for (int k = 0; k < i; k++) {
+      const double l = L[i * n + k], *bk = b + (size_t)k * (size_t)ld;
+      for (int c = 0; c < nc; c++) bi[c] -= l * bk[c];
+    }
+    const double inv = 1.0 / L[i * n + i];
+    for (int c = 0; c < nc; c++) bi[c] *= inv;
   }
   for (int i = n - 1; i >= 0; i--) {
-    for (int k = i + 1; k < n; k++)
-      for (int c = 0; c < nc; c++) b[i * nc + c] -= L[k * n + i] * b[k * nc + c];
-    for (int c = 0; c < nc; c++) b[i * nc + c] /= L[i * n + i];
+    double *bi = b + (size_t)i * (size_t)ld;
+    for (int k = i + 1; k < n; k++) {
+      const double l = L[k * n + i], *bk = b + (size_t)k * (size_t)ld;
+      for (int c = 0; c < nc; c++) bi[c] -= l * bk[c];
+    }
+    const double inv = 1.0 / L[i * n + i];
+    for (int c = 0; c < nc; c++) bi[c] *= inv;
   }
 }
+
+static void small_solve(const double *L, int n, double *b, int nc) { small_solve_ld(L, n, b, nc, nc); }
 
 /* E^T of column c of X (N x nc): the ports' lab velocities, into out[p]. */
 static void ports_of(const swModel *m, const swData *d, int k, const double *X, int nc, int c,
@@ -123,11 +142,12 @@ static void ports_of(const swModel *m, const swData *d, int k, const double *X, 
 
 int sw_port_member_assemble(const swModel *m, swData *d, double h, int k, double *ws, double *A,
                             int n, int off, double *rhs) {
-  const int r = m->rigid_block_rod[k], p = member_ports(m, k), nc = p + 1;
+  const int r = m->rigid_block_rod[k], p = member_ports(m, k), nc = rhs_row(m, k);
   const int na = m->node_adr[r], ea = m->elem_adr[r];
-  const size_t N = sw_implicit_unknowns(m, r);
-  double *X = ws, *S = X + N * (size_t)nc, *p0 = S + (size_t)p * (size_t)p, *C = p0 + p;
-  memset(X, 0, N * (size_t)nc * sizeof(double));
+  const size_t N = sw_implicit_unknowns(m, r), NX = (N + 2 * SW_IMPLICIT_BAND) * (size_t)nc;
+  double *X = ws + SW_IMPLICIT_BAND * (size_t)nc, *S = ws + NX, *p0 = S + (size_t)p * (size_t)p;
+  double *C = p0 + p;
+  memset(ws, 0, NX * sizeof(double));
   for (int q = m->rigid_block_port_adr[k]; q < m->rigid_block_port_adr[k + 1]; q++) { /* E */
     const size_t i = (size_t)(m->rigid_port_node[q] - na);
     const int o = 1 + m->rigid_port_off[q];
@@ -148,14 +168,11 @@ int sw_port_member_assemble(const swModel *m, swData *d, double h, int k, double
   for (int a = 0; a < p; a++) /* symmetric up to round-off */
     for (int c = 0; c < a; c++) S[a * p + c] = S[c * p + a] = 0.5 * (S[a * p + c] + S[c * p + a]);
   if (!small_cholesky(S, p)) return 0;
-  /* S = C^-1, column by column of the identity */
-  double *Ainv = A + (size_t)off * (size_t)n + off; /* the member's diagonal block, zero here */
+  /* S = C^-1: the identity solved for, all its columns at once, in the
+   * member's diagonal block of A (zero here; its row length is n) */
+  double *Ainv = A + (size_t)off * (size_t)n + off;
   for (int a = 0; a < p; a++) Ainv[(size_t)a * (size_t)n + a] = 1;
-  for (int c = 0; c < p; c++) {
-    for (int a = 0; a < p; a++) C[a] = Ainv[(size_t)a * (size_t)n + c];
-    small_solve(S, p, C, 1);
-    for (int a = 0; a < p; a++) Ainv[(size_t)a * (size_t)n + c] = C[a];
-  }
+  small_solve_ld(S, p, Ainv, p, n);
   for (int a = 0; a < p; a++) { /* S kept for the finish; rhs = S p0 */
     double s = 0;
     for (int c = 0; c < p; c++) {
@@ -169,9 +186,10 @@ int sw_port_member_assemble(const swModel *m, swData *d, double h, int k, double
 
 void sw_port_member_finish(const swModel *m, swData *d, double h, int k, double *ws,
                            const double *pu) {
-  const int r = m->rigid_block_rod[k], p = member_ports(m, k), nc = p + 1;
-  const size_t N = sw_implicit_unknowns(m, r);
-  double *X = ws, *S = X + N * (size_t)nc, *p0 = S + (size_t)p * (size_t)p, *g = p0 + p;
+  const int r = m->rigid_block_rod[k], p = member_ports(m, k), nc = rhs_row(m, k);
+  const size_t N = sw_implicit_unknowns(m, r), NX = (N + 2 * SW_IMPLICIT_BAND) * (size_t)nc;
+  double *X = ws + SW_IMPLICIT_BAND * (size_t)nc, *S = ws + NX, *p0 = S + (size_t)p * (size_t)p;
+  double *g = p0 + p;
   for (int a = 0; a < p; a++) { /* g = S (p0 - p) */
     double s = 0;
     for (int c = 0; c < p; c++) s += S[a * p + c] * (p0[c] - pu[c]);

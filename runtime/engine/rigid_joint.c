@@ -375,6 +375,56 @@ static int port_member(const swModel *m, int q) {
   return lo;
 }
 
+/* A leaf's unit (joint_ports.c): the leaf itself, or it and its partner,
+ * whose lower block owns the workspace; the leaf's rows in it (ro), its
+ * port's columns in the coupling (co), the unit's unknowns (du) and ports'
+ * (dQ), and for the elimination the ports' places in the dense block. */
+typedef struct {
+  double *ws;
+  int owner, ro, co, du, dQ, np, qoff[2], qdof[2];
+} Unit;
+
+static int port_dof(const swModel *m, int q) { return m->rigid_port_rot[q] ? 6 : 3; }
+
+static Unit compute_unit(const swModel *m, int k) {
+  const int *off = m->rigid_block_off, *dof = m->rigid_block_dof;
+  const int p = m->rigid_block_partner[k];
+  Unit u;
+  u.owner = p >= 0 && p < k ? p : k;
+  const int mate = u.owner == k ? p : k; /* the owner's partner, or -1 */
+  u.ws = NULL;
+  u.ro = u.owner == k ? 0 : dof[u.owner];
+  u.co = u.owner == k ? 0 : port_dof(m, m->rigid_block_leaf[u.owner]);
+  u.np = mate >= 0 ? 2 : 1;
+  u.du = u.dQ = 0;
+  for (int i = 0; i < u.np; i++) {
+    const int leaf = i ? mate : u.owner, q = m->rigid_block_leaf[leaf];
+    u.qdof[i] = port_dof(m, q);
+    u.qoff[i] = off[port_member(m, q)] + m->rigid_port_off[q];
+    u.du += dof[leaf];
+    u.dQ += u.qdof[i];
+  }
+  return u;
+}
+
+/* Every leaf's unit, once at setup (m->rigid_leaf_unit). */
+static void store_units(swModel *m) {
+  for (int k = 0; k < m->nrigid_block; k++) {
+    if (m->rigid_block_leaf[k] < 0) continue;
+    const Unit u = compute_unit(m, k);
+    int *w = m->rigid_leaf_unit + 10 * (size_t)k;
+    w[0] = u.owner, w[1] = u.ro, w[2] = u.co, w[3] = u.du, w[4] = u.dQ, w[5] = u.np;
+    w[6] = u.qoff[0], w[7] = u.qoff[1], w[8] = u.qdof[0], w[9] = u.qdof[1];
+  }
+}
+
+static Unit leaf_unit(const swModel *m, double *leaf_ws, int k) {
+  const int *w = m->rigid_leaf_unit + 10 * (size_t)k;
+  const Unit u = {leaf_ws + (size_t)m->rigid_block_off[w[0]] * SW_LEAF_WS,
+                  w[0], w[1], w[2], w[3], w[4], w[5], {w[6], w[7]}, {w[8], w[9]}};
+  return u;
+}
+
 /* The filaments solved in the system (hill_ready): m->fil_system, and
  * their end leaves paired (partner, -1) and marked with the filament (lfil,
  * -1), members numbered as setup met them. */
@@ -434,6 +484,7 @@ int sw_rigid_joints_setup(swModel *m) {
   m->rigid_block_leaf = malloc(NB * sizeof(int));
   m->rigid_block_partner = malloc(NB * sizeof(int));
   m->rigid_block_fil = malloc(NB * sizeof(int));
+  m->rigid_leaf_unit = malloc(10 * NB * sizeof(int));
   m->fil_system = calloc((size_t)(m->nfil ? m->nfil : 1), sizeof(int));
   m->rigid_block_port_adr = malloc((NB + 1) * sizeof(int));
   m->rigid_port_node = malloc(2 * J * sizeof(int));
@@ -449,7 +500,7 @@ int sw_rigid_joints_setup(swModel *m) {
   if (!m->joint_implicit || !m->joint_block || !m->joint_port || !m->rod_block || !m->rigid_block ||
       !m->rigid_block_body || !m->rigid_block_node || !m->rigid_block_elem || !m->rigid_block_rot ||
       !m->rigid_block_off || !m->rigid_block_dof || !m->rigid_block_rod || !m->rigid_block_leaf ||
-      !m->rigid_block_partner || !m->rigid_block_fil || !m->fil_system ||
+      !m->rigid_block_partner || !m->rigid_block_fil || !m->fil_system || !m->rigid_leaf_unit ||
       !m->rigid_block_port_adr || !m->rigid_port_node || !m->rigid_port_elem ||
       !m->rigid_port_rot || !m->rigid_port_off || !m->rigid_group_adr ||
       !m->rigid_group_joint_adr || !m->rigid_group_joint || !m->rigid_block_env ||
@@ -531,6 +582,7 @@ int sw_rigid_joints_setup(swModel *m) {
   }
   if (np) number_ports(m, np, pmember, pnode, pelem, prot, first, porder);
   pair_envelope(m);
+  store_units(m);
   free(scratch);
   return 1;
 }
@@ -556,6 +608,7 @@ void sw_rigid_joints_free(swModel *m) {
   free(m->rigid_block_leaf);
   free(m->rigid_block_partner);
   free(m->rigid_block_fil);
+  free(m->rigid_leaf_unit);
   free(m->fil_system);
   free(m->rigid_block_port_adr);
   free(m->rigid_port_node);
@@ -784,46 +837,12 @@ static SideSlot side_slot(const swModel *m, int j, int side, int first) {
   return t;
 }
 
-/* A leaf's unit (joint_ports.c): the leaf itself, or it and its partner,
- * whose lower block owns the workspace; the leaf's rows in it (ro), its
- * port's columns in the coupling (co), the unit's unknowns (du) and ports'
- * (dQ), and for the elimination the ports' places in the dense block. */
-typedef struct {
-  double *ws;
-  int owner, ro, co, du, dQ, np, qoff[2], qdof[2];
-} Unit;
-
-static int port_dof(const swModel *m, int q) { return m->rigid_port_rot[q] ? 6 : 3; }
-
-static Unit leaf_unit(const swModel *m, int first, double *leaf_ws, int k) {
-  const int *off = m->rigid_block_off, *dof = m->rigid_block_dof;
-  const int p = m->rigid_block_partner[k];
-  Unit u;
-  u.owner = p >= 0 && p < k ? p : k;
-  const int mate = u.owner == k ? p : k; /* the owner's partner, or -1 */
-  u.ws = leaf_ws + (size_t)off[u.owner] * SW_LEAF_WS;
-  u.ro = u.owner == k ? 0 : dof[u.owner];
-  u.co = u.owner == k ? 0 : port_dof(m, m->rigid_block_leaf[u.owner]);
-  u.np = mate >= 0 ? 2 : 1;
-  u.du = u.dQ = 0;
-  for (int i = 0; i < u.np; i++) {
-    const int leaf = i ? mate : u.owner, q = m->rigid_block_leaf[leaf];
-    u.qdof[i] = port_dof(m, q);
-    u.qoff[i] = off[port_member(m, q)] + m->rigid_port_off[q];
-    u.du += dof[leaf];
-    u.dQ += u.qdof[i];
-  }
-  (void)first;
-  return u;
-}
-
 /* The dashpot of a filament in the system (muscle.c, system_part) between
  * its end leaves: h c' b b^T on the unit's rows of each end's node. */
-static void unit_dashpot(const swModel *m, const swData *d, double h, int first, double *leaf_ws,
-                         int k) {
+static void unit_dashpot(const swModel *m, const swData *d, double h, double *leaf_ws, int k) {
   const int f = m->rigid_block_fil[k];
   if (f < 0) return;
-  const Unit u = leaf_unit(m, first, leaf_ws, k);
+  const Unit u = leaf_unit(m, leaf_ws, k);
   const double *sys = d->fil_sys + 8 * (size_t)f, w = h * sys[1];
   double b[12] = {0};
   const int ends[2] = {u.owner, m->rigid_block_partner[u.owner]};
@@ -862,7 +881,7 @@ static int group_kick(const swModel *m, swData *d, double h, int g, double *A, d
     double M, Il[9], F[6];
     member_inertia(m, d, k, load, &M, Il, F);
     const int leaf = m->rigid_block_leaf[k] >= 0;
-    const Unit u = leaf ? leaf_unit(m, first, leaf_ws, k) : (Unit){0};
+    const Unit u = leaf ? leaf_unit(m, leaf_ws, k) : (Unit){0};
     double *B = leaf ? u.ws : A; /* a leaf's unit: A_uu, C, X, b */
     const size_t ld = leaf ? (size_t)u.du : (size_t)n, o = leaf ? (size_t)u.ro : (size_t)off[s];
     double *b = leaf ? B + 432 + o : rhs + o;
@@ -918,7 +937,7 @@ static int group_kick(const swModel *m, swData *d, double h, int g, double *A, d
         if (ss->block < 0 || st->block < 0) continue;
         const double sign = s == t ? 1.0 : -1.0; /* rates are side b minus side a */
         if (ss->leaf >= 0) { /* a leaf's own block (t = s) or its coupling to the port */
-          const Unit u = leaf_unit(m, first, leaf_ws, first + ss->block);
+          const Unit u = leaf_unit(m, leaf_ws, first + ss->block);
           if (s == t) add_pair(u.ws, u.du, u.ro, ss->dof, u.ro, ss->dof, wpos, wrot, wlim, Jp[s], Jp[t], PtP, ggT);
           else add_pair(u.ws + 144, u.dQ, u.ro, ss->dof, u.co, st->dof, -wpos, -wrot, -wlim, Jp[s], Jp[t], PtP, ggT);
           continue;
@@ -929,9 +948,9 @@ static int group_kick(const swModel *m, swData *d, double h, int g, double *A, d
       }
   }
   for (int s = nd; s < nb; s++) { /* the leaves' units eliminated into their ports */
-    const Unit u = leaf_unit(m, first, leaf_ws, first + s);
+    const Unit u = leaf_unit(m, leaf_ws, first + s);
     if (u.owner != first + s) continue;
-    unit_dashpot(m, d, h, first, leaf_ws, first + s);
+    unit_dashpot(m, d, h, leaf_ws, first + s);
     if (!sw_leaf_condense(u.ws, u.du, u.dQ, u.np, u.qoff, u.qdof, A, n, rhs)) return 0;
   }
   if (!cholesky_solve(A, n, rhs, rhs + n, m->rigid_block_env + first, m->rigid_block_reach + first,
@@ -946,7 +965,7 @@ static int group_kick(const swModel *m, swData *d, double h, int g, double *A, d
     }
     const double *du = rhs + off[s];
     if (m->rigid_block_leaf[k] >= 0) { /* a unit's velocities, once, by its owner */
-      const Unit u = leaf_unit(m, first, leaf_ws, k);
+      const Unit u = leaf_unit(m, leaf_ws, k);
       if (u.owner == k) sw_leaf_recover(u.ws, u.du, u.dQ, u.np, u.qoff, u.qdof, rhs);
       du = u.ws + 432 + u.ro;
     }
@@ -971,7 +990,7 @@ static int group_kick(const swModel *m, swData *d, double h, int g, double *A, d
   }
   for (int s = nd; s < nb; s++) { /* the filaments in the system: their tension */
     const int k = first + s, f = m->rigid_block_fil[k];
-    const Unit u = leaf_unit(m, first, leaf_ws, k);
+    const Unit u = leaf_unit(m, leaf_ws, k);
     if (f < 0 || u.owner != k) continue;
     const double *dv[2] = {NULL, NULL}; /* start, end: NULL when clamped */
     const int ends[2] = {k, m->rigid_block_partner[k]};

@@ -171,32 +171,50 @@ static void band_ldlt_solve(const double *restrict A, size_t N, double *restrict
   }
 }
 
-/* The same solves for nc right-hand sides at once, X row-major (row i's nc
- * values contiguous, so each step of the sums is one vector operation over
- * the right-hand sides: the ports of rod_ports.c).  Plain loops with the
- * band cut at the ends: no padding around X. */
-static void band_ldlt_solve_many(const double *restrict A, size_t N, double *restrict X, size_t nc,
+/* The same solves for several right-hand sides at once: X row-major with
+ * ld doubles per row (a multiple of SW_SOLVE_BLOCK; row i's right-hand
+ * sides contiguous, so each step of the sums is one vector operation
+ * across them: the ports of joint_ports.c), BAND rows of zeros before row 0
+ * and after row N - 1 as in the band, so every row runs the same BAND
+ * places.  Each row's sum goes into two accumulators, even and odd places,
+ * which halves the chain of dependent multiply-adds from one row to the
+ * next (the solve is bound by it, not by the arithmetic). */
+static void band_ldlt_solve_many(const double *restrict A, size_t N, double *restrict X, size_t ld,
                                  const double *restrict inv) {
-  const size_t W = BAND + 1;
+  const size_t W = BAND + 1, CB = SW_SOLVE_BLOCK;
   for (size_t i = 0; i < N; i++) { /* L Y = X */
     const double *restrict Ri = A + i * W;
-    double *restrict Xi = X + i * nc;
-    for (size_t j = i > BAND ? i - BAND : 0; j < i; j++) {
-      const double l = Ri[BAND - (i - j)];
-      const double *restrict Xj = X + j * nc;
-#pragma omp simd
-      for (size_t c = 0; c < nc; c++) Xi[c] -= l * Xj[c];
+    for (size_t cb = 0; cb < ld; cb += CB) {
+      double *restrict Xi = X + i * ld + cb;
+      double a0[SW_SOLVE_BLOCK], a1[SW_SOLVE_BLOCK];
+#pragma GCC unroll 8
+      for (size_t c = 0; c < CB; c++) a0[c] = Xi[c], a1[c] = 0;
+#pragma GCC unroll 8
+      for (size_t t = 0; t < BAND; t += 2) {
+        const double *restrict X0 = X + (i - BAND + t) * ld + cb, *restrict X1 = X0 + ld;
+        const double l0 = Ri[t], l1 = Ri[t + 1];
+#pragma GCC unroll 8
+        for (size_t c = 0; c < CB; c++) a0[c] -= l0 * X0[c], a1[c] -= l1 * X1[c];
+      }
+#pragma GCC unroll 8
+      for (size_t c = 0; c < CB; c++) Xi[c] = a0[c] + a1[c];
     }
   }
   for (size_t i = N; i-- > 0;) { /* L^T X = D^-1 Y */
-    double *restrict Xi = X + i * nc;
-#pragma omp simd
-    for (size_t c = 0; c < nc; c++) Xi[c] *= inv[i];
-    for (size_t k = i + 1; k <= i + BAND && k < N; k++) {
-      const double l = A[k * W + BAND - (k - i)];
-      const double *restrict Xk = X + k * nc;
-#pragma omp simd
-      for (size_t c = 0; c < nc; c++) Xi[c] -= l * Xk[c];
+    for (size_t cb = 0; cb < ld; cb += CB) {
+      double *restrict Xi = X + i * ld + cb;
+      double a0[SW_SOLVE_BLOCK], a1[SW_SOLVE_BLOCK];
+#pragma GCC unroll 8
+      for (size_t c = 0; c < CB; c++) a0[c] = Xi[c] * inv[i], a1[c] = 0;
+#pragma GCC unroll 8
+      for (size_t t = 1; t <= BAND; t += 2) {
+        const double *restrict X0 = X + (i + t) * ld + cb, *restrict X1 = X0 + ld;
+        const double l0 = A[(i + t) * W + BAND - t], l1 = A[(i + t + 1) * W + BAND - t - 1];
+#pragma GCC unroll 8
+        for (size_t c = 0; c < CB; c++) a0[c] -= l0 * X0[c], a1[c] -= l1 * X1[c];
+      }
+#pragma GCC unroll 8
+      for (size_t c = 0; c < CB; c++) Xi[c] = a0[c] + a1[c];
     }
   }
 }
@@ -244,6 +262,31 @@ static void shear_block(const swModel *m, const swData *d, int law, int e, doubl
       *at(A, o + 3 + p, o + q) -= C[3 * q + p];
       *at(A, o + 6 + p, o + q) -= P[3 * p + q];
       *at(A, o + 6 + p, o + 3 + q) += C[3 * p + q];
+    }
+  /* The tension's turn with the element (the header's geometric terms), in
+   * tension only: with n = S sigma the internal force and a = l^ t the
+   * element (both material), a turn b of the frame turns the force on the
+   * nodes, F_i = Q^T n (+b x), and the couple a x n by its lever, so
+   *   K(v_i, w) = Q^T [n]x,  K(v_{i+1}, w) = -Q^T [n]x,
+   *   K(w, w) += sym([n]x [a]x) = (a n^T + n a^T)/2 - (a . n) I.
+   * Without them a taut rod's string waves, w = 2 c / l with c^2 = T / mu,
+   * stay explicit: 230 us on the arm's distal tendons at 50 N. */
+  const double tt = t[0] * t[0] + t[1] * t[1] + t[2] * t[2];
+  const double nt = S[0] * t[0] * t[0] + S[1] * t[1] * t[1] + S[2] * (t[2] - 1.0) * t[2];
+  if (!(nt > 0)) return; /* compression softens: left out, as stability.c leaves it */
+  const double n[3] = {nt / tt * t[0], nt / tt * t[1], nt / tt * t[2]}; /* its tension part */
+  const double a[3] = {l * t[0], l * t[1], l * t[2]};
+  const double an = a[0] * n[0] + a[1] * n[1] + a[2] * n[2];
+  const double NX[9] = {0, -n[2], n[1], n[2], 0, -n[0], -n[1], n[0], 0};
+  for (size_t p = 0; p < 3; p++)
+    for (size_t q = 0; q < 3; q++) {
+      double qn = 0; /* (Q^T [n]x)(p, q) */
+      for (int c = 0; c < 3; c++) qn += Q[3 * c + p] * NX[3 * c + q];
+      *at(A, o + 6 + p, o + 3 + q) -= qn;
+      double nq = 0; /* (Q^T [n]x)(q, p): K(w, v_i) = K(v_i, w)^T */
+      for (int c = 0; c < 3; c++) nq += Q[3 * c + q] * NX[3 * c + p];
+      *at(A, o + 3 + p, o + q) += nq;
+      if (q <= p) *at(A, o + 3 + p, o + 3 + q) += 0.5 * (a[p] * n[q] + n[p] * a[q]) - (p == q ? an : 0.0);
     }
 }
 
@@ -415,12 +458,12 @@ static double *rod_workspace(const swModel *m, swData *d, int r) {
   return NULL;
 }
 
-int sw_implicit_solve_many(const swModel *m, swData *d, int r, double h, double *X, int nc) {
+int sw_implicit_solve_many(const swModel *m, swData *d, int r, double h, double *X, int ld) {
   double *ws = rod_workspace(m, d, r), *rhs, *inv;
   if (!ws || !rod_factor(m, d, r, ws, h, &rhs, &inv)) return 0;
   const size_t N = unknowns(m->rod_nelem[r]), PB = BAND * (BAND + 1);
-  for (size_t i = 0; i < N; i++) X[i * (size_t)nc] = rhs[i];
-  band_ldlt_solve_many(ws + PB, N, X, (size_t)nc, inv);
+  for (size_t i = 0; i < N; i++) X[i * (size_t)ld] = rhs[i];
+  band_ldlt_solve_many(ws + PB, N, X, (size_t)ld, inv);
   return 1;
 }
 

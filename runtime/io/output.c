@@ -14,8 +14,8 @@
  * and frame interval, reads its checkpoint into the state and cuts every
  * dataset back to the checkpoint's frames.  sw_output_frame() walks the
  * opened datasets, fills a scratch frame allocated at open time, appends it
- * and flushes the file, so a run that dies later still leaves a readable
- * file of every frame written so far.  The root's `status` reads
+ * and flushes the file every FLUSH_EVERY s of wall time, so a run that dies
+ * later still leaves a readable file of the frames written up to then.  The root's `status` reads
  * "incomplete" until sw_output_close() replaces it with the caller's
  * verdict.  Beside the
  * file, RUN.xdmf describes the rods' frames for ParaView (xdmf.c); it is
@@ -426,6 +426,17 @@ swOutput *sw_output_resume(const char *path, const swModel *m, const swOutputOpt
 
 /* ---- frames ---- */
 
+/* Seconds of wall time between two flushes of the frames (sw_output_frame). */
+#define FLUSH_EVERY 0.05
+
+static int flush_frames(swOutput *o, long frames) {
+  if (H5Fflush(o->file, H5F_SCOPE_LOCAL) < 0)
+    return sw_out_fail(NULL, 0, "%s: cannot flush the file after frame %ld", o->path, frames - 1);
+  o->flushed_at = wall_now();
+  o->flushed_frames = frames;
+  return SW_OK;
+}
+
 int sw_output_frame(swOutput *o, const swModel *m, swData *d) {
   if (!o || !m || !d) return sw_out_fail(NULL, 0, "output: no file, model or state");
   if (m->nrod != o->nrod)
@@ -437,9 +448,17 @@ int sw_output_frame(swOutput *o, const swModel *m, swData *d) {
     int rc = sw_out_append_frame(o, ds, o->frame);
     if (rc != SW_OK) return rc;
   }
-  /* Metadata on disk after every frame: a run that dies leaves a valid file. */
-  if (H5Fflush(o->file, H5F_SCOPE_LOCAL) < 0)
-    return sw_out_fail(NULL, 0, "%s: cannot flush the file after frame %ld", o->path, o->frames);
+  /* Metadata on disk after the first frame and then at most every
+   * FLUSH_EVERY s of wall time: a run killed outright leaves a valid file
+   * of all but its last moment's frames (every failure the run handles,
+   * an interrupt included, closes the file, which flushes it all).  At a
+   * flush per frame, a scene of many rods written every millisecond spent
+   * a third of its run in the flushes (the arm of 43 rods: 0.4 s of 1.45). */
+  const double now = wall_now();
+  if (o->frames == 0 || now - o->flushed_at >= FLUSH_EVERY) {
+    int rc = flush_frames(o, o->frames + 1);
+    if (rc != SW_OK) return rc;
+  }
   if (o->xdmf_path) {
     if (o->frames == o->frame_time_cap) {
       long cap = 2 * o->frame_time_cap;
@@ -453,8 +472,13 @@ int sw_output_frame(swOutput *o, const swModel *m, swData *d) {
   o->frames++;
   /* the description follows the flushed file: at the first frame, then
    * every xdmf_wait seconds, and at close */
-  if (o->xdmf_path && (o->xdmf_frames == 0 || wall_now() - o->xdmf_written >= o->xdmf_wait))
+  if (o->xdmf_path && (o->xdmf_frames == 0 || now - o->xdmf_written >= o->xdmf_wait)) {
+    if (o->flushed_frames < o->frames) { /* it lists only flushed frames */
+      int rc = flush_frames(o, o->frames);
+      if (rc != SW_OK) return rc;
+    }
     return xdmf_update(o);
+  }
   return SW_OK;
 }
 

@@ -76,6 +76,8 @@ struct swOutput {
   long xdmf_frames;                      /* frames it listed when last written */
   double xdmf_written;                   /* wall clock of its last write, s  */
   double xdmf_wait;                      /* s until the next may be written  */
+  double flushed_at;                     /* wall clock of the last flush, s  */
+  long flushed_frames;                   /* frames on disk at that flush     */
 };
 
 /* Where an attribute goes (output_attrs.c's helpers write to it). */
