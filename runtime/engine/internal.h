@@ -227,6 +227,18 @@ void sw_muscle_advance(const swModel *m, swData *d, double t, double h);
 void sw_muscle_loads(const swModel *m, swData *d);
 double sw_muscle_tension(const swModel *m, int f, double eta, double edot, double a);
 double sw_stable_dt_filament(const swModel *m, int f);
+/* The Hill damping under imex (muscle_implicit.c): the law's slope
+ * dT/d(edot); filament f's tension over a kick h from its tension T0
+ * without it; and for a filament in the joints' system (m->fil_system) the
+ * part without its ends, then, after the system's solve, its tension from
+ * the ends' velocity changes (NULL: clamped). */
+double sw_muscle_tension_slope(const swModel *m, int f, double eta, double edot, double a);
+double sw_muscle_implicit_tension(const swModel *m, const swData *d, int f, double T0, double eta,
+                                  double edot, double h);
+double sw_muscle_system_part(const swModel *m, swData *d, int f, double T0, double eta, double edot,
+                             double h);
+void sw_muscle_system_tension(const swModel *m, swData *d, int f, const double *dv_start,
+                              const double *dv_end);
 /* Via points (muscle_via.c, for muscle.c): the checks of a description's
  * via points; the rest length of its path; the filament laid along it (x:
  * (n+1)*3 nodes, Q: n*9 frames, d1 from `normal`; 0 if the elements do not

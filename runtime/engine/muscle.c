@@ -42,24 +42,7 @@
  * The muscle's forces are active: they enter ext_force as well, so the kick
  * books their work as work done on the rods (energy diagnostic).
  *
- * Implicit Hill damping (SW_IMEX).  The slope c = dT/d(dl/dt) of the law is
- * a dashpot across the whole filament, stiff at the small end masses of a
- * filament (it limits the elbow's explicit step to 1.34 us), and it is rank
- * one: dl/dt = b . v with b_i = t_{i-1} - t_i at node i, and the pull is
- * -T b.  So the kick of length h can take the tension at the velocities it
- * produces, linearised about the old ones (Rosenbrock-Euler, the linearly
- * implicit Euler method: Hairer & Wanner, Solving ODEs II, sec. IV.7):
- *   T* = T0 + c b . dv,   dv = h M^-1 (F - T* b)
- *   =>  T* = (T0 + c h p) / (1 + c h s),  p = b . M^-1 F,  s = b . M^-1 b,
- * F the filament nodes' other loads, summed before the pull.  This is
- * Sherman-Morrison on (M + h c b b^T) solved for the one unknown that
- * matters, so it costs two sums over the filament's nodes.  The damper's
- * amplification is 1 / (1 + c h s): L-stable, so the step no longer sees the
- * damping (sw_stable_dt_filament), and at c h s << 1 it is the explicit
- * tension to O(h).  T* is floored at 0 (the law never pushes).  A clamped
- * end node counts as an infinite mass (dv = 0); filaments with a prescribed
- * end velocity, with analytic damping, or rigid stay explicit (their kick is
- * not dv = h M^-1 F).
+ * Implicit Hill damping (SW_IMEX): muscle_implicit.c.
  */
 #include <math.h>
 #include <stdio.h>
@@ -193,15 +176,12 @@ static double muscle_stretch(const swModel *m, const swData *d, int mu) {
   return s / w;
 }
 
-static void system_tension(const swModel *m, swData *d, int f, const double *dv_start,
-                           const double *dv_end);
-
 static const swMuscleOps muscle_ops = {sw_muscle_check,  sw_muscle_setup,     sw_muscle_free,
                                        sw_muscle_spec_free, sw_muscle_reset, sw_muscle_advance,
                                        sw_muscle_loads,  muscle_rates,        muscle_tensions,
                                        muscle_pull,      sw_stable_dt_filament,
                                        muscle_force,     muscle_stretch,      muscle_rings,
-                                       system_tension};
+                                       sw_muscle_system_tension};
 
 int sw_spec_add_muscle(swSpec *s, const swMuscleDesc *md) {
   *sw_spec_muscle_ops(s) = &muscle_ops;
@@ -551,17 +531,6 @@ double sw_muscle_tension(const swModel *m, int f, double eta, double edot, doubl
   return Fqs * g;
 }
 
-/* dT/d(edot) of sw_muscle_tension (1/s -> N s): F_qs g'(u) du/d(edot), with
- * u = -edot, so -F_qs g'(u); 0 beyond u0, constant when lengthening. */
-static double tension_slope(const swModel *m, int f, double eta, double edot, double a) {
-  const double Fmax = m->fil_fmax[f];
-  const double Fqs = a * sw_muscle_f_act(eta) * Fmax + Fmax * sw_muscle_f_pass(eta);
-  const double k = m->fil_hill_a[f], u0 = m->fil_v_max[f], u = -edot;
-  if (u >= u0) return 0;
-  if (u >= 0) return Fqs * (1.0 + k) * k * u0 / ((u + k * u0) * (u + k * u0));
-  return Fqs * (1.0 + k) / (k * u0);
-}
-
 /* The filaments' pull, in three parts, each over a thread's own slots
  * (internal.h, sw_owned_slots):
  *   1. every filament element e: q_e = t_e . (v_{e+1} - v_e), one vector loop
@@ -591,109 +560,6 @@ static void filament_rates(const swModel *m, swData *d, int lo, int hi) {
   }
 }
 
-/* The implicit tension of filament f over a kick h (the header):
- * (T0 + c h p) / (1 + c h s), c = dT/d(dl/dt), floored at 0. */
-static double implicit_tension(const swModel *m, const swData *d, int f, double T0, double eta,
-                               double edot, double h) {
-  const int r = m->fil_rod[f], lo = m->elem_adr[r], n = m->rod_nelem[r], bits = m->fil_implicit[f];
-  const double c = tension_slope(m, f, eta, edot, d->fil_activation[f]) / m->fil_l0[f];
-  if (!(c > 0)) return T0;
-  double p = 0, s = 0, t_before[3] = {0, 0, 0};
-  for (int i = 0; i <= n; i++) { /* node lo + i: b_i = t_{i-1} - t_i */
-    double t[3] = {0, 0, 0}, b[3], F[3];
-    if (i < n) {
-      sw_get3(m, d->x, lo + i + 1, t);
-      double xi[3];
-      sw_get3(m, d->x, lo + i, xi);
-      sw_v3_sub(t, t, xi);
-      sw_v3_scale(t, t, 1.0 / d->length[lo + i]);
-    }
-    sw_v3_sub(b, t_before, t);
-    sw_get3(m, d->force, lo + i, F);
-    const int held = (i == 0 && (bits & SW_FIL_HELD_START)) || (i == n && (bits & SW_FIL_HELD_END));
-    const double im = held ? 0.0 : m->inv_mass[lo + i];
-    p += im * sw_v3_dot(b, F);
-    s += im * sw_v3_dot(b, b);
-    memcpy(t_before, t, sizeof t);
-  }
-  const double T = (T0 + c * h * p) / (1.0 + c * h * s);
-  return T > 0 ? T : 0;
-}
-
-/* A filament whose ends are leaves of the joints' system (joint_ports.c,
- * m->fil_system): the same solve with its two end nodes left out of p and
- * s, since their velocity changes come from that system, which takes the
- * rest of the tension, c' (b_ends . dv_ends), as a dashpot of its own:
- *   T = T_int + c' b_e . dv_e,  T_int = (T0 + c h p_int) / (1 + c h s_int),
- *   c' = c / (1 + c h s_int),
- * the elimination of the interior nodes' dv = h M^-1 (F - T b) from the
- * Rosenbrock-Euler equations above.  Stores T_int, c' and the ends' b in
- * d->fil_sys and returns T_int, pulled on every node until the system's
- * solve gives T (system_tension). */
-static double system_part(const swModel *m, swData *d, int f, double T0, double eta, double edot,
-                          double h) {
-  const int r = m->fil_rod[f], lo = m->elem_adr[r], n = m->rod_nelem[r];
-  double c = h > 0 ? tension_slope(m, f, eta, edot, d->fil_activation[f]) / m->fil_l0[f] : 0;
-  if (!(c > 0)) c = 0;
-  double p = 0, s = 0, t_before[3] = {0, 0, 0}, *sys = d->fil_sys + 8 * (size_t)f;
-  for (int i = 0; i <= n; i++) { /* node lo + i: b_i = t_{i-1} - t_i */
-    double t[3] = {0, 0, 0}, b[3], F[3];
-    if (i < n) {
-      sw_get3(m, d->x, lo + i + 1, t);
-      double xi[3];
-      sw_get3(m, d->x, lo + i, xi);
-      sw_v3_sub(t, t, xi);
-      sw_v3_scale(t, t, 1.0 / d->length[lo + i]);
-    }
-    sw_v3_sub(b, t_before, t);
-    memcpy(t_before, t, sizeof t);
-    if (i == 0 || i == n) { /* the ends: the system's */
-      memcpy(sys + (i ? 5 : 2), b, sizeof b);
-      continue;
-    }
-    sw_get3(m, d->force, lo + i, F);
-    p += m->inv_mass[lo + i] * sw_v3_dot(b, F);
-    s += m->inv_mass[lo + i] * sw_v3_dot(b, b);
-  }
-  sys[0] = (T0 + c * h * p) / (1.0 + c * h * s);
-  sys[1] = c / (1.0 + c * h * s);
-  return sys[0];
-}
-
-/* The filament's tension once its ends' dv are known (the header of
- * system_part), floored at 0 as the law is, and the pull on its interior
- * nodes made that of T rather than T_int: node i gets -(T - T_int) b_i. */
-static void system_tension(const swModel *m, swData *d, int f, const double *dv_start,
-                           const double *dv_end) {
-  const double *sys = d->fil_sys + 8 * (size_t)f;
-  double T = sys[0];
-  if (dv_start) T += sys[1] * sw_v3_dot(sys + 2, dv_start);
-  if (dv_end) T += sys[1] * sw_v3_dot(sys + 5, dv_end);
-  if (!(T > 0)) T = 0;
-  const double dT = T - sys[0];
-  d->fil_tension[f] = T;
-  const int r = m->fil_rod[f], lo = m->elem_adr[r], n = m->rod_nelem[r];
-  double t_before[3];
-  sw_get3(m, d->x, lo + 1, t_before);
-  double x0[3];
-  sw_get3(m, d->x, lo, x0);
-  sw_v3_sub(t_before, t_before, x0);
-  sw_v3_scale(t_before, t_before, 1.0 / d->length[lo]);
-  for (int i = 1; i < n; i++) {
-    double t[3], xi[3];
-    sw_get3(m, d->x, lo + i + 1, t);
-    sw_get3(m, d->x, lo + i, xi);
-    sw_v3_sub(t, t, xi);
-    sw_v3_scale(t, t, 1.0 / d->length[lo + i]);
-    for (int k = 0; k < 3; k++) { /* -dT b_i = dT (t_i - t_{i-1}) */
-      const double dF = dT * (t[k] - t_before[k]);
-      SW_AT(m, d->force, lo + i, k) += dF;
-      SW_AT(m, d->ext_force, lo + i, k) += dF;
-    }
-    memcpy(t_before, t, sizeof t);
-  }
-}
-
 static void filament_tension(const swModel *m, swData *d, int f, double u, double h) {
   const int r = m->fil_rod[f], lo = m->elem_adr[r], hi = lo + m->rod_nelem[r];
   const double *len = d->length, *q = d->scratch_phi;
@@ -707,8 +573,8 @@ static void filament_tension(const swModel *m, swData *d, int f, double u, doubl
   const double inv_l0 = 1.0 / m->fil_l0[f];
   const double eta = l * inv_l0, edot = ldot * inv_l0;
   double T = sw_muscle_tension(m, f, eta, edot, d->fil_activation[f]);
-  if (m->fil_system && m->fil_system[f]) T = system_part(m, d, f, T, eta, edot, h);
-  else if (h > 0 && m->fil_implicit[f]) T = implicit_tension(m, d, f, T, eta, edot, h);
+  if (m->fil_system && m->fil_system[f]) T = sw_muscle_system_part(m, d, f, T, eta, edot, h);
+  else if (h > 0 && m->fil_implicit[f]) T = sw_muscle_implicit_tension(m, d, f, T, eta, edot, h);
   d->fil_stretch[f] = eta;
   d->fil_rate[f] = edot;
   d->fil_tension[f] = T;
