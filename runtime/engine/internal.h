@@ -277,7 +277,7 @@ void sw_implicit_stiffness(const swModel *m, const swData *d, int r, double *A);
  * of zeros before and after), column 0 overwritten with h F (0: not
  * factored); sw_implicit_apply sets the rod's loads to those that give the
  * velocity changes du (every stride-th double). */
-#define SW_SOLVE_BLOCK 4
+#define SW_SOLVE_BLOCK 8
 size_t sw_implicit_unknowns(const swModel *m, int r);
 int sw_implicit_solve_many(const swModel *m, swData *d, int r, double h, double *X, int ld);
 void sw_implicit_apply(const swModel *m, swData *d, int r, const double *du, size_t stride,

@@ -80,7 +80,7 @@ size_t sw_port_member_scratch(const swModel *m, int k) {
 
 /* In place: the lower triangle of the n x n SPD matrix C (row-major) turns
  * into its Cholesky factor L.  Returns 0 if C is not positive definite. */
-static int small_cholesky(double *C, int n) {
+static inline __attribute__((always_inline)) int small_cholesky(double *C, int n) {
   for (int j = 0; j < n; j++) {
     double djj = C[j * n + j];
     for (int k = 0; k < j; k++) djj -= C[j * n + k] * C[j * n + k];
@@ -97,7 +97,8 @@ static int small_cholesky(double *C, int n) {
 }
 
 /* L L^T x = b in place, b with nc values per row, rows ld doubles apart. */
-static void small_solve_ld(const double *L, int n, double *b, int nc, int ld) {
+static inline __attribute__((always_inline)) void small_solve_ld(const double *L, int n, double *b,
+                                                                 int nc, int ld) {
   for (int i = 0; i < n; i++) {
     double *bi = b + (size_t)i * (size_t)ld;
     for (int k = 0; k < i; k++) {
@@ -118,7 +119,10 @@ static void small_solve_ld(const double *L, int n, double *b, int nc, int ld) {
   }
 }
 
-static void small_solve(const double *L, int n, double *b, int nc) { small_solve_ld(L, n, b, nc, nc); }
+static inline __attribute__((always_inline)) void small_solve(const double *L, int n, double *b,
+                                                              int nc) {
+  small_solve_ld(L, n, b, nc, nc);
+}
 
 /* E^T of column c of X (N x nc): the ports' lab velocities, into out[p]. */
 static void ports_of(const swModel *m, const swData *d, int k, const double *X, int nc, int c,
@@ -207,8 +211,9 @@ void sw_port_member_finish(const swModel *m, swData *d, double h, int k, double 
  * coupling C (du x dQ) to its np ports at 144 (the ports' columns one after
  * another, qdof[p] each), X = A_uu^-1 C at 288, b at 432; qoff[p] is port
  * p's first unknown in the group's dense block A (n x n). */
-int sw_leaf_condense(double *ws, int du, int dQ, int np, const int *qoff, const int *qdof, double *A,
-                     int n, double *rhs) {
+static inline __attribute__((always_inline)) int
+condense(double *ws, int du, int dQ, int np, const int *qoff, const int *qdof, double *A, int n,
+         double *rhs) {
   double *Auu = ws, *C = ws + 144, *X = ws + 288, *b = ws + 432;
   if (!small_cholesky(Auu, du)) return 0;
   memcpy(X, C, (size_t)(du * dQ) * sizeof(double));
@@ -228,6 +233,17 @@ int sw_leaf_condense(double *ws, int du, int dQ, int np, const int *qoff, const 
       rhs[qoff[p1] + i] -= s;
     }
   return 1;
+}
+
+/* The common units at sizes the compiler knows, so their small loops are
+ * unrolled: a filament's two ends on two spherical ports (6 and 6), one end
+ * (3 and 3); any other the general loops. */
+int sw_leaf_condense(double *ws, int du, int dQ, int np, const int *qoff, const int *qdof, double *A,
+                     int n, double *rhs) {
+  static const int three[2] = {3, 3};
+  if (du == 6 && dQ == 6 && np == 2 && qdof[0] == 3) return condense(ws, 6, 6, 2, qoff, three, A, n, rhs);
+  if (du == 3 && dQ == 3 && np == 1) return condense(ws, 3, 3, 1, qoff, three, A, n, rhs);
+  return condense(ws, du, dQ, np, qoff, qdof, A, n, rhs);
 }
 
 void sw_leaf_recover(double *ws, int du, int dQ, int np, const int *qoff, const int *qdof,

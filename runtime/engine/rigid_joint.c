@@ -274,7 +274,8 @@ static void element_inertia(const swModel *m, const swData *d, int e, double *Il
 
 /* Member k's mass, lab inertia and loads (F, tau) in lab components: a
  * body's from load[], an attachment's from its node's force and its
- * element's torque (material components, turned to the lab). */
+ * element's torque (material components, turned to the lab; neither, nor
+ * the inertia, for an attachment of three unknowns). */
 static void member_inertia(const swModel *m, const swData *d, int k, const double *load,
                            double *mass, double *Il, double *F) {
   const int b = m->rigid_block_body[k];
@@ -285,10 +286,11 @@ static void member_inertia(const swModel *m, const swData *d, int k, const doubl
     return;
   }
   const int i = m->rigid_block_node[k], e = m->rigid_block_elem[k];
-  double Q[9], t[3];
   *mass = m->mass[i];
-  element_inertia(m, d, e, Il);
   sw_get3(m, d->force, i, F);
+  if (m->rigid_block_dof[k] < 6) return; /* its node alone: no rotation */
+  double Q[9], t[3];
+  element_inertia(m, d, e, Il);
   sw_getQ(m, d->Q, e, Q);
   sw_get3(m, d->torque, e, t);
   sw_matT_vec(F + 3, Q, t);

@@ -52,6 +52,8 @@ typedef struct {
   int rank;                              /* 1 + field rank                   */
   hsize_t dims[1 + MAX_FRAME_RANK];      /* dims[0] = frames written         */
   size_t frame_len;                      /* doubles per frame                */
+  double *pending;                       /* frames not yet written, batch of
+                                            frame_len each (in o->pending)   */
   char *path;                            /* "/rods/arm/position"             */
 } swDataset;
 
@@ -59,10 +61,12 @@ struct swOutput {
   hid_t file;
   char *path;                            /* file name, for messages          */
   int nrod;
-  long frames;
+  long frames;                           /* frames taken                     */
+  long written;                          /* of them, in the datasets         */
+  int npending, batch;                   /* frames waiting; at most batch    */
   int ndset;
   swDataset *dset;
-  double *frame;                         /* scratch, the largest frame       */
+  double *pending;                       /* every dataset's waiting frames   */
   swCheckpoint *checkpoint;              /* the last scheduled frame's state */
   const swModel *model;                  /* the model it was taken of        */
   double checkpoint_written;             /* wall clock of its last write, s  */
@@ -133,5 +137,5 @@ size_t sw_out_count_datasets(const swModel *m);
 int sw_out_create_datasets(swOutput *o, const swModel *m, const swOutputOptions *opt,
                            long reopen_frames, size_t *max_frame, char *err, size_t errlen);
 /* Extends dataset ds by one frame, frame o->frames, and writes it. */
-int sw_out_append_frame(swOutput *o, swDataset *ds, const double *frame);
+int sw_out_append_frames(swOutput *o, swDataset *ds, const double *frames, int count);
 #endif

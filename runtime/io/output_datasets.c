@@ -14,7 +14,8 @@
  * attribute (and a probe's, output_attrs.c); a continued run reopens them
  * instead and cuts them back to the checkpoint's frames.  At each frame
  * output.c fills a scratch frame from each dataset's row and
- * sw_out_append_frame() extends the dataset by one frame and writes it.
+ * sw_out_append_frames() extends the dataset by a batch of frames and
+ * writes them in one call.
  * Adding an output is one line of the table plus, if the quantity is new, a
  * four-line fill function.  The shared types are in output.h. */
 #include <hdf5.h>
@@ -338,26 +339,26 @@ int sw_out_create_datasets(swOutput *o, const swModel *m, const swOutputOptions 
 
 /* ---- one frame more ---- */
 
-int sw_out_append_frame(swOutput *o, swDataset *ds, const double *frame) {
+int sw_out_append_frames(swOutput *o, swDataset *ds, const double *frames, int n) {
   hsize_t start[1 + MAX_FRAME_RANK] = {0}, count[1 + MAX_FRAME_RANK];
-  ds->dims[0] = (hsize_t)o->frames + 1;
+  ds->dims[0] = (hsize_t)(o->written + n);
   if (H5Dset_extent(ds->dset, ds->dims) < 0) {
-    ds->dims[0] = (hsize_t)o->frames;
+    ds->dims[0] = (hsize_t)o->written;
     return sw_out_fail(NULL, 0, "%s: cannot extend dataset %s to %ld frames", o->path, ds->path,
-                       o->frames + 1);
+                       o->written + n);
   }
-  start[0] = (hsize_t)o->frames;
-  count[0] = 1;
+  start[0] = (hsize_t)o->written;
+  count[0] = (hsize_t)n;
   for (int k = 1; k < ds->rank; k++) count[k] = ds->dims[k];
   hid_t file_space = H5Dget_space(ds->dset);
   hid_t mem_space = H5Screate_simple(ds->rank, count, NULL);
   int ok = file_space >= 0 && mem_space >= 0 &&
            H5Sselect_hyperslab(file_space, H5S_SELECT_SET, start, NULL, count, NULL) >= 0 &&
-           H5Dwrite(ds->dset, H5T_NATIVE_DOUBLE, mem_space, file_space, H5P_DEFAULT, frame) >= 0;
+           H5Dwrite(ds->dset, H5T_NATIVE_DOUBLE, mem_space, file_space, H5P_DEFAULT, frames) >= 0;
   if (mem_space >= 0) H5Sclose(mem_space);
   if (file_space >= 0) H5Sclose(file_space);
   if (!ok)
-    return sw_out_fail(NULL, 0, "%s: cannot write frame %ld of dataset %s", o->path, o->frames,
-                       ds->path);
+    return sw_out_fail(NULL, 0, "%s: cannot write frames %ld to %ld of dataset %s", o->path,
+                       o->written, o->written + n - 1, ds->path);
   return SW_OK;
 }
