@@ -15,6 +15,8 @@ for s in elbow_flexion elbow_hardening elbow_isometric elbow_isokinetic \
          snake_continuum snake_muscular flagella_swimmer walker; do
   ./bin/sinewc examples/$s.sinew -o $OUT/$s
 done
+./bin/sinewc examples/elbow_flexion.sinew --let implicit_bones=true --let implicit_tendons=true \
+  -o $OUT/elbow_flexion_imp
 ./bin/sinewc examples/snake_hardening.sinew --let implicit=true -o $OUT/snake_hardening_imp
 ./bin/sinewc examples/snake_terrain.sinew -o $OUT/snake_terrain
 ./bin/sinewc examples/study/snake_pairs4.sinew -o $OUT/snake_pairs4
