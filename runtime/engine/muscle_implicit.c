@@ -45,23 +45,29 @@ double sw_muscle_tension_slope(const swModel *m, int f, double eta, double edot,
   return Fqs * (1.0 + k) / (k * u0);
 }
 
+/* The unit tangent t_i of element i of the filament whose first element
+ * is lo (n elements); 0 past its last, so that b_n = t_{n-1}. */
+static void tangent(const swModel *m, const swData *d, int lo, int i, int n, double *t) {
+  t[0] = t[1] = t[2] = 0;
+  if (i >= n) return;
+  double xi[3];
+  sw_get3(m, d->x, lo + i + 1, t);
+  sw_get3(m, d->x, lo + i, xi);
+  sw_v3_sub(t, t, xi);
+  sw_v3_scale(t, t, 1.0 / d->length[lo + i]);
+}
+
 /* The implicit tension of filament f over a kick h (the header):
  * (T0 + c h p) / (1 + c h s), c = dT/d(dl/dt), floored at 0. */
 double sw_muscle_implicit_tension(const swModel *m, const swData *d, int f, double T0, double eta,
-                               double edot, double h) {
+                                  double edot, double h) {
   const int r = m->fil_rod[f], lo = m->elem_adr[r], n = m->rod_nelem[r], bits = m->fil_implicit[f];
   const double c = sw_muscle_tension_slope(m, f, eta, edot, d->fil_activation[f]) / m->fil_l0[f];
   if (!(c > 0)) return T0;
   double p = 0, s = 0, t_before[3] = {0, 0, 0};
   for (int i = 0; i <= n; i++) { /* node lo + i: b_i = t_{i-1} - t_i */
-    double t[3] = {0, 0, 0}, b[3], F[3];
-    if (i < n) {
-      sw_get3(m, d->x, lo + i + 1, t);
-      double xi[3];
-      sw_get3(m, d->x, lo + i, xi);
-      sw_v3_sub(t, t, xi);
-      sw_v3_scale(t, t, 1.0 / d->length[lo + i]);
-    }
+    double t[3], b[3], F[3];
+    tangent(m, d, lo, i, n, t);
     sw_v3_sub(b, t_before, t);
     sw_get3(m, d->force, lo + i, F);
     const int held = (i == 0 && (bits & SW_FIL_HELD_START)) || (i == n && (bits & SW_FIL_HELD_END));
@@ -85,20 +91,14 @@ double sw_muscle_implicit_tension(const swModel *m, const swData *d, int f, doub
  * d->fil_sys and returns T_int, pulled on every node until the system's
  * solve gives T (sw_muscle_system_tension). */
 double sw_muscle_system_part(const swModel *m, swData *d, int f, double T0, double eta, double edot,
-                          double h) {
+                             double h) {
   const int r = m->fil_rod[f], lo = m->elem_adr[r], n = m->rod_nelem[r];
   double c = h > 0 ? sw_muscle_tension_slope(m, f, eta, edot, d->fil_activation[f]) / m->fil_l0[f] : 0;
   if (!(c > 0)) c = 0;
   double p = 0, s = 0, t_before[3] = {0, 0, 0}, *sys = d->fil_sys + 8 * (size_t)f;
   for (int i = 0; i <= n; i++) { /* node lo + i: b_i = t_{i-1} - t_i */
-    double t[3] = {0, 0, 0}, b[3], F[3];
-    if (i < n) {
-      sw_get3(m, d->x, lo + i + 1, t);
-      double xi[3];
-      sw_get3(m, d->x, lo + i, xi);
-      sw_v3_sub(t, t, xi);
-      sw_v3_scale(t, t, 1.0 / d->length[lo + i]);
-    }
+    double t[3], b[3], F[3];
+    tangent(m, d, lo, i, n, t);
     sw_v3_sub(b, t_before, t);
     memcpy(t_before, t, sizeof t);
     if (i == 0 || i == n) { /* the ends: the system's */
@@ -118,7 +118,7 @@ double sw_muscle_system_part(const swModel *m, swData *d, int f, double T0, doub
  * system_part), floored at 0 as the law is, and the pull on its interior
  * nodes made that of T rather than T_int: node i gets -(T - T_int) b_i. */
 void sw_muscle_system_tension(const swModel *m, swData *d, int f, const double *dv_start,
-                           const double *dv_end) {
+                              const double *dv_end) {
   const double *sys = d->fil_sys + 8 * (size_t)f;
   double T = sys[0];
   if (dv_start) T += sys[1] * sw_v3_dot(sys + 2, dv_start);
@@ -128,17 +128,10 @@ void sw_muscle_system_tension(const swModel *m, swData *d, int f, const double *
   d->fil_tension[f] = T;
   const int r = m->fil_rod[f], lo = m->elem_adr[r], n = m->rod_nelem[r];
   double t_before[3];
-  sw_get3(m, d->x, lo + 1, t_before);
-  double x0[3];
-  sw_get3(m, d->x, lo, x0);
-  sw_v3_sub(t_before, t_before, x0);
-  sw_v3_scale(t_before, t_before, 1.0 / d->length[lo]);
+  tangent(m, d, lo, 0, n, t_before);
   for (int i = 1; i < n; i++) {
-    double t[3], xi[3];
-    sw_get3(m, d->x, lo + i + 1, t);
-    sw_get3(m, d->x, lo + i, xi);
-    sw_v3_sub(t, t, xi);
-    sw_v3_scale(t, t, 1.0 / d->length[lo + i]);
+    double t[3];
+    tangent(m, d, lo, i, n, t);
     for (int k = 0; k < 3; k++) { /* -dT b_i = dT (t_i - t_{i-1}) */
       const double dF = dT * (t[k] - t_before[k]);
       SW_AT(m, d->force, lo + i, k) += dF;
