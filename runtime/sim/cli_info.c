@@ -475,6 +475,11 @@ void sw_cli_print_info(const swCli *c, const swModel *m, double stable, const ch
   printf("dt: %s (%s; stable estimate %s)\n", sw_cli_format_time(a, sizeof a, m->dt), dt_source,
          isfinite(stable) ? sw_cli_format_time(b, sizeof b, stable) : "none: nothing in the scene bounds it");
   print_step_limit(m, stable);
+  if (m->nimplicit) /* the tangent's dropped terms (rod_implicit.c) */
+    printf("  note: the estimate leaves out the loads' own stiffness on implicit rods (bending\n"
+           "  under load, compression), which can bound the step well below it: the arm of\n"
+           "  examples/elbow_flexion.sinew with implicit bones and tendons holds 450 us of its\n"
+           "  1.59 ms (docs/physics.md, \"Joints on implicit rods\"); check a step with --accuracy\n");
   long nsteps = 0;
   char why[256];
   sw_step_count(c->duration, m->dt, &nsteps, why, sizeof why); /* checked by build_model */

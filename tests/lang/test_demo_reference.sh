@@ -178,6 +178,8 @@ diag <"$TMP/out"
   "$TMP/imp" --info --integrator imex >"$TMP/info" 2>&1 &&
   grep -q "79 of 79 joints.*7 implicit rods through 15 nodes, 72 rod nodes, the Hill damping of 36 filaments" "$TMP/info"
 ok $? "implicit bones and tendons: all 79 joints and 36 filaments' damping in the system (--info)"
+grep -q "note: the estimate leaves out the loads' own stiffness on implicit rods" "$TMP/info"
+ok $? "--info says the estimate does not hold for it"
 grep "joints, those" "$TMP/info" | diag
 "$TMP/imp" --quiet --integrator imex --dt 100us --duration 200ms --out "$TMP/imp100.h5" >"$TMP/log" 2>&1 &&
   agree "$TMP/imp100.h5" 0.2 0.01 >"$TMP/agree100" 2>&1
