@@ -313,9 +313,10 @@ static Unit leaf_unit(const swModel *m, double *leaf_ws, int k) {
   return u;
 }
 
-/* Where a joint's side writes in group g's system: the matrix (A, or a
- * leaf's own block or coupling, joint_ports.c), its leading dimension, and
- * the side's first unknown and count there. */
+/* Where a joint's side writes in group g's system: its member (numbered
+ * from the group's first), whether that is a leaf (whose unit holds its
+ * rows, joint_ports.c), and otherwise the side's first unknown and count
+ * in the dense block (a rod member's: its port's). */
 typedef struct {
   int block, leaf; /* the member (-1: still); leaf: its place among the group's leaves, -1 */
   int off, dof;    /* in the dense block: a member's, or a rod member's port's */
