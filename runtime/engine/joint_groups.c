@@ -53,7 +53,8 @@ static int bc_on_node(const swModel *m, int rod, int node) {
 
 /* A joint's side at setup: a moving body, an attachment, a port of an
  * implicit rod (joint_ports.c), or still (space, a fixed body, a clamped
- * node, whose node and end element never move). */
+ * node when the joint does not turn its element, which turns against the
+ * clamp's couple: boundary.c). */
 typedef struct {
   int body, node, elem; /* body >= 0, or node >= 0 (and elem), or neither: still */
   int rod;              /* node >= 0 on an implicit rod: a port */
@@ -71,7 +72,8 @@ static Side joint_side(const swModel *m, int j, int side) {
     return s;
   }
   const int bc = bc_on_node(m, rod, node);
-  if (bc == SW_BC_CLAMP) s.ok = 1; /* still */
+  const int turns = jd->kind != SW_JOINT_SPHERICAL || sw_joint_limited(jd);
+  if (bc == SW_BC_CLAMP) s.ok = !turns; /* still: the node; the end element turns against the clamp */
   else if (bc >= 0) return s;      /* a prescribed motion: stays explicit */
   else if (m->rod_implicit[rod]) s.rod = rod, s.node = node, s.elem = elem, s.ok = 1;
   else if (elastic_attachable(m, rod, node, elem)) s.node = node, s.elem = elem, s.ok = 1;
