@@ -33,7 +33,10 @@
  *     H = [-J_l^-1, J_r^-1] / D^ on (w_j, w_{j+1}):
  *     K += D^ H^T (B^/eps^3) H      (B^ on variational rods);
  *   the clamp domain of boundary.c on a clamped end element: B^/(eps^3 D)
- *     with D = l^/2 on its diagonal.
+ *     with D = l^/2 on its diagonal;
+ *   and, of the dropped terms, the one a taut rod needs (issue 31): the
+ *     tension's turn with its element (shear_block), whose absence left a
+ *     taut tendon's string waves explicit.
  * Ordering the unknowns node, element, node, ... makes every element's
  * nine unknowns contiguous and the matrix banded with half-bandwidth 8
  * (element i reaches element i+1 through bending), so the system of a rod
