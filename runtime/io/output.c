@@ -485,11 +485,11 @@ int sw_output_frame(swOutput *o, const swModel *m, swData *d) {
     ds->field->fill(m, d, ds->item, ds->pending + (size_t)o->npending * ds->frame_len);
   }
   o->npending++;
-  /* Frames written and metadata on disk after the first frame, then at most
-   * every FLUSH_EVERY s of wall time or a full batch: a run killed outright
-   * leaves a valid file of all but its last moment's frames (every failure
-   * the run handles, an interrupt included, closes the file, which writes
-   * and flushes them all).  At a flush per frame, a scene of many rods
+  /* The frames go to their datasets when a batch is full, and with the
+   * metadata on disk (a flush) after the first frame and then at most every
+   * FLUSH_EVERY s of wall time: a run killed outright leaves a valid file of
+   * all but its last moment's frames (every failure the run handles, an
+   * interrupt included, closes the file, which writes and flushes them all).  At a flush per frame, a scene of many rods
    * written every millisecond spent a third of its run in the flushes (the
    * arm of 43 rods: 0.4 s of 1.45). */
   const double now = wall_now();
