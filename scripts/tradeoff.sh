@@ -12,7 +12,7 @@
 #
 #   examples/cantilever.sinew       the tip, 3 s; Verlet and PEFRL from 20 us to
 #                                   past their stable estimates (~1 min)
-#   examples/elbow_flexion.sinew    elbow angle and biceps force, 0.5 s; five
+#   examples/elbow_flexion.sinew    elbow angle and biceps force, 0.5 s; six
 #                                   compile-time variants, Verlet and imex,
 #                                   against Verlet at 50 ns (~15-20 min)
 #   elbow_law                       elbow_flexion again: Gazzola's law and the
@@ -103,8 +103,10 @@ for scene in $SCENES; do
       study elbow_flexion --duration "$ELBOW_DURATION" \
         --observable angle=/joints/arm.elbow/angle \
         --observable force=/muscles/arm.biceps_long/force \
-        --dt verlet=200ns,668ns,1.3us,2.6us --dt imex=1.3us,2.6us,5us --dt-factors imex=0.9 \
+        --dt verlet=200ns,668ns,1.3us,2.6us --dt imex=1.3us,2.6us,5us,125us,250us,450us \
+        --dt-factors imex=0.9 \
         --variant base --variant rigid:'--let rigid_bones=true' \
+        --variant implicit:'--let implicit_bones=true --let implicit_tendons=true' \
         --variant fewer:'--let bone_elements=10 --let tendon_elements=4 --let muscle_elements=7' \
         --variant rigid+fewer:'--let rigid_bones=true --let bone_elements=10 --let tendon_elements=4 --let muscle_elements=7' \
         --variant rigid+fewer-soft:'--let rigid_bones=true --let tendon_elements=4 --let muscle_elements=7' \
