@@ -387,7 +387,7 @@ swModel *sw_compile(const swSpec *s, char *err, size_t errlen) {
     return NULL;
   }
   /* after the muscles: which filaments take the implicit tension decides
-   * which of their joints can be implicit (rigid_joint.c) */
+   * which of their joints can be implicit (joint_groups.c) */
   if (!sw_rigid_joints_setup(m)) goto oom;
   for (int j = 0; j < m->njoint; j++) m->joint_wave_dt[j] = sw_stable_dt_joint(m, j);
   return m;
