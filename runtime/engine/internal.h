@@ -326,6 +326,7 @@ int sw_rigid_joints_kick(const swModel *m, swData *d, double h, double *load);
  * its ports' velocity changes pu; a unit of leaves (one, or a filament's
  * two ends) eliminated into its ports' blocks of A and rhs, and its
  * velocity changes from the ports' in u, in its workspace. */
+static inline int sw_port_dof(const swModel *m, int q) { return m->rigid_port_rot[q] ? 6 : 3; }
 size_t sw_port_member_scratch(const swModel *m, int k);
 int sw_port_member_assemble(const swModel *m, swData *d, double h, int k, double *ws, double *A,
                             int n, int off, double *rhs);

@@ -265,7 +265,7 @@ static void number_ports(swModel *m, int np, const int *pmember, const int *pnod
   for (int k = 0; k < nb; k++)
     for (int t = adr[k], off = 0; t < adr[k + 1]; t++) {
       m->rigid_port_off[t] = off;
-      off += m->rigid_port_rot[t] ? 6 : 3;
+      off += sw_port_dof(m, t);
     }
   for (int q = 0; q < 2 * m->njoint; q++)
     if (m->joint_port[q] >= 0) m->joint_port[q] = order[m->joint_port[q]];
@@ -306,8 +306,6 @@ static int port_member(const swModel *m, int q) {
   return lo;
 }
 
-static int port_dof(const swModel *m, int q) { return m->rigid_port_rot[q] ? 6 : 3; }
-
 /* Every leaf's unit (rigid_joint.c's Unit, m->rigid_leaf_unit): the leaf
  * itself, or it and its partner, whose lower block owns the workspace; the
  * leaf's rows in it, its port's columns in the coupling, the unit's
@@ -321,13 +319,13 @@ static void store_units(swModel *m) {
     int *w = m->rigid_leaf_unit + 10 * (size_t)k;
     w[0] = owner;
     w[1] = owner == k ? 0 : dof[owner];
-    w[2] = owner == k ? 0 : port_dof(m, m->rigid_block_leaf[owner]);
+    w[2] = owner == k ? 0 : sw_port_dof(m, m->rigid_block_leaf[owner]);
     w[5] = mate >= 0 ? 2 : 1;
     w[3] = w[4] = 0;
     w[7] = w[9] = 0;
     for (int i = 0; i < w[5]; i++) {
       const int leaf = i ? mate : owner, q = m->rigid_block_leaf[leaf];
-      w[8 + i] = port_dof(m, q);
+      w[8 + i] = sw_port_dof(m, q);
       w[6 + i] = off[port_member(m, q)] + m->rigid_port_off[q];
       w[3] += dof[leaf];
       w[4] += w[8 + i];

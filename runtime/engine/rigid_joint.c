@@ -329,7 +329,7 @@ static SideSlot side_slot(const swModel *m, int j, int side, int first) {
   t.dof = m->rigid_block_dof[k];
   if (m->rigid_block_leaf[k] >= 0) t.leaf = m->rigid_block_off[k];
   else t.off = m->rigid_block_off[k];
-  if (q >= 0) t.off += m->rigid_port_off[q], t.dof = m->rigid_port_rot[q] ? 6 : 3;
+  if (q >= 0) t.off += m->rigid_port_off[q], t.dof = sw_port_dof(m, q);
   t.block -= first;
   return t;
 }

@@ -417,12 +417,10 @@ static swOutput *open_output(const char *path, const swModel *m, const swOutputO
     o->frames = o->written = frames;
   }
 
-  size_t max_frame = 1;
-  if (rc == SW_OK) rc = sw_out_create_datasets(o, m, opt, frames, &max_frame, err, errlen);
+  if (rc == SW_OK) rc = sw_out_create_datasets(o, m, opt, frames, err, errlen);
   if (rc == SW_OK && !d) rc = sw_out_write_group_attrs(o, m, err, errlen);
   if (rc == SW_OK && !d) rc = sw_out_write_params(o, opt, err, errlen);
   if (rc == SW_OK) rc = xdmf_open(o, m, !d, err, errlen);
-  (void)max_frame;
   if (rc == SW_OK) rc = alloc_pending(o, err, errlen);
   if (rc == SW_OK && H5Fflush(o->file, H5F_SCOPE_LOCAL) < 0)
     rc = sw_out_fail(err, errlen, "%s: cannot flush the file", path);

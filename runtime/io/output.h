@@ -133,9 +133,10 @@ void sw_out_fill_velocity(const swModel *m, swData *d, int rod, double *frame);
 /* How many datasets the table can make for model m, at the most. */
 size_t sw_out_count_datasets(const swModel *m);
 /* Creates (reopen_frames < 0) or reopens every dataset the options select
- * into o->dset; *max_frame grows to the largest frame, in doubles. */
+ * into o->dset. */
 int sw_out_create_datasets(swOutput *o, const swModel *m, const swOutputOptions *opt,
-                           long reopen_frames, size_t *max_frame, char *err, size_t errlen);
-/* Extends dataset ds by one frame, frame o->frames, and writes it. */
+                           long reopen_frames, char *err, size_t errlen);
+/* Extends dataset ds by count frames after its o->written and writes them
+ * (frames: count of its frames, one after another). */
 int sw_out_append_frames(swOutput *o, swDataset *ds, const double *frames, int count);
 #endif

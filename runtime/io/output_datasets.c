@@ -315,7 +315,7 @@ size_t sw_out_count_datasets(const swModel *m) {
  * /time is the first): created with its attributes, or (reopen_frames >= 0)
  * reopened and cut back to that many frames. */
 int sw_out_create_datasets(swOutput *o, const swModel *m, const swOutputOptions *opt,
-                           long reopen_frames, size_t *max_frame, char *err, size_t errlen) {
+                           long reopen_frames, char *err, size_t errlen) {
   int rc = SW_OK;
   /* Groups /rods/NAME, /joints/NAME and /diagnostics come into being with
    * their datasets. */
@@ -330,7 +330,6 @@ int sw_out_create_datasets(swOutput *o, const swModel *m, const swOutputOptions 
       swDataset *ds = &o->dset[o->ndset++];
       rc = create_dataset(o, ds, field, m, field->scope == SCOPE_ROOT ? -1 : k, lcpl,
                           reopen_frames, err, errlen);
-      if (ds->frame_len > *max_frame) *max_frame = ds->frame_len;
     }
   }
   if (lcpl >= 0) H5Pclose(lcpl);
