@@ -52,7 +52,7 @@ TEST_BIN = $(TEST_SRC:tests/runtime/%.c=build/tests/%)
 # runs are exercised there with reduced sizes via SW_SANITIZED=1).
 TEST_SBIN = $(TEST_SRC:tests/runtime/%.c=build/asan/tests/%)
 
-.PHONY: all deps test check demo bench clean install plots
+.PHONY: all deps test check check-build demo bench clean install plots
 all: build/libsinewrt.a build/libsinewrt-portable.a $(MPI_OBJ) bin/sinewc
 
 # ---- the compiler: flex + bison front end (lang/), checker and generator
@@ -141,9 +141,14 @@ build/asan/tests/%: tests/runtime/%.c tests/runtime/testutil.h tests/runtime/h5r
 build/rt build/tests build/asan/tests build/bench:
 	@mkdir -p $@
 
-# `make test`: install what is missing, then build and run everything under
-# prove (TAP); prove's summary is the last line.
+# `make test`: install what is missing, then build everything, one compiler
+# per core (a clean build, serial, took about a third of CI's time), and run
+# everything under prove (TAP); prove's summary is the last line.  The tests
+# run from a make of their own, without the parallel build's jobserver,
+# which the makes some tests start would otherwise inherit.
+JOBS ?= $(shell nproc 2>/dev/null || echo 2)
 test: deps
+	@$(MAKE) --no-print-directory -j$(JOBS) check-build
 	@$(MAKE) --no-print-directory check
 
 # Language tests are TAP shell scripts (tests/lang/test_*.sh) driving the
@@ -165,10 +170,12 @@ build/tests/mpi_study: tests/mpi/mpi_study.c $(MPI_OBJ) build/libsinewrt.a | bui
 # Three test files at a time on two cores: several wait on mpirun, xvfb or a
 # timeout much of their run (381 s of tests with -j2, 344 s with -j3, this
 # machine idle), which keeps `.ci/run` well inside its 10 minutes.
-check: $(TEST_BIN) $(TEST_SBIN) $(E2E_BIN) build/libsinewrt.a build/libsinewrt-portable.a $(MPI_OBJ) $(MPI_TEST) bin/sinewc build/asan/sinewc \
-       build/asan/fuzz_sinewc
+CHECK_BUILD = $(TEST_BIN) $(TEST_SBIN) $(E2E_BIN) build/libsinewrt.a build/libsinewrt-portable.a \
+              $(MPI_OBJ) $(MPI_TEST) bin/sinewc build/asan/sinewc build/asan/fuzz_sinewc
+check-build: $(CHECK_BUILD)
+check: $(CHECK_BUILD)
 	@mkdir -p build/validation   # measured tables the validation tests leave for `make plots`
-	@SINEWC=build/asan/sinewc CMOCKA_MESSAGE_OUTPUT=TAP prove -j3 --exec '' \
+	@SINEWC=build/asan/sinewc CMOCKA_MESSAGE_OUTPUT=TAP prove -j3 --timer --exec '' \
 	  $(E2E_BIN) $(TEST_BIN) $(TEST_SBIN) $(LANG_TESTS)
 
 BENCH_BIN = build/bench/bench_rod

@@ -56,10 +56,17 @@ void gen_c_string(FILE *out, const char *text);               /* escaped literal
 void gen_c_comment(FILE *out, const char *text, size_t len);  /* safe in a comment */
 void gen_origin(FILE *out, swLoc loc, const char *indent);    /* #line + quoted line */
 void gen_assign_fields(FILE *out, swArena *a, const char *var, const swLowField *f, int n);
+/* the assignments of a signal to the lvalue var (load.signal, ...) */
+void gen_emit_signal(FILE *out, swArena *a, const char *var, const swSignalVal *sig);
 
 /* gen_env.c: the terrains' height functions (before build) and the
  * environments' blocks of build() */
 void gen_env_heights(FILE *out, swArena *a, const swScene *sc);
 void gen_env_build(FILE *out, swArena *a, const swScene *sc);
+
+/* gen_signal.c: the model's signals as C functions (before build) and
+ * their lines of build() */
+void gen_signal_functions(FILE *out, swArena *a, const swScene *sc);
+void gen_signal_build(FILE *out, swArena *a, const swScene *sc);
 
 #endif

@@ -82,13 +82,21 @@ void gen_assign_fields(FILE *out, swArena *a, const char *var, const swLowField 
 }
 
 /* The assignments of a signal to the lvalue `var` (load.signal, ...). */
-static void emit_signal(FILE *out, swArena *a, const char *var, const swSignalVal *sig) {
+void gen_emit_signal(FILE *out, swArena *a, const char *var, const swSignalVal *sig) {
   if (!sig) {
     fprintf(out, "    %s = sw_signal_const(1.0);\n", var);
     return;
   }
+  if (sig->kind == SW_SIG_FUNC) {   /* a signal NAME(t) of the model: gen_signal.c */
+    swValue span = val_num(a, sig->func->span, DIM_TIME, sig->func->loc);
+    fprintf(out, "    %s = sw_signal_func(signal_%d, signal_P, 0.0, %s);   /* ", var,
+            sig->func->index, val_c(a, &span, 0));
+    gen_c_comment(out, sig->func->name, strlen(sig->func->name));
+    fputs(" */\n", out);
+    return;
+  }
   static const char *kinds[] = {"SW_SIG_CONST", "SW_SIG_RAMP", "SW_SIG_SINE", "SW_SIG_STEP",
-                                "SW_SIG_TABLE", "SW_SIG_BSPLINE"};
+                                "SW_SIG_TABLE", "SW_SIG_BSPLINE", "SW_SIG_FUNC"};
   fprintf(out, "    %s.kind = %s;\n", var, kinds[sig->kind]);
   swLowField f[GEN_MAX_FIELDS];
   gen_assign_fields(out, a, var, f, gen_signal_fields(sig, f));
@@ -204,7 +212,7 @@ static void emit_muscle(FILE *out, swArena *a, const swScene *sc, int mi) {
       fprintf(out, "    muscle.activation = sw_signal_const(%s);\n", val_c(a, &sig->a, 0));
     else {
       fputs("    muscle.activation = sw_signal_const(0.0);\n", out);
-      emit_signal(out, a, "muscle.activation", sig);
+      gen_emit_signal(out, a, "muscle.activation", sig);
     }
   }
   fputs("    ok &= sw_spec_add_muscle(s, &muscle) >= 0;\n  }\n", out);
@@ -358,6 +366,7 @@ static void emit_build(FILE *out, swArena *a, const swScene *sc) {
         "  int ok = 1;\n"
         "  (void)P;\n", out);
   open_derived(out, sc);
+  gen_signal_build(out, a, sc);
   /* the runtime numbers joints with its own (a muscle's attachments) */
   if (sc->njoint)
     fprintf(out, "  int joint_id[%d];   /* the runtime's id of each joint */\n", sc->njoint);
@@ -410,7 +419,7 @@ static void emit_build(FILE *out, swArena *a, const swScene *sc) {
       if (act->kind != SW_BC_CLAMP)
         for (int k = 0; k < 3; k++)
           fprintf(out, "    bc.vec[%d] = %s;\n", k, val_c(a, &act->vec, k));
-      emit_signal(out, a, "bc.signal", act->sig);
+      gen_emit_signal(out, a, "bc.signal", act->sig);
       fputs("    ok &= sw_spec_add_bc(s, &bc) >= 0;\n  }\n", out);
     } else {
       static const char *kinds[] = {"SW_LOAD_FORCE", "SW_LOAD_TORQUE"};
@@ -421,7 +430,7 @@ static void emit_build(FILE *out, swArena *a, const swScene *sc) {
       fprintf(out, "    load.index = %d;\n", act->index);
       for (int k = 0; k < 3; k++)
         fprintf(out, "    load.vec[%d] = %s;\n", k, val_c(a, &act->vec, k));
-      emit_signal(out, a, "load.signal", act->sig);
+      gen_emit_signal(out, a, "load.signal", act->sig);
       fputs("    ok &= sw_spec_add_load(s, &load) >= 0;\n  }\n", out);
     }
   }
@@ -580,6 +589,7 @@ int gen_c(FILE *out, swArena *a, const swScene *sc, const swGenOptions *opt) {
   }
   emit_derived(out, sc);
   gen_env_heights(out, a, sc);
+  gen_signal_functions(out, a, sc);
   emit_build(out, a, sc);
   emit_objective(out, a, sc);
   for (int scope = OUT_RODS; scope <= OUT_MUSCLES; scope++) emit_selection(out, sc, scope);
@@ -642,8 +652,9 @@ int gen_check(const swScene *sc, double *stable_dt) {
     const swSignalVal *act = sc->muscle[mu].activation;
     if (!act) continue;
     int listed = act->kind == SW_SIG_TABLE || act->kind == SW_SIG_BSPLINE;
-    int by_param = listed ? !val_is_const(&act->values)
-                          : !val_is_const(&act->a) || !val_is_const(&act->b);
+    int by_param = act->kind == SW_SIG_FUNC ? 0
+                   : listed ? !val_is_const(&act->values)
+                            : !val_is_const(&act->a) || !val_is_const(&act->b);
     if (act->kind == SW_SIG_CONST && !by_param) continue;
     double lo, hi;
     sw_signal_range(&m->muscle_activation[mu], &lo, &hi);

@@ -223,6 +223,9 @@ void gen_env_build(FILE *out, swArena *a, const swScene *sc) {
     open_block(out, fl->loc, "swFluidDesc", "fluid", fl->name);
     fprintf(out, "    fluid.model = %s;\n",
             fl->model == SW_FLUID_STOKES ? "SW_FLUID_STOKES" : "SW_FLUID_QUADRATIC");
+    if (fl->area != SW_FLUID_SILHOUETTE)
+      fprintf(out, "    fluid.area = %s;\n",
+              fl->area == SW_FLUID_CROSS_SECTION ? "SW_FLUID_CROSS_SECTION" : "SW_FLUID_BROADSIDE");
     if (fl->buoyancy) fputs("    fluid.buoyancy = 1;\n", out);
     rod_list(out, "fluid", &fl->rods);
     gen_assign_fields(out, a, "fluid", f, gen_fluid_fields(fl, f));

@@ -191,6 +191,8 @@ static void fill(void *desc, const swLowField *f, int n) {
 swSignal gen_signal(const swSignalVal *sig) {
   swSignal s = sw_signal_const(1.0);
   if (!sig) return s;
+  if (sig->kind == SW_SIG_FUNC)   /* the compiler's own evaluation of the tree */
+    return sw_signal_func(sema_signal_eval, sig->func, 0.0, sig->func->span);
   swLowField f[GEN_MAX_FIELDS];
   s.kind = sig->kind;
   s.a = s.b = s.t0 = s.T = s.freq = s.phase = s.period = 0;
@@ -331,6 +333,7 @@ swSpec *gen_spec(const swScene *sc) {
     sw_fluid_desc_init(&d);
     d.name = fl->name;
     d.model = fl->model;
+    d.area = fl->area;
     d.buoyancy = fl->buoyancy;
     d.nrods = fl->rods.n;
     d.rods = fl->rods.id;

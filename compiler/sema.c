@@ -27,6 +27,7 @@ static const char *const def_kinds[] = {"material", "rod", "bone", "tendon", "mu
  * keeps to itself: an action (clamp, gravity, force, activate ...),
  * simulate, output, expect, use, and the environments. */
 static int scene_statement(const swAst *it) {
+  if (sema_is_signal_def(it)) return 0;   /* signal NAME(t) = ...: a definition */
   return it->kind == AST_ACTION || it->kind == AST_SIMULATE || it->kind == AST_OUTPUT ||
          it->kind == AST_EXPECT || it->kind == AST_USE ||
          (it->kind == AST_DEF && sema_is_env_kind(it->text));
@@ -93,6 +94,16 @@ static void declare_items(swSema *S, swScope *scope, const swAst *items, int fir
     }
     case AST_JOINT:
       sema_declare(S, scope, SYM_JOINT, it->name, it->loc, it);
+      break;
+    case AST_ACTION:
+      if (sema_is_signal_def(it)) {
+        const char *name = sema_signal_def_name(it);
+        if (!name) {
+          diag_error(it->loc, "a signal is declared as signal NAME(t) = expression;");
+          break;
+        }
+        sema_declare(S, scope, SYM_SIGNAL, name, ast_kid(it, 0)->loc, it);
+      }
       break;
     case AST_COMPONENT:
       if (!scope->file_level) {
@@ -286,7 +297,8 @@ void sema_items(swSema *S, swScope *scope, const swAst *items, int first) {
       instantiate(S, scope, it);
       break;
     case AST_ACTION:
-      if (sema_is_objective_word(it->text)) sema_objective_later(S, scope, it);
+      if (sema_is_signal_def(it)) sema_signal_def(S, scope, it);
+      else if (sema_is_objective_word(it->text)) sema_objective_later(S, scope, it);
       else sema_action(S, scope, it);
       break;
     case AST_SIMULATE:
@@ -338,7 +350,7 @@ static void warn_unused(swSema *S) {
     swSymbol *s = S->all[i];
     if (s->used || !s->main_file) continue;
     if (s->kind == SYM_PARAM || s->kind == SYM_LET || s->kind == SYM_MATERIAL ||
-        s->kind == SYM_COMPONENT)
+        s->kind == SYM_COMPONENT || s->kind == SYM_SIGNAL)
       diag_warning(s->loc, "%s '%s' is defined but never used", sema_sym_noun(s->kind), s->name);
   }
 }
@@ -437,6 +449,9 @@ int sema_check_lets(swArena *arena, int file, swLetOverride *lets, int nlets, sw
   sema_expectations(&S);
   sema_objectives(&S);
   warn_unused(&S);
+  /* the times a signal's range is sampled over: the run's (sw_signal_func) */
+  for (int i = 0; i < scene->nsignal; i++)
+    scene->signal[i]->span = scene->duration > 0 ? scene->duration : 1.0;
   int lets_ok = 1;
   for (int i = 0; i < nlets; i++) {
     /* after the model's own errors a let may not have been reached */

@@ -70,6 +70,7 @@ typedef struct swSignalVal {
   swValue a, b, t0, T, freq, phase;
   swValue period;             /* VAL_ERROR: not periodic                    */
   int npts;
+  struct swSceneSignal *func; /* SW_SIG_FUNC: a signal NAME(t) = ... of the model */
   swValue times, values;      /* SW_SIG_TABLE (times, values); SW_SIG_BSPLINE
                                  (values: the coefficients)                 */
   swValue scale;              /* number or vector the signal multiplies     */
@@ -78,7 +79,7 @@ typedef struct swSignalVal {
 
 typedef enum {
   SYM_PARAM, SYM_LET, SYM_FORMAL, SYM_MATERIAL, SYM_ROD, SYM_JOINT, SYM_COMPONENT, SYM_INSTANCE,
-  SYM_MUSCLE, SYM_ENV
+  SYM_MUSCLE, SYM_ENV, SYM_SIGNAL
 } swSymKind;
 
 struct swScope;
@@ -215,16 +216,23 @@ typedef struct {
   const char **name;          /* (n) for comments in the generated C       */
 } swRodList;
 
-/* A terrain's height z = h(x, y) as a tree over x and y: each node a
- * constant (a swValue, possibly param-dependent), x, y, a local let, an
- * operation or a piecewise choice.  Checked for dimensions when built;
- * generated as forward-mode dual-number C (gen_env.c) and evaluated the
- * same way inside the compiler (sema_height_eval). */
+/* A function expression (sema_fexpr.c): a terrain's height z = h(x, y) or a
+ * time signal s(t), as a tree over its formals: each node a constant (a
+ * swValue, possibly param-dependent), a formal, a local let, an operation
+ * or a piecewise choice; in a signal also a built-in signal (ramp, sine,
+ * ...) at a time, another signal at a time, or mod.  Checked for dimensions
+ * when built; generated as C (gen_env.c: heights as forward-mode dual
+ * numbers, signals as plain doubles) and evaluated with the same rules
+ * inside the compiler (sema_height_eval, sema_signal_eval). */
 typedef enum {
   HX_CONST, HX_X, HX_Y, HX_LET, HX_ADD, HX_SUB, HX_MUL, HX_DIV, HX_NEG, HX_POW,
   HX_SQRT, HX_SIN, HX_COS, HX_TAN, HX_EXP,
   HX_LT, HX_LE, HX_GT, HX_GE, HX_AND, HX_OR,
-  HX_PIECEWISE               /* kid: cond0, value0, cond1, value1, ..., default */
+  HX_PIECEWISE,              /* kid: cond0, value0, cond1, value1, ..., default */
+  HX_T,                      /* a signal's time formal                      */
+  HX_MOD,                    /* kid: a, b; a - b floor(a / b)               */
+  HX_ATOM,                   /* kid: the time; swScene.atom[ref] there      */
+  HX_CALL                    /* kid: the time; swScene.signal[ref] there    */
 } swHOp;
 typedef struct swHExpr {
   swHOp op;
@@ -234,6 +242,9 @@ typedef struct swHExpr {
   swValue k;                  /* HX_CONST                                  */
   double p;                   /* HX_POW exponent                           */
   int let;                    /* HX_LET: index into swHeight.let           */
+  int ref;                    /* HX_ATOM, HX_CALL: index in the scene       */
+  struct swSignalVal *atom;   /* HX_ATOM: the built-in signal               */
+  struct swSceneSignal *callee; /* HX_CALL: the signal called               */
   int nkid;
   struct swHExpr **kid;
 } swHExpr;
@@ -249,6 +260,20 @@ typedef struct {
 /* swHeightFn over a swHeight (ctx), params at their defaults. */
 double sema_height_eval(double x, double y, double grad[2], const void *ctx);
 
+/* signal NAME(t) = expr;  a time signal of the model (sema_signal.c), a
+ * function of its formal, generated as signal_K(t) (gen_env.c). */
+typedef struct swSceneSignal {
+  const char *name;           /* full name                                 */
+  const char *formal;         /* the time's name                           */
+  swLoc loc;
+  int index;                  /* in swScene.signal                          */
+  swHExpr *expr;              /* NULL while it is being checked             */
+  swDim dim;
+  double span;                /* the run's duration: its range is sampled over [0, span] */
+} swSceneSignal;
+/* swSignalFn over a swSceneSignal (ctx), params at their defaults. */
+double sema_signal_eval(double t, const void *ctx);
+
 typedef struct {
   const char *name;
   swLoc loc;
@@ -262,6 +287,7 @@ typedef struct {
   const char *name;
   swLoc loc;
   swFluidModel model;
+  swFluidArea area;           /* quadratic drag's A (silhouette unless given) */
   swValue viscosity, density, drag_coefficient, body_length, velocity;
   int buoyancy;
   swRodList rods;
@@ -365,6 +391,8 @@ typedef struct {
   swSceneContact *contact; int ncontact, capcontact;
   swSceneWave *wave;     int nwave, capwave;
   swSceneProbe *probe;   int nprobe, capprobe;
+  swSceneSignal **signal; int nsignal, capsignal;  /* signal NAME(t) = ...  */
+  struct swSignalVal **atom; int natom, capatom;   /* built-in signals inside them */
   swSceneExpect *expect; int nexpect, capexpect;
   swSceneObjective objective;
   swValue gravity;            /* kind VAL_ERROR when absent                 */

@@ -391,7 +391,7 @@ swValue sema_eval_call(swSema *S, swScope *scope, const swAst *e) {
       !strcmp(fn, "table") || !strcmp(fn, "bspline"))
     return eval_signal(S, scope, e);
   if (!strcmp(fn, "piecewise")) {
-    diag_error(e->loc, "piecewise() belongs in a terrain's height(x, y)");
+    diag_error(e->loc, "piecewise() belongs in a terrain's height(x, y) or a signal NAME(t)");
     return val_error();
   }
   if (!strcmp(fn, "sqrt") || !strcmp(fn, "sin") || !strcmp(fn, "cos") || !strcmp(fn, "tan") ||

@@ -274,11 +274,11 @@ static void ground(swSema *S, swScope *sc, const swAst *it, const char *name, co
 }
 
 static const char *const fluid_keys[] = {"model", "viscosity", "density", "drag_coefficient",
-                                         "buoyancy", "flow", "body_length", "rods"};
+                                         "area", "buoyancy", "flow", "body_length", "rods"};
 
 static void fluid(swSema *S, swScope *sc, const swAst *it, const char *name, const char *what) {
   swFields f;
-  sema_fields(S, it, 0, what, fluid_keys, 8, &f);
+  sema_fields(S, it, 0, what, fluid_keys, 9, &f);
   swSceneFluid fl;
   memset(&fl, 0, sizeof fl);
   fl.name = name;
@@ -291,6 +291,16 @@ static void fluid(swSema *S, swScope *sc, const swAst *it, const char *name, con
     const char *w = sema_word(S, sc, model, "fluid model", models, 2);
     if (!w) ok = 0;
     else fl.model = !strcmp(w, "stokes") ? SW_FLUID_STOKES : SW_FLUID_QUADRATIC;
+  }
+  /* quadratic drag's A: the runtime's swFluidArea, in its order */
+  fl.area = SW_FLUID_SILHOUETTE;
+  const swAst *area = sema_field(&f, "area");
+  if (area) {
+    static const char *const areas[] = {"silhouette", "cross_section", "broadside"};
+    const char *w = sema_word(S, sc, area, "fluid area", areas, 3);
+    if (!w) ok = 0;
+    else fl.area = !strcmp(w, "silhouette") ? SW_FLUID_SILHOUETTE
+                   : !strcmp(w, "cross_section") ? SW_FLUID_CROSS_SECTION : SW_FLUID_BROADSIDE;
   }
   fl.viscosity = bounded(S, sc, &f, "viscosity", 1, DIM_VISCOSITY, 1);
   fl.density = bounded(S, sc, &f, "density", 1, DIM_DENSITY, 1);
@@ -324,9 +334,11 @@ static void fluid(swSema *S, swScope *sc, const swAst *it, const char *name, con
     ok = 0;
   }
   /* fields the chosen drag model does not read */
-  const swAst *unused = sema_field(&f, "drag_coefficient");
-  if (ok && fl.model == SW_FLUID_STOKES && unused)
-    diag_warning(unused->loc, "'drag_coefficient' has no effect on Stokes drag");
+  static const char *const quadratic_only[] = {"drag_coefficient", "area"};
+  const swAst *unused;
+  for (int i = 0; ok && fl.model == SW_FLUID_STOKES && i < 2; i++)
+    if ((unused = sema_field(&f, quadratic_only[i])))
+      diag_warning(unused->loc, "'%s' has no effect on Stokes drag", quadratic_only[i]);
   static const char *const stokes_only[] = {"viscosity", "body_length"};
   for (int i = 0; ok && fl.model == SW_FLUID_QUADRATIC && i < 2; i++)
     if ((unused = sema_field(&f, stokes_only[i])))

@@ -218,6 +218,8 @@ int sema_truth(swSema *S, swScope *scope, const swAst *e, const char *what) {
 static swValue symbol_value(swSema *S, swSymbol *sym, swLoc loc) {
   sym->used = 1;
   switch (sym->kind) {
+  case SYM_SIGNAL:
+    return sema_signal_value(S, sym, loc);
   case SYM_PARAM:
   case SYM_LET:
   case SYM_FORMAL: {

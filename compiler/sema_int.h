@@ -199,6 +199,44 @@ swValue sema_reduction(swSema *S, swScope *scope, const swAst *call);
 /* a rod list: NAME, (NAME, NAME, ...), all; muscles stand for their filaments */
 int sema_rod_list(swSema *S, swScope *scope, const swAst *e, const char *what, swRodList *out);
 
+/* sema_fexpr.c: function expressions over formals (a height's x and y, a
+ * signal's t).  The context says which formals there are, the lets local to
+ * the body, and whether the body is a signal's (built-in signals, the
+ * model's signals and mod() allowed). */
+#define SW_FEXPR_MAX_LETS 64
+typedef struct swFCtx {
+  swSema *S;
+  swScope *scope;
+  const char *what;           /* "the height of terrain 'hills'"            */
+  const char *term;           /* "a term of a height", for sema_expect_value */
+  int nformal;
+  const char *formal[2];
+  swHOp formal_op[2];         /* HX_X, HX_Y; HX_T                           */
+  swDim formal_dim[2];
+  int time;                   /* a signal's body                            */
+  int nlocal;
+  const char *local_name[SW_FEXPR_MAX_LETS];
+  swHExpr *local[SW_FEXPR_MAX_LETS];   /* each local let's tree (HX_LET or a constant) */
+  swLoc local_loc[SW_FEXPR_MAX_LETS];
+  int local_used[SW_FEXPR_MAX_LETS];
+} swFCtx;
+/* a quantity (not a condition); NULL after an error */
+swHExpr *sema_fexpr(swFCtx *C, const swAst *e, const char *role);
+swHExpr *sema_fexpr_node(swSema *S, swHOp op, swDim dim, swLoc loc, int nkid);
+const char *sema_fexpr_dim_text(swSema *S, const swHExpr *e);
+typedef struct { double v, x, y; } swDual;   /* a value and its d/dx, d/dy */
+/* e at (X, Y) (a signal's time in X), lets[] the values of the body's lets */
+swDual sema_fexpr_eval(const swHExpr *e, swDual X, swDual Y, const swDual *lets);
+
+/* sema_signal.c: signal NAME(t) = expr; */
+int sema_is_signal_def(const swAst *it);
+const char *sema_signal_def_name(const swAst *it);
+/* the signal of a symbol, checked first if it is not yet; NULL after an error */
+swSceneSignal *sema_signal_of(swSema *S, swSymbol *sym, swLoc use);
+void sema_signal_def(swSema *S, swScope *scope, const swAst *it);
+/* a signal named where a value goes: the signal, scaled by 1 */
+swValue sema_signal_value(swSema *S, swSymbol *sym, swLoc loc);
+
 /* sema_terrain.c: the height(x, y) of a terrain; NULL after an error */
 swHeight *sema_height(swSema *S, swScope *scope, const swAst *body, const swAst *field,
                       const char *what);

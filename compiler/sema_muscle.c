@@ -479,6 +479,14 @@ void sema_activate(swSema *S, swScope *scope, const swAst *it) {
       diag_error(v.loc, "an activation is a number or a time signal, not a vector");
       return;
     }
+    if (v.sig->kind == SW_SIG_FUNC) {   /* signal NAME(t): its values are its body's */
+      const swValue *k = &v.sig->scale;
+      if (!val_is_const(k) || k->v[0] != 1) {
+        diag_error(v.loc, "an activation takes signal '%s' as it is; put the scale inside it: "
+                   "signal %s(t) = ... * (...);", v.sig->func->name, v.sig->func->name);
+        return;
+      }
+    }
     /* swSignal has no scale of its own: fold it into the values */
     *sig = *v.sig;
     const swValue *k = &v.sig->scale;
@@ -487,7 +495,9 @@ void sema_activate(swSema *S, swScope *scope, const swAst *it) {
     /* a table's and a B-spline's values are in values[], a and b unused */
     int listed = sig->kind == SW_SIG_TABLE || sig->kind == SW_SIG_BSPLINE;
     if (listed) sig->values = scaled(S, sig->values, k);
-    if (listed ? sig->values.kind == VAL_ERROR : sig->a.kind == VAL_ERROR) return;
+    if (sig->kind != SW_SIG_FUNC &&
+        (listed ? sig->values.kind == VAL_ERROR : sig->a.kind == VAL_ERROR))
+      return;
     sig->scale = val_num(S->a, 1, DIM_NONE, v.loc);
   }
   sig->base = DIM_NONE;

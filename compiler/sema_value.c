@@ -192,8 +192,9 @@ swValue val_binop(swArena *a, int op, swValue x, swValue y, swLoc loc) {
   if (op == '/' && x.kind == VAL_SIGNAL && y.kind == VAL_NUM)
     return scale_signal(a, '/', x, y, loc);
   if (x.kind == VAL_SIGNAL || y.kind == VAL_SIGNAL) {
-    diag_error(loc, "cannot %s %s and %s: a time signal can only be multiplied or divided by a "
-               "constant", op_verb(op), val_kind_noun(&x), val_kind_noun(&y));
+    diag_error(loc, "cannot %s %s and %s here: a time signal is only scaled where it is used; "
+               "combine signals in a signal declaration, signal NAME(t) = ...;", op_verb(op),
+               val_kind_noun(&x), val_kind_noun(&y));
     return val_error();
   }
   if ((x.kind != VAL_NUM && x.kind != VAL_VEC) || (y.kind != VAL_NUM && y.kind != VAL_VEC)) {

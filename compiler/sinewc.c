@@ -8,6 +8,8 @@
  *                                       true or false) instead of its own
  *   sinewc --eval-height MODEL.sinew    the compiler's own height and gradient of
  *                                       each terrain at "x y" lines of stdin
+ *   sinewc --eval-signal MODEL.sinew    the compiler's own value of each of the
+ *                                       model's signals at "t" lines of stdin
  *
  * Design.  Read the model, check it (every error of every file reported),
  * let the runtime validate the scene and estimate its stable step, then
@@ -77,6 +79,8 @@ static void usage(FILE *out) {
           "  --eval-height  check, then print each terrain's height and gradient at\n"
           "               the points \"x y\" (m) read from stdin: \"k x y h dh/dx dh/dy\"\n"
           "               (the compiler's evaluator; tests compare it with the C)\n"
+          "  --eval-signal  check, then print each signal NAME(t) of the model at the\n"
+          "               times t (s) read from stdin: \"k name t value\" (SI units)\n"
           "  --version    print the version\n"
           "  --help       this text\n"
           "environment: SINEW_PATH (import search path), CC (C compiler, default cc),\n"
@@ -238,6 +242,16 @@ static void print_heights(const swScene *sc) {
     }
 }
 
+/* --eval-signal: "k name t value" for every signal k of the model at every
+ * "t" line of stdin, with params at their defaults. */
+static void print_signals(const swScene *sc) {
+  double t;
+  while (scanf("%lf", &t) == 1)
+    for (int k = 0; k < sc->nsignal; k++)
+      printf("%d %s %.17g %.17g\n", k, sc->signal[k]->name, t,
+             sema_signal_eval(t, sc->signal[k]));
+}
+
 /* --let NAME=VALUE into o: VALUE a number with its unit, read with the
  * runtime's parser of quantities (the one --set uses), or true or false.
  * Returns 0, or 2 after a one-line message. */
@@ -292,7 +306,7 @@ static int read_let(const char *arg, const swLetOverride *given, int ngiven, swL
 /* What the command line asks for. */
 typedef struct {
   const char *model, *out;
-  int emit_c, check, werror, eval_height, portable, no_mpi;
+  int emit_c, check, werror, eval_height, eval_signal, portable, no_mpi;
   swLetOverride *lets;        /* (nlets) --let, in the order given          */
   int nlets;
 } swOptions;
@@ -317,6 +331,7 @@ static int parse_args(int argc, char **argv, swOptions *o) {
     else if (!strcmp(a, "--portable")) o->portable = 1;
     else if (!strcmp(a, "--no-mpi")) o->no_mpi = 1;
     else if (!strcmp(a, "--eval-height")) o->check = o->eval_height = 1;
+    else if (!strcmp(a, "--eval-signal")) o->check = o->eval_signal = 1;
     else if (!strcmp(a, "-Werror")) o->werror = 1;
     else if (!strcmp(a, "--help") || !strcmp(a, "-h")) {
       usage(stdout);
@@ -326,7 +341,7 @@ static int parse_args(int argc, char **argv, swOptions *o) {
       return 0;
     } else if (a[0] == '-' && a[1]) {
       static const char *const opts[] = {"-o", "--emit-c", "--check", "-Werror", "--help",
-                                         "--version", "--eval-height", "--portable", "--let",
+                                         "--version", "--eval-height", "--eval-signal", "--portable", "--let",
                                          "--no-mpi"};
       const char *near = diag_suggest(a, opts, sizeof opts / sizeof *opts);
       fprintf(stderr, "%s: unknown option '%s'%s%s%s\n", progname, a, near ? "; did you mean '" : "",
@@ -428,6 +443,8 @@ static int compile(const swOptions *o) {
   if (rc) goto done;
   if (o->eval_height) {
     print_heights(&scene);
+  } else if (o->eval_signal) {
+    print_signals(&scene);
   } else if (o->check) {
     print_checked(model, &scene, stable);
   } else {

@@ -225,6 +225,8 @@ static int check_fluid(const swFluidDesc *f, int nrod, char *err, size_t errlen)
   if (!check_rods("fluid", nm, f->nrods, f->rods, nrod, err, errlen)) return 0;
   if (f->model != SW_FLUID_STOKES && f->model != SW_FLUID_QUADRATIC)
     return sw_fail(err, errlen, "fluid '%s': unknown model %d", nm, (int)f->model);
+  if (f->area != SW_FLUID_SILHOUETTE && f->area != SW_FLUID_CROSS_SECTION && f->area != SW_FLUID_BROADSIDE)
+    return sw_fail(err, errlen, "fluid '%s': unknown drag area %d", nm, (int)f->area);
   if (f->model == SW_FLUID_STOKES && !positive(f->viscosity))
     return sw_fail(err, errlen, "fluid '%s': Stokes drag needs a viscosity > 0", nm);
   if (f->model == SW_FLUID_QUADRATIC && !positive(f->density))

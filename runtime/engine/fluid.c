@@ -17,12 +17,15 @@
  *
  *   Quadratic (Zhang et al. 2019, Suppl. Note 5.2, eq. 2):
  *     F = -(1/2) rho_f C_d A |w| w,
- *   with A the area the element shows to the relative flow: the silhouette
- *   of a cylinder seen along w, 2 r l |sin a| + (caps) pi r^2 |cos a|, a the
- *   angle between t and w.  Only the two ends of a rod are caps the fluid
- *   can see (the faces between elements are inside the rod), and a whole
- *   cylinder seen along w shows one cap's worth, pi r^2 |cos a| (two
- *   half-ellipses), so each end element carries pi r^2 / 2 of it.  With
+ *   with A one of three areas per element (swFluidArea, the fluid's `area`).
+ *
+ *   Silhouette (the default): A is the area the element shows to the
+ *   relative flow, the silhouette of a cylinder seen along w,
+ *   2 r l |sin a| + (caps) pi r^2 |cos a|, a the angle between t and w.
+ *   Only the two ends of a rod are caps the fluid can see (the faces between
+ *   elements are inside the rod), and a whole cylinder seen along w shows
+ *   one cap's worth, pi r^2 |cos a| (two half-ellipses), so each end element
+ *   carries pi r^2 / 2 of it.  With
  *   |w| sin a = |w - (t.w) t| and |w| cos a = |t.w| the force needs no angle:
  *     F = -(1/2) rho_f C_d (2 r l |w_n| + cap |t.w|) w.
  *   Why this area and not the reference's "cross-sectional area of each
@@ -34,6 +37,24 @@
  *   cylinder (C_d = 1.2 in the reference, for cross flow) is defined
  *   against; one C_d serves every direction, which is this model's
  *   approximation (a real cylinder in axial flow has another C_d).
+ *
+ *   Cross section: A = pi r^2 per element, the supplement's words as they
+ *   stand, for comparing with eq. 2 read literally: F = -(1/2) rho_f C_d
+ *   pi r^2 |w| w whatever the direction of w, so a rod's drag is n pi r^2
+ *   worth for n elements (the objection above).
+ *
+ *   Broadside: A = 2 r l per element whatever the direction of w, the
+ *   diameter times the element's current length.  This is what the
+ *   reference's released C++ code does for the wing's barbs (GitHub
+ *   mattialab/elastica, source/ExternalContact.h): the drag of a node is
+ *   one half air density times C_d times the squared speed times "3.0" times
+ *   the length of the element after it, along minus its velocity, and 3.0 is
+ *   the barbs' diameter in mm (radius 1.5 mm, source/Wing.cpp).  There the
+ *   drag acts on each node's own velocity; here, as for the other areas, on
+ *   the element's mean velocity, half to each node.  A rod's broadside drag
+ *   equals its silhouette's when the flow meets it side on, and exceeds it
+ *   once the flow is more than about pi r / L rad off that (lengthwise
+ *   2 r L against the end caps' pi r^2).
  *
  *   Buoyancy: -rho_f V g on each element, V = pi r^2 l^ its rest volume (the
  *   rod model keeps each element's volume as it stretches, Gazzola et al.
@@ -66,14 +87,30 @@
  * h < 0.95 S / max rate_i (sw_fluid_stable_dt), at rest length: an element
  * stretched by e drags e times harder (the default step is half the
  * estimate).  Quadratic drag's Jacobian on an element's relative velocity
- * has norm rho_f C_d A |w| (twice the secant), so node i's rate is
- * sum over its elements of rho_f C_d A_e |w_e| / (2 m_i), and the step is
- * stable below a relative speed |w| ~ 2 S m_i / (h rho_f C_d sum A_e); the speed a
- * scene will reach is not known when it is compiled, so it adds no term to
- * the estimate: above that speed the velocity overshoots and grows faster
- * than exponentially, and the instability check (stability.c) reports it
- * within a few steps.  For the reference's wing (barbs r = 0.6 mm, 2.5 kg/m^3,
- * air, C_d = 1.2) that speed is 2 / (611 h) m/s, 3 km/s at h = 1 us.
+ * has norm rho_f C_d A |w| (twice the secant) for an area that does not
+ * depend on w (cross section, broadside); the silhouette's does, and its
+ * Jacobian's norm is at most rho_f C_d sqrt((2 r l)^2 + cap^2) |w|, the
+ * broadside figure on every element but a rod's two ends.  So node i's rate
+ * is at most sum over its elements of rho_f C_d A_e |w_e| / (2 m_i), with
+ * A_e = pi r^2 (cross section), 2 r l (broadside) or
+ * sqrt((2 r l)^2 + cap^2) (silhouette), and the step is stable below a
+ * relative speed |w| ~ 2 S m_i / (h rho_f C_d sum A_e).  On a uniform rod's
+ * inner node (m_i = rho pi r^2 l) that is S rho pi r / (2 h rho_f C_d) for
+ * the silhouette and broadside, and S rho l / (h rho_f C_d) for the cross
+ * section, 2 l / (pi r) times higher.  The bound holds on the Jacobian, so
+ * it is conservative: above that speed a kick overshoots (the relative
+ * velocity changes sign), and the velocity grows, faster than
+ * exponentially, only once h times the secant rate rho_f C_d A |w| / (2 m)
+ * (m an element's mass) of a rod moving as a whole passes S, at twice that
+ * speed (position Verlet's kick multiplies that velocity by
+ * 1 - h rho_f C_d A |w| / (2 m)).  The speed a scene will reach is not
+ * known when it is compiled, so whichever the area quadratic drag adds no
+ * term to the estimate; the instability check (stability.c) reports a run
+ * that passes it within a few steps (test_fluid's
+ * test_quadratic_speed_limit measures both speeds for each area).  For the
+ * reference's wing (barbs r = 0.6 mm, 2.5 kg/m^3, air, C_d = 1.2) the
+ * first speed is 2 / (611 h) m/s, 3 km/s at h = 1 us, broadside or
+ * silhouette (2 / (244 h) with the released code's r = 1.5 mm).
  */
 #include <math.h>
 #include <stdio.h>
@@ -144,7 +181,7 @@ int sw_fluid_setup(swModel *m, char *err, size_t errlen) {
           double half = 0.5 * c * m->rest_len[e];
           rate[na + i] += half * m->inv_mass[na + i];
           rate[na + i + 1] += half * m->inv_mass[na + i + 1];
-        } else {
+        } else if (f->area == SW_FLUID_SILHOUETTE) {
           /* the rod's two end caps, half a cap's silhouette each (above) */
           m->fluid_cap[row] = 0.5 * area * ((i == 0) + (i == n - 1));
         }
@@ -204,9 +241,17 @@ void sw_fluid_loads(const swModel *m, swData *d, int lo, int hi) {
         const double cl = m->fluid_stokes[row] * l;
         for (int q = 0; q < 3; q++) load[q] = -cl * (w[q] - 0.5 * wt * t[q]);
       } else {
-        /* -(1/2) rho C_d A |w| w, A |w| = 2 r l |w_n| + cap |t.w| (Suppl. eq. 2) */
-        double wn[3] = {w[0] - wt * t[0], w[1] - wt * t[1], w[2] - wt * t[2]};
-        const double area_speed = 2.0 * m->radius[e] * l * sw_v3_norm(wn) + m->fluid_cap[row] * fabs(wt);
+        /* -(1/2) rho C_d A |w| w (Suppl. eq. 2) */
+        double area_speed; /* A |w| */
+        const double rad = m->radius[e];
+        if (fl->area == SW_FLUID_CROSS_SECTION) {
+          area_speed = SW_PI * rad * rad * sw_v3_norm(w);
+        } else if (fl->area == SW_FLUID_BROADSIDE) {
+          area_speed = 2.0 * rad * l * sw_v3_norm(w);
+        } else { /* silhouette: A |w| = 2 r l |w_n| + cap |t.w| */
+          double wn[3] = {w[0] - wt * t[0], w[1] - wt * t[1], w[2] - wt * t[2]};
+          area_speed = 2.0 * rad * l * sw_v3_norm(wn) + m->fluid_cap[row] * fabs(wt);
+        }
         for (int q = 0; q < 3; q++) load[q] = -half_rho_cd * area_speed * w[q];
       }
       /* buoyancy: -rho_f V g */

@@ -63,6 +63,16 @@ swSignal sw_signal_bspline(const double *c, int n, double t0, double duration) {
   return s;
 }
 
+swSignal sw_signal_func(swSignalFn fn, const void *ctx, double t0, double span) {
+  swSignal s = sw_signal_const(0.0);
+  s.kind = SW_SIG_FUNC;
+  s.fn = fn;
+  s.fn_ctx = ctx;
+  s.t0 = t0;
+  s.T = span;
+  return s;
+}
+
 swSignal sw_signal_periodic(swSignal s, double period) {
   s.period = period;
   return s;
@@ -123,6 +133,8 @@ double sw_signal_eval(const swSignal *s, double t) {
     if (t <= s->t0 || !(s->T > 0)) return s->values[0];
     if (t >= s->t0 + s->T) return s->values[s->npts - 1];
     return bspline_uniform(s->values, s->npts, (t - s->t0) / s->T);
+  case SW_SIG_FUNC:
+    return s->fn ? s->fn(t, s->fn_ctx) : 0.0;
   }
   return 0.0;
 }
@@ -157,6 +169,17 @@ void sw_signal_range(const swSignal *s, double *lo, double *hi) {
     int samples = 64 * (n - 3);              /* n - 3 knot spans */
     for (int k = 0; k <= samples; k++) {
       double v = bspline_uniform(s->values, n, (double)k / samples);
+      a = fmin(a, v);
+      b = fmax(b, v);
+    }
+    break;
+  }
+  case SW_SIG_FUNC: {   /* sampled: exact at the samples, not between them */
+    const int samples = 4096;
+    const double span = s->T > 0 ? s->T : 1.0;
+    a = b = sw_signal_eval(s, s->t0);
+    for (int k = 1; k <= samples; k++) {
+      double v = sw_signal_eval(s, s->t0 + span * k / samples);
       a = fmin(a, v);
       b = fmax(b, v);
     }

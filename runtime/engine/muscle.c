@@ -42,6 +42,12 @@
  * The muscle's forces are active: they enter ext_force as well, so the kick
  * books their work as work done on the rods (energy diagnostic).
  *
+ * A muscle may instead pull with a prescribed force F(t) (swMuscleDesc.
+ * prescribed, as Zhang et al. 2019 drive the wing, Suppl. eqs. 6-10): each
+ * filament carries T_k = F(t) A_k / A, its share by cross-section, with the
+ * same central pair per element and nothing of the Hill law (no stretch,
+ * rate or activation dependence, no damping, no step limit of its own).
+ *
  * Implicit Hill damping (SW_IMEX): muscle_implicit.c.
  */
 #include <math.h>
@@ -183,6 +189,15 @@ static const swMuscleOps muscle_ops = {sw_muscle_check,  sw_muscle_setup,     sw
                                        muscle_force,     muscle_stretch,      muscle_rings,
                                        sw_muscle_system_tension};
 
+/* F_max,k per unit area: sigma_max, or for a prescribed force the largest
+ * size it reaches over its range, spread over the muscle's cross-section. */
+static double peak_stress(const swMuscleDesc *md) {
+  if (!md->prescribed) return md->sigma_max;
+  double lo, hi;
+  sw_signal_range(&md->force, &lo, &hi);
+  return fmax(fabs(lo), fabs(hi)) / (SW_PI * md->radius * md->radius);
+}
+
 int sw_spec_add_muscle(swSpec *s, const swMuscleDesc *md) {
   *sw_spec_muscle_ops(s) = &muscle_ops;
   swMuscleSpec **slot = sw_spec_muscles(s);
@@ -276,7 +291,7 @@ int sw_spec_add_muscle(swSpec *s, const swMuscleDesc *md) {
       j.node_b = md->attach_node[end];
       /* 0 = 100 F_max,k / l0: the attachment gives 1% of l0 under peak force */
       j.stiffness = md->attach_stiffness > 0 ? md->attach_stiffness
-                                             : 100.0 * md->sigma_max * area[k] / L;
+                                             : 100.0 * peak_stress(md) * area[k] / L;
       j.damping = md->attach_damping;
       if (sw_spec_add_joint(s, &j) < 0) {
         free(area); free(lay_x); free(lay_Q);
@@ -320,8 +335,15 @@ static int check_item(const swMuscleItem *it, int nrod, char *err, size_t errlen
   }
   if (!(md->radius > 0) || !isfinite(md->radius))
     return BAD("muscle '%s': radius must be > 0", nm);
-  if (!(md->sigma_max > 0) || !isfinite(md->sigma_max))
+  if (!md->prescribed && (!(md->sigma_max > 0) || !isfinite(md->sigma_max)))
     return BAD("muscle '%s': sigma_max (peak isometric stress) must be > 0", nm);
+  if (md->prescribed) {
+    if (md->force.kind < SW_SIG_CONST || md->force.kind > SW_SIG_FUNC ||
+        (md->force.kind == SW_SIG_FUNC && !md->force.fn))
+      return BAD("muscle '%s': its prescribed force is not a signal", nm);
+    if (!(peak_stress(md) > 0) || !isfinite(peak_stress(md)))
+      return BAD("muscle '%s': its prescribed force is 0 over the whole run, or not finite", nm);
+  }
   if (!(md->size_ratio >= 1) || !isfinite(md->size_ratio))
     return BAD("muscle '%s': size_ratio must be >= 1, got %g", nm, md->size_ratio);
   if (!(md->twitch_small >= 0) || !(md->twitch_large >= 0) || !isfinite(md->twitch_small) ||
@@ -347,6 +369,7 @@ void sw_muscle_free(swModel *m) {
   if (m->muscle_name)
     for (int i = 0; i < m->nmuscle; i++) free(m->muscle_name[i]);
   free(m->muscle_name); free(m->muscle_fil_adr); free(m->muscle_activation);
+  free(m->muscle_force); free(m->muscle_prescribed);
   free(m->fil_rod); free(m->fil_passive); free(m->fil_area); free(m->fil_fmax);
   free(m->fil_l0); free(m->fil_tau); free(m->fil_recruit); free(m->fil_hill_a);
   free(m->fil_v_max); free(m->fil_fibres); free(m->fil_elem); free(m->fil_implicit);
@@ -390,6 +413,8 @@ int sw_muscle_setup(swModel *m, const swMuscleSpec *ms, char *err, size_t errlen
   m->muscle_name = calloc(M, sizeof *m->muscle_name);
   m->muscle_fil_adr = calloc(M + 1, sizeof *m->muscle_fil_adr);
   m->muscle_activation = calloc(M, sizeof *m->muscle_activation);
+  m->muscle_force = calloc(M, sizeof *m->muscle_force);
+  m->muscle_prescribed = calloc(M, sizeof *m->muscle_prescribed);
   m->fil_rod = calloc(F, sizeof *m->fil_rod);
   m->fil_passive = calloc(F, sizeof *m->fil_passive);
   m->fil_area = calloc(F, sizeof(double));
@@ -415,7 +440,8 @@ int sw_muscle_setup(swModel *m, const swMuscleSpec *ms, char *err, size_t errlen
     snprintf(err, errlen, "out of memory");
     return 0;
   }
-  if (!m->fil_implicit || !m->muscle_name || !m->muscle_fil_adr || !m->muscle_activation || !m->fil_rod ||
+  if (!m->fil_implicit || !m->muscle_name || !m->muscle_fil_adr || !m->muscle_activation ||
+      !m->muscle_force || !m->muscle_prescribed || !m->fil_rod ||
       !m->fil_passive || !m->fil_area || !m->fil_fmax || !m->fil_l0 || !m->fil_tau ||
       !m->fil_recruit || !m->fil_hill_a || !m->fil_v_max || !m->fil_fibres) {
     snprintf(err, errlen, "out of memory");
@@ -434,6 +460,8 @@ int sw_muscle_setup(swModel *m, const swMuscleSpec *ms, char *err, size_t errlen
     }
     m->muscle_fil_adr[i] = f;
     m->muscle_activation[i] = md->activation;
+    m->muscle_force[i] = md->prescribed ? md->force : sw_signal_const(0.0);
+    m->muscle_prescribed[i] = md->prescribed;
     double *A = m->fil_area + f;
     filament_areas(N, SW_PI * md->radius * md->radius, md->size_ratio, A);
     const double Amin = A[0], Amax = A[N - 1];
@@ -444,13 +472,14 @@ int sw_muscle_setup(swModel *m, const swMuscleSpec *ms, char *err, size_t errlen
       const int r = it->rod0 + k;
       m->fil_rod[f] = r;
       m->fil_passive[f] = it->passive[k];
-      m->fil_fmax[f] = md->sigma_max * A[k];
+      m->fil_fmax[f] = peak_stress(md) * A[k];
       double l0 = 0;
       for (int e = m->elem_adr[r]; e < m->elem_adr[r] + m->rod_nelem[r]; e++) l0 += m->rest_len[e];
       m->fil_l0[f] = l0;
       /* twitch time linear in size; equal sizes take the mean of the two */
       double w = Amax > Amin ? (A[k] - Amin) / (Amax - Amin) : 0.5;
-      m->fil_tau[f] = md->twitch_small + w * (md->twitch_large - md->twitch_small);
+      m->fil_tau[f] = md->prescribed ? 0.0   /* no activation to follow */
+                                     : md->twitch_small + w * (md->twitch_large - md->twitch_small);
       m->fil_recruit[2 * f] = cum / total;
       cum += A[k];
       m->fil_recruit[2 * f + 1] = k == N - 1 ? 1.0 : cum / total;
@@ -467,8 +496,10 @@ int sw_muscle_setup(swModel *m, const swMuscleSpec *ms, char *err, size_t errlen
   }
   m->fil_ring_adr[nf] = q;
   m->muscle_fil_adr[ms->n] = f;
-  for (int g = 0; g < nf; g++)
-    if ((m->fil_implicit[g] = filament_implicit_bits(m, m->fil_rod[g]))) m->muscle_implicit = 1;
+  for (int i = 0; i < ms->n; i++)   /* a prescribed force has no Hill damping to solve */
+    for (int g = m->muscle_fil_adr[i]; g < m->muscle_fil_adr[i + 1]; g++)
+      if (!m->muscle_prescribed[i] && (m->fil_implicit[g] = filament_implicit_bits(m, m->fil_rod[g])))
+        m->muscle_implicit = 1;
   for (int g = 0; g < nf; g++) m->rod_wave_dt[m->fil_rod[g]] = sw_stable_dt_rod(m, m->fil_rod[g]);
   /* which element slots pull (sw_muscle_loads' slot loops) */
   const size_t plane = sizeof(double) * (size_t)m->stride;
@@ -504,7 +535,7 @@ void sw_muscle_reset(const swModel *m, swData *d) {
   for (int i = 0; i < m->nmuscle; i++) {
     const double u = muscle_input(m, i, 0.0);
     for (int f = m->muscle_fil_adr[i]; f < m->muscle_fil_adr[i + 1]; f++)
-      d->fil_activation[f] = m->fil_tau[f] > 0 ? 0.0 : drive(m, f, u);
+      d->fil_activation[f] = m->fil_tau[f] > 0 || m->muscle_prescribed[i] ? 0.0 : drive(m, f, u);
   }
 }
 
@@ -560,6 +591,13 @@ static void filament_rates(const swModel *m, swData *d, int lo, int hi) {
   }
 }
 
+/* The muscle whose filaments include f. */
+static int muscle_of(const swModel *m, int f) {
+  int i = 0;
+  while (m->muscle_fil_adr[i + 1] <= f) i++;
+  return i;
+}
+
 static void filament_tension(const swModel *m, swData *d, int f, double u, double h) {
   const int r = m->fil_rod[f], lo = m->elem_adr[r], hi = lo + m->rod_nelem[r];
   const double *len = d->length, *q = d->scratch_phi;
@@ -569,9 +607,19 @@ static void filament_tension(const swModel *m, swData *d, int f, double u, doubl
     l += len[e];
     ldot += q[e];
   }
-  if (!(m->fil_tau[f] > 0)) d->fil_activation[f] = drive(m, f, u);
+  const int mu = muscle_of(m, f);
+  if (!(m->fil_tau[f] > 0) && !m->muscle_prescribed[mu]) d->fil_activation[f] = drive(m, f, u);
   const double inv_l0 = 1.0 / m->fil_l0[f];
   const double eta = l * inv_l0, edot = ldot * inv_l0;
+  if (m->muscle_prescribed[mu]) {   /* T_k = F(t) A_k / A (the header) */
+    const double share = m->fil_recruit[2 * f + 1] - m->fil_recruit[2 * f];   /* A_k / A */
+    const double T = sw_signal_eval(&m->muscle_force[mu], d->time) * share;
+    d->fil_stretch[f] = eta;
+    d->fil_rate[f] = edot;
+    d->fil_tension[f] = T;
+    for (int e = lo; e < hi; e++) T_e[e] = T;
+    return;
+  }
   double T = sw_muscle_tension(m, f, eta, edot, d->fil_activation[f]);
   if (m->fil_system && m->fil_system[f]) T = sw_muscle_system_part(m, d, f, T, eta, edot, h);
   else if (h > 0 && m->fil_implicit[f]) T = sw_muscle_implicit_tension(m, d, f, T, eta, edot, h);
@@ -608,12 +656,6 @@ static void filament_pull(const swModel *m, swData *d, int lo, int hi) {
   }
 }
 
-/* The muscle whose filaments include f. */
-static int muscle_of(const swModel *m, int f) {
-  int i = 0;
-  while (m->muscle_fil_adr[i + 1] <= f) i++;
-  return i;
-}
 
 /* The three parts of the pull (above), each on this thread's slots; the
  * step puts a barrier between them (integrate.c). */
@@ -675,6 +717,7 @@ void sw_muscle_loads(const swModel *m, swData *d) {
 double sw_stable_dt_filament(const swModel *m, int f) {
   const double ring = m->fil_ring_adr ? sw_via_stable_dt(m, f) : INFINITY; /* muscle_via.c */
   if (m->fil_implicit && m->fil_implicit[f]) return ring; /* L-stable (the header) */
+  if (m->muscle_prescribed[muscle_of(m, f)]) return ring;  /* no Hill damping */
   double peak = 0; /* max of f_act + p over the fitted range */
   for (int s = 0; s <= 120; s++) {
     double eta = 0.4 + 0.01 * s, q = sw_muscle_f_act(eta) + sw_muscle_f_pass(eta);

@@ -62,8 +62,11 @@ int sw_check_rod(const swRodDesc *r, char *err, size_t errlen) {
 }
 static int check_signal(const swSignal *g, char *err, size_t errlen, const char *what, int k,
                         const char *rod) {
-  if (g->kind < SW_SIG_CONST || g->kind > SW_SIG_BSPLINE)
+  if (g->kind < SW_SIG_CONST || g->kind > SW_SIG_FUNC)
     return sw_fail(err, errlen, "%s %d on rod '%s': unknown signal kind %d", what, k, rod, (int)g->kind);
+  if (g->kind == SW_SIG_FUNC && !g->fn)
+    return sw_fail(err, errlen, "%s %d on rod '%s': function signal without a function", what, k,
+                   rod);
   if (!(g->period >= 0) || !isfinite(g->period))
     return sw_fail(err, errlen, "%s %d on rod '%s': signal period must be >= 0 (0: not periodic), "
                 "got %g", what, k, rod, g->period);

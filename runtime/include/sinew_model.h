@@ -182,6 +182,9 @@ typedef struct {
   char **muscle_name;        /* (nmuscle)                                    */
   int *muscle_fil_adr;       /* (nmuscle+1) first filament of each muscle    */
   swSignal *muscle_activation; /* (nmuscle)                                  */
+  swSignal *muscle_force;    /* (nmuscle)  prescribed force, N (kind CONST 0 and
+                                           muscle_prescribed 0: Hill's law) */
+  int *muscle_prescribed;    /* (nmuscle)  1: pulls with muscle_force        */
   const void *muscle_ops;    /* muscle.c's functions (NULL: no muscles)      */
   const void *env_ops;       /* environment.c's (NULL: no environment)       */
   int *fil_rod;              /* (nfil)     rod of each filament              */

@@ -35,9 +35,15 @@ typedef enum {
   SW_SIG_SINE,      /* a + b sin(2 pi f (t - t0) + phase)                      */
   SW_SIG_STEP,      /* a before t0, b from t0 on                               */
   SW_SIG_TABLE,     /* piecewise linear through (times[k], values[k]), clamped */
-  SW_SIG_BSPLINE    /* clamped cubic B-spline with coefficients values[0..npts)
+  SW_SIG_BSPLINE,   /* clamped cubic B-spline with coefficients values[0..npts)
                        on uniform knots over [t0, t0+T], constant outside   */
+  SW_SIG_FUNC       /* fn(t, ctx): any function of time, e.g. a model's
+                       signal NAME(t) = ... compiled to C; its range is
+                       sampled over [t0, t0 + T]                          */
 } swSignalKind;
+
+/* A signal given as a function of time; ctx is the signal's fn_ctx. */
+typedef double (*swSignalFn)(double t, const void *ctx);
 
 #define SW_SIGNAL_MAXPTS 64
 typedef struct {
@@ -47,6 +53,8 @@ typedef struct {
   int npts;                          /* SW_SIG_TABLE and SW_SIG_BSPLINE   */
   double times[SW_SIGNAL_MAXPTS];    /* strictly increasing               */
   double values[SW_SIGNAL_MAXPTS];
+  swSignalFn fn;                     /* SW_SIG_FUNC                       */
+  const void *fn_ctx;
 } swSignal;
 
 swSignal sw_signal_const(double value);
@@ -58,6 +66,9 @@ swSignal sw_signal_step(double before, double after, double t0);
 swSignal sw_signal_bspline(const double *c, int n, double t0, double duration);
 /* The same signal repeated with `period` (> 0) from its t0 on. */
 swSignal sw_signal_periodic(swSignal s, double period);
+/* fn(t, ctx) scaled by nothing; its range (sw_signal_range) is sampled at
+ * 4097 points over [t0, t0 + span] (span > 0), the times a run covers. */
+swSignal sw_signal_func(swSignalFn fn, const void *ctx, double t0, double span);
 double sw_signal_eval(const swSignal *s, double t);
 /* The least and the greatest value s takes (a B-spline's to about 1e-4 of
  * its spread): what the compiler and the simulator check an activation by. */
@@ -231,6 +242,14 @@ typedef struct {
   double v_max;               /* maximum shortening rate v0 / l0, 1/s (6)      */
   double fibre_diameter;      /* m (75 um): fibre counts in --info only       */
   swSignal activation;        /* u(t), clamped to [0, 1]                      */
+  /* prescribed = 1: the muscle pulls with `force` (N, the whole muscle's,
+   * shared by the filaments in proportion to their cross-sections) instead
+   * of its activation and the Hill law: no force-length, force-velocity or
+   * damping, as Zhang et al. 2019 drive the wing's muscles (Suppl. eqs.
+   * 6-10).  sigma_max is then not needed; F_max,k (the attachments' default
+   * stiffness) is the force's largest size over its range times the share. */
+  int prescribed;
+  swSignal force;
   int attach_rod[2];          /* rod tied to start / end (-1: not tied)       */
   int attach_node[2];         /* node of that rod (-1 = last)                 */
   double attach_stiffness;    /* N/m per filament end; 0 = 100 F_max,k / l0  */
@@ -310,19 +329,27 @@ void sw_ground_desc_init(swGroundDesc *g);   /* fills defaults */
 int sw_spec_add_ground(swSpec *s, const swGroundDesc *g);   /* returns its id */
 
 /* A fluid acting on the elements of its rods (fluid.c): drag on each
- * element's velocity relative to the flow, quadratic drag on the area the
- * element shows the flow (2 r l |sin| plus the rod's end caps), and
- * buoyancy (docs/physics.md, "Fluids"). */
+ * element's velocity relative to the flow, quadratic drag on an area A per
+ * element (by default the area the element shows the flow, 2 r l |sin| plus
+ * the rod's end caps), and buoyancy (docs/physics.md, "Fluids"). */
 typedef enum {
   SW_FLUID_STOKES = 0,      /* slender-body Stokes drag, Zhang 2019 Suppl. eq. 1 */
   SW_FLUID_QUADRATIC = 1    /* quadratic (Morison) drag, Zhang 2019 Suppl. eq. 2 */
 } swFluidModel;
+typedef enum {                /* quadratic drag's A, per element of length l  */
+  SW_FLUID_SILHOUETTE = 0,    /* 2 r l |sin a| + the rod's end caps pi r^2 |cos a|,
+                                 a between the axis and the relative flow   */
+  SW_FLUID_CROSS_SECTION = 1, /* pi r^2, Suppl. Note 5.2 as worded           */
+  SW_FLUID_BROADSIDE = 2      /* 2 r l whatever the flow's direction (the
+                                 reference's released wing code)             */
+} swFluidArea;
 typedef struct {
   const char *name;
   swFluidModel model;
   double viscosity;         /* mu, Pa s (Stokes)                             */
   double density;           /* rho_f, kg/m^3 (quadratic drag, buoyancy)      */
   double drag_coefficient;  /* C_d (quadratic)                               */
+  swFluidArea area;         /* A of quadratic drag (0: the silhouette)       */
   double body_length;       /* L of ln(L / r) (Stokes); 0: each rod's length */
   double velocity[3];       /* uniform background flow, m/s                  */
   int buoyancy;             /* 1: buoyancy -rho_f V g on each element        */

@@ -7,7 +7,11 @@
  * one at first order), a fluid acting only on the rods it lists, the energy
  * balance with drag (kinetic + elastic - work), the Stokes drag's stable
  * step against the step at which a rod really blows up, quadratic drag's
- * instability caught by the check, and the validation messages (exact text).
+ * instability caught by the check, quadratic drag on each of its three
+ * areas (silhouette, cross section, broadside) against -(1/2) rho C_d A |w| w
+ * and the silhouette against the figures fluid.c gave before the areas
+ * existed, the speed limit of quadratic drag on each area, and the
+ * validation messages (exact text).
  *
  * Design.  Scenes are built through the public API (swFluidDesc,
  * sw_spec_add_fluid), so these are also the examples of how a fluid is
@@ -17,6 +21,7 @@
  * drag is carried by the end caps alone lengthwise.  Runs are a few thousand
  * steps of ten-element rods; under SW_SANITIZED only the stable-step runs shrink. */
 #include "testutil.h"
+#include "internal.h"
 
 static const double GRAV = 9.81;
 
@@ -227,6 +232,198 @@ static void test_quadratic_instability_reported(void **state) {
   sw_data_free(d);
   sw_model_free(m);
   sw_spec_free(s);
+}
+
+/* The fluid's loads alone (drag and buoyancy, sw_fluid_loads) of the
+ * state, into d->ext_force. */
+static void fluid_loads_only(const swModel *m, swData *d) {
+  memset(d->force, 0, sizeof(double) * 3 * (size_t)m->stride);
+  memset(d->ext_force, 0, sizeof(double) * 3 * (size_t)m->stride);
+  sw_fluid_loads(m, d, 0, m->stride);
+}
+
+static const swFluidArea AREAS[3] = {SW_FLUID_SILHOUETTE, SW_FLUID_CROSS_SECTION,
+                                     SW_FLUID_BROADSIDE};
+static const char *const AREA_NAME[3] = {"silhouette", "cross_section", "broadside"};
+
+/* Claim: a straight rod of n elements translating at w, at the angle a to
+ * its axis, feels -(1/2) rho_f C_d A |w| w, element by element and in all.
+ * An element's A is 2 r l |sin a| + cap |cos a| (silhouette; cap = pi r^2 / 2
+ * on the rod's two end elements, 0 between), pi r^2 (cross section) or
+ * 2 r l (broadside); the rod's, their sum, is 2 r L |sin a| + pi r^2 |cos a|,
+ * n pi r^2 or 2 r L.  Each element's force is shared half and half by its
+ * nodes, so the first element's force is twice its first node's.  Rods of
+ * two and ten elements, a = 0, 30, 45, 60 and 90 degrees, to 1e-12 relative
+ * (the largest error over the angles is printed). */
+static void test_quadratic_areas(void **state) {
+  (void)state;
+  const double rho_f = 1000, cd = 1.2, speed = 0.7, o[3] = {0, 0, 0}, dir[3] = {1, 0, 0};
+  const double angle_deg[5] = {0, 30, 45, 60, 90};
+  const int nelem[2] = {2, SN};
+  for (int k = 0; k < 3; k++) {
+    for (int j = 0; j < 2; j++) {
+      const int n = nelem[j];
+      const double l = SL / n, cap = M_PI * SR * SR;
+      swSpec *s = sw_spec_new();
+      swRodDesc r = rod_along("rod", n, SL, SR, 1100, SE, o, dir);
+      assert_int_equal(sw_spec_add_rod(s, &r), 0);
+      swFluidDesc f = quadratic_fluid(rho_f, cd, 0);
+      f.area = AREAS[k];
+      assert_int_equal(sw_spec_add_fluid(s, &f), 0);
+      sw_spec_set_dt(s, 1e-6);
+      swModel *m = sw_test_compile(s);
+      swData *d = sw_data_new(m);
+      double worst_rod = 0, worst_elem = 0, F_rod = 0, F_elem = 0;
+      for (int q = 0; q < 5; q++) {
+        const double a = angle_deg[q] * M_PI / 180, sa = fabs(sin(a)), ca = fabs(cos(a));
+        const double w[3] = {speed * cos(a), 0, speed * sin(a)};
+        for (int i = 0; i <= n; i++)
+          for (int c = 0; c < 3; c++) SW_AT(m, d->v, i, c) = w[c];
+        fluid_loads_only(m, d);
+        double A_rod, A_elem; /* the rod's and its first element's */
+        if (AREAS[k] == SW_FLUID_SILHOUETTE) {
+          A_rod = 2 * SR * SL * sa + cap * ca;
+          A_elem = 2 * SR * l * sa + 0.5 * cap * ca;
+        } else if (AREAS[k] == SW_FLUID_CROSS_SECTION) {
+          A_rod = n * cap;
+          A_elem = cap;
+        } else {
+          A_rod = 2 * SR * SL;
+          A_elem = 2 * SR * l;
+        }
+        double F[3] = {0, 0, 0}, Fe[3], diff[3], diff_e[3], expect[3], expect_e[3];
+        for (int i = 0; i <= n; i++)
+          for (int c = 0; c < 3; c++) F[c] += SW_AT(m, d->ext_force, i, c);
+        for (int c = 0; c < 3; c++) {
+          Fe[c] = 2 * SW_AT(m, d->ext_force, 0, c);
+          expect[c] = -0.5 * rho_f * cd * A_rod * speed * w[c];
+          expect_e[c] = -0.5 * rho_f * cd * A_elem * speed * w[c];
+          diff[c] = F[c] - expect[c];
+          diff_e[c] = Fe[c] - expect_e[c];
+        }
+        worst_rod = fmax(worst_rod, norm3(diff) / norm3(expect));
+        worst_elem = fmax(worst_elem, norm3(diff_e) / norm3(expect_e));
+        if (q == 2) F_rod = norm3(F), F_elem = norm3(Fe);
+      }
+      fprintf(stderr, "# %s: %s, %d elements, |w| = %g m/s: at 45 degrees |F| = %.9g N on the "
+              "rod, %.9g N on its first element; largest rel. error over 0-90 degrees %.3e (rod), "
+              "%.3e (element)\n", __func__, AREA_NAME[k], n, speed, F_rod, F_elem, worst_rod,
+              worst_elem);
+      assert_true(worst_rod <= 1e-12);
+      assert_true(worst_elem <= 1e-12);
+      sw_data_free(d);
+      sw_model_free(m);
+      sw_spec_free(s);
+    }
+  }
+}
+
+/* Claim: the silhouette, the default area, is the quadratic drag fluid.c
+ * computed before the areas existed, bit for bit.  A rod of four elements
+ * at an angle, its nodes moving unevenly in a flow (so the sides, the end
+ * caps and the mean velocities all count): the forces on its nodes are the
+ * ones fluid.c gave at commit 7555385 (-std=c11 keeps the arithmetic free of
+ * fused multiply-adds, so optimised and sanitizer builds agree), with the
+ * area left at its default and set to SW_FLUID_SILHOUETTE. */
+static void test_silhouette_unchanged(void **state) {
+  (void)state;
+  static const double before[5][3] = {
+      {-0x1.d8b5616fe91bep-12, 0x1.b931d268732b3p-14, -0x1.f0580cb581908p-12},
+      {-0x1.d388d9e9ea454p-9, 0x1.edb61de9ad6ddp-9, -0x1.cd0dcf4ed0d33p-10},
+      {-0x1.acaf1b25c56f6p-7, 0x1.dabcd2ac8b67p-6, -0x1.9f586980823b4p-10},
+      {-0x1.0cf9187ec0642p-5, 0x1.e9462f0e34975p-4, 0x1.3d997746ee15fp-8},
+      {-0x1.76a8e9221bb4cp-6, 0x1.81965eddc50c3p-4, 0x1.51319e9eb289p-8},
+  };
+  for (int given = 0; given < 2; given++) {
+    swSpec *s = sw_spec_new();
+    const double o[3] = {0.01, -0.02, 0.03}, dir[3] = {0.6, 0.0, 0.8};
+    swRodDesc r = sw_test_rod("rod", 4, 0.1, 1e-3, o, dir, NULL);
+    r.density = 1100;
+    r.youngs = 1e6;
+    r.poisson = 0.5;
+    assert_int_equal(sw_spec_add_rod(s, &r), 0);
+    swFluidDesc f = quadratic_fluid(1000, 1.2, 0);
+    if (given) f.area = SW_FLUID_SILHOUETTE;
+    f.velocity[0] = 0.05;
+    f.velocity[1] = -0.03;
+    f.velocity[2] = 0.01;
+    assert_int_equal(sw_spec_add_fluid(s, &f), 0);
+    sw_spec_set_dt(s, 1e-6);
+    swModel *m = sw_test_compile(s);
+    swData *d = sw_data_new(m);
+    for (int i = 0; i <= 4; i++) {
+      SW_AT(m, d->v, i, 0) = 0.3 + 0.1 * i;
+      SW_AT(m, d->v, i, 1) = -0.2 * i * i;
+      SW_AT(m, d->v, i, 2) = 0.4 - 0.15 * i;
+    }
+    fluid_loads_only(m, d);
+    double worst = 0, largest = 0;
+    for (int i = 0; i <= 4; i++)
+      for (int c = 0; c < 3; c++) {
+        worst = fmax(worst, fabs(SW_AT(m, d->ext_force, i, c) - before[i][c]));
+        largest = fmax(largest, fabs(before[i][c]));
+      }
+    fprintf(stderr, "# %s: area %s: largest node force %.17g N, largest difference from before "
+            "%.3e N\n", __func__, given ? "= SW_FLUID_SILHOUETTE" : "left at its default", largest,
+            worst);
+    assert_true(worst == 0.0);
+    sw_data_free(d);
+    sw_model_free(m);
+    sw_spec_free(s);
+  }
+}
+
+/* Claim: quadratic drag's speed limit (fluid.c, "Step limit") holds with
+ * each area's A_e: a rod moving broadside as a whole at v has the secant
+ * rate k v = rho_f C_d A_e v / (2 m_e) (m_e = rho pi r^2 l an element's
+ * mass; A_e = 2 r l for the silhouette and broadside, pi r^2 for the cross
+ * section), and position Verlet's kick multiplies v by 1 - h k v exactly.
+ * The Jacobian's bound puts the limit at h k v = S / 2 = 1; the velocity
+ * really grows past h k v = S = 2.  So at h k v = 1.9 the first kick
+ * multiplies v by -0.9 (to 1e-12) and the run stays stable over 200 steps,
+ * decaying; at h k v = 2.1 the check reports the rod unstable. */
+static void test_quadratic_speed_limit(void **state) {
+  (void)state;
+  const double rho = 1100, rho_f = 1000, cd = 1.2, o[3] = {0, 0, 0}, dir[3] = {1, 0, 0};
+  const double l = SL / SN, m_e = rho * M_PI * SR * SR * l;
+  for (int k = 0; k < 3; k++) {
+    const double A_e = AREAS[k] == SW_FLUID_CROSS_SECTION ? M_PI * SR * SR : 2 * SR * l;
+    for (int over = 0; over < 2; over++) {
+      const double hkv = over ? 2.1 : 1.9;
+      swSpec *s = sw_spec_new();
+      swRodDesc r = rod_along("rod", SN, SL, SR, rho, SE, o, dir);
+      assert_int_equal(sw_spec_add_rod(s, &r), 0);
+      swFluidDesc f = quadratic_fluid(rho_f, cd, 0);
+      f.area = AREAS[k];
+      assert_int_equal(sw_spec_add_fluid(s, &f), 0);
+      swModel *m = sw_test_compile_at(s, 0.9);
+      swData *d = sw_data_new(m);
+      const double v0 = hkv / (m->dt * rho_f * cd * A_e / (2 * m_e));
+      for (int i = 0; i <= SN; i++) SW_AT(m, d->v, m->node_adr[0] + i, 2) = v0;
+      if (!over) {
+        assert_int_equal(sw_steps(m, d, 1), SW_OK);
+        double V[3];
+        com_velocity(m, d, 0, V);
+        fprintf(stderr, "# %s: %s, dt = %.3g s, v0 = %.4g m/s (h k v0 = 1.9; the Jacobian's "
+                "limit %.4g m/s)\n", __func__, AREA_NAME[k], m->dt, v0, v0 / 1.9);
+        SW_EXPECT_REL("first kick: v1 / v0", V[2] / v0, 1 - hkv, 1e-12);
+        assert_int_equal(sw_steps(m, d, 199), SW_OK);
+        com_velocity(m, d, 0, V);
+        fprintf(stderr, "# %s: %s: |v| / v0 after 200 steps %.3e\n", __func__, AREA_NAME[k],
+                fabs(V[2]) / v0);
+        assert_true(fabs(V[2]) < 0.1 * v0);
+      } else {
+        int rc = sw_steps(m, d, 200);
+        fprintf(stderr, "# %s: %s, v0 = %.4g m/s (h k v0 = 2.1): %s after %ld steps: %s\n",
+                __func__, AREA_NAME[k], v0, rc == SW_OK ? "stable" : "unstable", d->step, d->error);
+        assert_int_equal(rc, SW_EUNSTABLE);
+        assert_non_null(strstr(d->error, "rod 'rod' became unstable"));
+      }
+      sw_data_free(d);
+      sw_model_free(m);
+      sw_spec_free(s);
+    }
+  }
 }
 
 /* ---- 3. buoyancy ---- */
@@ -552,6 +749,9 @@ static void test_validation(void **state) {
   f.nrods = 2;
   f.rods = twice;
   expect_error(&f, 0.1, "fluid 'water': rod 0 is listed twice");
+  f = quadratic_fluid(1.2, 1.2, 0);
+  f.area = (swFluidArea)3;
+  expect_error(&f, 0.1, "fluid 'air': unknown drag area 3");
 }
 
 int main(void) {
@@ -560,6 +760,9 @@ int main(void) {
       cmocka_unit_test(test_stokes_sedimentation),
       cmocka_unit_test(test_quadratic_terminal),
       cmocka_unit_test(test_quadratic_instability_reported),
+      cmocka_unit_test(test_quadratic_areas),
+      cmocka_unit_test(test_silhouette_unchanged),
+      cmocka_unit_test(test_quadratic_speed_limit),
       cmocka_unit_test(test_buoyancy),
       cmocka_unit_test(test_uniform_flow_carries),
       cmocka_unit_test(test_fluid_rod_list),
