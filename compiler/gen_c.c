@@ -93,6 +93,8 @@ void gen_emit_signal(FILE *out, swArena *a, const char *var, const swSignalVal *
             sig->func->index, val_c(a, &span, 0));
     gen_c_comment(out, sig->func->name, strlen(sig->func->name));
     fputs(" */\n", out);
+    if (sig->a.kind == VAL_NUM && !(val_is_const(&sig->a) && sig->a.v[0] == 1))
+      fprintf(out, "    %s.a = %s;   /* its scale */\n", var, val_c(a, &sig->a, 0));
     return;
   }
   static const char *kinds[] = {"SW_SIG_CONST", "SW_SIG_RAMP", "SW_SIG_SINE", "SW_SIG_STEP",
@@ -205,6 +207,10 @@ static void emit_muscle(FILE *out, swArena *a, const swScene *sc, int mi) {
       rod_comment(out, sc, m->via_rod[k]);
     }
   gen_assign_fields(out, a, "muscle", f, gen_muscle_fields(m, f));
+  if (m->force) {   /* a prescribed pull instead of the Hill law */
+    fputs("    muscle.prescribed = 1;\n", out);
+    gen_emit_signal(out, a, "muscle.force", m->force);
+  }
   if (m->activation) {
     gen_origin(out, m->activation_loc, "    ");
     const swSignalVal *sig = m->activation;
@@ -652,7 +658,7 @@ int gen_check(const swScene *sc, double *stable_dt) {
     const swSignalVal *act = sc->muscle[mu].activation;
     if (!act) continue;
     int listed = act->kind == SW_SIG_TABLE || act->kind == SW_SIG_BSPLINE;
-    int by_param = act->kind == SW_SIG_FUNC ? 0
+    int by_param = act->kind == SW_SIG_FUNC ? !val_is_const(&act->a)
                    : listed ? !val_is_const(&act->values)
                             : !val_is_const(&act->a) || !val_is_const(&act->b);
     if (act->kind == SW_SIG_CONST && !by_param) continue;

@@ -191,8 +191,11 @@ static void fill(void *desc, const swLowField *f, int n) {
 swSignal gen_signal(const swSignalVal *sig) {
   swSignal s = sw_signal_const(1.0);
   if (!sig) return s;
-  if (sig->kind == SW_SIG_FUNC)   /* the compiler's own evaluation of the tree */
-    return sw_signal_func(sema_signal_eval, sig->func, 0.0, sig->func->span);
+  if (sig->kind == SW_SIG_FUNC) {   /* the compiler's own evaluation of the tree */
+    s = sw_signal_func(sema_signal_eval, sig->func, 0.0, sig->func->span);
+    if (sig->a.kind == VAL_NUM) s.a = sig->a.v[0];
+    return s;
+  }
   swLowField f[GEN_MAX_FIELDS];
   s.kind = sig->kind;
   s.a = s.b = s.t0 = s.T = s.freq = s.phase = s.period = 0;
@@ -267,6 +270,10 @@ swSpec *gen_spec(const swScene *sc) {
         d.attach_node[e] = m->attach_node[e];
       }
     if (m->activation) d.activation = gen_signal(m->activation);
+    if (m->force) {
+      d.prescribed = 1;
+      d.force = gen_signal(m->force);
+    }
     d.nvia = m->nvia;
     for (int k = 0; k < m->nvia; k++) d.via_rod[k] = gen_rod_id(sc, m->via_rod[k]);
     fill(&d, f, gen_muscle_fields(m, f));

@@ -164,6 +164,7 @@ typedef struct {
   int attach_node[2];
   const char *attach_node_c[2];      /* param-dependent nodes' C text, or NULL */
   swSignalVal *activation;    /* NULL: not activated (the runtime's default) */
+  swSignalVal *force;         /* force = ...: a prescribed pull (N); NULL: Hill's law */
   swLoc activation_loc;       /* the activate statement                    */
   const char *material;       /* its material's name (NULL: none), output   */
 } swSceneMuscle;

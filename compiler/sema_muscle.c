@@ -33,11 +33,13 @@ static const char *const muscle_keys[] = {
   "E", "G", "poisson", "density", "sigma_max", "size_ratio", "twitch_small", "twitch_large",
   "hill_a", "v_max", "fibre_diameter", "attach_stiffness", "attach_damping",
   "shear_hardening", "twist_hardening", "damping", "damping_model", "variational", "via",
-  "gravity",
+  "gravity", "force",
   /* rod fields that a muscle does not take, refused with a reason below */
   "start", "direction", "length", "radius_start", "radius_end",
 };
 enum { NMUSCLE_KEYS = sizeof muscle_keys / sizeof muscle_keys[0] };
+
+static swSignalVal *scalar_signal(swSema *S, swValue v, const char *what);
 
 void sema_muscle_not_rod(swSema *S, const swSymbol *muscle, swLoc loc) {
   (void)S;
@@ -318,8 +320,34 @@ void sema_eval_muscle(swSema *S, swSymbol *sym) {
     ok = 0;
   }
 
-  /* contraction */
-  if (!sema_field(&f, "sigma_max")) {
+  /* contraction: a prescribed force, or sigma_max and the Hill law */
+  const swAst *force = sema_field(&f, "force");
+  if (force) {
+    swValue v = sema_eval(S, sc, force);
+    if (v.kind == VAL_WORD) {
+      sema_report_unknown(S, sc, v.word, v.loc, "name");
+      ok = 0;
+    } else if (v.kind != VAL_ERROR && v.kind != VAL_NUM && v.kind != VAL_SIGNAL) {
+      diag_error(v.loc, "'force' is a force or a time signal of one (e.g. force = 2 N * "
+                 "ramp(0, 1, over = 0.1 s);), not %s", val_kind_noun(&v));
+      ok = 0;
+    } else if (v.kind != VAL_ERROR && !dim_eq(v.dim, dim_make(1, 1, -2, 0))) {
+      diag_error(v.loc, "'force' is the muscle's pull, a force (N), got %s",
+                 dim_describe(S->a, v.dim));
+      ok = 0;
+    } else if (v.kind == VAL_ERROR ||
+               !(m.force = scalar_signal(S, v, "'force' (the pull along the muscle)"))) {
+      ok = 0;
+    }
+    static const char *const hill[] = {"sigma_max", "twitch_small", "twitch_large", "hill_a",
+                                       "v_max"};
+    for (int k = 0; k < 5; k++) {
+      const swAst *h = sema_field(&f, hill[k]);
+      if (h)
+        diag_warning(h->loc, "'%s' has no effect on %s: it pulls with its prescribed 'force', "
+                     "not by the Hill law", hill[k], what);
+    }
+  } else if (!sema_field(&f, "sigma_max")) {
     sema_missing(&f, loc, "%s needs 'sigma_max', its peak isometric stress: the force per area of "
                "a fully activated muscle at rest length (e.g. sigma_max = 300 kPa;)", what);
     ok = 0;
@@ -442,6 +470,35 @@ static swValue scaled(swSema *S, swValue s, const swValue *k) {
   return val_binop(S->a, '*', s, *k, s.loc);
 }
 
+/* A number or a scalar time signal as one swSignal (NULL after an error):
+ * swSignal has no scale of its own, so a signal's scale is folded into its
+ * values (a ramp's ends, a sine's mean and amplitude, a table's values, a
+ * signal NAME(t)'s factor a). */
+static swSignalVal *scalar_signal(swSema *S, swValue v, const char *what) {
+  swSignalVal *sig = ast_alloc(S->a, sizeof *sig);
+  memset(sig, 0, sizeof *sig);
+  if (v.kind == VAL_NUM) {
+    sig->kind = SW_SIG_CONST;
+    sig->a = v;
+  } else {
+    if (v.sig->scale.kind != VAL_NUM) {
+      diag_error(v.loc, "%s is a number or a time signal, not a vector", what);
+      return NULL;
+    }
+    *sig = *v.sig;
+    const swValue *k = &v.sig->scale;
+    sig->a = scaled(S, sig->a, k);
+    sig->b = scaled(S, sig->b, k);
+    /* a table's and a B-spline's values are in values[], a and b unused */
+    int listed = sig->kind == SW_SIG_TABLE || sig->kind == SW_SIG_BSPLINE;
+    if (listed) sig->values = scaled(S, sig->values, k);
+    if (listed ? sig->values.kind == VAL_ERROR : sig->a.kind == VAL_ERROR) return NULL;
+    sig->scale = val_num(S->a, 1, DIM_NONE, v.loc);
+  }
+  sig->base = v.dim;
+  return sig;
+}
+
 /* activate MUSCLE = ACTIVATION; */
 void sema_activate(swSema *S, swScope *scope, const swAst *it) {
   if (it->nkid != 2) {
@@ -467,46 +524,22 @@ void sema_activate(swSema *S, swScope *scope, const swAst *it) {
                dim_describe(S->a, v.dim));
     return;
   }
-  swSignalVal *sig = ast_alloc(S->a, sizeof *sig);
-  if (v.kind == VAL_NUM) {
-    sig->kind = SW_SIG_CONST;
-    sig->a = v;
-    if (val_is_const(&v) && !(v.v[0] >= 0 && v.v[0] <= 1))
-      diag_warning(v.loc, "an activation is clamped to [0, 1]: %g acts as %g", v.v[0],
-                   v.v[0] < 0 ? 0.0 : 1.0);
-  } else {
-    if (v.sig->scale.kind != VAL_NUM) {
-      diag_error(v.loc, "an activation is a number or a time signal, not a vector");
-      return;
-    }
-    if (v.sig->kind == SW_SIG_FUNC) {   /* signal NAME(t): its values are its body's */
-      const swValue *k = &v.sig->scale;
-      if (!val_is_const(k) || k->v[0] != 1) {
-        diag_error(v.loc, "an activation takes signal '%s' as it is; put the scale inside it: "
-                   "signal %s(t) = ... * (...);", v.sig->func->name, v.sig->func->name);
-        return;
-      }
-    }
-    /* swSignal has no scale of its own: fold it into the values */
-    *sig = *v.sig;
-    const swValue *k = &v.sig->scale;
-    sig->a = scaled(S, sig->a, k);
-    sig->b = scaled(S, sig->b, k);
-    /* a table's and a B-spline's values are in values[], a and b unused */
-    int listed = sig->kind == SW_SIG_TABLE || sig->kind == SW_SIG_BSPLINE;
-    if (listed) sig->values = scaled(S, sig->values, k);
-    if (sig->kind != SW_SIG_FUNC &&
-        (listed ? sig->values.kind == VAL_ERROR : sig->a.kind == VAL_ERROR))
-      return;
-    sig->scale = val_num(S->a, 1, DIM_NONE, v.loc);
-  }
-  sig->base = DIM_NONE;
+  if (v.kind == VAL_NUM && val_is_const(&v) && !(v.v[0] >= 0 && v.v[0] <= 1))
+    diag_warning(v.loc, "an activation is clamped to [0, 1]: %g acts as %g", v.v[0],
+                 v.v[0] < 0 ? 0.0 : 1.0);
+  swSignalVal *sig = scalar_signal(S, v, "an activation");
+  if (!sig) return;
   if (!mus) return;
   swSceneMuscle *m = &S->scene->muscle[mus->index];
   if (m->activation) {
     char first[300];
     diag_error(it->loc, "muscle '%s' is activated twice (first at %s)", mus->name,
                diag_where_from(m->activation_loc, it->loc, first, sizeof first));
+    return;
+  }
+  if (m->force) {
+    diag_error(it->loc, "muscle '%s' pulls with its prescribed 'force'; it has no activation",
+               mus->name);
     return;
   }
   m->activation = sig;

@@ -120,7 +120,8 @@ swValue sema_signal_value(swSema *S, swSymbol *sym, swLoc loc) {
   memset(sig, 0, sizeof *sig);
   sig->kind = SW_SIG_FUNC;
   sig->func = g;
-  sig->a = sig->b = sig->t0 = sig->T = sig->freq = sig->phase = sig->period = val_error();
+  sig->b = sig->t0 = sig->T = sig->freq = sig->phase = sig->period = val_error();
+  sig->a = val_num(S->a, 1, DIM_NONE, loc);   /* the factor an activation folds a scale into */
   sig->times = sig->values = val_error();
   sig->scale = val_num(S->a, 1, DIM_NONE, loc);
   sig->base = g->dim;

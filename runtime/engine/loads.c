@@ -64,7 +64,7 @@ swSignal sw_signal_bspline(const double *c, int n, double t0, double duration) {
 }
 
 swSignal sw_signal_func(swSignalFn fn, const void *ctx, double t0, double span) {
-  swSignal s = sw_signal_const(0.0);
+  swSignal s = sw_signal_const(1.0);
   s.kind = SW_SIG_FUNC;
   s.fn = fn;
   s.fn_ctx = ctx;
@@ -134,7 +134,7 @@ double sw_signal_eval(const swSignal *s, double t) {
     if (t >= s->t0 + s->T) return s->values[s->npts - 1];
     return bspline_uniform(s->values, s->npts, (t - s->t0) / s->T);
   case SW_SIG_FUNC:
-    return s->fn ? s->fn(t, s->fn_ctx) : 0.0;
+    return s->fn ? s->a * s->fn(t, s->fn_ctx) : 0.0;
   }
   return 0.0;
 }

@@ -37,9 +37,9 @@ typedef enum {
   SW_SIG_TABLE,     /* piecewise linear through (times[k], values[k]), clamped */
   SW_SIG_BSPLINE,   /* clamped cubic B-spline with coefficients values[0..npts)
                        on uniform knots over [t0, t0+T], constant outside   */
-  SW_SIG_FUNC       /* fn(t, ctx): any function of time, e.g. a model's
-                       signal NAME(t) = ... compiled to C; its range is
-                       sampled over [t0, t0 + T]                          */
+  SW_SIG_FUNC       /* a fn(t, ctx): any function of time, e.g. a model's
+                       signal NAME(t) = ... compiled to C, times a; its
+                       range is sampled over [t0, t0 + T]                 */
 } swSignalKind;
 
 /* A signal given as a function of time; ctx is the signal's fn_ctx. */
@@ -66,8 +66,9 @@ swSignal sw_signal_step(double before, double after, double t0);
 swSignal sw_signal_bspline(const double *c, int n, double t0, double duration);
 /* The same signal repeated with `period` (> 0) from its t0 on. */
 swSignal sw_signal_periodic(swSignal s, double period);
-/* fn(t, ctx) scaled by nothing; its range (sw_signal_range) is sampled at
- * 4097 points over [t0, t0 + span] (span > 0), the times a run covers. */
+/* fn(t, ctx) (times its a, 1 here: set a to scale it); its range
+ * (sw_signal_range) is sampled at 4097 points over [t0, t0 + span] (span >
+ * 0), the times a run covers. */
 swSignal sw_signal_func(swSignalFn fn, const void *ctx, double t0, double span);
 double sw_signal_eval(const swSignal *s, double t);
 /* The least and the greatest value s takes (a B-spline's to about 1e-4 of

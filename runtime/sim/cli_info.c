@@ -342,13 +342,16 @@ static void print_stiff_parts(const swModel *m) {
     if (nfil) printf(", the Hill damping of %d filament%s between their ends", nfil, nfil == 1 ? "" : "s");
     printf(" in %d independent group%s)\n", m->nrigid_group, m->nrigid_group == 1 ? "" : "s");
   }
-  if (m->nfil > nimplicit) {
+  int nhill = 0;   /* filaments under the Hill law (not a prescribed force) */
+  for (int i = 0; i < m->nmuscle; i++)
+    if (!m->muscle_prescribed[i]) nhill += m->muscle_fil_adr[i + 1] - m->muscle_fil_adr[i];
+  if (nhill > nimplicit) {
     double worst = INFINITY;
     for (int f = 0; f < m->nfil; f++)
       if (!(m->fil_implicit[f] & SW_FIL_IMPLICIT))
         worst = fmin(worst, 0.95 * sw_muscle_ops(m)->stable_dt_filament(m, f));
     printf("  explicit: the Hill damping of %d muscle filament%s (alone it limits dt to %s%s)\n",
-           m->nfil - nimplicit, m->nfil - nimplicit == 1 ? "" : "s", sw_cli_format_time(a, sizeof a, worst),
+           nhill - nimplicit, nhill - nimplicit == 1 ? "" : "s", sw_cli_format_time(a, sizeof a, worst),
            m->integrator == SW_IMEX ? "; a prescribed velocity or analytic damping keeps it explicit"
                                     : "; integrator = imex makes it implicit");
   }
@@ -433,10 +436,16 @@ void sw_cli_print_info(const swCli *c, const swModel *m, double stable, const ch
       fibres += m->fil_fibres[f];
       passive += m->fil_passive[f];
     }
-    printf("  %s: %d filaments (%.4g to %.4g mm^2, %.0f fibres), F_max %.6g N, l0 %.6g m, "
-           "twitch %s to %s", m->muscle_name[i], f1 - f0, m->fil_area[f0] * 1e6,
-           m->fil_area[f1 - 1] * 1e6, fibres, fmax, m->fil_l0[f0],
-           sw_cli_format_time(a, sizeof a, m->fil_tau[f0]), sw_cli_format_time(b, sizeof b, m->fil_tau[f1 - 1]));
+    if (m->muscle_prescribed[i])   /* muscle.c: F(t) shared by cross-section */
+      printf("  %s: %d filaments (%.4g to %.4g mm^2, %.0f fibres), a prescribed force of at "
+             "most %.6g N (no Hill law), l0 %.6g m", m->muscle_name[i], f1 - f0,
+             m->fil_area[f0] * 1e6, m->fil_area[f1 - 1] * 1e6, fibres, fmax, m->fil_l0[f0]);
+    else
+      printf("  %s: %d filaments (%.4g to %.4g mm^2, %.0f fibres), F_max %.6g N, l0 %.6g m, "
+             "twitch %s to %s", m->muscle_name[i], f1 - f0, m->fil_area[f0] * 1e6,
+             m->fil_area[f1 - 1] * 1e6, fibres, fmax, m->fil_l0[f0],
+             sw_cli_format_time(a, sizeof a, m->fil_tau[f0]),
+             sw_cli_format_time(b, sizeof b, m->fil_tau[f1 - 1]));
     if (passive) printf(", %d passive", passive);
     printf("\n");
     (void)area;

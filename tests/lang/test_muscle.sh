@@ -134,4 +134,54 @@ grep -q '^/muscles/biceps/force ' "$tmp/ls" && grep -q '^/muscles/brachialis/for
 ok $? "it writes /muscles/NAME/force for each muscle"
 grep -q '^/rods/biceps.f18/position ' "$tmp/ls" && grep -q '^/rods/hand/position ' "$tmp/ls"
 ok $? "filaments and later rods are written under their names"
+
+# A muscle with a prescribed force (force = ...): between two clamped bones,
+# once the damped filaments have settled, filament k pulls its end nodes
+# together with T_k = F A_k / A, and its tie (a spring k_t) holds T_k less
+# what the filament, shortened by the two ties' give, pushes back:
+# T_k / (1 + 2 E A_k / (k_t L)) for a straight filament of rest length L.
+cat > "$tmp/pull.sinew" <<'MODEL'
+material flesh { E = 10 kPa; density = 1.06 g/cm^3; }
+material bone { E = 15 GPa; density = 1.75 g/cm^3; }
+bone a { material = bone; from = (0, 0, 0) cm; to = (10, 0, 0) cm; radius = 1 cm; elements = 4; }
+bone b { material = bone; from = (20, 0, 0) cm; to = (30, 0, 0) cm; radius = 1 cm; elements = 4; }
+clamp a.start;
+clamp a.end;
+clamp b.start;
+clamp b.end;
+signal tone(t) = 3 N * ramp(0, 1, over = 20 ms);
+muscle pull {
+  material = flesh;
+  from = a.end;
+  to = b.start;
+  radius = 1 cm;
+  filaments = 3;
+  size_ratio = 4;
+  elements = 6;
+  force = tone;
+  damping = 20 kg/m/s;
+  attach_stiffness = 1e5 N/m;
+}
+simulate { dt = 3 us; duration = 0.3 s; }
+output "pull.h5" every 60 ms;
+MODEL
+"$SINEWC" "$tmp/pull.sinew" -o "$tmp/pull" >"$tmp/out" 2>&1; ok $? "a muscle with a prescribed force compiles"
+(cd "$tmp" && ./pull --quiet) >"$tmp/out" 2>&1; ok $? "it runs"
+/usr/bin/python3 - "$tmp/pull.h5" <<'PY'
+import sys, math, h5py
+f = h5py.File(sys.argv[1], "r")
+F = f["/muscles/pull/force"][-1]
+A = [math.pi * 0.01**2 * 4**(k / 2) / sum(4**(j / 2) for j in range(3)) for k in range(3)]
+worst = abs(F - 3.0) / 3.0
+tot = 0
+for k in range(3):
+    j = f["/joints/pull.f%02d.end/force" % (k + 1)][-1]
+    held = 3.0 * A[k] / sum(A) / (1 + 2 * 10e3 * A[k] / (1e5 * 0.1))
+    worst = max(worst, abs(math.sqrt(sum(c * c for c in j)) - held) / held)
+    tot += math.sqrt(sum(c * c for c in j))
+print("# prescribed 3 N: muscle force %.9f N, the three ties hold %.9f N in all; largest "
+      "difference from T_k / (1 + 2 E A_k / (k_t L)) %.2e" % (F, tot, worst))
+sys.exit(0 if worst < 1e-9 else 1)
+PY
+ok $? "each filament's tie holds its share F A_k / A of the prescribed force, less the filament's push (within 1e-9)"
 done_testing
