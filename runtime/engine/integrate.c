@@ -58,6 +58,11 @@
 static void compute_loads(const swModel *m, swData *d, double h) {
   const swMuscleOps *mu = sw_muscle_ops(m);
   int lo, hi;
+  if (m->nkinematic) { /* the imposed frames first: every load sees them (kinematic.c) */
+    sw_team_barrier(d);
+    if (sw_team_leader(d)) sw_kinematic_impose(m, d);
+    sw_team_barrier(d);
+  }
   sw_share_slots(m, d, m->nslot_elastic, &lo, &hi);
   sw_rod_pass(m, d, lo, hi, 0, d->scratch_flag); /* (A) */
   if (m->njoint) sw_joint_rows(m, d);
@@ -83,6 +88,11 @@ static void compute_loads(const swModel *m, swData *d, double h) {
   }
   sw_team_barrier(d);
   if (m->nmuscle) mu->pull(m, d); /* (C) */
+  if (m->nkinematic) { /* their scatter reaches any thread's nodes */
+    sw_team_barrier(d);
+    if (sw_team_leader(d)) sw_kinematic_loads(m, d);
+    sw_team_barrier(d);
+  }
   if (sw_has_env(m)) { /* last: the ground balances the rest */
     sw_team_barrier(d);
     sw_env_ops(m)->loads(m, d);
@@ -354,6 +364,10 @@ static void kick(const swModel *m, swData *d, double h, double span) {
     sw_owned_slots(m, d, &lo, &hi);
     sw_bc_kick(m, d, h, d->time + 0.5 * span, lo, hi, 0, d->bc_work);
   }
+  if (m->nkinematic) { /* followers turn at their leaders' new rates (kinematic.c) */
+    sw_team_barrier(d);
+    if (sw_team_leader(d)) sw_kinematic_follow(m, d);
+  }
   /* the work and the rigid bodies' kick are the next drift's leader's; the
    * nodes of the drift are this thread's own, so no barrier here */
   if (sw_team_leader(d)) {
@@ -368,6 +382,7 @@ static void kick(const swModel *m, swData *d, double h, double span) {
 
 int sw_sweep_fits(const swModel *m) {
   return m->integrator != SW_PEFRL && m->nslot_elastic > SWEEP_BLOCK && !m->njoint && !m->nmuscle &&
+         !m->nkinematic &&
          !m->nrigid && !m->nimplicit && !sw_has_env(m);
 }
 

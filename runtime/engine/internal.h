@@ -161,6 +161,16 @@ double sw_stable_dt_rod_at(const swModel *m, int r, double e, double eps);  /* s
  * (damping also to ext_force/ext_torque, whose work the kick books);
  * sw_joint_measure refreshes d->joint_force[j] and d->joint_angle[j] for the
  * current state; sw_joint_energy is the energy stored in the joint springs. */
+/* Kinematic joints (kinematic.c): the follower frames imposed before every
+ * load evaluation, then their loads (both on the team's leader). */
+int sw_kinematic_check(const struct swSpec *s, char *err, size_t errlen);
+int sw_kinematic_setup(swModel *m, const struct swSpec *s);
+void sw_kinematic_free(swModel *m);
+void sw_kinematic_spec_free(struct swSpec *s);
+void sw_kinematic_impose(const swModel *m, swData *d);
+void sw_kinematic_follow(const swModel *m, swData *d);
+void sw_kinematic_loads(const swModel *m, swData *d);
+double sw_stable_dt_kinematic(const swModel *m, int j);              /* stability.c */
 void sw_joint_setup(swModel *m);
 void sw_joint_rows(const swModel *m, swData *d);  /* each joint's loads, from the state */
 void sw_joint_apply(const swModel *m, swData *d); /* the rows into this thread's slots */

@@ -77,6 +77,7 @@ void sw_model_free(swModel *m) {
   free(m->load); free(m->bc);
   for (int j = 0; j < m->njoint; j++) free(m->joint_name[j]);
   sw_expect_free(m);
+  sw_kinematic_free(m);
   free(m->joint); free(m->joint_name); free(m->joint_node_a); free(m->joint_node_b);
   free(m->joint_elem_a); free(m->joint_elem_b); free(m->joint_axis_a); free(m->joint_axis_b);
   free(m->joint_rest_rot); free(m->joint_angle0); free(m->joint_wave_dt); free(m->joint_limit_ref);
@@ -123,6 +124,7 @@ swModel *sw_compile(const swSpec *s, char *err, size_t errlen) {
     if (!sw_check_rod(&s->rod[r], err, errlen)) return NULL;
   if (!sw_check_loads_bcs(s, err, errlen)) return NULL;
   if (!sw_check_joints(s, err, errlen)) return NULL;
+  if (!sw_kinematic_check(s, err, errlen)) return NULL;
   if (s && s->env_ops && !s->env_ops->check(s->env, s->nrod, err, errlen)) return NULL;
 
   swModel *m = calloc(1, sizeof *m);
@@ -378,6 +380,7 @@ swModel *sw_compile(const swSpec *s, char *err, size_t errlen) {
       return NULL;
     }
   }
+  if (!sw_kinematic_setup(m, s)) goto oom;
   m->muscle_ops = s->muscle_ops;
   m->env_ops = s->env_ops;
   if ((s->muscle_ops && !s->muscle_ops->setup(m, s->muscles, err, errlen)) ||

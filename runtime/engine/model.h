@@ -30,6 +30,9 @@ struct swSpec {
   swEnvSpec *env;                /* owned by environment.c */
   const swEnvOps *env_ops;       /* set by environment.c with the first */
   swExpectList expects;          /* owned by expect.c */
+  swKinematicDesc *kin;          /* kinematic joints (kinematic.c) */
+  char **kin_name;
+  int nkin, capkin;
 };
 
 /* Owned copies of a rod's kind, material and where (spec.c). */

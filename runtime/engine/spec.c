@@ -65,6 +65,7 @@ void sw_spec_free(swSpec *s) {
   if (s->muscle_ops) s->muscle_ops->free_spec(s->muscles);
   if (s->env_ops) s->env_ops->free_spec(s->env);
   sw_expect_list_free(&s->expects);
+  sw_kinematic_spec_free(s);
   free(s);
 }
 

@@ -303,10 +303,22 @@ double sw_stable_dt_joint(const swModel *m, int j) {
   return dt;
 }
 
+/* A kinematic joint's spring on its follower node (kinematic.c), bounded as
+ * a joint's node row with both ends moving (s = 2). */
+double sw_stable_dt_kinematic(const swModel *m, int j) {
+  const swKinematicDesc *k = &m->kinematic[j];
+  swJointDesc jd;
+  memset(&jd, 0, sizeof jd);
+  jd.stiffness = k->stiffness;
+  jd.damping = k->damping;
+  return joint_node_dt(m, &jd, k->follower_node, k->follower_elem, 2);
+}
+
 double sw_stable_dt(const swModel *m) {
   double dt = INFINITY;
   for (int r = 0; r < m->nrod; r++) dt = fmin(dt, m->rod_wave_dt[r]);
   for (int j = 0; j < m->njoint; j++) dt = fmin(dt, m->joint_wave_dt[j]);
+  for (int j = 0; j < m->nkinematic; j++) dt = fmin(dt, sw_stable_dt_kinematic(m, j));
   if (sw_has_env(m)) dt = fmin(dt, sw_env_ops(m)->stable_dt(m));
   return dt;
 }

@@ -92,6 +92,11 @@ typedef struct {
   double *joint_limit_ref;   /* (njoint*9) the limits' reference directions
                                            (joint.c, "Limits")               */
   double *joint_wave_dt;     /* (njoint)   stable dt estimate of each joint  */
+  /* kinematic joints (kinematic.c) */
+  int nkinematic;
+  swKinematicDesc *kinematic; /* (nkinematic), nodes and elements resolved   */
+  char **kinematic_name;
+  double *kinematic_rot;     /* (nkinematic*9) Q_f Q_l^T at t = 0            */
   int *joint_implicit;       /* (njoint)   1: linearly implicit (SW_IMEX,
                                            rigid_joint.c): a rigid body on one
                                            side, a body, space or a free
@@ -324,6 +329,8 @@ typedef struct {
   double *joint_scratch;
   /* joints, updated with each force evaluation */
   double *joint_force;       /* (njoint*3) force of the joint on rod a, lab, N */
+  double *kinematic_force;   /* (nkinematic*3) force on the follower node, lab, N */
+  double *kinematic_turn;    /* (nkinematic*3) the follower's w as last set (kinematic.c) */
   double *joint_angle;       /* (njoint)  hinge angle, rad (0 for others)     */
   double *joint_limit_torque; /* (njoint*3) the limit's couple on rod a's
                                  element, lab, N m (0 inside the limits)     */

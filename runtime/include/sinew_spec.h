@@ -163,6 +163,35 @@ void sw_spec_set_dt(swSpec *s, double dt);
  * n x 9 (rows d1 d2 d3).  Optional; default is the straight rod. */
 int sw_spec_set_rest_shape(swSpec *s, int rod, const double *x, const double *Q);
 
+/* ---- kinematic joints (kinematic.c): a frame imposed, loads exchanged ----
+ * Zhang et al. 2019, Suppl. Note 5.3: the element `follower_elem` of the
+ * follower rod takes its frame from element `leader_elem` of the leader rod
+ * (times the fixed rotation between the two at t = 0) before every load
+ * evaluation, with the matching angular velocity; no couple is fed back.
+ * Node `follower_node` is tied to the point p = x_e + xi (x_{e+1} - x_e) of
+ * the leader's element e = leader_elem by a spring-damper:
+ *   F = k (p - x_f) + c (v_p - v_f)  on the follower node,
+ * and -F on the leader at p (shared (1 - xi), xi by its two nodes), or,
+ * with reaction_rod >= 0, -w F on node reaction_node of that rod instead
+ * (w = reaction_weight; the reference's transfer of the barbs' loads to
+ * the bone at the rachis base).  Node and element -1 = the rod's last.
+ * All these loads are booked as external work, and so is the energy the
+ * imposed turn gives the follower element (its turning kinetic energy and
+ * the elastic energy of its shear and of its two bending domains), so that
+ * kinetic + elastic - work still balances. */
+typedef struct {
+  const char *name;
+  int leader_rod, leader_elem;
+  double leader_xi;           /* 0..1 along the leader's element               */
+  int follower_rod, follower_node, follower_elem;
+  double stiffness;           /* k, N/m (> 0)                                  */
+  double damping;             /* c, N s/m (>= 0)                               */
+  int reaction_rod, reaction_node; /* -1: the reaction acts on the leader      */
+  double reaction_weight;     /* w (1)                                         */
+} swKinematicDesc;
+void sw_kinematic_desc_init(swKinematicDesc *k);
+int sw_spec_add_kinematic(swSpec *s, const swKinematicDesc *k);  /* returns its id */
+
 /* ---- joints (joint.c): penalty connections between rod nodes ----
  * A joint ties node `node_a` of rod `rod_a` to node `node_b` of rod `rod_b`,
  * or, when rod_b < 0, to the fixed point `anchor` in space (a rod hung on a

@@ -1,0 +1,277 @@
+/* kinematic.c — kinematic joints: an element's frame imposed from another
+ * rod's, and penalty loads exchanged, with no couple fed back.
+ *
+ * Design.  Zhang et al. 2019 (Suppl. Note 5.3) tie the wing's feathers this
+ * way: the rachis' first element moves with the bone's element it grows
+ * from, each barb's first element with the rachis' element it grows from,
+ * and only forces travel back.  Their fast rotational modes (a 1 mm rachis
+ * on a bone, ~1e-10 s explicit step) are thereby removed from the scene.
+ * Here, after every kick (sw_kinematic_follow) the follower element's
+ * angular velocity (material frame) is set to its leader's,
+ *   w_f = R w_l,  R = Q_f(0) Q_l(0)^T,
+ * so that the drift turns both alike and keeps Q_f = R Q_l, and before every
+ * load evaluation (sw_kinematic_impose) the frame is set again,
+ *   Q_f = R Q_l   (with w_f = R w_l),
+ * which undoes what the stretch's rescaling of w and round-off leave, and
+ * holds for a rigid leader, whose turn rigid.c updates in the drift.  Then
+ * (sw_kinematic_loads) its node is tied to the leader's point p by
+ *   F = k (p - x_f) + c (v_p - v_f),  p = x_e + xi (x_{e+1} - x_e),
+ * F on the follower node, -F on the leader's two nodes ((1 - xi) and xi),
+ * or -w F on a third node (swKinematicDesc.reaction_*: the reference lumps
+ * each barb's reaction, weighted by w decaying linearly from the rachis'
+ * base to its tip, onto the bone at the rachis' base).
+ *
+ * Energy.  Imposing a frame is not a force: it changes the follower
+ * element's turning kinetic energy w.(J/e)w/2, its shear energy
+ * l^ (s - s0).S^(s - s0)/2 and the bending energy of its two domains
+ * D^ (k - k0).B^(k - k0)/2 at once.  That change is added to d->work, as
+ * the work the imposed motion did, and every load here goes into
+ * d->ext_force too (its work booked by the kick like any external load's),
+ * so kinetic + elastic - work stays constant up to the integrator's error
+ * (tests/runtime/test_kinematic.c).  The joint's spring has no energy of
+ * its own for the same reason: its work is booked.
+ *
+ * Threads: both parts run on the team's leader (the scatter reaches nodes
+ * of any thread), between barriers (integrate.c).  No allocation.
+ */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+#include "sinew.h"
+#include "vec.h"
+#include "internal.h"
+#include "model.h"
+
+void sw_kinematic_desc_init(swKinematicDesc *k) {
+  memset(k, 0, sizeof *k);
+  k->name = "kinematic";
+  k->reaction_rod = k->reaction_node = -1;
+  k->reaction_weight = 1.0;
+}
+
+int sw_spec_add_kinematic(swSpec *s, const swKinematicDesc *k) {
+  if (s->nkin == s->capkin) {
+    int nc = s->capkin ? 2 * s->capkin : 8;
+    swKinematicDesc *p = realloc(s->kin, (size_t)nc * sizeof *p);
+    if (!p) return -1;
+    s->kin = p;
+    char **q = realloc(s->kin_name, (size_t)nc * sizeof *q);
+    if (!q) return -1;
+    s->kin_name = q;
+    s->capkin = nc;
+  }
+  char *name = strdup(k->name ? k->name : "kinematic");
+  if (!name) return -1;
+  const int id = s->nkin++;
+  s->kin[id] = *k;
+  s->kin[id].name = s->kin_name[id] = name;
+  return id;
+}
+
+void sw_kinematic_spec_free(swSpec *s) {
+  for (int k = 0; k < s->nkin; k++) free(s->kin_name[k]);
+  free(s->kin);
+  free(s->kin_name);
+}
+
+/* node or element -1: the rod's last */
+static int last_if(int i, int last) { return i < 0 ? last : i; }
+
+int sw_kinematic_check(const swSpec *s, char *err, size_t errlen) {
+  for (int j = 0; j < s->nkin; j++) {
+    const swKinematicDesc *k = &s->kin[j];
+    const char *nm = k->name;
+    const int rods[3] = {k->leader_rod, k->follower_rod, k->reaction_rod};
+    for (int i = 0; i < 3; i++)
+      if (rods[i] >= s->nrod || (i < 2 && rods[i] < 0))
+        return sw_fail(err, errlen, "kinematic joint '%s': rod %d does not exist (the scene has "
+                       "%d)", nm, rods[i], s->nrod);
+    const int nl = s->rod[k->leader_rod].nelem, nf = s->rod[k->follower_rod].nelem;
+    const int le = last_if(k->leader_elem, nl - 1), fe = last_if(k->follower_elem, nf - 1);
+    const int fn = last_if(k->follower_node, nf);
+    if (le < 0 || le >= nl || fe < 0 || fe >= nf || fn < 0 || fn > nf)
+      return sw_fail(err, errlen, "kinematic joint '%s': an element or node is off its rod", nm);
+    if (k->leader_rod == k->follower_rod)
+      return sw_fail(err, errlen, "kinematic joint '%s': a rod cannot lead itself", nm);
+    if (!(k->leader_xi >= 0 && k->leader_xi <= 1))
+      return sw_fail(err, errlen, "kinematic joint '%s': the point on the leader's element must "
+                     "be at 0..1 along it, got %g", nm, k->leader_xi);
+    if (!sw_finite_pos(k->stiffness) || !(k->damping >= 0) || !isfinite(k->damping))
+      return sw_fail(err, errlen, "kinematic joint '%s': stiffness must be > 0 and damping >= 0",
+                     nm);
+    if (!isfinite(k->reaction_weight))
+      return sw_fail(err, errlen, "kinematic joint '%s': the reaction's weight is not finite", nm);
+    if (k->reaction_rod >= 0 &&
+        (last_if(k->reaction_node, s->rod[k->reaction_rod].nelem) < 0 ||
+         last_if(k->reaction_node, s->rod[k->reaction_rod].nelem) > s->rod[k->reaction_rod].nelem))
+      return sw_fail(err, errlen, "kinematic joint '%s': the reaction's node is off its rod", nm);
+    if (s->rod[k->follower_rod].rigid || s->rod[k->follower_rod].implicit)
+      return sw_fail(err, errlen, "kinematic joint '%s': the follower '%s' must be an elastic, "
+                     "explicit rod (its frame is imposed)", nm, s->rod_name[k->follower_rod]);
+    for (int i = 0; i < j; i++)
+      if (s->kin[i].follower_rod == k->follower_rod &&
+          last_if(s->kin[i].follower_elem, nf - 1) == fe)
+        return sw_fail(err, errlen, "kinematic joints '%s' and '%s' both turn element %d of '%s'",
+                       s->kin[i].name, nm, fe, s->rod_name[k->follower_rod]);
+  }
+  return 1;
+}
+
+int sw_kinematic_setup(swModel *m, const swSpec *s) {
+  const size_t K = (size_t)(s->nkin ? s->nkin : 1);
+  m->kinematic = calloc(K, sizeof *m->kinematic);
+  m->kinematic_name = calloc(K, sizeof *m->kinematic_name);
+  m->kinematic_rot = sw_dalloc(9 * K);
+  if (!m->kinematic || !m->kinematic_name || !m->kinematic_rot) return 0;
+  for (int j = 0; j < s->nkin; j++) {
+    swKinematicDesc k = s->kin[j];
+    if (!(m->kinematic_name[j] = strdup(k.name))) return 0;
+    m->nkinematic = j + 1;
+    k.name = m->kinematic_name[j];
+    /* slots: elements and nodes of the rods */
+    const int nl = m->rod_nelem[k.leader_rod], nf = m->rod_nelem[k.follower_rod];
+    k.leader_elem = m->elem_adr[k.leader_rod] + last_if(k.leader_elem, nl - 1);
+    k.follower_elem = m->elem_adr[k.follower_rod] + last_if(k.follower_elem, nf - 1);
+    k.follower_node = m->node_adr[k.follower_rod] + last_if(k.follower_node, nf);
+    if (k.reaction_rod >= 0)
+      k.reaction_node = m->node_adr[k.reaction_rod] +
+                        last_if(k.reaction_node, m->rod_nelem[k.reaction_rod]);
+    m->kinematic[j] = k;
+    double Ql[9], Qf[9], R[9];
+    sw_getQ(m, m->Q0, k.leader_elem, Ql);
+    sw_getQ(m, m->Q0, k.follower_elem, Qf);
+    for (int a = 0; a < 3; a++) /* R = Qf Ql^T: R_ab = d^f_a . d^l_b */
+      for (int b = 0; b < 3; b++) R[3 * a + b] = sw_v3_dot(Qf + 3 * a, Ql + 3 * b);
+    memcpy(m->kinematic_rot + 9 * j, R, sizeof R);
+  }
+  return 1;
+}
+
+void sw_kinematic_free(swModel *m) {
+  if (m->kinematic_name)
+    for (int j = 0; j < m->nkinematic; j++) free(m->kinematic_name[j]);
+  free(m->kinematic); free(m->kinematic_name); free(m->kinematic_rot);
+}
+
+/* The energy that depends on element e's frame: its turning kinetic energy,
+ * its shear energy and the bending energy of the domains on either side of
+ * it in its rod (energy.c's sums, term by term). */
+static double frame_energy(const swModel *m, const swData *d, int e) {
+  int r = 0;
+  while (m->elem_adr[r] + m->rod_nelem[r] <= e) r++;
+  const int first = m->elem_adr[r], last = first + m->rod_nelem[r] - 1;
+  double Q[9], x0[3], x1[3], dx[3], s[3];
+  sw_getQ(m, d->Q, e, Q);
+  sw_get3(m, d->x, e, x0);
+  sw_get3(m, d->x, e + 1, x1);
+  sw_v3_sub(dx, x1, x0);
+  sw_mat_vec(s, Q, dx); /* sigma = Q dx / l^ - d3 */
+  const double dil = m->nvariational && m->elem_variational[e] != 0.0
+                         ? 1.0 : sw_v3_norm(dx) / m->rest_len[e];
+  double E = 0;
+  for (int k = 0; k < 3; k++) {
+    const double w = SW_AT(m, d->omega, e, k);
+    const double ds = s[k] / m->rest_len[e] - (k == 2) - SW_AT(m, m->rest_sigma, e, k);
+    E += 0.5 * SW_AT(m, m->inertia, e, k) / dil * w * w;
+    E += 0.5 * m->rest_len[e] * SW_AT(m, m->shear_stiff, e, k) * ds * ds;
+  }
+  for (int j = e - 1; j <= e; j++) { /* domain j lies between elements j and j + 1 */
+    if (j < first || j + 1 > last) continue;
+    double Qa[9], Qb[9], phi[3];
+    sw_getQ(m, d->Q, j, Qa);
+    sw_getQ(m, d->Q, j + 1, Qb);
+    sw_frame_log(phi, Qa, Qb);
+    for (int k = 0; k < 3; k++) {
+      const double dk = phi[k] / m->rest_vor_len[j] - SW_AT(m, m->rest_kappa, j, k);
+      E += 0.5 * m->rest_vor_len[j] * SW_AT(m, m->bend_stiff, j, k) * dk * dk;
+    }
+  }
+  return E;
+}
+
+/* w_f = R w_l: in material frames, w_f = Q_f w = R Q_l w = R w_l */
+static void follow_turn(const swModel *m, swData *d, int j) {
+  const swKinematicDesc *k = &m->kinematic[j];
+  double wl[3], wf[3];
+  for (int c = 0; c < 3; c++) wl[c] = SW_AT(m, d->omega, k->leader_elem, c);
+  sw_mat_vec(wf, m->kinematic_rot + 9 * j, wl);
+  for (int c = 0; c < 3; c++) SW_AT(m, d->omega, k->follower_elem, c) = wf[c];
+}
+
+void sw_kinematic_impose(const swModel *m, swData *d) {
+  for (int j = 0; j < m->nkinematic; j++) {
+    const swKinematicDesc *k = &m->kinematic[j];
+    const int fe = k->follower_elem;
+    const double before = frame_energy(m, d, fe);
+    double Ql[9], Qf[9];
+    sw_getQ(m, d->Q, k->leader_elem, Ql);
+    sw_mat_mul(Qf, m->kinematic_rot + 9 * j, Ql);
+    sw_setQ(m, d->Q, fe, Qf);
+    follow_turn(m, d, j);
+    for (int c = 0; c < 3; c++) d->kinematic_turn[3 * j + c] = SW_AT(m, d->omega, fe, c);
+    d->work += frame_energy(m, d, fe) - before;
+  }
+}
+
+/* After a kick: the follower turns at its leader's rate, so that the drift,
+ * exp(-h [R w_l]x) R Q_l = R exp(-h [w_l]x) Q_l, keeps Q_f = R Q_l by itself
+ * (to the rescaling of w with the element's stretch); the change of its
+ * turning kinetic energy is booked. */
+void sw_kinematic_follow(const swModel *m, swData *d) {
+  for (int j = 0; j < m->nkinematic; j++) {
+    const int fe = m->kinematic[j].follower_elem;
+    double kicked[3], x0[3], x1[3], dx[3];
+    for (int c = 0; c < 3; c++) kicked[c] = SW_AT(m, d->omega, fe, c);
+    follow_turn(m, d, j);
+    sw_get3(m, d->x, fe, x0);
+    sw_get3(m, d->x, fe + 1, x1);
+    sw_v3_sub(dx, x1, x0);
+    const double dil = m->nvariational && m->elem_variational[fe] != 0.0
+                           ? 1.0 : sw_v3_norm(dx) / m->rest_len[fe];
+    /* the couple that turned w from `kicked` to w_f over the kick,
+     * C = (J / e)(w_f - kicked) / h, times the kick's mean rate
+     * (w_before + w_f) / 2: the midpoint rule the kick books every external
+     * load's work by (integrate.c) */
+    double *before = d->kinematic_turn + 3 * j;
+    for (int c = 0; c < 3; c++) {
+      const double w = SW_AT(m, d->omega, fe, c);
+      d->work += SW_AT(m, m->inertia, fe, c) / dil * (w - kicked[c]) * 0.5 * (before[c] + w);
+      before[c] = w;
+    }
+  }
+}
+
+/* f on node i, into the total and the external loads */
+static void push(const swModel *m, swData *d, int i, const double f[3], double w) {
+  for (int c = 0; c < 3; c++) {
+    SW_AT(m, d->force, i, c) += w * f[c];
+    SW_AT(m, d->ext_force, i, c) += w * f[c];
+  }
+}
+
+void sw_kinematic_loads(const swModel *m, swData *d) {
+  for (int j = 0; j < m->nkinematic; j++) {
+    const swKinematicDesc *k = &m->kinematic[j];
+    const int a = k->leader_elem, b = a + 1, f = k->follower_node;
+    const double xi = k->leader_xi;
+    double xa[3], xb[3], va[3], vb[3], xf[3], vf[3], F[3];
+    sw_get3(m, d->x, a, xa);
+    sw_get3(m, d->x, b, xb);
+    sw_get3(m, d->v, a, va);
+    sw_get3(m, d->v, b, vb);
+    sw_get3(m, d->x, f, xf);
+    sw_get3(m, d->v, f, vf);
+    for (int c = 0; c < 3; c++) {
+      const double p = (1 - xi) * xa[c] + xi * xb[c], vp = (1 - xi) * va[c] + xi * vb[c];
+      F[c] = k->stiffness * (p - xf[c]) + k->damping * (vp - vf[c]);
+      d->kinematic_force[3 * j + c] = F[c];
+    }
+    push(m, d, f, F, 1.0);
+    if (k->reaction_rod >= 0) {
+      push(m, d, k->reaction_node, F, -k->reaction_weight);
+    } else {
+      push(m, d, a, F, -(1 - xi));
+      push(m, d, b, F, -xi);
+    }
+  }
+}

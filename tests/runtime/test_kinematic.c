@@ -1,0 +1,268 @@
+/* test_kinematic.c — kinematic joints (kinematic.c): a follower element takes
+ * its frame from a leader element (Zhang et al. 2019, Suppl. Note 5.3, the
+ * wing's rachis on its bone and barbs on their rachis), penalty forces are
+ * exchanged, no couple is fed back.
+ *
+ *   1. a rachis on a bone turned at a prescribed angular velocity keeps the
+ *      bone's frame (times the rotation of the layout) to round-off at every
+ *      load evaluation, and turns with it;
+ *   2. forces balance: a free bone and rachis keep their total linear
+ *      momentum to round-off;
+ *   3. the energy the imposed turn gives is booked as work: kinetic +
+ *      elastic - work of the free pair stays constant up to the integrator's
+ *      error, at least second order in dt, while the work booked is a
+ *      hundred times that error and more (booking the follower's jumps of
+ *      kinetic energy instead of the midpoint rule left a first-order error
+ *      as large as the work itself);
+ *   4. the reaction moved to a third node with a weight: the loads of one
+ *      evaluation against k g by hand;
+ *   5. the validation messages.
+ */
+#include "testutil.h"
+#include "vec.h"
+#include "internal.h"
+
+static const double X[3] = {1, 0, 0}, Y[3] = {0, 1, 0}, Z[3] = {0, 0, 1};
+
+/* bone: 0.2 m along x, 8 elements; rachis: 0.1 m along y from the bone's
+ * node 4, 6 elements, light and soft; the joint ties rachis node 0 to the
+ * end of bone element 3 (node 4) and turns rachis element 0 with it */
+static swSpec *scene(double k, int reaction) {
+  swSpec *s = sw_spec_new();
+  const double o[3] = {0, 0, 0}, mid[3] = {0.1, 0, 0};
+  swRodDesc bone = sw_test_rod("bone", 8, 0.2, 5e-3, o, X, Z);
+  bone.youngs = 1e8;
+  bone.density = 1000;
+  bone.law = SW_LAW_VARIATIONAL; /* the energy of the balance is its forces' potential */
+  swRodDesc rachis = sw_test_rod("rachis", 6, 0.1, 1e-3, mid, Y, Z);
+  rachis.youngs = 1e6;
+  rachis.density = 300;
+  rachis.law = SW_LAW_VARIATIONAL;
+  assert_int_equal(sw_spec_add_rod(s, &bone), 0);
+  assert_int_equal(sw_spec_add_rod(s, &rachis), 1);
+  if (reaction) {
+    swRodDesc base = sw_test_rod("base", 2, 0.02, 2e-3, (const double[3]){0, 0.05, 0}, X, Z);
+    assert_int_equal(sw_spec_add_rod(s, &base), 2);
+  }
+  swKinematicDesc kj;
+  sw_kinematic_desc_init(&kj);
+  kj.name = "root";
+  kj.leader_rod = 0;
+  kj.leader_elem = 3;
+  kj.leader_xi = 1.0;
+  kj.follower_rod = 1;
+  kj.follower_node = 0;
+  kj.follower_elem = 0;
+  kj.stiffness = k;
+  kj.damping = 0;
+  if (reaction) {
+    kj.reaction_rod = 2;
+    kj.reaction_node = 1;
+    kj.reaction_weight = 0.4;
+  }
+  assert_int_equal(sw_spec_add_kinematic(s, &kj), 0);
+  return s;
+}
+
+/* the largest |Q_f - R Q_l| entry */
+static double frame_gap(const swModel *m, const swData *d) {
+  const swKinematicDesc *k = &m->kinematic[0];
+  double Ql[9], Qf[9], RQ[9], worst = 0;
+  sw_getQ(m, d->Q, k->leader_elem, Ql);
+  sw_getQ(m, d->Q, k->follower_elem, Qf);
+  sw_mat_mul(RQ, m->kinematic_rot, Ql);
+  for (int i = 0; i < 9; i++) worst = fmax(worst, fabs(Qf[i] - RQ[i]));
+  return worst;
+}
+
+/* 1. the bone's start clamped in place but turned about z at 20 rad/s */
+static void test_follows_turning_bone(void **state) {
+  (void)state;
+  swSpec *s = scene(1e4, 0);
+  swBCDesc turn;
+  memset(&turn, 0, sizeof turn);
+  turn.kind = SW_BC_OMEGA;
+  turn.rod = 0;
+  turn.end = 0;
+  turn.vec[2] = 20.0;
+  turn.signal = sw_signal_const(1.0);
+  assert_true(sw_spec_add_bc(s, &turn) >= 0);
+  swModel *m = sw_test_compile_at(s, 0.5);
+  swData *d = sw_data_new(m);
+  double worst = 0;
+  const long steps = 2000; /* 17 elements: cheap under the sanitizers too */
+  for (long i = 0; i < steps; i++) {
+    assert_int_equal(sw_steps_held(m, d, 1), SW_OK); /* the state the loads saw */
+    worst = fmax(worst, frame_gap(m, d));
+  }
+  /* the rachis' first element has turned with the bone's element 3 */
+  double Qf[9];
+  sw_getQ(m, d->Q, m->kinematic[0].follower_elem, Qf);
+  const double yaw = atan2(Qf[7], Qf[6]) - atan2(Y[1], Y[0]); /* its d3 in the xy plane */
+  double Ql[9];
+  sw_getQ(m, d->Q, m->kinematic[0].leader_elem, Ql);
+  const double yaw_bone = atan2(Ql[7], Ql[6]);
+  fprintf(stderr, "# %s: %ld steps of %.3g s; largest |Q_rachis - R Q_bone| at a load "
+          "evaluation %.3e; the bone's element turned %.6f rad, the rachis' %.6f rad\n",
+          __func__, steps, m->dt, worst, yaw_bone, yaw);
+  assert_true(worst < 1e-14);
+  assert_true(fabs(yaw_bone) > 0.05);
+  assert_true(fabs(remainder(yaw - yaw_bone, 2 * 3.141592653589793)) < 1e-12);
+  sw_data_free(d);
+  sw_model_free(m);
+  sw_spec_free(s);
+}
+
+static void momentum(const swModel *m, const swData *d, double P[3]) {
+  P[0] = P[1] = P[2] = 0;
+  for (int r = 0; r < m->nrod; r++)
+    for (int i = m->node_adr[r]; i <= m->node_adr[r] + m->rod_nelem[r]; i++)
+      for (int c = 0; c < 3; c++) P[c] += m->mass[i] * SW_AT(m, d->v, i, c);
+}
+
+/* the free pair set spinning about z and drifting along x and z */
+static void launch(const swModel *m, swData *d) {
+  for (int r = 0; r < m->nrod; r++)
+    for (int i = m->node_adr[r]; i <= m->node_adr[r] + m->rod_nelem[r]; i++) {
+      const double x = SW_AT(m, d->x, i, 0) - 0.1, y = SW_AT(m, d->x, i, 1);
+      SW_AT(m, d->v, i, 0) = 0.3 - 8.0 * y;
+      SW_AT(m, d->v, i, 1) = 8.0 * x;
+      SW_AT(m, d->v, i, 2) = 0.1 + 2.0 * x;
+    }
+  for (int e = m->elem_adr[0]; e < m->elem_adr[0] + m->rod_nelem[0]; e++) {
+    double Q[9], w[3], lab[3] = {0, -2.0, 8.0};
+    sw_getQ(m, d->Q, e, Q);
+    sw_mat_vec(w, Q, lab);
+    for (int c = 0; c < 3; c++) SW_AT(m, d->omega, e, c) = w[c];
+  }
+}
+
+/* 2. momentum of the free pair */
+static void test_forces_balance(void **state) {
+  (void)state;
+  swSpec *s = scene(1e4, 0);
+  swModel *m = sw_test_compile_at(s, 0.5);
+  swData *d = sw_data_new(m);
+  launch(m, d);
+  double P0[3], P[3], scale = 0;
+  momentum(m, d, P0);
+  for (int i = 0; i < m->nnode; i++) scale += m->mass[i];
+  sw_test_run_to(m, d, 0.05);
+  momentum(m, d, P);
+  double gap = 0;
+  for (int c = 0; c < 3; c++) gap = fmax(gap, fabs(P[c] - P0[c]));
+  fprintf(stderr, "# %s: after %ld steps the momentum moved by %.3e N s (of %.3e kg x 0.3 m/s)\n",
+          __func__, d->step, gap, scale);
+  assert_true(gap < 1e-13 * scale);
+  sw_data_free(d);
+  sw_model_free(m);
+  sw_spec_free(s);
+}
+
+/* the energy balance's drift over 0.05 s, relative to the kinetic energy */
+static double balance_drift(double frac, double *work) {
+  swSpec *s = scene(1e4, 0);
+  swModel *m = sw_test_compile_at(s, frac);
+  swData *d = sw_data_new(m);
+  launch(m, d);
+  double e0[3], e1[3];
+  sw_energy(m, d, e0);
+  sw_test_run_to(m, d, 0.05);
+  sw_energy(m, d, e1);
+  *work = e1[2];
+  const double drift = fabs((e1[0] + e1[1] - e1[2]) - (e0[0] + e0[1] - e0[2])) / e0[0];
+  sw_data_free(d);
+  sw_model_free(m);
+  sw_spec_free(s);
+  return drift;
+}
+
+/* 3. kinetic + elastic - work */
+static void test_energy_booked(void **state) {
+  (void)state;
+  double w1, w2;
+  const double a = balance_drift(0.4, &w1), b = balance_drift(0.2, &w2);
+  fprintf(stderr, "# %s: drift of kinetic + elastic - work over 0.05 s: %.3e at 0.4 of the "
+          "stable step, %.3e at 0.2 (ratio %.2f; work booked %.4e J)\n", __func__, a, b, a / b, w2);
+  assert_true(b < 1e-8);
+  assert_true(a / b > 3.0); /* second order at least: 4 */
+  assert_true(fabs(w2) / 2.6282e-3 > 100 * b); /* the booked work is not negligible beside it */
+}
+
+/* 4. one evaluation of the loads, the reaction moved to base's node 1 at w = 0.4 */
+static void test_reaction_moved(void **state) {
+  (void)state;
+  swSpec *s = scene(2e3, 1);
+  swModel *m = sw_test_compile(s);
+  swData *d = sw_data_new(m);
+  const swKinematicDesc *k = &m->kinematic[0];
+  SW_AT(m, d->x, k->follower_node, 0) += 1e-3; /* gap p - x_f = (-1, 0.5, 0) mm */
+  SW_AT(m, d->x, k->follower_node, 1) -= 0.5e-3;
+  for (int c = 0; c < 3; c++)
+    for (int i = 0; i < m->stride; i++) SW_AT(m, d->force, i, c) = SW_AT(m, d->ext_force, i, c) = 0;
+  sw_kinematic_loads(m, d);
+  const double want[3] = {-2.0, 1.0, 0}; /* k g, N */
+  double worst = 0;
+  for (int c = 0; c < 3; c++) {
+    worst = fmax(worst, fabs(SW_AT(m, d->force, k->follower_node, c) - want[c]));
+    worst = fmax(worst, fabs(SW_AT(m, d->force, k->reaction_node, c) + 0.4 * want[c]));
+    worst = fmax(worst, fabs(SW_AT(m, d->ext_force, k->reaction_node, c) + 0.4 * want[c]));
+    worst = fmax(worst, fabs(SW_AT(m, d->force, k->leader_elem + 1, c)));
+  }
+  fprintf(stderr, "# %s: follower %.6g %.6g N, reaction on base %.6g %.6g N; largest error "
+          "%.3e N\n", __func__, SW_AT(m, d->force, k->follower_node, 0),
+          SW_AT(m, d->force, k->follower_node, 1), SW_AT(m, d->force, k->reaction_node, 0),
+          SW_AT(m, d->force, k->reaction_node, 1), worst);
+  assert_true(worst < 1e-12);
+  sw_data_free(d);
+  sw_model_free(m);
+  sw_spec_free(s);
+}
+
+static void expect_error(void (*edit)(swSpec *s, swKinematicDesc *k), const char *message) {
+  swSpec *s = scene(1e4, 0);
+  swKinematicDesc k;
+  sw_kinematic_desc_init(&k);
+  k.name = "bad";
+  k.leader_rod = 0;
+  k.leader_elem = 0;
+  k.follower_rod = 1;
+  k.follower_node = -1;
+  k.follower_elem = -1;
+  k.stiffness = 1e3;
+  edit(s, &k);
+  assert_true(sw_spec_add_kinematic(s, &k) >= 0);
+  char err[256] = "";
+  swModel *m = sw_compile(s, err, sizeof err);
+  fprintf(stderr, "# %s\n", err);
+  assert_null(m);
+  assert_string_equal(err, message);
+  sw_spec_free(s);
+}
+static void same_rod(swSpec *s, swKinematicDesc *k) { (void)s; k->leader_rod = 1; }
+static void bad_xi(swSpec *s, swKinematicDesc *k) { (void)s; k->leader_xi = 1.5; }
+static void no_stiffness(swSpec *s, swKinematicDesc *k) { (void)s; k->stiffness = 0; }
+static void twice(swSpec *s, swKinematicDesc *k) { (void)s; k->follower_elem = 0; }
+static void off_rod(swSpec *s, swKinematicDesc *k) { (void)s; k->leader_elem = 8; }
+
+/* 5. */
+static void test_validation(void **state) {
+  (void)state;
+  expect_error(same_rod, "kinematic joint 'bad': a rod cannot lead itself");
+  expect_error(bad_xi, "kinematic joint 'bad': the point on the leader's element must be at 0..1 "
+               "along it, got 1.5");
+  expect_error(no_stiffness, "kinematic joint 'bad': stiffness must be > 0 and damping >= 0");
+  expect_error(twice, "kinematic joints 'root' and 'bad' both turn element 0 of 'rachis'");
+  expect_error(off_rod, "kinematic joint 'bad': an element or node is off its rod");
+}
+
+int main(void) {
+  const struct CMUnitTest tests[] = {
+    cmocka_unit_test(test_follows_turning_bone),
+    cmocka_unit_test(test_forces_balance),
+    cmocka_unit_test(test_energy_booked),
+    cmocka_unit_test(test_reaction_moved),
+    cmocka_unit_test(test_validation),
+  };
+  return cmocka_run_group_tests(tests, NULL, NULL);
+}
