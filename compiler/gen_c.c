@@ -412,6 +412,30 @@ static void emit_build(FILE *out, swArena *a, const swScene *sc) {
     fprintf(out, "    joint_id[%d] = sw_spec_add_joint(s, &joint);\n"
             "    ok &= joint_id[%d] >= 0;\n  }\n", i, i);
   }
+  for (int i = 0; i < sc->nkin; i++) {
+    const swSceneKinematic *k = &sc->kin[i];
+    fputc('\n', out);
+    gen_origin(out, k->loc, "  ");
+    fputs("  {\n    swKinematicDesc kin;\n    sw_kinematic_desc_init(&kin);\n    kin.name = ", out);
+    gen_c_string(out, k->name);
+    swValue xi = val_num(a, k->leader_xi, DIM_NONE, k->loc);
+    fprintf(out, ";\n    kin.leader_rod = %d; kin.leader_elem = %d; kin.leader_xi = %s;",
+            gen_rod_id(sc, k->leader_rod), k->leader_elem, val_c(a, &xi, 0));
+    rod_comment(out, sc, k->leader_rod);
+    fprintf(out, "    kin.follower_rod = %d; kin.follower_node = %d; kin.follower_elem = %d;",
+            gen_rod_id(sc, k->follower_rod), k->follower_node, k->follower_elem);
+    rod_comment(out, sc, k->follower_rod);
+    if (k->reaction_rod >= 0) {
+      fprintf(out, "    kin.reaction_rod = %d; kin.reaction_node = %d;",
+              gen_rod_id(sc, k->reaction_rod), k->reaction_node);
+      rod_comment(out, sc, k->reaction_rod);
+    }
+    fprintf(out, "    kin.stiffness = %s;\n", val_c(a, &k->stiffness, 0));
+    if (k->damping.kind == VAL_NUM) fprintf(out, "    kin.damping = %s;\n", val_c(a, &k->damping, 0));
+    if (k->reaction_weight.kind == VAL_NUM)
+      fprintf(out, "    kin.reaction_weight = %s;\n", val_c(a, &k->reaction_weight, 0));
+    fputs("    ok &= sw_spec_add_kinematic(s, &kin) >= 0;\n  }\n", out);
+  }
   for (int i = 0; i < sc->nact; i++) {
     const swSceneAction *act = &sc->act[i];
     fputc('\n', out);

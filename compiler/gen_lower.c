@@ -319,6 +319,24 @@ swSpec *gen_spec(const swScene *sc) {
     fill(&d, f, gen_joint_fields(j, f));
     sw_spec_add_joint(s, &d);
   }
+  for (int i = 0; i < sc->nkin; i++) {
+    const swSceneKinematic *k = &sc->kin[i];
+    swKinematicDesc d;
+    sw_kinematic_desc_init(&d);
+    d.name = k->name;
+    d.leader_rod = gen_rod_id(sc, k->leader_rod);
+    d.leader_elem = k->leader_elem;
+    d.leader_xi = k->leader_xi;
+    d.follower_rod = gen_rod_id(sc, k->follower_rod);
+    d.follower_node = k->follower_node;
+    d.follower_elem = k->follower_elem;
+    d.reaction_rod = gen_rod_id(sc, k->reaction_rod);
+    d.reaction_node = k->reaction_node;
+    d.stiffness = k->stiffness.v[0];
+    if (k->damping.kind == VAL_NUM) d.damping = k->damping.v[0];
+    if (k->reaction_weight.kind == VAL_NUM) d.reaction_weight = k->reaction_weight.v[0];
+    sw_spec_add_kinematic(s, &d);
+  }
   for (int i = 0; i < sc->nground; i++) {
     const swSceneGround *g = &sc->ground[i];
     swGroundDesc d;

@@ -480,6 +480,7 @@ void sema_scene_free(swScene *scene) {
   free(scene->rod);
   free(scene->act);
   free(scene->joint);
+  free(scene->kin);
   free(scene->param);
   free(scene->derived);
   free(scene->muscle);

@@ -55,6 +55,7 @@ typedef struct swValue {
   swLoc formal_loc;
   /* VAL_POINT */
   int rod, node;
+  double at;                  /* its fraction along the rod (0 start, 1 end) */
   const char *node_c;         /* the node's C expression when a param moves the
                                  point (ROD.at(param)), NULL when constant   */
   /* VAL_SIGNAL */
@@ -197,6 +198,18 @@ typedef struct {
   int has_range;              /* range = (lower, upper) on a hinge          */
   swValue angle_min, angle_max, cone, limit_stiffness, limit_damping;
 } swSceneJoint;
+
+/* joint NAME = kinematic(LEADER, FOLLOWER) { ... }  (sema_kinematic.c) */
+typedef struct {
+  const char *name;
+  swLoc loc;
+  int leader_rod, leader_elem;   /* scene rod index, element 0..n-1        */
+  double leader_xi;              /* 0..1 along that element                */
+  int follower_rod, follower_node, follower_elem;
+  swValue stiffness, damping;    /* damping VAL_ERROR: none                 */
+  int reaction_rod, reaction_node; /* -1: on the leader                     */
+  swValue reaction_weight;       /* VAL_ERROR: 1                            */
+} swSceneKinematic;
 
 typedef struct {
   const char *name;
@@ -385,6 +398,7 @@ typedef struct {
   long nelem;                 /* elements of the whole scene                */
   swSceneAction *act;    int nact, capact;
   swSceneJoint *joint;   int njoint, capjoint;
+  swSceneKinematic *kin; int nkin, capkin;
   swSceneParam *param;   int nparam, capparam;
   swSceneDerived *derived; int nderived, capderived;
   swSceneGround *ground; int nground, capground;

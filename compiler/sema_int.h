@@ -237,6 +237,9 @@ void sema_signal_def(swSema *S, swScope *scope, const swAst *it);
 /* a signal named where a value goes: the signal, scaled by 1 */
 swValue sema_signal_value(swSema *S, swSymbol *sym, swLoc loc);
 
+/* sema_kinematic.c: joint NAME = kinematic(LEADER, FOLLOWER) { ... } */
+void sema_kinematic(swSema *S, swScope *scope, const swAst *it, const char *name);
+
 /* sema_terrain.c: the height(x, y) of a terrain; NULL after an error */
 swHeight *sema_height(swSema *S, swScope *scope, const swAst *body, const swAst *field,
                       const char *what);

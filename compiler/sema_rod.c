@@ -350,6 +350,7 @@ swValue sema_rod_point(swSema *S, swSymbol *rod, swValue f, int node, swLoc loc)
   p.kind = VAL_POINT;
   p.rod = rod->index;
   p.node = node;
+  p.at = f.v[0];
   p.node_c = node_c;
   p.loc = loc;
   return p;

@@ -259,13 +259,18 @@ void sema_joint(swSema *S, swScope *scope, const swAst *it) {
   swSymbol *sym = sema_lookup_local(scope, it->name);
   j.name = sym ? sym->full : it->name;
   if (sym) sym->used = 1;
+  if (!strcmp(it->text, "kinematic")) {   /* a frame imposed: sema_kinematic.c */
+    sema_kinematic(S, scope, it, j.name);
+    return;
+  }
   int k;
   for (k = 0; k < 3; k++)
     if (!strcmp(it->text, joint_kinds[k])) break;
   if (k == 3) {
     const char *near = diag_suggest(it->text, joint_kinds, 3);
     if (near) diag_error(it->loc, "unknown kind of joint '%s'; did you mean '%s'?", it->text, near);
-    else diag_error(it->loc, "unknown kind of joint '%s' (expected hinge, spherical or fixed)", it->text);
+    else diag_error(it->loc, "unknown kind of joint '%s' (expected hinge, spherical, fixed or "
+                    "kinematic)", it->text);
     return;
   }
   j.kind = (swJointKind)k;

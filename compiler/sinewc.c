@@ -373,6 +373,7 @@ static void print_checked(const char *model, const swScene *sc, double stable) {
   int nfil = 0;
   for (int i = 0; i < sc->nmuscle; i++) nfil += sc->muscle[i].filaments;
   int nenv = sc->nground + sc->nfluid + sc->ncontact + sc->nwave;
+  const int njoint = sc->njoint + sc->nkin;   /* kinematic joints are joints too */
   char dt[64] = "";
   if (stable > 0) {
     if (stable < 1e-6) snprintf(dt, sizeof dt, "; stable dt %.3g ns", stable * 1e9);
@@ -389,7 +390,7 @@ static void print_checked(const char *model, const swScene *sc, double stable) {
           "%d joint%s, %d environment%s, %d param%s, %d expectation%s%s, %d warning%s%s\n",
           progname, model, diag_nfiles(), diag_nfiles() == 1 ? "" : "s", sc->nrod,
           sc->nrod == 1 ? "" : "s", sc->nelem, sc->nmuscle, sc->nmuscle == 1 ? "" : "s", nfil,
-          sc->njoint, sc->njoint == 1 ? "" : "s", nenv, nenv == 1 ? "" : "s", sc->nparam,
+          njoint, njoint == 1 ? "" : "s", nenv, nenv == 1 ? "" : "s", sc->nparam,
           sc->nparam == 1 ? "" : "s", nexpect, nexpect == 1 ? "" : "s", objective,
           diag_warnings(), diag_warnings() == 1 ? "" : "s", dt);
 }

@@ -425,6 +425,17 @@ void sw_cli_print_info(const swCli *c, const swModel *m, double stable, const ch
                        : m->joint && m->joint[j].name ? m->joint[j].name : "(unnamed)";
     printf("  %s: %s\n", name, m->joint ? sw_joint_kind_name(m->joint[j].kind) : "joint");
   }
+  if (m->nkinematic) {   /* kinematic.c: frames imposed, no couple back */
+    printf("kinematic joints: %d (a follower element turns with its leader's)\n", m->nkinematic);
+    for (int j = 0; j < m->nkinematic; j++) {
+      const swKinematicDesc *k = &m->kinematic[j];
+      printf("  %s: %s follows %s, spring %g N/m", k->name, m->rod_name[k->follower_rod],
+             m->rod_name[k->leader_rod], k->stiffness);
+      if (k->reaction_rod >= 0)
+        printf(", reaction x %g to %s", k->reaction_weight, m->rod_name[k->reaction_rod]);
+      printf("\n");
+    }
+  }
   printf("muscles: %d\n", m->nmuscle);
   for (int i = 0; i < m->nmuscle; i++) {
     const int f0 = m->muscle_fil_adr[i], f1 = m->muscle_fil_adr[i + 1];
