@@ -504,8 +504,14 @@ static void emit_build(FILE *out, swArena *a, const swScene *sc) {
   if (sc->gravity.kind == VAL_VEC) {
     fputc('\n', out);
     gen_origin(out, sc->gravity_loc, "  ");
-    fprintf(out, "  {\n    const double g[3] = {%s, %s, %s};\n    sw_spec_set_gravity(s, g);\n  }\n",
+    fprintf(out, "  {\n    const double g[3] = {%s, %s, %s};\n    sw_spec_set_gravity(s, g);\n",
             val_c(a, &sc->gravity, 0), val_c(a, &sc->gravity, 1), val_c(a, &sc->gravity, 2));
+    if (sc->gravity_sig) {   /* times a signal of time */
+      fputs("    swSignal gs = sw_signal_const(1.0);\n", out);
+      gen_emit_signal(out, a, "gs", sc->gravity_sig);
+      fputs("    sw_spec_set_gravity_signal(s, gs);\n", out);
+    }
+    fputs("  }\n", out);
   }
   static const char *integrators[] = {"SW_VERLET", "SW_PEFRL", "SW_IMEX"};
   fprintf(out, "\n  sw_spec_set_integrator(s, %s);\n", integrators[sc->integrator]);

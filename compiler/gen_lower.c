@@ -406,6 +406,7 @@ swSpec *gen_spec(const swScene *sc) {
     sw_spec_add_expect(s, &d);
   }
   if (sc->gravity.kind == VAL_VEC) sw_spec_set_gravity(s, sc->gravity.v);
+  if (sc->gravity_sig) sw_spec_set_gravity_signal(s, gen_signal(sc->gravity_sig));
   sw_spec_set_integrator(s, sc->integrator);
   if (sc->dt > 0) sw_spec_set_dt(s, sc->dt);
   return s;

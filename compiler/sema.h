@@ -411,6 +411,7 @@ typedef struct {
   swSceneExpect *expect; int nexpect, capexpect;
   swSceneObjective objective;
   swValue gravity;            /* kind VAL_ERROR when absent                 */
+  swSignalVal *gravity_sig;   /* NULL: constant; else gravity times it       */
   swLoc gravity_loc;
   swIntegrator integrator;
   double dt, duration, every; /* s; dt 0 = choose                          */

@@ -455,8 +455,23 @@ void sema_action(swSema *S, swScope *scope, const swAst *it) {
     diag_error(it->kid[0]->loc, "'%s' needs a value: %s POINT = VALUE;", word, word);
     return;
   }
-  if (k == 1) {   /* gravity (0, 0, -9.81) m/s^2; */
-    swValue g = sema_expect(S, scope, it->kid[0], 3, dim_make(0, 1, -2, 0), "gravity");
+  if (k == 1) {   /* gravity (0, 0, -9.81) m/s^2;  or  ... * SIGNAL */
+    swValue g = sema_eval(S, scope, it->kid[0]);
+    swSignalVal *sig = NULL;
+    if (g.kind == VAL_SIGNAL) {   /* a direction times a dimensionless signal */
+      if (g.sig->scale.kind != VAL_VEC || !dim_is_none(g.sig->base)) {
+        diag_error(g.loc, "gravity varying in time is an acceleration times a dimensionless "
+                   "signal: gravity (0, 0, -9.81) m/s^2 * ramp(0, 1, over = 0.1 s);");
+        return;
+      }
+      sig = g.sig;
+      g = sema_expect_value(S, g.sig->scale, 3, dim_make(0, 1, -2, 0), "gravity");
+    } else if (g.kind == VAL_WORD) {
+      sema_report_unknown(S, scope, g.word, g.loc, "name");
+      return;
+    } else if (g.kind != VAL_ERROR) {
+      g = sema_expect_value(S, g, 3, dim_make(0, 1, -2, 0), "gravity");
+    }
     if (g.kind == VAL_ERROR) return;
     if (S->scene->gravity.kind != VAL_ERROR) {
       char first[300];
@@ -465,6 +480,7 @@ void sema_action(swSema *S, swScope *scope, const swAst *it) {
       return;
     }
     S->scene->gravity = g;
+    S->scene->gravity_sig = sig;
     S->scene->gravity_loc = it->loc;
     return;
   }

@@ -256,7 +256,8 @@ void sw_fluid_loads(const swModel *m, swData *d, int lo, int hi) {
       }
       /* buoyancy: -rho_f V g */
       const double dm = m->fluid_displaced[row];
-      for (int q = 0; q < 3; q++) load[q] -= dm * m->gravity[q];
+      const double gs = sw_signal_eval(&m->gravity_signal, d->time);
+      for (int q = 0; q < 3; q++) load[q] -= dm * m->gravity[q] * gs;
       for (int q = 0; q < 3; q++) {
         const double h = 0.5 * load[q];
         SW_AT(m, ef, a, q) += h;

@@ -204,9 +204,11 @@ static void base_loads(const swModel *m, swData *d, int lo, int hi, int so) {
    * loops rather than a condition per slot (vec.h, sw_select) */
   int top = m->has_gravity ? (hi < m->nslot ? hi : m->nslot) : lo;
   if (top < lo) top = lo;
+  const double scale = m->gravity_signal.kind == SW_SIG_CONST ? m->gravity_signal.a
+                                                              : sw_signal_eval(&m->gravity_signal, d->time);
   for (int k = 0; k < 3; k++) {
     double *restrict ef = d->ext_force + k * S, *restrict et = d->ext_torque + k * S;
-    const double g = m->gravity[k];
+    const double g = m->gravity[k] * scale;
 #pragma omp simd
     for (int i = lo; i < top; i++) {
       ef[i - so] = mass[i] * g;

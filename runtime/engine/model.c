@@ -133,6 +133,7 @@ swModel *sw_compile(const swSpec *s, char *err, size_t errlen) {
   m->dt = s->dt;
   m->integrator = s->integrator;
   memcpy(m->gravity, s->gravity, sizeof m->gravity);
+  m->gravity_signal = s->has_gravity_signal ? s->gravity_signal : sw_signal_const(1.0);
   m->has_gravity = s->gravity[0] != 0 || s->gravity[1] != 0 || s->gravity[2] != 0;
   int nr = m->nrod;
   m->rod_name = calloc((size_t)nr, sizeof(char *));

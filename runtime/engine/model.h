@@ -23,6 +23,8 @@ struct swSpec {
   swJointDesc *joint;
   char **joint_name;             /* owned copies of joint[k].name */
   double gravity[3];
+  swSignal gravity_signal;       /* scales gravity (sw_spec_set_gravity_signal) */
+  int has_gravity_signal;
   double dt;
   swIntegrator integrator;
   swMuscleSpec *muscles;         /* owned by muscle.c */

@@ -145,6 +145,10 @@ int sw_spec_add_joint(swSpec *s, const swJointDesc *j) {
 void sw_spec_set_gravity(swSpec *s, const double g[3]) {
   memcpy(s->gravity, g, sizeof s->gravity);
 }
+void sw_spec_set_gravity_signal(swSpec *s, swSignal signal) {
+  s->gravity_signal = signal;
+  s->has_gravity_signal = 1;
+}
 void sw_spec_set_integrator(swSpec *s, swIntegrator integ) { s->integrator = integ; }
 void sw_spec_set_dt(swSpec *s, double dt) { s->dt = dt; }
 

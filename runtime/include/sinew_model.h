@@ -29,7 +29,8 @@ typedef struct {
   /* options */
   double dt;                 /* time step, s                                 */
   swIntegrator integrator;
-  double gravity[3];         /* m/s^2                                        */
+  double gravity[3];         /* m/s^2, times gravity_signal(t)               */
+  swSignal gravity_signal;   /* dimensionless; constant 1 unless set          */
   /* per rod (nrod) */
   char **rod_name;
   swRodInfo *rod_info;       /* kind, material, where (io/output_attrs.c)     */

@@ -157,6 +157,8 @@ int sw_spec_add_rod(swSpec *s, const swRodDesc *r);      /* returns rod id */
 int sw_spec_add_load(swSpec *s, const swLoadDesc *l);
 int sw_spec_add_bc(swSpec *s, const swBCDesc *b);
 void sw_spec_set_gravity(swSpec *s, const double g[3]);
+/* Gravity g times a dimensionless signal of time (default: 1). */
+void sw_spec_set_gravity_signal(swSpec *s, swSignal signal);
 void sw_spec_set_integrator(swSpec *s, swIntegrator integ);
 void sw_spec_set_dt(swSpec *s, double dt);
 /* Rest shape override for rod r: node positions (n+1)x3 and element directors

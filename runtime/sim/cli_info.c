@@ -479,7 +479,9 @@ void sw_cli_print_info(const swCli *c, const swModel *m, double stable, const ch
          "%d prescribed angular velocit%s)\n", m->nbc, nclamp, nclamp == 1 ? "" : "s", nvel,
          nvel == 1 ? "y" : "ies", nomega, nomega == 1 ? "y" : "ies");
   if (m->has_gravity)
-    printf("gravity: (%g, %g, %g) m/s^2\n", m->gravity[0], m->gravity[1], m->gravity[2]);
+    printf("gravity: (%g, %g, %g) m/s^2%s\n", m->gravity[0], m->gravity[1], m->gravity[2],
+           m->gravity_signal.kind != SW_SIG_CONST || m->gravity_signal.a != 1.0
+               ? " times a signal of time" : "");
   else printf("gravity: none\n");
   printf("forces in use: elasticity (stretch, shear, bend, twist)%s%s%s%s%s%s%s%s%s%s\n",
          m->has_gravity ? ", gravity" : "", m->nload ? ", point loads" : "",

@@ -9,7 +9,8 @@
 #    and evaluates each force's swSignal as the load kernel does) against
 #    the compiler's evaluator, and a param reaching the signals through ctx.
 # 3. A signal at work: a force that follows sup_force's initiation sine on a
-#    free rod gives it the momentum of the impulse's closed form.
+#    free rod gives it the momentum of the impulse's closed form; gravity
+#    switched on by a signal gives a free rod the velocity of its integral.
 . "$(dirname "$0")/tap.sh"
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
@@ -150,5 +151,29 @@ print("# momentum of the pushed rod against the impulse's closed form: largest d
 sys.exit(0 if worst < 1e-6 else 1)
 PY
 ok $? "the momentum it gains is the impulse of the signal (within 1e-6)"
+
+# gravity times a signal: switched on at 50 ms as 1 - exp(-(t - 50 ms) / 10 ms),
+# a free rod falls with v(t) = -g (s - tau (1 - exp(-s / tau))), s = t - 50 ms
+cat > "$tmp/fall.sinew" <<'MODEL'
+material tissue { E = 1 MPa; density = 1000 kg/m^3; poisson = 0.5; }
+rod a { material = tissue; from = (0, 0, 0) m; to = (0.1, 0, 0) m; radius = 1 cm; elements = 2; }
+signal onset(t) = piecewise(t < 50 ms: 0, 1 - exp(-(t - 50 ms) / 10 ms));
+gravity (0, 0, -9.81) m/s^2 * onset;
+simulate { dt = 10 us; duration = 0.1 s; }
+output "fall.h5" every 10 ms { probe v = velocity(a); }
+MODEL
+"$SINEWC" "$tmp/fall.sinew" -o "$tmp/fall" >/dev/null 2>&1 && (cd "$tmp" && ./fall --quiet) >/dev/null 2>&1
+ok $? "gravity times a signal compiles and runs"
+/usr/bin/python3 - "$tmp/fall.h5" <<'PY'
+import sys, math, h5py
+f = h5py.File(sys.argv[1], "r")
+worst = 0
+for t, v in zip(f["/time"][:], f["/probes/v"][:]):
+    s = max(0.0, t - 0.05)
+    worst = max(worst, abs(v[2] + 9.81 * (s - 0.01 * (1 - math.exp(-s / 0.01)))))
+print("# the falling rod's velocity against the integral of g s(t): largest difference %.2e m/s" % worst)
+sys.exit(0 if worst < 1e-7 else 1)
+PY
+ok $? "it falls with the integral of g times the signal (within 1e-7 m/s)"
 
 done_testing
