@@ -96,9 +96,9 @@ swLoc ast_span(swLoc a, swLoc b) {
 
 const char *ast_kind_name(swAstKind kind) {
   static const char *names[] = {
-    "import", "param", "let", "definition", "joint", "component", "use", "statement",
+    "import", "param", "let", "definition", "joint", "component", "use", "loop", "statement",
     "simulate", "output", "field", "selection", "number", "string", "name", "unit",
-    "operator", "negation", "quantity", "vector", "call", "member", "method call",
+    "operator", "negation", "quantity", "vector", "call", "member", "index", "method call",
     "arguments", "argument", "parameters", "condition", "file", "expect",
   };
   return (unsigned)kind < sizeof names / sizeof names[0] ? names[kind] : "?";

@@ -28,6 +28,7 @@ typedef enum {
   AST_JOINT,      /* name, text = joint kind, kid[0] = ARGS, kids[1..] = body */
   AST_COMPONENT,  /* name, kid[0] = FORMALS, kids[1..] = items          */
   AST_USE,        /* name = instance, text = component, kid[0] = ARGS   */
+  AST_FOR,        /* name = loop, text = its variable, kid[0] = range, kids[1..] = items */
   AST_ACTION,     /* text = keyword (clamp, gravity, force, ...), kids = operands */
   AST_SIMULATE,   /* kids = body                                        */
   AST_OUTPUT,     /* text = path, kid[0] = every (or NULL), kids[1..] = body */
@@ -46,6 +47,7 @@ typedef enum {
   AST_VEC,        /* kids = components                                  */
   AST_CALL,       /* name = function, kid[0] = ARGS                     */
   AST_MEMBER,     /* kid[0] . name                                      */
+  AST_INDEX,      /* kid[0] [ kid[1] ]                                  */
   AST_METHOD,     /* kid[0] . name ( kid[1] = ARGS )                    */
   AST_ARGS,       /* kids = ARG                                         */
   AST_ARG,        /* name = keyword or NULL, kid[0] = value             */

@@ -11,6 +11,7 @@
  * stands (sema_import.c), its items walked by sema_check_file here.
  */
 #include <limits.h>
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -29,7 +30,7 @@ static const char *const def_kinds[] = {"material", "rod", "bone", "tendon", "mu
 static int scene_statement(const swAst *it) {
   if (sema_is_signal_def(it)) return 0;   /* signal NAME(t) = ...: a definition */
   return it->kind == AST_ACTION || it->kind == AST_SIMULATE || it->kind == AST_OUTPUT ||
-         it->kind == AST_EXPECT || it->kind == AST_USE ||
+         it->kind == AST_EXPECT || it->kind == AST_USE || it->kind == AST_FOR ||
          (it->kind == AST_DEF && sema_is_env_kind(it->text));
 }
 
@@ -114,6 +115,9 @@ static void declare_items(swSema *S, swScope *scope, const swAst *items, int fir
       break;
     case AST_USE:
       sema_declare(S, scope, SYM_INSTANCE, it->name, it->loc, it);
+      break;
+    case AST_FOR:
+      sema_declare(S, scope, SYM_LOOP, it->name, it->loc, it);
       break;
     default:
       break;
@@ -264,6 +268,75 @@ static void instantiate(swSema *S, swScope *scope, const swAst *it) {
   S->instance_depth--;
 }
 
+/* for NAME[VAR] in (FIRST, LAST) { items }: the items once for each whole VAR
+ * from FIRST to LAST, each pass an instance of its own named NAME[VAR] (its
+ * rods NAME[3].barb ...) whose scope sees the enclosing one, with VAR a
+ * plain number there.  The passes count against the expansion bound as a
+ * component's instances do. */
+static void run_loop(swSema *S, swScope *scope, const swAst *it) {
+  swSymbol *loop = sema_lookup_local(scope, it->name);
+  if (!loop || loop->def != it) return;   /* declaration failed */
+  loop->state = 2;
+  loop->used = 1;
+  swValue r = sema_eval(S, scope, it->kid[0]);
+  if (r.kind == VAL_WORD) {
+    sema_report_unknown(S, scope, r.word, r.loc, "name");
+    return;
+  }
+  if (r.kind == VAL_ERROR) return;
+  if (r.kind != VAL_VEC || r.n != 2 || !dim_is_none(r.dim) || !val_is_const(&r) ||
+      r.v[0] != floor(r.v[0]) || r.v[1] != floor(r.v[1]) || fabs(r.v[0]) > 1e9 ||
+      fabs(r.v[1]) > 1e9) {
+    diag_error(r.loc, "a loop runs over whole numbers known when compiling, its first and last: "
+               "for %s[%s] in (0, 9) { ... }", it->name, it->text);
+    return;
+  }
+  const long first = (long)r.v[0], last = (long)r.v[1];
+  if (last < first) {
+    diag_warning(r.loc, "loop '%s' runs from %ld to %ld: no pass", it->name, first, last);
+    return;
+  }
+  const long n = last - first + 1;
+  if (S->nexpanded + n * (it->nkid - 1) > SEMA_MAX_EXPANDED) {
+    diag_error(it->loc, "loop '%s' expands to %ld definitions and statements; the model may have "
+               "at most %d", it->name, n * (it->nkid - 1), SEMA_MAX_EXPANDED);
+    S->nexpanded = SEMA_MAX_EXPANDED + 1;
+    return;
+  }
+  S->nexpanded += (int)(n * (it->nkid - 1));
+  loop->first_pass = (int)first;
+  loop->npass = (int)n;
+  loop->pass = ast_alloc(S->a, (size_t)n * sizeof *loop->pass);
+  for (long k = 0; k < n && !diag_stopped(); k++) {
+    char name[256];
+    snprintf(name, sizeof name, "%s[%ld]", it->name, first + k);
+    size_t plen = strlen(scope->prefix) + strlen(name) + 2;
+    char *prefix = ast_alloc(S->a, plen);
+    snprintf(prefix, plen, "%s%s.", scope->prefix, name);
+    swSymbol *pass = ast_alloc(S->a, sizeof *pass);
+    pass->kind = SYM_INSTANCE;
+    pass->name = ast_strdup(S->a, name, strlen(name));
+    pass->full = ast_strdup(S->a, prefix, plen - 2);
+    pass->loc = it->loc;
+    pass->def = it;
+    pass->scope = scope;
+    pass->state = 2;
+    pass->used = 1;
+    pass->members = sema_scope_new(S, scope, prefix);
+    loop->pass[k] = pass;
+    swSymbol *var = sema_declare(S, pass->members, SYM_LET, it->text, it->loc, it);
+    if (var) {
+      var->value = val_num(S->a, (double)(first + k), DIM_NONE, it->loc);
+      var->state = 2;
+      var->used = 1;
+    }
+    diag_push_context(it->loc, "in pass %s = %ld of loop '%s'", it->text, first + k, it->name);
+    declare_items(S, pass->members, it, 1);
+    sema_items(S, pass->members, it, 1);
+    diag_pop_context();
+  }
+}
+
 void sema_items(swSema *S, swScope *scope, const swAst *items, int first) {
   /* past the error limit nothing more is reported: the rest is not checked
    * (a model whose components expand into tens of thousands of errors took
@@ -295,6 +368,9 @@ void sema_items(swSema *S, swScope *scope, const swAst *items, int first) {
     }
     case AST_USE:
       instantiate(S, scope, it);
+      break;
+    case AST_FOR:
+      run_loop(S, scope, it);
       break;
     case AST_ACTION:
       if (sema_is_signal_def(it)) sema_signal_def(S, scope, it);

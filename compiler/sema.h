@@ -80,7 +80,7 @@ typedef struct swSignalVal {
 
 typedef enum {
   SYM_PARAM, SYM_LET, SYM_FORMAL, SYM_MATERIAL, SYM_ROD, SYM_JOINT, SYM_COMPONENT, SYM_INSTANCE,
-  SYM_MUSCLE, SYM_ENV, SYM_SIGNAL
+  SYM_MUSCLE, SYM_ENV, SYM_SIGNAL, SYM_LOOP
 } swSymKind;
 
 struct swScope;
@@ -97,6 +97,8 @@ typedef struct swSymbol {
   int index;                  /* rod, muscle, param or joint index in the scene */
   swValue value;              /* params, lets, formals                     */
   struct swScope *members;    /* instances: their scope                    */
+  struct swSymbol **pass;     /* loops: one instance a pass (npass), or NULL */
+  int first_pass, npass;      /* loops: the variable's first value, passes  */
   struct swMaterial *material;
 } swSymbol;
 

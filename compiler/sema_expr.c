@@ -353,6 +353,50 @@ static swValue eval_method(swSema *S, swScope *scope, const swAst *e) {
   return sema_rod_point(S, b.ref, f, -2, e->loc);
 }
 
+/* LOOP[K]: pass K of a loop, an instance whose members are read with '.' */
+static swValue eval_index(swSema *S, swScope *scope, const swAst *e) {
+  swValue b = sema_eval(S, scope, e->kid[0]);
+  if (b.kind == VAL_ERROR) return b;
+  if (b.kind == VAL_WORD) {
+    sema_report_unknown(S, scope, b.word, b.loc, "name");
+    return val_error();
+  }
+  if (b.kind != VAL_REF || b.ref->kind != SYM_LOOP) {
+    if (b.kind == VAL_REF)
+      diag_error(e->loc, "only a loop's passes are numbered, LOOP[K], and '%s' is %s",
+                 b.ref->name, sema_sym_a_noun(b.ref->kind));
+    else
+      diag_error(e->loc, "only a loop's passes are numbered, LOOP[K], not %s",
+                 sema_describe_value(S, &b));
+    return val_error();
+  }
+  swValue k = sema_expect(S, scope, e->kid[1], 1, DIM_NONE, "a pass of a loop");
+  if (k.kind == VAL_ERROR) return k;
+  const swSymbol *loop = b.ref;
+  if (!val_is_const(&k) || k.v[0] != floor(k.v[0])) {
+    diag_error(k.loc, "a pass of loop '%s' is a whole number known when compiling", loop->name);
+    return val_error();
+  }
+  if (!loop->pass) {   /* its line comes later, or it failed (reported there) */
+    char made[300];
+    if (loop->state != 2)
+      diag_error(e->loc, "loop '%s' is used before the line that runs it (%s)", loop->name,
+                 diag_where_from(loop->loc, e->loc, made, sizeof made));
+    return val_error();
+  }
+  const long i = (long)k.v[0] - loop->first_pass;
+  if (i < 0 || i >= loop->npass) {
+    diag_error(k.loc, "loop '%s' has passes %d to %d, not %g", loop->name, loop->first_pass,
+               loop->first_pass + loop->npass - 1, k.v[0]);
+    return val_error();
+  }
+  swValue v = val_error();
+  v.kind = VAL_REF;
+  v.ref = loop->pass[i];
+  v.loc = e->loc;
+  return v;
+}
+
 static swValue eval_vector(swSema *S, swScope *scope, const swAst *e) {
   swValue *parts = ast_alloc(S->a, (size_t)e->nkid * sizeof *parts);
   int bad = 0;
@@ -443,6 +487,8 @@ static swValue eval_node(swSema *S, swScope *scope, const swAst *e) {
     return sema_eval_call(S, scope, e);
   case AST_MEMBER:
     return eval_member(S, scope, e);
+  case AST_INDEX:
+    return eval_index(S, scope, e);
   case AST_METHOD:
     return eval_method(S, scope, e);
   default:

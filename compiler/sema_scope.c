@@ -120,14 +120,14 @@ void sema_report_unknown(swSema *S, swScope *scope, const char *name, swLoc loc,
 const char *sema_sym_noun(swSymKind k) {
   static const char *nouns[] = {"param", "let", "component parameter", "material", "rod",
                                 "joint", "component", "instance", "muscle", "environment",
-                                "signal"};
+                                "signal", "loop"};
   return nouns[k];
 }
 
 const char *sema_sym_a_noun(swSymKind k) {
   static const char *nouns[] = {"a param", "a let", "a component parameter", "a material",
                                 "a rod", "a joint", "a component", "an instance", "a muscle",
-                                "an environment", "a signal"};
+                                "an environment", "a signal", "a loop"};
   return nouns[k];
 }
 

@@ -104,7 +104,7 @@ static void sinew_yyerror(swLoc *loc, yyscan_t scanner, struct swLexState *st, c
 %token IMPORT "'import'" PARAM "'param'" LET "'let'" JOINT "'joint'"
 %token COMPONENT "'component'" USE "'use'" SIMULATE "'simulate'"
 %token OUTPUT "'output'" EVERY "'every'" EXPECT "'expect'"
-%token AND "'and'" OR "'or'" LE "'<='" GE "'>='" IN "'in'"
+%token AND "'and'" OR "'or'" LE "'<='" GE "'>='" IN "'in'" FOR "'for'"
 
 %left OR
 %left AND
@@ -172,6 +172,12 @@ item
   | COMPONENT IDENT '(' formals ')' '{' items '}'
                              { $$ = named(st, AST_COMPONENT, @2, $2); push(st, $$, $4);
                                for (int i = 0; i < $7->nkid; i++) push(st, $$, $7->kid[i]); }
+  /* for NAME[VAR] in (FIRST, LAST) { items }   the items once for each whole
+     VAR from FIRST to LAST, in a scope of its own named NAME[VAR] */
+  | FOR IDENT '[' IDENT ']' IN expr '{' items '}'
+                             { $$ = named(st, AST_FOR, @2, $2); $$->text = $4;
+                               $$->loc = ast_span(@1, @5); push(st, $$, $7);
+                               for (int i = 0; i < $9->nkid; i++) push(st, $$, $9->kid[i]); }
   /* use NAME = COMPONENT(args); */
   | USE IDENT '=' IDENT '(' args ')' ';'
                              { $$ = named(st, AST_USE, @2, $2); $$->text = $4;
@@ -338,6 +344,8 @@ primary
   | IDENT '(' args ')'       { $$ = named(st, AST_CALL, @$, $1); push(st, $$, $3); }
   /* member: humerus.end */
   | primary '.' IDENT        { $$ = named(st, AST_MEMBER, @$, $3); push(st, $$, $1); }
+  /* index: barbs[3], one pass of a loop */
+  | primary '[' expr ']'     { $$ = node(st, AST_INDEX, @$); push(st, $$, $1); push(st, $$, $3); }
   /* method: humerus.at(0.3) */
   | primary '.' IDENT '(' args ')'
                              { $$ = named(st, AST_METHOD, @$, $3); push(st, $$, $1); push(st, $$, $5); }
