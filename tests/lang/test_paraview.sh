@@ -80,12 +80,19 @@ rc=$?
 # beside a study on both cores: two failed attempts in a row, then a pass
 # alone, with the same files; the abort comes when the picture is rendered,
 # after the file's own checks have passed): that is the X server, not the
-# file, so it is said and tried again, up to three times in all
+# file, so it is said and tried again, up to three times in all.  The same
+# holds when only the picture's checks fail (the pixels drawn) while every
+# check of the file passed: seen once in a full run on a loaded machine
+# (checks 15-16), passing alone and under two busy cores since
 tries=1
-while [ $rc -ne 0 ] && [ $tries -lt 3 ] && grep -q 'CreateAWindow' pverr; do
+picture_only() {
+  grep -q '^not ok' pv && ! grep '^not ok' pv | grep -qv 'pixel'
+}
+while [ $rc -ne 0 ] && [ $tries -lt 3 ] && { grep -q 'CreateAWindow' pverr || picture_only; }; do
   diag <<EOM
-pvpython could not open its window on the virtual X server (exit $rc, attempt $tries); trying again
+pvpython could not open its window on the virtual X server, or drew a picture other than the tube (exit $rc, attempt $tries); trying again
 EOM
+  grep '^not ok' pv | diag
   sleep $((2 * tries))
   tries=$((tries + 1))
   xvfb-run -a pvpython "$ROOT/tests/lang/paraview_rods.py" "$TMP/$run.xdmf" "$run.h5" \
