@@ -64,6 +64,12 @@ void gen_emit_signal(FILE *out, swArena *a, const char *var, const swSignalVal *
 void gen_env_heights(FILE *out, swArena *a, const swScene *sc);
 void gen_env_build(FILE *out, swArena *a, const swScene *sc);
 
+/* A function expression's condition (comparisons, and, or) as C, its
+ * operands printed by `operand` (gen_env.c; a height's dual numbers, a
+ * signal's doubles). */
+typedef void (*gen_fexpr_fn)(FILE *out, swArena *a, const swHExpr *e, int depth);
+void gen_fexpr_condition(FILE *out, swArena *a, const swHExpr *e, int depth, gen_fexpr_fn operand);
+
 /* gen_signal.c: the model's signals as C functions (before build) and
  * their lines of build() */
 void gen_signal_functions(FILE *out, swArena *a, const swScene *sc);

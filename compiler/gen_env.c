@@ -70,20 +70,20 @@ static void value(FILE *out, swArena *a, const swHExpr *e, int depth) {
   fputs(".v", out);
 }
 
-static void condition(FILE *out, swArena *a, const swHExpr *e, int depth) {
+void gen_fexpr_condition(FILE *out, swArena *a, const swHExpr *e, int depth, gen_fexpr_fn operand) {
   if (e->op == HX_AND || e->op == HX_OR) {
     fputc('(', out);
-    condition(out, a, e->kid[0], depth);
+    gen_fexpr_condition(out, a, e->kid[0], depth, operand);
     fputs(e->op == HX_AND ? " && " : " || ", out);
-    condition(out, a, e->kid[1], depth);
+    gen_fexpr_condition(out, a, e->kid[1], depth, operand);
     fputc(')', out);
     return;
   }
   static const char *const cmp[] = {"<", "<=", ">", ">="};
   fputc('(', out);
-  value(out, a, e->kid[0], depth);
+  operand(out, a, e->kid[0], depth);
   fprintf(out, " %s ", cmp[e->op - HX_LT]);
-  value(out, a, e->kid[1], depth);
+  operand(out, a, e->kid[1], depth);
   fputc(')', out);
 }
 
@@ -109,7 +109,7 @@ static void expr(FILE *out, swArena *a, const swHExpr *e, int depth) {
     /* cond0 ? value0 : cond1 ? value1 : default, one case a line */
     fputc('(', out);
     for (int i = 0; i + 1 < e->nkid; i += 2) {
-      condition(out, a, e->kid[i], depth + 1);
+      gen_fexpr_condition(out, a, e->kid[i], depth + 1, value);
       fputs(" ? ", out);
       expr(out, a, e->kid[i + 1], depth + 1);
       fprintf(out, "\n%*s: ", 4 + 2 * depth, "");

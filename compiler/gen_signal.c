@@ -23,23 +23,6 @@
 
 static void value(FILE *out, swArena *a, const swHExpr *e, int depth);
 
-static void condition(FILE *out, swArena *a, const swHExpr *e, int depth) {
-  if (e->op == HX_AND || e->op == HX_OR) {
-    fputc('(', out);
-    condition(out, a, e->kid[0], depth);
-    fputs(e->op == HX_AND ? " && " : " || ", out);
-    condition(out, a, e->kid[1], depth);
-    fputc(')', out);
-    return;
-  }
-  static const char *const cmp[] = {"<", "<=", ">", ">="};
-  fputc('(', out);
-  value(out, a, e->kid[0], depth);
-  fprintf(out, " %s ", cmp[e->op - HX_LT]);
-  value(out, a, e->kid[1], depth);
-  fputc(')', out);
-}
-
 static void value(FILE *out, swArena *a, const swHExpr *e, int depth) {
   static const char *const infix[] = {[HX_ADD] = " + ", [HX_SUB] = " - ", [HX_MUL] = " * ",
                                       [HX_DIV] = " / "};
@@ -88,7 +71,7 @@ static void value(FILE *out, swArena *a, const swHExpr *e, int depth) {
     /* cond0 ? value0 : cond1 ? value1 : default, one case a line */
     fputc('(', out);
     for (int i = 0; i + 1 < e->nkid; i += 2) {
-      condition(out, a, e->kid[i], depth + 1);
+      gen_fexpr_condition(out, a, e->kid[i], depth + 1, value);
       fputs(" ? ", out);
       value(out, a, e->kid[i + 1], depth + 1);
       fprintf(out, "\n%*s: ", 4 + 2 * depth, "");
