@@ -69,6 +69,10 @@ void gen_env_build(FILE *out, swArena *a, const swScene *sc);
  * signal's doubles). */
 typedef void (*gen_fexpr_fn)(FILE *out, swArena *a, const swHExpr *e, int depth);
 void gen_fexpr_condition(FILE *out, swArena *a, const swHExpr *e, int depth, gen_fexpr_fn operand);
+/* piecewise(): a chain of conditional expressions, one case a line, its
+ * conditions' operands printed by `operand` and its values by `branch` */
+void gen_fexpr_piecewise(FILE *out, swArena *a, const swHExpr *e, int depth, gen_fexpr_fn operand,
+                         gen_fexpr_fn branch);
 
 /* gen_signal.c: the model's signals as C functions (before build) and
  * their lines of build() */

@@ -87,6 +87,20 @@ void gen_fexpr_condition(FILE *out, swArena *a, const swHExpr *e, int depth, gen
   fputc(')', out);
 }
 
+/* cond0 ? value0 : cond1 ? value1 : default, one case a line */
+void gen_fexpr_piecewise(FILE *out, swArena *a, const swHExpr *e, int depth, gen_fexpr_fn operand,
+                         gen_fexpr_fn branch) {
+  fputc('(', out);
+  for (int i = 0; i + 1 < e->nkid; i += 2) {
+    gen_fexpr_condition(out, a, e->kid[i], depth + 1, operand);
+    fputs(" ? ", out);
+    branch(out, a, e->kid[i + 1], depth + 1);
+    fprintf(out, "\n%*s: ", 4 + 2 * depth, "");
+  }
+  branch(out, a, e->kid[e->nkid - 1], depth + 1);
+  fputc(')', out);
+}
+
 static void expr(FILE *out, swArena *a, const swHExpr *e, int depth) {
   static const char *const fn[] = {
     [HX_ADD] = "dual_add", [HX_SUB] = "dual_sub", [HX_MUL] = "dual_mul", [HX_DIV] = "dual_div",
@@ -106,16 +120,7 @@ static void expr(FILE *out, swArena *a, const swHExpr *e, int depth) {
     return;
   }
   case HX_PIECEWISE:
-    /* cond0 ? value0 : cond1 ? value1 : default, one case a line */
-    fputc('(', out);
-    for (int i = 0; i + 1 < e->nkid; i += 2) {
-      gen_fexpr_condition(out, a, e->kid[i], depth + 1, value);
-      fputs(" ? ", out);
-      expr(out, a, e->kid[i + 1], depth + 1);
-      fprintf(out, "\n%*s: ", 4 + 2 * depth, "");
-    }
-    expr(out, a, e->kid[e->nkid - 1], depth + 1);
-    fputc(')', out);
+    gen_fexpr_piecewise(out, a, e, depth, value, expr);
     return;
   default:
     fprintf(out, "%s(", fn[e->op]);

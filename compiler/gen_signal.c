@@ -68,16 +68,7 @@ static void value(FILE *out, swArena *a, const swHExpr *e, int depth) {
     fputs(", ctx)", out);
     return;
   case HX_PIECEWISE:
-    /* cond0 ? value0 : cond1 ? value1 : default, one case a line */
-    fputc('(', out);
-    for (int i = 0; i + 1 < e->nkid; i += 2) {
-      gen_fexpr_condition(out, a, e->kid[i], depth + 1, value);
-      fputs(" ? ", out);
-      value(out, a, e->kid[i + 1], depth + 1);
-      fprintf(out, "\n%*s: ", 4 + 2 * depth, "");
-    }
-    value(out, a, e->kid[e->nkid - 1], depth + 1);
-    fputc(')', out);
+    gen_fexpr_piecewise(out, a, e, depth, value, value);
     return;
   default:   /* sqrt, sin, cos, tan, exp */
     fprintf(out, "%s(", fn[e->op]);
