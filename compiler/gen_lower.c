@@ -94,6 +94,7 @@ int gen_joint_fields(const swSceneJoint *j, swLowField *out) {
   memcpy(out, f, sizeof f);
   /* the limits only when given, so a joint without them lowers as before */
   const swLowField lim[] = {
+    F(arm_a, 3, &j->arm_a),
     F(angle_min, 1, &j->angle_min),
     F(angle_max, 1, &j->angle_max),
     F(cone, 1, &j->cone),
@@ -102,7 +103,7 @@ int gen_joint_fields(const swSceneJoint *j, swLowField *out) {
   };
   int n = (int)(sizeof f / sizeof f[0]);
   for (size_t i = 0; i < sizeof lim / sizeof lim[0]; i++)
-    if (lim[i].value->kind == VAL_NUM) out[n++] = lim[i];
+    if (lim[i].value->kind == VAL_NUM || lim[i].value->kind == VAL_VEC) out[n++] = lim[i];
   return n;
 }
 #undef F

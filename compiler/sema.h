@@ -195,6 +195,8 @@ typedef struct {
   int rod_a, node_a, rod_b, node_b;
   const char *node_a_c, *node_b_c;   /* param-dependent nodes' C text, or NULL */
   swValue anchor, axis, stiffness, damping, rot_stiffness, rot_damping;
+  swValue arm_a;              /* POINT + ARM as the first end: the arm (lab, t = 0);
+                                 VAL_ERROR: none                            */
   int undamped;               /* damping = 0 written: no damping at all     */
   /* limits; VAL_ERROR: not given */
   int has_range;              /* range = (lower, upper) on a hinge          */

@@ -58,7 +58,7 @@ static void node_position(const swScene *scn, const swValue *p, double x[3]) {
  * joint's 4.9 kN on the first step drove the muscular snake (issue 13).
  * Positions are those of the params' defaults. */
 static int joint_gap_ok(swSema *S, swScope *scope, const swFields *f, const swAst *it,
-                        const swValue *a, const swValue *b) {
+                        const swValue *a, const swValue *b, const swValue *arm) {
   const swAst *allow = sema_field(f, "allow_gap");
   int allowed = 0;
   if (allow) {
@@ -69,6 +69,8 @@ static int joint_gap_ok(swSema *S, swScope *scope, const swFields *f, const swAs
   const swScene *scn = S->scene;
   double xa[3], xb[3];
   node_position(scn, a, xa);
+  if (arm->kind == VAL_VEC)   /* the first end is off its node, on an arm */
+    for (int k = 0; k < 3; k++) xa[k] += arm->v[k];
   if (b->kind == VAL_POINT) node_position(scn, b, xb);
   else memcpy(xb, b->v, sizeof xb);
   double gap = 0;
@@ -92,7 +94,10 @@ static int joint_gap_ok(swSema *S, swScope *scope, const swFields *f, const swAs
     const swValue *p = ends[e];
     if (p->kind != VAL_POINT) continue;
     double off = 0;
-    for (int k = 0; k < 3; k++) off += (p->v[k] - xs[e][k]) * (p->v[k] - xs[e][k]);
+    for (int k = 0; k < 3; k++) {
+      const double on = xs[e][k] - (e == 0 && arm->kind == VAL_VEC ? arm->v[k] : 0);
+      off += (p->v[k] - on) * (p->v[k] - on);
+    }
     if (sqrt(off) > 1e-6 * element)
       snprintf(notes[e], 200, "; the point at (%.4g, %.4g, %.4g) m on '%s' acts on its "
                "nearest node, %d", p->v[0], p->v[1], p->v[2], scn->rod[p->rod].name, p->node);
@@ -281,8 +286,30 @@ void sema_joint(swSema *S, swScope *scope, const swAst *it) {
                "fixed position: %s(rod.start, (0, 0, 0) m)", it->text, it->text, it->text);
     return;
   }
-  swValue a = sema_eval(S, scope, ast_kid(args->kid[0], 0));
-  swValue b = sema_eval(S, scope, ast_kid(args->kid[1], 0));
+  /* the first end may be a point on a rod plus an arm carried by it:
+   * humerus.end + (8.4, 0, 0) mm */
+  const swAst *ea = ast_kid(args->kid[0], 0);
+  swValue a, arm = val_error();
+  if (ea->kind == AST_BINOP && (ea->op == '+' || ea->op == '-') &&
+      (a = sema_eval(S, scope, ea->kid[0])).kind == VAL_POINT) {
+    arm = sema_expect(S, scope, ea->kid[1], 3, DIM_LENGTH, "a joint's arm");
+    if (arm.kind == VAL_ERROR) return;
+    if (ea->op == '-') arm = val_neg(S->a, arm, ea->loc);
+    if (!val_is_const(&arm)) {
+      diag_error(arm.loc, "a joint's arm is fixed when compiling, but it depends on param '%s'",
+                 arm.param);
+      return;
+    }
+  } else {
+    a = sema_eval(S, scope, ea);
+  }
+  const swAst *eb = ast_kid(args->kid[1], 0);
+  swValue b = sema_eval(S, scope, eb);
+  if (b.kind == VAL_VEC && eb->kind == AST_BINOP && (eb->op == '+' || eb->op == '-') &&
+      sema_eval(S, scope, eb->kid[0]).kind == VAL_POINT)
+    diag_warning(eb->loc, "the second end of joint '%s' is a fixed point in space, where this "
+                 "position is at t = 0; an arm carried by a rod goes on the first end: "
+                 "%s(ROD.end + ARM, ...)", it->name, it->text);
   if (a.kind == VAL_WORD) { sema_report_unknown(S, scope, a.word, a.loc, "name"); ok = 0; }
   if (b.kind == VAL_WORD) { sema_report_unknown(S, scope, b.word, b.loc, "name"); ok = 0; }
   if (a.kind != VAL_ERROR && a.kind != VAL_WORD && a.kind != VAL_POINT) {
@@ -305,6 +332,7 @@ void sema_joint(swSema *S, swScope *scope, const swAst *it) {
       diag_error(b.loc, "the second end of a joint must be a point on a rod or a position");
     ok = 0;
   }
+  j.arm_a = arm;
   if (a.kind == VAL_POINT) {
     j.rod_a = a.rod;
     j.node_a = a.node;
@@ -318,7 +346,7 @@ void sema_joint(swSema *S, swScope *scope, const swAst *it) {
   char what[128];
   snprintf(what, sizeof what, "joint '%s'", it->name);
   sema_fields(S, it, 1, what, joint_keys, NJOINT_KEYS, &f);
-  if (ok && !joint_gap_ok(S, scope, &f, it, &a, &b)) ok = 0; /* after the ends are sound */
+  if (ok && !joint_gap_ok(S, scope, &f, it, &a, &b, &arm)) ok = 0; /* after the ends are sound */
   swLoc loc = it->loc;
   j.axis = sema_field(&f, "axis") ? sema_field_value(S, scope, &f, "axis", 3, DIM_NONE)
            : sema_vec3(S, 0, 0, 0, DIM_NONE, loc);

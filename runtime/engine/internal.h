@@ -181,6 +181,10 @@ double sw_joint_energy(const swModel *m, const swData *d);
  * and its limit's, which act about different directions); the direction g
  * of a limit in violation, for rigid_joint.c's tangent (0: inside). */
 int sw_joint_limited(const swJointDesc *jd);
+/* A joint whose point on side a is off node a, on an arm (joint.c). */
+static inline int sw_joint_has_arm(const swJointDesc *jd) {
+  return jd->arm_a[0] != 0 || jd->arm_a[1] != 0 || jd->arm_a[2] != 0;
+}
 double sw_joint_rot_bound_stiffness(const swJointDesc *jd);
 double sw_joint_rot_bound_damping(const swJointDesc *jd);
 int sw_joint_limit_tangent(const swModel *m, const swData *d, int j, double *g);

@@ -153,7 +153,7 @@ int sw_joint_limited(const swJointDesc *jd) {
 
 /* Whether the joint exchanges couples (rows ROW_CA..ROW_CDB). */
 static int has_couples(const swJointDesc *jd) {
-  return jd->kind != SW_JOINT_SPHERICAL || sw_joint_limited(jd);
+  return jd->kind != SW_JOINT_SPHERICAL || sw_joint_limited(jd) || sw_joint_has_arm(jd);
 }
 
 /* The limits' reference directions (the top of the file), ref = 9 doubles:
@@ -220,6 +220,11 @@ void sw_joint_setup(swModel *m) {
     m->joint_node_b[j] = nb;
     m->joint_elem_a[j] = ea;
     m->joint_elem_b[j] = eb;
+    { /* side a's arm in its element's material frame: o = Q_a(0) r */
+      double Qa0[9];
+      sw_getQ(m, m->Q0, ea, Qa0);
+      sw_mat_vec(m->joint_arm_a + 3 * j, Qa0, jd->arm_a);
+    }
 
     /* defaults (see the top of the file) */
     double axial_a = SW_AT(m, m->shear_stiff, ea, 2) * m->inv_rest_len[ea];
@@ -293,6 +298,9 @@ typedef struct {
   double force_damp[3];  /* damping force on node a                         */
   double couple[3];      /* spring couple on element a                      */
   double couple_damp[3]; /* damping couple on element a                     */
+  double arm[3];         /* the spring force's couple on element a about node a
+                            (side a's arm; not passed on to element b)     */
+  double arm_damp[3];    /* the damping force's                              */
   double energy;         /* stored in the springs, J                        */
   double angle;          /* hinge angle, not unwrapped (0 for other kinds)  */
   double limit[3];       /* the limit's couple on element a (in the above)  */
@@ -387,10 +395,22 @@ static void joint_eval(const swModel *m, const swData *d, int j, swJointEval *o)
   static const double zero[3] = {0, 0, 0};
   memset(o, 0, sizeof *o);
 
-  /* position */
-  double xa[3], va[3], xb[3], vb[3];
+  /* position: side a's point, node a plus its arm r = Q_a^T o moving with
+   * element a (v + w x r) */
+  double xa[3], va[3], xb[3], vb[3], r[3] = {0, 0, 0};
   sw_get3(m, d->x, na, xa);
   sw_get3(m, d->v, na, va);
+  const int arm = sw_joint_has_arm(jd);
+  if (arm) {
+    double Q[9], w[3], wl[3], wr[3];
+    sw_getQ(m, d->Q, ea, Q);
+    sw_matT_vec(r, Q, m->joint_arm_a + 3 * j);
+    sw_get3(m, d->omega, ea, w);
+    sw_matT_vec(wl, Q, w);
+    sw_v3_cross(wr, wl, r);
+    sw_v3_add(xa, xa, r);
+    sw_v3_add(va, va, wr);
+  }
   if (nb >= 0) {
     sw_get3(m, d->x, nb, xb);
     sw_get3(m, d->v, nb, vb);
@@ -404,6 +424,10 @@ static void joint_eval(const swModel *m, const swData *d, int j, swJointEval *o)
   sw_v3_scale(o->force, g, jd->stiffness);
   sw_v3_scale(o->force_damp, dv, jd->damping);
   o->energy = 0.5 * jd->stiffness * sw_v3_dot(g, g);
+  if (arm) { /* the arm turns element a: r x F, the exact gradient of U in its rotation */
+    sw_v3_cross(o->arm, r, o->force);
+    sw_v3_cross(o->arm_damp, r, o->force_damp);
+  }
   if (!has_couples(jd)) return;
 
   /* relative angular velocity w_b - w_a, lab */
@@ -482,11 +506,14 @@ static void joint_row(const swModel *m, swData *d, int j, double *row) {
   memcpy(row + ROW_FD, o.force_damp, sizeof o.force_damp);
   if (!has_couples(&m->joint[j])) return;
   const int ea = m->joint_elem_a[j], eb = m->joint_elem_b[j];
-  double c[3], Q[9];
+  double c[3], ca[3], cda[3], Q[9];
   sw_v3_add(c, o.couple, o.couple_damp);
+  sw_v3_add(ca, c, o.arm); /* side a alone takes its arm's couple */
+  sw_v3_add(ca, ca, o.arm_damp);
+  sw_v3_add(cda, o.couple_damp, o.arm_damp);
   sw_getQ(m, d->Q, ea, Q);
-  sw_mat_vec(row + ROW_CA, Q, c);
-  sw_mat_vec(row + ROW_CDA, Q, o.couple_damp);
+  sw_mat_vec(row + ROW_CA, Q, ca);
+  sw_mat_vec(row + ROW_CDA, Q, cda);
   if (eb >= 0) {
     sw_getQ(m, d->Q, eb, Q);
     sw_mat_vec(row + ROW_CB, Q, c);

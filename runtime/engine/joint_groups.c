@@ -447,6 +447,7 @@ int sw_rigid_joints_setup(swModel *m) {
     if (!s[0].ok || !s[1].ok) continue;
     if (s[0].body < 0 && s[1].body < 0 && s[0].rod < 0 && s[1].rod < 0) continue;
     if (hill_on_port(m, j, s, fil_of_rod, ready)) continue;
+    if (sw_joint_has_arm(&m->joint[j])) continue; /* an arm's couple: explicit (joint.c) */
     m->joint_implicit[j] = 1;
     for (int side = 0; side < 2; side++) {
       int k = -1;

@@ -80,6 +80,7 @@ void sw_model_free(swModel *m) {
   sw_kinematic_free(m);
   free(m->joint); free(m->joint_name); free(m->joint_node_a); free(m->joint_node_b);
   free(m->joint_elem_a); free(m->joint_elem_b); free(m->joint_axis_a); free(m->joint_axis_b);
+  free(m->joint_arm_a);
   free(m->joint_rest_rot); free(m->joint_angle0); free(m->joint_wave_dt); free(m->joint_limit_ref);
   sw_rigid_joints_free(m);
   sw_implicit_free(m);
@@ -357,10 +358,12 @@ swModel *sw_compile(const swSpec *s, char *err, size_t errlen) {
   m->joint_node_a = calloc(J1, sizeof(int)); m->joint_node_b = calloc(J1, sizeof(int));
   m->joint_elem_a = calloc(J1, sizeof(int)); m->joint_elem_b = calloc(J1, sizeof(int));
   m->joint_axis_a = sw_dalloc(3 * J); m->joint_axis_b = sw_dalloc(3 * J);
+  m->joint_arm_a = sw_dalloc(3 * J);
   m->joint_rest_rot = sw_dalloc(9 * J); m->joint_angle0 = sw_dalloc(J); m->joint_wave_dt = sw_dalloc(J);
   m->joint_limit_ref = sw_dalloc(9 * J);
   if (!m->joint || !m->joint_name || !m->joint_node_a || !m->joint_node_b || !m->joint_elem_a ||
-      !m->joint_elem_b || !m->joint_axis_a || !m->joint_axis_b || !m->joint_rest_rot ||
+      !m->joint_elem_b || !m->joint_axis_a || !m->joint_axis_b || !m->joint_arm_a ||
+      !m->joint_rest_rot ||
       !m->joint_angle0 || !m->joint_wave_dt || !m->joint_limit_ref)
     goto oom;
   for (int j = 0; j < s->njoint; j++) {

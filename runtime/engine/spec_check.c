@@ -202,6 +202,9 @@ int sw_check_joints(const swSpec *s, char *err, size_t errlen) {
     } else if (!isfinite(j->anchor[0]) || !isfinite(j->anchor[1]) || !isfinite(j->anchor[2])) {
       return sw_fail(err, errlen, "joint '%s': anchor is not finite", nm);
     }
+    if (!isfinite(j->arm_a[0]) || !isfinite(j->arm_a[1]) || !isfinite(j->arm_a[2])) {
+      return sw_fail(err, errlen, "joint '%s': the arm of its first point is not finite", nm);
+    }
     if (j->kind == SW_JOINT_HINGE) {
       double a2 = j->axis[0] * j->axis[0] + j->axis[1] * j->axis[1] + j->axis[2] * j->axis[2];
       if (!isfinite(a2) || !(a2 > 0))

@@ -298,6 +298,16 @@ double sw_stable_dt_joint(const swModel *m, int j) {
   const swJointDesc *jd = &m->joint[j];
   int s = m->joint_node_b[j] >= 0 ? 2 : 1;
   double dt = joint_side_dt(m, jd, jd->rod_a, m->joint_node_a[j], m->joint_elem_a[j], s);
+  if (sw_joint_has_arm(jd) && !sw_rod_is_rigid(m, jd->rod_a)) {
+    /* the arm r turns element a with k |r|^2 (and c |r|^2): one more domain
+     * of its rotation row, as a hinge's couple is */
+    swJointDesc turn = *jd;
+    const double r2 = sw_v3_dot(jd->arm_a, jd->arm_a);
+    turn.rot_stiffness = sw_joint_rot_bound_stiffness(jd) + jd->stiffness * r2;
+    turn.rot_damping = sw_joint_rot_bound_damping(jd) + jd->damping * r2;
+    turn.limit_stiffness = turn.limit_damping = 0;
+    dt = fmin(dt, joint_elem_dt(m, &turn, m->joint_elem_a[j], 1));
+  }
   if (m->joint_node_b[j] >= 0)
     dt = fmin(dt, joint_side_dt(m, jd, jd->rod_b, m->joint_node_b[j], m->joint_elem_b[j], s));
   return dt;

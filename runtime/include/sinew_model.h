@@ -87,6 +87,7 @@ typedef struct {
   int *joint_elem_a;         /* (njoint)   element of rod a taking couples   */
   int *joint_elem_b;         /* (njoint)   element of rod b, -1 anchored     */
   double *joint_axis_a;      /* (njoint*3) hinge axis, material frame of elem a */
+  double *joint_arm_a;       /* (njoint*3) side a's arm, material frame of elem a */
   double *joint_axis_b;      /* (njoint*3) of elem b; lab frame when anchored */
   double *joint_rest_rot;    /* (njoint*9) Q_b Q_a^T at t = 0 (two rods)      */
   double *joint_angle0;      /* (njoint)   hinge angle at t = 0, rad         */

@@ -211,6 +211,10 @@ typedef struct {
   int rod_a, node_a;        /* node -1 = last node of the rod               */
   int rod_b, node_b;        /* rod_b = -1: anchored to `anchor`             */
   double anchor[3];         /* m, lab frame (rod_b < 0 only)                */
+  double arm_a[3];          /* m, lab frame at t = 0: side a's point is node_a
+                               plus this arm, carried by node a's element
+                               (a joint's frame offset on its first body);
+                               the spring then turns that element too      */
   double axis[3];           /* hinge axis, lab frame at t = 0               */
   double stiffness;         /* k, N/m, positional penalty                   */
   double damping;           /* nu, N s/m                                    */
