@@ -367,7 +367,15 @@ static void open_derived(FILE *out, const swScene *sc) {
 
 static void emit_build(FILE *out, swArena *a, const swScene *sc) {
   fputs("/* Builds the scene from the param values P (SI units, in the order of\n"
-        " * params[]).  Returns SW_OK or SW_EMODEL with a message in err. */\n"
+        " * params[]).  Returns SW_OK or SW_EMODEL with a message in err.\n"
+        " *\n"
+        " * It runs once, so GCC compiles it without optimisation: for a scene of\n"
+        " * thousands of rods (a wing's barbs) that takes the C compiler 6 s\n"
+        " * instead of 27 s (-O3) or 184 s (-O1); in ISO C (-std=c11) no\n"
+        " * operation is contracted at any level, so every value is the same. */\n"
+        "#if defined(__GNUC__) && !defined(__clang__)\n"
+        "__attribute__((optimize(\"O0\")))\n"
+        "#endif\n"
         "static int build(swSpec *s, const double *P, char *err, size_t errlen) {\n"
         "  int ok = 1;\n"
         "  (void)P;\n", out);

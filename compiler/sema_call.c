@@ -20,7 +20,8 @@
 
 static const char *const functions[] = {"sqrt", "sin", "cos", "tan", "ramp", "sine", "step",
                                         "table", "bspline", "exp", "piecewise", "max", "min",
-                                        "abs", "round", "at", "mean_over", "max_over", "min_over"};
+                                        "abs", "round", "at", "mean_over", "max_over", "min_over",
+                                        "atan2"};
 enum { NFUNCTIONS = sizeof functions / sizeof functions[0] };
 
 /* ---- calls ---- */
@@ -378,9 +379,33 @@ static swValue eval_round(swSema *S, swScope *scope, const swAst *e) {
   return r;
 }
 
+/* atan2(y, x): the angle of the vector (x, y), in (-pi, pi] rad, of two
+ * numbers of one dimension known when compiling (a direction's angle in a
+ * plane, for a layout). */
+static swValue eval_atan2(swSema *S, swScope *scope, const swAst *e) {
+  const swAst *args = ast_kid(e, 0);
+  if (!args || args->nkid != 2 || args->kid[0]->name || args->kid[1]->name) {
+    diag_error(e->loc, "atan2() takes two numbers, y and x: atan2(d.y, d.x)");
+    return val_error();
+  }
+  swValue y = sema_operand(S, scope, ast_kid(args->kid[0], 0));
+  swValue x = sema_operand(S, scope, ast_kid(args->kid[1], 0));
+  if (y.kind == VAL_ERROR || x.kind == VAL_ERROR) return val_error();
+  if (y.kind != VAL_NUM || x.kind != VAL_NUM || !dim_eq(x.dim, y.dim)) {
+    diag_error(e->loc, "atan2() takes two numbers of one dimension, y and x");
+    return val_error();
+  }
+  if (!val_is_const(&x) || !val_is_const(&y)) {
+    diag_error(e->loc, "atan2() takes numbers known when compiling");
+    return val_error();
+  }
+  return val_num(S->a, atan2(y.v[0], x.v[0]), DIM_ANGLE, e->loc);
+}
+
 swValue sema_eval_call(swSema *S, swScope *scope, const swAst *e) {
   const char *fn = e->name;
   const swAst *args = ast_kid(e, 0);
+  if (!strcmp(fn, "atan2")) return eval_atan2(S, scope, e);
   if (!strcmp(fn, "max") || !strcmp(fn, "min") || !strcmp(fn, "abs"))
     return eval_extreme(S, scope, e);
   if (!strcmp(fn, "round")) return eval_round(S, scope, e);
