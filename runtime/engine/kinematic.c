@@ -122,7 +122,8 @@ int sw_kinematic_setup(swModel *m, const swSpec *s) {
   m->kinematic = calloc(K, sizeof *m->kinematic);
   m->kinematic_name = calloc(K, sizeof *m->kinematic_name);
   m->kinematic_rot = sw_dalloc(9 * K);
-  if (!m->kinematic || !m->kinematic_name || !m->kinematic_rot) return 0;
+  m->kinematic_dt = sw_dalloc(K);
+  if (!m->kinematic || !m->kinematic_name || !m->kinematic_rot || !m->kinematic_dt) return 0;
   for (int j = 0; j < s->nkin; j++) {
     swKinematicDesc k = s->kin[j];
     if (!(m->kinematic_name[j] = strdup(k.name))) return 0;
@@ -144,21 +145,20 @@ int sw_kinematic_setup(swModel *m, const swSpec *s) {
       for (int b = 0; b < 3; b++) R[3 * a + b] = sw_v3_dot(Qf + 3 * a, Ql + 3 * b);
     memcpy(m->kinematic_rot + 9 * j, R, sizeof R);
   }
+  for (int j = 0; j < m->nkinematic; j++) m->kinematic_dt[j] = sw_stable_dt_kinematic(m, j);
   return 1;
 }
 
 void sw_kinematic_free(swModel *m) {
   if (m->kinematic_name)
     for (int j = 0; j < m->nkinematic; j++) free(m->kinematic_name[j]);
-  free(m->kinematic); free(m->kinematic_name); free(m->kinematic_rot);
+  free(m->kinematic); free(m->kinematic_name); free(m->kinematic_rot); free(m->kinematic_dt);
 }
 
-/* The energy that depends on element e's frame: its turning kinetic energy,
- * its shear energy and the bending energy of the domains on either side of
- * it in its rod (energy.c's sums, term by term). */
-static double frame_energy(const swModel *m, const swData *d, int e) {
-  int r = 0;
-  while (m->elem_adr[r] + m->rod_nelem[r] <= e) r++;
+/* The energy that depends on element e's frame (e of rod r): its turning
+ * kinetic energy, its shear energy and the bending energy of the domains on
+ * either side of it in its rod (energy.c's sums, term by term). */
+static double frame_energy(const swModel *m, const swData *d, int r, int e) {
   const int first = m->elem_adr[r], last = first + m->rod_nelem[r] - 1;
   double Q[9], x0[3], x1[3], dx[3], s[3];
   sw_getQ(m, d->Q, e, Q);
@@ -202,14 +202,14 @@ void sw_kinematic_impose(const swModel *m, swData *d) {
   for (int j = 0; j < m->nkinematic; j++) {
     const swKinematicDesc *k = &m->kinematic[j];
     const int fe = k->follower_elem;
-    const double before = frame_energy(m, d, fe);
+    const double before = frame_energy(m, d, k->follower_rod, fe);
     double Ql[9], Qf[9];
     sw_getQ(m, d->Q, k->leader_elem, Ql);
     sw_mat_mul(Qf, m->kinematic_rot + 9 * j, Ql);
     sw_setQ(m, d->Q, fe, Qf);
     follow_turn(m, d, j);
     for (int c = 0; c < 3; c++) d->kinematic_turn[3 * j + c] = SW_AT(m, d->omega, fe, c);
-    d->work += frame_energy(m, d, fe) - before;
+    d->work += frame_energy(m, d, k->follower_rod, fe) - before;
   }
 }
 

@@ -328,7 +328,7 @@ double sw_stable_dt(const swModel *m) {
   double dt = INFINITY;
   for (int r = 0; r < m->nrod; r++) dt = fmin(dt, m->rod_wave_dt[r]);
   for (int j = 0; j < m->njoint; j++) dt = fmin(dt, m->joint_wave_dt[j]);
-  for (int j = 0; j < m->nkinematic; j++) dt = fmin(dt, sw_stable_dt_kinematic(m, j));
+  for (int j = 0; j < m->nkinematic; j++) dt = fmin(dt, m->kinematic_dt[j]);
   if (sw_has_env(m)) dt = fmin(dt, sw_env_ops(m)->stable_dt(m));
   return dt;
 }

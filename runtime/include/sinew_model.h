@@ -99,6 +99,7 @@ typedef struct {
   swKinematicDesc *kinematic; /* (nkinematic), nodes and elements resolved   */
   char **kinematic_name;
   double *kinematic_rot;     /* (nkinematic*9) Q_f Q_l^T at t = 0            */
+  double *kinematic_dt;      /* (nkinematic) stable dt of each tie (stability.c) */
   int *joint_implicit;       /* (njoint)   1: linearly implicit (SW_IMEX,
                                            rigid_joint.c): a rigid body on one
                                            side, a body, space or a free
