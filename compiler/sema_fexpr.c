@@ -26,9 +26,6 @@
 #include "sema_int.h"
 
 static swHExpr *hx(swFCtx *C, const swAst *e);
-#define node sema_fexpr_node
-#define dim_text sema_fexpr_dim_text
-#define quantity sema_fexpr
 
 swHExpr *sema_fexpr_node(swSema *S, swHOp op, swDim dim, swLoc loc, int nkid) {
   swHExpr *e = ast_alloc(S->a, sizeof *e);
@@ -43,7 +40,7 @@ swHExpr *sema_fexpr_node(swSema *S, swHOp op, swDim dim, swLoc loc, int nkid) {
 }
 
 static swHExpr *constant(swSema *S, swValue v) {
-  swHExpr *e = node(S, HX_CONST, v.dim, v.loc, 0);
+  swHExpr *e = sema_fexpr_node(S, HX_CONST, v.dim, v.loc, 0);
   e->k = v;
   return e;
 }
@@ -77,7 +74,7 @@ static swHExpr *condition(swFCtx *C, const swAst *e) {
 static swHExpr *name(swFCtx *C, const swAst *e) {
   swSema *S = C->S;
   for (int i = 0; i < C->nformal; i++)
-    if (!strcmp(e->name, C->formal[i])) return node(S, C->formal_op[i], C->formal_dim[i], e->loc, 0);
+    if (!strcmp(e->name, C->formal[i])) return sema_fexpr_node(S, C->formal_op[i], C->formal_dim[i], e->loc, 0);
   for (int i = C->nlocal - 1; i >= 0; i--)
     if (!strcmp(e->name, C->local_name[i])) {
       C->local_used[i] = 1;
@@ -117,20 +114,20 @@ static swHExpr *binop(swFCtx *C, const swAst *e, int op, const swAst *l, const s
   if (op == '&' || op == '|') {
     swHExpr *a = condition(C, l), *b = condition(C, r);
     if (!a || !b) return NULL;
-    swHExpr *n = node(S, op == '&' ? HX_AND : HX_OR, DIM_NONE, e->loc, 2);
+    swHExpr *n = sema_fexpr_node(S, op == '&' ? HX_AND : HX_OR, DIM_NONE, e->loc, 2);
     n->boolean = 1;
     n->kid[0] = a;
     n->kid[1] = b;
     return n;
   }
-  swHExpr *a = quantity(C, l, "an operand"), *b = quantity(C, r, "an operand");
+  swHExpr *a = sema_fexpr(C, l, "an operand"), *b = sema_fexpr(C, r, "an operand");
   if (!a || !b) return NULL;
   if (strchr("<>lg", op)) {
     if (!dim_eq(a->dim, b->dim)) {
-      diag_error(e->loc, "cannot compare %s and %s", dim_text(S, a), dim_text(S, b));
+      diag_error(e->loc, "cannot compare %s and %s", sema_fexpr_dim_text(S, a), sema_fexpr_dim_text(S, b));
       return NULL;
     }
-    swHExpr *n = node(S, op == '<' ? HX_LT : op == '>' ? HX_GT : op == 'l' ? HX_LE : HX_GE,
+    swHExpr *n = sema_fexpr_node(S, op == '<' ? HX_LT : op == '>' ? HX_GT : op == 'l' ? HX_LE : HX_GE,
                       DIM_NONE, e->loc, 2);
     n->boolean = 1;
     n->kid[0] = a;
@@ -144,15 +141,15 @@ static swHExpr *binop(swFCtx *C, const swAst *e, int op, const swAst *l, const s
   swDim dim;
   if (op == '+' || op == '-') {
     if (!dim_eq(a->dim, b->dim)) {
-      diag_error(e->loc, "cannot %s %s and %s", op == '+' ? "add" : "subtract", dim_text(S, a),
-                 dim_text(S, b));
+      diag_error(e->loc, "cannot %s %s and %s", op == '+' ? "add" : "subtract", sema_fexpr_dim_text(S, a),
+                 sema_fexpr_dim_text(S, b));
       return NULL;
     }
     dim = a->dim;
   } else {
     dim = op == '*' ? dim_mul(a->dim, b->dim) : dim_div(a->dim, b->dim);
   }
-  swHExpr *n = node(S, op == '+' ? HX_ADD : op == '-' ? HX_SUB : op == '*' ? HX_MUL : HX_DIV, dim,
+  swHExpr *n = sema_fexpr_node(S, op == '+' ? HX_ADD : op == '-' ? HX_SUB : op == '*' ? HX_MUL : HX_DIV, dim,
                     e->loc, 2);
   n->kid[0] = a;
   n->kid[1] = b;
@@ -161,7 +158,7 @@ static swHExpr *binop(swFCtx *C, const swAst *e, int op, const swAst *l, const s
 
 static swHExpr *power(swFCtx *C, const swAst *e) {
   swSema *S = C->S;
-  swHExpr *a = quantity(C, e->kid[0], "a base");
+  swHExpr *a = sema_fexpr(C, e->kid[0], "a base");
   swValue p = sema_eval(S, C->scope, e->kid[1]);
   if (!a || p.kind == VAL_ERROR) return NULL;
   if (p.kind != VAL_NUM || !dim_is_none(p.dim) || !val_is_const(&p)) {
@@ -174,10 +171,10 @@ static swHExpr *power(swFCtx *C, const swAst *e) {
   }
   swDim dim;
   if (!dim_pow(a->dim, p.v[0], &dim)) {
-    diag_error(e->loc, "%s can only be raised to an integer power, not %g", dim_text(S, a), p.v[0]);
+    diag_error(e->loc, "%s can only be raised to an integer power, not %g", sema_fexpr_dim_text(S, a), p.v[0]);
     return NULL;
   }
-  swHExpr *n = node(S, HX_POW, dim, e->loc, 1);
+  swHExpr *n = sema_fexpr_node(S, HX_POW, dim, e->loc, 1);
   n->kid[0] = a;
   n->p = p.v[0];
   return n;
@@ -198,7 +195,7 @@ static swHExpr *piecewise(swFCtx *C, const swAst *e, const swAst *args) {
                "condition holds: piecewise(x < 1 m: 0 m, 0.2 m)");
     return NULL;
   }
-  swHExpr *pw = node(S, HX_PIECEWISE, DIM_NONE, e->loc, 2 * (n - 1) + 1);
+  swHExpr *pw = sema_fexpr_node(S, HX_PIECEWISE, DIM_NONE, e->loc, 2 * (n - 1) + 1);
   const swHExpr *first = NULL;   /* the first good value sets the dimension */
   int ok = 1, nfirst = 0;
   for (int i = 0; i < n; i++) {
@@ -218,7 +215,7 @@ static swHExpr *piecewise(swFCtx *C, const swAst *e, const swAst *args) {
       pw->kid[2 * i] = condition(C, a->kid[0]);
       if (!pw->kid[2 * i]) ok = 0;
     }
-    swHExpr *v = quantity(C, ve, "a value of piecewise()");
+    swHExpr *v = sema_fexpr(C, ve, "a value of piecewise()");
     if (!v) {
       ok = 0;
       continue;
@@ -230,7 +227,7 @@ static swHExpr *piecewise(swFCtx *C, const swAst *e, const swAst *args) {
       pw->dim = v->dim;
     } else if (!dim_eq(v->dim, pw->dim)) {
       diag_error(ve->loc, "the values of piecewise() must share one dimension: value %d is %s, "
-                 "value %d is %s", nfirst, dim_text(S, first), i + 1, dim_text(S, v));
+                 "value %d is %s", nfirst, sema_fexpr_dim_text(S, first), i + 1, sema_fexpr_dim_text(S, v));
       ok = 0;
     }
   }
@@ -252,11 +249,11 @@ static swHExpr *atom(swFCtx *C, const swAst *e) {
     if (sc->natom) memcpy(grown, sc->atom, (size_t)sc->natom * sizeof *grown);
     sc->atom = grown;
   }
-  swHExpr *n = node(S, HX_ATOM, v.dim, e->loc, 1);
+  swHExpr *n = sema_fexpr_node(S, HX_ATOM, v.dim, e->loc, 1);
   n->ref = sc->natom;
   n->atom = v.sig;
   sc->atom[sc->natom++] = v.sig;
-  n->kid[0] = node(S, HX_T, DIM_TIME, e->loc, 0);
+  n->kid[0] = sema_fexpr_node(S, HX_T, DIM_TIME, e->loc, 0);
   return n;
 }
 
@@ -268,19 +265,19 @@ static swHExpr *mod(swFCtx *C, const swAst *e, const swAst *args) {
     diag_error(e->loc, "mod() takes two values of one dimension: mod(t, 0.38 s)");
     return NULL;
   }
-  swHExpr *a = quantity(C, args->kid[0]->kid[0], "an argument of mod()");
-  swHExpr *b = quantity(C, args->kid[1]->kid[0], "an argument of mod()");
+  swHExpr *a = sema_fexpr(C, args->kid[0]->kid[0], "an argument of mod()");
+  swHExpr *b = sema_fexpr(C, args->kid[1]->kid[0], "an argument of mod()");
   if (!a || !b) return NULL;
   if (!dim_eq(a->dim, b->dim)) {
     diag_error(e->loc, "mod() takes two values of one dimension, but the first is %s and the "
-               "second %s", dim_text(S, a), dim_text(S, b));
+               "second %s", sema_fexpr_dim_text(S, a), sema_fexpr_dim_text(S, b));
     return NULL;
   }
   if (b->op == HX_CONST && !(b->k.v[0] > 0)) {
     diag_error(args->kid[1]->loc, "the divisor of mod() must be positive, got %g", b->k.v[0]);
     return NULL;
   }
-  swHExpr *n = node(S, HX_MOD, a->dim, e->loc, 2);
+  swHExpr *n = sema_fexpr_node(S, HX_MOD, a->dim, e->loc, 2);
   n->kid[0] = a;
   n->kid[1] = b;
   return n;
@@ -294,16 +291,16 @@ static swHExpr *signal_call(swFCtx *C, const swAst *e, swSymbol *sym, const swAs
                C->formal[0]);
     return NULL;
   }
-  swHExpr *at = quantity(C, args->kid[0]->kid[0], "the time of a signal");
+  swHExpr *at = sema_fexpr(C, args->kid[0]->kid[0], "the time of a signal");
   if (!at) return NULL;
   if (!dim_eq(at->dim, DIM_TIME)) {
     diag_error(args->kid[0]->loc, "signal '%s' is a function of time, but its argument is %s",
-               e->name, dim_text(S, at));
+               e->name, sema_fexpr_dim_text(S, at));
     return NULL;
   }
   swSceneSignal *callee = sema_signal_of(S, sym, e->loc);
   if (!callee) return NULL;
-  swHExpr *n = node(S, HX_CALL, callee->dim, e->loc, 1);
+  swHExpr *n = sema_fexpr_node(S, HX_CALL, callee->dim, e->loc, 1);
   n->ref = callee->index;
   n->callee = callee;
   n->kid[0] = at;
@@ -347,7 +344,7 @@ static swHExpr *call(swFCtx *C, const swAst *e) {
     diag_error(e->loc, "%s() takes one argument", e->name);
     return NULL;
   }
-  swHExpr *a = quantity(C, args->kid[0]->kid[0], "an argument");
+  swHExpr *a = sema_fexpr(C, args->kid[0]->kid[0], "an argument");
   if (!a) return NULL;
   if (a->op == HX_CONST) {
     swValue v = val_func(S->a, e->name, a->k, e->loc);
@@ -357,18 +354,18 @@ static swHExpr *call(swFCtx *C, const swAst *e) {
   if (k == 0) {
     for (int i = 0; i < SW_NDIM; i++) {
       if (a->dim.e[i] % 2) {
-        diag_error(e->loc, "sqrt() of %s has no dimension", dim_text(S, a));
+        diag_error(e->loc, "sqrt() of %s has no dimension", sema_fexpr_dim_text(S, a));
         return NULL;
       }
       dim.e[i] = (signed char)(a->dim.e[i] / 2);
     }
   } else if (k < 4 ? !dim_is_none(a->dim) && !dim_eq(a->dim, DIM_ANGLE) : !dim_is_none(a->dim)) {
     diag_error(e->loc, "%s() takes %s, not %s", e->name,
-               k < 4 ? "an angle or a plain number" : "a plain number", dim_text(S, a));
+               k < 4 ? "an angle or a plain number" : "a plain number", sema_fexpr_dim_text(S, a));
     return NULL;
   }
   static const swHOp ops[] = {HX_SQRT, HX_SIN, HX_COS, HX_TAN, HX_EXP};
-  swHExpr *n = node(S, ops[k], dim, e->loc, 1);
+  swHExpr *n = sema_fexpr_node(S, ops[k], dim, e->loc, 1);
   n->kid[0] = a;
   return n;
 }
@@ -384,13 +381,13 @@ static swHExpr *hx(swFCtx *C, const swAst *e) {
   case AST_APPLY:
     return binop(C, e, '*', e->kid[0], e->kid[1]);
   case AST_NEG: {
-    swHExpr *a = quantity(C, e->kid[0], "an operand");
+    swHExpr *a = sema_fexpr(C, e->kid[0], "an operand");
     if (!a) return NULL;
     if (a->op == HX_CONST) {
       swValue v = val_neg(S->a, a->k, e->loc);
       return v.kind == VAL_ERROR ? NULL : constant(S, v);
     }
-    swHExpr *n = node(S, HX_NEG, a->dim, e->loc, 1);
+    swHExpr *n = sema_fexpr_node(S, HX_NEG, a->dim, e->loc, 1);
     n->kid[0] = a;
     return n;
   }
@@ -416,13 +413,12 @@ static swHExpr *hx(swFCtx *C, const swAst *e) {
 
 /* ---- evaluation, with the gradient by forward mode ---- */
 
-#define eval sema_fexpr_eval
 
 
 static int truth(const swHExpr *e, swDual X, swDual Y, const swDual *lets) {
   if (e->op == HX_AND) return truth(e->kid[0], X, Y, lets) && truth(e->kid[1], X, Y, lets);
   if (e->op == HX_OR) return truth(e->kid[0], X, Y, lets) || truth(e->kid[1], X, Y, lets);
-  double a = eval(e->kid[0], X, Y, lets).v, b = eval(e->kid[1], X, Y, lets).v;
+  double a = sema_fexpr_eval(e->kid[0], X, Y, lets).v, b = sema_fexpr_eval(e->kid[1], X, Y, lets).v;
   switch (e->op) {
   case HX_LT: return a < b;
   case HX_LE: return a <= b;
@@ -442,28 +438,28 @@ swDual sema_fexpr_eval(const swHExpr *e, swDual X, swDual Y, const swDual *lets)
   case HX_LET: return lets[e->let];
   case HX_ATOM: {   /* value only: a signal needs no gradient */
     swSignal s = gen_signal(e->atom);
-    r.v = sw_signal_eval(&s, eval(e->kid[0], X, Y, lets).v);
+    r.v = sw_signal_eval(&s, sema_fexpr_eval(e->kid[0], X, Y, lets).v);
     return r;
   }
   case HX_CALL:
     if (!e->callee->expr) return r;
-    X.v = eval(e->kid[0], X, Y, lets).v;
+    X.v = sema_fexpr_eval(e->kid[0], X, Y, lets).v;
     X.x = X.y = 0;
-    return eval(e->callee->expr, X, Y, NULL);
+    return sema_fexpr_eval(e->callee->expr, X, Y, NULL);
   case HX_MOD: {
-    a = eval(e->kid[0], X, Y, lets);
-    b = eval(e->kid[1], X, Y, lets);
+    a = sema_fexpr_eval(e->kid[0], X, Y, lets);
+    b = sema_fexpr_eval(e->kid[1], X, Y, lets);
     r.v = a.v - b.v * floor(a.v / b.v);
     return r;
   }
   case HX_PIECEWISE:
     for (int i = 0; i + 1 < e->nkid; i += 2)
-      if (truth(e->kid[i], X, Y, lets)) return eval(e->kid[i + 1], X, Y, lets);
-    return eval(e->kid[e->nkid - 1], X, Y, lets);
+      if (truth(e->kid[i], X, Y, lets)) return sema_fexpr_eval(e->kid[i + 1], X, Y, lets);
+    return sema_fexpr_eval(e->kid[e->nkid - 1], X, Y, lets);
   default: break;
   }
-  a = eval(e->kid[0], X, Y, lets);
-  b = e->nkid > 1 ? eval(e->kid[1], X, Y, lets) : r;
+  a = sema_fexpr_eval(e->kid[0], X, Y, lets);
+  b = e->nkid > 1 ? sema_fexpr_eval(e->kid[1], X, Y, lets) : r;
   double f;   /* derivative of the one-argument function at a.v */
   switch (e->op) {
   case HX_ADD: return (swDual){a.v + b.v, a.x + b.x, a.y + b.y};
