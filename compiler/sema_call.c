@@ -107,7 +107,7 @@ static int same_dims(swSema *S, swScope *scope, const swAst *call, const swAst *
   return 1;
 }
 
-static swValue make_signal(swSema *S, swSignalVal *sig, swDim dim, swLoc loc) {
+swValue sema_make_signal(swSema *S, swSignalVal *sig, swDim dim, swLoc loc) {
   swValue v = val_error();
   v.kind = VAL_SIGNAL;
   v.sig = sig;
@@ -217,7 +217,7 @@ static swValue eval_bspline(swSema *S, swScope *scope, const swAst *call, swSign
     }
   }
   sig->npts = n;
-  return make_signal(S, sig, coef[0].dim, call->loc);
+  return sema_make_signal(S, sig, coef[0].dim, call->loc);
 }
 
 static swValue eval_signal(swSema *S, swScope *scope, const swAst *call) {
@@ -240,7 +240,7 @@ static swValue eval_signal(swSema *S, swScope *scope, const swAst *call) {
     }
     if (any_error(&sig->a, 2) || sig->T.kind == VAL_ERROR || sig->t0.kind == VAL_ERROR)
       return val_error();
-    return make_signal(S, sig, sig->a.dim, loc);
+    return sema_make_signal(S, sig, sig->a.dim, loc);
   }
   if (!strcmp(call->name, "sine")) {
     static const char *const names[] = {"amplitude", "freq", "mean", "phase", "start", "period"};
@@ -258,7 +258,7 @@ static swValue eval_signal(swSema *S, swScope *scope, const swAst *call) {
     if (sig->freq.kind == VAL_ERROR || sig->a.kind == VAL_ERROR ||
         sig->phase.kind == VAL_ERROR || sig->t0.kind == VAL_ERROR)
       return val_error();
-    return make_signal(S, sig, sig->b.dim, loc);
+    return sema_make_signal(S, sig, sig->b.dim, loc);
   }
   if (!strcmp(call->name, "step")) {
     static const char *const names[] = {"before", "after", "at", "period"};
@@ -269,7 +269,7 @@ static swValue eval_signal(swSema *S, swScope *scope, const swAst *call) {
       return val_error();
     sig->t0 = scalar_arg(S, scope, slot[2], DIM_TIME, "step", "at", 0, loc);
     if (sig->t0.kind == VAL_ERROR) return val_error();
-    return make_signal(S, sig, sig->a.dim, loc);
+    return sema_make_signal(S, sig, sig->a.dim, loc);
   }
   /* table(times = (...) s, values = (...)) */
   if (!strcmp(call->name, "bspline")) return eval_bspline(S, scope, call, sig);
@@ -303,7 +303,7 @@ static swValue eval_signal(swSema *S, swScope *scope, const swAst *call) {
       return val_error();
     }
   sig->npts = sig->times.n;
-  return make_signal(S, sig, sig->values.dim, loc);
+  return sema_make_signal(S, sig, sig->values.dim, loc);
 }
 
 /* max(a, b), min(a, b): numbers of one dimension; abs(a).  A value known

@@ -234,8 +234,13 @@ const char *sema_signal_def_name(const swAst *it);
 /* the signal of a symbol, checked first if it is not yet; NULL after an error */
 swSceneSignal *sema_signal_of(swSema *S, swSymbol *sym, swLoc use);
 void sema_signal_def(swSema *S, swScope *scope, const swAst *it);
+/* sema_call.c: sig as a value of dimension dim, scaled by 1 */
+swValue sema_make_signal(swSema *S, swSignalVal *sig, swDim dim, swLoc loc);
 /* a signal named where a value goes: the signal, scaled by 1 */
 swValue sema_signal_value(swSema *S, swSymbol *sym, swLoc loc);
+
+/* sema_stmt.c: where the node a point on a rod acts on lies at t = 0 */
+void sema_node_position(const swScene *scn, const swValue *p, double x[3]);
 
 /* sema_kinematic.c: joint NAME = kinematic(LEADER, FOLLOWER) { ... } */
 void sema_kinematic(swSema *S, swScope *scope, const swAst *it, const char *name);

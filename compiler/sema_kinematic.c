@@ -26,19 +26,6 @@ static const char *const kin_keys[] = {"stiffness", "damping", "reaction", "reac
                                        "allow_gap"};
 enum { NKIN_KEYS = sizeof kin_keys / sizeof kin_keys[0] };
 
-/* The position of node i of a scene rod on its straight shape at t = 0. */
-static int node_at(const swScene *sc, int rod, int node, double x[3]) {
-  const swSceneRod *r = &sc->rod[rod];
-  if (r->nelem <= 0 || r->start.kind != VAL_VEC || r->direction.kind != VAL_VEC ||
-      r->length.kind != VAL_NUM)
-    return 0;
-  const double *d = r->direction.v;
-  const double norm = sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
-  if (!(norm > 0)) return 0;
-  for (int k = 0; k < 3; k++) x[k] = r->start.v[k] + r->length.v[0] * node / r->nelem * d[k] / norm;
-  return 1;
-}
-
 static swValue point(swSema *S, swScope *scope, const swAst *e, const char *which,
                      const char *name) {
   swValue v = sema_eval(S, scope, e);
@@ -148,7 +135,8 @@ void sema_kinematic(swSema *S, swScope *scope, const swAst *it, const char *name
       return;
     }
   double xf[3];
-  if (!allow_gap && node_at(sc, b.rod, b.node, xf)) {
+  sema_node_position(sc, &b, xf);
+  if (!allow_gap) {
     const double gap = sqrt((a.v[0] - xf[0]) * (a.v[0] - xf[0]) + (a.v[1] - xf[1]) * (a.v[1] - xf[1]) +
                             (a.v[2] - xf[2]) * (a.v[2] - xf[2]));
     const double elem = sc->rod[b.rod].length.v[0] / nf;

@@ -123,15 +123,7 @@ swValue sema_signal_value(swSema *S, swSymbol *sym, swLoc loc) {
   sig->b = sig->t0 = sig->T = sig->freq = sig->phase = sig->period = val_error();
   sig->a = val_num(S->a, 1, DIM_NONE, loc);   /* the factor an activation folds a scale into */
   sig->times = sig->values = val_error();
-  sig->scale = val_num(S->a, 1, DIM_NONE, loc);
-  sig->base = g->dim;
-  swValue v = val_error();
-  v.kind = VAL_SIGNAL;
-  v.sig = sig;
-  v.dim = g->dim;
-  v.loc = loc;
-  v.n = 1;
-  return v;
+  return sema_make_signal(S, sig, g->dim, loc);
 }
 
 double sema_signal_eval(double t, const void *ctx) {

@@ -35,7 +35,7 @@ static const char *length_text(char *buf, size_t len, double metres) {
  * straight initial shape, node / n of its length from its start.  A point
  * ROD.at(f) has the coordinates of f * length but acts on the node nearest
  * to it, which differ when f * n is not whole. */
-static void node_position(const swScene *scn, const swValue *p, double x[3]) {
+void sema_node_position(const swScene *scn, const swValue *p, double x[3]) {
   const swSceneRod *r = &scn->rod[p->rod];
   memcpy(x, p->v, 3 * sizeof *x);
   if (r->nelem <= 0 || r->start.kind != VAL_VEC || r->direction.kind != VAL_VEC ||
@@ -68,10 +68,10 @@ static int joint_gap_ok(swSema *S, swScope *scope, const swFields *f, const swAs
   if (a->kind != VAL_POINT || (b->kind != VAL_POINT && b->kind != VAL_VEC)) return 1;
   const swScene *scn = S->scene;
   double xa[3], xb[3];
-  node_position(scn, a, xa);
+  sema_node_position(scn, a, xa);
   if (arm->kind == VAL_VEC)   /* the first end is off its node, on an arm */
     for (int k = 0; k < 3; k++) xa[k] += arm->v[k];
-  if (b->kind == VAL_POINT) node_position(scn, b, xb);
+  if (b->kind == VAL_POINT) sema_node_position(scn, b, xb);
   else memcpy(xb, b->v, sizeof xb);
   double gap = 0;
   for (int k = 0; k < 3; k++) gap += (xa[k] - xb[k]) * (xa[k] - xb[k]);

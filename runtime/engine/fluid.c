@@ -220,6 +220,7 @@ double sw_fluid_stable_dt(const swModel *m) { return m->nfluid ? m->fluid_dt : I
 void sw_fluid_loads(const swModel *m, swData *d, int lo, int hi) {
   const double *restrict x = d->x, *restrict v = d->v;
   double *restrict ef = d->ext_force, *restrict F = d->force;
+  const double gs = sw_signal_eval(&m->gravity_signal, d->time); /* gravity's scale now */
   for (int k = 0; k < m->nfluid; k++) {
     const swFluidDesc *fl = &m->fluid[k];
     const double *u = fl->velocity;
@@ -256,7 +257,6 @@ void sw_fluid_loads(const swModel *m, swData *d, int lo, int hi) {
       }
       /* buoyancy: -rho_f V g */
       const double dm = m->fluid_displaced[row];
-      const double gs = sw_signal_eval(&m->gravity_signal, d->time);
       for (int q = 0; q < 3; q++) load[q] -= dm * m->gravity[q] * gs;
       for (int q = 0; q < 3; q++) {
         const double h = 0.5 * load[q];

@@ -155,6 +155,16 @@ void sw_kinematic_free(swModel *m) {
   free(m->kinematic); free(m->kinematic_name); free(m->kinematic_rot); free(m->kinematic_dt);
 }
 
+/* e = l / l^ of element e now (1 on the variational law's rods: rod.c) */
+static double dilatation_now(const swModel *m, const swData *d, int e) {
+  if (m->nvariational && m->elem_variational[e] != 0.0) return 1.0;
+  double x0[3], x1[3], dx[3];
+  sw_get3(m, d->x, e, x0);
+  sw_get3(m, d->x, e + 1, x1);
+  sw_v3_sub(dx, x1, x0);
+  return sw_v3_norm(dx) / m->rest_len[e];
+}
+
 /* The energy that depends on element e's frame (e of rod r): its turning
  * kinetic energy, its shear energy and the bending energy of the domains on
  * either side of it in its rod (energy.c's sums, term by term); with
@@ -167,8 +177,7 @@ static double frame_energy(const swModel *m, const swData *d, int r, int e, int 
   sw_get3(m, d->x, e + 1, x1);
   sw_v3_sub(dx, x1, x0);
   sw_mat_vec(s, Q, dx); /* sigma = Q dx / l^ - d3 */
-  const double dil = m->nvariational && m->elem_variational[e] != 0.0
-                         ? 1.0 : sw_v3_norm(dx) / m->rest_len[e];
+  const double dil = dilatation_now(m, d, e);
   double E = 0;
   for (int k = 0; k < 3; k++) {
     const double w = SW_AT(m, d->omega, e, k);
@@ -230,14 +239,10 @@ void sw_kinematic_impose(const swModel *m, swData *d) {
 void sw_kinematic_follow(const swModel *m, swData *d) {
   for (int j = 0; j < m->nkinematic; j++) {
     const int fe = m->kinematic[j].follower_elem;
-    double kicked[3], x0[3], x1[3], dx[3];
+    double kicked[3];
     for (int c = 0; c < 3; c++) kicked[c] = SW_AT(m, d->omega, fe, c);
     follow_turn(m, d, j);
-    sw_get3(m, d->x, fe, x0);
-    sw_get3(m, d->x, fe + 1, x1);
-    sw_v3_sub(dx, x1, x0);
-    const double dil = m->nvariational && m->elem_variational[fe] != 0.0
-                           ? 1.0 : sw_v3_norm(dx) / m->rest_len[fe];
+    const double dil = dilatation_now(m, d, fe);
     /* the couple that turned w from `kicked` to w_f over the kick,
      * C = (J / e)(w_f - kicked) / h, times the kick's mean rate
      * (w_before + w_f) / 2: the midpoint rule the kick books every external

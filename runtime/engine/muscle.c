@@ -598,7 +598,7 @@ static int muscle_of(const swModel *m, int f) {
   return i;
 }
 
-static void filament_tension(const swModel *m, swData *d, int f, double u, double h) {
+static void filament_tension(const swModel *m, swData *d, int mu, int f, double u, double h) {
   const int r = m->fil_rod[f], lo = m->elem_adr[r], hi = lo + m->rod_nelem[r];
   const double *len = d->length, *q = d->scratch_phi;
   double *T_e = d->scratch_phi + m->stride;
@@ -607,7 +607,6 @@ static void filament_tension(const swModel *m, swData *d, int f, double u, doubl
     l += len[e];
     ldot += q[e];
   }
-  const int mu = muscle_of(m, f);
   if (!(m->fil_tau[f] > 0) && !m->muscle_prescribed[mu]) d->fil_activation[f] = drive(m, f, u);
   const double inv_l0 = 1.0 / m->fil_l0[f];
   const double eta = l * inv_l0, edot = ldot * inv_l0;
@@ -682,7 +681,7 @@ static void muscle_tensions(const swModel *m, swData *d, double h) {
       muscle = muscle_of(m, f);
       u = muscle_input(m, muscle, d->time);
     }
-    filament_tension(m, d, f, u, h);
+    filament_tension(m, d, muscle, f, u, h);
   }
 }
 
