@@ -6,6 +6,11 @@
  * computed from the element's relative velocity w = (v_a + v_b)/2 - u (v_a,
  * v_b the velocities of its two nodes, u the flow) and its current tangent
  * t = (x_b - x_a) / l, and is shared half and half by the two nodes.
+ * The fluid's coefficients lie in planes over the element slots (zero off
+ * its rods), so that the loads are two vector loops over the slots its rods
+ * span: every element's load, then every node's two halves (on the wing,
+ * 12,823 elements, this made the step 16% faster than a loop over a list of
+ * elements, whose scatter to shared nodes does not vectorize).
  *
  *   Stokes (Zhang et al. 2019, Suppl. Note 3, eq. 1; slender-body theory of
  *   Cox, J. Fluid Mech. 44 (1970) 791): a force per unit length
@@ -119,6 +124,7 @@
 #include "sinew.h"
 #include "vec.h"
 #include "internal.h"
+#include "model.h"
 
 
 
@@ -134,39 +140,36 @@ static double damper_limit(swIntegrator integ) {
 }
 
 int sw_fluid_setup(swModel *m, char *err, size_t errlen) {
-  int rows = 0;
-  for (int k = 0; k < m->nfluid; k++)
-    for (int q = 0; q < m->fluid[k].nrods; q++) rows += m->rod_nelem[m->fluid[k].rods[q]];
-  size_t R = (size_t)(rows ? rows : 1);
-  m->nfluidrow = rows;
-  m->fluid_row_adr = calloc((size_t)m->nfluid + 1, sizeof(int));
-  m->fluid_elem = calloc(R, sizeof(int));
-  m->fluid_node = calloc(R, sizeof(int));
-  m->fluid_first = calloc(R, sizeof(int));
-  m->fluid_stokes = calloc(R, sizeof(double));
-  m->fluid_cap = calloc(R, sizeof(double));
-  m->fluid_displaced = calloc(R, sizeof(double));
+  const size_t S = (size_t)m->stride, P = (size_t)(m->nfluid ? m->nfluid : 1) * S;
+  m->fluid_on = sw_dalloc(P);
+  m->fluid_stokes = sw_dalloc(P);
+  m->fluid_cap = sw_dalloc(P);
+  m->fluid_displaced = sw_dalloc(P);
+  m->fluid_span = calloc(2 * (size_t)(m->nfluid ? m->nfluid : 1), sizeof(int));
   double *rate = calloc((size_t)m->nslot, sizeof(double)); /* Stokes damping rate per node slot */
-  if (!m->fluid_row_adr || !m->fluid_elem || !m->fluid_node || !m->fluid_first || !m->fluid_stokes ||
-      !m->fluid_cap || !m->fluid_displaced || !rate) {
+  if (!m->fluid_on || !m->fluid_stokes || !m->fluid_cap || !m->fluid_displaced || !m->fluid_span ||
+      !rate) {
     free(rate);
     return sw_fail(err, errlen, "out of memory while building the fluids");
   }
-  int row = 0;
   for (int k = 0; k < m->nfluid; k++) {
     const swFluidDesc *f = &m->fluid[k];
-    m->fluid_row_adr[k] = row;
+    double *on = m->fluid_on + k * S, *stokes = m->fluid_stokes + k * S;
+    double *cap = m->fluid_cap + k * S, *displaced = m->fluid_displaced + k * S;
+    int *span = m->fluid_span + 2 * k;
+    span[0] = m->stride;
+    span[1] = 0;
     for (int q = 0; q < f->nrods; q++) {
       const int r = f->rods[q], n = m->rod_nelem[r], ea = m->elem_adr[r], na = m->node_adr[r];
+      if (na < span[0]) span[0] = na;
+      if (na + n + 1 > span[1]) span[1] = na + n + 1;
       double L = f->body_length;
       if (L == 0)
         for (int i = 0; i < n; i++) L += m->rest_len[ea + i];
-      for (int i = 0; i < n; i++, row++) {
+      for (int i = 0; i < n; i++) {
         const int e = ea + i;
         const double rad = m->radius[e], area = SW_PI * rad * rad;
-        m->fluid_elem[row] = e;
-        m->fluid_node[row] = na + i;
-        m->fluid_first[row] = na;
+        on[e] += 1;
         if (f->model == SW_FLUID_STOKES) {
           /* Zhang 2019, Suppl. eq. 1: c = 4 pi mu / ln(L / r) */
           if (!(L > rad)) {
@@ -177,19 +180,19 @@ int sw_fluid_setup(swModel *m, char *err, size_t errlen) {
                         f->name, m->rod_name[r], L, i, rad);
           }
           double c = 4.0 * SW_PI * f->viscosity / log(L / rad);
-          m->fluid_stokes[row] = c;
+          stokes[e] = c;
           double half = 0.5 * c * m->rest_len[e];
           rate[na + i] += half * m->inv_mass[na + i];
           rate[na + i + 1] += half * m->inv_mass[na + i + 1];
         } else if (f->area == SW_FLUID_SILHOUETTE) {
           /* the rod's two end caps, half a cap's silhouette each (above) */
-          m->fluid_cap[row] = 0.5 * area * ((i == 0) + (i == n - 1));
+          cap[e] = 0.5 * area * ((i == 0) + (i == n - 1));
         }
-        if (f->buoyancy) m->fluid_displaced[row] = f->density * area * m->rest_len[e];
+        if (f->buoyancy) displaced[e] = f->density * area * m->rest_len[e];
       }
     }
+    if (span[1] < span[0]) span[0] = span[1] = 0;
   }
-  m->fluid_row_adr[m->nfluid] = row;
   /* Gershgorin bound of the drag's damping rate (header), with the rods'
    * own linear damping, which damps the same translations */
   double worst = 0;
@@ -208,63 +211,94 @@ int sw_fluid_setup(swModel *m, char *err, size_t errlen) {
 }
 
 void sw_fluid_free(swModel *m) {
-  free(m->fluid_row_adr); free(m->fluid_elem); free(m->fluid_node); free(m->fluid_first);
-  free(m->fluid_stokes); free(m->fluid_cap); free(m->fluid_displaced);
-  m->fluid_row_adr = NULL; m->fluid_elem = NULL; m->fluid_node = NULL; m->fluid_first = NULL;
-  m->fluid_stokes = NULL; m->fluid_cap = NULL; m->fluid_displaced = NULL;
-  m->nfluidrow = 0;
+  free(m->fluid_on); free(m->fluid_stokes); free(m->fluid_cap); free(m->fluid_displaced);
+  free(m->fluid_span);
+  m->fluid_on = m->fluid_stokes = m->fluid_cap = m->fluid_displaced = NULL;
+  m->fluid_span = NULL;
 }
 
 double sw_fluid_stable_dt(const swModel *m) { return m->nfluid ? m->fluid_dt : INFINITY; }
 
+/* Element e's load from fluid k (the header's laws, Suppl. eqs. 1 and 2,
+ * and buoyancy), `on` times: 0 off the fluid's rods.  `stokes` and `area`
+ * are the fluid's, passed as constants so that each kernel below has one law
+ * and its loop no branch. */
+static inline sw3 element_load(const swModel *m, const swData *d, const swFluidDesc *fl, int k,
+                               int stokes, int area, double g_scale, int e) {
+  const size_t S = (size_t)m->stride, K = (size_t)k * S;
+  const sw3 xa = sw3_load(d->x, S, e), xb = sw3_load(d->x, S, e + 1);
+  const sw3 va = sw3_load(d->v, S, e), vb = sw3_load(d->v, S, e + 1);
+  const sw3 u = {fl->velocity[0], fl->velocity[1], fl->velocity[2]};
+  const sw3 dx = sw3_sub(xb, xa);
+  const double l = sqrt(sw3_dot(dx, dx));
+  const sw3 t = sw3_scale(dx, 1.0 / l);
+  const sw3 w = sw3_sub(sw3_scale(sw3_add(va, vb), 0.5), u);   /* relative velocity */
+  const double wt = sw3_dot(w, t);
+  sw3 load;
+  if (stokes) {
+    /* -c l (I - t t^T / 2) w  (Suppl. eq. 1 over the element) */
+    const double cl = m->fluid_stokes[K + e] * l;
+    load = sw3_scale(sw3_sub(w, sw3_scale(t, 0.5 * wt)), -cl);
+  } else {
+    /* -(1/2) rho C_d A |w| w  (Suppl. eq. 2) */
+    const double rad = m->radius[e], speed = sqrt(sw3_dot(w, w));
+    double area_speed; /* A |w| */
+    if (area == SW_FLUID_CROSS_SECTION) {
+      area_speed = SW_PI * rad * rad * speed;
+    } else if (area == SW_FLUID_BROADSIDE) {
+      area_speed = 2.0 * rad * l * speed;
+    } else { /* silhouette: A |w| = 2 r l |w_n| + cap |t.w| */
+      const sw3 wn = sw3_sub(w, sw3_scale(t, wt));
+      area_speed = 2.0 * rad * l * sqrt(sw3_dot(wn, wn)) + m->fluid_cap[K + e] * fabs(wt);
+    }
+    load = sw3_scale(w, -0.5 * fl->density * fl->drag_coefficient * area_speed);
+  }
+  /* buoyancy: -rho_f V g */
+  const double dm = m->fluid_displaced[K + e] * g_scale;
+  load = sw3_sub(load, (sw3){dm * m->gravity[0], dm * m->gravity[1], dm * m->gravity[2]});
+  const double on = m->fluid_on[K + e];
+  return sw3_select(on != 0.0, sw3_scale(load, on), (sw3){0, 0, 0});
+}
+
+/* Fluid k on slots [lo, hi) (whole rods: internal.h, sw_owned_slots): every
+ * element's load into d->scratch_f (free after the rod's gather), one vector
+ * loop; then half of it to each of the element's nodes, node i taking the
+ * halves of elements i - 1 and i (a rod's first node has none before it in
+ * its rod, and slot i - 1 is then the last node of another rod, off the
+ * fluid), another. */
+static inline void fluid_slots(const swModel *m, swData *d, int k, int stokes, int area,
+                               double g_scale, int lo, int hi) {
+  const size_t S = (size_t)m->stride;
+  const swFluidDesc *fl = &m->fluid[k];
+  double *restrict L = d->scratch_f;
+#pragma omp simd
+  for (int e = lo; e < hi; e++) sw3_store(L, S, e, element_load(m, d, fl, k, stokes, area, g_scale, e));
+  for (int q = 0; q < 3; q++) {
+    const double *restrict Lq = L + q * S;
+    double *restrict ef = d->ext_force + q * S, *restrict F = d->force + q * S;
+    const double first = 0.5 * Lq[lo]; /* node lo: its element only */
+    ef[lo] += first;
+    F[lo] += first;
+#pragma omp simd
+    for (int i = lo + 1; i < hi; i++) {
+      const double h = 0.5 * (Lq[i - 1] + Lq[i]);
+      ef[i] += h;
+      F[i] += h;
+    }
+  }
+}
+
 void sw_fluid_loads(const swModel *m, swData *d, int lo, int hi) {
-  const double *restrict x = d->x, *restrict v = d->v;
-  double *restrict ef = d->ext_force, *restrict F = d->force;
   const double gs = sw_signal_eval(&m->gravity_signal, d->time); /* gravity's scale now */
   for (int k = 0; k < m->nfluid; k++) {
-    const swFluidDesc *fl = &m->fluid[k];
-    const double *u = fl->velocity;
-    const int stokes = fl->model == SW_FLUID_STOKES;
-    const double half_rho_cd = 0.5 * fl->density * fl->drag_coefficient;
-    for (int row = m->fluid_row_adr[k]; row < m->fluid_row_adr[k + 1]; row++) {
-      if (m->fluid_first[row] < lo || m->fluid_first[row] >= hi) continue; /* another thread's rod */
-      const int a = m->fluid_node[row], e = m->fluid_elem[row];
-      double xa[3], xb[3], t[3], w[3], load[3];
-      sw_get3(m, x, a, xa);
-      sw_get3(m, x, a + 1, xb);
-      sw_v3_sub(t, xb, xa);
-      const double l = sw_v3_norm(t);
-      sw_v3_scale(t, t, 1.0 / l);
-      for (int q = 0; q < 3; q++) w[q] = 0.5 * (SW_AT(m, v, a, q) + SW_AT(m, v, a + 1, q)) - u[q];
-      const double wt = sw_v3_dot(w, t);
-      if (stokes) {
-        /* -c l (I - t t^T / 2) w  (Suppl. eq. 1 over the element) */
-        const double cl = m->fluid_stokes[row] * l;
-        for (int q = 0; q < 3; q++) load[q] = -cl * (w[q] - 0.5 * wt * t[q]);
-      } else {
-        /* -(1/2) rho C_d A |w| w (Suppl. eq. 2) */
-        double area_speed; /* A |w| */
-        const double rad = m->radius[e];
-        if (fl->area == SW_FLUID_CROSS_SECTION) {
-          area_speed = SW_PI * rad * rad * sw_v3_norm(w);
-        } else if (fl->area == SW_FLUID_BROADSIDE) {
-          area_speed = 2.0 * rad * l * sw_v3_norm(w);
-        } else { /* silhouette: A |w| = 2 r l |w_n| + cap |t.w| */
-          double wn[3] = {w[0] - wt * t[0], w[1] - wt * t[1], w[2] - wt * t[2]};
-          area_speed = 2.0 * rad * l * sw_v3_norm(wn) + m->fluid_cap[row] * fabs(wt);
-        }
-        for (int q = 0; q < 3; q++) load[q] = -half_rho_cd * area_speed * w[q];
-      }
-      /* buoyancy: -rho_f V g */
-      const double dm = m->fluid_displaced[row];
-      for (int q = 0; q < 3; q++) load[q] -= dm * m->gravity[q] * gs;
-      for (int q = 0; q < 3; q++) {
-        const double h = 0.5 * load[q];
-        SW_AT(m, ef, a, q) += h;
-        SW_AT(m, ef, a + 1, q) += h;
-        SW_AT(m, F, a, q) += h;
-        SW_AT(m, F, a + 1, q) += h;
-      }
-    }
+    const int a = lo > m->fluid_span[2 * k] ? lo : m->fluid_span[2 * k];
+    const int b = hi < m->fluid_span[2 * k + 1] ? hi : m->fluid_span[2 * k + 1];
+    if (a >= b) continue;
+    /* one kernel per law */
+    if (m->fluid[k].model == SW_FLUID_STOKES) fluid_slots(m, d, k, 1, SW_FLUID_SILHOUETTE, gs, a, b);
+    else if (m->fluid[k].area == SW_FLUID_CROSS_SECTION)
+      fluid_slots(m, d, k, 0, SW_FLUID_CROSS_SECTION, gs, a, b);
+    else if (m->fluid[k].area == SW_FLUID_BROADSIDE) fluid_slots(m, d, k, 0, SW_FLUID_BROADSIDE, gs, a, b);
+    else fluid_slots(m, d, k, 0, SW_FLUID_SILHOUETTE, gs, a, b);
   }
 }

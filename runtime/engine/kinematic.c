@@ -167,9 +167,8 @@ static double dilatation_now(const swModel *m, const swData *d, int e) {
 
 /* The energy that depends on element e's frame (e of rod r): its turning
  * kinetic energy, its shear energy and the bending energy of the domains on
- * either side of it in its rod (energy.c's sums, term by term); with
- * `elastic` 0, the turning kinetic energy alone. */
-static double frame_energy(const swModel *m, const swData *d, int r, int e, int elastic) {
+ * either side of it in its rod (energy.c's sums, term by term). */
+static double frame_energy(const swModel *m, const swData *d, int r, int e) {
   const int first = m->elem_adr[r], last = first + m->rod_nelem[r] - 1;
   double Q[9], x0[3], x1[3], dx[3], s[3];
   sw_getQ(m, d->Q, e, Q);
@@ -183,9 +182,9 @@ static double frame_energy(const swModel *m, const swData *d, int r, int e, int 
     const double w = SW_AT(m, d->omega, e, k);
     const double ds = s[k] / m->rest_len[e] - (k == 2) - SW_AT(m, m->rest_sigma, e, k);
     E += 0.5 * SW_AT(m, m->inertia, e, k) / dil * w * w;
-    if (elastic) E += 0.5 * m->rest_len[e] * SW_AT(m, m->shear_stiff, e, k) * ds * ds;
+    E += 0.5 * m->rest_len[e] * SW_AT(m, m->shear_stiff, e, k) * ds * ds;
   }
-  for (int j = e - 1; elastic && j <= e; j++) { /* domain j lies between elements j and j + 1 */
+  for (int j = e - 1; j <= e; j++) { /* domain j lies between elements j and j + 1 */
     if (j < first || j + 1 > last) continue;
     double Qa[9], Qb[9], phi[3];
     sw_getQ(m, d->Q, j, Qa);
@@ -223,12 +222,23 @@ void sw_kinematic_impose(const swModel *m, swData *d) {
     sw_mat_mul(Qf, m->kinematic_rot + 9 * j, Ql);
     sw_getQ(m, d->Q, fe, Qnow);
     for (int c = 0; c < 9; c++) moved = fmax(moved, fabs(Qf[c] - Qnow[c]));
-    const int elastic = moved > SW_KIN_FRAME_KEPT;
-    const double before = frame_energy(m, d, k->follower_rod, fe, elastic);
-    sw_setQ(m, d->Q, fe, Qf);
-    follow_turn(m, d, j);
+    if (moved > SW_KIN_FRAME_KEPT) {
+      const double before = frame_energy(m, d, k->follower_rod, fe);
+      sw_setQ(m, d->Q, fe, Qf);
+      follow_turn(m, d, j);
+      d->work += frame_energy(m, d, k->follower_rod, fe) - before;
+    } else { /* the frame kept: only the turning kinetic energy changes */
+      double w0[3];
+      for (int c = 0; c < 3; c++) w0[c] = SW_AT(m, d->omega, fe, c);
+      sw_setQ(m, d->Q, fe, Qf);
+      follow_turn(m, d, j);
+      const double dil = dilatation_now(m, d, fe);
+      for (int c = 0; c < 3; c++) {
+        const double w = SW_AT(m, d->omega, fe, c);
+        d->work += 0.5 * SW_AT(m, m->inertia, fe, c) / dil * (w * w - w0[c] * w0[c]);
+      }
+    }
     for (int c = 0; c < 3; c++) d->kinematic_turn[3 * j + c] = SW_AT(m, d->omega, fe, c);
-    d->work += frame_energy(m, d, k->follower_rod, fe, elastic) - before;
   }
 }
 

@@ -508,9 +508,14 @@ int sw_muscle_setup(swModel *m, const swMuscleSpec *ms, char *err, size_t errlen
     return 0;
   }
   memset(m->fil_elem, 0, plane);
+  m->fil_slot_lo = m->nslot_elastic;
+  m->fil_slot_hi = 0;
   for (int g = 0; g < nf; g++) {
     const int r = m->fil_rod[g];
     for (int e = m->elem_adr[r]; e < m->elem_adr[r] + m->rod_nelem[r]; e++) m->fil_elem[e] = 1.0;
+    /* the nodes elem_adr .. elem_adr + n (a node and the element after it share a slot) */
+    if (m->elem_adr[r] < m->fil_slot_lo) m->fil_slot_lo = m->elem_adr[r];
+    if (m->elem_adr[r] + m->rod_nelem[r] + 1 > m->fil_slot_hi) m->fil_slot_hi = m->elem_adr[r] + m->rod_nelem[r] + 1;
   }
   return 1;
 }
@@ -658,6 +663,12 @@ static void filament_pull(const swModel *m, swData *d, int lo, int hi) {
 
 /* The three parts of the pull (above), each on this thread's slots; the
  * step puts a barrier between them (integrate.c). */
+static void clip_to_filaments(const swModel *m, int *lo, int *hi) {
+  if (*lo < m->fil_slot_lo) *lo = m->fil_slot_lo;
+  if (*hi > m->fil_slot_hi) *hi = m->fil_slot_hi;
+  if (*hi > m->nslot_elastic) *hi = m->nslot_elastic;
+}
+
 static void muscle_rates(const swModel *m, swData *d) {
   int lo, hi;
   sw_owned_slots(m, d, &lo, &hi);
@@ -666,7 +677,7 @@ static void muscle_rates(const swModel *m, swData *d) {
       const int first = m->node_adr[m->fil_rod[f]];
       if (first >= lo && first < hi) sw_via_rows(m, d, f);
     }
-  if (hi > m->nslot_elastic) hi = m->nslot_elastic;
+  clip_to_filaments(m, &lo, &hi);
   if (lo < hi) filament_rates(m, d, lo, hi);
 }
 
@@ -688,7 +699,7 @@ static void muscle_tensions(const swModel *m, swData *d, double h) {
 static void muscle_pull(const swModel *m, swData *d) {
   int lo, hi;
   sw_owned_slots(m, d, &lo, &hi);
-  if (hi > m->nslot_elastic) hi = m->nslot_elastic;
+  clip_to_filaments(m, &lo, &hi);
   if (lo < hi) filament_pull(m, d, lo, hi);
 }
 

@@ -206,6 +206,8 @@ typedef struct {
   double *fil_v_max;         /* (nfil)     v0 / l0, 1/s                      */
   double *fil_fibres;        /* (nfil)     muscle fibres in the filament     */
   double *fil_elem;          /* (1 plane)  1 at the element slots of filaments */
+  int fil_slot_lo, fil_slot_hi; /* the slots [lo, hi) the filaments' nodes span:
+                                   the pull's slot loops run over these only */
   int *fil_implicit;         /* (nfil)     SW_FIL_* bits: Hill damping linearly
                                            implicit (SW_IMEX), end nodes held */
   int muscle_implicit;       /* some filament is implicit                    */
@@ -232,18 +234,15 @@ typedef struct {
   swProbeDesc *probe;        /* (nprobe)                                     */
   int nexpect;
   swExpectDesc *expect;      /* (nexpect) copies, strings owned (expect.c)   */
-  /* fluid.c: fluid k acts on rows [fluid_row_adr[k], fluid_row_adr[k+1]), one
-   * row per element of its rods, in the order of its rod list */
-  int nfluidrow;
-  int *fluid_row_adr;        /* (nfluid+1) first row of each fluid           */
-  int *fluid_elem;           /* (nfluidrow) global element of the row         */
-  int *fluid_node;           /* (nfluidrow) its first node (second: +1)       */
-  int *fluid_first;          /* (nfluidrow) first node of its rod (the thread
-                                that owns it applies the row)                */
-  double *fluid_stokes;      /* (nfluidrow) 4 pi mu / ln(L/r), Pa s (Stokes)  */
-  double *fluid_cap;         /* (nfluidrow) exposed end-cap silhouette, m^2:
+  /* fluid.c: fluid k's coefficients per element slot, plane k of each
+   * (stride entries; 0 off its rods), and the slots [lo, hi) its rods span */
+  double *fluid_on;          /* (nfluid planes) times its rod list holds the
+                                element (0: not in the fluid)               */
+  double *fluid_stokes;      /* (nfluid planes) 4 pi mu / ln(L/r), Pa s (Stokes) */
+  double *fluid_cap;         /* (nfluid planes) exposed end-cap silhouette, m^2:
                                 pi r^2 / 2 per rod end on it (quadratic)     */
-  double *fluid_displaced;   /* (nfluidrow) rho_f pi r^2 l^, kg (buoyancy)    */
+  double *fluid_displaced;   /* (nfluid planes) rho_f pi r^2 l^, kg (buoyancy) */
+  int *fluid_span;           /* (2 nfluid) first slot and one past the last  */
   double fluid_dt;           /* step limit of the Stokes drag, s (INFINITY: none) */
   /* wave.c: wave w owns rows [wave_node_adr[w], wave_node_adr[w+1]), one
    * per node of its rod, in the rod's node order */
