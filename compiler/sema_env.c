@@ -11,7 +11,8 @@
  * viscosity, a wave's coefficients ...) is required here, with a message
  * that shows how to write it.  Rod lists are written as one name, a list in
  * parentheses or the word all; a muscle in a list stands for its filaments,
- * and rods of component instances are reached as members (arm.humerus).
+ * rods of component instances are reached as members (arm.humerus), and an
+ * instance or a loop stands for every rod and muscle it holds.
  * They are resolved to runtime rod ids here, since ids are fixed once a rod
  * or muscle is evaluated.  The terrain's height(x, y) is sema_terrain.c's.
  * Physics: runtime/include/sinew.h "environments" and docs/physics.md.
@@ -54,62 +55,91 @@ static void *append(void **arr, int *n, int *cap, size_t item) {
 
 /* ---- rod lists ---- */
 
-/* One entry of a rod list: a rod or a muscle (its filaments).  Appends to
- * ids/names; returns 0 after an error. */
-static int rod_entry(swSema *S, swScope *scope, const swAst *e, const char *what, int **ids,
-                     const char ***names, int *n, int *cap) {
+/* A list being built: runtime rod ids and the names they were listed by. */
+typedef struct {
+  int *ids;
+  const char **names;
+  int n, cap;
+} rodAcc;
+
+/* Appends rod ids first .. first + count - 1 listed as `full`; 0 after an
+ * error (a rod listed twice). */
+static int add_rods(swSema *S, const swAst *e, const char *what, rodAcc *acc, int first, int count,
+                    const char *full) {
+  for (int k = 0; k < count; k++) {
+    for (int i = 0; i < acc->n; i++)
+      if (acc->ids[i] == first + k) {
+        diag_error(e->loc, "'%s' is listed twice in %s", full, what);
+        return 0;
+      }
+    if (acc->n == acc->cap) {
+      int nc = acc->cap ? 2 * acc->cap : 8;
+      int *ni = ast_alloc(S->a, (size_t)nc * sizeof *ni);
+      const char **nn = ast_alloc(S->a, (size_t)nc * sizeof *nn);
+      if (acc->n) {
+        memcpy(ni, acc->ids, (size_t)acc->n * sizeof *ni);
+        memcpy(nn, acc->names, (size_t)acc->n * sizeof *nn);
+      }
+      acc->ids = ni;
+      acc->names = nn;
+      acc->cap = nc;
+    }
+    acc->ids[acc->n] = first + k;
+    acc->names[acc->n] = full;
+    acc->n++;
+  }
+  return 1;
+}
+
+/* A rod, a muscle (its filaments), or every rod and muscle an instance or
+ * a loop's passes hold, depth first in definition order. */
+static int add_symbol(swSema *S, swSymbol *sym, const swAst *e, const char *what, rodAcc *acc) {
+  sym->used = 1;
+  if (sym->kind == SYM_LOOP) {
+    for (int k = 0; k < sym->npass; k++)
+      if (!add_symbol(S, sym->pass[k], e, what, acc)) return 0;
+    return 1;
+  }
+  if (sym->kind == SYM_INSTANCE) {
+    if (!sym->members) return 0;   /* a failed import: its own error is reported */
+    for (int i = 0; i < sym->members->n; i++) {
+      swSymbol *m = sym->members->sym[i];
+      if (m->kind == SYM_ROD || m->kind == SYM_MUSCLE || m->kind == SYM_INSTANCE || m->kind == SYM_LOOP)
+        if (!add_symbol(S, m, e, what, acc)) return 0;
+    }
+    return 1;
+  }
+  sema_eval_symbol(S, sym);
+  if (sym->index < 0) return 0;   /* its own error is reported */
+  if (sym->kind == SYM_ROD) return add_rods(S, e, what, acc, S->scene->rod[sym->index].id, 1, sym->full);
+  return add_rods(S, e, what, acc, S->scene->muscle[sym->index].id,
+                  S->scene->muscle[sym->index].filaments, sym->full);
+}
+
+/* One entry of a rod list: a rod, a muscle (its filaments), a component
+ * instance or a loop (all the rods and muscles it holds).  Returns 0 after
+ * an error. */
+static int rod_entry(swSema *S, swScope *scope, const swAst *e, const char *what, rodAcc *acc) {
   swValue v = sema_eval(S, scope, e);
   if (v.kind == VAL_ERROR) return 0;
   if (v.kind == VAL_WORD) {
     sema_report_unknown(S, scope, v.word, v.loc, "rod");
     return 0;
   }
-  if (v.kind != VAL_REF || (v.ref->kind != SYM_ROD && v.ref->kind != SYM_MUSCLE)) {
-    diag_error(e->loc, "%s lists rods and muscles (or all), not %s", what,
+  if (v.kind != VAL_REF || (v.ref->kind != SYM_ROD && v.ref->kind != SYM_MUSCLE &&
+                            v.ref->kind != SYM_INSTANCE && v.ref->kind != SYM_LOOP)) {
+    diag_error(e->loc, "%s lists rods, muscles, instances and loops (or all), not %s", what,
                v.kind == VAL_REF ? "another kind of definition" : "a value");
     return 0;
   }
-  swSymbol *sym = v.ref;
-  sym->used = 1;
-  sema_eval_symbol(S, sym);
-  if (sym->index < 0) return 0;   /* its own error is reported */
-  int first, count;
-  if (sym->kind == SYM_ROD) {
-    first = S->scene->rod[sym->index].id;
-    count = 1;
-  } else {
-    first = S->scene->muscle[sym->index].id;
-    count = S->scene->muscle[sym->index].filaments;
-  }
-  for (int k = 0; k < count; k++) {
-    for (int i = 0; i < *n; i++)
-      if ((*ids)[i] == first + k) {
-        diag_error(e->loc, "'%s' is listed twice in %s", sym->full, what);
-        return 0;
-      }
-    if (*n == *cap) {
-      int nc = *cap ? 2 * *cap : 8;
-      int *ni = ast_alloc(S->a, (size_t)nc * sizeof *ni);
-      const char **nn = ast_alloc(S->a, (size_t)nc * sizeof *nn);
-      if (*n) {
-        memcpy(ni, *ids, (size_t)*n * sizeof *ni);
-        memcpy(nn, *names, (size_t)*n * sizeof *nn);
-      }
-      *ids = ni;
-      *names = nn;
-      *cap = nc;
-    }
-    (*ids)[*n] = first + k;
-    (*names)[*n] = sym->full;
-    (*n)++;
-  }
-  return 1;
+  return add_symbol(S, v.ref, e, what, acc);
 }
 
 int sema_rod_list(swSema *S, swScope *scope, const swAst *e, const char *what, swRodList *out) {
   memset(out, 0, sizeof *out);
   if (e->kind == AST_NAME && !strcmp(e->name, "all")) return 1;
-  int cap = 0, ok = 1;
+  rodAcc acc = {0};
+  int ok = 1;
   if (e->kind == AST_VEC) {
     for (int i = 0; i < e->nkid; i++) {
       if (e->kid[i]->kind == AST_NAME && !strcmp(e->kid[i]->name, "all")) {
@@ -117,11 +147,14 @@ int sema_rod_list(swSema *S, swScope *scope, const swAst *e, const char *what, s
         ok = 0;
         continue;
       }
-      ok &= rod_entry(S, scope, e->kid[i], what, &out->id, &out->name, &out->n, &cap);
+      ok &= rod_entry(S, scope, e->kid[i], what, &acc);
     }
   } else {
-    ok = rod_entry(S, scope, e, what, &out->id, &out->name, &out->n, &cap);
+    ok = rod_entry(S, scope, e, what, &acc);
   }
+  out->id = acc.ids;
+  out->name = acc.names;
+  out->n = acc.n;
   return ok;
 }
 

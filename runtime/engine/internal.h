@@ -394,6 +394,16 @@ int sw_fluid_setup(swModel *m, char *err, size_t errlen);
 void sw_fluid_free(swModel *m);
 void sw_fluid_loads(const swModel *m, swData *d, int lo, int hi);
 double sw_fluid_stable_dt(const swModel *m);
+
+/* The area rods show at rest (planform.c): the sum of their silhouettes
+ * 2 r l, and their planform, the outline they cover on their mean plane
+ * (normal `normal`) with overlaps counted once, measured on square cells of
+ * side `cell`, with the change on cells twice as large as its error.
+ * Returns 0 when the rods have no area or memory runs out. */
+typedef struct {
+  double silhouette, planform, planform_error, cell, normal[3];
+} swArea;
+int sw_rods_area(const swModel *m, int nrods, const int *rods, swArea *out);
 /* Grounds and terrains (ground.c).  sw_ground_setup normalises the planes'
  * normals (from sw_env_setup); sw_ground_loads adds the normal response and
  * friction of every ground (its balance, damping and friction also to

@@ -34,6 +34,16 @@ const char *sw_cli_format_time(char *buf, size_t len, double t) {
   return buf;
 }
 
+/* "0.19 mm", "2 cm", "1.5 m" */
+static const char *format_length(char *buf, size_t len, double x) {
+  double a = fabs(x);
+  if (a == 0 || !isfinite(a) || a >= 1) snprintf(buf, len, "%.3g m", x);
+  else if (a >= 1e-2) snprintf(buf, len, "%.3g cm", x * 1e2);
+  else if (a >= 1e-3) snprintf(buf, len, "%.3g mm", x * 1e3);
+  else snprintf(buf, len, "%.3g um", x * 1e6);
+  return buf;
+}
+
 static const char *format_bytes(char *buf, size_t len, double bytes) {
   if (bytes < 1024) snprintf(buf, len, "%.0f B", bytes);
   else if (bytes < 1024 * 1024) snprintf(buf, len, "%.1f KiB", bytes / 1024);
@@ -235,6 +245,10 @@ static long frame_count(long nsteps, double every, double dt) {
 /* The rods an environment acts on: "all rods" or "rods a, b". */
 static const char *rod_list(char *buf, size_t len, const swModel *m, int nrods, const int *rods) {
   if (nrods == m->nrod) return "all rods";
+  if (nrods > 8) { /* a long list: its count, its first and its last */
+    snprintf(buf, len, "%d rods, %s ... %s", nrods, m->rod_name[rods[0]], m->rod_name[rods[nrods - 1]]);
+    return buf;
+  }
   size_t used = (size_t)snprintf(buf, len, "rod%s", nrods == 1 ? "" : "s");
   for (int k = 0; k < nrods && used < len; k++)
     used += (size_t)snprintf(buf + used, len - used, "%s %s", k ? "," : "", m->rod_name[rods[k]]);
@@ -262,6 +276,13 @@ static void print_environments(const swModel *m) {
       printf("  fluid %s: quadratic drag, density %g kg/m^3, C_d %g", f->name, f->density,
              f->drag_coefficient);
     printf("%s, %s\n", f->buoyancy ? ", buoyancy" : "", rod_list(a, sizeof a, m, f->nrods, f->rods));
+    swArea area;
+    if (sw_rods_area(m, f->nrods, f->rods, &area))
+      printf("    area of its rods at rest: planform %.6g m^2 (+- %.2g; the outline on their mean "
+             "plane, normal (%.3f, %.3f, %.3f), overlaps once, on %s cells), silhouettes "
+             "%.6g m^2 (the sum of 2 r l)\n", area.planform, area.planform_error, area.normal[0],
+             area.normal[1], area.normal[2], format_length(b, sizeof b, area.cell),
+             area.silhouette);
   }
   for (int k = 0; k < m->ncontact; k++) {
     const swContactDesc *c = &m->contact[k];
