@@ -77,6 +77,17 @@ void sw_kinematic_spec_free(swSpec *s) {
 /* node or element -1: the rod's last */
 static int last_if(int i, int last) { return i < 0 ? last : i; }
 
+/* The joint whose follower element is joint j's leader element, or -1. */
+static int leading_joint(const swSpec *s, int j) {
+  const swKinematicDesc *k = &s->kin[j];
+  const int le = last_if(k->leader_elem, s->rod[k->leader_rod].nelem - 1);
+  for (int i = 0; i < s->nkin; i++)
+    if (s->kin[i].follower_rod == k->leader_rod &&
+        last_if(s->kin[i].follower_elem, s->rod[k->leader_rod].nelem - 1) == le)
+      return i;
+  return -1;
+}
+
 int sw_kinematic_check(const swSpec *s, char *err, size_t errlen) {
   for (int j = 0; j < s->nkin; j++) {
     const swKinematicDesc *k = &s->kin[j];
@@ -113,6 +124,18 @@ int sw_kinematic_check(const swSpec *s, char *err, size_t errlen) {
           last_if(s->kin[i].follower_elem, nf - 1) == fe)
         return sw_fail(err, errlen, "kinematic joints '%s' and '%s' both turn element %d of '%s'",
                        s->kin[i].name, nm, fe, s->rod_name[k->follower_rod]);
+  }
+  /* a chain of leaders that comes back to its start has no frame to take */
+  for (int j = 0; j < s->nkin; j++) {
+    int at = j;
+    for (int step = 0; step <= s->nkin; step++) {
+      const int up = leading_joint(s, at);
+      if (up < 0) break;
+      if (up == j)
+        return sw_fail(err, errlen, "kinematic joint '%s' leads itself through a chain of kinematic "
+                       "joints (a follower's frame must come from outside the chain)", s->kin[j].name);
+      at = up;
+    }
   }
   return 1;
 }
