@@ -327,6 +327,17 @@ study-snake: deps
 	@$(MAKE) --no-print-directory all
 	@sh scripts/study_snake.sh --out study $(STUDY_ARGS)
 
+# `make wing`: the feathered wing's full runs (docs/validation.md, "The
+# feathered wing"): models/pigeon_wing.sinew over its 0.51 s, the original
+# and Suppl. Fig. 13's variants two at a time, then the angles, the stroke's
+# frames and the variants' table and plot in build/wing/ (about 1.5 h on
+# this machine's 2 cores; never part of `make test`, whose test_wing runs
+# 20 us).  WING_ARGS="original" for the original alone (~10-15 min).
+.PHONY: wing
+wing: deps
+	@$(MAKE) --no-print-directory all
+	@sh scripts/wing_study.sh --out build/wing $(WING_ARGS)
+
 # `make tradeoff`: speed against accuracy, measured (docs/tradeoff.md): runs
 # scripts/sinew-study over the cantilever, the elbow (five compile-time
 # variants, 0.5 s against Verlet at 50 ns) and the snake, and rewrites the

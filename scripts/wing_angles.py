@@ -48,7 +48,7 @@ def main():
             a.set_ylabel(name + " (deg)", fontsize=8)
             a.axvline(0.125, color="0.7", lw=0.8)
         ax[-1].set_xlabel("t (s); the initiation phase ends at 0.125 s")
-        fig.suptitle("The kinematic wing, first version (models/pigeon_wing.sinew)", fontsize=9)
+        fig.suptitle("The kinematic wing (models/pigeon_wing.sinew)", fontsize=9)
         fig.tight_layout()
         fig.savefig(o.plot, dpi=120)
     return 0
