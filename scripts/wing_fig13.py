@@ -6,7 +6,7 @@ softened variants, each variant's largest difference from the original as a
 percentage of the original angle's range over the run, and a plot.
 
   scripts/wing_fig13.py ORIGINAL.h5 LABEL=VARIANT.h5 ... [--plot FILE]
-                        [--table FILE]
+                        [--table FILE] [--until T]
 
 The reference states (Suppl. Note 6.7): twist and shear x10 on muscles,
 tendons, bones and feathers changes the angles by up to ~3% (x25, x50, x100
@@ -32,6 +32,9 @@ def main():
     ap.add_argument("variants", nargs="*", help="LABEL=FILE.h5")
     ap.add_argument("--plot")
     ap.add_argument("--table")
+    ap.add_argument("--until", type=float, default=0.42,
+                    help="also compare up to this time (s): the antero-posterior angle, "
+                         "atan(-x / |y|), is ill-conditioned where the humerus' end crosses y = 0")
     o = ap.parse_args()
     t0, *base = angles(o.original)
     rows = []
@@ -44,18 +47,23 @@ def main():
             print("%s: its frames are not at the original's times" % path, file=sys.stderr)
             return 1
         diffs = []
+        early = int(np.sum(t[:n] <= o.until + 1e-12))
         for a, b in zip(ang, base):
-            rng = np.ptp(b[:n]) if n > 1 else 0.0
-            d = np.max(np.abs(a[:n] - b[:n])) if n else 0.0
-            diffs.append((d, 100 * d / rng if rng > 0 else float("nan")))
+            row = []
+            for m in (n, early):
+                rng = np.ptp(b[:m]) if m > 1 else 0.0
+                d = np.max(np.abs(a[:m] - b[:m])) if m else 0.0
+                row += [d, 100 * d / rng if rng > 0 else float("nan")]
+            diffs.append(row)
         rows.append((label, t[n - 1] if n else 0.0, diffs))
         curves.append((label, t[:n], [a[:n] for a in ang]))
     lines = ["| variant | compared up to (s) | " + " | ".join(
-        "%s: largest difference (deg, %% of range)" % nm for nm in NAMES) + " |",
+        "%s: largest difference, deg (%% of the original's range); up to %g s" % (nm, o.until)
+        for nm in NAMES) + " |",
         "|---|---|" + "---|" * len(NAMES)]
     for label, tend, diffs in rows:
         lines.append("| %s | %.3f | " % (label, tend) + " | ".join(
-            "%.3g (%.1f%%)" % (d, p) for d, p in diffs) + " |")
+            "%.3g (%.1f%%); %.3g (%.1f%%)" % tuple(r) for r in diffs) + " |")
     print("\n".join(lines))
     if o.table:
         with open(o.table, "w") as f:

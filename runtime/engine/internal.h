@@ -385,7 +385,7 @@ static inline int sw_has_env(const swModel *m) {
 void sw_env_loads(const swModel *m, swData *d);
 double sw_env_energy(const swModel *m, const swData *d);
 double sw_env_stable_dt(const swModel *m);
-/* Fluids (fluid.c).  sw_fluid_setup fills the model's fluid_* rows and the
+/* Fluids (fluid.c).  sw_fluid_setup fills the model's fluid_* planes and the
  * Stokes drag's step limit from m->fluid (called by sw_env_setup; 0 and a
  * message naming the fluid and rod when slender-body drag is meaningless);
  * sw_fluid_free releases them; sw_fluid_loads adds drag and buoyancy to

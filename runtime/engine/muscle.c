@@ -661,14 +661,16 @@ static void filament_pull(const swModel *m, swData *d, int lo, int hi) {
 }
 
 
-/* The three parts of the pull (above), each on this thread's slots; the
- * step puts a barrier between them (integrate.c). */
+/* A thread's slots [lo, hi) cut to those the filaments span (the wing's 4
+ * filaments hold 28 of its 16,000 slots). */
 static void clip_to_filaments(const swModel *m, int *lo, int *hi) {
   if (*lo < m->fil_slot_lo) *lo = m->fil_slot_lo;
   if (*hi > m->fil_slot_hi) *hi = m->fil_slot_hi;
   if (*hi > m->nslot_elastic) *hi = m->nslot_elastic;
 }
 
+/* The three parts of the pull (above), each on this thread's slots; the
+ * step puts a barrier between them (integrate.c). */
 static void muscle_rates(const swModel *m, swData *d) {
   int lo, hi;
   sw_owned_slots(m, d, &lo, &hi);
