@@ -95,13 +95,25 @@ static int add_rods(swSema *S, const swAst *e, const char *what, rodAcc *acc, in
  * a loop's passes hold, depth first in definition order. */
 static int add_symbol(swSema *S, swSymbol *sym, const swAst *e, const char *what, rodAcc *acc) {
   sym->used = 1;
+  char made[300];
   if (sym->kind == SYM_LOOP) {
+    if (!sym->pass) {   /* its line comes later, or it failed (reported there) */
+      if (sym->state != 2)
+        diag_error(e->loc, "loop '%s' is used before the line that runs it (%s)", sym->name,
+                   diag_where_from(sym->loc, e->loc, made, sizeof made));
+      return 0;
+    }
     for (int k = 0; k < sym->npass; k++)
       if (!add_symbol(S, sym->pass[k], e, what, acc)) return 0;
     return 1;
   }
   if (sym->kind == SYM_INSTANCE) {
-    if (!sym->members) return 0;   /* a failed import: its own error is reported */
+    if (!sym->members) {   /* its 'use' comes later, or it failed (reported there) */
+      if (sym->state != 2)
+        diag_error(e->loc, "'%s' is used before the line that creates it (%s)", sym->name,
+                   diag_where_from(sym->loc, e->loc, made, sizeof made));
+      return 0;
+    }
     for (int i = 0; i < sym->members->n; i++) {
       swSymbol *m = sym->members->sym[i];
       if (m->kind == SYM_ROD || m->kind == SYM_MUSCLE || m->kind == SYM_INSTANCE || m->kind == SYM_LOOP)
