@@ -417,6 +417,77 @@ static void print_step_limit(const swModel *m, double stable) {
   printf("  set by the environments (%s)\n", sw_cli_format_time(a, sizeof a, stable));
 }
 
+/* ---- loops: the rods their passes make, one line a pattern ---- */
+
+/* name with every [index] written [*]: "feather[3].barb[12]" ->
+ * "feather[*].barb[*]"; 0 when the name has no index */
+static int loop_pattern(const char *name, char *out, size_t len) {
+  size_t o = 0;
+  int indexed = 0;
+  for (const char *c = name; *c && o + 1 < len; c++) {
+    out[o++] = *c;
+    if (*c == '[') {
+      const char *close = strchr(c, ']');
+      if (close && o + 2 < len) {
+        out[o++] = '*';
+        c = close - 1;
+        indexed = 1;
+      }
+    }
+  }
+  out[o] = '\0';
+  return indexed;
+}
+
+/* Name i among names[0..n): 1 when it is alone (no index, or the only one
+ * of its pattern), the size of its pattern's group when it is the group's
+ * first, -1 when an earlier name of the group stands for it.  pat gets the
+ * pattern. */
+static int loop_group(char *const *names, int n, int i, char *pat, size_t len) {
+  if (!loop_pattern(names[i], pat, len)) return 1;
+  char other[256];
+  int count = 0;
+  for (int k = 0; k < n; k++) {
+    if (!loop_pattern(names[k], other, sizeof other) || strcmp(other, pat)) continue;
+    if (k < i) return -1;
+    count++;
+  }
+  return count;
+}
+
+/* One line for the rods of a loop pattern: their count and the ranges of
+ * what a rod line shows. */
+static void print_rod_group(const swModel *m, const char *pat, int members) {
+  char a[64], b[64], other[256];
+  double lmin = INFINITY, lmax = 0, rmin = INFINITY, rmax = 0, mmin = INFINITY, mmax = 0;
+  double dmin = INFINITY, dmax = 0;
+  int emin = 1 << 30, emax = 0, damping = -1; /* the first member's damping */
+  for (int r = 0; r < m->nrod; r++) {
+    if (!loop_pattern(m->rod_name[r], other, sizeof other) || strcmp(other, pat)) continue;
+    const int n = m->rod_nelem[r], ea = m->elem_adr[r], na = m->node_adr[r];
+    double length = 0, mass = 0;
+    for (int i = 0; i < n; i++) {
+      length += m->rest_len[ea + i];
+      rmin = fmin(rmin, m->radius[ea + i]);
+      rmax = fmax(rmax, m->radius[ea + i]);
+    }
+    for (int i = 0; i <= n; i++) mass += m->mass[na + i];
+    lmin = fmin(lmin, length); lmax = fmax(lmax, length);
+    mmin = fmin(mmin, mass); mmax = fmax(mmax, mass);
+    dmin = fmin(dmin, m->rod_wave_dt[r]); dmax = fmax(dmax, m->rod_wave_dt[r]);
+    emin = n < emin ? n : emin; emax = n > emax ? n : emax;
+    if (damping < 0) damping = (int)m->rod_damping[r];
+  }
+  printf("  %s: %d rods, %d", pat, members, emin);
+  if (emax != emin) printf(" to %d", emax);
+  printf(" elements, length %.4g to %.4g m, radius %.4g", lmin, lmax, rmin * 1e3);
+  if (rmax != rmin) printf(" to %.4g", rmax * 1e3);
+  printf(" mm, mass %.4g to %.4g kg, stable dt %s to %s%s\n", mmin, mmax,
+         isinf(dmin) ? "none" : sw_cli_format_time(a, sizeof a, dmin),
+         isinf(dmax) ? "none" : sw_cli_format_time(b, sizeof b, dmax),
+         damping == SW_DAMP_ANALYTIC ? ", analytic damping" : damping == SW_DAMP_LINEAR ? ", linear damping" : "");
+}
+
 void sw_cli_print_info(const swCli *c, const swModel *m, double stable, const char *dt_source,
                               const char *out) {
   const swProgram *p = c->p;
@@ -425,6 +496,13 @@ void sw_cli_print_info(const swCli *c, const swModel *m, double stable, const ch
   printf("  sha256: %s\n", p->sha256 && p->sha256[0] ? p->sha256 : "(none)");
   printf("rods: %d (%d elements, %d nodes)\n", m->nrod, m->nelem, m->nnode);
   for (int r = 0; r < m->nrod; r++) {
+    char pat[256];
+    const int members = loop_group(m->rod_name, m->nrod, r, pat, sizeof pat);
+    if (members < 0) continue; /* printed with its group */
+    if (members > 1) {
+      print_rod_group(m, pat, members);
+      continue;
+    }
     int n = m->rod_nelem[r], ea = m->elem_adr[r], na = m->node_adr[r];
     double length = 0, mass = 0;
     for (int i = 0; i < n; i++) length += m->rest_len[ea + i];
@@ -450,6 +528,23 @@ void sw_cli_print_info(const swCli *c, const swModel *m, double stable, const ch
     printf("kinematic joints: %d (a follower element turns with its leader's)\n", m->nkinematic);
     for (int j = 0; j < m->nkinematic; j++) {
       const swKinematicDesc *k = &m->kinematic[j];
+      char pat[256], fpat[256], lpat[256];
+      const int members = loop_group(m->kinematic_name, m->nkinematic, j, pat, sizeof pat);
+      if (members < 0) continue; /* printed with its group */
+      if (members > 1) { /* a loop's joints: their count and patterns */
+        double kmin = INFINITY, kmax = 0;
+        for (int i = j; i < m->nkinematic; i++)
+          if (loop_pattern(m->kinematic_name[i], fpat, sizeof fpat) && !strcmp(fpat, pat)) {
+            kmin = fmin(kmin, m->kinematic[i].stiffness);
+            kmax = fmax(kmax, m->kinematic[i].stiffness);
+          }
+        loop_pattern(m->rod_name[k->follower_rod], fpat, sizeof fpat);
+        loop_pattern(m->rod_name[k->leader_rod], lpat, sizeof lpat);
+        printf("  %s: %d joints, %s follows %s, spring %g", pat, members, fpat, lpat, kmin);
+        if (kmax != kmin) printf(" to %g", kmax);
+        printf(" N/m%s\n", k->reaction_rod >= 0 ? ", reactions sent on with weights" : "");
+        continue;
+      }
       printf("  %s: %s follows %s, spring %g N/m", k->name, m->rod_name[k->follower_rod],
              m->rod_name[k->leader_rod], k->stiffness);
       if (k->reaction_rod >= 0)

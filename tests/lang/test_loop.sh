@@ -43,4 +43,10 @@ n=$(grep -c 'sw_spec_add_load' "$tmp/feathers.c")
 ok $? "a load on LOOP[K].member from outside reaches that pass's rod"
 "$SINEWC" "$tmp/feathers.sinew" -o "$tmp/feathers" >/dev/null 2>&1 && (cd "$tmp" && ./feathers --quiet) >/dev/null 2>&1
 ok $? "it runs"
+"$tmp/feathers" --info > "$tmp/info" 2>&1
+grep -q '^  left.side\[\*\].barb\[\*\].b: 6 rods, 3 elements, length 0.03 to 0.03 m' "$tmp/info" &&
+  grep -q '^  right.side\[\*\].barb\[\*\].b: 4 rods' "$tmp/info" && grep -q '^  left.rachis: 8 elements' "$tmp/info" &&
+  grep -q '^  left.side\[\*\].barb\[\*\].root: 6 joints, left.side\[\*\].barb\[\*\].b follows left.rachis, spring 1000 N/m' "$tmp/info"
+ok $? "--info shows a loop's rods and kinematic joints one line a pattern (6 and 4 barbs), rods outside loops one each"
+diag < "$tmp/info"
 done_testing
