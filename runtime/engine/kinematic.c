@@ -245,16 +245,17 @@ void sw_kinematic_impose(const swModel *m, swData *d) {
     sw_mat_mul(Qf, m->kinematic_rot + 9 * j, Ql);
     sw_getQ(m, d->Q, fe, Qnow);
     for (int c = 0; c < 9; c++) moved = fmax(moved, fabs(Qf[c] - Qnow[c]));
-    if (moved > SW_KIN_FRAME_KEPT) {
-      const double before = frame_energy(m, d, k->follower_rod, fe);
-      sw_setQ(m, d->Q, fe, Qf);
-      follow_turn(m, d, j);
+    /* a kept frame changes only the turning kinetic energy, else every
+     * term that depends on the frame changes */
+    const int kept = !(moved > SW_KIN_FRAME_KEPT);
+    double w0[3], before = 0;
+    for (int c = 0; c < 3; c++) w0[c] = SW_AT(m, d->omega, fe, c);
+    if (!kept) before = frame_energy(m, d, k->follower_rod, fe);
+    sw_setQ(m, d->Q, fe, Qf);
+    follow_turn(m, d, j);
+    if (!kept) {
       d->work += frame_energy(m, d, k->follower_rod, fe) - before;
-    } else { /* the frame kept: only the turning kinetic energy changes */
-      double w0[3];
-      for (int c = 0; c < 3; c++) w0[c] = SW_AT(m, d->omega, fe, c);
-      sw_setQ(m, d->Q, fe, Qf);
-      follow_turn(m, d, j);
+    } else {
       const double dil = dilatation_now(m, d, fe);
       for (int c = 0; c < 3; c++) {
         const double w = SW_AT(m, d->omega, fe, c);

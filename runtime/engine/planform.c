@@ -38,28 +38,33 @@ static void element(const swModel *m, int r, int i, double a[3], double b[3], do
   *rad = m->radius[e];
 }
 
+/* Element i of rod r: its midpoint, and its silhouette 2 r l as its weight. */
+static double element_midpoint(const swModel *m, int r, int i, double mid[3]) {
+  double a[3], b[3], rad, d[3];
+  element(m, r, i, a, b, &rad);
+  sw_v3_sub(d, b, a);
+  for (int k = 0; k < 3; k++) mid[k] = 0.5 * (a[k] + b[k]);
+  return 2 * rad * sw_v3_norm(d);
+}
+
 /* The mean plane: centroid c and unit normal n (smallest eigenvector). */
 static int mean_plane(const swModel *m, int nrods, const int *rods, double c[3], double n[3]) {
-  double wsum = 0, mean[3] = {0, 0, 0}, cov[9] = {0};
-  for (int pass = 0; pass < 2; pass++)
-    for (int q = 0; q < nrods; q++)
-      for (int i = 0; i < m->rod_nelem[rods[q]]; i++) {
-        double a[3], b[3], rad, mid[3], d[3];
-        element(m, rods[q], i, a, b, &rad);
-        sw_v3_sub(d, b, a);
-        const double w = 2 * rad * sw_v3_norm(d);
-        for (int k = 0; k < 3; k++) mid[k] = 0.5 * (a[k] + b[k]);
-        if (pass == 0) {
-          wsum += w;
-          for (int k = 0; k < 3; k++) mean[k] += w * mid[k];
-        } else {
-          for (int j = 0; j < 3; j++)
-            for (int k = 0; k < 3; k++) cov[3 * j + k] += w * (mid[j] - c[j]) * (mid[k] - c[k]);
-        }
-        if (pass == 0 && q == nrods - 1 && i == m->rod_nelem[rods[q]] - 1)
-          for (int k = 0; k < 3; k++) c[k] = mean[k] / wsum;
-      }
+  double wsum = 0, mid[3], cov[9] = {0};
+  c[0] = c[1] = c[2] = 0;
+  for (int q = 0; q < nrods; q++)
+    for (int i = 0; i < m->rod_nelem[rods[q]]; i++) {
+      const double w = element_midpoint(m, rods[q], i, mid);
+      wsum += w;
+      for (int k = 0; k < 3; k++) c[k] += w * mid[k];
+    }
   if (!(wsum > 0)) return 0;
+  for (int k = 0; k < 3; k++) c[k] /= wsum;
+  for (int q = 0; q < nrods; q++)
+    for (int i = 0; i < m->rod_nelem[rods[q]]; i++) {
+      const double w = element_midpoint(m, rods[q], i, mid);
+      for (int j = 0; j < 3; j++)
+        for (int k = 0; k < 3; k++) cov[3 * j + k] += w * (mid[j] - c[j]) * (mid[k] - c[k]);
+    }
   gsl_matrix_view A = gsl_matrix_view_array(cov, 3, 3);
   gsl_vector *eval = gsl_vector_alloc(3);
   gsl_matrix *evec = gsl_matrix_alloc(3, 3);
@@ -136,11 +141,9 @@ int sw_rods_area(const swModel *m, int nrods, const int *rods, swArea *out) {
   double c[3], n[3], u[3], v[3], thinnest = INFINITY;
   for (int q = 0; q < nrods; q++)
     for (int i = 0; i < m->rod_nelem[rods[q]]; i++) {
-      double a[3], b[3], rad, d[3];
-      element(m, rods[q], i, a, b, &rad);
-      sw_v3_sub(d, b, a);
-      out->silhouette += 2 * rad * sw_v3_norm(d);
-      thinnest = fmin(thinnest, rad);
+      double mid[3];
+      out->silhouette += element_midpoint(m, rods[q], i, mid);
+      thinnest = fmin(thinnest, m->radius[m->elem_adr[rods[q]] + i]);
     }
   if (!(out->silhouette > 0) || !mean_plane(m, nrods, rods, c, n)) return 0;
   /* in-plane axes u, v: u from the coordinate axis least along n */

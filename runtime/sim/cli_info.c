@@ -16,6 +16,7 @@
 #include <math.h>
 #include <omp.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include "sinew.h"
@@ -439,46 +440,71 @@ static int loop_pattern(const char *name, char *out, size_t len) {
   return indexed;
 }
 
-/* Name i among names[0..n): 1 when it is alone (no index, or the only one
- * of its pattern), the size of its pattern's group when it is the group's
- * first, -1 when an earlier name of the group stands for it.  pat gets the
- * pattern. */
-static int loop_group(char *const *names, int n, int i, char *pat, size_t len) {
-  if (!loop_pattern(names[i], pat, len)) return 1;
-  char other[256];
+/* Every name's pattern (NULL: no index), made once: the grouping below
+ * compares them pairwise.  NULL when out of memory (then nothing is grouped). */
+static char **loop_patterns(char *const *names, int n) {
+  char **pat = calloc((size_t)(n ? n : 1), sizeof *pat);
+  for (int i = 0; pat && i < n; i++) {
+    char buf[256];
+    if (loop_pattern(names[i], buf, sizeof buf) && !(pat[i] = strdup(buf))) {
+      for (int k = 0; k < i; k++) free(pat[k]);
+      free(pat);
+      return NULL;
+    }
+  }
+  return pat;
+}
+
+static void free_patterns(char **pat, int n) {
+  for (int i = 0; pat && i < n; i++) free(pat[i]);
+  free(pat);
+}
+
+/* Name i of n with patterns pat: 1 when it is alone (no index, or the only
+ * one of its pattern), the size of its pattern's group when it is the
+ * group's first, -1 when an earlier name of the group stands for it. */
+static int loop_group(char *const *pat, int n, int i) {
+  if (!pat || !pat[i]) return 1;
   int count = 0;
   for (int k = 0; k < n; k++) {
-    if (!loop_pattern(names[k], other, sizeof other) || strcmp(other, pat)) continue;
+    if (!pat[k] || strcmp(pat[k], pat[i])) continue;
     if (k < i) return -1;
     count++;
   }
   return count;
 }
 
-/* One line for the rods of a loop pattern: their count and the ranges of
- * what a rod line shows. */
-static void print_rod_group(const swModel *m, const char *pat, int members) {
-  char a[64], b[64], other[256];
+/* Rod r at rest: its length and mass. */
+static void rod_rest(const swModel *m, int r, double *length, double *mass) {
+  const int n = m->rod_nelem[r], ea = m->elem_adr[r], na = m->node_adr[r];
+  *length = *mass = 0;
+  for (int i = 0; i < n; i++) *length += m->rest_len[ea + i];
+  for (int i = 0; i <= n; i++) *mass += m->mass[na + i];
+}
+
+/* One line for the rods of pattern pat[first]: their count and the ranges
+ * of what a rod line shows. */
+static void print_rod_group(const swModel *m, char *const *pat, int first, int members) {
+  char a[64], b[64];
   double lmin = INFINITY, lmax = 0, rmin = INFINITY, rmax = 0, mmin = INFINITY, mmax = 0;
   double dmin = INFINITY, dmax = 0;
-  int emin = 1 << 30, emax = 0, damping = -1; /* the first member's damping */
-  for (int r = 0; r < m->nrod; r++) {
-    if (!loop_pattern(m->rod_name[r], other, sizeof other) || strcmp(other, pat)) continue;
-    const int n = m->rod_nelem[r], ea = m->elem_adr[r], na = m->node_adr[r];
-    double length = 0, mass = 0;
+  int emin = 1 << 30, emax = 0;
+  for (int r = first; r < m->nrod; r++) {
+    if (!pat[r] || strcmp(pat[r], pat[first])) continue;
+    const int n = m->rod_nelem[r], ea = m->elem_adr[r];
+    double length, mass;
+    rod_rest(m, r, &length, &mass);
     for (int i = 0; i < n; i++) {
-      length += m->rest_len[ea + i];
       rmin = fmin(rmin, m->radius[ea + i]);
       rmax = fmax(rmax, m->radius[ea + i]);
     }
-    for (int i = 0; i <= n; i++) mass += m->mass[na + i];
     lmin = fmin(lmin, length); lmax = fmax(lmax, length);
     mmin = fmin(mmin, mass); mmax = fmax(mmax, mass);
     dmin = fmin(dmin, m->rod_wave_dt[r]); dmax = fmax(dmax, m->rod_wave_dt[r]);
     emin = n < emin ? n : emin; emax = n > emax ? n : emax;
-    if (damping < 0) damping = (int)m->rod_damping[r];
   }
-  printf("  %s: %d rods, %d", pat, members, emin);
+  const swDampingKind damping = m->rod_damping[first]; /* the first member's */
+  printf("  %s: %d rods, %d", pat[first], members, emin);
   if (emax != emin) printf(" to %d", emax);
   printf(" elements, length %.4g to %.4g m, radius %.4g", lmin, lmax, rmin * 1e3);
   if (rmax != rmin) printf(" to %.4g", rmax * 1e3);
@@ -495,18 +521,17 @@ void sw_cli_print_info(const swCli *c, const swModel *m, double stable, const ch
   printf("model: %s\n", p->name ? p->name : "(unnamed)");
   printf("  sha256: %s\n", p->sha256 && p->sha256[0] ? p->sha256 : "(none)");
   printf("rods: %d (%d elements, %d nodes)\n", m->nrod, m->nelem, m->nnode);
+  char **rod_pat = loop_patterns(m->rod_name, m->nrod);
   for (int r = 0; r < m->nrod; r++) {
-    char pat[256];
-    const int members = loop_group(m->rod_name, m->nrod, r, pat, sizeof pat);
+    const int members = loop_group(rod_pat, m->nrod, r);
     if (members < 0) continue; /* printed with its group */
     if (members > 1) {
-      print_rod_group(m, pat, members);
+      print_rod_group(m, rod_pat, r, members);
       continue;
     }
     int n = m->rod_nelem[r], ea = m->elem_adr[r], na = m->node_adr[r];
-    double length = 0, mass = 0;
-    for (int i = 0; i < n; i++) length += m->rest_len[ea + i];
-    for (int i = 0; i <= n; i++) mass += m->mass[na + i];
+    double length, mass;
+    rod_rest(m, r, &length, &mass);
     double r0 = m->radius[ea], r1 = m->radius[ea + n - 1];
     printf("  %s: %d elements, length %.6g m, radius %.4g mm", m->rod_name[r], n, length,
            r0 * 1e3);
@@ -518,6 +543,7 @@ void sw_cli_print_info(const swCli *c, const swModel *m, double stable, const ch
            m->nrigid && m->rod_rigid[r] >= 0 ? ", rigid" : m->nimplicit && m->rod_implicit[r] ? ", implicit" : "",
            m->weight && m->weight[na] == 0 && m->mass[na] > 0 ? ", weightless (no gravity)" : "");
   }
+  free_patterns(rod_pat, m->nrod);
   printf("joints: %d\n", m->njoint);
   for (int j = 0; j < m->njoint; j++) {
     const char *name = m->joint_name && m->joint_name[j] ? m->joint_name[j]
@@ -526,21 +552,22 @@ void sw_cli_print_info(const swCli *c, const swModel *m, double stable, const ch
   }
   if (m->nkinematic) {   /* kinematic.c: frames imposed, no couple back */
     printf("kinematic joints: %d (a follower element turns with its leader's)\n", m->nkinematic);
+    char **kin_pat = loop_patterns(m->kinematic_name, m->nkinematic);
     for (int j = 0; j < m->nkinematic; j++) {
       const swKinematicDesc *k = &m->kinematic[j];
-      char pat[256], fpat[256], lpat[256];
-      const int members = loop_group(m->kinematic_name, m->nkinematic, j, pat, sizeof pat);
+      const int members = loop_group(kin_pat, m->nkinematic, j);
       if (members < 0) continue; /* printed with its group */
       if (members > 1) { /* a loop's joints: their count and patterns */
+        char fpat[256], lpat[256];
         double kmin = INFINITY, kmax = 0;
         for (int i = j; i < m->nkinematic; i++)
-          if (loop_pattern(m->kinematic_name[i], fpat, sizeof fpat) && !strcmp(fpat, pat)) {
+          if (kin_pat[i] && !strcmp(kin_pat[i], kin_pat[j])) {
             kmin = fmin(kmin, m->kinematic[i].stiffness);
             kmax = fmax(kmax, m->kinematic[i].stiffness);
           }
         loop_pattern(m->rod_name[k->follower_rod], fpat, sizeof fpat);
         loop_pattern(m->rod_name[k->leader_rod], lpat, sizeof lpat);
-        printf("  %s: %d joints, %s follows %s, spring %g", pat, members, fpat, lpat, kmin);
+        printf("  %s: %d joints, %s follows %s, spring %g", kin_pat[j], members, fpat, lpat, kmin);
         if (kmax != kmin) printf(" to %g", kmax);
         printf(" N/m%s\n", k->reaction_rod >= 0 ? ", reactions sent on with weights" : "");
         continue;
@@ -551,6 +578,7 @@ void sw_cli_print_info(const swCli *c, const swModel *m, double stable, const ch
         printf(", reaction x %g to %s", k->reaction_weight, m->rod_name[k->reaction_rod]);
       printf("\n");
     }
+    free_patterns(kin_pat, m->nkinematic);
   }
   printf("muscles: %d\n", m->nmuscle);
   for (int i = 0; i < m->nmuscle; i++) {
