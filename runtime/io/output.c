@@ -14,7 +14,8 @@
  * and frame interval, reads its checkpoint into the state and cuts every
  * dataset back to the checkpoint's frames.  sw_output_frame() walks the
  * opened datasets, fills a scratch frame allocated at open time, appends it
- * and flushes the file every FLUSH_EVERY s of wall time, so a run that dies
+ * and flushes the file every 50 ms of wall time or less often (when a
+ * flush takes long), so a run that dies
  * later still leaves a readable file of the frames written up to then.  The root's `status` reads
  * "incomplete" until sw_output_close() replaces it with the caller's
  * verdict.  Beside the
@@ -460,15 +461,23 @@ swOutput *sw_output_resume(const char *path, const swModel *m, const swOutputOpt
 
 /* ---- frames ---- */
 
-/* Seconds of wall time between two flushes of the frames (sw_output_frame). */
+/* Seconds of wall time between two flushes of the frames (sw_output_frame),
+ * at least, and at least FLUSH_SHARE times the last flush took: a flush
+ * writes every dataset's partly filled chunk again, so the flushes take at
+ * most 1/FLUSH_SHARE of a run's wall time (at every 50 ms they were 8% of
+ * the arm's half-second demo). */
 #define FLUSH_EVERY 0.05
+#define FLUSH_SHARE 50.0
 
 static int flush_frames(swOutput *o) {
+  double start = wall_now();
   int rc = write_pending(o);
   if (rc != SW_OK) return rc;
   if (H5Fflush(o->file, H5F_SCOPE_LOCAL) < 0)
     return sw_out_fail(NULL, 0, "%s: cannot flush the file after frame %ld", o->path, o->written - 1);
   o->flushed_at = wall_now();
+  o->flush_wait = FLUSH_SHARE * (o->flushed_at - start);
+  if (o->flush_wait < FLUSH_EVERY) o->flush_wait = FLUSH_EVERY;
   o->flushed_frames = o->written;
   return SW_OK;
 }
@@ -485,13 +494,13 @@ int sw_output_frame(swOutput *o, const swModel *m, swData *d) {
   o->npending++;
   /* The frames go to their datasets when a batch is full, and with the
    * metadata on disk (a flush) after the first frame and then at most every
-   * FLUSH_EVERY s of wall time: a run killed outright leaves a valid file of
+   * flush_wait s of wall time: a run killed outright leaves a valid file of
    * all but its last moment's frames (every failure the run handles, an
    * interrupt included, closes the file, which writes and flushes them all).  At a flush per frame, a scene of many rods
    * written every millisecond spent a third of its run in the flushes (the
    * arm of 43 rods: 0.4 s of 1.45). */
   const double now = wall_now();
-  if (o->frames == 0 || now - o->flushed_at >= FLUSH_EVERY) {
+  if (o->frames == 0 || now - o->flushed_at >= o->flush_wait) {
     int rc = flush_frames(o);
     if (rc != SW_OK) return rc;
   } else if (o->npending == o->batch) {

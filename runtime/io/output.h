@@ -81,6 +81,7 @@ struct swOutput {
   double xdmf_written;                   /* wall clock of its last write, s  */
   double xdmf_wait;                      /* s until the next may be written  */
   double flushed_at;                     /* wall clock of the last flush, s  */
+  double flush_wait;                     /* s until the next may be made     */
   long flushed_frames;                   /* frames on disk at that flush     */
 };
 

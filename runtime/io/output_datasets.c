@@ -280,7 +280,12 @@ static int create_dataset(swOutput *o, swDataset *ds, const swField *f, const sw
   if (reopen_frames >= 0) return reopen_dataset(o, ds, reopen_frames, err, errlen);
   hid_t space = H5Screate_simple(ds->rank, ds->dims, maxdims);
   hid_t dcpl = H5Pcreate(H5P_DATASET_CREATE);
-  if (space < 0 || dcpl < 0 || H5Pset_chunk(dcpl, ds->rank, chunk) < 0) {
+  /* No fill: every frame inside the extent is written before the extent
+   * is read (sw_out_append_frames extends by the frames it writes), so
+   * filling a new chunk first would only be a memset of it (a tenth of a
+   * short run's output time). */
+  if (space < 0 || dcpl < 0 || H5Pset_chunk(dcpl, ds->rank, chunk) < 0 ||
+      H5Pset_fill_time(dcpl, H5D_FILL_TIME_NEVER) < 0) {
     if (space >= 0) H5Sclose(space);
     if (dcpl >= 0) H5Pclose(dcpl);
     return sw_out_fail(err, errlen, "%s: cannot describe dataset %s", o->path, ds->path);
@@ -356,8 +361,11 @@ int sw_out_append_frames(swOutput *o, swDataset *ds, const double *frames, int n
            H5Dwrite(ds->dset, H5T_NATIVE_DOUBLE, mem_space, file_space, H5P_DEFAULT, frames) >= 0;
   if (mem_space >= 0) H5Sclose(mem_space);
   if (file_space >= 0) H5Sclose(file_space);
-  if (!ok)
+  if (!ok) { /* frames not written are not filled either: take them back */
+    ds->dims[0] = (hsize_t)o->written;
+    H5Dset_extent(ds->dset, ds->dims);
     return sw_out_fail(NULL, 0, "%s: cannot write frames %ld to %ld of dataset %s", o->path,
                        o->written, o->written + n - 1, ds->path);
+  }
   return SW_OK;
 }

@@ -67,44 +67,94 @@ static void put_hdf_ref(FILE *f, const char *h5_base, const char *rod, const cha
   fprintf(f, "/%s", dataset);
 }
 
-/* Frame `frame` of /rods/NAME/DATASET [frames, nodes, 3]: one row of nodes
- * x 3 values, by a HyperSlab whose first item is start, stride and count. */
-static void put_frame_slab(FILE *f, const char *indent, const char *h5_base,
-                           const swXdmfRod *r, const char *dataset, long frame, long frames) {
+/* Frame k of /rods/NAME/DATASET [frames, nodes, 3]: one row of nodes x 3
+ * values, by a HyperSlab whose first item is start (k, 0, 0), stride and
+ * count.  Written in two parts, before and after k: the text of a rod is
+ * the same in every frame but for k, so it is made once per description
+ * (put_rod) and each frame prints only the pieces and its k. */
+static void put_slab_open(FILE *f, const char *indent, const swXdmfRod *r) {
   fprintf(f, "%s<DataItem ItemType=\"HyperSlab\" Dimensions=\"1 %d 3\" Type=\"HyperSlab\">\n"
-             "%s <DataItem Dimensions=\"3 3\" NumberType=\"Int\" Format=\"XML\">"
-             "%ld 0 0 1 1 1 1 %d 3</DataItem>\n"
+             "%s <DataItem Dimensions=\"3 3\" NumberType=\"Int\" Format=\"XML\">",
+          indent, r->nodes, indent);
+}
+
+static void put_slab_close(FILE *f, const char *indent, const char *h5_base,
+                           const swXdmfRod *r, const char *dataset, long frames) {
+  fprintf(f, " 0 0 1 1 1 1 %d 3</DataItem>\n"
              "%s <DataItem Dimensions=\"%ld %d 3\" NumberType=\"Float\" Precision=\"8\" "
              "Format=\"HDF\">",
-          indent, r->nodes, indent, frame, r->nodes, indent, frames, r->nodes);
+          r->nodes, indent, frames, r->nodes);
   put_hdf_ref(f, h5_base, r->name, dataset);
   fprintf(f, "</DataItem>\n%s</DataItem>\n", indent);
 }
 
-static void put_rod(FILE *f, const char *h5_base, const swXdmfRod *r, long frame, long frames) {
-  fputs("    <Grid Name=\"", f);
-  put_escaped(f, r->name);
-  fprintf(f, "\" GridType=\"Uniform\">\n"
-             "     <Topology TopologyType=\"Polyline\" NumberOfElements=\"1\" "
-             "NodesPerElement=\"%d\">\n"
-             "      <DataItem Dimensions=\"1 %d\" NumberType=\"Int\" Format=\"XML\">",
-          r->nodes, r->nodes);
-  for (int i = 0; i < r->nodes; i++) fprintf(f, i ? " %d" : "%d", i);
-  fputs("</DataItem>\n     </Topology>\n     <Geometry GeometryType=\"XYZ\">\n", f);
-  put_frame_slab(f, "      ", h5_base, r, "position", frame, frames);
-  fprintf(f, "     </Geometry>\n"
-             "     <Attribute Name=\"radius\" AttributeType=\"Scalar\" Center=\"Node\">\n"
-             "      <DataItem Dimensions=\"%d\" NumberType=\"Float\" Precision=\"8\" "
-             "Format=\"HDF\">",
-          r->nodes);
-  put_hdf_ref(f, h5_base, r->name, "node_radius");
-  fputs("</DataItem>\n     </Attribute>\n", f);
-  if (r->velocity) {
-    fputs("     <Attribute Name=\"velocity\" AttributeType=\"Vector\" Center=\"Node\">\n", f);
-    put_frame_slab(f, "      ", h5_base, r, "velocity", frame, frames);
-    fputs("     </Attribute>\n", f);
+/* A rod's grid in a frame, as the text before the frame's index in the
+ * position slab (piece 0), between it and the index in the velocity slab
+ * (1), and after that (2; empty without velocity). */
+enum { ROD_PIECES = 3 };
+typedef struct {
+  char *text[ROD_PIECES];
+  size_t len[ROD_PIECES];
+} swRodText;
+
+static int put_rod(swRodText *t, const char *h5_base, const swXdmfRod *r, long frames) {
+  FILE *f[ROD_PIECES];
+  for (int p = 0; p < ROD_PIECES; p++) {
+    t->text[p] = NULL;
+    f[p] = open_memstream(&t->text[p], &t->len[p]);
+    if (!f[p]) {
+      for (int q = 0; q < p; q++) fclose(f[q]);
+      return -1;
+    }
   }
-  fputs("    </Grid>\n", f);
+  fputs("    <Grid Name=\"", f[0]);
+  put_escaped(f[0], r->name);
+  fprintf(f[0], "\" GridType=\"Uniform\">\n"
+                "     <Topology TopologyType=\"Polyline\" NumberOfElements=\"1\" "
+                "NodesPerElement=\"%d\">\n"
+                "      <DataItem Dimensions=\"1 %d\" NumberType=\"Int\" Format=\"XML\">",
+          r->nodes, r->nodes);
+  for (int i = 0; i < r->nodes; i++) fprintf(f[0], i ? " %d" : "%d", i);
+  fputs("</DataItem>\n     </Topology>\n     <Geometry GeometryType=\"XYZ\">\n", f[0]);
+  put_slab_open(f[0], "      ", r);
+  put_slab_close(f[1], "      ", h5_base, r, "position", frames);
+  fprintf(f[1], "     </Geometry>\n"
+                "     <Attribute Name=\"radius\" AttributeType=\"Scalar\" Center=\"Node\">\n"
+                "      <DataItem Dimensions=\"%d\" NumberType=\"Float\" Precision=\"8\" "
+                "Format=\"HDF\">",
+          r->nodes);
+  put_hdf_ref(f[1], h5_base, r->name, "node_radius");
+  fputs("</DataItem>\n     </Attribute>\n", f[1]);
+  FILE *end = f[1];
+  if (r->velocity) {
+    fputs("     <Attribute Name=\"velocity\" AttributeType=\"Vector\" Center=\"Node\">\n", f[1]);
+    put_slab_open(f[1], "      ", r);
+    put_slab_close(f[2], "      ", h5_base, r, "velocity", frames);
+    fputs("     </Attribute>\n", f[2]);
+    end = f[2];
+  }
+  fputs("    </Grid>\n", end);
+  int bad = 0;
+  for (int p = 0; p < ROD_PIECES; p++)
+    if (fclose(f[p]) != 0) bad = 1;
+  return bad ? -1 : 0;
+}
+
+static void free_rod_texts(swRodText *t, int n) {
+  for (int r = 0; r < n; r++)
+    for (int p = 0; p < ROD_PIECES; p++) free(t[r].text[p]);
+  free(t);
+}
+
+/* Rod r's grid in frame k, from its pieces. */
+static void put_rod_frame(FILE *f, const swRodText *t, const swXdmfRod *r, long k) {
+  fwrite(t->text[0], 1, t->len[0], f);
+  fprintf(f, "%ld", k);
+  fwrite(t->text[1], 1, t->len[1], f);
+  if (r->velocity) {
+    fprintf(f, "%ld", k);
+    fwrite(t->text[2], 1, t->len[2], f);
+  }
 }
 
 int sw_xdmf_write(const char *xdmf_path, const char *h5_path, const swXdmfRod *rods, int nrod,
@@ -119,9 +169,19 @@ int sw_xdmf_write(const char *xdmf_path, const char *h5_path, const swXdmfRod *r
   }
   memcpy(tmp, xdmf_path, len);
   memcpy(tmp + len, ".tmp", sizeof ".tmp");
+  swRodText *text = calloc(nrod > 0 ? (size_t)nrod : 1, sizeof *text);
+  int made = 0;
+  while (text && made < nrod && put_rod(&text[made], h5_base, &rods[made], frames) == 0) made++;
+  if (!text || made < nrod) {
+    if (text) free_rod_texts(text, made + 1);
+    snprintf(err, errlen, "%s: out of memory", xdmf_path);
+    free(tmp);
+    return SW_EIO;
+  }
   FILE *f = fopen(tmp, "w");
   if (!f) {
     snprintf(err, errlen, "cannot create %s: %s", tmp, strerror(errno));
+    free_rod_texts(text, nrod);
     free(tmp);
     return SW_EIO;
   }
@@ -142,10 +202,11 @@ int sw_xdmf_write(const char *xdmf_path, const char *h5_path, const swXdmfRod *r
                "CollectionType=\"Spatial\">\n"
                "    <Time Value=\"%.17g\"/>\n",
             k, time[k]);
-    for (int r = 0; r < nrod; r++) put_rod(f, h5_base, &rods[r], k, frames);
+    for (int r = 0; r < nrod; r++) put_rod_frame(f, &text[r], &rods[r], k);
     fputs("   </Grid>\n", f);
   }
   fputs("  </Grid>\n </Domain>\n</Xdmf>\n", f);
+  free_rod_texts(text, nrod);
   int bad = ferror(f);
   if (fclose(f) != 0) bad = 1;
   if (bad || rename(tmp, xdmf_path) != 0) {
