@@ -69,6 +69,11 @@ static void compute_loads(const swModel *m, swData *d, double h) {
   if (m->nmuscle) mu->rates(m, d);
   sw_team_barrier(d);
   sw_rod_gather(m, d, lo, hi, 0); /* (B) */
+  if (m->nkinematic) { /* the imposed frames' energy, from the internal couples alone */
+    sw_team_barrier(d);
+    if (sw_team_leader(d)) sw_kinematic_book(m, d);
+    sw_team_barrier(d);
+  }
   if (m->nrigid) { /* no deformation, no internal loads (rigid.c) */
     if (sw_team_leader(d)) sw_rigid_clear_loads(m, d);
     sw_team_barrier(d);

@@ -168,6 +168,7 @@ int sw_kinematic_setup(swModel *m, const struct swSpec *s);
 void sw_kinematic_free(swModel *m);
 void sw_kinematic_spec_free(struct swSpec *s);
 void sw_kinematic_impose(const swModel *m, swData *d);
+void sw_kinematic_book(const swModel *m, swData *d); /* after the rod pass: the corrections' energy */
 void sw_kinematic_follow(const swModel *m, swData *d);
 void sw_kinematic_loads(const swModel *m, swData *d);
 double sw_stable_dt_kinematic(const swModel *m, int j);              /* stability.c */

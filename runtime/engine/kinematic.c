@@ -230,31 +230,49 @@ static void follow_turn(const swModel *m, swData *d, int j) {
   for (int c = 0; c < 3; c++) SW_AT(m, d->omega, k->follower_elem, c) = wf[c];
 }
 
-/* Below this difference of a frame's entries the frame is already set (the
- * drift keeps it, sw_kinematic_follow) and its elastic energy cannot change
- * but by round-off: only the turn is booked (the wing: 19% of its step was
- * this bookkeeping). */
-#define SW_KIN_FRAME_KEPT 1e-12
+/* The rotation that takes frame Qb to Qa, Qa = exp(-[delta]x) Qb, to first
+ * order: [delta]x = (Qb Qa^T - Qa Qb^T) / 2 (material components, the
+ * drift's convention: integrate.c). */
+static void small_turn(const double Qa[9], const double Qb[9], double delta[3]) {
+  double M[9]; /* Qb Qa^T - Qa Qb^T, antisymmetric: M_ij = d^b_i . d^a_j - d^a_i . d^b_j */
+  for (int i = 0; i < 3; i++)
+    for (int j = 0; j < 3; j++) M[3 * i + j] = sw_v3_dot(Qb + 3 * i, Qa + 3 * j) - sw_v3_dot(Qa + 3 * i, Qb + 3 * j);
+  delta[0] = 0.5 * M[7], delta[1] = 0.5 * M[2], delta[2] = 0.5 * M[3];
+}
+
+/* Below this turn (rad) a correction's change of the elastic energy is
+ * booked to first order, from the couple the rod pass computes right after
+ * it (sw_kinematic_book): dE = -tau . delta, whose neglected second-order
+ * term is below 1e-12 of the element's stiffness times a radian squared.
+ * The corrections are the drift's: a follower and its leader turn alike
+ * only to O((h w)^2) (integrate.c turns each element by its own stretch
+ * and splits the turn about its own d3), 1e-12 to 2e-8 rad a step late in
+ * the wing's stroke, where evaluating the energy before and after each of
+ * them (frame_energy, four logarithms of frames) was a fifth of the step.
+ * Larger corrections (a layout that does not start on its leader's frame)
+ * are booked exactly. */
+#define SW_KIN_FIRST_ORDER 1e-6
 
 void sw_kinematic_impose(const swModel *m, swData *d) {
   for (int j = 0; j < m->nkinematic; j++) {
     const swKinematicDesc *k = &m->kinematic[j];
     const int fe = k->follower_elem;
-    double Ql[9], Qf[9], Qnow[9], moved = 0;
+    double Ql[9], Qf[9], Qnow[9], *delta = d->kinematic_delta + 3 * j;
     sw_getQ(m, d->Q, k->leader_elem, Ql);
     sw_mat_mul(Qf, m->kinematic_rot + 9 * j, Ql);
     sw_getQ(m, d->Q, fe, Qnow);
-    for (int c = 0; c < 9; c++) moved = fmax(moved, fabs(Qf[c] - Qnow[c]));
-    /* a kept frame changes only the turning kinetic energy, else every
-     * term that depends on the frame changes */
-    const int kept = !(moved > SW_KIN_FRAME_KEPT);
+    small_turn(Qf, Qnow, delta);
+    /* a small correction changes the turning kinetic energy here and the
+     * elastic energy in sw_kinematic_book; a large one is booked whole */
+    const int small = sw_v3_norm(delta) < SW_KIN_FIRST_ORDER;
     double w0[3], before = 0;
     for (int c = 0; c < 3; c++) w0[c] = SW_AT(m, d->omega, fe, c);
-    if (!kept) before = frame_energy(m, d, k->follower_rod, fe);
+    if (!small) before = frame_energy(m, d, k->follower_rod, fe);
     sw_setQ(m, d->Q, fe, Qf);
     follow_turn(m, d, j);
-    if (!kept) {
+    if (!small) {
       d->work += frame_energy(m, d, k->follower_rod, fe) - before;
+      delta[0] = delta[1] = delta[2] = 0;
     } else {
       const double dil = dilatation_now(m, d, fe);
       for (int c = 0; c < 3; c++) {
@@ -264,6 +282,24 @@ void sw_kinematic_impose(const swModel *m, swData *d) {
     }
     for (int c = 0; c < 3; c++) d->kinematic_turn[3 * j + c] = SW_AT(m, d->omega, fe, c);
   }
+}
+
+/* After the rod pass that follows sw_kinematic_impose, while d->torque
+ * holds the internal couples only: the elastic energy the small
+ * corrections changed, dE = -tau . delta (tau the element's elastic couple,
+ * material frame, whose power is tau . w), to first order, with the couple
+ * at the corrected frame.  On the variational law tau is the energy's
+ * gradient; on Gazzola's it is the couple the scheme integrates, which
+ * differs from the gradient of energy.c's energy as that law's own balance
+ * does (docs/physics.md). */
+void sw_kinematic_book(const swModel *m, swData *d) {
+  double dE = 0;
+  for (int j = 0; j < m->nkinematic; j++) {
+    const int fe = m->kinematic[j].follower_elem;
+    const double *delta = d->kinematic_delta + 3 * j;
+    for (int c = 0; c < 3; c++) dE -= SW_AT(m, d->torque, fe, c) * delta[c];
+  }
+  d->work += dE;
 }
 
 /* After a kick: the follower turns at its leader's rate, so that the drift,

@@ -333,6 +333,7 @@ typedef struct {
   double *joint_force;       /* (njoint*3) force of the joint on rod a, lab, N */
   double *kinematic_force;   /* (nkinematic*3) force on the follower node, lab, N */
   double *kinematic_turn;    /* (nkinematic*3) the follower's w as last set (kinematic.c) */
+  double *kinematic_delta;   /* (nkinematic*3) the last imposition's small turn, rad (kinematic.c) */
   double *joint_angle;       /* (njoint)  hinge angle, rad (0 for others)     */
   double *joint_limit_torque; /* (njoint*3) the limit's couple on rod a's
                                  element, lab, N m (0 inside the limits)     */
