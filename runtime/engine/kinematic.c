@@ -178,16 +178,6 @@ void sw_kinematic_free(swModel *m) {
   free(m->kinematic); free(m->kinematic_name); free(m->kinematic_rot); free(m->kinematic_dt);
 }
 
-/* e = l / l^ of element e now (1 on the variational law's rods: rod.c) */
-static double dilatation_now(const swModel *m, const swData *d, int e) {
-  if (m->nvariational && m->elem_variational[e] != 0.0) return 1.0;
-  double x0[3], x1[3], dx[3];
-  sw_get3(m, d->x, e, x0);
-  sw_get3(m, d->x, e + 1, x1);
-  sw_v3_sub(dx, x1, x0);
-  return sw_v3_norm(dx) / m->rest_len[e];
-}
-
 /* The energy that depends on element e's frame (e of rod r): its turning
  * kinetic energy, its shear energy and the bending energy of the domains on
  * either side of it in its rod (energy.c's sums, term by term). */
@@ -199,7 +189,7 @@ static double frame_energy(const swModel *m, const swData *d, int r, int e) {
   sw_get3(m, d->x, e + 1, x1);
   sw_v3_sub(dx, x1, x0);
   sw_mat_vec(s, Q, dx); /* sigma = Q dx / l^ - d3 */
-  const double dil = dilatation_now(m, d, e);
+  const double dil = sw_inertia_dilatation(m, d, e);
   double E = 0;
   for (int k = 0; k < 3; k++) {
     const double w = SW_AT(m, d->omega, e, k);
@@ -274,7 +264,7 @@ void sw_kinematic_impose(const swModel *m, swData *d) {
       d->work += frame_energy(m, d, k->follower_rod, fe) - before;
       delta[0] = delta[1] = delta[2] = 0;
     } else {
-      const double dil = dilatation_now(m, d, fe);
+      const double dil = sw_inertia_dilatation(m, d, fe);
       for (int c = 0; c < 3; c++) {
         const double w = SW_AT(m, d->omega, fe, c);
         d->work += 0.5 * SW_AT(m, m->inertia, fe, c) / dil * (w * w - w0[c] * w0[c]);
@@ -312,7 +302,7 @@ void sw_kinematic_follow(const swModel *m, swData *d) {
     double kicked[3];
     for (int c = 0; c < 3; c++) kicked[c] = SW_AT(m, d->omega, fe, c);
     follow_turn(m, d, j);
-    const double dil = dilatation_now(m, d, fe);
+    const double dil = sw_inertia_dilatation(m, d, fe);
     /* the couple that turned w from `kicked` to w_f over the kick,
      * C = (J / e)(w_f - kicked) / h, times the kick's mean rate
      * (w_before + w_f) / 2: the midpoint rule the kick books every external
