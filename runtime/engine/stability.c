@@ -43,6 +43,7 @@
  * go unstable at 0.9999 of the unreduced value.
  */
 #include <math.h>
+#include <stdint.h>
 #include <stdio.h>
 #include <string.h>
 #include "sinew.h"
@@ -92,16 +93,28 @@ static double stability_limit(swIntegrator integ, double zeta) {
   return lo;
 }
 
-/* Memoised: a rod asks for the same (scheme, zeta) once per element. */
+/* Memoised: every element asks for its (scheme, zeta), and a scene of
+ * many like rods (the wing's 3144 barbs come in a few dozen lengths) asks
+ * for the same few again and again; each answer is some 4000 oscillator
+ * steps.  A small table indexed by a hash of the pair keeps the last
+ * answer for each slot. */
+#define LIMIT_MEMO 64
 double sw_integrator_stability_limit(swIntegrator integ, double zeta) {
-  static _Thread_local swIntegrator last_integ = (swIntegrator)-1;
-  static _Thread_local double last_zeta = -1, last_limit = 0;
-  if (integ != last_integ || zeta != last_zeta) {
-    last_limit = stability_limit(integ, zeta);
-    last_integ = integ;
-    last_zeta = zeta;
+  static _Thread_local struct {
+    swIntegrator integ;
+    double zeta, limit;
+    int used;
+  } memo[LIMIT_MEMO];
+  uint64_t bits;
+  memcpy(&bits, &zeta, sizeof bits);
+  const unsigned slot = (unsigned)(((bits ^ (uint64_t)integ) * 0x9E3779B97F4A7C15ull) >> 58);
+  if (!memo[slot].used || memo[slot].integ != integ || memo[slot].zeta != zeta) {
+    memo[slot].limit = stability_limit(integ, zeta);
+    memo[slot].integ = integ;
+    memo[slot].zeta = zeta;
+    memo[slot].used = 1;
   }
-  return last_limit;
+  return memo[slot].limit;
 }
 
 /* Element i of elastic rod r at rest, what its zig-zag bounds are made of:
