@@ -366,7 +366,15 @@ static int group_kick(const swModel *m, swData *d, double h, int g, double *A, d
   const int nd = dense_end(m, g) - first, n = sw_rigid_group_unknowns(m, g);
   const int *off = m->rigid_block_off + first, *dof = m->rigid_block_dof + first;
   double *leaf_ws = ws, *rod_ws = ws + (size_t)(nb - nd) * SW_LEAF_WS;
-  memset(A, 0, (size_t)n * n * sizeof(double));
+  /* zeros where the assembly adds: each dense member's rows over its
+   * envelope up to the end of its diagonal block (A's lower triangle, the
+   * only part cholesky_solve reads, and the block sw_port_member_assemble
+   * solves in).  The rest of A is neither added to nor read before the
+   * factorisation writes it (or keeps the zeros it has from the start). */
+  for (int s = 0; s < nd; s++) {
+    const int c0 = off[m->rigid_block_env[first + s] - first], c1 = off[s] + dof[s];
+    for (int i = off[s]; i < c1; i++) memset(A + (size_t)i * n + c0, 0, (size_t)(c1 - c0) * sizeof(double));
+  }
   for (int s = 0, wrod = 0; s < nb; s++) { /* mass, and the right-hand side h F */
     const int k = first + s;
     if (m->rigid_block_rod[k] >= 0) { /* S and S p0 (joint_ports.c) */
@@ -382,7 +390,11 @@ static int group_kick(const swModel *m, swData *d, double h, int g, double *A, d
     double *B = leaf ? u.ws : A; /* a leaf's unit: A_uu, C, X, b */
     const size_t ld = leaf ? (size_t)u.du : (size_t)n, o = leaf ? (size_t)u.ro : (size_t)off[s];
     double *b = leaf ? B + 432 + o : rhs + o;
-    if (leaf && u.owner == k) memset(B, 0, SW_LEAF_WS * sizeof(double));
+    if (leaf && u.owner == k) { /* the unit's A_uu, C and b (X is copied from C) */
+      memset(B, 0, (size_t)(u.du * u.du) * sizeof(double));
+      memset(B + 144, 0, (size_t)(u.du * u.dQ) * sizeof(double));
+      memset(B + 432, 0, (size_t)u.du * sizeof(double));
+    }
     for (int i = 0; i < 3; i++) {
       B[(o + i) * ld + o + i] = M;
       if (dof[s] == 6)
@@ -440,6 +452,7 @@ static int group_kick(const swModel *m, swData *d, double h, int g, double *A, d
           continue;
         }
         if (st->leaf >= 0) continue; /* C_a^T: the leaf's elimination uses C_a */
+        if (ss->off + ss->dof <= st->off) continue; /* above the diagonal: never read */
         add_pair(A, n, ss->off, ss->dof, st->off, st->dof, sign * wpos, sign * wrot, sign * wlim,
                  Jp[s], Jp[t], PtP, ggT);
       }
