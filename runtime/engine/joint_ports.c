@@ -271,15 +271,121 @@ condense(double *ws, int du, int dQ, int np, const int *qoff, const int *qdof, d
   return 1;
 }
 
+/* LANES units of one shape eliminated together (the arm's 36 filaments are
+ * all units of two 3-unknown ends on two 3-unknown ports): each lane does
+ * condense's operations on its own unit in the same order, so the bits are
+ * condense's, but the lanes' operations are one vector operation, and the
+ * chain of square roots and divisions of the small factorisations is paid
+ * once per LANES units.  The units' factor, X and b go back to their
+ * workspaces (sw_leaf_recover reads X and b); their updates of A and rhs,
+ * the only sums over units, are made unit after unit, as condense makes
+ * them.  nu <= LANES units; the lanes past nu repeat the last unit and are
+ * not written back. */
+#define LANES 4
+static inline __attribute__((always_inline)) int
+condense_lanes(double *const *ws, const int *const *qoff, int nu, int du, int dQ, int np,
+               const int *qdof, double *A, int n, double *rhs) {
+  double L[12 * 12][LANES], C[12 * 12][LANES], X[12 * 12][LANES], b[12][LANES], inv[12][LANES];
+  double G[12 * 12][LANES], gb[12][LANES]; /* C^T X and C^T b */
+  for (int u = 0; u < LANES; u++) { /* the units' A_uu, C and b, lane by lane */
+    const double *w = ws[u < nu ? u : nu - 1];
+    for (int e = 0; e < du * du; e++) L[e][u] = w[e];
+    for (int e = 0; e < du * dQ; e++) C[e][u] = X[e][u] = w[144 + e];
+    for (int e = 0; e < du; e++) b[e][u] = w[432 + e];
+  }
+  int ok = 1;
+  for (int j = 0; j < du; j++) { /* small_cholesky */
+    double ljj[LANES];
+    for (int u = 0; u < LANES; u++) {
+      double djj = L[j * du + j][u];
+      for (int k = 0; k < j; k++) djj -= L[j * du + k][u] * L[j * du + k][u];
+      ok &= djj > 0;
+      ljj[u] = sqrt(djj);
+      L[j * du + j][u] = ljj[u];
+    }
+    for (int i = j + 1; i < du; i++)
+      for (int u = 0; u < LANES; u++) {
+        double s = L[i * du + j][u];
+        for (int k = 0; k < j; k++) s -= L[i * du + k][u] * L[j * du + k][u];
+        L[i * du + j][u] = s / ljj[u];
+      }
+    for (int u = 0; u < LANES; u++) inv[j][u] = 1.0 / ljj[u];
+  }
+  if (!ok) return 0;
+  for (int i = 0; i < du; i++) { /* small_solve of X = A_uu^-1 C and of b: L y = x */
+    for (int k = 0; k < i; k++)
+      for (int u = 0; u < LANES; u++) {
+        const double l = L[i * du + k][u];
+        for (int c = 0; c < dQ; c++) X[i * dQ + c][u] -= l * X[k * dQ + c][u];
+        b[i][u] -= l * b[k][u];
+      }
+    for (int u = 0; u < LANES; u++) {
+      for (int c = 0; c < dQ; c++) X[i * dQ + c][u] *= inv[i][u];
+      b[i][u] *= inv[i][u];
+    }
+  }
+  for (int i = du - 1; i >= 0; i--) { /* L^T x = y */
+    for (int k = i + 1; k < du; k++)
+      for (int u = 0; u < LANES; u++) {
+        const double l = L[k * du + i][u];
+        for (int c = 0; c < dQ; c++) X[i * dQ + c][u] -= l * X[k * dQ + c][u];
+        b[i][u] -= l * b[k][u];
+      }
+    for (int u = 0; u < LANES; u++) {
+      for (int c = 0; c < dQ; c++) X[i * dQ + c][u] *= inv[i][u];
+      b[i][u] *= inv[i][u];
+    }
+  }
+  for (int r = 0; r < dQ; r++) { /* C^T X and C^T b, every place (each unit's own part of them below) */
+    for (int c = 0; c < dQ; c++)
+      for (int u = 0; u < LANES; u++) {
+        double s = 0;
+        for (int a = 0; a < du; a++) s += C[a * dQ + r][u] * X[a * dQ + c][u];
+        G[r * dQ + c][u] = s;
+      }
+    for (int u = 0; u < LANES; u++) {
+      double s = 0;
+      for (int a = 0; a < du; a++) s += C[a * dQ + r][u] * b[a][u];
+      gb[r][u] = s;
+    }
+  }
+  for (int u = 0; u < nu; u++) { /* back to the workspace; A_QQ -= C^T X on A's lower triangle */
+    double *w = ws[u];
+    for (int i = 0; i < du; i++)
+      for (int j = 0; j <= i; j++) w[i * du + j] = L[i * du + j][u];
+    for (int e = 0; e < du * dQ; e++) w[288 + e] = X[e][u];
+    for (int e = 0; e < du; e++) w[432 + e] = b[e][u];
+    for (int p1 = 0, c1 = 0; p1 < np; c1 += qdof[p1++])
+      for (int i = 0; i < qdof[p1]; i++) {
+        const int row = qoff[u][p1] + i;
+        double *Ai = A + (size_t)row * (size_t)n;
+        for (int p2 = 0, c2 = 0; p2 < np; c2 += qdof[p2++])
+          for (int c = 0; c < qdof[p2] && qoff[u][p2] + c <= row; c++)
+            Ai[qoff[u][p2] + c] -= G[(c1 + i) * dQ + c2 + c][u];
+        rhs[row] -= gb[c1 + i][u];
+      }
+  }
+  return 1;
+}
+
 /* The common units at sizes the compiler knows, so their small loops are
  * unrolled: a filament's two ends on two spherical ports (6 and 6), one end
- * (3 and 3); any other the general loops. */
-int sw_leaf_condense(double *ws, int du, int dQ, int np, const int *qoff, const int *qdof, double *A,
-                     int n, double *rhs) {
+ * (3 and 3), by LANES; any other one by one, by the general loops. */
+int sw_leaf_condense(double *const *ws, const int *const *qoff, int nu, int du, int dQ, int np,
+                     const int *qdof, double *A, int n, double *rhs) {
   static const int three[2] = {3, 3};
-  if (du == 6 && dQ == 6 && np == 2 && qdof[0] == 3) return condense(ws, 6, 6, 2, qoff, three, A, n, rhs);
-  if (du == 3 && dQ == 3 && np == 1) return condense(ws, 3, 3, 1, qoff, three, A, n, rhs);
-  return condense(ws, du, dQ, np, qoff, qdof, A, n, rhs);
+  for (int u0 = 0; u0 < nu; u0 += LANES) {
+    const int m = nu - u0 < LANES ? nu - u0 : LANES;
+    if (du == 6 && dQ == 6 && np == 2 && qdof[0] == 3) {
+      if (!condense_lanes(ws + u0, qoff + u0, m, 6, 6, 2, three, A, n, rhs)) return 0;
+    } else if (du == 3 && dQ == 3 && np == 1) {
+      if (!condense_lanes(ws + u0, qoff + u0, m, 3, 3, 1, three, A, n, rhs)) return 0;
+    } else {
+      for (int u = u0; u < u0 + m; u++)
+        if (!condense(ws[u], du, dQ, np, qoff[u], qdof, A, n, rhs)) return 0;
+    }
+  }
+  return 1;
 }
 
 void sw_leaf_recover(double *ws, int du, int dQ, int np, const int *qoff, const int *qdof,

@@ -313,6 +313,13 @@ static Unit leaf_unit(const swModel *m, double *leaf_ws, int k) {
   return u;
 }
 
+/* Units eliminated together (sw_leaf_condense): the same unknowns and ports. */
+#define UNIT_BATCH 16
+static int same_shape(const Unit *a, const Unit *b) {
+  return a->du == b->du && a->dQ == b->dQ && a->np == b->np && a->qdof[0] == b->qdof[0] &&
+         (a->np < 2 || a->qdof[1] == b->qdof[1]);
+}
+
 /* Where a joint's side writes in group g's system: its member (numbered
  * from the group's first), whether that is a leaf (whose unit holds its
  * rows, joint_ports.c), and otherwise the side's first unknown and count
@@ -457,11 +464,25 @@ static int group_kick(const swModel *m, swData *d, double h, int g, double *A, d
                  Jp[s], Jp[t], PtP, ggT);
       }
   }
-  for (int s = nd; s < nb; s++) { /* the leaves' units eliminated into their ports */
-    const Unit u = leaf_unit(m, leaf_ws, first + s);
-    if (u.owner != first + s) continue;
-    unit_dashpot(m, d, h, leaf_ws, first + s);
-    if (!sw_leaf_condense(u.ws, u.du, u.dQ, u.np, u.qoff, u.qdof, A, n, rhs)) return 0;
+  /* the leaves' units eliminated into their ports, in their order, the
+   * consecutive ones of the same shape together (sw_leaf_condense) */
+  Unit batch[UNIT_BATCH];
+  double *bws[UNIT_BATCH];
+  const int *bqoff[UNIT_BATCH];
+  for (int s = nd, nu = 0; s <= nb; s++) {
+    Unit u = {0};
+    if (s < nb) {
+      u = leaf_unit(m, leaf_ws, first + s);
+      if (u.owner != first + s) continue;
+      unit_dashpot(m, d, h, leaf_ws, first + s);
+    }
+    if (nu > 0 && (s == nb || nu == UNIT_BATCH || !same_shape(&u, &batch[0]))) {
+      for (int i = 0; i < nu; i++) bws[i] = batch[i].ws, bqoff[i] = batch[i].qoff;
+      if (!sw_leaf_condense(bws, bqoff, nu, batch[0].du, batch[0].dQ, batch[0].np, batch[0].qdof, A, n, rhs))
+        return 0;
+      nu = 0;
+    }
+    if (s < nb) batch[nu++] = u;
   }
   if (!cholesky_solve(A, n, rhs, rhs + n, m->rigid_block_env + first, m->rigid_block_reach + first,
                       off, dof, first))
