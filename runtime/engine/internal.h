@@ -340,7 +340,9 @@ int sw_rigid_joints_kick(const swModel *m, swData *d, double h, double *load);
  * rod's system could not be factored), and after the solve its loads from
  * its ports' velocity changes pu; a unit of leaves (one, or a filament's
  * two ends) eliminated into its ports' blocks of A and rhs, and its
- * velocity changes from the ports' in u, in its workspace. */
+ * velocity changes from the ports' in u, in its workspace (sw_leaf_condense
+ * takes nu units of the same du, dQ, np and qdof, each with its workspace
+ * ws[u] and ports' places qoff[u], in the order their updates of A are made). */
 static inline int sw_port_dof(const swModel *m, int q) { return m->rigid_port_rot[q] ? 6 : 3; }
 size_t sw_port_member_scratch(const swModel *m, int k);
 int sw_port_member_assemble(const swModel *m, swData *d, double h, int k, double *ws, double *A,
@@ -348,8 +350,8 @@ int sw_port_member_assemble(const swModel *m, swData *d, double h, int k, double
 void sw_port_member_finish(const swModel *m, swData *d, double h, int k, double *ws,
                            const double *pu);
 #define SW_LEAF_WS 444 /* a unit of leaves: up to 12 unknowns joined to up to 12 of ports */
-int sw_leaf_condense(double *ws, int du, int dQ, int np, const int *qoff, const int *qdof, double *A,
-                     int n, double *rhs);
+int sw_leaf_condense(double *const *ws, const int *const *qoff, int nu, int du, int dQ, int np,
+                     const int *qdof, double *A, int n, double *rhs); /* nu units of one shape */
 void sw_leaf_recover(double *ws, int du, int dQ, int np, const int *qoff, const int *qdof,
                      const double *u);
 /* Environments (environment.c).  The swSpec keeps them in an opaque slot

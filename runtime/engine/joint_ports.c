@@ -79,8 +79,10 @@ size_t sw_port_member_scratch(const swModel *m, int k) {
 }
 
 /* In place: the lower triangle of the n x n SPD matrix C (row-major) turns
- * into its Cholesky factor L.  Returns 0 if C is not positive definite. */
-static inline __attribute__((always_inline)) int small_cholesky(double *C, int n) {
+ * into its Cholesky factor L, and inv[j] = 1 / L(j, j) (the solves' only
+ * use of the diagonal, formed once).  Returns 0 if C is not positive
+ * definite. */
+static inline __attribute__((always_inline)) int small_cholesky(double *C, int n, double *inv) {
   for (int j = 0; j < n; j++) {
     double djj = C[j * n + j];
     for (int k = 0; k < j; k++) djj -= C[j * n + k] * C[j * n + k];
@@ -92,21 +94,23 @@ static inline __attribute__((always_inline)) int small_cholesky(double *C, int n
       for (int k = 0; k < j; k++) s -= C[i * n + k] * C[j * n + k];
       C[i * n + j] = s / ljj;
     }
+    inv[j] = 1.0 / ljj;
   }
   return 1;
 }
 
-/* L L^T x = b in place, b with nc values per row, rows ld doubles apart. */
-static inline __attribute__((always_inline)) void small_solve_ld(const double *L, int n, double *b,
-                                                                 int nc, int ld) {
+/* L L^T x = b in place, b with nc values per row, rows ld doubles apart,
+ * inv the inverse diagonal of small_cholesky. */
+static inline __attribute__((always_inline)) void small_solve_ld(const double *restrict L, int n,
+                                                                 const double *restrict inv,
+                                                                 double *restrict b, int nc, int ld) {
   for (int i = 0; i < n; i++) {
     double *bi = b + (size_t)i * (size_t)ld;
     for (int k = 0; k < i; k++) {
       const double l = L[i * n + k], *bk = b + (size_t)k * (size_t)ld;
       for (int c = 0; c < nc; c++) bi[c] -= l * bk[c];
     }
-    const double inv = 1.0 / L[i * n + i];
-    for (int c = 0; c < nc; c++) bi[c] *= inv;
+    for (int c = 0; c < nc; c++) bi[c] *= inv[i];
   }
   for (int i = n - 1; i >= 0; i--) {
     double *bi = b + (size_t)i * (size_t)ld;
@@ -114,33 +118,67 @@ static inline __attribute__((always_inline)) void small_solve_ld(const double *L
       const double l = L[k * n + i], *bk = b + (size_t)k * (size_t)ld;
       for (int c = 0; c < nc; c++) bi[c] -= l * bk[c];
     }
-    const double inv = 1.0 / L[i * n + i];
-    for (int c = 0; c < nc; c++) bi[c] *= inv;
+    for (int c = 0; c < nc; c++) bi[c] *= inv[i];
   }
 }
 
-static inline __attribute__((always_inline)) void small_solve(const double *L, int n, double *b,
-                                                              int nc) {
-  small_solve_ld(L, n, b, nc, nc);
+/* The same for b the identity (zero on entry but for the diagonal, which
+ * it sets): C^-1.  Column c of L^-1 is zero above row c, so the forward
+ * solve of row i takes off only its columns c <= k from row k; the terms
+ * left out are products with those zeros, so the bits are those of
+ * small_solve_ld. */
+static void small_inverse_ld(const double *restrict L, int n, const double *restrict inv,
+                             double *restrict b, int ld) {
+  for (int i = 0; i < n; i++) {
+    double *bi = b + (size_t)i * (size_t)ld;
+    bi[i] = 1;
+    for (int k = 0; k < i; k++) {
+      const double l = L[i * n + k], *bk = b + (size_t)k * (size_t)ld;
+      for (int c = 0; c <= k; c++) bi[c] -= l * bk[c];
+    }
+    for (int c = 0; c <= i; c++) bi[c] *= inv[i];
+  }
+  for (int i = n - 1; i >= 0; i--) {
+    double *bi = b + (size_t)i * (size_t)ld;
+    for (int k = i + 1; k < n; k++) {
+      const double l = L[k * n + i], *bk = b + (size_t)k * (size_t)ld;
+      for (int c = 0; c < n; c++) bi[c] -= l * bk[c];
+    }
+    for (int c = 0; c < n; c++) bi[c] *= inv[i];
+  }
 }
 
-/* E^T of column c of X (N x nc): the ports' lab velocities, into out[p]. */
-static void ports_of(const swModel *m, const swData *d, int k, const double *X, int nc, int c,
-                     double *out) {
+static inline __attribute__((always_inline)) void small_solve(const double *restrict L, int n,
+                                                              const double *restrict inv,
+                                                              double *restrict b, int nc) {
+  small_solve_ld(L, n, inv, b, nc, nc);
+}
+
+/* E^T of columns 0 .. p of X (N x nc): the ports' lab velocities, column
+ * 0's into p0[a] and column 1 + c's into C[a p + c] (C = E^T Z). */
+static void ports_of(const swModel *m, const swData *d, int k, const double *X, int nc, int p,
+                     double *p0, double *C) {
   const int r = m->rigid_block_rod[k], na = m->node_adr[r], ea = m->elem_adr[r];
   for (int q = m->rigid_block_port_adr[k]; q < m->rigid_block_port_adr[k + 1]; q++) {
     const size_t i = (size_t)(m->rigid_port_node[q] - na);
     const int o = m->rigid_port_off[q];
-    for (int a = 0; a < 3; a++) out[o + a] = X[(6 * i + (size_t)a) * (size_t)nc + (size_t)c];
+    for (int a = 0; a < 3; a++) {
+      const double *Xa = X + (6 * i + (size_t)a) * (size_t)nc;
+      p0[o + a] = Xa[0];
+      for (int c = 0; c < p; c++) C[(o + a) * p + c] = Xa[1 + c];
+    }
     if (!m->rigid_port_rot[q]) continue;
     const size_t e = (size_t)(m->rigid_port_elem[q] - ea);
+    const double *Xw = X + (6 * e + 3) * (size_t)nc; /* the element's three rows */
     double Q[9];
     sw_getQ(m, d->Q, m->rigid_port_elem[q], Q);
-    for (int b = 0; b < 3; b++) { /* w_lab = Q^T w */
-      double s = 0;
-      for (int a = 0; a < 3; a++) s += Q[3 * a + b] * X[(6 * e + 3 + (size_t)a) * (size_t)nc + (size_t)c];
-      out[o + 3 + b] = s;
-    }
+    for (int b = 0; b < 3; b++) /* w_lab = Q^T w */
+      for (int c = 0; c <= p; c++) {
+        double s = 0;
+        for (int a = 0; a < 3; a++) s += Q[3 * a + b] * Xw[(size_t)a * (size_t)nc + (size_t)c];
+        if (c == 0) p0[o + 3 + b] = s;
+        else C[(o + 3 + b) * p + c - 1] = s;
+      }
   }
 }
 
@@ -150,7 +188,7 @@ int sw_port_member_assemble(const swModel *m, swData *d, double h, int k, double
   const int na = m->node_adr[r], ea = m->elem_adr[r];
   const size_t N = sw_implicit_unknowns(m, r), NX = (N + 2 * SW_IMPLICIT_BAND) * (size_t)nc;
   double *X = ws + SW_IMPLICIT_BAND * (size_t)nc, *S = ws + NX, *p0 = S + (size_t)p * (size_t)p;
-  double *C = p0 + p;
+  double *inv = p0 + p; /* 1 / L(a, a) of C's factor, in g's place (the finish's) */
   memset(ws, 0, NX * sizeof(double));
   for (int q = m->rigid_block_port_adr[k]; q < m->rigid_block_port_adr[k + 1]; q++) { /* E */
     const size_t i = (size_t)(m->rigid_port_node[q] - na);
@@ -164,19 +202,14 @@ int sw_port_member_assemble(const swModel *m, swData *d, double h, int k, double
       for (int b = 0; b < 3; b++) X[(6 * e + 3 + (size_t)a) * (size_t)nc + (size_t)(o + 3 + b)] = Q[3 * a + b];
   }
   if (!sw_implicit_solve_many(m, d, r, h, X, nc)) return 0; /* du0, Z */
-  ports_of(m, d, k, X, nc, 0, p0);
-  for (int c = 0; c < p; c++) { /* C = E^T Z, column by column, into S */
-    ports_of(m, d, k, X, nc, 1 + c, C);
-    for (int a = 0; a < p; a++) S[a * p + c] = C[a];
-  }
+  ports_of(m, d, k, X, nc, p, p0, S); /* p0, and C = E^T Z into S */
   for (int a = 0; a < p; a++) /* symmetric up to round-off */
     for (int c = 0; c < a; c++) S[a * p + c] = S[c * p + a] = 0.5 * (S[a * p + c] + S[c * p + a]);
-  if (!small_cholesky(S, p)) return 0;
+  if (!small_cholesky(S, p, inv)) return 0;
   /* S = C^-1: the identity solved for, all its columns at once, in the
    * member's diagonal block of A (zero here; its row length is n) */
   double *Ainv = A + (size_t)off * (size_t)n + off;
-  for (int a = 0; a < p; a++) Ainv[(size_t)a * (size_t)n + a] = 1;
-  small_solve_ld(S, p, Ainv, p, n);
+  small_inverse_ld(S, p, inv, Ainv, n);
   for (int a = 0; a < p; a++) { /* S kept for the finish; rhs = S p0 */
     double s = 0;
     for (int c = 0; c < p; c++) {
@@ -214,16 +247,19 @@ void sw_port_member_finish(const swModel *m, swData *d, double h, int k, double 
 static inline __attribute__((always_inline)) int
 condense(double *ws, int du, int dQ, int np, const int *qoff, const int *qdof, double *A, int n,
          double *rhs) {
-  double *Auu = ws, *C = ws + 144, *X = ws + 288, *b = ws + 432;
-  if (!small_cholesky(Auu, du)) return 0;
+  double *Auu = ws, *C = ws + 144, *X = ws + 288, *b = ws + 432, inv[12];
+  if (!small_cholesky(Auu, du, inv)) return 0;
   memcpy(X, C, (size_t)(du * dQ) * sizeof(double));
-  small_solve(Auu, du, X, dQ);
-  small_solve(Auu, du, b, 1);
+  small_solve(Auu, du, inv, X, dQ);
+  small_solve(Auu, du, inv, b, 1);
+  /* A_QQ -= C^T X on A's lower triangle, the only part cholesky_solve
+   * reads (rigid_joint.c): row qoff[p1] + i, the columns up to it */
   for (int p1 = 0, c1 = 0; p1 < np; c1 += qdof[p1++])
     for (int i = 0; i < qdof[p1]; i++) {
-      double *Ai = A + (size_t)(qoff[p1] + i) * (size_t)n;
+      const int row = qoff[p1] + i;
+      double *Ai = A + (size_t)row * (size_t)n;
       for (int p2 = 0, c2 = 0; p2 < np; c2 += qdof[p2++])
-        for (int c = 0; c < qdof[p2]; c++) {
+        for (int c = 0; c < qdof[p2] && qoff[p2] + c <= row; c++) {
           double s = 0;
           for (int a = 0; a < du; a++) s += C[a * dQ + c1 + i] * X[a * dQ + c2 + c];
           Ai[qoff[p2] + c] -= s;
@@ -235,15 +271,121 @@ condense(double *ws, int du, int dQ, int np, const int *qoff, const int *qdof, d
   return 1;
 }
 
+/* LANES units of one shape eliminated together (the arm's 36 filaments are
+ * all units of two 3-unknown ends on two 3-unknown ports): each lane does
+ * condense's operations on its own unit in the same order, so the bits are
+ * condense's, but the lanes' operations are one vector operation, and the
+ * chain of square roots and divisions of the small factorisations is paid
+ * once per LANES units.  The units' factor, X and b go back to their
+ * workspaces (sw_leaf_recover reads X and b); their updates of A and rhs,
+ * the only sums over units, are made unit after unit, as condense makes
+ * them.  nu <= LANES units; the lanes past nu repeat the last unit and are
+ * not written back. */
+#define LANES 4
+static inline __attribute__((always_inline)) int
+condense_lanes(double *const *ws, const int *const *qoff, int nu, int du, int dQ, int np,
+               const int *qdof, double *A, int n, double *rhs) {
+  double L[12 * 12][LANES], C[12 * 12][LANES], X[12 * 12][LANES], b[12][LANES], inv[12][LANES];
+  double G[12 * 12][LANES], gb[12][LANES]; /* C^T X and C^T b */
+  for (int u = 0; u < LANES; u++) { /* the units' A_uu, C and b, lane by lane */
+    const double *w = ws[u < nu ? u : nu - 1];
+    for (int e = 0; e < du * du; e++) L[e][u] = w[e];
+    for (int e = 0; e < du * dQ; e++) C[e][u] = X[e][u] = w[144 + e];
+    for (int e = 0; e < du; e++) b[e][u] = w[432 + e];
+  }
+  int ok = 1;
+  for (int j = 0; j < du; j++) { /* small_cholesky */
+    double ljj[LANES];
+    for (int u = 0; u < LANES; u++) {
+      double djj = L[j * du + j][u];
+      for (int k = 0; k < j; k++) djj -= L[j * du + k][u] * L[j * du + k][u];
+      ok &= djj > 0;
+      ljj[u] = sqrt(djj);
+      L[j * du + j][u] = ljj[u];
+    }
+    for (int i = j + 1; i < du; i++)
+      for (int u = 0; u < LANES; u++) {
+        double s = L[i * du + j][u];
+        for (int k = 0; k < j; k++) s -= L[i * du + k][u] * L[j * du + k][u];
+        L[i * du + j][u] = s / ljj[u];
+      }
+    for (int u = 0; u < LANES; u++) inv[j][u] = 1.0 / ljj[u];
+  }
+  if (!ok) return 0;
+  for (int i = 0; i < du; i++) { /* small_solve of X = A_uu^-1 C and of b: L y = x */
+    for (int k = 0; k < i; k++)
+      for (int u = 0; u < LANES; u++) {
+        const double l = L[i * du + k][u];
+        for (int c = 0; c < dQ; c++) X[i * dQ + c][u] -= l * X[k * dQ + c][u];
+        b[i][u] -= l * b[k][u];
+      }
+    for (int u = 0; u < LANES; u++) {
+      for (int c = 0; c < dQ; c++) X[i * dQ + c][u] *= inv[i][u];
+      b[i][u] *= inv[i][u];
+    }
+  }
+  for (int i = du - 1; i >= 0; i--) { /* L^T x = y */
+    for (int k = i + 1; k < du; k++)
+      for (int u = 0; u < LANES; u++) {
+        const double l = L[k * du + i][u];
+        for (int c = 0; c < dQ; c++) X[i * dQ + c][u] -= l * X[k * dQ + c][u];
+        b[i][u] -= l * b[k][u];
+      }
+    for (int u = 0; u < LANES; u++) {
+      for (int c = 0; c < dQ; c++) X[i * dQ + c][u] *= inv[i][u];
+      b[i][u] *= inv[i][u];
+    }
+  }
+  for (int r = 0; r < dQ; r++) { /* C^T X and C^T b, every place (each unit's own part of them below) */
+    for (int c = 0; c < dQ; c++)
+      for (int u = 0; u < LANES; u++) {
+        double s = 0;
+        for (int a = 0; a < du; a++) s += C[a * dQ + r][u] * X[a * dQ + c][u];
+        G[r * dQ + c][u] = s;
+      }
+    for (int u = 0; u < LANES; u++) {
+      double s = 0;
+      for (int a = 0; a < du; a++) s += C[a * dQ + r][u] * b[a][u];
+      gb[r][u] = s;
+    }
+  }
+  for (int u = 0; u < nu; u++) { /* back to the workspace; A_QQ -= C^T X on A's lower triangle */
+    double *w = ws[u];
+    for (int i = 0; i < du; i++)
+      for (int j = 0; j <= i; j++) w[i * du + j] = L[i * du + j][u];
+    for (int e = 0; e < du * dQ; e++) w[288 + e] = X[e][u];
+    for (int e = 0; e < du; e++) w[432 + e] = b[e][u];
+    for (int p1 = 0, c1 = 0; p1 < np; c1 += qdof[p1++])
+      for (int i = 0; i < qdof[p1]; i++) {
+        const int row = qoff[u][p1] + i;
+        double *Ai = A + (size_t)row * (size_t)n;
+        for (int p2 = 0, c2 = 0; p2 < np; c2 += qdof[p2++])
+          for (int c = 0; c < qdof[p2] && qoff[u][p2] + c <= row; c++)
+            Ai[qoff[u][p2] + c] -= G[(c1 + i) * dQ + c2 + c][u];
+        rhs[row] -= gb[c1 + i][u];
+      }
+  }
+  return 1;
+}
+
 /* The common units at sizes the compiler knows, so their small loops are
  * unrolled: a filament's two ends on two spherical ports (6 and 6), one end
- * (3 and 3); any other the general loops. */
-int sw_leaf_condense(double *ws, int du, int dQ, int np, const int *qoff, const int *qdof, double *A,
-                     int n, double *rhs) {
+ * (3 and 3), by LANES; any other one by one, by the general loops. */
+int sw_leaf_condense(double *const *ws, const int *const *qoff, int nu, int du, int dQ, int np,
+                     const int *qdof, double *A, int n, double *rhs) {
   static const int three[2] = {3, 3};
-  if (du == 6 && dQ == 6 && np == 2 && qdof[0] == 3) return condense(ws, 6, 6, 2, qoff, three, A, n, rhs);
-  if (du == 3 && dQ == 3 && np == 1) return condense(ws, 3, 3, 1, qoff, three, A, n, rhs);
-  return condense(ws, du, dQ, np, qoff, qdof, A, n, rhs);
+  for (int u0 = 0; u0 < nu; u0 += LANES) {
+    const int m = nu - u0 < LANES ? nu - u0 : LANES;
+    if (du == 6 && dQ == 6 && np == 2 && qdof[0] == 3) {
+      if (!condense_lanes(ws + u0, qoff + u0, m, 6, 6, 2, three, A, n, rhs)) return 0;
+    } else if (du == 3 && dQ == 3 && np == 1) {
+      if (!condense_lanes(ws + u0, qoff + u0, m, 3, 3, 1, three, A, n, rhs)) return 0;
+    } else {
+      for (int u = u0; u < u0 + m; u++)
+        if (!condense(ws[u], du, dQ, np, qoff[u], qdof, A, n, rhs)) return 0;
+    }
+  }
+  return 1;
 }
 
 void sw_leaf_recover(double *ws, int du, int dQ, int np, const int *qoff, const int *qdof,

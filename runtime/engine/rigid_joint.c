@@ -313,6 +313,13 @@ static Unit leaf_unit(const swModel *m, double *leaf_ws, int k) {
   return u;
 }
 
+/* Units eliminated together (sw_leaf_condense): the same unknowns and ports. */
+#define UNIT_BATCH 16
+static int same_shape(const Unit *a, const Unit *b) {
+  return a->du == b->du && a->dQ == b->dQ && a->np == b->np && a->qdof[0] == b->qdof[0] &&
+         (a->np < 2 || a->qdof[1] == b->qdof[1]);
+}
+
 /* Where a joint's side writes in group g's system: its member (numbered
  * from the group's first), whether that is a leaf (whose unit holds its
  * rows, joint_ports.c), and otherwise the side's first unknown and count
@@ -366,7 +373,15 @@ static int group_kick(const swModel *m, swData *d, double h, int g, double *A, d
   const int nd = dense_end(m, g) - first, n = sw_rigid_group_unknowns(m, g);
   const int *off = m->rigid_block_off + first, *dof = m->rigid_block_dof + first;
   double *leaf_ws = ws, *rod_ws = ws + (size_t)(nb - nd) * SW_LEAF_WS;
-  memset(A, 0, (size_t)n * n * sizeof(double));
+  /* zeros where the assembly adds: each dense member's rows over its
+   * envelope up to the end of its diagonal block (A's lower triangle, the
+   * only part cholesky_solve reads, and the block sw_port_member_assemble
+   * solves in).  The rest of A is neither added to nor read before the
+   * factorisation writes it (or keeps the zeros it has from the start). */
+  for (int s = 0; s < nd; s++) {
+    const int c0 = off[m->rigid_block_env[first + s] - first], c1 = off[s] + dof[s];
+    for (int i = off[s]; i < c1; i++) memset(A + (size_t)i * n + c0, 0, (size_t)(c1 - c0) * sizeof(double));
+  }
   for (int s = 0, wrod = 0; s < nb; s++) { /* mass, and the right-hand side h F */
     const int k = first + s;
     if (m->rigid_block_rod[k] >= 0) { /* S and S p0 (joint_ports.c) */
@@ -382,7 +397,11 @@ static int group_kick(const swModel *m, swData *d, double h, int g, double *A, d
     double *B = leaf ? u.ws : A; /* a leaf's unit: A_uu, C, X, b */
     const size_t ld = leaf ? (size_t)u.du : (size_t)n, o = leaf ? (size_t)u.ro : (size_t)off[s];
     double *b = leaf ? B + 432 + o : rhs + o;
-    if (leaf && u.owner == k) memset(B, 0, SW_LEAF_WS * sizeof(double));
+    if (leaf && u.owner == k) { /* the unit's A_uu, C and b (X is copied from C) */
+      memset(B, 0, (size_t)(u.du * u.du) * sizeof(double));
+      memset(B + 144, 0, (size_t)(u.du * u.dQ) * sizeof(double));
+      memset(B + 432, 0, (size_t)u.du * sizeof(double));
+    }
     for (int i = 0; i < 3; i++) {
       B[(o + i) * ld + o + i] = M;
       if (dof[s] == 6)
@@ -440,15 +459,30 @@ static int group_kick(const swModel *m, swData *d, double h, int g, double *A, d
           continue;
         }
         if (st->leaf >= 0) continue; /* C_a^T: the leaf's elimination uses C_a */
+        if (ss->off + ss->dof <= st->off) continue; /* above the diagonal: never read */
         add_pair(A, n, ss->off, ss->dof, st->off, st->dof, sign * wpos, sign * wrot, sign * wlim,
                  Jp[s], Jp[t], PtP, ggT);
       }
   }
-  for (int s = nd; s < nb; s++) { /* the leaves' units eliminated into their ports */
-    const Unit u = leaf_unit(m, leaf_ws, first + s);
-    if (u.owner != first + s) continue;
-    unit_dashpot(m, d, h, leaf_ws, first + s);
-    if (!sw_leaf_condense(u.ws, u.du, u.dQ, u.np, u.qoff, u.qdof, A, n, rhs)) return 0;
+  /* the leaves' units eliminated into their ports, in their order, the
+   * consecutive ones of the same shape together (sw_leaf_condense) */
+  Unit batch[UNIT_BATCH];
+  double *bws[UNIT_BATCH];
+  const int *bqoff[UNIT_BATCH];
+  for (int s = nd, nu = 0; s <= nb; s++) {
+    Unit u = {0};
+    if (s < nb) {
+      u = leaf_unit(m, leaf_ws, first + s);
+      if (u.owner != first + s) continue;
+      unit_dashpot(m, d, h, leaf_ws, first + s);
+    }
+    if (nu > 0 && (s == nb || nu == UNIT_BATCH || !same_shape(&u, &batch[0]))) {
+      for (int i = 0; i < nu; i++) bws[i] = batch[i].ws, bqoff[i] = batch[i].qoff;
+      if (!sw_leaf_condense(bws, bqoff, nu, batch[0].du, batch[0].dQ, batch[0].np, batch[0].qdof, A, n, rhs))
+        return 0;
+      nu = 0;
+    }
+    if (s < nb) batch[nu++] = u;
   }
   if (!cholesky_solve(A, n, rhs, rhs + n, m->rigid_block_env + first, m->rigid_block_reach + first,
                       off, dof, first))

@@ -240,31 +240,20 @@ static void shear_block(const swModel *m, const swData *d, int law, int e, doubl
   const double f = law ? w : w / d->dilatation[e];
   const double S[3] = {f * SW_AT(m, m->shear_stiff, e, 0), f * SW_AT(m, m->shear_stiff, e, 1),
                        f * SW_AT(m, m->shear_stiff, e, 2)};
-  /* [t]x rows, and S [t]x */
+  /* [t]x rows, Q rows scaled by S, and S [t]x */
   const double T[9] = {0, -t[2], t[1], t[2], 0, -t[0], -t[1], t[0], 0};
-  double ST[9], P[9], C[9], R[9];
+  double QS[9], ST[9], P[9], C[9], R[9];
   for (int a = 0; a < 3; a++)
-    for (int b = 0; b < 3; b++) ST[3 * a + b] = S[a] * T[3 * a + b];
+    for (int b = 0; b < 3; b++) QS[3 * a + b] = Q[3 * a + b] * S[a], ST[3 * a + b] = S[a] * T[3 * a + b];
   for (int p = 0; p < 3; p++)
     for (int q = 0; q < 3; q++) {
       double sp = 0, sc = 0, sr = 0;
       for (int a = 0; a < 3; a++) {
-        sp += Q[3 * a + p] * S[a] * Q[3 * a + q];
+        sp += QS[3 * a + p] * Q[3 * a + q];
         sc += Q[3 * a + p] * ST[3 * a + q];
-        sr += T[3 * a + p] * ST[3 * a + q];
+        if (q <= p) sr += T[3 * a + p] * ST[3 * a + q]; /* R: its lower triangle */
       }
       P[3 * p + q] = sp * il, C[3 * p + q] = sc, R[3 * p + q] = sr * l;
-    }
-  for (size_t p = 0; p < 3; p++)
-    for (size_t q = 0; q < 3; q++) {
-      if (q <= p) {
-        *at(A, o + p, o + q) += P[3 * p + q];
-        *at(A, o + 3 + p, o + 3 + q) += R[3 * p + q];
-        *at(A, o + 6 + p, o + 6 + q) += P[3 * p + q];
-      }
-      *at(A, o + 3 + p, o + q) -= C[3 * q + p];
-      *at(A, o + 6 + p, o + q) -= P[3 * p + q];
-      *at(A, o + 6 + p, o + 3 + q) += C[3 * p + q];
     }
   /* The tension's turn with the element (the header's geometric terms), in
    * tension only: with n = S sigma the internal force and a = l^ t the
@@ -273,23 +262,43 @@ static void shear_block(const swModel *m, const swData *d, int law, int e, doubl
    *   K(v_i, w) = Q^T [n]x,  K(v_{i+1}, w) = -Q^T [n]x,
    *   K(w, w) += sym([n]x [a]x) = (a n^T + n a^T)/2 - (a . n) I.
    * Without them a taut rod's string waves, w = 2 c / l with c^2 = T / mu,
-   * stay explicit: 230 us on the arm's distal tendons at 50 N. */
+   * stay explicit: 230 us on the arm's distal tendons at 50 N.
+   * Compression softens: left out (QN and G zero), as stability.c leaves
+   * it. */
   const double tt = t[0] * t[0] + t[1] * t[1] + t[2] * t[2];
   const double nt = S[0] * t[0] * t[0] + S[1] * t[1] * t[1] + S[2] * (t[2] - 1.0) * t[2];
-  if (!(nt > 0)) return; /* compression softens: left out, as stability.c leaves it */
-  const double n[3] = {nt / tt * t[0], nt / tt * t[1], nt / tt * t[2]}; /* its tension part */
-  const double a[3] = {l * t[0], l * t[1], l * t[2]};
-  const double an = a[0] * n[0] + a[1] * n[1] + a[2] * n[2];
-  const double NX[9] = {0, -n[2], n[1], n[2], 0, -n[0], -n[1], n[0], 0};
+  const int taut = nt > 0;
+  double QN[9] = {0}, G[9] = {0}; /* Q^T [n]x, and sym([n]x [a]x) (lower triangle) */
+  if (taut) {
+    const double n[3] = {nt / tt * t[0], nt / tt * t[1], nt / tt * t[2]}; /* its tension part */
+    const double a[3] = {l * t[0], l * t[1], l * t[2]};
+    const double an = a[0] * n[0] + a[1] * n[1] + a[2] * n[2];
+    const double NX[9] = {0, -n[2], n[1], n[2], 0, -n[0], -n[1], n[0], 0};
+    for (int p = 0; p < 3; p++)
+      for (int q = 0; q < 3; q++) {
+        double qn = 0;
+        for (int c = 0; c < 3; c++) qn += Q[3 * c + p] * NX[3 * c + q];
+        QN[3 * p + q] = qn;
+        if (q <= p) G[3 * p + q] = 0.5 * (a[p] * n[q] + n[p] * a[q]) - (p == q ? an : 0.0);
+      }
+  }
+  /* Each place of the band once: the elastic term, then the geometric one
+   * (K(w, v_i) = K(v_i, w)^T). */
   for (size_t p = 0; p < 3; p++)
     for (size_t q = 0; q < 3; q++) {
-      double qn = 0; /* (Q^T [n]x)(p, q) */
-      for (int c = 0; c < 3; c++) qn += Q[3 * c + p] * NX[3 * c + q];
-      *at(A, o + 6 + p, o + 3 + q) -= qn;
-      double nq = 0; /* (Q^T [n]x)(q, p): K(w, v_i) = K(v_i, w)^T */
-      for (int c = 0; c < 3; c++) nq += Q[3 * c + q] * NX[3 * c + p];
-      *at(A, o + 3 + p, o + q) += nq;
-      if (q <= p) *at(A, o + 3 + p, o + 3 + q) += 0.5 * (a[p] * n[q] + n[p] * a[q]) - (p == q ? an : 0.0);
+      if (q <= p) {
+        *at(A, o + p, o + q) += P[3 * p + q];
+        double *ww = at(A, o + 3 + p, o + 3 + q);
+        *ww += R[3 * p + q];
+        if (taut) *ww += G[3 * p + q];
+        *at(A, o + 6 + p, o + 6 + q) += P[3 * p + q];
+      }
+      double *wv = at(A, o + 3 + p, o + q), *vw = at(A, o + 6 + p, o + 3 + q);
+      *wv -= C[3 * q + p];
+      if (taut) *wv += QN[3 * q + p];
+      *at(A, o + 6 + p, o + q) -= P[3 * p + q];
+      *vw += C[3 * p + q];
+      if (taut) *vw -= QN[3 * p + q];
     }
 }
 
@@ -327,13 +336,16 @@ static void bend_block(const swModel *m, const swData *d, int law, int v, double
   const double inv_eps3 = law ? 1.0 : 1.0 / (eps * eps * eps);
   double Bk[3];
   for (int k = 0; k < 3; k++) Bk[k] = w * SW_AT(m, m->bend_stiff, v, k) * inv_eps3 * iD;
+  double JlB[9], JrB[9]; /* the Jacobians' rows scaled by B */
+  for (int k = 0; k < 3; k++)
+    for (int p = 0; p < 3; p++) JlB[3 * k + p] = Jl[3 * k + p] * Bk[k], JrB[3 * k + p] = Jr[3 * k + p] * Bk[k];
   for (size_t p = 0; p < 3; p++)
     for (size_t q = 0; q < 3; q++) {
       double ll = 0, rl = 0, rr = 0; /* (Jl^T B Jl), -(Jr^T B Jl), (Jr^T B Jr) at (p, q) */
       for (int k = 0; k < 3; k++) {
-        ll += Jl[3 * k + p] * Bk[k] * Jl[3 * k + q];
-        rl -= Jr[3 * k + p] * Bk[k] * Jl[3 * k + q];
-        rr += Jr[3 * k + p] * Bk[k] * Jr[3 * k + q];
+        if (q <= p) ll += JlB[3 * k + p] * Jl[3 * k + q];
+        rl -= JrB[3 * k + p] * Jl[3 * k + q];
+        if (q <= p) rr += JrB[3 * k + p] * Jr[3 * k + q];
       }
       if (q <= p) {
         *at(A, o + p, o + q) += ll;
