@@ -113,8 +113,8 @@ static inline void domain_couple(vorArrays a, size_t S, int i, sw3 kv, double l,
  * domain between elements i and i+1.  Loop bodies hold vectors and frames
  * as values (vec.h, sw3 and swFrame), so that the loop vectorizes.  The
  * curvature is taken from the small-angle series of the frame logarithm;
- * the real domains bent by more than that allows (sin theta > 0.1, about
- * 5.7 degrees between neighbouring frames) are counted and redone after the
+ * the real domains bent by more than that allows (sin theta > 0.25, about
+ * 14.5 degrees between neighbouring frames) are counted and redone after the
  * loop with the exact logarithm, which gives every domain the bits of
  * vec.h's sw_frame_log. */
 /* Element pass over slots [lo, hi): strain, internal force, Q^T n, the
@@ -210,8 +210,8 @@ static int voronoi_pass(const swModel *m, swData *d, int lo, int hi, int so, dou
  * that the second loop finds the first's results in the cache and neither
  * loop streams more arrays at once than the prefetchers follow.  The
  * curvature is taken from the small-angle series of the frame logarithm;
- * the real domains bent by more than that allows (sin theta > 0.1, about
- * 5.7 degrees between neighbouring frames) are counted and redone after the
+ * the real domains bent by more than that allows (sin theta > 0.25, about
+ * 14.5 degrees between neighbouring frames) are counted and redone after the
  * loop with the exact logarithm, which gives every domain the bits of
  * vec.h's sw_frame_log. */
 #define ROD_BLOCK 512

@@ -106,11 +106,26 @@ static inline void sw_rotate_frame(double *Q, const double *phi) {
   }
 }
 
+/* theta / (2 sin theta) from t = sin^2 theta (cos theta > 0): half of
+ * asin(s)/s = sum_n C(2n, n) / (4^n (2n + 1)) t^n, summed to n = 13, whose
+ * truncation is below 1e-19 of it for t < SW_LOG_SERIES_S2 = 1/16 (theta
+ * below 14.5 degrees).  The range is that wide so that the rod pass's
+ * vector loop (rod.c) takes nearly every domain of a bent rod: a domain
+ * past it is redone with atan2, which was a seventh of a cantilever's step
+ * at 5.7 degrees (s^2 < 1e-2, eight terms). */
+#define SW_LOG_SERIES_S2 0.0625
+static inline double sw_log_series(double t) {
+  return 0.5 * (1.0 + t * (1.0 / 6 + t * (3.0 / 40 + t * (5.0 / 112 + t * (35.0 / 1152 +
+         t * (63.0 / 2816 + t * (231.0 / 13312 + t * (143.0 / 10240 + t * (6435.0 / 557056 +
+         t * (12155.0 / 1245184 + t * (46189.0 / 5505024 + t * (88179.0 / 12058624 +
+         t * (676039.0 / 104857600 + t * (1300075.0 / 226492416))))))))))))));
+}
+
 /* The rotation vector phi with Qb = exp(-[phi]x) Qa, i.e. the logarithm of
  * R = Qb Qa^T (Gazzola 2018, eq. 3.6).  With w = (R12 - R21, R20 - R02,
  * R01 - R10) = 2 sin(theta) n and cos(theta) = (tr R - 1)/2, phi =
  * theta / (2 sin theta) w.  theta/sin(theta) = asin(s)/s is summed as its
- * series in s^2 for s < 0.1 (truncation < 1e-18); otherwise atan2. */
+ * series in s^2 for s^2 < SW_LOG_SERIES_S2 (sw_log_series); otherwise atan2. */
 static inline void sw_frame_log(double *phi, const double *Qa, const double *Qb) {
   /* R_jk = d^b_j . d^a_k */
   const double *a1 = Qa, *a2 = Qa + 3, *a3 = Qa + 6;
@@ -122,10 +137,8 @@ static inline void sw_frame_log(double *phi, const double *Qa, const double *Qb)
   double s2 = 0.25 * (w0 * w0 + w1 * w1 + w2 * w2); /* sin^2(theta) */
   double c = 0.5 * (tr - 1.0);                     /* cos(theta)   */
   double f;                                        /* theta / (2 sin theta) */
-  if (s2 < 1e-2 && c > 0.0) {
-    const double t = s2;
-    f = 0.5 * (1.0 + t * (1.0 / 6 + t * (3.0 / 40 + t * (5.0 / 112 + t * (35.0 / 1152 +
-        t * (63.0 / 2816 + t * (231.0 / 13312 + t * (143.0 / 10240))))))));
+  if (s2 < SW_LOG_SERIES_S2 && c > 0.0) {
+    f = sw_log_series(s2);
   } else {
     double s = sqrt(s2);
     double theta = atan2(s, c);
@@ -236,7 +249,7 @@ static inline void sw_frame_store(double *Q, size_t S, int i, swFrame F) {
 }
 
 /* The small-angle side of sw_frame_log on frames held as values: kappa D^ =
- * log(Qb Qa^T) where sin^2 theta < 1e-2 and cos theta > 0, which `small`
+ * log(Qb Qa^T) where sin^2 theta < SW_LOG_SERIES_S2 and cos theta > 0, which `small`
  * reports (1 or 0).  A loop over slots uses it and redoes the few slots
  * where it is 0 with sw_frame_log (rod.c): a vector loop cannot branch per
  * slot, and calling atan2 on every lane to keep a few would cost more than
@@ -250,24 +263,27 @@ static inline swSmallLog sw_frame_log_small(swFrame a, swFrame b) {
   const double w2 = sw3_dot(b.d1, a.d2) - sw3_dot(b.d2, a.d1);
   const double tr = sw3_dot(b.d1, a.d1) + sw3_dot(b.d2, a.d2) + sw3_dot(b.d3, a.d3);
   const double t = 0.25 * (w0 * w0 + w1 * w1 + w2 * w2), c = 0.5 * (tr - 1.0);
-  const double f = 0.5 * (1.0 + t * (1.0 / 6 + t * (3.0 / 40 + t * (5.0 / 112 + t * (35.0 / 1152 +
-                   t * (63.0 / 2816 + t * (231.0 / 13312 + t * (143.0 / 10240))))))));
-  return (swSmallLog){{f * w0, f * w1, f * w2}, (t < 1e-2) & (c > 0.0)};
+  const double f = sw_log_series(t);
+  return (swSmallLog){{f * w0, f * w1, f * w2}, (t < SW_LOG_SERIES_S2) & (c > 0.0)};
 }
 
 /* beta(theta) of the inverse of the SO(3) exponential's Jacobian,
  *   J_l^-1(phi) = I - [phi]x / 2 + beta [phi]x^2,
  *   beta = 1 / theta^2 - cos(theta/2) / (2 theta sin(theta/2)),  theta = |phi|,
  * from theta^2 (0 <= theta <= pi, as sw_frame_log gives).  Its series,
- * 1/12 + theta^2/720 + theta^4/30240 + theta^6/1209600 (from that of
- * cot(theta/2)), is exact to round-off below theta^2 = 1e-2, where the
- * closed form loses digits; the series alone serves sw_frame_log_small's
- * range.  rod.c forms the variational bending couple with it. */
+ * sum_n (-1)^(n+1) B_2n theta^(2n-2) / (2n)! = 1/12 + theta^2/720 +
+ * theta^4/30240 + ... (from that of cot(theta/2); B the Bernoulli numbers),
+ * summed to n = 7, is exact to round-off below theta^2 = SW_BETA_SERIES_TH2
+ * (truncation below 1e-20 of it), where the closed form loses digits; the
+ * series alone serves sw_frame_log_small's range (theta^2 < 0.064).  rod.c
+ * forms the variational bending couple with it. */
+#define SW_BETA_SERIES_TH2 0.07
 static inline double sw_dexpinv_beta_small(double th2) {
-  return 1.0 / 12 + th2 * (1.0 / 720 + th2 * (1.0 / 30240 + th2 * (1.0 / 1209600)));
+  return 1.0 / 12 + th2 * (1.0 / 720 + th2 * (1.0 / 30240 + th2 * (1.0 / 1209600 +
+         th2 * (1.0 / 47900160 + th2 * (691.0 / 1307674368000.0 + th2 * (1.0 / 74724249600.0))))));
 }
 static inline double sw_dexpinv_beta(double th2) {
-  if (th2 < 1e-2) return sw_dexpinv_beta_small(th2);
+  if (th2 < SW_BETA_SERIES_TH2) return sw_dexpinv_beta_small(th2);
   const double th = sqrt(th2);
   return 1.0 / th2 - cos(0.5 * th) / (2.0 * th * sin(0.5 * th));
 }

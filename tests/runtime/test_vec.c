@@ -437,7 +437,7 @@ static void test_frame_log_sign_convention(void **state) {
 }
 
 /* Angles of the logarithm tests: the series branch is taken while
- * s^2 = sin^2(theta) < 1e-2 and cos(theta) > 0, i.e. theta < asin(0.1).
+ * s^2 = sin^2(theta) < 1/16 and cos(theta) > 0, i.e. theta < asin(0.25).
  * Qb carries the rounding of sw_rotate_frame (about 1e-16 absolute) and the
  * dot products of general frames add as much, so the recovered phi has an
  * absolute floor of that size: the bound is 1e-14 |phi| + 2.5e-16.  Near
@@ -445,9 +445,9 @@ static void test_frame_log_sign_convention(void **state) {
  * amplified by 1/sin(theta) (7e-15 relative at 3.1 rad). */
 static void test_frame_log_inverts_rotation(void **state) {
   (void)state;
-  const double thc = asin(0.1);
-  const double angles[] = {1e-12, 1e-9, 1e-6, 1e-3, 1e-2, 0.05, thc * (1 - 1e-6),
-                           thc * (1 - 1e-15), thc, thc * (1 + 1e-15), thc * (1 + 1e-6), 0.2,
+  const double thc = asin(0.25);
+  const double angles[] = {1e-12, 1e-9, 1e-6, 1e-3, 1e-2, 0.05, 0.1, 0.2, thc * (1 - 1e-6),
+                           thc * (1 - 1e-15), thc, thc * (1 + 1e-15), thc * (1 + 1e-6), 0.3,
                            0.5, 1.0, SW_PI / 2, 2.0, 2.5, 3.0, 3.04, 3.05, 3.1};
   const int naxes = 500;
   double worst_series = 0, worst_trig = 0, worst_abs = 0, worst_excess = 0;
@@ -504,11 +504,11 @@ static void test_frame_log_inverts_rotation(void **state) {
 
 /* Continuity across the branch threshold of the logarithm: along a fixed axis
  * and from a fixed frame, |log| minus the angle must not jump as theta
- * crosses asin(0.1) in steps of a few roundings: the error on both sides
+ * crosses asin(0.25) in steps of a few roundings: the error on both sides
  * stays at the round-off level of the generic angles (about 1.5e-15). */
 static void test_frame_log_continuity(void **state) {
   (void)state;
-  const double thc = asin(0.1);
+  const double thc = asin(0.25);
   double worst = 0, Qa[9], u[3];
   int nseries = 0, ntrig = 0;
   random_frame(Qa);
@@ -535,12 +535,48 @@ static void test_frame_log_continuity(void **state) {
     worst_exp = fmax(worst_exp, sw_v3_norm(d) / th);
   }
   fprintf(stderr,
-          "# %s: worst relative error within 2e-13 of theta = asin(0.1): %.3e (%d series, %d "
+          "# %s: worst relative error within 2e-13 of theta = asin(0.25): %.3e (%d series, %d "
           "atan2 samples); of theta = 0.1: %.3e (tol 4e-15)\n",
           __func__, worst, nseries, ntrig, worst_exp);
   assert_true(nseries > 0 && ntrig > 0);
   assert_true(worst < 4e-15);
   assert_true(worst_exp < 4e-15);
+}
+
+/* beta of the inverse Jacobian (sw_dexpinv_beta): its series over the
+ * range the rod pass's vector loop gives it (theta^2 up to 0.064 there, up
+ * to SW_BETA_SERIES_TH2 here) against the same series taken to ten terms
+ * in long double from the Bernoulli numbers, sum_n (-1)^(n+1) B_2n
+ * theta^(2n-2) / (2n)! (the closed form cannot serve: its cancellation of
+ * 1/theta^2 against 1/12 costs more than the difference measured), and
+ * against the closed form where that is exact enough (theta^2 >= 0.05):
+ * within 1e-15 relative. */
+static void test_dexpinv_beta_series(void **state) {
+  (void)state;
+  static const long double bern[10][2] = {{1, 6}, {-1, 30}, {1, 42}, {-1, 30}, {5, 66},
+                                          {-691, 2730}, {7, 6}, {-3617, 510}, {43867, 798},
+                                          {-174611, 330}}; /* B_2 .. B_20 */
+  double worst = 0, worst_closed = 0;
+  for (int k = 0; k < 2000; k++) { /* the series' side: theta^2 < SW_BETA_SERIES_TH2 */
+    const double th2 = SW_BETA_SERIES_TH2 * k / 2000.0;
+    long double sum = 0, fact = 1, pw = 1;
+    for (int n = 1; n <= 10; n++) {
+      fact *= (2.0L * n - 1) * (2.0L * n); /* (2n)! */
+      sum += (n % 2 ? 1 : -1) * bern[n - 1][0] / bern[n - 1][1] * pw / fact;
+      pw *= th2;
+    }
+    worst = fmax(worst, (double)(fabsl((long double)sw_dexpinv_beta(th2) - sum) / sum));
+    if (th2 >= 0.05) {
+      const double th = sqrt(th2);
+      const double closed = 1.0 / th2 - cos(0.5 * th) / (2.0 * th * sin(0.5 * th));
+      worst_closed = fmax(worst_closed, fabs(sw_dexpinv_beta(th2) - closed) / closed);
+    }
+  }
+  fprintf(stderr, "# %s: theta^2 in [0, %g]: largest relative difference from the ten-term "
+          "series %.3e (tol 1e-15), from the closed form above 0.05 %.3e (tol 1e-13)\n",
+          __func__, SW_BETA_SERIES_TH2, worst, worst_closed);
+  assert_true(worst < 1e-15);
+  assert_true(worst_closed < 1e-13);
 }
 
 /* ---- sw_frame_from ---- */
@@ -624,6 +660,7 @@ int main(void) {
       cmocka_unit_test(test_frame_log_sign_convention),
       cmocka_unit_test(test_frame_log_inverts_rotation),
       cmocka_unit_test(test_frame_log_continuity),
+      cmocka_unit_test(test_dexpinv_beta_series),
       cmocka_unit_test(test_frame_from),
       cmocka_unit_test(test_frame_from_nearly_parallel),
   };
