@@ -12,8 +12,9 @@
 #   a run below the stable estimate goes unstable as the user's did (at
 #   4 us; here 3 us, see below), and the report says why: how short the
 #   filament was squeezed,
-#   what Gazzola's law does there, the stable dt at that length (above dt:
-#   the step is not the cause), and the way out.  The same law fails at
+#   what Gazzola's law does there, the stable dt at that length (above dt,
+#   the step not the cause, or below it, brought down by that law's
+#   stiffening: the run is chaotic and either happens), and the way out.  The same law fails at
 #   strength 1 at the default step.
 . "$(dirname "$0")/tap.sh"
 cd "$ROOT" || exit 1
@@ -71,15 +72,20 @@ has "the rod had shortened to [0-9.e+-]*% of its rest length (element [0-9]*, t 
 ok $? "it says how short the filament was squeezed, where and when"
 has "where Gazzola et al. 2018's law (n = S^ s / e, c = B^ k / eps^3) pushes back with [0-9.e+]* times E A and is [0-9.e+]* times as stiff in stretch as at rest"
 ok $? "it names Gazzola's law and what it does at that length"
-has "; the rod's stable dt at that length is [0-9.e+-]* s ([0-9.e+-]* s at rest), still above dt, so the step is not the cause"
-ok $? "it gives the stable dt at that length, above dt"
+# where the filament was squeezed furthest its own stable dt is above dt
+# (the step is not the cause) or, squeezed further, below it (the law's
+# stiffening brought it down); which one depends on the chaotic run (below
+# 1 % of its length at 3 us either way), and the report says which
+has "; the rod's stable dt at that length is [0-9.e+-]* s ([0-9.e+-]* s at rest), \(still above dt, so the step is not the cause\|and dt is above it\)"
+ok $? "it gives the stable dt at that length and how it compares with dt"
 has '\. The variational law (`variational = true` on its material, the default for muscles)'
 ok $? "it names the way out"
 # the figures: squeezed below 5 %, stiffer by over 400 (1/e^2), a stable dt
-# at that length below the rest one and above dt
+# at that length below the rest one, and on the side of dt the words say
+above=0; has "still above dt, so the step is not the cause" && above=1
 printf '%s\n' "$msg" | sed 's/.*shortened to \([0-9.e+-]*\)% .* is \([0-9.]*\) times as stiff.* length is \([0-9.e+-]*\) s (\([0-9.e+-]*\) s at rest).*/\1 \2 \3 \4/' |
-  awk '{ exit !($1 < 5 && $2 > 400 && $3 > 3e-6 && $3 < $4) }'
-ok $? "its figures: under 5 % of the rest length, over 400 times as stiff, 3 us < dt at that length < dt at rest"
+  awk -v above=$above '{ exit !($1 < 5 && $2 > 400 && $3 < $4 && (above ? $3 > 3e-6 : $3 < 3e-6)) }'
+ok $? "its figures: under 5 % of the rest length, over 400 times as stiff, dt at that length below dt at rest and on the side of 3 us the report says"
 
 (cd "$TMP/ref" && ./frog --quiet --set strength=1 --out ref1.h5) >"$TMP/run" 2>&1; rc=$?
 [ "$rc" -eq 3 ] && grep -q 'the rod had shortened to ' "$TMP/run"
