@@ -9,11 +9,13 @@
  * Here, after every kick (sw_kinematic_follow) the follower element's
  * angular velocity (material frame) is set to its leader's,
  *   w_f = R w_l,  R = Q_f(0) Q_l(0)^T,
- * so that the drift turns both alike and keeps Q_f = R Q_l, and before every
- * load evaluation (sw_kinematic_impose) the frame is set again,
+ * so that the drift turns both nearly alike (to O((h w)^2): each element
+ * turns by its own stretch and splits its turn about its own d3,
+ * integrate.c), and before every load evaluation (sw_kinematic_impose) the
+ * frame is set again,
  *   Q_f = R Q_l   (with w_f = R w_l),
- * which undoes what the stretch's rescaling of w and round-off leave, and
- * holds for a rigid leader, whose turn rigid.c updates in the drift.  Then
+ * which undoes that and the round-off, and holds for a rigid leader, whose
+ * turn rigid.c updates in the drift.  Then
  * (sw_kinematic_loads) its node is tied to the leader's point p by
  *   F = k (p - x_f) + c (v_p - v_f),  p = x_e + xi (x_{e+1} - x_e),
  * F on the follower node, -F on the leader's two nodes ((1 - xi) and xi),
@@ -25,7 +27,9 @@
  * element's turning kinetic energy w.(J/e)w/2, its shear energy
  * l^ (s - s0).S^(s - s0)/2 and the bending energy of its two domains
  * D^ (k - k0).B^(k - k0)/2 at once.  That change is added to d->work, as
- * the work the imposed motion did, and every load here goes into
+ * the work the imposed motion did (the elastic part of a drift-sized
+ * correction to first order, from the couple the rod pass computes after
+ * it: sw_kinematic_book), and every load here goes into
  * d->ext_force too (its work booked by the kick like any external load's),
  * so kinetic + elastic - work stays constant up to the integrator's error
  * (tests/runtime/test_kinematic.c).  The joint's spring has no energy of
@@ -292,10 +296,10 @@ void sw_kinematic_book(const swModel *m, swData *d) {
   d->work += dE;
 }
 
-/* After a kick: the follower turns at its leader's rate, so that the drift,
- * exp(-h [R w_l]x) R Q_l = R exp(-h [w_l]x) Q_l, keeps Q_f = R Q_l by itself
- * (to the rescaling of w with the element's stretch); the change of its
- * turning kinetic energy is booked. */
+/* After a kick: the follower turns at its leader's rate, so that the drift
+ * nearly keeps Q_f = R Q_l (exp(-h [R w_l]x) R Q_l = R exp(-h [w_l]x) Q_l,
+ * to the drift's own stretch and split turn: the header); the change of
+ * its turning kinetic energy is booked. */
 void sw_kinematic_follow(const swModel *m, swData *d) {
   for (int j = 0; j < m->nkinematic; j++) {
     const int fe = m->kinematic[j].follower_elem;
