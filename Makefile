@@ -332,7 +332,8 @@ study-snake: deps
 # and Suppl. Fig. 13's variants two at a time, then the angles, the stroke's
 # frames and the variants' table and plot in build/wing/ (about 1.5 h on
 # this machine's 2 cores; never part of `make test`, whose test_wing runs
-# 20 us).  WING_ARGS="original" for the original alone (~10-15 min).
+# 20 us).  WING_ARGS="original" for the original alone (~10 min on an idle
+# machine, more when the other core is busy: docs/benchmarks.md).
 .PHONY: wing
 wing: deps
 	@$(MAKE) --no-print-directory all

@@ -11,8 +11,9 @@
 # /5 on the muscles: (c)), soft_twist (twist /5 on the muscles: (d));
 # default all.  DIR (default build/wing) gets VARIANT.h5, VARIANT.log (the
 # simulator's summary, its wall time), angles.png, frames.png, fig13.png and
-# fig13.md.  A run whose file is complete is not made again.  About 15 min
-# of one core per run at 0.55 us, 45 min for the hardened ones at 0.19 us
+# fig13.md.  A run whose file is complete is not made again.  About 10 min
+# of an idle core per run at 0.55 us (15-18 with both cores busy, as two
+# runs at a time keep them), 45 min for the hardened ones at 0.19 us
 # (which stop early: docs/validation.md).  --duration T (e.g. 2ms) runs
 # each variant for T only, to try the script; such runs are never taken
 # for complete.
