@@ -282,6 +282,22 @@ condense(double *ws, int du, int dQ, int np, const int *qoff, const int *qdof, d
  * them.  nu <= LANES units; the lanes past nu repeat the last unit and are
  * not written back. */
 #define LANES 4
+/* Row i of the lanes' right-hand sides (X's dQ columns and b) less l times
+ * row k, and scaled by inv: the two steps of small_solve_ld, lane by lane. */
+static inline __attribute__((always_inline)) void
+lanes_take_row(double (*X)[LANES], double (*b)[LANES], int dQ, int i, int k, const double *l) {
+  for (int u = 0; u < LANES; u++) {
+    for (int c = 0; c < dQ; c++) X[i * dQ + c][u] -= l[u] * X[k * dQ + c][u];
+    b[i][u] -= l[u] * b[k][u];
+  }
+}
+static inline __attribute__((always_inline)) void
+lanes_scale_row(double (*X)[LANES], double (*b)[LANES], int dQ, int i, const double *inv) {
+  for (int u = 0; u < LANES; u++) {
+    for (int c = 0; c < dQ; c++) X[i * dQ + c][u] *= inv[u];
+    b[i][u] *= inv[u];
+  }
+}
 static inline __attribute__((always_inline)) int
 condense_lanes(double *const *ws, const int *const *qoff, int nu, int du, int dQ, int np,
                const int *qdof, double *A, int n, double *rhs) {
@@ -313,28 +329,12 @@ condense_lanes(double *const *ws, const int *const *qoff, int nu, int du, int dQ
   }
   if (!ok) return 0;
   for (int i = 0; i < du; i++) { /* small_solve of X = A_uu^-1 C and of b: L y = x */
-    for (int k = 0; k < i; k++)
-      for (int u = 0; u < LANES; u++) {
-        const double l = L[i * du + k][u];
-        for (int c = 0; c < dQ; c++) X[i * dQ + c][u] -= l * X[k * dQ + c][u];
-        b[i][u] -= l * b[k][u];
-      }
-    for (int u = 0; u < LANES; u++) {
-      for (int c = 0; c < dQ; c++) X[i * dQ + c][u] *= inv[i][u];
-      b[i][u] *= inv[i][u];
-    }
+    for (int k = 0; k < i; k++) lanes_take_row(X, b, dQ, i, k, L[i * du + k]);
+    lanes_scale_row(X, b, dQ, i, inv[i]);
   }
   for (int i = du - 1; i >= 0; i--) { /* L^T x = y */
-    for (int k = i + 1; k < du; k++)
-      for (int u = 0; u < LANES; u++) {
-        const double l = L[k * du + i][u];
-        for (int c = 0; c < dQ; c++) X[i * dQ + c][u] -= l * X[k * dQ + c][u];
-        b[i][u] -= l * b[k][u];
-      }
-    for (int u = 0; u < LANES; u++) {
-      for (int c = 0; c < dQ; c++) X[i * dQ + c][u] *= inv[i][u];
-      b[i][u] *= inv[i][u];
-    }
+    for (int k = i + 1; k < du; k++) lanes_take_row(X, b, dQ, i, k, L[k * du + i]);
+    lanes_scale_row(X, b, dQ, i, inv[i]);
   }
   for (int r = 0; r < dQ; r++) { /* C^T X and C^T b, every place (each unit's own part of them below) */
     for (int c = 0; c < dQ; c++)
