@@ -80,8 +80,12 @@ endif
 endif
 # (named again here: `all`'s line above is read before MPI_OBJ is set)
 all: $(MPI_OBJ)
-# the flags sinewc passes to the C compiler when it builds a simulator
-RT_LINK  = -DSW_RT_CFLAGS='"$(PKG_CFLAGS)"' -DSW_RT_LIBS='"$(PKG_LIBS) -lm"' \
+# the flags sinewc passes to the C compiler when it builds a simulator:
+# HDF5 from its static archive where one links (scripts/hdf5_link.sh says
+# why), run only when sinewc.c is compiled (the variable is expanded there)
+HDF5_LINK = $(shell sh scripts/hdf5_link.sh $(CC))
+RT_LINK  = -DSW_RT_CFLAGS='"$(PKG_CFLAGS)"' \
+           -DSW_RT_LIBS='"$(HDF5_LINK) $(shell pkg-config --libs gsl 2>/dev/null) -lm"' \
            -DSW_RT_MPI_LIBS='"$(MPI_LIBS)"'
 
 build/lang/sinew.tab.c build/lang/sinew.tab.h: lang/sinew.y | build/lang
@@ -89,10 +93,14 @@ build/lang/sinew.tab.c build/lang/sinew.tab.h: lang/sinew.y | build/lang
 build/lang/lex.yy.c: lang/sinew.l build/lang/sinew.tab.h | build/lang
 	flex -o $@ lang/sinew.l
 build/cc/%.o: compiler/%.c $(CC_HDR) $(RT_HDR) | build/cc
+	$(CC) $(ALL_CFLAGS) $(CC_INC) -c $< -o $@
+build/cc/sinewc.o: compiler/sinewc.c $(CC_HDR) $(RT_HDR) scripts/hdf5_link.sh | build/cc
 	$(CC) $(ALL_CFLAGS) $(CC_INC) $(RT_LINK) -c $< -o $@
 build/cc/%.o: build/lang/%.c $(CC_HDR) $(RT_HDR) | build/cc
 	$(CC) $(ALL_CFLAGS) $(GEN_WARN) $(CC_INC) -c $< -o $@
 build/asan/cc/%.o: compiler/%.c $(CC_HDR) $(RT_HDR) | build/asan/cc
+	$(CC) $(SAN_CFLAGS) $(CC_INC) -c $< -o $@
+build/asan/cc/sinewc.o: compiler/sinewc.c $(CC_HDR) $(RT_HDR) scripts/hdf5_link.sh | build/asan/cc
 	$(CC) $(SAN_CFLAGS) $(CC_INC) $(RT_LINK) -c $< -o $@
 build/asan/cc/%.o: build/lang/%.c $(CC_HDR) $(RT_HDR) | build/asan/cc
 	$(CC) $(SAN_CFLAGS) $(GEN_WARN) $(CC_INC) -c $< -o $@

@@ -75,9 +75,12 @@ swOutput *sw_output_resume(const char *path, const swModel *m, const swOutputOpt
  * had, for SIM --restart.  SW_OK or SW_EIO. */
 int sw_output_read_run(const char *path, char *sha256, char *params, size_t len, double *dt,
                        double *every);
-/* The run loop's checkpoint at a scheduled frame, just written: kept in
- * memory, written to /restart every 10 s of wall time and at close. */
-int sw_output_checkpoint(swOutput *o, const swModel *m, const swData *d, const swExpectRun *x);
+/* The run loop's checkpoint at a scheduled frame, just written: taken
+ * into memory at the run's last frame (`last`) and otherwise at most every
+ * quarter second of wall time, written to /restart every 10 s and at
+ * close. */
+int sw_output_checkpoint(swOutput *o, const swModel *m, const swData *d, const swExpectRun *x,
+                         int last);
 int sw_output_close(swOutput *o, const char *status);
 /* The run's objective as root attributes objective, penalty, score (SI;
  * NaN when not reached) with their units (objective_units, penalty_units,

@@ -104,39 +104,36 @@ static int valid_group_name(const char *name) {
   return name && name[0] && !strchr(name, '/') && strcmp(name, ".") && strcmp(name, "..");
 }
 
-/* Frames wait in memory and go to the datasets in batches (one extent,
- * selection and write per dataset for up to OUT_BATCH frames, at most
- * OUT_BATCH_BYTES of them), at every flush (sw_output_frame) and at the
- * checkpoint and close.  Written frame by frame, the arm's 179 datasets
- * cost 0.6 ms a frame, more than its 1 ms of simulated time took to
- * compute at 150 us. */
-#define OUT_BATCH 64
-#define OUT_BATCH_BYTES (4u << 20)
-
+/* Frames wait in memory, each dataset's in a buffer of one chunk aligned
+ * with the file's chunks, and go to the datasets when their chunk is full,
+ * at every flush (sw_output_frame) and at the checkpoint and close: one
+ * extent and one write per dataset and chunk or flush (output_datasets.c).
+ * Written frame by frame, the arm's 179 datasets cost 0.6 ms a frame, more
+ * than its 1 ms of simulated time took to compute at 150 us. */
 static int alloc_pending(swOutput *o, char *err, size_t errlen) {
   size_t per_frame = 0;
   for (int i = 0; i < o->ndset; i++) per_frame += o->dset[i].frame_len;
-  size_t batch = OUT_BATCH_BYTES / (sizeof(double) * (per_frame ? per_frame : 1));
-  o->batch = batch < 1 ? 1 : batch > OUT_BATCH ? OUT_BATCH : (int)batch;
-  o->npending = 0;
-  if (!(o->pending = malloc((per_frame ? per_frame : 1) * (size_t)o->batch * sizeof *o->pending)))
+  o->pending_len = (per_frame ? per_frame : 1) * (size_t)o->chunk_frames;
+  if (!(o->pending = calloc(o->pending_len, sizeof *o->pending)))
     return sw_out_fail(err, errlen, "%s: out of memory", o->path);
   for (int i = 0, off = 0; i < o->ndset; i++) {
-    o->dset[i].pending = o->pending + (size_t)off * (size_t)o->batch;
+    o->dset[i].pending = o->pending + (size_t)off * (size_t)o->chunk_frames;
     off += (int)o->dset[i].frame_len;
   }
-  return SW_OK;
+  return sw_out_read_partial_chunk(o);
 }
 
-/* The waiting frames into their datasets. */
+/* The frames taken and not yet written into their datasets; a full chunk
+ * leaves its buffers zeroed for the next (so that a partly filled chunk's
+ * rows past the extent are zeros in the file). */
 static int write_pending(swOutput *o) {
-  if (!o->npending) return SW_OK;
+  if (o->written == o->frames) return SW_OK;
   for (int i = 0; i < o->ndset; i++) {
-    int rc = sw_out_append_frames(o, &o->dset[i], o->dset[i].pending, o->npending);
+    int rc = sw_out_write_frames(o, &o->dset[i], o->frames);
     if (rc != SW_OK) return rc;
   }
-  o->written += o->npending;
-  o->npending = 0;
+  o->written = o->frames;
+  if (o->written % o->chunk_frames == 0) memset(o->pending, 0, o->pending_len * sizeof *o->pending);
   return SW_OK;
 }
 
@@ -487,25 +484,11 @@ int sw_output_frame(swOutput *o, const swModel *m, swData *d) {
   if (m->nrod != o->nrod)
     return sw_out_fail(NULL, 0, "%s: the model has %d rods but the file was opened for %d", o->path,
                        m->nrod, o->nrod);
+  /* the frame's row of each chunk buffer, which starts at frame `start` */
+  const long start = o->written - o->written % o->chunk_frames;
   for (int i = 0; i < o->ndset; i++) {
     swDataset *ds = &o->dset[i];
-    ds->field->fill(m, d, ds->item, ds->pending + (size_t)o->npending * ds->frame_len);
-  }
-  o->npending++;
-  /* The frames go to their datasets when a batch is full, and with the
-   * metadata on disk (a flush) after the first frame and then at most every
-   * flush_wait s of wall time: a run killed outright leaves a valid file of
-   * all but its last moment's frames (every failure the run handles, an
-   * interrupt included, closes the file, which writes and flushes them all).  At a flush per frame, a scene of many rods
-   * written every millisecond spent a third of its run in the flushes (the
-   * arm of 43 rods: 0.4 s of 1.45). */
-  const double now = wall_now();
-  if (o->frames == 0 || now - o->flushed_at >= o->flush_wait) {
-    int rc = flush_frames(o);
-    if (rc != SW_OK) return rc;
-  } else if (o->npending == o->batch) {
-    int rc = write_pending(o);
-    if (rc != SW_OK) return rc;
+    ds->field->fill(m, d, ds->item, ds->pending + (size_t)(o->frames - start) * ds->frame_len);
   }
   if (o->xdmf_path) {
     if (o->frames == o->frame_time_cap) {
@@ -517,7 +500,24 @@ int sw_output_frame(swOutput *o, const swModel *m, swData *d) {
     }
     o->frame_time[o->frames] = d->time;
   }
+  const int first = o->frames == 0;
   o->frames++;
+  /* The frames go to their datasets when their chunk is full, and with the
+   * metadata on disk (a flush) after the first frame and then at most every
+   * flush_wait s of wall time: a run killed outright leaves a valid file of
+   * all but its last moment's frames (every failure the run handles, an
+   * interrupt included, closes the file, which writes and flushes them
+   * all).  At a flush per frame, a scene of many rods written every
+   * millisecond spent a third of its run in the flushes (the arm of 43
+   * rods: 0.4 s of 1.45). */
+  const double now = wall_now();
+  if (first || now - o->flushed_at >= o->flush_wait) {
+    int rc = flush_frames(o);
+    if (rc != SW_OK) return rc;
+  } else if (o->frames - start == o->chunk_frames) {
+    int rc = write_pending(o);
+    if (rc != SW_OK) return rc;
+  }
   /* the description follows the flushed file: at the first frame, then
    * every xdmf_wait seconds, and at close */
   if (o->xdmf_path && (o->xdmf_frames == 0 || now - o->xdmf_written >= o->xdmf_wait)) {
@@ -535,12 +535,21 @@ long sw_output_frames(const swOutput *o) { return o ? o->frames : 0; }
 /* Seconds of wall time between two writes of the checkpoint: a run killed
  * outright loses at most this much. */
 #define CHECKPOINT_EVERY 10.0
+/* and between two snapshots of the state in memory, which the close writes
+ * (a failed or interrupted run continues from the last one): a copy of the
+ * whole state at every frame had been 2.5% of the arm's demo (501 frames of
+ * 230 KiB). */
+#define CHECKPOINT_TAKE_EVERY 0.25
 
-int sw_output_checkpoint(swOutput *o, const swModel *m, const swData *d, const swExpectRun *x) {
+int sw_output_checkpoint(swOutput *o, const swModel *m, const swData *d, const swExpectRun *x,
+                         int last) {
   if (!o || !o->checkpoint || m != o->model) return SW_OK;
-  sw_checkpoint_take(o->checkpoint, m, d, x, o->frames);
   double now = wall_now();
-  if (now - o->checkpoint_written < CHECKPOINT_EVERY) return SW_OK;
+  const int write = now - o->checkpoint_written >= CHECKPOINT_EVERY;
+  if (!last && !write && now - o->checkpoint_taken < CHECKPOINT_TAKE_EVERY) return SW_OK;
+  sw_checkpoint_take(o->checkpoint, m, d, x, o->frames);
+  o->checkpoint_taken = now;
+  if (!write) return SW_OK;
   o->checkpoint_written = now;
   int rc = write_pending(o); /* the checkpoint's frames in the file before it */
   if (rc != SW_OK) return rc;

@@ -52,8 +52,9 @@ typedef struct {
   int rank;                              /* 1 + field rank                   */
   hsize_t dims[1 + MAX_FRAME_RANK];      /* dims[0] = frames written         */
   size_t frame_len;                      /* doubles per frame                */
-  double *pending;                       /* frames not yet written, batch of
-                                            frame_len each (in o->pending)   */
+  double *pending;                       /* its chunk buffer: chunk_frames of
+                                            frame_len each (in o->pending), the
+                                            frames from the chunk's start    */
   char *path;                            /* "/rods/arm/position"             */
 } swDataset;
 
@@ -63,13 +64,16 @@ struct swOutput {
   int nrod;
   long frames;                           /* frames taken                     */
   long written;                          /* of them, in the datasets         */
-  int npending, batch;                   /* frames waiting; at most batch    */
+  int chunk_frames;                      /* frames of every dataset's chunks */
+  int direct;                            /* chunks written as stored         */
   int ndset;
   swDataset *dset;
-  double *pending;                       /* every dataset's waiting frames   */
+  double *pending;                       /* every dataset's chunk buffer     */
+  size_t pending_len;                    /* its doubles                      */
   swCheckpoint *checkpoint;              /* the last scheduled frame's state */
   const swModel *model;                  /* the model it was taken of        */
   double checkpoint_written;             /* wall clock of its last write, s  */
+  double checkpoint_taken;               /* and of its last snapshot, s      */
   /* The XDMF description beside the file (xdmf.c); xdmf_path is NULL when
    * no rod's positions are written. */
   char *xdmf_path;
@@ -134,10 +138,14 @@ void sw_out_fill_velocity(const swModel *m, swData *d, int rod, double *frame);
 /* How many datasets the table can make for model m, at the most. */
 size_t sw_out_count_datasets(const swModel *m);
 /* Creates (reopen_frames < 0) or reopens every dataset the options select
- * into o->dset. */
+ * into o->dset, all chunked by o->chunk_frames frames (set here, with
+ * o->direct). */
 int sw_out_create_datasets(swOutput *o, const swModel *m, const swOutputOptions *opt,
                            long reopen_frames, char *err, size_t errlen);
-/* Extends dataset ds by count frames after its o->written and writes them
- * (frames: count of its frames, one after another). */
-int sw_out_append_frames(swOutput *o, swDataset *ds, const double *frames, int count);
+/* Extends dataset ds to `upto` frames and writes those after o->written
+ * from its chunk buffer. */
+int sw_out_write_frames(swOutput *o, swDataset *ds, long upto);
+/* A continued run: the frames of the file's last, partly filled chunk back
+ * into the chunk buffers. */
+int sw_out_read_partial_chunk(swOutput *o);
 #endif

@@ -10,12 +10,17 @@
  * column names, the option that enables it and the function that fills one
  * frame from the state.  sw_out_create_datasets() walks the table once, at
  * open, and creates every dataset the options select (doubles, first
- * dimension unlimited, chunked by up to 64 frames) with its `units`
- * attribute (and a probe's, output_attrs.c); a continued run reopens them
- * instead and cuts them back to the checkpoint's frames.  At each frame
- * output.c fills a scratch frame from each dataset's row and
- * sw_out_append_frames() extends the dataset by a batch of frames and
- * writes them in one call.
+ * dimension unlimited, all chunked by the same number of frames, up to 64)
+ * with its `units` attribute (and a probe's, output_attrs.c); a continued
+ * run reopens them instead and cuts them back to the checkpoint's frames.
+ * At each frame output.c fills the frame's row of each dataset's chunk
+ * buffer (one chunk, aligned with the file's chunks) and
+ * sw_out_write_frames() extends the dataset and writes the chunk as it is
+ * stored (H5Dwrite_chunk: no selection, no chunk cache; the arm's 179
+ * datasets had spent a fifth of their output time in HDF5's cache and
+ * selections), or, where the file's chunks are not this run's (a file of
+ * an older sinew continued) or doubles are not little-endian here, the new
+ * frames by a selection.
  * Adding an output is one line of the table plus, if the quantity is new, a
  * four-line fill function.  The shared types are in output.h. */
 #include <hdf5.h>
@@ -239,11 +244,9 @@ static int reopen_dataset(swOutput *o, swDataset *ds, long frames, char *err, si
   return SW_OK;
 }
 
-/* Create the dataset of field f (for rod or joint `item`, or -1) with its
- * attributes. */
-static int create_dataset(swOutput *o, swDataset *ds, const swField *f, const swModel *m,
-                          int item, hid_t lcpl, long reopen_frames, char *err, size_t errlen) {
-  hsize_t maxdims[1 + MAX_FRAME_RANK], chunk[1 + MAX_FRAME_RANK];
+/* Dataset ds of field f for `item` (rod, joint, muscle or probe; -1 for the
+ * root's): its path, rank, per-frame extents and frame length. */
+static int describe_dataset(swDataset *ds, const swField *f, const swModel *m, int item) {
   const int rod = f->scope == SCOPE_ROD ? item : -1;
   ds->field = f;
   ds->item = item;
@@ -257,10 +260,7 @@ static int create_dataset(swOutput *o, swDataset *ds, const swField *f, const sw
       : f->scope == SCOPE_PROBE  ? sw_out_dup_printf("/probes/%s%s%s", m->probe[item].name,
                                                      f->path[0] ? "/" : "", f->path)
                                  : sw_out_dup_printf("/%s", f->path);
-  if (!ds->path) return sw_out_fail(err, errlen, "%s: out of memory", o->path);
-
   ds->dims[0] = 0;
-  maxdims[0] = H5S_UNLIMITED;
   ds->frame_len = 1;
   for (int k = 0; k < f->rank; k++) {
     int e = f->extent[k];
@@ -268,20 +268,60 @@ static int create_dataset(swOutput *o, swDataset *ds, const swField *f, const sw
     else if (e == EXTENT_ELEMS) e = m->rod_nelem[rod];
     else if (e == EXTENT_VORONOI) e = m->rod_nelem[rod] - 1;
     else if (e == EXTENT_FILAMENTS) e = m->muscle_fil_adr[item + 1] - m->muscle_fil_adr[item];
-    ds->dims[1 + k] = maxdims[1 + k] = chunk[1 + k] = (hsize_t)e;
+    ds->dims[1 + k] = (hsize_t)e;
     ds->frame_len *= (size_t)e;
   }
-  size_t frame_bytes = ds->frame_len * sizeof(double);
-  size_t frames_per_chunk = frame_bytes ? CHUNK_BYTES / frame_bytes : CHUNK_FRAMES;
-  if (frames_per_chunk > CHUNK_FRAMES) frames_per_chunk = CHUNK_FRAMES;
-  if (frames_per_chunk < 1) frames_per_chunk = 1;
-  chunk[0] = frames_per_chunk;
+  return ds->path ? SW_OK : SW_EIO;
+}
 
-  if (reopen_frames >= 0) return reopen_dataset(o, ds, reopen_frames, err, errlen);
+/* The frames of one chunk, the same for every dataset of the file so that
+ * one chunk buffer per dataset holds the frames since the last chunk
+ * boundary: CHUNK_FRAMES, fewer when the largest frame would make a chunk
+ * of more than CHUNK_BYTES or all the buffers more than BUFFER_BYTES. */
+#define BUFFER_BYTES (4u << 20)
+static int chunk_frames(const swOutput *o) {
+  size_t largest = 1, all = 0;
+  for (int i = 0; i < o->ndset; i++) {
+    size_t bytes = o->dset[i].frame_len * sizeof(double);
+    if (bytes > largest) largest = bytes;
+    all += bytes;
+  }
+  size_t frames = CHUNK_FRAMES;
+  if (CHUNK_BYTES / largest < frames) frames = CHUNK_BYTES / largest;
+  if (all && BUFFER_BYTES / all < frames) frames = BUFFER_BYTES / all;
+  return frames < 1 ? 1 : (int)frames;
+}
+
+/* The frames of a reopened dataset's chunks (0 if it is not chunked). */
+static hsize_t stored_chunk_frames(hid_t dset) {
+  hsize_t chunk[1 + MAX_FRAME_RANK] = {0};
+  hid_t dcpl = H5Dget_create_plist(dset);
+  if (dcpl < 0) return 0;
+  int rank = H5Pget_layout(dcpl) == H5D_CHUNKED ? H5Pget_chunk(dcpl, 1 + MAX_FRAME_RANK, chunk) : 0;
+  H5Pclose(dcpl);
+  return rank > 0 ? chunk[0] : 0;
+}
+
+/* Create (or reopen, reopen_frames >= 0) dataset ds, described, with its
+ * attributes. */
+static int create_dataset(swOutput *o, swDataset *ds, const swModel *m, hid_t lcpl,
+                          long reopen_frames, char *err, size_t errlen) {
+  hsize_t maxdims[1 + MAX_FRAME_RANK], chunk[1 + MAX_FRAME_RANK];
+  const swField *f = ds->field;
+  const int item = ds->item;
+  maxdims[0] = H5S_UNLIMITED;
+  chunk[0] = (hsize_t)o->chunk_frames;
+  for (int k = 1; k < ds->rank; k++) maxdims[k] = chunk[k] = ds->dims[k];
+
+  if (reopen_frames >= 0) {
+    int rc = reopen_dataset(o, ds, reopen_frames, err, errlen);
+    if (rc == SW_OK && stored_chunk_frames(ds->dset) != chunk[0]) o->direct = 0;
+    return rc;
+  }
   hid_t space = H5Screate_simple(ds->rank, ds->dims, maxdims);
   hid_t dcpl = H5Pcreate(H5P_DATASET_CREATE);
   /* No fill: every frame inside the extent is written before the extent
-   * is read (sw_out_append_frames extends by the frames it writes), so
+   * is read (sw_out_write_frames extends by the frames it writes), so
    * filling a new chunk first would only be a memset of it (a tenth of a
    * short run's output time). */
   if (space < 0 || dcpl < 0 || H5Pset_chunk(dcpl, ds->rank, chunk) < 0 ||
@@ -322,50 +362,94 @@ size_t sw_out_count_datasets(const swModel *m) {
 int sw_out_create_datasets(swOutput *o, const swModel *m, const swOutputOptions *opt,
                            long reopen_frames, char *err, size_t errlen) {
   int rc = SW_OK;
-  /* Groups /rods/NAME, /joints/NAME and /diagnostics come into being with
-   * their datasets. */
-  hid_t lcpl = H5Pcreate(H5P_LINK_CREATE);
-  if (lcpl < 0 || H5Pset_create_intermediate_group(lcpl, 1) < 0)
-    rc = sw_out_fail(err, errlen, "%s: cannot make a link creation property list", o->path);
   for (size_t f = 0; f < NFIELDS && rc == SW_OK; f++) {
     const swField *field = &output_fields[f];
     int nrep = field_items(field, m);
     for (int k = 0; k < nrep && rc == SW_OK; k++) {
       if (field->scope != SCOPE_ROOT && !item_enabled(field, m, opt, k)) continue;
-      swDataset *ds = &o->dset[o->ndset++];
-      rc = create_dataset(o, ds, field, m, field->scope == SCOPE_ROOT ? -1 : k, lcpl,
-                          reopen_frames, err, errlen);
+      if (describe_dataset(&o->dset[o->ndset++], field, m, field->scope == SCOPE_ROOT ? -1 : k))
+        rc = sw_out_fail(err, errlen, "%s: out of memory", o->path);
     }
   }
+  o->chunk_frames = chunk_frames(o);
+  /* chunks written as stored need the file's doubles to be this machine's */
+  o->direct = H5Tequal(H5T_NATIVE_DOUBLE, H5T_IEEE_F64LE) > 0;
+  /* Groups /rods/NAME, /joints/NAME and /diagnostics come into being with
+   * their datasets. */
+  hid_t lcpl = H5Pcreate(H5P_LINK_CREATE);
+  if (rc == SW_OK && (lcpl < 0 || H5Pset_create_intermediate_group(lcpl, 1) < 0))
+    rc = sw_out_fail(err, errlen, "%s: cannot make a link creation property list", o->path);
+  for (int i = 0; i < o->ndset && rc == SW_OK; i++)
+    rc = create_dataset(o, &o->dset[i], m, lcpl, reopen_frames, err, errlen);
   if (lcpl >= 0) H5Pclose(lcpl);
   return rc;
 }
 
 /* ---- one frame more ---- */
 
-int sw_out_append_frames(swOutput *o, swDataset *ds, const double *frames, int n) {
-  hsize_t start[1 + MAX_FRAME_RANK] = {0}, count[1 + MAX_FRAME_RANK];
-  ds->dims[0] = (hsize_t)(o->written + n);
+/* Frames [o->written, upto) of dataset ds, all in its chunk buffer, which
+ * holds the chunk from frame start = o->written rounded down to a chunk:
+ * the dataset extended to upto frames, then the whole chunk written as
+ * stored (its rows past upto, zeros or frames of this chunk not yet
+ * written, lie outside the extent and are written again with the chunk),
+ * or the new frames by a selection. */
+int sw_out_write_frames(swOutput *o, swDataset *ds, long upto) {
+  const long start = o->written - o->written % o->chunk_frames;
+  ds->dims[0] = (hsize_t)upto;
   if (H5Dset_extent(ds->dset, ds->dims) < 0) {
     ds->dims[0] = (hsize_t)o->written;
     return sw_out_fail(NULL, 0, "%s: cannot extend dataset %s to %ld frames", o->path, ds->path,
-                       o->written + n);
+                       upto);
   }
-  start[0] = (hsize_t)o->written;
-  count[0] = (hsize_t)n;
-  for (int k = 1; k < ds->rank; k++) count[k] = ds->dims[k];
-  hid_t file_space = H5Dget_space(ds->dset);
-  hid_t mem_space = H5Screate_simple(ds->rank, count, NULL);
-  int ok = file_space >= 0 && mem_space >= 0 &&
-           H5Sselect_hyperslab(file_space, H5S_SELECT_SET, start, NULL, count, NULL) >= 0 &&
-           H5Dwrite(ds->dset, H5T_NATIVE_DOUBLE, mem_space, file_space, H5P_DEFAULT, frames) >= 0;
-  if (mem_space >= 0) H5Sclose(mem_space);
-  if (file_space >= 0) H5Sclose(file_space);
+  int ok;
+  if (o->direct) {
+    hsize_t offset[1 + MAX_FRAME_RANK] = {(hsize_t)start};
+    size_t bytes = (size_t)o->chunk_frames * ds->frame_len * sizeof(double);
+    ok = H5Dwrite_chunk(ds->dset, H5P_DEFAULT, 0, offset, bytes, ds->pending) >= 0;
+  } else {
+    hsize_t first[1 + MAX_FRAME_RANK] = {(hsize_t)o->written}, count[1 + MAX_FRAME_RANK];
+    count[0] = (hsize_t)(upto - o->written);
+    for (int k = 1; k < ds->rank; k++) count[k] = ds->dims[k];
+    hid_t file_space = H5Dget_space(ds->dset);
+    hid_t mem_space = H5Screate_simple(ds->rank, count, NULL);
+    ok = file_space >= 0 && mem_space >= 0 &&
+         H5Sselect_hyperslab(file_space, H5S_SELECT_SET, first, NULL, count, NULL) >= 0 &&
+         H5Dwrite(ds->dset, H5T_NATIVE_DOUBLE, mem_space, file_space, H5P_DEFAULT,
+                  ds->pending + (size_t)(o->written - start) * ds->frame_len) >= 0;
+    if (mem_space >= 0) H5Sclose(mem_space);
+    if (file_space >= 0) H5Sclose(file_space);
+  }
   if (!ok) { /* frames not written are not filled either: take them back */
     ds->dims[0] = (hsize_t)o->written;
     H5Dset_extent(ds->dset, ds->dims);
     return sw_out_fail(NULL, 0, "%s: cannot write frames %ld to %ld of dataset %s", o->path,
-                       o->written, o->written + n - 1, ds->path);
+                       o->written, upto - 1, ds->path);
+  }
+  return SW_OK;
+}
+
+/* A continued run's chunk buffers: the frames of the last chunk the file
+ * holds, from its start to o->written, read back, so that the chunk is
+ * written whole again when it fills. */
+int sw_out_read_partial_chunk(swOutput *o) {
+  const long start = o->written - o->written % o->chunk_frames;
+  if (!o->direct || start == o->written) return SW_OK;
+  for (int i = 0; i < o->ndset; i++) {
+    swDataset *ds = &o->dset[i];
+    hsize_t first[1 + MAX_FRAME_RANK] = {(hsize_t)start}, count[1 + MAX_FRAME_RANK];
+    count[0] = (hsize_t)(o->written - start);
+    for (int k = 1; k < ds->rank; k++) count[k] = ds->dims[k];
+    hid_t file_space = H5Dget_space(ds->dset);
+    hid_t mem_space = H5Screate_simple(ds->rank, count, NULL);
+    int ok = file_space >= 0 && mem_space >= 0 &&
+             H5Sselect_hyperslab(file_space, H5S_SELECT_SET, first, NULL, count, NULL) >= 0 &&
+             H5Dread(ds->dset, H5T_NATIVE_DOUBLE, mem_space, file_space, H5P_DEFAULT,
+                     ds->pending) >= 0;
+    if (mem_space >= 0) H5Sclose(mem_space);
+    if (file_space >= 0) H5Sclose(file_space);
+    if (!ok)
+      return sw_out_fail(NULL, 0, "%s: cannot read frames %ld to %ld of dataset %s back", o->path,
+                         start, o->written - 1, ds->path);
   }
   return SW_OK;
 }

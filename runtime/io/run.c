@@ -114,10 +114,10 @@ static int write_frame(const swModel *m, swData *d, swOutput *out, swProgress *p
 }
 
 /* After a frame of the schedule: the state a continued run starts from
- * (restart.c). */
+ * (restart.c); the run's last frame always. */
 static int checkpoint(const swModel *m, const swData *d, swOutput *out, const swRunOptions *ro,
-                      swProgress *p) {
-  if (!out || sw_output_checkpoint(out, m, d, ro->expect) == SW_OK) return SW_OK;
+                      swProgress *p, int last) {
+  if (!out || sw_output_checkpoint(out, m, d, ro->expect, last) == SW_OK) return SW_OK;
   progress_end(p);
   say(p->log, "sinew: %s\n", sw_output_error());
   return SW_EIO;
@@ -189,7 +189,7 @@ int sw_run(const swModel *m, swData *d, swOutput *out, const swRunOptions *ro) {
   if (!ro->resumed) {   /* a continued run's first frame is in its file */
     rc = write_frame(m, d, out, &p);
     if (ro->expect) sw_expect_sample(m, d, ro->expect);
-    if (rc == SW_OK) rc = checkpoint(m, d, out, ro, &p);
+    if (rc == SW_OK) rc = checkpoint(m, d, out, ro, &p, nsteps == 0);
   }
   long k = 0, last_frame = 0;
   p.start = p.last_line = sw_wall_seconds();
@@ -219,7 +219,7 @@ int sw_run(const swModel *m, swData *d, swOutput *out, const swRunOptions *ro) {
     if (frame) rc = write_frame(m, d, out, &p);
     sw_whole_end(m, d);
     if (frame) { /* the held state: a continued run fuses as this one does */
-      if (rc == SW_OK) rc = checkpoint(m, d, out, ro, &p);
+      if (rc == SW_OK) rc = checkpoint(m, d, out, ro, &p, k == nsteps);
       last_frame = k;
     }
     progress_update(&p, d, k);

@@ -1,7 +1,9 @@
 /* test_output.c — tests of output.c and run.c: the HDF5 schema written by a
  * run, the frame schedule, Ctrl-C leaving a valid file, an unstable run, time
- * arguments, the error message for a file that cannot be created, and the
- * XDMF description beside the file (names escaped, node radii).
+ * arguments, the error message for a file that cannot be created, the
+ * XDMF description beside the file (names escaped, node radii), and the
+ * two ways frames reach the datasets (whole chunks as stored, or frames by a
+ * selection) giving the same datasets.
  *
  * Design.  The file written by sw_run() is read back with the plain HDF5 C API
  * (not through output.c), so the test checks what a user's h5py script would
@@ -21,6 +23,7 @@
 
 #include "testutil.h"
 #include "h5read.h"
+#include "output.h" /* white box: swOutput's write path */
 
 /* A free rod of 4 elements falling under gravity. */
 static swModel *falling_rod(double dt) {
@@ -616,6 +619,73 @@ static void test_xdmf_names_and_radius(void **state) {
   sw_model_free(m);
 }
 
+/* ---- (f) chunks written as stored, or frames by a selection ---- */
+
+/* Runs the falling rod for 151 frames (two whole chunks of 64 and a partial
+ * one) into path, by either write path; returns the chunk's frames. */
+static hsize_t run_chunked(const char *path, int direct) {
+  swModel *m = falling_rod(1e-4);
+  swData *d = sw_data_new(m);
+  sw_reset(m, d);
+  swOutputOptions opt = {.duration = 15e-3, .velocity = 1, .directors = 1};
+  char err[256] = "";
+  swOutput *out = sw_output_open(path, m, &opt, err, sizeof err);
+  assert_non_null(out);
+  hsize_t chunk = (hsize_t)out->chunk_frames;
+  if (!direct) out->direct = 0;
+  swRunOptions ro = {.duration = 15e-3, .every = 1e-4, .quiet = 1};
+  assert_int_equal(sw_run(m, d, out, &ro), SW_OK);
+  assert_int_equal(sw_output_frames(out), 151);
+  assert_int_equal(sw_output_close(out, NULL), SW_OK);
+  sw_data_free(d);
+  sw_model_free(m);
+  return chunk;
+}
+
+static void test_chunk_paths(void **state) {
+  (void)state;
+  char direct[64], selected[64];
+  temp_path(direct, sizeof direct);
+  temp_path(selected, sizeof selected);
+  hsize_t chunk = run_chunked(direct, 1);
+  assert_int_equal(run_chunked(selected, 0), chunk);
+  hid_t a = H5Fopen(direct, H5F_ACC_RDONLY, H5P_DEFAULT);
+  hid_t b = H5Fopen(selected, H5F_ACC_RDONLY, H5P_DEFAULT);
+  assert_true(a >= 0 && b >= 0);
+  const char *paths[] = {"/time", "/rods/filament/position", "/rods/filament/velocity",
+                         "/rods/filament/directors", "/diagnostics/energy"};
+  for (size_t p = 0; p < sizeof paths / sizeof paths[0]; p++) {
+    hsize_t da[4], db[4], maxdims[4], stored[4];
+    int rank = read_dims(a, paths[p], da, maxdims);
+    assert_int_equal(read_dims(b, paths[p], db, maxdims), rank);
+    size_t n = 1;
+    for (int k = 0; k < rank; k++) {
+      assert_int_equal(da[k], db[k]);
+      n *= (size_t)da[k];
+    }
+    hid_t dset = H5Dopen2(a, paths[p], H5P_DEFAULT), dcpl = H5Dget_create_plist(dset);
+    assert_int_equal(H5Pget_chunk(dcpl, 4, stored), rank);
+    H5Pclose(dcpl);
+    H5Dclose(dset);
+    double *va = read_doubles(a, paths[p]), *vb = read_doubles(b, paths[p]);
+    size_t differ = 0;
+    for (size_t i = 0; i < n; i++) differ += memcmp(&va[i], &vb[i], sizeof va[i]) != 0;
+    fprintf(stderr, "# %s: %s: %llu frames in chunks of %llu; %zu of %zu values differ between "
+            "the two paths\n", __func__, paths[p], (unsigned long long)da[0],
+            (unsigned long long)stored[0], differ, n);
+    assert_int_equal(da[0], 151);
+    assert_int_equal(stored[0], chunk);
+    assert_int_equal(differ, 0);
+    free(va);
+    free(vb);
+  }
+  assert_int_equal(chunk, 64);
+  H5Fclose(a);
+  H5Fclose(b);
+  remove_outputs(direct);
+  remove_outputs(selected);
+}
+
 int main(void) {
   const struct CMUnitTest tests[] = {
     cmocka_unit_test(test_output_schema),
@@ -625,6 +695,7 @@ int main(void) {
     cmocka_unit_test(test_parse_time),
     cmocka_unit_test(test_unwritable_path),
     cmocka_unit_test(test_xdmf_names_and_radius),
+    cmocka_unit_test(test_chunk_paths),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);
 }
