@@ -223,7 +223,7 @@ static double wall_now(void) {
 
 /* Seconds of wall time between two rewrites of the description during a
  * run, at least, and at least this many times the last rewrite took: it is
- * rewritten whole (about 1 kB per rod and frame), so rewriting it at every
+ * rewritten whole (about 0.5 kB per rod and frame), so rewriting it at every
  * frame would cost the square of the frame count, and a long run's rewrites
  * take at most 1/XDMF_SHARE of its wall time. */
 #define XDMF_EVERY 1.0
