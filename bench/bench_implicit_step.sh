@@ -33,10 +33,10 @@ for n in $sizes; do
     SINEW_PATH="$tmp/m$n" "$c" "$root/examples/snake_hardening.sinew" -o "$tmp/$w.exp.$n"
     SINEW_PATH="$tmp/m$n" "$c" --let implicit=true "$root/examples/snake_hardening.sinew" -o "$tmp/$w.imp.$n"
   done
-  # dt: 0.8 of the explicit scene's stable estimate, in us; 20000 steps at n = 50, fewer in proportion above
+  # dt: 0.8 of the explicit scene's stable estimate, in us; 20000 steps at n = 50 (SW_BENCH_STEPS), fewer in proportion above
   est=$("$tmp/new.exp.$n" --info | sed -n 's/^dt: .*stable estimate \([0-9.e+-]*\) \([a-z]*\)).*/\1 \2/p')
   dt=$(echo "$est" | awk '{ f = $2 == "ns" ? 1e-3 : $2 == "us" ? 1 : $2 == "ms" ? 1e3 : 1e6; printf "%.3f", 0.8 * $1 * f }')
-  steps=$((20000 * 50 / n))
+  steps=$((${SW_BENCH_STEPS:-20000} * 50 / n))
   echo "$dt $steps" > "$tmp/run.$n"
 done
 run() { # run WHO KIND N DURATION: appends the CPU seconds to $tmp/cpu/WHO.KIND.N[.0]
@@ -70,7 +70,7 @@ echo "|---|---|---|---|---|---|---|---|---|---|---|"
 for n in $sizes; do
   set -- $(cat "$tmp/run.$n")
   oi=$(cost old imp $n) oe=$(cost old exp $n) ni=$(cost new imp $n) ne=$(cost new exp $n)
-  moved=$(/usr/bin/python3 "$root/scripts/compare_h5.py" "$tmp/out.old.imp.$n.h5" "$tmp/out.new.imp.$n.h5" 2>&1 | tail -1 | sed 's/|/\\|/g' || true)
+  moved=$(/usr/bin/python3 "$root/scripts/compare_h5.py" --except restart "$tmp/out.old.imp.$n.h5" "$tmp/out.new.imp.$n.h5" 2>&1 | tail -1 | sed 's/|/\\|/g' || true)
   awk -v n=$n -v dt="$1" -v s="$2" -v oi=$oi -v oe=$oe -v ni=$ni -v ne=$ne -v mv="$moved" 'BEGIN {
     printf "| %d | %s | %d | %.2f | %.2f | %.2f | %.2f | %.2f | %.2f | %s | %s |\n", n, dt, s, oi, oe, oi / oe, ni, ne, ni / ne, ni / ne <= 1.5 ? "yes" : "no", mv }'
 done

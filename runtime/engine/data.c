@@ -108,6 +108,7 @@ void sw_reset(const swModel *m, swData *d) {
     d->shortest_time[i] = 0;
   }
   if (m->nrigid) sw_rigid_reset(m, d);
+  if (m->nimplicit) sw_implicit_reset(m, d); /* no factorisation kept */
   sw_probe_reset(m, d);
   d->contact_pairs = 0; /* contact.c's figures are those of the last evaluation */
   d->contact_max_overlap = 0;

@@ -280,6 +280,11 @@ int sw_implicit_setup(swModel *m, const int *wanted);
 void sw_implicit_free(swModel *m);
 size_t sw_implicit_scratch(const swModel *m);
 void sw_implicit_kick(const swModel *m, swData *d, double h);
+/* sw_implicit_reset forgets every kept factorisation (sw_reset). */
+void sw_implicit_reset(const swModel *m, swData *d);
+/* The bound of rod r's elastic waves on an explicit kick, implicit or not
+ * (stability.c). */
+double sw_stable_dt_elastic(const swModel *m, int r);
 /* The tangent stiffness K of rod r's internal loads in its band (the
  * unknowns v_0, w_0, v_1, ..., v_n; A(i, j), j <= i <= j + SW_IMPLICIT_BAND,
  * at A[i (SW_IMPLICIT_BAND + 1) + SW_IMPLICIT_BAND - (i - j)]), for the tests. */

@@ -59,6 +59,7 @@
  * sets them after, as for every rod.
  */
 #include <math.h>
+#include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
 #include "sinew.h"
@@ -70,23 +71,27 @@
 /* Unknowns of a rod of n elements: three per node and per element. */
 static size_t unknowns(int n) { return 3 * (2 * (size_t)n + 1); }
 
-/* Doubles of one rod's workspace: the band (BAND + 1 per row) with BAND
- * rows of zeros before and after it, the right-hand side with BAND zeros
- * before and after, and the factor's inverse diagonal with BAND zeros
- * before (band_ldlt_solve). */
-static size_t rod_scratch(int n) { return (unknowns(n) + 2 * BAND) * (BAND + 3) - BAND; }
+/* Doubles of one rod's system: the band (BAND + 1 per row) with BAND rows
+ * of zeros before and after it, the right-hand side with BAND zeros before
+ * and after, and the factor's inverse diagonal with BAND zeros before
+ * (band_ldlt_solve); then what the factorisation was made of (below). */
+static size_t system_len(int n) { return (unknowns(n) + 2 * BAND) * (BAND + 3) - BAND; }
+enum { KEPT_H, KEPT_FRESH, KEPT_REUSED, KEPT_HEAD = 4 };
+static size_t rod_scratch(int n) { return system_len(n) + KEPT_HEAD + 12 * (size_t)n; }
 
 int sw_implicit_setup(swModel *m, const int *wanted) {
   m->rod_implicit = calloc((size_t)m->nrod, sizeof(int));
   m->implicit_rod = calloc((size_t)m->nrod, sizeof(int));
   m->implicit_adr = calloc((size_t)m->nrod + 1, sizeof(size_t));
-  if (!m->rod_implicit || !m->implicit_rod || !m->implicit_adr) return 0;
+  m->implicit_wave_dt = calloc((size_t)m->nrod + 1, sizeof(double));
+  if (!m->rod_implicit || !m->implicit_rod || !m->implicit_adr || !m->implicit_wave_dt) return 0;
   m->nimplicit = 0;
   for (int r = 0; r < m->nrod; r++) {
     if (!wanted[r] || sw_rod_is_rigid(m, r)) continue;
     m->rod_implicit[r] = 1; /* asked for; kicked implicitly under imex only */
     if (m->integrator != SW_IMEX) continue;
     m->implicit_rod[m->nimplicit] = r;
+    m->implicit_wave_dt[m->nimplicit] = sw_stable_dt_elastic(m, r);
     m->implicit_adr[m->nimplicit + 1] = m->implicit_adr[m->nimplicit] + rod_scratch(m->rod_nelem[r]);
     m->nimplicit++;
   }
@@ -97,6 +102,7 @@ void sw_implicit_free(swModel *m) {
   free(m->rod_implicit);
   free(m->implicit_rod);
   free(m->implicit_adr);
+  free(m->implicit_wave_dt);
 }
 
 size_t sw_implicit_scratch(const swModel *m) {
@@ -403,16 +409,106 @@ void sw_implicit_stiffness(const swModel *m, const swData *d, int r, double *A) 
   clamp_blocks(m, d, r, A);
 }
 
-/* Rod r's system of this kick, A = M + h/2 C + h^2/4 K and rhs = h F,
- * assembled and factored in its workspace ws (rod_scratch); *rhs_out and
- * *inv_out point into it.  Returns 0 if A could not be factored. */
-static int rod_factor(const swModel *m, const swData *d, int r, double *ws, double h,
-                      double **rhs_out, double **inv_out) {
+/* ---- keeping a factorisation (issue 31) ----
+ *
+ * The system's matrix W = M + h/2 C + h^2/4 K changes with the rod's
+ * configuration only through K (its frames, which turn the node blocks,
+ * and its strains, which scale them and the tension's terms) and the
+ * inertias' dilatation; M and C are constant.  The kick only needs W to be
+ * near this configuration's: with W = A + E, the update du = W^-1 h F
+ * differs from the exact trapezoidal one by h^2/4 (K_W - K) du = O(h^2 du),
+ * a local error O(h^3) that keeps the scheme second order (the linearly
+ * implicit W-methods: Hairer and Wanner, Solving ODEs II, sec. IV.7).  The
+ * stiff modes stay stable: in a mode of stiffness k and mass m kicked with
+ * k' = k (1 + delta) in W, position Verlet's map of (x, v) has determinant
+ * 1 and trace 2 - a h, a = h k / (m + h^2 k' / 4), so it is stable, and
+ * keeps an energy near the exact rule's with no drift, for
+ * delta > -(2 / (w h))^2 = -(dt_w / h)^2, dt_w the rod's explicit bound
+ * (sw_stable_dt_elastic).  A turn theta of a frame changes the turned
+ * blocks by at most 2 theta of the stiffest, and a strain moved by theta
+ * scales them by about theta.  So a rod keeps its factorisation, and a
+ * kick is one band solve, while every element's frame has turned by at
+ * most theta and every strain has moved by at most theta since it was
+ * made,
+ *   theta = min(KEEP_CAP, KEEP_SHARE (dt_w / h)^2),
+ * KEEP_SHARE = 0.02 keeping |delta| 25 times inside the bound, and factors
+ * afresh (assembly and L D L^T, three quarters of the implicit kick on the
+ * hardened snake) otherwise, or when h changes.  On the arm's tendons and
+ * bones at 125 us (dt_w of a few us) theta is below 1e-5 rad and nearly
+ * every kick factors; at the hardened snake's 25 us (dt_w 31 us) the
+ * factorisation is kept while the frames turn by 0.02 rad. */
+#define KEEP_SHARE 0.02
+#define KEEP_CAP 0.02
+
+/* Whether rod r's kept factorisation (kept: its head, frames and strains)
+ * holds for this kick. */
+static int kept_holds(const swModel *m, const swData *d, int r, const double *kept, double h,
+                      double wave_dt) {
+  if (kept[KEPT_H] != h) return 0;
+  const int n = m->rod_nelem[r], ea = m->elem_adr[r];
+  const double ratio = wave_dt / h, theta = fmin(KEEP_CAP, KEEP_SHARE * ratio * ratio);
+  const double *Qk = kept + KEPT_HEAD, *sk = Qk + 9 * (size_t)n;
+  /* the turn of element e's frame: 3 - tr(Q Q_k^T) = 4 sin^2(angle / 2) */
+  double turn2 = 0, strain = 0;
+  for (int i = 0; i < n; i++) {
+    double tr = 0, ds = 0;
+    for (int k = 0; k < 9; k++) tr += SW_AT(m, d->Q, ea + i, k) * Qk[(size_t)k * (size_t)n + (size_t)i];
+    for (int k = 0; k < 3; k++)
+      ds = sw_max(ds, fabs(SW_AT(m, d->sigma, ea + i, k) - sk[(size_t)k * (size_t)n + (size_t)i]));
+    turn2 = sw_max(turn2, 3.0 - tr);
+    strain = sw_max(strain, ds);
+  }
+  return turn2 <= theta * theta && strain <= theta;
+}
+
+/* What rod r's factorisation is made of, kept beside it. */
+static void keep(const swModel *m, const swData *d, int r, double *kept, double h) {
+  const int n = m->rod_nelem[r], ea = m->elem_adr[r];
+  double *Qk = kept + KEPT_HEAD, *sk = Qk + 9 * (size_t)n;
+  kept[KEPT_H] = h;
+  for (int k = 0; k < 9; k++)
+    for (int i = 0; i < n; i++) Qk[(size_t)k * (size_t)n + (size_t)i] = SW_AT(m, d->Q, ea + i, k);
+  for (int k = 0; k < 3; k++)
+    for (int i = 0; i < n; i++) sk[(size_t)k * (size_t)n + (size_t)i] = SW_AT(m, d->sigma, ea + i, k);
+}
+
+/* The right-hand side h F of rod r's kick, zero where a boundary condition
+ * holds the rod. */
+static void rod_rhs(const swModel *m, const swData *d, int r, double h, double *rhs) {
   const int n = m->rod_nelem[r], na = m->node_adr[r], ea = m->elem_adr[r];
+  for (int i = 0; i <= n; i++)
+    for (int k = 0; k < 3; k++) rhs[6 * i + k] = h * SW_AT(m, d->force, na + i, k);
+  for (int i = 0; i < n; i++)
+    for (int k = 0; k < 3; k++) rhs[6 * i + 3 + k] = h * SW_AT(m, d->torque, ea + i, k);
+  for (int k = 0; k < m->nbc; k++) {
+    const swBCDesc *b = &m->bc[k];
+    if (b->rod != r) continue;
+    size_t o = SIZE_MAX;
+    if (b->kind == SW_BC_CLAMP || b->kind == SW_BC_VELOCITY) o = b->end ? 6 * (size_t)n : 0;
+    if (b->kind == SW_BC_OMEGA) o = b->end ? 6 * (size_t)n - 3 : 3;
+    if (o != SIZE_MAX) rhs[o] = rhs[o + 1] = rhs[o + 2] = 0;
+  }
+}
+
+/* Rod r's system of this kick, A = M + h/2 C + h^2/4 K and rhs = h F, in
+ * its workspace ws (rod_scratch); *rhs_out and *inv_out point into it.  The
+ * factorisation of an earlier kick is kept when it holds (above), else A is
+ * assembled and factored.  Returns 0 if A could not be factored. */
+static int rod_factor(const swModel *m, const swData *d, int k, double *ws, double h,
+                      double **rhs_out, double **inv_out) {
+  const int r = m->implicit_rod[k], n = m->rod_nelem[r], na = m->node_adr[r], ea = m->elem_adr[r];
   const int damped = m->rod_damping[r] == SW_DAMP_LINEAR;
   const size_t N = unknowns(n), NB = N * (BAND + 1), PB = BAND * (BAND + 1);
-  /* the workspace (rod_scratch): zeros, band, zeros, zeros, rhs, zeros, zeros, inv */
+  /* the workspace (rod_scratch): zeros, band, zeros, zeros, rhs, zeros,
+   * zeros, inv, what the factorisation was made of */
   double *A = ws + PB, *rhs = A + NB + PB + BAND, *inv = rhs + N + 2 * BAND;
+  double *kept = ws + system_len(n);
+  *rhs_out = rhs, *inv_out = inv;
+  rod_rhs(m, d, r, h, rhs);
+  if (kept_holds(m, d, r, kept, h, m->implicit_wave_dt[k])) {
+    kept[KEPT_REUSED] += 1;
+    return 1;
+  }
   memset(ws, 0, PB * sizeof(double));
   memset(A + NB, 0, (PB + BAND) * sizeof(double));
   memset(rhs + N, 0, 2 * BAND * sizeof(double));
@@ -420,66 +516,81 @@ static int rod_factor(const swModel *m, const swData *d, int r, double *ws, doub
   /* A = M + h/2 C + h^2/4 K */
   sw_implicit_stiffness(m, d, r, A);
   for (size_t q = 0; q < NB; q++) A[q] *= 0.25 * h * h;
-  for (int i = 0; i <= n; i++) { /* masses, damping and h F on the nodes */
+  for (int i = 0; i <= n; i++) { /* masses and damping on the nodes */
     const int s = na + i;
-    for (int k = 0; k < 3; k++) {
-      *at(A, 6 * (size_t)i + (size_t)k, 6 * (size_t)i + (size_t)k) += m->mass[s] + c * m->node_gamma[s];
-      rhs[6 * i + k] = h * SW_AT(m, d->force, s, k);
-    }
+    for (int c3 = 0; c3 < 3; c3++)
+      *at(A, 6 * (size_t)i + (size_t)c3, 6 * (size_t)i + (size_t)c3) += m->mass[s] + c * m->node_gamma[s];
   }
-  for (int i = 0; i < n; i++) { /* inertias J^/e, damping and h tau on the elements */
+  for (int i = 0; i < n; i++) { /* inertias J^/e and damping on the elements */
     const int e = ea + i;
     const double dil = sw_inertia_dilatation(m, d, e);
-    for (int k = 0; k < 3; k++) {
-      const size_t q = 6 * (size_t)i + 3 + (size_t)k;
-      *at(A, q, q) += SW_AT(m, m->inertia, e, k) / dil + c * SW_AT(m, m->elem_gamma, e, k);
-      rhs[q] = h * SW_AT(m, d->torque, e, k);
+    for (int c3 = 0; c3 < 3; c3++) {
+      const size_t q = 6 * (size_t)i + 3 + (size_t)c3;
+      *at(A, q, q) += SW_AT(m, m->inertia, e, c3) / dil + c * SW_AT(m, m->elem_gamma, e, c3);
     }
   }
   rod_holds(m, r, A, rhs, N);
-  *rhs_out = rhs, *inv_out = inv;
-  return band_ldlt_factor(A, N, inv);
+  kept[KEPT_H] = 0; /* no factorisation kept unless this one succeeds */
+  if (!band_ldlt_factor(A, N, inv)) return 0;
+  keep(m, d, r, kept, h);
+  kept[KEPT_FRESH] += 1;
+  return 1;
 }
 
 void sw_implicit_apply(const swModel *m, swData *d, int r, const double *du, size_t stride,
                        double h) {
   const int n = m->rod_nelem[r], na = m->node_adr[r], ea = m->elem_adr[r];
+  const double ih = 1.0 / h; /* one division, not one per unknown (a sixth of the kept kick) */
   for (int i = 0; i <= n; i++)
     for (int k = 0; k < 3; k++)
-      SW_AT(m, d->force, na + i, k) = m->mass[na + i] * du[(6 * (size_t)i + (size_t)k) * stride] / h;
+      SW_AT(m, d->force, na + i, k) = m->mass[na + i] * du[(6 * (size_t)i + (size_t)k) * stride] * ih;
   for (int i = 0; i < n; i++) {
     const int e = ea + i;
-    const double dil = sw_inertia_dilatation(m, d, e);
+    const double s = ih / sw_inertia_dilatation(m, d, e);
     for (int k = 0; k < 3; k++)
-      SW_AT(m, d->torque, e, k) =
-          SW_AT(m, m->inertia, e, k) / dil * du[(6 * (size_t)i + 3 + (size_t)k) * stride] / h;
+      SW_AT(m, d->torque, e, k) = SW_AT(m, m->inertia, e, k) * du[(6 * (size_t)i + 3 + (size_t)k) * stride] * s;
   }
 }
 
-/* Rod r's kick: assemble, solve, and the effective loads into d->force and
- * d->torque.  Returns 0 if the system could not be factored. */
-static int rod_kick(const swModel *m, swData *d, int r, double *ws, double h) {
-  double *rhs, *inv;
-  if (!rod_factor(m, d, r, ws, h, &rhs, &inv)) return 0;
+/* Implicit rod k's kick: its system (rod_factor), solved, and the
+ * effective loads into d->force and d->torque.  Returns 0 if the system
+ * could not be factored. */
+static int rod_kick(const swModel *m, swData *d, int k, double h) {
+  double *rhs, *inv, *ws = d->implicit_sys + m->implicit_adr[k];
+  const int r = m->implicit_rod[k];
+  if (!rod_factor(m, d, k, ws, h, &rhs, &inv)) return 0;
   const size_t PB = BAND * (BAND + 1);
   band_ldlt_solve(ws + PB, unknowns(m->rod_nelem[r]), rhs, inv);
   sw_implicit_apply(m, d, r, rhs, 1, h);
   return 1;
 }
 
-static double *rod_workspace(const swModel *m, swData *d, int r) {
-  for (int k = 0; k < m->nimplicit; k++)
-    if (m->implicit_rod[k] == r) return d->implicit_sys + m->implicit_adr[k];
-  return NULL;
-}
-
 int sw_implicit_solve_many(const swModel *m, swData *d, int r, double h, double *X, int ld) {
-  double *ws = rod_workspace(m, d, r), *rhs, *inv;
-  if (!ws || !rod_factor(m, d, r, ws, h, &rhs, &inv)) return 0;
+  int k = 0;
+  while (k < m->nimplicit && m->implicit_rod[k] != r) k++;
+  double *rhs, *inv, *ws = k < m->nimplicit ? d->implicit_sys + m->implicit_adr[k] : NULL;
+  if (!ws || !rod_factor(m, d, k, ws, h, &rhs, &inv)) return 0;
   const size_t N = unknowns(m->rod_nelem[r]), PB = BAND * (BAND + 1);
   for (size_t i = 0; i < N; i++) X[i * (size_t)ld] = rhs[i];
   band_ldlt_solve_many(ws + PB, N, X, (size_t)ld, inv);
   return 1;
+}
+
+void sw_implicit_reset(const swModel *m, swData *d) {
+  for (int k = 0; k < m->nimplicit; k++) {
+    double *kept = d->implicit_sys + m->implicit_adr[k] + system_len(m->rod_nelem[m->implicit_rod[k]]);
+    kept[KEPT_H] = kept[KEPT_FRESH] = kept[KEPT_REUSED] = 0;
+  }
+}
+
+void sw_implicit_counts(const swModel *m, const swData *d, double *fresh, double *kept_count) {
+  *fresh = *kept_count = 0;
+  for (int k = 0; k < m->nimplicit; k++) {
+    const double *kept =
+        d->implicit_sys + m->implicit_adr[k] + system_len(m->rod_nelem[m->implicit_rod[k]]);
+    *fresh += kept[KEPT_FRESH];
+    *kept_count += kept[KEPT_REUSED];
+  }
 }
 
 size_t sw_implicit_unknowns(const swModel *m, int r) { return unknowns(m->rod_nelem[r]); }
@@ -494,6 +605,6 @@ void sw_implicit_kick(const swModel *m, swData *d, double h) {
   const int size = d->team_size > 1 ? d->team_size : 1, rank = sw_team_rank(d);
   for (int k = rank; k < m->nimplicit; k += size)
     if (m->rod_block[m->implicit_rod[k]] < 0) /* else a member of rigid_joint.c's system */
-      (void)rod_kick(m, d, m->implicit_rod[k], d->implicit_sys + m->implicit_adr[k], h);
+      (void)rod_kick(m, d, k, h);
   sw_team_barrier(d); /* the effective loads, before any thread's kick reads them */
 }

@@ -161,12 +161,10 @@ static double elem_zeta(const swModel *m, int r, int i, double w) {
   return c / (2 * w);
 }
 
-double sw_stable_dt_rod(const swModel *m, int r) {
-  /* a rigid rod has no elastic waves; only its damping limits the step */
-  if (sw_rod_is_rigid(m, r)) return sw_rigid_stable_dt(m, m->rod_rigid[r]);
-  /* an implicit rod's elasticity and linear damping are integrated by the
-   * trapezoidal rule (rod_implicit.c): nothing of its own bounds the step */
-  if (m->nimplicit && m->rod_implicit[r]) return INFINITY;
+/* The bound of rod r's elastic waves on an explicit kick, whether or not
+ * the rod is kicked so: an implicit rod keeps its factorisation while its
+ * frames turn by a small fraction of (this / dt)^2 (rod_implicit.c). */
+double sw_stable_dt_elastic(const swModel *m, int r) {
   int n = m->rod_nelem[r];
   double dt = INFINITY;
   for (int i = 0; i < n; i++) {
@@ -179,6 +177,16 @@ double sw_stable_dt_rod(const swModel *m, int r) {
     double lim = 0.95 * sw_integrator_stability_limit(m->integrator, elem_zeta(m, r, i, w)) / w;
     if (lim < dt) dt = lim;
   }
+  return dt;
+}
+
+double sw_stable_dt_rod(const swModel *m, int r) {
+  /* a rigid rod has no elastic waves; only its damping limits the step */
+  if (sw_rod_is_rigid(m, r)) return sw_rigid_stable_dt(m, m->rod_rigid[r]);
+  /* an implicit rod's elasticity and linear damping are integrated by the
+   * trapezoidal rule (rod_implicit.c): nothing of its own bounds the step */
+  if (m->nimplicit && m->rod_implicit[r]) return INFINITY;
+  double dt = sw_stable_dt_elastic(m, r);
   /* a muscle filament's Hill damping (muscle.c) */
   for (int f = 0; f < m->nfil; f++)
     if (m->fil_rod[f] == r) dt = fmin(dt, 0.95 * sw_muscle_ops(m)->stable_dt_filament(m, f));

@@ -164,6 +164,9 @@ typedef struct {
   int *implicit_rod;         /* (nimplicit) the rods, in rod order           */
   size_t *implicit_adr;      /* (nimplicit+1) each one's first double in
                                            swData.implicit_sys              */
+  double *implicit_wave_dt;  /* (nimplicit) the rod's explicit elastic bound
+                                           (stability.c), s: how long its
+                                           factorisation may be kept       */
   /* rigid rods (rigid.c).  A rod with swRodDesc.rigid keeps its nodes and
    * elements in the arrays above and moves as one rigid body b: node
    * x_i = X + R p_i, element frame Q_e = B_e R^T, with R the rotation from the
@@ -447,6 +450,10 @@ void sw_energy(const swModel *m, swData *d, double out[3]);
 double sw_stable_dt(const swModel *m);
 double sw_stable_dt_rod(const swModel *m, int rod);
 double sw_stable_dt_joint(const swModel *m, int joint);
+/* The implicit rods' kicks since sw_reset, summed over the rods: those that
+ * assembled and factored the rod's system afresh and those that kept an
+ * earlier factorisation (rod_implicit.c, "Keeping a factorisation"). */
+void sw_implicit_counts(const swModel *m, const swData *d, double *fresh, double *kept);
 
 /* The record of one run's expectations (created before the run, sampled by
  * sw_run through swRunOptions.expect, reported after it). */

@@ -37,7 +37,8 @@
 
 /* ---- what is saved ---- */
 
-enum { PER_SLOT, PER_CHUNK, PER_BC, PER_JOINT, PER_FIL, PER_BODY, PER_PROBE_RING, RIGID_SYS, PER_RING };
+enum { PER_SLOT, PER_CHUNK, PER_BC, PER_JOINT, PER_FIL, PER_BODY, PER_PROBE_RING, RIGID_SYS, PER_RING,
+       IMPLICIT_SYS };
 
 typedef struct {
   const char *name;
@@ -67,6 +68,7 @@ static const swSaved saved[] = {
     SAVED(fil_stretch, PER_FIL, 1),   SAVED(fil_rate, PER_FIL, 1),
     SAVED(fil_tension, PER_FIL, 1),   SAVED(probe_ring, PER_PROBE_RING, 4),
     SAVED(ring_row, PER_RING, SW_RING_ROW),
+    SAVED(implicit_sys, IMPLICIT_SYS, 1), /* the implicit rods' kept factorisations */
 };
 #define NSAVED (sizeof saved / sizeof saved[0])
 
@@ -82,6 +84,7 @@ static size_t saved_len(const swModel *m, const swSaved *s) {
   case PER_PROBE_RING: n = (size_t)m->nprobe * SW_PROBE_RING; break;
   case RIGID_SYS: n = sw_rigid_joints_scratch(m); break;
   case PER_RING: n = (size_t)m->nring; break;
+  case IMPLICIT_SYS: n = sw_implicit_scratch(m); break;
   }
   return n * (size_t)s->count;
 }

@@ -382,6 +382,11 @@ int sw_cli_run(const swCli *c, const swModel *m, const char *out) {
     if (rc != SW_OK && rc != SW_EEXPECT)
       fprintf(stderr, " of %s", sw_cli_format_time(total, sizeof total, c->duration));
     fprintf(stderr, " in %s wall time (%ld steps)\n", format_wall(w, sizeof w, wall), d->step);
+    double fresh, kept;
+    sw_implicit_counts(m, d, &fresh, &kept);
+    if (fresh + kept > 0)
+      fprintf(stderr, "%s: implicit rods: %.0f of %.0f kicks kept an earlier factorisation\n",
+              c->prog, kept, fresh + kept);
     fflush(stderr);
   }
   sw_data_free(d);
