@@ -1,10 +1,11 @@
 /* gen_shape.c — the generated C of rods' shapes: one function of the arc
  * length per curve, and the lines of a shaped rod's block in build().
  *
- * Design.  A curve "start_shape(s) = (x, y, z);" becomes a swCurveFn,
- * `static void shape_K(double s, double r[3], const void *ctx)`, that adds
- * its three components (printed over doubles as a signal's body is,
- * gen_fexpr_value) to the rod's start passed in ctx.  The rod's block then
+ * Design.  A curve "start_shape(s) = (x, y, z);" becomes its three
+ * components over doubles (printed as a signal's body is, gen_fexpr_value),
+ * `static void shape_K_at(double s, double f[3])`, and a swCurveFn,
+ * `static void shape_K(double s, double r[3], const void *ctx)`, that
+ * places it at the rod's start passed in ctx: start + f(s) - f(0).  The rod's block then
  * fills static arrays with the runtime's shape functions (engine/shape.c:
  * sw_shape_curve, sw_shape_helix, and sw_shape_straight for a straight start
  * away from a curved rest) and hands them to sw_spec_set_rest_shape and
@@ -22,16 +23,21 @@ static void curve_function(FILE *out, swArena *a, const swSceneRod *r, const swS
   gen_c_comment(out, r->name, strlen(r->name));
   fprintf(out, ": %s(", c->field);
   gen_c_comment(out, c->sname, strlen(c->sname));
-  fputs("), its centreline (m) at arc length s (m), from its start (ctx) */\n", out);
-  fprintf(out, "static void shape_%d(double s, double r[3], const void *ctx) {\n"
-          "  const double *start = ctx;\n", c->index);
+  fputs("), its centreline (m) at arc length s (m) */\n", out);
+  fprintf(out, "static void shape_%d_at(double s, double f[3]) {\n", c->index);
   gen_origin(out, c->loc, "  ");
   for (int k = 0; k < 3; k++) {
-    fprintf(out, "  r[%d] = start[%d] + ", k, k);
+    fprintf(out, "  f[%d] = ", k);
     gen_fexpr_value(out, a, c->r[k]);
     fputs(";\n", out);
   }
-  fputs("}\n\n", out);
+  fputs("}\n", out);
+  fprintf(out, "/* ... moved to begin at the rod's start (ctx) */\n"
+          "static void shape_%d(double s, double r[3], const void *ctx) {\n"
+          "  const double *start = ctx;\n  double f[3], f0[3];\n"
+          "  shape_%d_at(s, f);\n  shape_%d_at(0.0, f0);\n"
+          "  for (int k = 0; k < 3; k++) r[k] = start[k] + (f[k] - f0[k]);\n}\n\n",
+          c->index, c->index, c->index);
 }
 
 void gen_shape_functions(FILE *out, swArena *a, const swScene *sc) {

@@ -26,6 +26,7 @@
 #include "sema_int.h"
 
 static swHExpr *hx(swFCtx *C, const swAst *e);
+static swHExpr *hx_value(swFCtx *C, const swAst *e);
 
 swHExpr *sema_fexpr_node(swSema *S, swHOp op, swDim dim, swLoc loc, int nkid) {
   swHExpr *e = ast_alloc(S->a, sizeof *e);
@@ -376,6 +377,10 @@ static swHExpr *hx(swFCtx *C, const swAst *e) {
   switch (e->kind) {
   case AST_NAME:
     return name(C, e);
+  case AST_UNIT:   /* a formal spelt as a unit: a shape's s (not seconds there) */
+    for (int i = 0; i < C->nformal; i++)
+      if (!strcmp(e->name, C->formal[i])) return name(C, e);
+    return hx_value(C, e);
   case AST_BINOP:
     if (e->op == '^') return power(C, e);
     return binop(C, e, e->op, e->kid[0], e->kid[1]);
@@ -398,18 +403,22 @@ static swHExpr *hx(swFCtx *C, const swAst *e) {
     diag_error(e->loc, "%s is one number at each %s, not a vector", C->what,
                C->time ? "time" : C->shape ? "arc length" : "(x, y)");
     return NULL;
-  default: {
-    /* numbers, units, members (rod.length, v.x): values without x or y */
-    swValue v = sema_eval(S, C->scope, e);
-    if (v.kind == VAL_WORD) {
-      sema_report_unknown(S, C->scope, v.word, v.loc, "name");
-      return NULL;
-    }
-    if (v.kind == VAL_ERROR) return NULL;
-    v = sema_expect_value(S, v, 1, v.dim, C->term);
-    return v.kind == VAL_ERROR ? NULL : constant(S, v);
+  default:
+    return hx_value(C, e);
   }
+}
+
+/* numbers, units, members (rod.length, v.x): values without a formal */
+static swHExpr *hx_value(swFCtx *C, const swAst *e) {
+  swSema *S = C->S;
+  swValue v = sema_eval(S, C->scope, e);
+  if (v.kind == VAL_WORD) {
+    sema_report_unknown(S, C->scope, v.word, v.loc, "name");
+    return NULL;
   }
+  if (v.kind == VAL_ERROR) return NULL;
+  v = sema_expect_value(S, v, 1, v.dim, C->term);
+  return v.kind == VAL_ERROR ? NULL : constant(S, v);
 }
 
 /* ---- evaluation, with the gradient by forward mode ---- */

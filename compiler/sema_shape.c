@@ -6,8 +6,8 @@
  * straight).  A value is the word `straight`, a call
  * helix(radius = R, turns = N | pitch = P | core = C, hand = right | left),
  * or a function field "rest_shape(s) = (x, y, z);" whose three components
- * are lengths over s, the offset of the centreline from the rod's start in
- * lab axes, checked as a terrain's height is (sema_fexpr.c, with the formal
+ * are lengths over s, a centreline in lab axes moved to begin at the rod's
+ * start (node i at start + f(s_i) - f(0)), checked as a terrain's height is (sema_fexpr.c, with the formal
  * HX_S).  The rod's `length` is always its arc length at rest, the range of
  * s.  A helix is set by its radius and two of turns, pitch (the advance
  * along its axis per turn), core (its length along the axis) and the rod's
@@ -181,7 +181,8 @@ static int curve_const(const swHExpr *e) {
 /* "rest_shape(s) = (x, y, z);" */
 static swSceneShape *curve(swSema *S, swScope *sc, const swAst *fl, const char *what) {
   const swAst *formal = fl->kid[1], *body = fl->kid[0];
-  if (formal->kind != AST_NAME) {
+  /* s, the natural name, is also the unit second: either spelling */
+  if (formal->kind != AST_NAME && formal->kind != AST_UNIT) {
     diag_error(formal->loc, "a shape is a function of one name, the arc length: %s(s) = (x, y, "
                "z);", fl->name);
     return NULL;
@@ -276,24 +277,19 @@ typedef struct {
   const double *start;
 } CurveCtx;
 
-/* swCurveFn over a curve, params at their defaults */
+/* swCurveFn over a curve, params at their defaults: start + f(s) - f(0),
+ * as the generated shape_K computes it */
 static void eval_curve(double s, double r[3], const void *ctx) {
   const CurveCtx *c = ctx;
-  swDual X = {s, 1, 0}, Y = {0, 0, 0};
-  for (int k = 0; k < 3; k++) r[k] = c->start[k] + sema_fexpr_eval(c->shape->r[k], X, Y, NULL).v;
+  swDual X = {s, 1, 0}, X0 = {0, 1, 0}, Y = {0, 0, 0};
+  for (int k = 0; k < 3; k++)
+    r[k] = c->start[k] + (sema_fexpr_eval(c->shape->r[k], X, Y, NULL).v -
+                          sema_fexpr_eval(c->shape->r[k], X0, Y, NULL).v);
 }
 
-/* A curve's checks: it begins at the start; at rest, s is its arc length. */
+/* At rest, s must be the curve's arc length. */
 static int curve_ok(const swSceneShape *c, double L, int n, int rest, const char *what) {
   swDual X = {0, 1, 0}, Y = {0, 0, 0};
-  double r0[3];
-  for (int k = 0; k < 3; k++) r0[k] = sema_fexpr_eval(c->r[k], X, Y, NULL).v;
-  if (!(sqrt(r0[0] * r0[0] + r0[1] * r0[1] + r0[2] * r0[2]) <= 1e-9 * L)) {
-    diag_error(c->loc, "%s: %s(0) is (%.6g, %.6g, %.6g) m, but a shape is the offset from the "
-               "rod's start, (0, 0, 0) m at %s = 0", what, c->field, r0[0], r0[1], r0[2],
-               c->sname);
-    return 0;
-  }
   if (!rest) return 1;
   for (int i = 0; i <= 2 * n; i++) {
     X.v = L * i / (2 * n);
