@@ -85,8 +85,11 @@ void sema_eval_rod(swSema *S, swSymbol *sym) {
     sema_positive(S, &lenv, "'length'", "m");
     if (lenv.kind == VAL_NUM) shape_len = lenv.v[0];
   }
-  if ((!len || lenv.kind == VAL_NUM) && !sema_rod_shapes(S, sc, &f, what, &shape_len, &sh))
+  int shape_err = 0;   /* reported: the placement's own errors would follow from it */
+  if ((!len || lenv.kind == VAL_NUM) && !sema_rod_shapes(S, sc, &f, what, &shape_len, &sh)) {
     ok = 0;
+    shape_err = 1;
+  }
   const int shaped = sh.rest || sh.start;
   const int start_curve = sh.start && sh.start->kind == SHAPE_CURVE;
   const int helix_len = !len && shape_len > 0;   /* a helix set the length */
@@ -132,7 +135,7 @@ void sema_eval_rod(swSema *S, swSymbol *sym) {
       diag_error(dir->loc, "'direction' has no place in a rod that starts on a curve: its "
                  "%s(s) sets the way it goes", sh.start->field);
       ok = 0;
-    } else if ((!dir && !start_curve) || (!len && !helix_len)) {
+    } else if (((!dir && !start_curve) || (!len && !helix_len)) && !shape_err) {
       sema_missing(&f, loc, "%s needs 'to', or 'direction' and 'length'", what);
       ok = 0;
     }

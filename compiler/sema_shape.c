@@ -78,7 +78,6 @@ static swSceneShape *helix(swSema *S, swScope *sc, const swAst *call, const char
       ok = 0;
     } else arg[k] = a;
   }
-  if (!ok) return NULL;
   swSceneShape *h = ast_alloc(S->a, sizeof *h);
   memset(h, 0, sizeof *h);
   h->kind = SHAPE_HELIX;
@@ -88,11 +87,11 @@ static swSceneShape *helix(swSema *S, swScope *sc, const swAst *call, const char
   if (!arg[0]) {
     diag_error(call->loc, "%s: helix() needs its 'radius' (of the cylinder its centreline winds "
                "on)", what);
-    return NULL;
+    ok = 0;
   }
-  double R = 0, N = 0, P = 0, C = 0;
-  ok &= helix_number(S, sc, ast_kid(arg[0], 0), DIM_LENGTH, "radius", &R);
-  if (ok && !(R > 0)) {
+  double R = 1, N = 0, P = 0, C = 0;
+  if (arg[0] && !helix_number(S, sc, ast_kid(arg[0], 0), DIM_LENGTH, "radius", &R)) ok = 0;
+  else if (arg[0] && !(R > 0)) {
     diag_error(arg[0]->loc, "a helix's 'radius' must be positive, got %g m", R);
     ok = 0;
   }
