@@ -74,8 +74,15 @@ void gen_fexpr_condition(FILE *out, swArena *a, const swHExpr *e, int depth, gen
 void gen_fexpr_piecewise(FILE *out, swArena *a, const swHExpr *e, int depth, gen_fexpr_fn operand,
                          gen_fexpr_fn branch);
 
+/* gen_shape.c: the rods' shapes given as curves, as C functions (before
+ * build), and the lines of a shaped rod's block of build() */
+void gen_shape_functions(FILE *out, swArena *a, const swScene *sc);
+void gen_shape_build(FILE *out, swArena *a, const swSceneRod *r);
+
 /* gen_signal.c: the model's signals as C functions (before build) and
- * their lines of build() */
+ * their lines of build(); gen_fexpr_value prints a function expression
+ * over plain doubles (a signal's t, a shape's s) */
+void gen_fexpr_value(FILE *out, swArena *a, const swHExpr *e);
 void gen_signal_functions(FILE *out, swArena *a, const swScene *sc);
 void gen_signal_build(FILE *out, swArena *a, const swScene *sc);
 

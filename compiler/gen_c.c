@@ -170,7 +170,9 @@ static void emit_rod(FILE *out, swArena *a, const swSceneRod *r) {
   if (r->variational) fputs("    rod.law = SW_LAW_VARIATIONAL;\n", out);
   emit_description(out, "rod", rod_kind_word(r->kind), r->material, r->loc);
   gen_assign_fields(out, a, "rod", f, gen_rod_fields(r, f));
-  fputs("    ok &= sw_spec_add_rod(s, &rod) >= 0;\n  }\n", out);
+  fputs("    ok &= sw_spec_add_rod(s, &rod) >= 0;\n", out);
+  gen_shape_build(out, a, r);
+  fputs("  }\n", out);
 }
 
 /* A muscle: sw_muscle_desc_init's defaults, then what the model wrote. */
@@ -633,6 +635,7 @@ int gen_c(FILE *out, swArena *a, const swScene *sc, const swGenOptions *opt) {
   }
   emit_derived(out, sc);
   gen_env_heights(out, a, sc);
+  gen_shape_functions(out, a, sc);
   gen_signal_functions(out, a, sc);
   emit_build(out, a, sc);
   emit_objective(out, a, sc);

@@ -54,7 +54,8 @@ static void dual_helpers(FILE *out) {
     "static inline dual dual_sin(dual a) { return dual_chain(sin(a.v), cos(a.v), a); }\n"
     "static inline dual dual_cos(dual a) { return dual_chain(cos(a.v), -sin(a.v), a); }\n"
     "static inline dual dual_tan(dual a) { return dual_chain(tan(a.v), 1 / (cos(a.v) * cos(a.v)), a); }\n"
-    "static inline dual dual_exp(dual a) { double f = exp(a.v); return dual_chain(f, f, a); }\n\n",
+    "static inline dual dual_exp(dual a) { double f = exp(a.v); return dual_chain(f, f, a); }\n"
+    "static inline dual dual_log(dual a) { return dual_chain(log(a.v), 1 / a.v, a); }\n\n",
     out);
 }
 
@@ -105,7 +106,7 @@ static void expr(FILE *out, swArena *a, const swHExpr *e, int depth) {
   static const char *const fn[] = {
     [HX_ADD] = "dual_add", [HX_SUB] = "dual_sub", [HX_MUL] = "dual_mul", [HX_DIV] = "dual_div",
     [HX_NEG] = "dual_neg", [HX_SQRT] = "dual_sqrt", [HX_SIN] = "dual_sin", [HX_COS] = "dual_cos",
-    [HX_TAN] = "dual_tan", [HX_EXP] = "dual_exp",
+    [HX_TAN] = "dual_tan", [HX_EXP] = "dual_exp", [HX_LOG] = "dual_log",
   };
   switch (e->op) {
   case HX_CONST: fprintf(out, "dual_const(%s)", val_c(a, &e->k, 0)); return;

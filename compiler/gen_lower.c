@@ -252,7 +252,10 @@ swSpec *gen_spec(const swScene *sc) {
       d.weightless = r->weightless;
       d.law = r->variational ? SW_LAW_VARIATIONAL : SW_LAW_GAZZOLA;
       fill(&d, f, gen_rod_fields(r, f));
-      sw_spec_add_rod(s, &d);
+      int id = sw_spec_add_rod(s, &d);
+      /* shapes as sema_shape.c built them, with the same runtime calls */
+      if (id >= 0 && r->xr) sw_spec_set_rest_shape(s, id, r->xr, r->Qr);
+      if (id >= 0 && r->x0 && r->x0 != r->xr) sw_spec_set_start_shape(s, id, r->x0, r->Q0);
       continue;
     }
     const swSceneMuscle *m = &sc->muscle[mi++];

@@ -23,14 +23,17 @@
 
 static void value(FILE *out, swArena *a, const swHExpr *e, int depth);
 
+void gen_fexpr_value(FILE *out, swArena *a, const swHExpr *e) { value(out, a, e, 1); }
+
 static void value(FILE *out, swArena *a, const swHExpr *e, int depth) {
   static const char *const infix[] = {[HX_ADD] = " + ", [HX_SUB] = " - ", [HX_MUL] = " * ",
                                       [HX_DIV] = " / "};
   static const char *const fn[] = {[HX_SQRT] = "sqrt", [HX_SIN] = "sin", [HX_COS] = "cos",
-                                   [HX_TAN] = "tan", [HX_EXP] = "exp"};
+                                   [HX_TAN] = "tan", [HX_EXP] = "exp", [HX_LOG] = "log"};
   switch (e->op) {
   case HX_CONST: fprintf(out, "%s", val_c(a, &e->k, 0)); return;
   case HX_T: fputs("t", out); return;
+  case HX_S: fputs("s", out); return;
   case HX_ADD: case HX_SUB: case HX_MUL: case HX_DIV:
     fputc('(', out);
     value(out, a, e->kid[0], depth);
@@ -70,7 +73,7 @@ static void value(FILE *out, swArena *a, const swHExpr *e, int depth) {
   case HX_PIECEWISE:
     gen_fexpr_piecewise(out, a, e, depth, value, value);
     return;
-  default:   /* sqrt, sin, cos, tan, exp */
+  default:   /* sqrt, sin, cos, tan, exp, log */
     fprintf(out, "%s(", fn[e->op]);
     value(out, a, e->kid[0], depth);
     fputc(')', out);

@@ -121,6 +121,22 @@ typedef struct swMaterial {
 
 typedef enum { ROD_PLAIN, ROD_BONE, ROD_TENDON } swRodKind;
 
+/* A rod's rest or starting shape other than straight (sema_shape.c): a
+ * helix, or a centreline given as a function of the arc length s.  Every
+ * value in it is known when compiling. */
+typedef enum { SHAPE_HELIX = 1, SHAPE_CURVE } swShapeKind;
+struct swHExpr;
+typedef struct {
+  swShapeKind kind;
+  swLoc loc;                  /* the field                                 */
+  const char *field;          /* "shape", "rest_shape" or "start_shape"     */
+  double radius, pitch;       /* helix: m, m per turn along its axis        */
+  int hand;                   /* helix: +1 right-handed, -1 left            */
+  struct swHExpr *r[3];       /* curve: the offset from the rod's start (m) */
+  const char *sname;          /* curve: the name of its arc length          */
+  int index;                  /* curve: its function shape_K in the C       */
+} swSceneShape;
+
 typedef struct {
   const char *name;           /* full name                                 */
   swRodKind kind;
@@ -138,6 +154,11 @@ typedef struct {
   swDampingKind damping;
   int has_material;
   const char *material;       /* its material's name (NULL: none), output   */
+  /* shapes (sema_shape.c); NULL: straight along 'direction' */
+  const swSceneShape *rest_shape, *start_shape;
+  double *x0, *Q0;            /* (nelem+1)x3, nelem x 9: where a shaped rod
+                                 starts (NULL: straight), for its points     */
+  double *xr, *Qr;            /* the same at rest (NULL: straight)          */
 } swSceneRod;
 
 /* A muscle (swMuscleDesc): values the model did not give are VAL_ERROR and
@@ -250,7 +271,9 @@ typedef enum {
   HX_T,                      /* a signal's time formal                      */
   HX_MOD,                    /* kid: a, b; a - b floor(a / b)               */
   HX_ATOM,                   /* kid: the time; swScene.atom[ref] there      */
-  HX_CALL                    /* kid: the time; swScene.signal[ref] there    */
+  HX_CALL,                   /* kid: the time; swScene.signal[ref] there    */
+  HX_S,                      /* a shape's arc length formal                 */
+  HX_LOG                     /* natural logarithm                           */
 } swHOp;
 typedef struct swHExpr {
   swHOp op;
@@ -411,6 +434,7 @@ typedef struct {
   swSceneWave *wave;     int nwave, capwave;
   swSceneProbe *probe;   int nprobe, capprobe;
   swSceneSignal **signal; int nsignal, capsignal;  /* signal NAME(t) = ...  */
+  int ncurve;                 /* rods' shapes given as curves (shape_K)     */
   struct swSignalVal **atom; int natom, capatom;   /* built-in signals inside them */
   swSceneExpect *expect; int nexpect, capexpect;
   swSceneObjective objective;

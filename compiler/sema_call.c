@@ -21,7 +21,7 @@
 static const char *const functions[] = {"sqrt", "sin", "cos", "tan", "ramp", "sine", "step",
                                         "table", "bspline", "exp", "piecewise", "max", "min",
                                         "abs", "round", "at", "mean_over", "max_over", "min_over",
-                                        "atan2"};
+                                        "atan2", "log"};
 enum { NFUNCTIONS = sizeof functions / sizeof functions[0] };
 
 /* ---- calls ---- */
@@ -420,7 +420,7 @@ swValue sema_eval_call(swSema *S, swScope *scope, const swAst *e) {
     return val_error();
   }
   if (!strcmp(fn, "sqrt") || !strcmp(fn, "sin") || !strcmp(fn, "cos") || !strcmp(fn, "tan") ||
-      !strcmp(fn, "exp")) {
+      !strcmp(fn, "exp") || !strcmp(fn, "log")) {
     if (!args || args->nkid != 1 || args->kid[0]->name) {
       diag_error(e->loc, "%s() takes one argument", fn);
       return val_error();

@@ -58,7 +58,9 @@ void sema_fields(swSema *S, const swAst *body, int first, const char *what,
     int k;
     for (k = 0; k < nkeys; k++)
       if (!strcmp(fl->name, keys[k])) break;
-    if (k < nkeys && fl->nkid > 1 && strcmp(fl->name, "height")) {
+    /* and so are a rod's shapes: rest_shape(s) = (x, y, z); (sema_shape.c) */
+    if (k < nkeys && fl->nkid > 1 && strcmp(fl->name, "height") && strcmp(fl->name, "shape") &&
+        strcmp(fl->name, "rest_shape") && strcmp(fl->name, "start_shape")) {
       diag_error(fl->loc, "'%s' is a value, not a function: write '%s = ...;'", fl->name,
                  fl->name);
       continue;
@@ -86,6 +88,12 @@ void sema_fields(swSema *S, const swAst *body, int first, const char *what,
 const swAst *sema_field(const swFields *f, const char *key) {
   for (int k = 0; k < f->nkeys; k++)
     if (!strcmp(f->keys[k], key)) return f->value[k] ? f->value[k]->kid[0] : NULL;
+  return NULL;
+}
+
+const swAst *sema_field_node(const swFields *f, const char *key) {
+  for (int k = 0; k < f->nkeys; k++)
+    if (!strcmp(f->keys[k], key)) return f->value[k];
   return NULL;
 }
 

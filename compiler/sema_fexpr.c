@@ -8,7 +8,7 @@
  * subexpression that does not depend on a formal is evaluated by sema_eval
  * and folded into one constant node (a swValue, so a param keeps its C
  * expression), the rest keeps its operation and dimension.  Beyond +, -, *,
- * /, ^ (constant exponent), sqrt, sin, cos, tan and exp, the tree may
+ * /, ^ (constant exponent), sqrt, sin, cos, tan, exp and log, the tree may
  * compare (< <= > >=, and, or) and choose with piecewise(cond: value, ...,
  * default), the first true condition winning.  A signal may also hold the
  * built-in signals (ramp, sine, step, table, bspline) read at its time, the
@@ -26,6 +26,7 @@
 #include "sema_int.h"
 
 static swHExpr *hx(swFCtx *C, const swAst *e);
+static swHExpr *hx_value(swFCtx *C, const swAst *e);
 
 swHExpr *sema_fexpr_node(swSema *S, swHOp op, swDim dim, swLoc loc, int nkid) {
   swHExpr *e = ast_alloc(S->a, sizeof *e);
@@ -180,7 +181,7 @@ static swHExpr *power(swFCtx *C, const swAst *e) {
   return n;
 }
 
-static const char *const funcs[] = {"sqrt", "sin", "cos", "tan", "exp", "piecewise"};
+static const char *const funcs[] = {"sqrt", "sin", "cos", "tan", "exp", "log", "piecewise"};
 
 static swHExpr *piecewise(swFCtx *C, const swAst *e, const swAst *args) {
   swSema *S = C->S;
@@ -311,15 +312,16 @@ static swHExpr *call(swFCtx *C, const swAst *e) {
   swSema *S = C->S;
   const swAst *args = ast_kid(e, 0);
   int k;
-  for (k = 0; k < 6; k++)
+  for (k = 0; k < 7; k++)
     if (!strcmp(e->name, funcs[k])) break;
-  if (k == 5) return piecewise(C, e, args);
-  if (k == 6) {
+  if (k == 6) return piecewise(C, e, args);
+  if (k == 7) {
     const int builtin = !strcmp(e->name, "ramp") || !strcmp(e->name, "sine") ||
                         !strcmp(e->name, "step") || !strcmp(e->name, "table") ||
                         !strcmp(e->name, "bspline");
     if (builtin && !C->time) {
-      diag_error(e->loc, "a height does not change in time: %s() has no place in it", e->name);
+      diag_error(e->loc, "%s does not change in time: %s() has no place in it",
+                 C->shape ? "a shape" : "a height", e->name);
       return NULL;
     }
     if (C->time) {
@@ -328,16 +330,16 @@ static swHExpr *call(swFCtx *C, const swAst *e) {
       swSymbol *sym = sema_lookup(S, C->scope, e->name);
       if (sym && sym->kind == SYM_SIGNAL) return signal_call(C, e, sym, args);
     }
-    static const char *const all[] = {"sqrt", "sin", "cos", "tan", "exp", "piecewise", "mod",
-                                      "ramp", "sine", "step", "table", "bspline"};
-    const char *near = diag_suggest(e->name, all, C->time ? 12 : 6);
+    static const char *const all[] = {"sqrt", "sin", "cos", "tan", "exp", "log", "piecewise",
+                                      "mod", "ramp", "sine", "step", "table", "bspline"};
+    const char *near = diag_suggest(e->name, all, C->time ? 13 : 7);
     if (near) diag_error(e->loc, "unknown function '%s'; did you mean '%s'?", e->name, near);
     else if (C->time)
       diag_error(e->loc, "unknown function '%s' (a signal may use sqrt, sin, cos, tan, exp, "
-                 "piecewise, mod, ramp, sine, step, table, bspline and the model's signals)",
+                 "log, piecewise, mod, ramp, sine, step, table, bspline and the model's signals)",
                  e->name);
-    else diag_error(e->loc, "unknown function '%s' (a height may use sqrt, sin, cos, tan, exp "
-                    "and piecewise)", e->name);
+    else diag_error(e->loc, "unknown function '%s' (%s may use sqrt, sin, cos, tan, exp, log "
+                    "and piecewise)", e->name, C->shape ? "a shape" : "a height");
     return NULL;
   }
   if (!args || args->nkid != 1 || args->kid[0]->kind != AST_ARG || args->kid[0]->name) {
@@ -364,7 +366,7 @@ static swHExpr *call(swFCtx *C, const swAst *e) {
                k < 4 ? "an angle or a plain number" : "a plain number", sema_fexpr_dim_text(S, a));
     return NULL;
   }
-  static const swHOp ops[] = {HX_SQRT, HX_SIN, HX_COS, HX_TAN, HX_EXP};
+  static const swHOp ops[] = {HX_SQRT, HX_SIN, HX_COS, HX_TAN, HX_EXP, HX_LOG};
   swHExpr *n = sema_fexpr_node(S, ops[k], dim, e->loc, 1);
   n->kid[0] = a;
   return n;
@@ -375,6 +377,10 @@ static swHExpr *hx(swFCtx *C, const swAst *e) {
   switch (e->kind) {
   case AST_NAME:
     return name(C, e);
+  case AST_UNIT:   /* a formal spelt as a unit: a shape's s (not seconds there) */
+    for (int i = 0; i < C->nformal; i++)
+      if (!strcmp(e->name, C->formal[i])) return name(C, e);
+    return hx_value(C, e);
   case AST_BINOP:
     if (e->op == '^') return power(C, e);
     return binop(C, e, e->op, e->kid[0], e->kid[1]);
@@ -395,20 +401,24 @@ static swHExpr *hx(swFCtx *C, const swAst *e) {
     return call(C, e);
   case AST_VEC:
     diag_error(e->loc, "%s is one number at each %s, not a vector", C->what,
-               C->time ? "time" : "(x, y)");
+               C->time ? "time" : C->shape ? "arc length" : "(x, y)");
     return NULL;
-  default: {
-    /* numbers, units, members (rod.length, v.x): values without x or y */
-    swValue v = sema_eval(S, C->scope, e);
-    if (v.kind == VAL_WORD) {
-      sema_report_unknown(S, C->scope, v.word, v.loc, "name");
-      return NULL;
-    }
-    if (v.kind == VAL_ERROR) return NULL;
-    v = sema_expect_value(S, v, 1, v.dim, C->term);
-    return v.kind == VAL_ERROR ? NULL : constant(S, v);
+  default:
+    return hx_value(C, e);
   }
+}
+
+/* numbers, units, members (rod.length, v.x): values without a formal */
+static swHExpr *hx_value(swFCtx *C, const swAst *e) {
+  swSema *S = C->S;
+  swValue v = sema_eval(S, C->scope, e);
+  if (v.kind == VAL_WORD) {
+    sema_report_unknown(S, C->scope, v.word, v.loc, "name");
+    return NULL;
   }
+  if (v.kind == VAL_ERROR) return NULL;
+  v = sema_expect_value(S, v, 1, v.dim, C->term);
+  return v.kind == VAL_ERROR ? NULL : constant(S, v);
 }
 
 /* ---- evaluation, with the gradient by forward mode ---- */
@@ -433,6 +443,7 @@ swDual sema_fexpr_eval(const swHExpr *e, swDual X, swDual Y, const swDual *lets)
   switch (e->op) {
   case HX_CONST: r.v = e->k.v[0]; return r;
   case HX_X:
+  case HX_S:
   case HX_T: return X;
   case HX_Y: return Y;
   case HX_LET: return lets[e->let];
@@ -477,6 +488,7 @@ swDual sema_fexpr_eval(const swHExpr *e, swDual X, swDual Y, const swDual *lets)
   case HX_SIN: r.v = sin(a.v); f = cos(a.v); break;
   case HX_COS: r.v = cos(a.v); f = -sin(a.v); break;
   case HX_TAN: r.v = tan(a.v); f = 1 / (cos(a.v) * cos(a.v)); break;
+  case HX_LOG: r.v = log(a.v); f = 1 / a.v; break;
   default: r.v = exp(a.v); f = r.v; break;   /* HX_EXP */
   }
   r.x = f * a.x;

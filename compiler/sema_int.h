@@ -163,6 +163,7 @@ swValue sema_rod_point(swSema *S, swSymbol *rod, swValue frac, int node, swLoc l
 int sema_point_fixed(const swValue *p, const char *what);
 swValue sema_rod_length(swSema *S, swSymbol *rod, swLoc loc);
 
+
 /* sema_stmt.c */
 void sema_joint(swSema *S, swScope *scope, const swAst *item);
 void sema_action(swSema *S, swScope *scope, const swAst *item);
@@ -214,6 +215,7 @@ typedef struct swFCtx {
   swHOp formal_op[2];         /* HX_X, HX_Y; HX_T                           */
   swDim formal_dim[2];
   int time;                   /* a signal's body                            */
+  int shape;                  /* a rod's shape (sema_shape.c)               */
   int nlocal;
   const char *local_name[SW_FEXPR_MAX_LETS];
   swHExpr *local[SW_FEXPR_MAX_LETS];   /* each local let's tree (HX_LET or a constant) */
@@ -275,6 +277,8 @@ void sema_missing(const swFields *f, swLoc loc, const char *fmt, ...)
 void sema_fields(swSema *S, const swAst *body, int first, const char *what,
                  const char *const *keys, int nkeys, swFields *f);
 const swAst *sema_field(const swFields *f, const char *key);
+/* the whole field (its formals in kid[1], if any), or NULL */
+const swAst *sema_field_node(const swFields *f, const char *key);
 /* the value of field `key` as a number (n == 1) or n-vector of dimension
  * `want`; VAL_ERROR when absent or wrong */
 swValue sema_field_value(swSema *S, swScope *scope, const swFields *f, const char *key, int n,
@@ -294,5 +298,22 @@ typedef struct {
                                  variational, 0 Gazzola's, -1 said by neither */
 } swTissue;
 int sema_tissue(swSema *S, swScope *sc, const swFields *f, swTissue *t);
+
+/* sema_shape.c: a rod's shape, rest_shape and start_shape fields.  The
+ * shapes are read first (sema_rod_shapes: *length in, the rod's length or 0
+ * when not written; out, the arc length, which a helix may set), then built
+ * once the rod is placed (sema_rod_place_shapes: x0, Q0 and, for a rod
+ * starting on a curve, its direction and default normal). */
+typedef struct {
+  const swSceneShape *rest, *start;   /* NULL: straight                    */
+  int same;                           /* `shape`: one shape for both        */
+  int given;                          /* any of the three fields written    */
+} swRodShapes;
+int sema_rod_shapes(swSema *S, swScope *sc, const swFields *f, const char *what,
+                    double *length, swRodShapes *out);
+int sema_rod_place_shapes(swSema *S, swSceneRod *r, const swRodShapes *sh, int normal_given,
+                          const char *what);
+/* the point at fraction f of a shaped rod (x0 set), where it starts */
+void sema_shape_point(const swSceneRod *r, double f, double x[3]);
 
 #endif

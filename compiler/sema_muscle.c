@@ -35,7 +35,8 @@ static const char *const muscle_keys[] = {
   "shear_hardening", "twist_hardening", "damping", "damping_model", "variational", "via",
   "gravity", "force",
   /* rod fields that a muscle does not take, refused with a reason below */
-  "start", "direction", "length", "radius_start", "radius_end",
+  "start", "direction", "length", "radius_start", "radius_end", "shape", "rest_shape",
+  "start_shape",
 };
 enum { NMUSCLE_KEYS = sizeof muscle_keys / sizeof muscle_keys[0] };
 
@@ -187,6 +188,12 @@ void sema_eval_muscle(swSema *S, swSymbol *sym) {
     {"length", "a muscle's rest length follows from its 'from' and 'to'"},
     {"radius_start", "a muscle has one rest 'radius', shared out among its filaments"},
     {"radius_end", "a muscle has one rest 'radius', shared out among its filaments"},
+    {"shape", "a muscle's filaments run straight between its attachments (through its 'via' "
+              "points); a coiled actuator is a rod with shape = helix(...)"},
+    {"rest_shape", "a muscle's filaments rest straight between its attachments; a coiled "
+                   "actuator is a rod with rest_shape = helix(...)"},
+    {"start_shape", "a muscle's filaments start straight between its attachments (through "
+                    "its 'via' points)"},
   };
   for (size_t i = 0; i < sizeof rodonly / sizeof rodonly[0]; i++) {
     const swAst *e = sema_field(&f, rodonly[i].key);

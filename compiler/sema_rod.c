@@ -4,9 +4,10 @@
  * Design.  A rod's fields fall back on its material, then on the runtime's
  * defaults; the checked rod is appended to the scene with every field a
  * swValue, so a param-dependent field keeps its C expression.  Positions of
- * points on a rod (start, end, at(f)) follow from its straight rest shape:
+ * points on a rod (start, end, at(f)) follow from its straight starting shape:
  * start + f * length * direction; a position is such a point or a 3-vector
- * of lengths.  Apart from sema_def.c, which keeps the field tables,
+ * of lengths; on a rod with a shape (sema_shape.c) they lie where it starts,
+ * between its nodes.  Apart from sema_def.c, which keeps the field tables,
  * materials and the evaluation of every kind of definition, because the rod
  * is the largest definition and its points are what joints, muscles, loads
  * and probes are placed with.
@@ -24,7 +25,8 @@ static const char *const rod_keys[] = {
   "material", "start", "from", "to", "direction", "normal", "length", "radius", "radius_start",
   "radius_end", "elements", "E", "G", "poisson", "density", "shear_hardening",
   "twist_hardening", "rest_curvature", "rest_strain", "damping", "rotational_damping",
-  "damping_model", "rigid", "variational", "implicit", "gravity",
+  "damping_model", "rigid", "variational", "implicit", "gravity", "shape", "rest_shape",
+  "start_shape",
 };
 enum { NROD_KEYS = sizeof rod_keys / sizeof rod_keys[0] };
 
@@ -73,6 +75,24 @@ void sema_eval_rod(swSema *S, swSymbol *sym) {
   const swAst *start = sema_field(&f, "start"), *from = sema_field(&f, "from");
   const swAst *to = sema_field(&f, "to"), *dir = sema_field(&f, "direction");
   const swAst *len = sema_field(&f, "length");
+  /* shapes first (sema_shape.c): a helix may set the length */
+  swRodShapes sh;
+  memset(&sh, 0, sizeof sh);
+  swValue lenv = val_error();
+  double shape_len = 0;
+  if (len) {
+    lenv = sema_field_value(S, sc, &f, "length", 1, DIM_LENGTH);
+    sema_positive(S, &lenv, "'length'", "m");
+    if (lenv.kind == VAL_NUM) shape_len = lenv.v[0];
+  }
+  int shape_err = 0;   /* reported: the placement's own errors would follow from it */
+  if ((!len || lenv.kind == VAL_NUM) && !sema_rod_shapes(S, sc, &f, what, &shape_len, &sh)) {
+    ok = 0;
+    shape_err = 1;
+  }
+  const int shaped = sh.rest || sh.start;
+  const int start_curve = sh.start && sh.start->kind == SHAPE_CURVE;
+  const int helix_len = !len && shape_len > 0;   /* a helix set the length */
   if (start && from) {
     diag_error(from->loc, "give either 'start' or 'from', not both");
     ok = 0;
@@ -87,7 +107,12 @@ void sema_eval_rod(swSema *S, swSymbol *sym) {
   const char *name = sym->full ? sym->full : sym->name;
   snprintf(field, sizeof field, "rod %s: start", name);
   sema_derive(S, &r.start, field, sym->loc);
-  if (to) {
+  if (to && (shaped || helix_len)) {
+    diag_error(to->loc, "'to' places a straight rod, from its start to that point; a rod with a "
+               "shape is placed by 'start' and 'direction' (for a helix, its axis)");
+    ok = 0;
+    r.direction = r.length = val_error();
+  } else if (to) {
     if (dir || len) {
       diag_error(to->loc, "give either 'to', or 'direction' and 'length', not both");
       ok = 0;
@@ -106,13 +131,17 @@ void sema_eval_rod(swSema *S, swSymbol *sym) {
     }
     r.direction = r.length.kind == VAL_NUM ? val_binop(S->a, '/', d, r.length, to->loc) : val_error();
   } else {
-    if (!dir || !len) {
+    if (start_curve && dir) {
+      diag_error(dir->loc, "'direction' has no place in a rod that starts on a curve: its "
+                 "%s(s) sets the way it goes", sh.start->field);
+      ok = 0;
+    } else if (((!dir && !start_curve) || (!len && !helix_len)) && !shape_err) {
       sema_missing(&f, loc, "%s needs 'to', or 'direction' and 'length'", what);
       ok = 0;
     }
-    r.direction = dir ? sema_field_value(S, sc, &f, "direction", 3, DIM_NONE) : val_error();
-    r.length = len ? sema_field_value(S, sc, &f, "length", 1, DIM_LENGTH) : val_error();
-    if (len) sema_positive(S, &r.length, "'length'", "m");
+    r.direction = dir && !start_curve ? sema_field_value(S, sc, &f, "direction", 3, DIM_NONE)
+                                      : val_error();
+    r.length = len ? lenv : helix_len ? val_num(S->a, shape_len, DIM_LENGTH, loc) : val_error();
   }
   if (r.direction.kind == VAL_VEC) {
     double n = sqrt(r.direction.v[0] * r.direction.v[0] + r.direction.v[1] * r.direction.v[1] +
@@ -124,6 +153,11 @@ void sema_eval_rod(swSema *S, swSymbol *sym) {
   }
   if (sema_field(&f, "normal")) {
     r.normal = sema_field_value(S, sc, &f, "normal", 3, DIM_NONE);
+    if (r.normal.kind == VAL_VEC && !(fabs(r.normal.v[0]) + fabs(r.normal.v[1]) +
+                                      fabs(r.normal.v[2]) > 0)) {
+      diag_error(r.normal.loc, "'normal' must not be the zero vector");
+      ok = 0;
+    }
     if (r.normal.kind == VAL_VEC && r.direction.kind == VAL_VEC) {
       const double *a = r.normal.v, *b = r.direction.v;
       double cx = a[1] * b[2] - a[2] * b[1], cy = a[2] * b[0] - a[0] * b[2],
@@ -243,6 +277,9 @@ void sema_eval_rod(swSema *S, swSymbol *sym) {
     if (truth < 0) ok = 0;
     else r.weightless = !truth;
   }
+  /* the shapes, now that the rod is placed and its elements known */
+  if (ok && shaped && !sema_rod_place_shapes(S, &r, &sh, sema_field(&f, "normal") != NULL, what))
+    ok = 0;
   const swValue *all[] = {&r.youngs, &r.density, &r.shear_modulus, &r.poisson, &r.start,
                           &r.direction, &r.normal, &r.length, &r.radius_start, &r.radius_end,
                           &r.shear_hardening, &r.twist_hardening, &r.rest_kappa, &r.rest_sigma,
@@ -340,6 +377,22 @@ swValue sema_rod_point(swSema *S, swSymbol *rod, swValue f, int node, swLoc loc)
       }
       node_c = ast_strdup(S->a, buf, strlen(buf));
     }
+  }
+  if (r->x0) {   /* a shaped rod: where it starts, between its nodes */
+    if (f.c && f.c[0]) {
+      diag_error(loc, "a point on rod '%s', which has a shape, must be at a fraction known "
+                 "when compiling, but this depends on param '%s'", rod->name,
+                 f.param ? f.param : "?");
+      return val_error();
+    }
+    double x[3];
+    sema_shape_point(r, f.v[0], x);
+    swValue p = sema_vec3(S, x[0], x[1], x[2], DIM_LENGTH, loc);
+    p.kind = VAL_POINT;
+    p.rod = rod->index;
+    p.node = node;
+    p.at = f.v[0];
+    return p;
   }
   swValue dir = r->direction;
   /* direction is normalised by the runtime: do the same here */

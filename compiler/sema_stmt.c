@@ -32,12 +32,17 @@ static const char *length_text(char *buf, size_t len, double metres) {
 }
 
 /* Where the node a point on a rod acts on lies at t = 0: on the rod's
- * straight initial shape, node / n of its length from its start.  A point
+ * straight initial shape, node / n of its length from its start; on a
+ * shaped rod, its node where it starts (sema_shape.c).  A point
  * ROD.at(f) has the coordinates of f * length but acts on the node nearest
  * to it, which differ when f * n is not whole. */
 void sema_node_position(const swScene *scn, const swValue *p, double x[3]) {
   const swSceneRod *r = &scn->rod[p->rod];
   memcpy(x, p->v, 3 * sizeof *x);
+  if (r->x0 && p->node >= 0 && p->node <= r->nelem) {
+    memcpy(x, r->x0 + 3 * p->node, 3 * sizeof *x);
+    return;
+  }
   if (r->nelem <= 0 || r->start.kind != VAL_VEC || r->direction.kind != VAL_VEC ||
       r->length.kind != VAL_NUM)
     return;
@@ -136,8 +141,10 @@ static swValue angle_field(swSema *S, swScope *scope, const swFields *f, const c
   return sema_expect_value(S, v, n, DIM_ANGLE, ast_strdup(S->a, what, strlen(what)));
 }
 
-/* A scene rod's tangent at t = 0 (rods start straight along 'direction'). */
+/* A scene rod's tangent at t = 0 (rods start straight along 'direction';
+ * a shaped rod's is not one: 0, the runtime checks its angle). */
 static int rod_tangent(const swScene *sc, int rod, double t[3]) {
+  if (sc->rod[rod].x0) return 0;
   const swValue *d = &sc->rod[rod].direction;
   if (d->kind != VAL_VEC || d->n != 3) return 0;
   double len = sqrt(d->v[0] * d->v[0] + d->v[1] * d->v[1] + d->v[2] * d->v[2]);

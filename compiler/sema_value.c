@@ -342,6 +342,16 @@ swValue val_func(swArena *a, const char *fn, swValue x, swLoc loc) {
       return val_error();
     }
     r = sqrt(x.v[0]);
+  } else if (!strcmp(fn, "log")) {
+    if (!dim_is_none(x.dim)) {
+      diag_error(loc, "log() takes a plain number, not %s", dim_describe(a, x.dim));
+      return val_error();
+    }
+    if (!(x.v[0] > 0)) {
+      diag_error(loc, "log() of %g: the logarithm takes a positive number", x.v[0]);
+      return val_error();
+    }
+    r = log(x.v[0]);
   } else if (!strcmp(fn, "exp")) {
     if (!dim_is_none(x.dim)) {
       diag_error(loc, "exp() takes a plain number, not %s", dim_describe(a, x.dim));

@@ -89,8 +89,11 @@ void sw_model_free(swModel *m) {
   rigid_free(m);
   free(m);
 }
-/* Initial node positions and directors of rod r: straight, or the rest shape
- * given with sw_spec_set_rest_shape. */
+/* Rest node positions and directors of rod r: straight, or the rest shape
+ * given with sw_spec_set_rest_shape.  The rod starts in it unless a starting
+ * shape is given (sw_spec_set_start_shape): then the rest shape sets only
+ * the rest strains (rest lengths, rest curvature), and the start the state
+ * at t = 0 (x0, Q0). */
 static void place_rod(const swSpec *s, int r, double *x, double *Q) {
   const swRodDesc *rd = &s->rod[r];
   int n = rd->nelem;
@@ -219,8 +222,9 @@ swModel *sw_compile(const swSpec *s, char *err, size_t errlen) {
       goto oom;
     }
     place_rod(s, r, x, Q);
-    for (int i = 0; i <= n; i++) sw_set3(m, m->x0, na + i, x + 3 * i);
-    for (int i = 0; i < n; i++) sw_setQ(m, m->Q0, ea + i, Q + 9 * i);
+    const double *xs = s->start_x[r] ? s->start_x[r] : x, *Qs = s->start_Q[r] ? s->start_Q[r] : Q;
+    for (int i = 0; i <= n; i++) sw_set3(m, m->x0, na + i, xs + 3 * i);
+    for (int i = 0; i < n; i++) sw_setQ(m, m->Q0, ea + i, Qs + 9 * i);
     double G = rd->shear_modulus > 0 ? rd->shear_modulus : rd->youngs / (2.0 * (1.0 + rd->poisson));
     double Gs = G * rd->shear_hardening, Gt = G * rd->twist_hardening;
     for (int i = 0; i < n; i++) {

@@ -18,6 +18,7 @@ struct swSpec {
   char **rod_name;
   swRodInfo *rod_info;           /* owned copies of rod[k].kind, material, where */
   double **rest_x, **rest_Q;     /* optional rest shapes, per rod */
+  double **start_x, **start_Q;   /* optional starting shapes, per rod (NULL: the rest shape) */
   swLoadDesc *load;
   swBCDesc *bc;
   swJointDesc *joint;

@@ -58,8 +58,11 @@ void sw_spec_free(swSpec *s) {
     sw_rod_info_free(&s->rod_info[r]);
     free(s->rest_x[r]);
     free(s->rest_Q[r]);
+    free(s->start_x[r]);
+    free(s->start_Q[r]);
   }
   free(s->rod); free(s->rod_name); free(s->rod_info); free(s->rest_x); free(s->rest_Q);
+  free(s->start_x); free(s->start_Q);
   for (int k = 0; k < s->njoint; k++) free(s->joint_name[k]);
   free(s->load); free(s->bc); free(s->joint); free(s->joint_name);
   if (s->muscle_ops) s->muscle_ops->free_spec(s->muscles);
@@ -105,6 +108,10 @@ int sw_spec_add_rod(swSpec *s, const swRodDesc *r) {
   if (!sw_grow((void **)&s->rod_info, &cap, s->nrod, sizeof *s->rod_info)) return -1;
   cap = s->caprod;
   if (!sw_grow((void **)&s->rest_x, &cap, s->nrod, sizeof *s->rest_x)) return -1;
+  cap = s->caprod;
+  if (!sw_grow((void **)&s->start_x, &cap, s->nrod, sizeof *s->start_x)) return -1;
+  cap = s->caprod;
+  if (!sw_grow((void **)&s->start_Q, &cap, s->nrod, sizeof *s->start_Q)) return -1;
   if (!sw_grow((void **)&s->rest_Q, &s->caprod, s->nrod, sizeof *s->rest_Q)) return -1;
   int id = s->nrod++;
   s->rod[id] = *r;
@@ -115,6 +122,7 @@ int sw_spec_add_rod(swSpec *s, const swRodDesc *r) {
   s->rod[id].material = s->rod_info[id].material;
   s->rod[id].where = s->rod_info[id].where;
   s->rest_x[id] = s->rest_Q[id] = NULL;
+  s->start_x[id] = s->start_Q[id] = NULL;
   return copied && s->rod_name[id] ? id : -1;
 }
 
@@ -152,18 +160,29 @@ void sw_spec_set_gravity_signal(swSpec *s, swSignal signal) {
 void sw_spec_set_integrator(swSpec *s, swIntegrator integ) { s->integrator = integ; }
 void sw_spec_set_dt(swSpec *s, double dt) { s->dt = dt; }
 
-int sw_spec_set_rest_shape(swSpec *s, int rod, const double *x, const double *Q) {
-  if (rod < 0 || rod >= s->nrod) return SW_EUSAGE;
+/* A shape of rod `rod` into *px, *pQ (owned copies): (n+1) nodes, n frames. */
+static int set_shape(swSpec *s, int rod, const double *x, const double *Q, double **px,
+                     double **pQ) {
   int n = s->rod[rod].nelem;
   if (n < 1) return SW_EMODEL;
-  free(s->rest_x[rod]);
-  free(s->rest_Q[rod]);
-  s->rest_x[rod] = malloc(sizeof(double) * 3 * (size_t)(n + 1));
-  s->rest_Q[rod] = malloc(sizeof(double) * 9 * (size_t)n);
-  if (!s->rest_x[rod] || !s->rest_Q[rod]) return SW_EMODEL;
-  memcpy(s->rest_x[rod], x, sizeof(double) * 3 * (size_t)(n + 1));
-  memcpy(s->rest_Q[rod], Q, sizeof(double) * 9 * (size_t)n);
+  free(*px);
+  free(*pQ);
+  *px = malloc(sizeof(double) * 3 * (size_t)(n + 1));
+  *pQ = malloc(sizeof(double) * 9 * (size_t)n);
+  if (!*px || !*pQ) return SW_EMODEL;
+  memcpy(*px, x, sizeof(double) * 3 * (size_t)(n + 1));
+  memcpy(*pQ, Q, sizeof(double) * 9 * (size_t)n);
   return SW_OK;
+}
+
+int sw_spec_set_rest_shape(swSpec *s, int rod, const double *x, const double *Q) {
+  if (rod < 0 || rod >= s->nrod) return SW_EUSAGE;
+  return set_shape(s, rod, x, Q, &s->rest_x[rod], &s->rest_Q[rod]);
+}
+
+int sw_spec_set_start_shape(swSpec *s, int rod, const double *x, const double *Q) {
+  if (rod < 0 || rod >= s->nrod) return SW_EUSAGE;
+  return set_shape(s, rod, x, Q, &s->start_x[rod], &s->start_Q[rod]);
 }
 
 /* A message into err (when given); returns 0, so checks can `return

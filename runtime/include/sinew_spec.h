@@ -164,6 +164,42 @@ void sw_spec_set_dt(swSpec *s, double dt);
 /* Rest shape override for rod r: node positions (n+1)x3 and element directors
  * n x 9 (rows d1 d2 d3).  Optional; default is the straight rod. */
 int sw_spec_set_rest_shape(swSpec *s, int rod, const double *x, const double *Q);
+/* Starting shape of rod r, apart from its rest shape: node positions (n+1)x3
+ * and element directors n x 9 (rows d1 d2 d3) at t = 0.  Optional; default
+ * is the rest shape (the one given above, or the straight rod).  The rest
+ * shape keeps setting the rest lengths and the rest curvature. */
+int sw_spec_set_start_shape(swSpec *s, int rod, const double *x, const double *Q);
+
+/* ---- shapes (shape.c): the nodes and frames of a curved rod ----
+ * Each fills x (n+1 nodes, 3 doubles each) and Q (n frames, rows d1 d2 d3)
+ * for sw_spec_set_rest_shape / sw_spec_set_start_shape, with d3 along each
+ * element's chord, so that a rod placed in the shape it rests in carries no
+ * shear strain.  Each returns SW_OK, or SW_EMODEL with a message in err. */
+
+/* A centreline r(s) in the lab, s in [0, length] the arc length of the rest
+ * rod (a curve with |dr/ds| != 1 starts stretched by |dr/ds|). */
+typedef void (*swCurveFn)(double s, double r[3], const void *ctx);
+/* Nodes r(i length / n); d1 of the first element is `normal` made
+ * perpendicular to its chord, and every next frame is the previous one
+ * carried by the smallest rotation that takes its d3 to the next chord (the
+ * discrete parallel transport, or Bishop frame: no twist about d3). */
+int sw_shape_curve(int n, double length, swCurveFn curve, const void *ctx,
+                   const double normal[3], double *x, double *Q, char *err, size_t errlen);
+/* A circular helix of `radius` (m, > 0), `pitch` (m per turn along its axis,
+ * >= 0) and arc length `length` (m), right-handed (hand = +1) or left-handed
+ * (-1): its first node at `start`; `axis` the way it advances; `normal` the
+ * way from the start to the axis (made perpendicular to it).  Nodes are at
+ * equal arc lengths; d1 is the principal normal at the element's middle
+ * (towards the axis), d3 the chord, d2 = d3 x d1 (the Frenet frame). */
+int sw_shape_helix(int n, double radius, double pitch, double length, int hand,
+                   const double start[3], const double axis[3], const double normal[3],
+                   double *x, double *Q, char *err, size_t errlen);
+/* The straight rod along `direction` from `start` whose element lengths are
+ * those of the nodes `rest_x` (so it starts unstretched from a curved rest
+ * shape); every frame from direction and normal. */
+int sw_shape_straight(int n, const double *rest_x, const double start[3],
+                      const double direction[3], const double normal[3], double *x, double *Q,
+                      char *err, size_t errlen);
 
 /* ---- kinematic joints (kinematic.c): a frame imposed, loads exchanged ----
  * Zhang et al. 2019, Suppl. Note 5.3: the element `follower_elem` of the
