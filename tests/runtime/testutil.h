@@ -80,6 +80,24 @@ static inline double sw_test_relax(const swModel *m, swData *d, const double *wa
 }
 
 /* Measured order of convergence from errors at h, h/2, h/4, ... */
+/* Whether `steps` steps from the state in d keep the energy finite and
+ * below 1000 times its start (the stable-step bisections' test of a run);
+ * frees d and m. */
+static inline int sw_test_stays_bounded(swModel *m, swData *d, int steps) {
+  double e[3];
+  sw_energy(m, d, e);
+  const double e0 = e[0] + e[1];
+  int ok = 1;
+  for (int k = 0; k < steps && ok; k++) ok = sw_step(m, d) == SW_OK;
+  if (ok) {
+    sw_energy(m, d, e);
+    ok = isfinite(e[0] + e[1]) && e[0] + e[1] < 1e3 * e0;
+  }
+  sw_data_free(d);
+  sw_model_free(m);
+  return ok;
+}
+
 static inline double sw_test_order(const double *err, int k) {
   return log(fabs(err[k]) / fabs(err[k + 1])) / log(2.0);
 }
