@@ -71,10 +71,11 @@ int sw_output_frame(swOutput *o, const swModel *m, swData *d);
 swOutput *sw_output_resume(const char *path, const swModel *m, const swOutputOptions *o,
                            swData *d, swExpectRun *x, char *err, size_t errlen);
 /* The model's hash (sha256[65]), the params ("name=value;...", SI), the
- * time step and the frame interval (s; -1 if not recorded) a file's run
- * had, for SIM --restart.  SW_OK or SW_EIO. */
+ * time step and the frame interval (s; -1 if not recorded) and the
+ * integrator (integrator[16]: "position-verlet", "pefrl" or "imex"; "" if
+ * not recorded) a file's run had, for SIM --restart.  SW_OK or SW_EIO. */
 int sw_output_read_run(const char *path, char *sha256, char *params, size_t len, double *dt,
-                       double *every);
+                       double *every, char *integrator);
 /* The run loop's checkpoint at a scheduled frame, just written: taken
  * into memory at the run's last frame (`last`) and otherwise at most every
  * quarter second of wall time, written to /restart every 10 s and at

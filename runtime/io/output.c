@@ -430,7 +430,7 @@ static swOutput *open_output(const char *path, const swModel *m, const swOutputO
 }
 
 int sw_output_read_run(const char *path, char *sha256, char *params, size_t len, double *dt,
-                       double *every) {
+                       double *every, char *integrator) {
   H5Eset_auto2(H5E_DEFAULT, NULL, NULL);
   hid_t file = H5Fopen(path, H5F_ACC_RDONLY, H5P_DEFAULT);
   if (file < 0) return sw_out_fail(NULL, 0, "cannot open HDF5 file %s", path);
@@ -438,6 +438,7 @@ int sw_output_read_run(const char *path, char *sha256, char *params, size_t len,
   read_root_string(file, "params", params, len);
   *dt = read_root_number(file, "dt");
   *every = read_root_number(file, "every");
+  read_root_string(file, "integrator", integrator, 16);
   H5Fclose(file);
   return SW_OK;
 }

@@ -62,17 +62,21 @@ int sw_cli_complain(const swCli *c, const char *fmt, ...) {
 
 /* ---- --restart and --compare, once the options are read ---- */
 
-/* --restart: the params (those not given with --set), the time step and
- * the frame interval (unless --dt, --every are given) of the run being
- * continued. */
+/* --restart: the params (those not given with --set), the time step, the
+ * frame interval and the integrator (unless --dt, --every, --integrator
+ * are given) of the run being continued; an --integrator that is not the
+ * file's is refused (its state would not be this run's). */
 static int read_restart(swCli *c) {
-  char params[8192], sha256[65];
+  static const char *const file_names[] = {"position-verlet", "pefrl", "imex"};
+  static const char *const cli_names[] = {"verlet", "pefrl", "imex"};
+  char params[8192], sha256[65], integrator[16];
   double dt, every;
   if (access(c->restart, R_OK) != 0) {
     sw_cli_complain(c, "--restart: cannot read '%s': %s", c->restart, strerror(errno));
     return SW_EIO;
   }
-  if (sw_output_read_run(c->restart, sha256, params, sizeof params, &dt, &every) != SW_OK) {
+  if (sw_output_read_run(c->restart, sha256, params, sizeof params, &dt, &every, integrator) !=
+      SW_OK) {
     sw_cli_complain(c, "--restart: %s", sw_output_error());
     return SW_EIO;
   }
@@ -80,6 +84,15 @@ static int read_restart(swCli *c) {
     sw_cli_complain(c, "--restart: %s was written by another model (model_sha256 %.12s..., this "
                     "model's %.12s...)", c->restart, sha256, c->p->sha256 ? c->p->sha256 : "");
     return SW_EIO;
+  }
+  for (int k = 0; k < 3; k++) {
+    if (strcmp(integrator, file_names[k])) continue;
+    if (c->integrator < 0) c->integrator = k;
+    else if (c->integrator != k) {
+      sw_cli_complain(c, "--restart: %s was run with --integrator %s, this run asks for %s", c->restart,
+                      cli_names[k], cli_names[c->integrator]);
+      return SW_EIO;
+    }
   }
   if (!c->every_given && every >= 0) c->every = every;
   if (!c->dt_given && dt > 0) {

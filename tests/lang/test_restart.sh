@@ -10,7 +10,8 @@
 #   already reaches the duration, and --out naming another file, are usage
 #   errors (exit 2); a run of implicit rods, whose kicks keep their
 #   factorisations over several steps (rod_implicit.c), continued from its
-#   file, gives the uninterrupted run's datasets to the bit.
+#   file, gives the uninterrupted run's datasets to the bit; the file's
+#   integrator is taken when none is given, and another one is refused.
 . "$(dirname "$0")/tap.sh"
 cd "$ROOT" || exit 1
 SC=$SINEWC_CHECK
@@ -95,8 +96,13 @@ grep 'kicks kept' run | diag
 grep -q 'implicit rods: [1-9][0-9]* of 2400 kicks kept an earlier factorisation' run
 ok $? "some of its kicks keep an earlier factorisation"
 ./snake --integrator imex --dt 125us --duration 0.13s --out snake_part.h5 --quiet 2>err
-./snake --restart snake_part.h5 --integrator imex --duration 0.3s --quiet >run 2>&1; rc=$?
-ok $rc "a run of 0.13 s continued to 0.3 s (exit $rc)"
+./snake --restart snake_part.h5 --integrator verlet --duration 0.3s >run 2>&1; rc=$?
+ok $((rc != 4)) "continuing it with another integrator is refused (exit $rc)"
+grep -q 'snake_part.h5 was run with --integrator imex, this run asks for verlet' run
+ok $? "naming both"
+diag <run
+./snake --restart snake_part.h5 --duration 0.3s --quiet >run 2>&1; rc=$?
+ok $rc "a run of 0.13 s continued to 0.3 s, its integrator taken from the file (exit $rc)"
 h5diff snake_part.h5 snake_full.h5 >diff 2>&1; ok $? "every dataset equals the uninterrupted run's (h5diff)"
 diag <diff
 
