@@ -453,4 +453,13 @@ void sw_contact_loads_with(const swModel *m, swData *d, swContactPhase phase);
 double sw_contact_energy(const swModel *m, const swData *d);
 double sw_contact_stable_dt(const swModel *m);
 
+/* swell.c: rods whose geometry changes in time */
+int sw_swell_setup(swModel *m, const swSpec *s);
+void sw_swell_free(swModel *m);
+int sw_swell_of_rod(const swModel *m, int r);
+int sw_swell_data_new(const swModel *m, swData *d);
+void sw_swell_data_free(swData *d);
+const double *sw_swell_clamp_bend(const swModel *m, const swData *d);
+void sw_swell_update(const swModel *m, swData *d, double t);
+
 #endif
