@@ -195,10 +195,26 @@ static double elem_zeta(const swModel *m, int r, int i, double w, double mass_sc
 /* The bound of rod r's elastic waves on an explicit kick, whether or not
  * the rod is kicked so: an implicit rod keeps its factorisation while its
  * frames turn by a small fraction of (this / dt)^2 (rod_implicit.c). */
+static double elastic_at(const swModel *m, int r, const double *g, int ng, int grows);
+
 double sw_stable_dt_elastic(const swModel *m, int r) {
-  int n = m->rod_nelem[r], grows;
-  double dt = INFINITY, g[2];
+  int grows;
+  double g[2];
   const int ng = rod_scales(m, r, g, &grows);
+  return elastic_at(m, r, g, ng, grows);
+}
+
+/* Rod r's elastic bound at radius scales g[0..ng) (the rod's own mass
+ * mode; 1 for a rod that does not swell): for the simulator, which checks
+ * a run longer than the compiled one against the radius it reaches. */
+double sw_stable_dt_elastic_at(const swModel *m, int r, double g) {
+  const int k = m->nswell ? sw_swell_of_rod(m, r) : -1;
+  return elastic_at(m, r, &g, 1, k >= 0 && (m->swell_flags[k] & SW_SWELL_MASS_GROWS));
+}
+
+static double elastic_at(const swModel *m, int r, const double *g, int ng, int grows) {
+  int n = m->rod_nelem[r];
+  double dt = INFINITY;
   for (int i = 0; i < n; i++)
     for (int a = 0; a < ng; a++) {
       double ms;

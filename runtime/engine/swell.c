@@ -163,3 +163,17 @@ void sw_swell_update(const swModel *m, swData *d, double t) {
     }
   }
 }
+
+void sw_swell_range_over(const swModel *m, int k, double duration, double *lo, double *hi) {
+  const swSignal *sig = &m->swell_sig[3 * k];
+  const double r0 = sw_signal_eval(sig, 0.0);
+  double a = 1.0, b = 1.0;
+  const int samples = 4096;
+  for (int q = 1; q <= samples; q++) {
+    const double g = sw_signal_eval(sig, duration * q / samples) / r0;
+    a = fmin(a, g);
+    b = fmax(b, g);
+  }
+  *lo = a;
+  *hi = b;
+}

@@ -19,6 +19,9 @@
 #             (twist waves, w ~ r when rho ~ r^-2); run at the constant
 #             rod's estimate it is warned of and goes unstable (exit 3), at
 #             its own it runs
+#   longer    a radius given as a signal NAME(t) (sampled over the compiled
+#             duration for the estimate), run with a longer --duration: the
+#             simulator checks the radius the run reaches and warns
 . "$(dirname "$0")/tap.sh"
 scratch swell
 PY=/usr/bin/python3
@@ -100,4 +103,36 @@ ok $? "run at the constant rod's dt: unstable, exit 3 (got $rc)"
 diag <"$TMP/old.out"
 (cd "$TMP" && ./swell --quiet --out new.h5) >"$TMP/new.out" 2>&1
 ok $? "run at its own estimate: stable"
+
+# ---- a signal NAME(t) radius run longer than compiled: checked at run time
+cat > "$TMP/longer.sinew" <<'MODEL'
+material fibre { E = 2 MPa; density = 1200 kg/m^3; poisson = 0.5; }
+signal thicker(t) = 2 mm * (1 + t / 50 ms);
+rod strand {
+  material = fibre;
+  start = (0, 0, 0) m;
+  direction = (1, 0, 0);
+  length = 0.5 m;
+  radius = thicker;
+  twist_hardening = 1e4;
+  elements = 20;
+}
+angular_velocity strand.end = (0.01, 0, 0) rad/s;
+simulate { duration = 50 ms; }
+output "longer.h5" every 10 ms;
+MODEL
+"$SC" "$TMP/longer.sinew" -o "$TMP/longer" >"$TMP/out" 2>&1 || diag <"$TMP/out"
+(cd "$TMP" && ./longer --quiet --out l1.h5) >"$TMP/l1.out" 2>&1
+rc=$?
+! grep -q "warning" "$TMP/l1.out" && [ $rc -eq 0 ]
+ok $? "signal radius over the compiled 50 ms: no warning, stable"
+diag <"$TMP/l1.out"
+est=$("$TMP/longer" --info | sed -n 's/.*stable estimate \([^)]*\)).*/\1/p' | head -1 | tr -d ' ')
+(cd "$TMP" && ./longer --duration 150ms --dt "$est" --quiet --out l2.h5) >"$TMP/l2.out" 2>&1
+rc=$?
+grep -q "rod 'strand': its radius reaches x1 to x4 of its t = 0 value over this run, beyond what the stable estimate covers; there the rod is stable below dt = 2.519" "$TMP/l2.out"
+ok $? "the same run to 150 ms (radius x4) at the compiled estimate ($est): warned that the estimate does not cover it"
+[ $rc -eq 3 ]
+ok $? "... and it goes unstable, exit 3 (got $rc)"
+diag <"$TMP/l2.out"
 done_testing
