@@ -171,8 +171,10 @@ static void emit_rod(FILE *out, swArena *a, const swSceneRod *r) {
   emit_description(out, "rod", rod_kind_word(r->kind), r->material, r->loc);
   gen_assign_fields(out, a, "rod", f, gen_rod_fields(r, f));
   if (r->swell_radius || r->swell_curvature || r->swell_twist || r->swell_twist_radius) {
-    /* geometry that changes in time (runtime/engine/swell.c) */
-    fputs("    rod.swell = 1;\n", out);
+    /* geometry that changes in time (runtime/engine/swell.c), opened by the
+     * radius line when the radius is a signal */
+    if (r->swell_radius) gen_origin(out, r->swell_loc, "    ");
+    fputs("    rod.swell = 1;   /* geometry that changes in time */\n", out);
     if (r->swell_radius) {
       gen_emit_signal(out, a, "rod.swell_radius", r->swell_radius);
       fputs("    rod.radius_start = rod.radius_end = sw_signal_eval(&rod.swell_radius, 0.0);\n", out);
