@@ -170,6 +170,25 @@ static void emit_rod(FILE *out, swArena *a, const swSceneRod *r) {
   if (r->variational) fputs("    rod.law = SW_LAW_VARIATIONAL;\n", out);
   emit_description(out, "rod", rod_kind_word(r->kind), r->material, r->loc);
   gen_assign_fields(out, a, "rod", f, gen_rod_fields(r, f));
+  if (r->swell_radius || r->swell_curvature || r->swell_twist || r->swell_twist_radius) {
+    /* geometry that changes in time (runtime/engine/swell.c), opened by the
+     * radius line when the radius is a signal */
+    if (r->swell_radius) gen_origin(out, r->swell_loc, "    ");
+    fputs("    rod.swell = 1;   /* geometry that changes in time */\n", out);
+    if (r->swell_radius) {
+      gen_emit_signal(out, a, "rod.swell_radius", r->swell_radius);
+      fputs("    rod.radius_start = rod.radius_end = sw_signal_eval(&rod.swell_radius, 0.0);\n", out);
+    } else {
+      fputs("    rod.swell_radius = sw_signal_const(rod.radius_start);   /* constant */\n", out);
+    }
+    if (r->swell_curvature) gen_emit_signal(out, a, "rod.swell_curvature", r->swell_curvature);
+    if (r->swell_twist) gen_emit_signal(out, a, "rod.swell_twist", r->swell_twist);
+    if (r->swell_twist_radius)
+      fputs("    rod.swell_twist_radius = 1;   /* rest twist ~ r(0) / r(t) */\n", out);
+    if (r->swell_radius)
+      fprintf(out, "    rod.swell_mass_grows = %d;   /* mass = %s */\n", r->swell_mass_grows,
+              r->swell_mass_grows ? "grows" : "conserved");
+  }
   fputs("    ok &= sw_spec_add_rod(s, &rod) >= 0;\n", out);
   gen_shape_build(out, a, r);
   fputs("  }\n", out);

@@ -252,6 +252,15 @@ swSpec *gen_spec(const swScene *sc) {
       d.weightless = r->weightless;
       d.law = r->variational ? SW_LAW_VARIATIONAL : SW_LAW_GAZZOLA;
       fill(&d, f, gen_rod_fields(r, f));
+      if (r->swell_radius || r->swell_curvature || r->swell_twist || r->swell_twist_radius) {
+        d.swell = 1;   /* as gen_c.c's emit_rod */
+        d.swell_radius = r->swell_radius ? gen_signal(r->swell_radius) : sw_signal_const(d.radius_start);
+        if (r->swell_radius) d.radius_start = d.radius_end = sw_signal_eval(&d.swell_radius, 0.0);
+        if (r->swell_curvature) d.swell_curvature = gen_signal(r->swell_curvature);
+        if (r->swell_twist) d.swell_twist = gen_signal(r->swell_twist);
+        d.swell_twist_radius = r->swell_twist_radius;
+        d.swell_mass_grows = r->swell_mass_grows;
+      }
       int id = sw_spec_add_rod(s, &d);
       /* shapes as sema_shape.c built them, with the same runtime calls */
       if (id >= 0 && r->xr) sw_spec_set_rest_shape(s, id, r->xr, r->Qr);

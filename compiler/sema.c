@@ -528,6 +528,7 @@ int sema_check_lets(swArena *arena, int file, swLetOverride *lets, int nlets, sw
   /* the times a signal's range is sampled over: the run's (sw_signal_func) */
   for (int i = 0; i < scene->nsignal; i++)
     scene->signal[i]->span = scene->duration > 0 ? scene->duration : 1.0;
+  sema_swell_check(&S);   /* the radius signals over the run */
   int lets_ok = 1;
   for (int i = 0; i < nlets; i++) {
     /* after the model's own errors a let may not have been reached */

@@ -159,6 +159,12 @@ typedef struct {
   double *x0, *Q0;            /* (nelem+1)x3, nelem x 9: where a shaped rod
                                  starts (NULL: straight), for its points     */
   double *xr, *Qr;            /* the same at rest (NULL: straight)          */
+  /* geometry that changes in time (sema_swell.c): radius = a signal, the
+   * rest curvature and twist scaled by signals, NULL where constant */
+  struct swSignalVal *swell_radius, *swell_curvature, *swell_twist;
+  int swell_twist_radius;     /* rest_twist_scale = follows_radius           */
+  int swell_mass_grows;       /* mass = grows (density fixed)               */
+  swLoc swell_loc;            /* the radius field, for the range check      */
 } swSceneRod;
 
 /* A muscle (swMuscleDesc): values the model did not give are VAL_ERROR and

@@ -139,6 +139,9 @@ const char *sema_word(swSema *S, swScope *scope, const swAst *e, const char *wha
  * component parameter; 1 or 0, -1 after an error (reported, naming `what`
  * and, for a name holding something else, where its value was written). */
 int sema_truth(swSema *S, swScope *scope, const swAst *e, const char *what);
+/* A scalar signal's value with its scale folded in (sema_muscle.c): a
+ * number as a constant signal; NULL after an error. */
+struct swSignalVal *sema_scalar_signal(swSema *S, swValue v, const char *what);
 
 /* sema_call.c */
 swValue sema_eval_call(swSema *S, swScope *scope, const swAst *call);   /* a built-in function */
@@ -315,5 +318,9 @@ int sema_rod_place_shapes(swSema *S, swSceneRod *r, const swRodShapes *sh, int n
                           const char *what);
 /* the point at fraction f of a shaped rod (x0 set), where it starts */
 void sema_shape_point(const swSceneRod *r, double f, double x[3]);
+
+/* sema_swell.c: a rod's geometry that changes in time */
+int sema_rod_swell(swSema *S, swScope *scope, const swFields *f, swSceneRod *r, const char *what);
+void sema_swell_check(swSema *S);
 
 #endif

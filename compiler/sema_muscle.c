@@ -40,7 +40,6 @@ static const char *const muscle_keys[] = {
 };
 enum { NMUSCLE_KEYS = sizeof muscle_keys / sizeof muscle_keys[0] };
 
-static swSignalVal *scalar_signal(swSema *S, swValue v, const char *what);
 
 void sema_muscle_not_rod(swSema *S, const swSymbol *muscle, swLoc loc) {
   (void)S;
@@ -343,7 +342,7 @@ void sema_eval_muscle(swSema *S, swSymbol *sym) {
                  dim_describe(S->a, v.dim));
       ok = 0;
     } else if (v.kind == VAL_ERROR ||
-               !(m.force = scalar_signal(S, v, "'force' (the pull along the muscle)"))) {
+               !(m.force = sema_scalar_signal(S, v, "'force' (the pull along the muscle)"))) {
       ok = 0;
     }
     static const char *const hill[] = {"sigma_max", "twitch_small", "twitch_large", "hill_a",
@@ -481,7 +480,7 @@ static swValue scaled(swSema *S, swValue s, const swValue *k) {
  * swSignal has no scale of its own, so a signal's scale is folded into its
  * values (a ramp's ends, a sine's mean and amplitude, a table's values, a
  * signal NAME(t)'s factor a). */
-static swSignalVal *scalar_signal(swSema *S, swValue v, const char *what) {
+swSignalVal *sema_scalar_signal(swSema *S, swValue v, const char *what) {
   swSignalVal *sig = ast_alloc(S->a, sizeof *sig);
   memset(sig, 0, sizeof *sig);
   if (v.kind == VAL_NUM) {
@@ -534,7 +533,7 @@ void sema_activate(swSema *S, swScope *scope, const swAst *it) {
   if (v.kind == VAL_NUM && val_is_const(&v) && !(v.v[0] >= 0 && v.v[0] <= 1))
     diag_warning(v.loc, "an activation is clamped to [0, 1]: %g acts as %g", v.v[0],
                  v.v[0] < 0 ? 0.0 : 1.0);
-  swSignalVal *sig = scalar_signal(S, v, "an activation");
+  swSignalVal *sig = sema_scalar_signal(S, v, "an activation");
   if (!sig) return;
   if (!mus) return;
   swSceneMuscle *m = &S->scene->muscle[mus->index];

@@ -26,7 +26,7 @@ static const char *const rod_keys[] = {
   "radius_end", "elements", "E", "G", "poisson", "density", "shear_hardening",
   "twist_hardening", "rest_curvature", "rest_strain", "damping", "rotational_damping",
   "damping_model", "rigid", "variational", "implicit", "gravity", "shape", "rest_shape",
-  "start_shape",
+  "start_shape", "rest_curvature_scale", "rest_twist_scale", "mass",
 };
 enum { NROD_KEYS = sizeof rod_keys / sizeof rod_keys[0] };
 
@@ -185,8 +185,8 @@ void sema_eval_rod(swSema *S, swSymbol *sym) {
     ok = 0;
   }
   if (rad) {
-    r.radius_start = r.radius_end = sema_field_value(S, sc, &f, "radius", 1, DIM_LENGTH);
-    sema_positive(S, &r.radius_start, "'radius'", "m");
+    /* a length or a time signal of one: below, with the fields that change
+     * the geometry in time (sema_swell.c) */
   } else if (rs && re) {
     r.radius_start = sema_field_value(S, sc, &f, "radius_start", 1, DIM_LENGTH);
     r.radius_end = sema_field_value(S, sc, &f, "radius_end", 1, DIM_LENGTH);
@@ -280,6 +280,8 @@ void sema_eval_rod(swSema *S, swSymbol *sym) {
   /* the shapes, now that the rod is placed and its elements known */
   if (ok && shaped && !sema_rod_place_shapes(S, &r, &sh, sema_field(&f, "normal") != NULL, what))
     ok = 0;
+  /* the radius, and the geometry that changes in time (sema_swell.c) */
+  if (!sema_rod_swell(S, sc, &f, &r, what)) ok = 0;
   const swValue *all[] = {&r.youngs, &r.density, &r.shear_modulus, &r.poisson, &r.start,
                           &r.direction, &r.normal, &r.length, &r.radius_start, &r.radius_end,
                           &r.shear_hardening, &r.twist_hardening, &r.rest_kappa, &r.rest_sigma,

@@ -103,10 +103,10 @@ void sw_bc_kick(const swModel *m, swData *d, double h, double t, int lo, int hi,
      * the constraint force's, h f_c = m (v_new - v_free). */
     double w = 0;
     if (what & 1) {
-      double mass = m->mass[node];
+      double mass = d->mass_now[node];
       for (int c = 0; c < 3; c++) {
         const double F = SW_AT(m, d->force, node - so, c), ef = SW_AT(m, d->ext_force, node - so, c);
-        double v_free = SW_AT(m, d->v, node, c), v_old = v_free - h * F * m->inv_mass[node];
+        double v_free = SW_AT(m, d->v, node, c), v_old = v_free - h * F * d->inv_mass_now[node];
         w -= 0.5 * h * ef * (v_old + v_free);
         w += 0.5 * (h * ef + mass * (vn[c] - v_free)) * (v_old + vn[c]);
         SW_AT(m, d->v, node, c) = vn[c];
@@ -116,7 +116,7 @@ void sw_bc_kick(const swModel *m, swData *d, double h, double t, int lo, int hi,
       double e = sw_inertia_dilatation(m, d, elem);
       for (int c = 0; c < 3; c++) {
         const double T = SW_AT(m, d->torque, elem - so, c), et = SW_AT(m, d->ext_torque, elem - so, c);
-        double Je = SW_AT(m, m->inertia, elem, c) / e;
+        double Je = SW_AT(m, d->inertia_now, elem, c) / e;
         double w_free = SW_AT(m, d->omega, elem, c), w_old = w_free - h * T / Je;
         w -= 0.5 * h * et * (w_old + w_free);
         w += 0.5 * (h * et + Je * (we[c] - w_free)) * (w_old + we[c]);
@@ -147,7 +147,7 @@ static int clamp_domain(const swModel *m, const swData *d, const swBCDesc *b,
   double inv_eps3 = m->rod_law[b->rod] == SW_LAW_VARIATIONAL ? 1.0 : 1.0 / (eps * eps * eps);
   for (int k = 0; k < 3; k++) {
     kappa[k] = phi[k] / *D;
-    couple[k] = SW_AT(m, m->clamp_bend, e, k) * kappa[k] * inv_eps3;
+    couple[k] = SW_AT(m, sw_swell_clamp_bend(m, d), e, k) * kappa[k] * inv_eps3;
   }
   return e;
 }
@@ -185,7 +185,7 @@ double sw_bc_energy(const swModel *m, const swData *d) {
     if (b->kind != SW_BC_CLAMP) continue;
     double kappa[3], c[3], D;
     int e = clamp_domain(m, d, b, kappa, c, &D);
-    for (int i = 0; i < 3; i++) u += 0.5 * D * SW_AT(m, m->clamp_bend, e, i) * kappa[i] * kappa[i];
+    for (int i = 0; i < 3; i++) u += 0.5 * D * SW_AT(m, sw_swell_clamp_bend(m, d), e, i) * kappa[i] * kappa[i];
   }
   return u;
 }

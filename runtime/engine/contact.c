@@ -205,7 +205,7 @@ static void pair_contact(const swModel *m, const swData *d, const swContactDesc 
   const int rod_a = m->contact_rod[ra], rod_b = m->contact_rod[rb];
   const int ia = m->node_adr[rod_a] + (ea - m->elem_adr[rod_a]);
   const int ib = m->node_adr[rod_b] + (eb - m->elem_adr[rod_b]);
-  const double rsum = m->radius[ea] + m->radius[eb];
+  const double rsum = d->radius_now[ea] + d->radius_now[eb];
   if (rod_a == rod_b) {
     double gap = ra < rb ? m->contact_arc[rb] - m->contact_arc[ra] - m->rest_len[ea]
                          : m->contact_arc[ra] - m->contact_arc[rb] - m->rest_len[eb];
@@ -287,7 +287,7 @@ static void grid_pairs(const swModel *m, const swData *d, int c, Sums *sum) {
     sw_get3(m, d->x, a + 1, xb);
     sw_v3_sub(dx, xb, xa);
     longest2 = fmax(longest2, sw_v3_dot(dx, dx));
-    widest = fmax(widest, m->radius[e]);
+    widest = fmax(widest, d->radius_now[e]);
   }
   const double longest = sqrt(longest2);
   const double h = longest + 2 * widest;

@@ -7,6 +7,7 @@
  * it; sw_reset puts the state at the model's rest configuration at t = 0.
  * One model may have any number of states.
  */
+#include <math.h>
 #include <stdlib.h>
 #include <string.h>
 #include "sinew.h"
@@ -29,6 +30,7 @@ void sw_data_free(swData *d) {
   free(d->rigid_X); free(d->rigid_V); free(d->rigid_R); free(d->rigid_L); free(d->rigid_omega);
   free(d->rigid_load); free(d->rigid_sys); free(d->implicit_sys);
   sw_probe_data_free(d);
+  sw_swell_data_free(d);
   /* the contact grid's scratch (contact.c, through the environment's data_new) */
   free(d->contact_cell); free(d->contact_bucket); free(d->contact_sorted);
   free(d->contact_start); free(d->contact_occupied); free(d->contact_sorted_cell);
@@ -38,6 +40,7 @@ void sw_data_free(swData *d) {
 swData *sw_data_new(const swModel *m) {
   swData *d = calloc(1, sizeof *d);
   if (!d) return NULL;
+  if (!sw_swell_data_new(m, d)) { free(d); return NULL; }
   d->x = sw_palloc(m, 3); d->v = sw_palloc(m, 3); d->Q = sw_palloc(m, 9); d->omega = sw_palloc(m, 3);
   d->length = sw_palloc(m, 1); d->dilatation = sw_palloc(m, 1);
   d->shortest = sw_palloc(m, 1); d->shortest_time = sw_palloc(m, 1);
@@ -98,6 +101,7 @@ void sw_reset(const swModel *m, swData *d) {
   d->held = d->whole = 0;
   d->work = 0;
   d->error[0] = 0;
+  d->swell_time = NAN; /* the geometry at t = 0, set by the loads below */
   const size_t plane = sizeof(double) * (size_t)m->stride;
   memcpy(d->x, m->x0, 3 * plane);
   memcpy(d->Q, m->Q0, 9 * plane);

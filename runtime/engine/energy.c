@@ -27,21 +27,21 @@ void sw_energy(const swModel *m, swData *d, double out[3]) {
     for (int i = m->node_adr[r]; i <= m->node_adr[r] + m->rod_nelem[r]; i++) {
       double v[3];
       sw_get3(m, d->v, i, v);
-      kin += 0.5 * m->mass[i] * sw_v3_dot(v, v);
+      kin += 0.5 * d->mass_now[i] * sw_v3_dot(v, v);
     }
   for (int r = 0; r < m->nrod; r++)
     for (int e = m->elem_adr[r]; e < m->elem_adr[r] + m->rod_nelem[r]; e++)
       for (int k = 0; k < 3; k++) {
         double w = SW_AT(m, d->omega, e, k);
         double ds = SW_AT(m, d->sigma, e, k) - SW_AT(m, m->rest_sigma, e, k);
-        kin += 0.5 * SW_AT(m, m->inertia, e, k) / sw_inertia_dilatation(m, d, e) * w * w;
-        ela += 0.5 * m->rest_len[e] * SW_AT(m, m->shear_stiff, e, k) * ds * ds;
+        kin += 0.5 * SW_AT(m, d->inertia_now, e, k) / sw_inertia_dilatation(m, d, e) * w * w;
+        ela += 0.5 * m->rest_len[e] * SW_AT(m, d->shear_now, e, k) * ds * ds;
       }
   for (int r = 0; r < m->nrod; r++)
     for (int j = m->vor_adr[r]; j < m->vor_adr[r] + m->rod_nelem[r] - 1; j++)
       for (int k = 0; k < 3; k++) {
-        double dk = SW_AT(m, d->kappa, j, k) - SW_AT(m, m->rest_kappa, j, k);
-        ela += 0.5 * m->rest_vor_len[j] * SW_AT(m, m->bend_stiff, j, k) * dk * dk;
+        double dk = SW_AT(m, d->kappa, j, k) - SW_AT(m, d->kappa0_now, j, k);
+        ela += 0.5 * m->rest_vor_len[j] * SW_AT(m, d->bend_now, j, k) * dk * dk;
       }
   ela += sw_bc_energy(m, d); /* clamp domains */
   if (m->njoint) ela += sw_joint_energy(m, d);

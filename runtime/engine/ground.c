@@ -213,8 +213,8 @@ static inline __attribute__((always_inline)) void ground_geometry(const swModel 
                                                                 const int terrain, const int spin) {
   const size_t S = (size_t)m->stride;
   const double *restrict x = d->x, *restrict v = d->v, *restrict Q = d->Q, *restrict omega = d->omega;
-  const double *restrict tau = d->torque, *restrict dil = d->dilatation, *restrict J = m->inertia;
-  const double *restrict radius = m->radius, *restrict mass = m->mass, *restrict var = m->elem_variational;
+  const double *restrict tau = d->torque, *restrict dil = d->dilatation, *restrict J = d->inertia_now;
+  const double *restrict radius = d->radius_now, *restrict mass = d->mass_now, *restrict var = m->elem_variational;
   const double inv_h = 1.0 / m->dt, ve = g->slip_velocity, ct = g->contact_tolerance;
   const double *mk = g->mu_kinetic;
   const sw3 plane = {g->normal[0], g->normal[1], g->normal[2]};
@@ -311,7 +311,7 @@ static void ground_loads_element(const swModel *m, swData *d, const swGroundDesc
     const double fb = coulomb_load(slip_load(&blk->sb, j), Tb, N, ms[2], ms[2]);
     for (int k = 0; k < 3; k++) friction[k] = fa * a[k] + fb * b[k];
     if (g->contact_point || g->mu_rolling > 0) {
-      const double r = m->radius[e];
+      const double r = d->radius_now[e];
       double cl[3] = {0, 0, 0}, Q[9]; /* the couple in the lab frame */
       if (g->contact_point)
         for (int k = 0; k < 3; k++) cl[k] = -r * fb * a[k];
@@ -336,7 +336,7 @@ static void ground_loads_element(const swModel *m, swData *d, const swGroundDesc
     if (len > 0) {
       sw_v3_scale(dir, src, 1.0 / len);
       double ud = sw_v3_dot(u, dir);
-      double mh = (wa * m->mass[ia] + wb * m->mass[ib]) / m->dt;
+      double mh = (wa * d->mass_now[ia] + wb * d->mass_now[ib]) / m->dt;
       double f = coulomb(ud, fabs(ud), sw_v3_dot(T, dir), N, g->slip_velocity, mh, mk[2], mk[2], ms[2],
                          ms[2]);
       sw_v3_scale(friction, dir, f);
@@ -415,7 +415,7 @@ double sw_ground_energy(const swModel *m, const swData *d) {
         double c[3], nrm[3];
         for (int k = 0; k < 3; k++)
           c[k] = 0.5 * (SW_AT(m, d->x, na + i, k) + SW_AT(m, d->x, na + i + 1, k));
-        double pen = m->radius[ea + i] - surface_gap(g, c, nrm);
+        double pen = d->radius_now[ea + i] - surface_gap(g, c, nrm);
         if (pen > 0) energy += 0.5 * g->stiffness * pen * pen;
       }
     }

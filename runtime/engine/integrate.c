@@ -63,6 +63,11 @@ static void compute_loads(const swModel *m, swData *d, double h) {
     if (sw_team_leader(d)) sw_kinematic_impose(m, d);
     sw_team_barrier(d);
   }
+  if (m->nswell) { /* the swelling rods' geometry at the kick's time (swell.c) */
+    sw_team_barrier(d);
+    if (sw_team_leader(d)) sw_swell_update(m, d, d->time);
+    sw_team_barrier(d);
+  }
   sw_share_slots(m, d, m->nslot_elastic, &lo, &hi);
   sw_rod_pass(m, d, lo, hi, 0, d->scratch_flag); /* (A) */
   if (m->njoint) sw_joint_rows(m, d);
@@ -239,14 +244,14 @@ static inline __attribute__((always_inline)) void kick_component(const swModel *
                                                                int k, const int first, const int exact_any,
                                                                const int law) {
   const size_t S = (size_t)m->stride;
-  const double *restrict im = m->inv_mass, *restrict mass = m->mass;
+  const double *restrict im = d->inv_mass_now, *restrict mass = d->mass_now;
   const double *restrict ndec = m->node_decay, *restrict nkick = m->node_kick;
   const double *restrict exact = m->kick_exact, *restrict dil = d->dilatation;
   const double *restrict var = m->elem_variational;
   double *restrict v = d->v + k * S, *restrict w = d->omega + k * S;
   const double *restrict F = d->force + k * S, *restrict T = d->torque + k * S;
   const double *restrict ef = d->ext_force + k * S, *restrict et = d->ext_torque + k * S;
-  const double *restrict iJ = m->inv_inertia + k * S, *restrict J = m->inertia + k * S;
+  const double *restrict iJ = d->inv_inertia_now + k * S, *restrict J = d->inertia_now + k * S;
   const double *restrict edec = m->elem_decay + k * S, *restrict ekick = m->elem_kick + k * S;
 #pragma omp simd
   for (int i = lo; i < hi; i++) {
@@ -388,7 +393,7 @@ static void kick(const swModel *m, swData *d, double h, double span) {
 int sw_sweep_fits(const swModel *m) {
   return m->integrator != SW_PEFRL && m->nslot_elastic > SWEEP_BLOCK && !m->njoint && !m->nmuscle &&
          !m->nkinematic &&
-         !m->nrigid && !m->nimplicit && !sw_has_env(m);
+         !m->nrigid && !m->nimplicit && !sw_has_env(m) && !m->nswell;
 }
 
 /* The window's last entries (the block's last slot) become its entry 0 (the
@@ -459,13 +464,13 @@ static void analytic_decay_serial(const swModel *m, swData *d) {
       double v2 = sw_v3_dot(vi, vi);
       sw_v3_scale(vi, vi, f);
       sw_set3(m, d->v, i, vi);
-      lost += 0.5 * m->mass[i] * v2 * (1 - f * f);
+      lost += 0.5 * d->mass_now[i] * v2 * (1 - f * f);
     }
     for (int e = ea; e < ea + n; e++)
       for (int k = 0; k < 3; k++) {
         double w = SW_AT(m, d->omega, e, k), f = SW_AT(m, m->elem_decay, e, k);
         SW_AT(m, d->omega, e, k) = f * w;
-        lost += 0.5 * SW_AT(m, m->inertia, e, k) / sw_inertia_dilatation(m, d, e) * w * w * (1 - f * f);
+        lost += 0.5 * SW_AT(m, d->inertia_now, e, k) / sw_inertia_dilatation(m, d, e) * w * w * (1 - f * f);
       }
   }
   d->work -= lost;

@@ -453,4 +453,19 @@ void sw_contact_loads_with(const swModel *m, swData *d, swContactPhase phase);
 double sw_contact_energy(const swModel *m, const swData *d);
 double sw_contact_stable_dt(const swModel *m);
 
+/* swell.c: rods whose geometry changes in time */
+int sw_swell_setup(swModel *m, const swSpec *s);
+void sw_swell_free(swModel *m);
+int sw_swell_of_rod(const swModel *m, int r);
+int sw_swell_data_new(const swModel *m, swData *d);
+void sw_swell_data_free(swData *d);
+const double *sw_swell_clamp_bend(const swModel *m, const swData *d);
+void sw_swell_update(const swModel *m, swData *d, double t);
+/* stability.c: rod r's elastic bound at radius scale g (swell.c's rods) */
+double sw_stable_dt_elastic_at(const swModel *m, int r, double g);
+/* swell.c: the least and the greatest g swelling rod k reaches over
+ * [0, duration], sampled at 4097 times and the signal's own range when it
+ * is a built-in one */
+void sw_swell_range_over(const swModel *m, int k, double duration, double *lo, double *hi);
+
 #endif

@@ -199,7 +199,7 @@ void sw_signal_range(const swSignal *s, double *lo, double *hi) {
  * mass but on weightless rods, when some rod is weightless. */
 static void base_loads(const swModel *m, swData *d, int lo, int hi, int so) {
   const size_t S = (size_t)m->stride;
-  const double *restrict mass = m->weight ? m->weight : m->mass;
+  const double *restrict mass = m->weight ? d->weight_now : d->mass_now;
   /* [lo, top) under gravity, [top, hi) not (the padding, or no gravity): two
    * loops rather than a condition per slot (vec.h, sw_select) */
   int top = m->has_gravity ? (hi < m->nslot ? hi : m->nslot) : lo;

@@ -84,6 +84,7 @@ void sw_model_free(swModel *m) {
   free(m->joint_rest_rot); free(m->joint_angle0); free(m->joint_wave_dt); free(m->joint_limit_ref);
   sw_rigid_joints_free(m);
   sw_implicit_free(m);
+  sw_swell_free(m);
   if (sw_muscle_ops(m)) sw_muscle_ops(m)->free_model(m);
   if (sw_env_ops(m)) sw_env_ops(m)->free_model(m);
   rigid_free(m);
@@ -345,6 +346,9 @@ swModel *sw_compile(const swSpec *s, char *err, size_t errlen) {
       m->load[k].index = m->rod_nelem[m->load[k].rod] - (m->load[k].kind == SW_LOAD_TORQUE);
   if (!rigid_alloc(m, s)) goto oom;
   sw_rigid_setup(m);
+  /* swelling rods (swell.c), before every stable-dt estimate: they cover
+   * the range of the radius */
+  if (!sw_swell_setup(m, s)) goto oom;
   { /* implicit rods, before the stable-dt estimates that leave them out */
     int *wanted = calloc((size_t)nr, sizeof(int));
     if (!wanted) goto oom;

@@ -128,7 +128,7 @@ static inline __attribute__((always_inline)) void element_pass_law(const swModel
   const double *restrict x = d->x, *restrict Q = d->Q;
   const double *restrict rl = m->rest_len, *restrict irl = m->inv_rest_len;
   const double *restrict ghost = m->elem_ghost, *restrict var = m->elem_variational;
-  const double *restrict Sh = m->shear_stiff, *restrict s0 = m->rest_sigma;
+  const double *restrict Sh = d->shear_now, *restrict s0 = m->rest_sigma;
   double *restrict len = d->length, *restrict dil = d->dilatation;
   double *restrict sig = d->sigma, *restrict str = d->stress, *restrict T = d->torque;
   double *restrict fl = d->scratch_f; /* Q^T n, lab */
@@ -187,7 +187,7 @@ static inline __attribute__((always_inline)) int voronoi_pass_law(const swModel 
                                                                   const int law) {
   const size_t S = (size_t)m->stride;
   const double *restrict Q = d->Q, *restrict var = m->elem_variational;
-  const vorArrays va = {d->x, m->elem_ghost, m->rest_vor_len, m->inv_rest_vor_len, m->bend_stiff, m->rest_kappa,
+  const vorArrays va = {d->x, m->elem_ghost, m->rest_vor_len, m->inv_rest_vor_len, d->bend_now, d->kappa0_now,
                         d->length, d->kappa, d->couple, d->vor_dilatation, d->scratch_h, so};
   if (lo >= hi) return 0;
   int bent = 0;
@@ -224,7 +224,7 @@ void sw_rod_pass(const swModel *m, swData *d, int lo, int hi, int so, double *fl
   }
   if (!bent) return;
   const size_t S = (size_t)m->stride;
-  const vorArrays va = {d->x, m->elem_ghost, m->rest_vor_len, m->inv_rest_vor_len, m->bend_stiff, m->rest_kappa,
+  const vorArrays va = {d->x, m->elem_ghost, m->rest_vor_len, m->inv_rest_vor_len, d->bend_now, d->kappa0_now,
                         d->length, d->kappa, d->couple, d->vor_dilatation, d->scratch_h, so};
   for (int i = lo; i < hi; i++) {
     if (flag[i - so] == 0.0) continue;
@@ -270,6 +270,10 @@ void sw_rod_gather(const swModel *m, swData *d, int lo, int hi, int so) {
 
 void sw_internal_loads(const swModel *m, swData *d) {
   int lo, hi;
+  if (m->nswell) { /* the geometry of now (swell.c) */
+    if (sw_team_leader(d)) sw_swell_update(m, d, d->time);
+    sw_team_barrier(d);
+  }
   sw_share_slots(m, d, m->nslot_elastic, &lo, &hi);
   sw_rod_pass(m, d, lo, hi, 0, d->scratch_flag);
   sw_team_barrier(d); /* the gather reads the pass of the slot before */

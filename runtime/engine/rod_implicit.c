@@ -244,8 +244,8 @@ static void shear_block(const swModel *m, const swData *d, int law, int e, doubl
   const double l = m->rest_len[e], il = m->inv_rest_len[e];
   const double t[3] = {SW_AT(m, d->sigma, e, 0), SW_AT(m, d->sigma, e, 1), SW_AT(m, d->sigma, e, 2) + 1.0};
   const double f = law ? w : w / d->dilatation[e];
-  const double S[3] = {f * SW_AT(m, m->shear_stiff, e, 0), f * SW_AT(m, m->shear_stiff, e, 1),
-                       f * SW_AT(m, m->shear_stiff, e, 2)};
+  const double S[3] = {f * SW_AT(m, d->shear_now, e, 0), f * SW_AT(m, d->shear_now, e, 1),
+                       f * SW_AT(m, d->shear_now, e, 2)};
   /* [t]x rows, Q rows scaled by S, and S [t]x */
   const double T[9] = {0, -t[2], t[1], t[2], 0, -t[0], -t[1], t[0], 0};
   double QS[9], ST[9], P[9], C[9], R[9];
@@ -341,7 +341,7 @@ static void bend_block(const swModel *m, const swData *d, int law, int v, double
   const double eps = d->vor_dilatation[v];
   const double inv_eps3 = law ? 1.0 : 1.0 / (eps * eps * eps);
   double Bk[3];
-  for (int k = 0; k < 3; k++) Bk[k] = w * SW_AT(m, m->bend_stiff, v, k) * inv_eps3 * iD;
+  for (int k = 0; k < 3; k++) Bk[k] = w * SW_AT(m, d->bend_now, v, k) * inv_eps3 * iD;
   double JlB[9], JrB[9]; /* the Jacobians' rows scaled by B */
   for (int k = 0; k < 3; k++)
     for (int p = 0; p < 3; p++) JlB[3 * k + p] = Jl[3 * k + p] * Bk[k], JrB[3 * k + p] = Jr[3 * k + p] * Bk[k];
@@ -383,7 +383,7 @@ static void clamp_blocks(const swModel *m, const swData *d, int r, double *A) {
     const double eps = d->dilatation[e], D = 0.5 * m->rest_len[e];
     const double inv_eps3 = law ? 1.0 : 1.0 / (eps * eps * eps);
     for (int c = 0; c < 3; c++)
-      *at(A, oe + (size_t)c, oe + (size_t)c) += SW_AT(m, m->clamp_bend, e, c) * inv_eps3 / D;
+      *at(A, oe + (size_t)c, oe + (size_t)c) += SW_AT(m, sw_swell_clamp_bend(m, d), e, c) * inv_eps3 / D;
   }
 }
 
@@ -505,7 +505,10 @@ static int rod_factor(const swModel *m, const swData *d, int k, double *ws, doub
   double *kept = ws + system_len(n);
   *rhs_out = rhs, *inv_out = inv;
   rod_rhs(m, d, r, h, rhs);
-  if (kept_holds(m, d, r, kept, h, m->implicit_wave_dt[k])) {
+  /* a rod whose stiffness and inertia change in time (swell.c) factors
+   * afresh at every kick: a kept system would hold an earlier geometry's */
+  const int swells = m->nswell && sw_swell_of_rod(m, r) >= 0;
+  if (!swells && kept_holds(m, d, r, kept, h, m->implicit_wave_dt[k])) {
     kept[KEPT_REUSED] += 1;
     return 1;
   }
@@ -519,14 +522,14 @@ static int rod_factor(const swModel *m, const swData *d, int k, double *ws, doub
   for (int i = 0; i <= n; i++) { /* masses and damping on the nodes */
     const int s = na + i;
     for (int c3 = 0; c3 < 3; c3++)
-      *at(A, 6 * (size_t)i + (size_t)c3, 6 * (size_t)i + (size_t)c3) += m->mass[s] + c * m->node_gamma[s];
+      *at(A, 6 * (size_t)i + (size_t)c3, 6 * (size_t)i + (size_t)c3) += d->mass_now[s] + c * m->node_gamma[s];
   }
   for (int i = 0; i < n; i++) { /* inertias J^/e and damping on the elements */
     const int e = ea + i;
     const double dil = sw_inertia_dilatation(m, d, e);
     for (int c3 = 0; c3 < 3; c3++) {
       const size_t q = 6 * (size_t)i + 3 + (size_t)c3;
-      *at(A, q, q) += SW_AT(m, m->inertia, e, c3) / dil + c * SW_AT(m, m->elem_gamma, e, c3);
+      *at(A, q, q) += SW_AT(m, d->inertia_now, e, c3) / dil + c * SW_AT(m, m->elem_gamma, e, c3);
     }
   }
   rod_holds(m, r, A, rhs, N);
@@ -543,12 +546,12 @@ void sw_implicit_apply(const swModel *m, swData *d, int r, const double *du, siz
   const double ih = 1.0 / h; /* one division, not one per unknown (a sixth of the kept kick) */
   for (int i = 0; i <= n; i++)
     for (int k = 0; k < 3; k++)
-      SW_AT(m, d->force, na + i, k) = m->mass[na + i] * du[(6 * (size_t)i + (size_t)k) * stride] * ih;
+      SW_AT(m, d->force, na + i, k) = d->mass_now[na + i] * du[(6 * (size_t)i + (size_t)k) * stride] * ih;
   for (int i = 0; i < n; i++) {
     const int e = ea + i;
     const double s = ih / sw_inertia_dilatation(m, d, e);
     for (int k = 0; k < 3; k++)
-      SW_AT(m, d->torque, e, k) = SW_AT(m, m->inertia, e, k) * du[(6 * (size_t)i + 3 + (size_t)k) * stride] * s;
+      SW_AT(m, d->torque, e, k) = SW_AT(m, d->inertia_now, e, k) * du[(6 * (size_t)i + 3 + (size_t)k) * stride] * s;
   }
 }
 

@@ -86,6 +86,9 @@ void sw_rod_desc_init(swRodDesc *r) {
   r->shear_hardening = 1.0;
   r->twist_hardening = 1.0;
   r->gamma_rot = -1.0;
+  r->swell_radius = sw_signal_const(0.01);
+  r->swell_curvature = sw_signal_const(1.0);
+  r->swell_twist = sw_signal_const(1.0);
 }
 
 /* Grow an array to hold at least n+1 items (0: out of memory). */

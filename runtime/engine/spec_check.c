@@ -43,6 +43,18 @@ int sw_check_rod(const swRodDesc *r, char *err, size_t errlen) {
     return sw_fail(err, errlen, "rod '%s': rigid must be 0 or 1, got %d", nm, r->rigid);
   if (r->implicit != 0 && r->implicit != 1)
     return sw_fail(err, errlen, "rod '%s': implicit must be 0 or 1, got %d", nm, r->implicit);
+  if (r->swell) { /* geometry that changes in time (swell.c) */
+    if (r->rigid)
+      return sw_fail(err, errlen, "rod '%s': a rigid rod cannot change its radius in time", nm);
+    double lo, hi, r0 = sw_signal_eval(&r->swell_radius, 0.0);
+    sw_signal_range(&r->swell_radius, &lo, &hi);
+    if (!sw_finite_pos(r0) || !(lo > 0) || !isfinite(hi))
+      return sw_fail(err, errlen, "rod '%s': its radius signal must stay > 0 and finite, but "
+                     "reaches %g m (at t = 0: %g m)", nm, lo, r0);
+    if (r->swell_twist_radius && r->swell_twist.kind != SW_SIG_CONST)
+      return sw_fail(err, errlen, "rod '%s': its rest twist follows either the radius or a "
+                     "signal, not both", nm);
+  }
   if (r->implicit && r->rigid)
     return sw_fail(err, errlen, "rod '%s': a rigid rod has no elasticity to make implicit", nm);
   if (r->weightless != 0 && r->weightless != 1)

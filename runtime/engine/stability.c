@@ -145,9 +145,40 @@ static elemRest elem_rest(const swModel *m, int r, int i) {
   return p;
 }
 
+/* The same element of a swelling rod (swell.c) at radius scale g: the
+ * moduli stay, the radius is g rad, and the density rho / g^2 when the mass
+ * is conserved, rho when the density is fixed.  Conserved, every w^2 above
+ * but the shear-rotation term's G / (rho r^2) grows as g^2 (E / rho does),
+ * so a thickening rod needs a shorter step, dt ~ 1 / g; fixed density, only
+ * that term moves (as g^-2).  mass_scale is what the node masses are
+ * multiplied by. */
+static elemRest elem_at_scale(elemRest p, double g, int grows, double *mass_scale) {
+  p.rad *= g;
+  if (!grows) p.rho /= g * g;
+  *mass_scale = grows ? g * g : 1.0;
+  return p;
+}
+
+/* The radius scales g a swelling rod's bound is taken at: the least and the
+ * greatest its signal reaches (swell_range; each zig-zag frequency is a
+ * power of g, so its largest is at one of them), else 1 alone.  Returns
+ * how many, and whether its mass grows. */
+static int rod_scales(const swModel *m, int r, double g[2], int *grows) {
+  const int k = m->nswell ? sw_swell_of_rod(m, r) : -1;
+  *grows = 0;
+  if (k < 0) {
+    g[0] = 1.0;
+    return 1;
+  }
+  *grows = (m->swell_flags[k] & SW_SWELL_MASS_GROWS) != 0;
+  g[0] = m->swell_range[2 * k];
+  g[1] = m->swell_range[2 * k + 1];
+  return 2;
+}
+
 /* The damping ratio of element i's linear dissipation at frequency w (0
  * without it). */
-static double elem_zeta(const swModel *m, int r, int i, double w) {
+static double elem_zeta(const swModel *m, int r, int i, double w, double mass_scale) {
   if (m->rod_damping[r] != SW_DAMP_LINEAR) return 0;
   const int na = m->node_adr[r], e = m->elem_adr[r] + i;
   double c = fmax(m->node_gamma[na + i] * m->inv_mass[na + i],
@@ -158,25 +189,44 @@ static double elem_zeta(const swModel *m, int r, int i, double w) {
     double ce = SW_AT(m, m->elem_gamma, e, k) * SW_AT(m, m->inv_inertia, e, k);
     if (ce > c * (1 + 1e-9)) c = ce;
   }
-  return c / (2 * w);
+  return c / (2 * w * mass_scale); /* heavier nodes, the same gamma */
 }
 
 /* The bound of rod r's elastic waves on an explicit kick, whether or not
  * the rod is kicked so: an implicit rod keeps its factorisation while its
  * frames turn by a small fraction of (this / dt)^2 (rod_implicit.c). */
+static double elastic_at(const swModel *m, int r, const double *g, int ng, int grows);
+
 double sw_stable_dt_elastic(const swModel *m, int r) {
+  int grows;
+  double g[2];
+  const int ng = rod_scales(m, r, g, &grows);
+  return elastic_at(m, r, g, ng, grows);
+}
+
+/* Rod r's elastic bound at radius scales g[0..ng) (the rod's own mass
+ * mode; 1 for a rod that does not swell): for the simulator, which checks
+ * a run longer than the compiled one against the radius it reaches. */
+double sw_stable_dt_elastic_at(const swModel *m, int r, double g) {
+  const int k = m->nswell ? sw_swell_of_rod(m, r) : -1;
+  return elastic_at(m, r, &g, 1, k >= 0 && (m->swell_flags[k] & SW_SWELL_MASS_GROWS));
+}
+
+static double elastic_at(const swModel *m, int r, const double *g, int ng, int grows) {
   int n = m->rod_nelem[r];
   double dt = INFINITY;
-  for (int i = 0; i < n; i++) {
-    const elemRest p = elem_rest(m, r, i);
-    const double l = p.l, rad = p.rad, rho = p.rho, E = p.E, Gs = p.Gs, D = p.D, Gt = p.Gt;
-    double w2_axial = 4 * E / (rho * l * l);
-    double w2_shear = 16.0 / 3.0 * Gs / rho * (1 / (l * l) + 1 / (rad * rad)) + 4 * E / (rho * l * D);
-    double w2_twist = 4 * Gt / (rho * l * D);
-    double w = sqrt(fmax(w2_axial, fmax(w2_shear, w2_twist)));
-    double lim = 0.95 * sw_integrator_stability_limit(m->integrator, elem_zeta(m, r, i, w)) / w;
-    if (lim < dt) dt = lim;
-  }
+  for (int i = 0; i < n; i++)
+    for (int a = 0; a < ng; a++) {
+      double ms;
+      const elemRest p = elem_at_scale(elem_rest(m, r, i), g[a], grows, &ms);
+      const double l = p.l, rad = p.rad, rho = p.rho, E = p.E, Gs = p.Gs, D = p.D, Gt = p.Gt;
+      double w2_axial = 4 * E / (rho * l * l);
+      double w2_shear = 16.0 / 3.0 * Gs / rho * (1 / (l * l) + 1 / (rad * rad)) + 4 * E / (rho * l * D);
+      double w2_twist = 4 * Gt / (rho * l * D);
+      double w = sqrt(fmax(w2_axial, fmax(w2_shear, w2_twist)));
+      double lim = 0.95 * sw_integrator_stability_limit(m->integrator, elem_zeta(m, r, i, w, ms)) / w;
+      if (lim < dt) dt = lim;
+    }
   return dt;
 }
 
@@ -209,10 +259,13 @@ double sw_stable_dt_rod(const swModel *m, int r) {
 double sw_stable_dt_rod_at(const swModel *m, int r, double e, double eps) {
   if (sw_rod_is_rigid(m, r) || (m->nimplicit && m->rod_implicit[r])) return INFINITY;
   const int var = m->rod_law[r] == SW_LAW_VARIATIONAL, n = m->rod_nelem[r];
-  double dt = INFINITY;
-  for (int i = 0; i < n; i++) {
-    const elemRest p = elem_rest(m, r, i);
-    const double s03 = SW_AT(m, m->rest_sigma, m->elem_adr[r] + i, 2);
+  double dt = INFINITY, g[2];
+  int grows;
+  const int ng = rod_scales(m, r, g, &grows);
+  for (int i = 0; i < n * ng; i++) {
+    double ms;
+    const elemRest p = elem_at_scale(elem_rest(m, r, i / ng), g[i % ng], grows, &ms);
+    const double s03 = SW_AT(m, m->rest_sigma, m->elem_adr[r] + i / ng, 2);
     const double axial = var ? 1 : (1 + s03) / (e * e), lateral = var ? 1 : 1 / e;
     const double turn = e * e, bend = var ? 1 : e / (eps * eps * eps);
     double w2_axial = 4 * p.E / (p.rho * p.l * p.l) * axial;
@@ -220,7 +273,7 @@ double sw_stable_dt_rod_at(const swModel *m, int r, double e, double eps) {
                       4 * p.E / (p.rho * p.l * p.D) * bend;
     double w2_twist = 4 * p.Gt / (p.rho * p.l * p.D) * bend;
     double w = sqrt(fmax(w2_axial, fmax(w2_shear, w2_twist)));
-    dt = fmin(dt, 0.95 * sw_integrator_stability_limit(m->integrator, elem_zeta(m, r, i, w)) / w);
+    dt = fmin(dt, 0.95 * sw_integrator_stability_limit(m->integrator, elem_zeta(m, r, i / ng, w, ms)) / w);
   }
   return dt;
 }

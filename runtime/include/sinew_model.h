@@ -157,6 +157,18 @@ typedef struct {
                                            in rigid_group_joint              */
   int *rigid_group_joint;    /* (implicit joints) each group's joints, in
                                            joint order                       */
+  /* rods whose geometry changes in time (swell.c): their radius, stiffness,
+   * inertia, mass and rest curvature follow signals; what the step reads of
+   * these is swData's *_now arrays, which are these model arrays themselves
+   * when nswell = 0 */
+#define SW_SWELL_TWIST_RADIUS 1   /* w(t) = r(0) / r(t)                      */
+#define SW_SWELL_MASS_GROWS 2     /* density fixed: mass ~ g^2               */
+  int nswell;
+  int *swell_rod;            /* (nswell)   the rods, in rod order            */
+  swSignal *swell_sig;       /* (nswell*3) r(t) (m), c(t), w(t) of each      */
+  int *swell_flags;          /* (nswell)   SW_SWELL_* bits                   */
+  double *swell_range;       /* (nswell*2) least and greatest g = r(t)/r(0)
+                                           the stable-dt estimate covers    */
   /* rods whose elasticity is linearly implicit (SW_IMEX, rod_implicit.c) */
   int nimplicit;
   int *rod_implicit;         /* (nrod)     1: the rod asks for it (elastic);
@@ -293,6 +305,14 @@ typedef struct {
    * report of an unstable run quotes (stability.c).  Per element slot. */
   double *shortest;          /* least e seen (1 at ghosts)                   */
   double *shortest_time;     /* the time of the check that saw it, s         */
+  /* The geometry the step reads (swell.c): the model's own arrays when no
+   * rod swells (m->nswell = 0), else copies owned here whose slots on the
+   * swelling rods follow time (set by sw_swell_update at each kick). */
+  const double *radius_now, *shear_now, *bend_now, *kappa0_now; /* as the model's */
+  const double *inertia_now, *inv_inertia_now, *mass_now, *inv_mass_now, *weight_now;
+  double *swell_own;         /* the copies' storage (NULL: none)             */
+  double *swell_g;           /* (nswell) g = r(t)/r(0) at swell_time        */
+  double swell_time;         /* when they were last set (NAN: never)        */
   /* derived per element slot */
   double *length;            /* current length l                             */
   double *sigma;             /* (3) shear/stretch strain, material           */

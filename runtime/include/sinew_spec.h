@@ -113,6 +113,23 @@ typedef struct {
                                  and inertia stay): a rig whose weight the
                                  model leaves out, as PyElastica's snakes put
                                  gravity on the body only                   */
+  /* Geometry that changes in time (engine/swell.c; docs/physics.md,
+   * "Geometry that changes in time").  With swell = 1 the radius profile
+   * (radius_start..radius_end, the radius at t = 0) is scaled by
+   * g(t) = swell_radius(t) / swell_radius(0): bending and twist stiffness
+   * follow g^4, shear and stretch g^2, the contact and ground radius g; the
+   * mass is conserved (density ~ g^-2, inertia J^ ~ g^2) or, with
+   * swell_mass_grows, the density is fixed (mass ~ g^2, J^ ~ g^4).  The
+   * rest curvature about d1, d2 is multiplied by swell_curvature(t) and the
+   * rest twist about d3 by swell_twist(t), or by 1 / g(t) with
+   * swell_twist_radius (the reference's law, k3 ~ r0 / r).  Not on a rigid
+   * rod; an implicit rod factors its system afresh at every kick. */
+  int swell;
+  swSignal swell_radius;      /* r(t), m: > 0 over the run                   */
+  swSignal swell_curvature;   /* c(t), dimensionless (constant 1: none)      */
+  swSignal swell_twist;       /* w(t), dimensionless (constant 1: none)      */
+  int swell_twist_radius;     /* 1: w(t) = r(0) / r(t) instead of swell_twist */
+  int swell_mass_grows;       /* 0: mass conserved; 1: density fixed         */
   /* What the rod is, for the output's /rods/NAME group only (copied; NULL:
    * not written): its tissue ("bone", "tendon", "muscle filament", "rod"),
    * its material's name and the model line that made it ("arm.sinew:12"). */

@@ -44,6 +44,7 @@
 
 #include "sinew.h"
 #include "cli.h"
+#include "engine/internal.h"
 #include "io/params.h"
 #include "study/study.h"
 
@@ -153,6 +154,25 @@ static swModel *build_model(const swCli *c, double *stable, const char **dt_sour
     fprintf(stderr, "%s: warning: dt = %s is above the stable estimate %s; the run may "
             "become unstable\n", c->prog, sw_cli_format_time(dt_text, sizeof dt_text, m->dt),
             sw_cli_format_time(stable_text, sizeof stable_text, *stable));
+    fflush(stderr);
+  }
+  /* a swelling rod's estimate covers the radius over the compiled run (a
+   * signal NAME(t) is sampled there, swell.c); a longer --duration may take
+   * it further: check the radius this run reaches (docs/physics.md,
+   * "Geometry that changes in time") */
+  for (int k = 0; k < m->nswell; k++) {
+    double lo, hi;
+    sw_swell_range_over(m, k, c->duration, &lo, &hi);
+    if (lo >= m->swell_range[2 * k] && hi <= m->swell_range[2 * k + 1]) continue;
+    const int r = m->swell_rod[k];
+    const double there = fmin(sw_stable_dt_elastic_at(m, r, lo), sw_stable_dt_elastic_at(m, r, hi));
+    if (!(m->dt > there) || (m->nimplicit && m->rod_implicit[r])) continue;
+    char dt_text[32], there_text[32];
+    fprintf(stderr, "%s: warning: rod '%s': its radius reaches x%.4g to x%.4g of its t = 0 value "
+            "over this run, beyond what the stable estimate covers; there the rod is stable below "
+            "dt = %s, and dt = %s\n", c->prog, m->rod_name[r], lo, hi,
+            sw_cli_format_time(there_text, sizeof there_text, there),
+            sw_cli_format_time(dt_text, sizeof dt_text, m->dt));
     fflush(stderr);
   }
   /* an activation outside [0, 1] is clamped (muscle.c): say so, once a

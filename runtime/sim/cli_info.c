@@ -536,7 +536,12 @@ void sw_cli_print_info(const swCli *c, const swModel *m, double stable, const ch
     printf("  %s: %d elements, length %.6g m, radius %.4g mm", m->rod_name[r], n, length,
            r0 * 1e3);
     if (r1 != r0) printf(" to %.4g mm", r1 * 1e3);
-    printf(", mass %.6g kg, stable dt %s%s%s%s\n", mass,
+    const int sk = m->nswell ? sw_swell_of_rod(m, r) : -1;
+    if (sk >= 0) /* geometry that changes in time (swell.c) */
+      printf(" at t = 0, x%.4g to x%.4g in time (mass %s%s)", m->swell_range[2 * sk],
+             m->swell_range[2 * sk + 1], m->swell_flags[sk] & SW_SWELL_MASS_GROWS ? "grows" : "conserved",
+             m->swell_flags[sk] & SW_SWELL_TWIST_RADIUS ? ", rest twist ~ r0/r" : "");
+    printf(", mass %.6g kg%s, stable dt %s%s%s%s\n", mass, sk >= 0 ? " at t = 0" : "",
            isinf(m->rod_wave_dt[r]) ? "none" : sw_cli_format_time(a, sizeof a, m->rod_wave_dt[r]),
            m->rod_damping[r] == SW_DAMP_ANALYTIC ? ", analytic damping"
            : m->rod_damping[r] == SW_DAMP_LINEAR ? ", linear damping" : "",
