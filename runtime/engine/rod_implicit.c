@@ -361,13 +361,22 @@ static void bend_block(const swModel *m, const swData *d, int law, int v, double
     }
 }
 
-/* Unknowns [o, o + 3) held by a boundary condition: du = 0 there. */
-static void hold(double *A, double *rhs, size_t N, size_t o) {
+/* The first of the three unknowns condition b holds on a rod of n
+ * elements (its end node's velocity, or its end element's rotation), or
+ * SIZE_MAX when it holds none of them. */
+static size_t held(const swBCDesc *b, int n) {
+  if (b->kind == SW_BC_CLAMP || b->kind == SW_BC_VELOCITY) return b->end ? 6 * (size_t)n : 0;
+  if (b->kind == SW_BC_OMEGA) return b->end ? 6 * (size_t)n - 3 : 3;
+  return SIZE_MAX;
+}
+
+/* Unknowns [o, o + 3) held by a boundary condition: du = 0 there (their
+ * right-hand side is zeroed by rod_rhs). */
+static void hold(double *A, size_t N, size_t o) {
   for (size_t i = o; i < o + 3; i++) {
     for (size_t j = i > BAND ? i - BAND : 0; j < i; j++) *at(A, i, j) = 0;
     for (size_t k = i + 1; k <= i + BAND && k < N; k++) *at(A, k, i) = 0;
     *at(A, i, i) = 1;
-    rhs[i] = 0;
   }
 }
 
@@ -387,14 +396,11 @@ static void clamp_blocks(const swModel *m, const swData *d, int r, double *A) {
   }
 }
 
-/* The unknowns the boundary conditions on rod r hold. */
-static void rod_holds(const swModel *m, int r, double *A, double *rhs, size_t N) {
-  const int n = m->rod_nelem[r];
+/* The unknowns the boundary conditions on rod r hold, in its matrix. */
+static void rod_holds(const swModel *m, int r, double *A, size_t N) {
   for (int k = 0; k < m->nbc; k++) {
-    const swBCDesc *b = &m->bc[k];
-    if (b->rod != r) continue;
-    if (b->kind == SW_BC_CLAMP || b->kind == SW_BC_VELOCITY) hold(A, rhs, N, b->end ? 6 * (size_t)n : 0);
-    if (b->kind == SW_BC_OMEGA) hold(A, rhs, N, b->end ? 6 * (size_t)n - 3 : 3);
+    const size_t o = m->bc[k].rod == r ? held(&m->bc[k], m->rod_nelem[r]) : SIZE_MAX;
+    if (o != SIZE_MAX) hold(A, N, o);
   }
 }
 
@@ -482,11 +488,7 @@ static void rod_rhs(const swModel *m, const swData *d, int r, double h, double *
   for (int i = 0; i < n; i++)
     for (int k = 0; k < 3; k++) rhs[6 * i + 3 + k] = h * SW_AT(m, d->torque, ea + i, k);
   for (int k = 0; k < m->nbc; k++) {
-    const swBCDesc *b = &m->bc[k];
-    if (b->rod != r) continue;
-    size_t o = SIZE_MAX;
-    if (b->kind == SW_BC_CLAMP || b->kind == SW_BC_VELOCITY) o = b->end ? 6 * (size_t)n : 0;
-    if (b->kind == SW_BC_OMEGA) o = b->end ? 6 * (size_t)n - 3 : 3;
+    const size_t o = m->bc[k].rod == r ? held(&m->bc[k], n) : SIZE_MAX;
     if (o != SIZE_MAX) rhs[o] = rhs[o + 1] = rhs[o + 2] = 0;
   }
 }
@@ -533,7 +535,7 @@ static int rod_factor(const swModel *m, const swData *d, int k, double *ws, doub
       *at(A, q, q) += SW_AT(m, d->inertia_now, e, c3) / dil + c * SW_AT(m, m->elem_gamma, e, c3);
     }
   }
-  rod_holds(m, r, A, rhs, N);
+  rod_holds(m, r, A, N);
   kept[KEPT_H] = 0; /* no factorisation kept unless this one succeeds */
   if (!band_ldlt_factor(A, N, inv)) return 0;
   keep(m, d, r, kept, h);

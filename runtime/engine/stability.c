@@ -192,6 +192,20 @@ static double elem_zeta(const swModel *m, int r, int i, double w, double mass_sc
   return c / (2 * w * mass_scale); /* heavier nodes, the same gamma */
 }
 
+/* The stable step of element i (its rest p at a radius scale whose node
+ * masses are mass_scale times the model's) with its stiffnesses scaled
+ * away from rest (sw_stable_dt_rod_at; all 1 at rest): the axial, shear
+ * and twist frequencies of the header, the damping's ratio at the largest. */
+static double elem_limit(const swModel *m, int r, int i, const elemRest *p, double mass_scale,
+                         double axial, double lateral, double turn, double bend) {
+  const double w2_axial = 4 * p->E / (p->rho * p->l * p->l) * axial;
+  const double w2_shear = 16.0 / 3.0 * p->Gs / p->rho * (lateral / (p->l * p->l) + turn / (p->rad * p->rad)) +
+                          4 * p->E / (p->rho * p->l * p->D) * bend;
+  const double w2_twist = 4 * p->Gt / (p->rho * p->l * p->D) * bend;
+  const double w = sqrt(fmax(w2_axial, fmax(w2_shear, w2_twist)));
+  return 0.95 * sw_integrator_stability_limit(m->integrator, elem_zeta(m, r, i, w, mass_scale)) / w;
+}
+
 /* The bound of rod r's elastic waves on an explicit kick, whether or not
  * the rod is kicked so: an implicit rod keeps its factorisation while its
  * frames turn by a small fraction of (this / dt)^2 (rod_implicit.c). */
@@ -213,19 +227,12 @@ double sw_stable_dt_elastic_at(const swModel *m, int r, double g) {
 }
 
 static double elastic_at(const swModel *m, int r, const double *g, int ng, int grows) {
-  int n = m->rod_nelem[r];
   double dt = INFINITY;
-  for (int i = 0; i < n; i++)
+  for (int i = 0; i < m->rod_nelem[r]; i++)
     for (int a = 0; a < ng; a++) {
       double ms;
       const elemRest p = elem_at_scale(elem_rest(m, r, i), g[a], grows, &ms);
-      const double l = p.l, rad = p.rad, rho = p.rho, E = p.E, Gs = p.Gs, D = p.D, Gt = p.Gt;
-      double w2_axial = 4 * E / (rho * l * l);
-      double w2_shear = 16.0 / 3.0 * Gs / rho * (1 / (l * l) + 1 / (rad * rad)) + 4 * E / (rho * l * D);
-      double w2_twist = 4 * Gt / (rho * l * D);
-      double w = sqrt(fmax(w2_axial, fmax(w2_shear, w2_twist)));
-      double lim = 0.95 * sw_integrator_stability_limit(m->integrator, elem_zeta(m, r, i, w, ms)) / w;
-      if (lim < dt) dt = lim;
+      dt = fmin(dt, elem_limit(m, r, i, &p, ms, 1.0, 1.0, 1.0, 1.0));
     }
   return dt;
 }
@@ -262,19 +269,15 @@ double sw_stable_dt_rod_at(const swModel *m, int r, double e, double eps) {
   double dt = INFINITY, g[2];
   int grows;
   const int ng = rod_scales(m, r, g, &grows);
-  for (int i = 0; i < n * ng; i++) {
-    double ms;
-    const elemRest p = elem_at_scale(elem_rest(m, r, i / ng), g[i % ng], grows, &ms);
-    const double s03 = SW_AT(m, m->rest_sigma, m->elem_adr[r] + i / ng, 2);
-    const double axial = var ? 1 : (1 + s03) / (e * e), lateral = var ? 1 : 1 / e;
-    const double turn = e * e, bend = var ? 1 : e / (eps * eps * eps);
-    double w2_axial = 4 * p.E / (p.rho * p.l * p.l) * axial;
-    double w2_shear = 16.0 / 3.0 * p.Gs / p.rho * (lateral / (p.l * p.l) + turn / (p.rad * p.rad)) +
-                      4 * p.E / (p.rho * p.l * p.D) * bend;
-    double w2_twist = 4 * p.Gt / (p.rho * p.l * p.D) * bend;
-    double w = sqrt(fmax(w2_axial, fmax(w2_shear, w2_twist)));
-    dt = fmin(dt, 0.95 * sw_integrator_stability_limit(m->integrator, elem_zeta(m, r, i / ng, w, ms)) / w);
-  }
+  for (int i = 0; i < n; i++)
+    for (int a = 0; a < ng; a++) {
+      double ms;
+      const elemRest p = elem_at_scale(elem_rest(m, r, i), g[a], grows, &ms);
+      const double s03 = SW_AT(m, m->rest_sigma, m->elem_adr[r] + i, 2);
+      const double axial = var ? 1 : (1 + s03) / (e * e), lateral = var ? 1 : 1 / e;
+      const double turn = e * e, bend = var ? 1 : e / (eps * eps * eps);
+      dt = fmin(dt, elem_limit(m, r, i, &p, ms, axial, lateral, turn, bend));
+    }
   return dt;
 }
 

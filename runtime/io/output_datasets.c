@@ -387,6 +387,25 @@ int sw_out_create_datasets(swOutput *o, const swModel *m, const swOutputOptions 
 
 /* ---- one frame more ---- */
 
+/* Frames [first, first + count) of dataset ds written from (write) or read
+ * into buf, count rows of its frame_len doubles, by a selection.  Returns
+ * whether HDF5 did it. */
+static int frames_io(swDataset *ds, long first, long count, double *buf, int write) {
+  hsize_t at[1 + MAX_FRAME_RANK] = {(hsize_t)first}, n[1 + MAX_FRAME_RANK];
+  n[0] = (hsize_t)count;
+  for (int k = 1; k < ds->rank; k++) n[k] = ds->dims[k];
+  hid_t file_space = H5Dget_space(ds->dset);
+  hid_t mem_space = H5Screate_simple(ds->rank, n, NULL);
+  int ok = file_space >= 0 && mem_space >= 0 &&
+           H5Sselect_hyperslab(file_space, H5S_SELECT_SET, at, NULL, n, NULL) >= 0;
+  if (ok)
+    ok = (write ? H5Dwrite(ds->dset, H5T_NATIVE_DOUBLE, mem_space, file_space, H5P_DEFAULT, buf)
+                : H5Dread(ds->dset, H5T_NATIVE_DOUBLE, mem_space, file_space, H5P_DEFAULT, buf)) >= 0;
+  if (mem_space >= 0) H5Sclose(mem_space);
+  if (file_space >= 0) H5Sclose(file_space);
+  return ok;
+}
+
 /* Frames [o->written, upto) of dataset ds, all in its chunk buffer, which
  * holds the chunk from frame start = o->written rounded down to a chunk:
  * the dataset extended to upto frames, then the whole chunk written as
@@ -407,17 +426,8 @@ int sw_out_write_frames(swOutput *o, swDataset *ds, long upto) {
     size_t bytes = (size_t)o->chunk_frames * ds->frame_len * sizeof(double);
     ok = H5Dwrite_chunk(ds->dset, H5P_DEFAULT, 0, offset, bytes, ds->pending) >= 0;
   } else {
-    hsize_t first[1 + MAX_FRAME_RANK] = {(hsize_t)o->written}, count[1 + MAX_FRAME_RANK];
-    count[0] = (hsize_t)(upto - o->written);
-    for (int k = 1; k < ds->rank; k++) count[k] = ds->dims[k];
-    hid_t file_space = H5Dget_space(ds->dset);
-    hid_t mem_space = H5Screate_simple(ds->rank, count, NULL);
-    ok = file_space >= 0 && mem_space >= 0 &&
-         H5Sselect_hyperslab(file_space, H5S_SELECT_SET, first, NULL, count, NULL) >= 0 &&
-         H5Dwrite(ds->dset, H5T_NATIVE_DOUBLE, mem_space, file_space, H5P_DEFAULT,
-                  ds->pending + (size_t)(o->written - start) * ds->frame_len) >= 0;
-    if (mem_space >= 0) H5Sclose(mem_space);
-    if (file_space >= 0) H5Sclose(file_space);
+    ok = frames_io(ds, o->written, upto - o->written,
+                   ds->pending + (size_t)(o->written - start) * ds->frame_len, 1);
   }
   if (!ok) { /* frames not written are not filled either: take them back */
     ds->dims[0] = (hsize_t)o->written;
@@ -436,18 +446,7 @@ int sw_out_read_partial_chunk(swOutput *o) {
   if (!o->direct || start == o->written) return SW_OK;
   for (int i = 0; i < o->ndset; i++) {
     swDataset *ds = &o->dset[i];
-    hsize_t first[1 + MAX_FRAME_RANK] = {(hsize_t)start}, count[1 + MAX_FRAME_RANK];
-    count[0] = (hsize_t)(o->written - start);
-    for (int k = 1; k < ds->rank; k++) count[k] = ds->dims[k];
-    hid_t file_space = H5Dget_space(ds->dset);
-    hid_t mem_space = H5Screate_simple(ds->rank, count, NULL);
-    int ok = file_space >= 0 && mem_space >= 0 &&
-             H5Sselect_hyperslab(file_space, H5S_SELECT_SET, first, NULL, count, NULL) >= 0 &&
-             H5Dread(ds->dset, H5T_NATIVE_DOUBLE, mem_space, file_space, H5P_DEFAULT,
-                     ds->pending) >= 0;
-    if (mem_space >= 0) H5Sclose(mem_space);
-    if (file_space >= 0) H5Sclose(file_space);
-    if (!ok)
+    if (!frames_io(ds, start, o->written - start, ds->pending, 0))
       return sw_out_fail(NULL, 0, "%s: cannot read frames %ld to %ld of dataset %s back", o->path,
                          start, o->written - 1, ds->path);
   }
