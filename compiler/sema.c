@@ -268,6 +268,26 @@ static void instantiate(swSema *S, swScope *scope, const swAst *it) {
   S->instance_depth--;
 }
 
+/* A loop without a pass still names what it would use: those names are not
+ * "defined but never used" (a lever or a material kept for a scene
+ * variant that `--let` leaves out).  Only the first part of a dotted name
+ * is looked up; a name the loop defines itself is not found, and nothing
+ * is reported. */
+static void mark_names_used(swSema *S, swScope *scope, const swAst *node) {
+  if (!node) return;
+  if (node->kind == AST_NAME && node->name) {
+    char head[256];
+    size_t n = strcspn(node->name, ".[");
+    if (n < sizeof head) {
+      memcpy(head, node->name, n);
+      head[n] = 0;
+      swSymbol *sym = sema_lookup(S, scope, head);
+      if (sym) sym->used = 1;
+    }
+  }
+  for (int i = 0; i < node->nkid; i++) mark_names_used(S, scope, node->kid[i]);
+}
+
 /* for NAME[VAR] in (FIRST, LAST) { items }: the items once for each whole VAR
  * from FIRST to LAST, each pass an instance of its own named NAME[VAR] (its
  * rods NAME[3].barb ...) whose scope sees the enclosing one, with VAR a
@@ -292,8 +312,13 @@ static void run_loop(swSema *S, swScope *scope, const swAst *it) {
     return;
   }
   const long first = (long)r.v[0], last = (long)r.v[1];
+  /* (1, 0): a count of none, as `for hurt[k] in (1, injured)` with injured
+   * = 0 writes it, is a loop without a pass and says nothing; a LAST further
+   * below FIRST is more likely a slip. */
   if (last < first) {
-    diag_warning(r.loc, "loop '%s' runs from %ld to %ld: no pass", it->name, first, last);
+    mark_names_used(S, scope, it);
+    if (last < first - 1)
+      diag_warning(r.loc, "loop '%s' runs from %ld to %ld: no pass", it->name, first, last);
     return;
   }
   const long n = last - first + 1;

@@ -9,7 +9,7 @@
  * is a decimal number (no hex, inf or nan) optionally followed, with or
  * without a space, by a unit expression: factors separated by '/', '*', '·'
  * or a space, each optionally raised to an integer power ("kg m^-3",
- * "m/s^2").  A space binds tighter than '/' and '*', as juxtaposition does
+ * "m/s^2"), or begun by '/' for a rate ("2/s", as a model writes 2 / s).  A space binds tighter than '/' and '*', as juxtaposition does
  * in a model: "N/m s" is N/(m s), "kg/m/s" is kg m^-1 s^-1.  Conversion is done in decimal where it can be:
  * units whose scale is a power of ten shift the number's decimal exponent and
  * the text is converted once by strtod, so "1.75 g/cm^3" is exactly 1750 and
@@ -227,6 +227,15 @@ int sw_parse_quantity(const char *text, double *si, signed char dim[SW_NDIM], ch
   int denominator = 0;       /* the factor being read follows a '/'       */
   const char *op = NULL;     /* the operator before it, for messages      */
   while (isspace((unsigned char)*p)) p++;
+  if (*p == '/') {
+    /* a rate as a model writes it: "2/s", "0.5 / s" (the number over the
+     * unit) */
+    denominator = 1;
+    op = "/";
+    p++;
+    while (isspace((unsigned char)*p)) p++;
+    if (!*p) return fail(err, errlen, "expected a unit after '/' in '%s'", text);
+  }
   while (*p) {
     /* factor: name [ '^' integer ] */
     const char *name = p;

@@ -49,4 +49,28 @@ grep -q '^  left.side\[\*\].barb\[\*\].b: 6 rods, 3 elements, length 0.03 to 0.0
   grep -q '^  left.side\[\*\].barb\[\*\].root: 6 joints, left.side\[\*\].barb\[\*\].b follows left.rachis, spring 1000 N/m' "$tmp/info"
 ok $? "--info shows a loop's rods and kinematic joints one line a pattern (6 and 4 barbs), rods outside loops one each"
 diag < "$tmp/info"
+
+# A count that may be zero: (1, 0) is a loop of no pass, said silently, and
+# what only that loop uses is not "defined but never used"; (3, 1) warns.
+cat > "$tmp/count.sinew" <<'MODEL'
+material keratin { E = 2.5 MPa; density = 2.5 kg/m^3; poisson = 0.5; }
+let extra = 0;
+let offset = (0, 2, 0) cm;
+rod trunk { material = keratin; start = (0, 0, 0) m; direction = (1, 0, 0); length = 200 mm;
+            radius = 2 mm; elements = 8; }
+for more[k] in (1, extra) {
+  rod b { material = keratin; start = trunk.end + offset; direction = (1, 0, 0);
+          length = 30 mm; radius = 1 mm; elements = 3; }
+}
+simulate { duration = 5 ms; }
+MODEL
+"$SINEWC_ASAN" --check "$tmp/count.sinew" 2>"$tmp/count"; ok $? "a loop of count 0 checks"
+! grep -q ': warning:' "$tmp/count"; ok $? "with no warning: neither 'no pass' nor 'offset' unused"
+diag < "$tmp/count"
+sed 's/let extra = 0;/let extra = 2;/' "$tmp/count.sinew" > "$tmp/count2.sinew"
+"$SINEWC_ASAN" --check "$tmp/count2.sinew" 2>"$tmp/count2"
+grep -q 'ok: 1 file, 3 rods' "$tmp/count2"; ok $? "with extra = 2 the loop adds its 2 rods"
+sed 's/let extra = 0;/let extra = -1;/' "$tmp/count.sinew" > "$tmp/count3.sinew"
+"$SINEWC_ASAN" --check "$tmp/count3.sinew" 2>"$tmp/count3"
+grep -q "warning: loop 'more' runs from 1 to -1: no pass" "$tmp/count3"; ok $? "(1, -1) still warns"
 done_testing

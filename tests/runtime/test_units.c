@@ -122,6 +122,9 @@ static void test_parse_quantity(void **state) {
     {"2 \xce\xbcs", 2e-6, {0, 0, 1, 0}},  /* μs, Greek mu */
     {"1e-400 m", 0, {0, 1, 0, 0}},        /* underflows to 0 */
     {"0.5 kHz", 500, {0, 0, -1, 0}},
+    {"2/s", 2, {0, 0, -1, 0}},            /* a rate, as a model writes 2 / s */
+    {"0.5 / s", 0.5, {0, 0, -1, 0}},
+    {"3/m/s", 3, {0, -1, -1, 0}},
   };
   for (size_t i = 0; i < sizeof exact / sizeof exact[0]; i++) expect_quantity(&exact[i], 0);
   /* one rounding after the decimal conversion */
@@ -167,12 +170,12 @@ static void test_parse_errors(void **state) {
   expect_error("1 g/cc", "unknown unit 'cc' in '1 g/cc'");
   expect_error("0x10", "unknown unit 'x' in '0x10'");
   expect_error("1,5 s", "unexpected ',5 s' in '1,5 s'");
-  expect_error("5 /s", "unexpected '/s' in '5 /s'");
   expect_error("5 m2", "unexpected '2' in '5 m2' (powers are written m^2)");
   expect_error("2ms3", "unexpected '3' in '2ms3' (powers are written ms^3)");
   expect_error("5 m (tip)", "unexpected '(tip)' in '5 m (tip)'");
   expect_error("5 m/", "expected a unit after '/' in '5 m/'");
   expect_error("5 m/ 3", "expected a unit after '/' in '5 m/ 3'");
+  expect_error("5 /", "expected a unit after '/' in '5 /'");
   expect_error("5 N*", "expected a unit after '*' in '5 N*'");
   expect_error("5 m^", "expected an integer exponent after '^' in '5 m^'");
   expect_error("5 m^x", "expected an integer exponent after '^' in '5 m^x'");
