@@ -320,7 +320,8 @@ int sema_rod_place_shapes(swSema *S, swSceneRod *r, const swRodShapes *sh, int n
 void sema_shape_point(const swSceneRod *r, double f, double x[3]);
 
 /* sema_swell.c: a rod's geometry that changes in time */
-int sema_rod_swell(swSema *S, swScope *scope, const swFields *f, swSceneRod *r, const char *what);
+int sema_rod_swell(swSema *S, swScope *scope, const swFields *f, swSceneRod *r, const char *what,
+                   int shape_unknown);
 void sema_swell_check(swSema *S);
 
 #endif

@@ -57,9 +57,11 @@ static int has_rest_curvature(const swSceneRod *r) {
 }
 
 /* The radius (evaluated already, into r->radius_start when constant) and
- * the fields above.  radius: the value of the `radius` field, or NULL.
- * Returns 0 after an error. */
-int sema_rod_swell(swSema *S, swScope *scope, const swFields *f, swSceneRod *r, const char *what) {
+ * the fields above.  shape_unknown: the rod has a shape that an earlier
+ * error kept from being placed, so whether it rests twisted is not known
+ * (nothing is said of it).  Returns 0 after an error. */
+int sema_rod_swell(swSema *S, swScope *scope, const swFields *f, swSceneRod *r, const char *what,
+                   int shape_unknown) {
   int ok = 1;
   const swAst *rad = sema_field(f, "radius");
   if (rad) {
@@ -111,7 +113,7 @@ int sema_rod_swell(swSema *S, swScope *scope, const swFields *f, swSceneRod *r, 
       r->swell_twist = scale_signal(S, scope, ts, "rest_twist_scale", what);
       if (!r->swell_twist) ok = 0;
     }
-    if (ok && !has_rest_twist(r)) {
+    if (ok && !shape_unknown && !has_rest_twist(r)) {
       diag_error(ts->loc, "%s has no rest twist for 'rest_twist_scale' to scale (give it "
                  "rest_curvature = (k1, k2, k3) with k3 != 0, or a helix of non-zero pitch)", what);
       ok = 0;
