@@ -234,6 +234,7 @@ bench: deps
 	@./$(BENCH_BIN) docs/benchmarks.md
 	@sh bench/bench_isa.sh docs/benchmarks.md   # bench_rod at x86-64-v3 and -v4, before issue 31 and now, side by side, and the vectorizer on aarch64 (~6 min, ~3 more the first time)
 	@sh bench/bench_pyelastica.sh docs/benchmarks.md   # PyElastica's Verlet against bench_rod's, n = 50, 100, 200, interleaved (~6 min; only with PyElastica's source in SW_PYELASTICA or build/pyelastica)
+	@sh bench/bench_assisted.sh docs/benchmarks.md   # the assisted elbow against the reference's Elbow.cpp, 2 ms at 50 ns, interleaved (~4 min; only with its binary in SW_ELASTICA_ELBOW)
 	@./$(BENCH_RIGID) docs/benchmarks.md
 	@./$(BENCH_CONTACT) docs/benchmarks.md
 	@./$(BENCH_SCALING) docs/benchmarks.md   # ~2 min
@@ -346,6 +347,18 @@ study-snake: deps
 wing: deps
 	@$(MAKE) --no-print-directory all
 	@sh scripts/wing_study.sh --out build/wing $(WING_ARGS)
+
+# `make assisted`: the injured elbow assisted by an artificial muscle
+# (docs/validation.md, "The elbow assisted by an artificial muscle"; Zhang
+# et al. 2019, Suppl. Fig. 7): examples/elbow_assisted.sinew healthy,
+# injured and with the AM at three release rates, 0.7 s each, two at a
+# time, then build/assisted/assisted.png and assisted.md (about 6 min on
+# this machine's 2 cores; never part of `make test`, whose test_assisted
+# runs 30 ms).  ASSISTED_ARGS="am_1" for one case.
+.PHONY: assisted
+assisted: deps
+	@$(MAKE) --no-print-directory all
+	@sh scripts/assisted_study.sh --out build/assisted $(ASSISTED_ARGS)
 
 # `make tradeoff`: speed against accuracy, measured (docs/tradeoff.md): runs
 # scripts/sinew-study over the cantilever, the elbow (five compile-time
