@@ -14,6 +14,9 @@
 #   docs/img/elbow_frame.png     build/demo/elbow_flexion.h5: the rods at
 #                                t = 0.3 s (`sinew-plot frames --every 100`
 #                                of its frames every 1 ms, the fourth)
+#   docs/img/am_free.png         build/am_free/rate{1,0.5,0.25}.h5, runs of
+#                                examples/am_free.sinew (scripts/am_free.py
+#                                --run makes them)
 #
 # `make test` writes the tables, `make bench` or `make demo` the runs; a
 # missing input is skipped with a line saying which file was missing.  A
@@ -68,6 +71,18 @@ elif "$PLOT" frames "$h5" -o build/demo/frames --every 100 --view 10,-75 &&
   made=$((made + 1))
 else
   echo "plots: FAILED docs/img/elbow_frame.png from $h5" >&2
+  failed=$((failed + 1))
+fi
+
+am=build/am_free/rate0.25.h5
+if [ ! -e "$am" ]; then
+  echo "plots: skipped docs/img/am_free.png: $am not found (scripts/am_free.py --run makes it)"
+  skipped=$((skipped + 1))
+elif /usr/bin/python3 scripts/am_free.py --plot docs/img/am_free.png >/dev/null; then
+  echo "plots: wrote docs/img/am_free.png from build/am_free/"
+  made=$((made + 1))
+else
+  echo "plots: FAILED docs/img/am_free.png from build/am_free/" >&2
   failed=$((failed + 1))
 fi
 
