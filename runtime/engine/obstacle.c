@@ -236,34 +236,32 @@ static double box_distance(const double h[3], const double q[3], double n[3]) {
  * the outward normal at its closest point (Eberly 2013): the closest point
  * is x_k = a_k^2 q_k / (t + a_k^2) with t the root of
  *   F(t) = sum_k (a_k q_k / (t + a_k^2))^2 - 1,
- * decreasing on (-a_min^2, inf), found by bisection on [-a_min^2 + a_min
- * |q_min|, 0] inside and [0, a_max |q|] outside.  A coordinate exactly 0 is
- * taken as 1e-12 a_k (the root then stays inside the bracket). */
+ * which is decreasing and convex on (-a_min^2, inf), so Newton's method
+ * from a point left of the root, where F >= 0 (t = 0 outside, t = -a_min^2
+ * + a_min |q_min| inside), moves right and never passes it (Eberly bisects
+ * on the same bracket; Newton takes a few steps instead of ~100).  A
+ * coordinate exactly 0 is taken as 1e-12 a_k, so that the root stays right
+ * of the pole. */
 static double ellipsoid_distance(const double a[3], const double q0[3], double n[3]) {
-  double q[3], amin = a[0], amax = a[0];
+  double q[3], g = -1;
   int kmin = 0;
   for (int k = 0; k < 3; k++) {
     q[k] = fabs(q0[k]) > 1e-12 * a[k] ? q0[k] : copysign(1e-12 * a[k], q0[k]);
-    if (a[k] < amin) amin = a[k], kmin = k;
-    if (a[k] > amax) amax = a[k];
+    if (a[k] < a[kmin]) kmin = k;
+    g += (q[k] / a[k]) * (q[k] / a[k]);
   }
-  double g = 0;
-  for (int k = 0; k < 3; k++) g += (q[k] / a[k]) * (q[k] / a[k]);
-  double lo, hi;
-  if (g < 1) lo = -amin * amin + amin * fabs(q[kmin]), hi = 0;
-  else lo = 0, hi = amax * sw_v3_norm(q);
-  for (int it = 0; it < 200; it++) {
-    double t = 0.5 * (lo + hi);
-    if (!(t > lo && t < hi)) break; /* the bracket is as tight as doubles allow */
-    double F = -1;
+  double t = g < 0 ? -a[kmin] * a[kmin] + a[kmin] * fabs(q[kmin]) : 0.0;
+  for (int it = 0; it < 100; it++) {
+    double F = -1, dF = 0;
     for (int k = 0; k < 3; k++) {
-      double z = a[k] * q[k] / (t + a[k] * a[k]);
+      const double den = t + a[k] * a[k], z = a[k] * q[k] / den;
       F += z * z;
+      dF -= 2 * z * z / den;
     }
-    if (F > 0) lo = t;
-    else hi = t;
+    const double step = F / dF;
+    if (!(step < 0) || t - step == t) break; /* at the root to round-off */
+    t -= step;
   }
-  const double t = 0.5 * (lo + hi);
   double x[3], diff[3];
   for (int k = 0; k < 3; k++) {
     x[k] = a[k] * a[k] * q[k] / (t + a[k] * a[k]);
@@ -271,8 +269,8 @@ static double ellipsoid_distance(const double a[3], const double q0[3], double n
     diff[k] = q0[k] - x[k];
   }
   sw_v3_scale(n, n, 1.0 / sw_v3_norm(n));
-  double dist = sw_v3_norm(diff);
-  return g < 1 ? -dist : dist;
+  const double dist = sw_v3_norm(diff);
+  return g < 0 ? -dist : dist;
 }
 
 typedef double (*swPointDistance)(const double h[3], const double q[3], double n[3]);
@@ -314,7 +312,9 @@ static void any_normal(double n[3], const double d[3]) {
 }
 
 /* The least signed distance D from the local segment a + s d to obstacle
- * o's surface, its s and the outward normal n (local frame). */
+ * o's surface, its s and the outward normal n (local frame).  *s_out
+ * brings in the element's radius: a distance known to exceed it may be
+ * returned as a lower bound (the ellipsoid's quick rejection). */
 static double segment_distance(const swObstacleDesc *o, const double a[3], const double d[3],
                                double *s_out, double n[3]) {
   double s = 0.5, p[3], D;
@@ -352,7 +352,24 @@ static double segment_distance(const swObstacleDesc *o, const double a[3], const
     break;
   }
   case SW_OBSTACLE_BOX: D = segment_search(box_distance, o->half, a, d, &s, n); break;
-  default: D = segment_search(ellipsoid_distance, o->half, a, d, &s, n); break;
+  default: {
+    /* in the coordinates scaled by the semi-axes the ellipsoid is the unit
+     * ball: a segment whose scaled distance rho from the centre is > 1 is
+     * at least (rho - 1) a_min from the surface, which rejects most */
+    const double *h = o->half;
+    double as[3], ds[3], ps[3];
+    for (int k = 0; k < 3; k++) as[k] = a[k] / h[k], ds[k] = d[k] / h[k];
+    const double dds = sw_v3_dot(ds, ds), u = dds > 0 ? sw_clamp01(-sw_v3_dot(as, ds) / dds) : 0.0;
+    for (int k = 0; k < 3; k++) ps[k] = as[k] + u * ds[k];
+    const double rho = sw_v3_norm(ps), hmin = fmin(h[0], fmin(h[1], h[2]));
+    if (rho > 1 && (rho - 1) * hmin > *s_out) {
+      *s_out = u;
+      n[0] = n[1] = 0, n[2] = 1;
+      return (rho - 1) * hmin; /* a lower bound, beyond the element's radius */
+    }
+    D = segment_search(ellipsoid_distance, o->half, a, d, &s, n);
+    break;
+  }
   }
   *s_out = s;
   return D;
@@ -387,7 +404,7 @@ static void element_contact(const swModel *m, const swData *d, int k, const swPo
   const double *ext = m->obstacle_extent + 3 * k, half = 0.5 * sw_v3_norm(dl) + r;
   for (int j = 0; j < 3; j++)
     if (fabs(0.5 * (a[j] + b[j])) > ext[j] + half) return;
-  double s, nl[3];
+  double s = r, nl[3];
   const double D = segment_distance(o, a, dl, &s, nl);
   const double depth = r - D;
   if (!(depth > 0)) return;
@@ -542,7 +559,7 @@ double sw_obstacle_start_depth(const swModel *m, int k, int *rod, int *elem) {
     const int r = o->rods[j], na = m->node_adr[r], ea = m->elem_adr[r];
     if (r == o->carrier_rod) continue;
     for (int i = 0; i < m->rod_nelem[r]; i++) {
-      double x0[3], x1[3], a[3], b[3], dl[3], s, n[3];
+      double x0[3], x1[3], a[3], b[3], dl[3], s = INFINITY, n[3]; /* s: no quick rejection */
       sw_get3(m, m->x0, na + i, x0);
       sw_get3(m, m->x0, na + i + 1, x1);
       to_local(a, &P, x0);
