@@ -53,12 +53,14 @@
  * conservative.  Its material point at p moves at v_node + w x (p - x_node).
  *
  * Broad phase.  Rods are cut into chunks of SW_OBSTACLE_CHUNK elements,
- * whose boxes (nodes +- the largest radius) are taken once per evaluation;
- * an obstacle's lab box (its frame box turned into the lab: centre +-
- * sum_k |e_k| h_k; unbounded along a cylinder's axis) is tested against the
- * chunks of its rods, and only the elements of chunks that overlap it reach
- * the narrow phase.  The cost is obstacles x chunks box tests plus the
- * elements near an obstacle (bench/bench_obstacle.c).  Nothing is allocated
+ * whose boxes (nodes +- the largest radius) and each rod's box (their
+ * union) are taken once per evaluation; an obstacle's lab box (its frame
+ * box turned into the lab: centre +- sum_k |e_k| h_k; unbounded along a
+ * cylinder's axis) is tested against the box of each of its rods, then of
+ * the chunks of a rod it overlaps, and only the elements of chunks that
+ * overlap it reach the narrow phase.  The cost is obstacles x rods box
+ * tests, chunks of the rods near an obstacle, and the elements near it
+ * (bench/bench_obstacle.c).  Nothing is allocated
  * in the step; the brute force loop over all pairs is kept for tests and
  * the benchmark (SW_OBSTACLE_BRUTE).
  */
@@ -161,7 +163,7 @@ int sw_obstacle_data_new(const swModel *m, swData *d) {
   if (!m->nobstacle) return 1;
   d->obstacle_contact = calloc((size_t)(m->obstacle_maxcontact ? m->obstacle_maxcontact : 1),
                                sizeof *d->obstacle_contact);
-  d->obstacle_box = calloc(6 * (size_t)(m->obstacle_nchunk ? m->obstacle_nchunk : 1), sizeof(double));
+  d->obstacle_box = calloc(6 * ((size_t)m->obstacle_nchunk + (size_t)m->nrod + 1), sizeof(double));
   return d->obstacle_contact && d->obstacle_box;
 }
 
@@ -469,24 +471,38 @@ static void element_contact(const swModel *m, const swData *d, int k, const swPo
 /* ---- broad phase ---- */
 
 /* The boxes of every chunk of every rod (nodes +- the chunk's widest
- * radius), written through the state's scratch pointer. */
+ * radius), and after them each rod's (their union), written through the
+ * state's scratch pointer. */
 static void chunk_boxes(const swModel *m, const swData *d) {
   for (int r = 0; r < m->nrod; r++) {
     const int n = m->rod_nelem[r], na = m->node_adr[r], ea = m->elem_adr[r];
+    double *whole = d->obstacle_box + 6 * (m->obstacle_nchunk + r);
+    for (int q = 0; q < 3; q++) whole[q] = INFINITY, whole[3 + q] = -INFINITY;
     for (int c = 0, i0 = 0; i0 < n; c++, i0 += SW_OBSTACLE_CHUNK) {
       const int i1 = i0 + SW_OBSTACLE_CHUNK < n ? i0 + SW_OBSTACLE_CHUNK : n;
       double *box = d->obstacle_box + 6 * (m->obstacle_chunk_adr[r] + c), wide = 0;
-      for (int q = 0; q < 3; q++) box[q] = INFINITY, box[3 + q] = -INFINITY;
-      for (int i = i0; i <= i1; i++)
-        for (int q = 0; q < 3; q++) {
+      for (int q = 0; q < 3; q++) {
+        double lo = INFINITY, hi = -INFINITY;
+        for (int i = i0; i <= i1; i++) {
           const double y = SW_AT(m, d->x, na + i, q);
-          box[q] = fmin(box[q], y);
-          box[3 + q] = fmax(box[3 + q], y);
+          lo = sw_min(lo, y);
+          hi = sw_max(hi, y);
         }
-      for (int i = i0; i < i1; i++) wide = fmax(wide, d->radius_now[ea + i]);
-      for (int q = 0; q < 3; q++) box[q] -= wide, box[3 + q] += wide;
+        box[q] = lo, box[3 + q] = hi;
+      }
+      for (int i = i0; i < i1; i++) wide = sw_max(wide, d->radius_now[ea + i]);
+      for (int q = 0; q < 3; q++) {
+        box[q] -= wide, box[3 + q] += wide;
+        whole[q] = sw_min(whole[q], box[q]), whole[3 + q] = sw_max(whole[3 + q], box[3 + q]);
+      }
     }
   }
+}
+
+static int boxes_apart(const double *a, const double *b) {
+  int apart = 0;
+  for (int q = 0; q < 3; q++) apart |= a[q] > b[3 + q] || a[3 + q] < b[q];
+  return apart;
 }
 
 /* Obstacle k's lab box at pose P: c +- sum_j |e_j| h_j (an unbounded
@@ -514,14 +530,11 @@ static void visit(const swModel *m, const swData *d, swObstaclePhase phase, Sums
     for (int j = 0; j < o->nrods; j++) {
       const int r = o->rods[j], n = m->rod_nelem[r], na = m->node_adr[r], ea = m->elem_adr[r];
       if (r == o->carrier_rod) continue; /* a bone does not touch what it carries */
+      const int grid = phase == SW_OBSTACLE_GRID;
+      if (grid && boxes_apart(d->obstacle_box + 6 * (m->obstacle_nchunk + r), box)) continue;
       for (int c = 0, i0 = 0; i0 < n; c++, i0 += SW_OBSTACLE_CHUNK) {
         const int i1 = i0 + SW_OBSTACLE_CHUNK < n ? i0 + SW_OBSTACLE_CHUNK : n;
-        if (phase == SW_OBSTACLE_GRID) {
-          const double *cb = d->obstacle_box + 6 * (m->obstacle_chunk_adr[r] + c);
-          int apart = 0;
-          for (int q = 0; q < 3; q++) apart |= cb[q] > box[3 + q] || cb[3 + q] < box[q];
-          if (apart) continue;
-        }
+        if (grid && boxes_apart(d->obstacle_box + 6 * (m->obstacle_chunk_adr[r] + c), box)) continue;
         for (int i = i0; i < i1; i++) element_contact(m, d, k, &P, na + i, ea + i, sum);
       }
     }

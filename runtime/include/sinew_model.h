@@ -427,8 +427,9 @@ typedef struct {
                                 those beyond the records' room)             */
   double obstacle_max_depth; /* deepest penetration r - D, m (0: none)      */
   long obstacle_tests;       /* element-obstacle pairs the narrow phase saw  */
-  double *obstacle_box;      /* (obstacle_nchunk*6) lo, hi of each chunk's
-                                elements with their radii                   */
+  double *obstacle_box;      /* ((obstacle_nchunk+nrod)*6) lo, hi of each
+                                chunk's elements with their radii, then of
+                                each rod's                                  */
   /* probe.c: the centre-of-mass samples (t, X) that mean-velocity probes
    * difference, a ring of SW_PROBE_RING per probe (probe.c) */
   double *probe_ring;        /* (nprobe*SW_PROBE_RING*4) t, X of each sample  */
