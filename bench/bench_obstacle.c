@@ -118,13 +118,6 @@ static void measure(Scene *sc) {
   sc->ns_step = median(step, NREP);
 }
 
-static const char *fmt_time(char *buf, size_t len, double ns) {
-  if (ns >= 1e6) snprintf(buf, len, "%.3g ms", ns * 1e-6);
-  else if (ns >= 1e3) snprintf(buf, len, "%.3g us", ns * 1e-3);
-  else snprintf(buf, len, "%.3g ns", ns);
-  return buf;
-}
-
 static void write_section(FILE *f, const Scene *sc) {
   fprintf(f, "%s\n\n", SECTION);
   fprintf(f, "Written by bench/bench_obstacle.c, which `make bench` runs after bench_contact\n"
@@ -142,9 +135,9 @@ static void write_section(FILE *f, const Scene *sc) {
   for (int i = 0; i < NSCENE; i++) {
     char g[32], b[32], st[32];
     fprintf(f, "| %d | %d | %ld / %ld | %s | %s | %.1f | %s | %.0f%% |\n", sc[i].nobs, sc[i].contacts,
-            sc[i].tests_grid, sc[i].tests_brute, fmt_time(g, sizeof g, sc[i].ns_grid),
-            fmt_time(b, sizeof b, sc[i].ns_brute), sc[i].ns_brute / sc[i].ns_grid,
-            fmt_time(st, sizeof st, sc[i].ns_step), 100 * sc[i].ns_grid / sc[i].ns_step);
+            sc[i].tests_grid, sc[i].tests_brute, bench_fmt_time(g, sizeof g, sc[i].ns_grid),
+            bench_fmt_time(b, sizeof b, sc[i].ns_brute), sc[i].ns_brute / sc[i].ns_grid,
+            bench_fmt_time(st, sizeof st, sc[i].ns_step), 100 * sc[i].ns_grid / sc[i].ns_step);
   }
   fprintf(f, "\nThe chunk boxes cost N x %d box tests an evaluation plus the elements near an\n"
              "obstacle; the brute force N x %d element tests. tests/runtime/test_obstacle.c checks\n"
