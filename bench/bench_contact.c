@@ -138,14 +138,6 @@ static void measure(Scene *sc) {
   sc->ns_step = median(step, NREP);
 }
 
-static const char *fmt_time(char *buf, size_t len, double ns) {
-  if (ns >= 1e9) snprintf(buf, len, "%.3g s", ns * 1e-9);
-  else if (ns >= 1e6) snprintf(buf, len, "%.3g ms", ns * 1e-6);
-  else if (ns >= 1e3) snprintf(buf, len, "%.3g us", ns * 1e-3);
-  else snprintf(buf, len, "%.3g ns", ns);
-  return buf;
-}
-
 static void write_section(FILE *f, const Scene *sc) {
   fprintf(f, "%s\n\n", SECTION);
   fprintf(f, "Written by bench/bench_contact.c, which `make bench` runs after bench_rigid (same\n"
@@ -166,9 +158,9 @@ static void write_section(FILE *f, const Scene *sc) {
     char g[32], pe[32], b[32], st[32];
     int ne = sc[i].m->nelem;
     fprintf(f, "| %d | %d | %d | %s | %s | %s | %.1f | %s | %.0f%% |\n", sc[i].nrod, ne,
-            sc[i].pairs, fmt_time(g, sizeof g, sc[i].ns_grid),
-            fmt_time(pe, sizeof pe, sc[i].ns_grid / ne), fmt_time(b, sizeof b, sc[i].ns_brute),
-            sc[i].ns_brute / sc[i].ns_grid, fmt_time(st, sizeof st, sc[i].ns_step),
+            sc[i].pairs, bench_fmt_time(g, sizeof g, sc[i].ns_grid),
+            bench_fmt_time(pe, sizeof pe, sc[i].ns_grid / ne), bench_fmt_time(b, sizeof b, sc[i].ns_brute),
+            sc[i].ns_brute / sc[i].ns_grid, bench_fmt_time(st, sizeof st, sc[i].ns_step),
             100 * sc[i].ns_grid / sc[i].ns_step);
   }
   fprintf(f, "\nThe grid does the same work per element at every size (14 cell look-ups and the\n"

@@ -1,5 +1,6 @@
 /* bench_util.h — the clock, the median and the report splicing shared by the
- * benchmarks (bench_rigid.c, bench_contact.c, bench_scaling.c). */
+ * benchmarks (bench_rigid.c, bench_contact.c, bench_obstacle.c, bench_scaling.c),
+ * and the format of a time. */
 #ifndef SW_BENCH_UTIL_H
 #define SW_BENCH_UTIL_H
 #include <stdio.h>
@@ -69,4 +70,13 @@ static inline int bench_replace_section(const char *path, const char *heading, c
   free(old);
   return fclose(f) == 0 ? 0 : -1;
 }
+/* A time in ns as "12.3 us" (ns, us, ms or s, three digits). */
+static inline const char *bench_fmt_time(char *buf, size_t len, double ns) {
+  if (ns >= 1e9) snprintf(buf, len, "%.3g s", ns * 1e-9);
+  else if (ns >= 1e6) snprintf(buf, len, "%.3g ms", ns * 1e-6);
+  else if (ns >= 1e3) snprintf(buf, len, "%.3g us", ns * 1e-3);
+  else snprintf(buf, len, "%.3g ns", ns);
+  return buf;
+}
+
 #endif

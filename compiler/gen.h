@@ -30,6 +30,7 @@ int gen_signal_fields(const swSignalVal *s, swLowField *out);
 int gen_ground_fields(const swSceneGround *g, swLowField *out);
 int gen_fluid_fields(const swSceneFluid *f, swLowField *out);
 int gen_contact_fields(const swSceneContact *c, swLowField *out);
+int gen_obstacle_fields(const swSceneObstacle *o, swLowField *out);
 int gen_wave_fields(const swSceneWave *w, swLowField *out);
 swSignal gen_signal(const swSignalVal *sig);
 /* The runtime's id of scene rod `rod` (scene indices skip muscles' filaments,

@@ -700,6 +700,19 @@ int gen_check(const swScene *sc, double *stable_dt) {
     diag_error(whole, "the runtime rejects this scene: %s", err[0] ? err : "unknown reason");
     return 1;
   }
+  /* a rod laid inside an obstacle by more than a tenth of its radius: the
+   * penalty would fling it out at the first step */
+  for (int k = 0; k < sc->nobstacle && k < m->nobstacle; k++) {
+    int rod, elem;
+    const double depth = sw_obstacle_start_depth(m, k, &rod, &elem);
+    if (rod < 0) continue;
+    const double r = m->radius[m->elem_adr[rod] + elem];
+    if (depth > 0.1 * r)
+      diag_error(sc->obstacle[k].loc, "rod '%s' starts %.3g mm inside obstacle '%s' (element %d, "
+                 "radius %.3g mm; the tolerance is a tenth of the radius): lay the rod outside it, "
+                 "or move the obstacle", m->rod_name[rod], depth * 1e3, sc->obstacle[k].name, elem,
+                 r * 1e3);
+  }
   if (sc->dt > 0 && m->nrod > 0) {
     double est = sw_stable_dt(m);
     int worst = 0;

@@ -1,5 +1,5 @@
 /* gen_env.c — the generated C of environments: ground, terrain, fluid,
- * contact, torque wave and probe blocks of build(), and each terrain's
+ * contact, obstacle, torque wave and probe blocks of build(), and each terrain's
  * height function.
  *
  * Design.  Environment blocks follow the rods' pattern: the description's
@@ -244,6 +244,23 @@ void gen_env_build(FILE *out, swArena *a, const swScene *sc) {
     rod_list(out, "contact", &c->rods);
     gen_assign_fields(out, a, "contact", f, gen_contact_fields(c, f));
     fputs("    ok &= sw_spec_add_contact(s, &contact) >= 0;\n  }\n", out);
+  }
+  static const char *const shapes[] = {"SW_OBSTACLE_SPHERE", "SW_OBSTACLE_CAPSULE",
+                                        "SW_OBSTACLE_CYLINDER", "SW_OBSTACLE_BOX",
+                                        "SW_OBSTACLE_ELLIPSOID"};
+  for (int i = 0; i < sc->nobstacle; i++) {
+    const swSceneObstacle *o = &sc->obstacle[i];
+    open_block(out, o->loc, "swObstacleDesc", "obstacle", o->name);
+    fprintf(out, "    obstacle.shape = %s;\n", shapes[o->shape]);
+    if (o->carrier_rod >= 0) {
+      fprintf(out, "    obstacle.carrier_rod = %d; obstacle.carrier_node = %d;   /* ", o->carrier_rod,
+              o->carrier_node);
+      gen_c_comment(out, o->carrier_name, strlen(o->carrier_name));
+      fputs(" */\n", out);
+    }
+    rod_list(out, "obstacle", &o->rods);
+    gen_assign_fields(out, a, "obstacle", f, gen_obstacle_fields(o, f));
+    fputs("    ok &= sw_spec_add_obstacle(s, &obstacle) >= 0;\n  }\n", out);
   }
   for (int i = 0; i < sc->nwave; i++) {
     const swSceneWave *w = &sc->wave[i];

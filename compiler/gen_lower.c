@@ -168,6 +168,22 @@ int gen_contact_fields(const swSceneContact *c, swLowField *out) {
 }
 #undef F
 
+#define F(member, n, value) {#member, offsetof(swObstacleDesc, member), n, value}
+int gen_obstacle_fields(const swSceneObstacle *o, swLowField *out) {
+  const swLowField f[] = {
+    F(centre, 3, &o->centre),
+    F(axis, 3, &o->axis),
+    F(normal, 3, &o->normal),
+    F(radius, 1, &o->radius),
+    F(length, 1, &o->length),
+    F(half, 3, &o->half),
+    F(stiffness, 1, &o->stiffness),
+    F(damping, 1, &o->damping),
+  };
+  return given(f, (int)(sizeof f / sizeof f[0]), out);
+}
+#undef F
+
 #define F(member, n, value) {#member, offsetof(swWaveDesc, member), n, value}
 int gen_wave_fields(const swSceneWave *w, swLowField *out) {
   const swLowField f[] = {
@@ -388,6 +404,19 @@ swSpec *gen_spec(const swScene *sc) {
     d.rods = c->rods.id;
     fill(&d, f, gen_contact_fields(c, f));
     sw_spec_add_contact(s, &d);
+  }
+  for (int i = 0; i < sc->nobstacle; i++) {
+    const swSceneObstacle *o = &sc->obstacle[i];
+    swObstacleDesc d;
+    sw_obstacle_desc_init(&d);
+    d.name = o->name;
+    d.shape = o->shape;
+    d.carrier_rod = o->carrier_rod;
+    d.carrier_node = o->carrier_node;
+    d.nrods = o->rods.n;
+    d.rods = o->rods.id;
+    fill(&d, f, gen_obstacle_fields(o, f));
+    sw_spec_add_obstacle(s, &d);
   }
   for (int i = 0; i < sc->nwave; i++) {
     const swSceneWave *w = &sc->wave[i];

@@ -590,6 +590,7 @@ void sema_scene_free(swScene *scene) {
   free(scene->ground);
   free(scene->fluid);
   free(scene->contact);
+  free(scene->obstacle);
   free(scene->wave);
   free(scene->probe);
   free(scene->expect);

@@ -348,6 +348,19 @@ typedef struct {
   swRodList rods;
 } swSceneContact;
 
+/* obstacle NAME { shape = ...; ... }: values not given are VAL_ERROR (the
+ * runtime's default); `half` is the box's size / 2 or the ellipsoid's
+ * semi-axes */
+typedef struct {
+  const char *name;
+  swLoc loc;
+  swObstacleShape shape;
+  swValue centre, axis, normal, radius, length, half, stiffness, damping;
+  int carrier_rod, carrier_node;  /* runtime rod id and node (-1: fixed)    */
+  const char *carrier_name;
+  swRodList rods;
+} swSceneObstacle;
+
 typedef struct {
   const char *name;
   swLoc loc;
@@ -437,6 +450,7 @@ typedef struct {
   swSceneGround *ground; int nground, capground;
   swSceneFluid *fluid;   int nfluid, capfluid;
   swSceneContact *contact; int ncontact, capcontact;
+  swSceneObstacle *obstacle; int nobstacle, capobstacle;
   swSceneWave *wave;     int nwave, capwave;
   swSceneProbe *probe;   int nprobe, capprobe;
   swSceneSignal **signal; int nsignal, capsignal;  /* signal NAME(t) = ...  */

@@ -372,7 +372,7 @@ static int parse_args(int argc, char **argv, swOptions *o) {
 static void print_checked(const char *model, const swScene *sc, double stable) {
   int nfil = 0;
   for (int i = 0; i < sc->nmuscle; i++) nfil += sc->muscle[i].filaments;
-  int nenv = sc->nground + sc->nfluid + sc->ncontact + sc->nwave;
+  int nenv = sc->nground + sc->nfluid + sc->ncontact + sc->nwave + sc->nobstacle;
   const int njoint = sc->njoint + sc->nkin;   /* kinematic joints are joints too */
   char dt[64] = "";
   if (stable > 0) {

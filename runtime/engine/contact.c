@@ -129,14 +129,12 @@ int sw_contact_data_new(const swModel *m, swData *d) {
 
 /* ---- narrow phase ---- */
 
-static double clamp01(double x) { return x < 0 ? 0 : (x > 1 ? 1 : x); }
-
 /* Closest points of the segments a0 + s da and b0 + t db, s, t in [0, 1]
- * (Ericson 2005, sec. 5.1.9).  Parallel segments (sin of their angle below
+ * (Ericson 2005, sec. 5.1.9; obstacle.c's capsules use it too).  Parallel segments (sin of their angle below
  * 1e-7) meet at the middle of the stretch of a that faces b, or at a's end
  * nearest to b when none does.  Returns |p - q|^2 and the difference p - q. */
-static double closest_points(const double *a0, const double *da, const double *b0,
-                             const double *db, double *s_out, double *t_out, double *pq) {
+double sw_segment_closest(const double *a0, const double *da, const double *b0, const double *db,
+                          double *s_out, double *t_out, double *pq) {
   double r[3];
   sw_v3_sub(r, a0, b0);
   const double aa = sw_v3_dot(da, da), bb = sw_v3_dot(db, db), ab = sw_v3_dot(da, db);
@@ -146,14 +144,14 @@ static double closest_points(const double *a0, const double *da, const double *b
     s = t = 0;
   } else if (aa <= 0) {
     s = 0;
-    t = clamp01(br / bb);
+    t = sw_clamp01(br / bb);
   } else if (bb <= 0) {
     t = 0;
-    s = clamp01(-ar / aa);
+    s = sw_clamp01(-ar / aa);
   } else {
     const double denom = aa * bb - ab * ab; /* |da x db|^2 >= 0 */
     if (denom > 1e-14 * aa * bb) {
-      s = clamp01((ab * br - ar * bb) / denom);
+      s = sw_clamp01((ab * br - ar * bb) / denom);
     } else {
       /* b's ends projected on a's line: s = (b_end - a0) . da / aa */
       double u0 = -ar / aa, u1 = (ab - ar) / aa;
@@ -165,10 +163,10 @@ static double closest_points(const double *a0, const double *da, const double *b
     t = (ab * s + br) / bb;
     if (t < 0) {
       t = 0;
-      s = clamp01(-ar / aa);
+      s = sw_clamp01(-ar / aa);
     } else if (t > 1) {
       t = 1;
-      s = clamp01((ab - ar) / aa);
+      s = sw_clamp01((ab - ar) / aa);
     }
   }
   for (int k = 0; k < 3; k++) pq[k] = r[k] + s * da[k] - t * db[k];
@@ -224,7 +222,7 @@ static void pair_contact(const swModel *m, const swData *d, const swContactDesc 
   double mid[3], reach = 0.5 * (sw_v3_norm(da) + sw_v3_norm(db)) + rsum;
   for (int k = 0; k < 3; k++) mid[k] = 0.5 * (a0[k] + a1[k] - b0[k] - b1[k]);
   if (sw_v3_dot(mid, mid) > reach * reach) return;
-  const double dist2 = closest_points(a0, da, b0, db, &s, &t, pq);
+  const double dist2 = sw_segment_closest(a0, da, b0, db, &s, &t, pq);
   if (!(dist2 < rsum * rsum)) return;
   const double dist = sqrt(dist2), delta = rsum - dist;
   if (dist > 0) sw_v3_scale(n, pq, 1.0 / dist);

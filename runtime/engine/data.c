@@ -32,6 +32,7 @@ void sw_data_free(swData *d) {
   sw_probe_data_free(d);
   sw_swell_data_free(d);
   /* the contact grid's scratch (contact.c, through the environment's data_new) */
+  free(d->obstacle_contact); free(d->obstacle_box); /* obstacle.c's, likewise */
   free(d->contact_cell); free(d->contact_bucket); free(d->contact_sorted);
   free(d->contact_start); free(d->contact_occupied); free(d->contact_sorted_cell);
   free(d);

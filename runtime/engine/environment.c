@@ -1,5 +1,5 @@
 /* environment.c — the scene's environments: grounds and terrains, fluids,
- * rod-rod contact, travelling torque waves and probes, from description to
+ * rod-rod contact, rigid obstacles, travelling torque waves and probes, from description to
  * compiled model, and the one place the step reaches them from.
  *
  * Design.  Like muscles, environments are lists the swSpec keeps in an
@@ -30,6 +30,7 @@ struct swEnvSpec {
   swContactDesc *contact; int ncontact, capcontact;
   swWaveDesc *wave;       int nwave, capwave;
   swProbeDesc *probe;     int nprobe, capprobe;
+  swObstacleDesc *obstacle; int nobstacle, capobstacle;
 };
 
 /* ---- defaults ---- */
@@ -52,6 +53,16 @@ void sw_contact_desc_init(swContactDesc *c) {
   c->name = "contact";
 }
 
+void sw_obstacle_desc_init(swObstacleDesc *o) {
+  memset(o, 0, sizeof *o);
+  o->name = "obstacle";
+  o->shape = SW_OBSTACLE_SPHERE;
+  o->axis[2] = 1.0;
+  o->normal[0] = 1.0;
+  o->carrier_rod = -1;
+  o->carrier_node = -1;
+}
+
 void sw_wave_desc_init(swWaveDesc *w) {
   memset(w, 0, sizeof *w);
   w->name = "wave";
@@ -68,7 +79,7 @@ void sw_probe_desc_init(swProbeDesc *p) {
 /* ---- the spec's lists ---- */
 
 static const swEnvOps env_ops = {sw_env_check, sw_env_setup,     sw_env_free,     sw_env_spec_free,
-                                 sw_env_loads, sw_env_energy,    sw_env_stable_dt, sw_contact_data_new};
+                                 sw_env_loads, sw_env_energy,    sw_env_stable_dt, sw_env_data_new};
 
 static swEnvSpec *env_of(swSpec *s) {
   *sw_spec_env_ops(s) = &env_ops; /* the step reaches this file through these */
@@ -135,6 +146,15 @@ int sw_spec_add_contact(swSpec *s, const swContactDesc *cd) {
   return id;
 }
 
+int sw_spec_add_obstacle(swSpec *s, const swObstacleDesc *o) {
+  swObstacleDesc c = *o;
+  if (!own(&c.name, &c.rods, c.nrods, "obstacle")) return -1;
+  swEnvSpec *e = env_of(s);
+  int id = e ? push((void **)&e->obstacle, &e->nobstacle, &e->capobstacle, &c, sizeof c) : -1;
+  if (id < 0) disown(c.name, c.rods);
+  return id;
+}
+
 int sw_spec_add_wave(swSpec *s, const swWaveDesc *w) {
   swWaveDesc c = *w;
   const int *none = NULL;
@@ -161,7 +181,9 @@ void sw_env_spec_free(swEnvSpec *e) {
   for (int k = 0; k < e->ncontact; k++) disown(e->contact[k].name, e->contact[k].rods);
   for (int k = 0; k < e->nwave; k++) disown(e->wave[k].name, NULL);
   for (int k = 0; k < e->nprobe; k++) disown(e->probe[k].name, e->probe[k].rods);
+  for (int k = 0; k < e->nobstacle; k++) disown(e->obstacle[k].name, e->obstacle[k].rods);
   free(e->ground); free(e->fluid); free(e->contact); free(e->wave); free(e->probe);
+  free(e->obstacle);
   free(e);
 }
 
@@ -254,6 +276,30 @@ static int check_contact(const swContactDesc *c, int nrod, char *err, size_t err
   return 1;
 }
 
+static int check_obstacle(const swObstacleDesc *o, int nrod, char *err, size_t errlen) {
+  const char *nm = o->name;
+  if (!check_rods("obstacle", nm, o->nrods, o->rods, nrod, err, errlen)) return 0;
+  if (o->shape < SW_OBSTACLE_SPHERE || o->shape > SW_OBSTACLE_ELLIPSOID)
+    return sw_fail(err, errlen, "obstacle '%s': unknown shape %d", nm, (int)o->shape);
+  if (!finite3(o->centre)) return sw_fail(err, errlen, "obstacle '%s': centre is not finite", nm);
+  if (!finite3(o->axis) || !(sw_v3_norm(o->axis) > 0))
+    return sw_fail(err, errlen, "obstacle '%s': axis must be a nonzero vector", nm);
+  if (!finite3(o->normal) || !(sw_v3_norm(o->normal) > 0))
+    return sw_fail(err, errlen, "obstacle '%s': normal must be a nonzero vector", nm);
+  const int round = o->shape <= SW_OBSTACLE_CYLINDER;
+  if (round && !positive(o->radius)) return sw_fail(err, errlen, "obstacle '%s': radius must be > 0", nm);
+  if (o->shape == SW_OBSTACLE_CAPSULE && !nonneg(o->length))
+    return sw_fail(err, errlen, "obstacle '%s': length must be >= 0", nm);
+  if (!round && !(positive(o->half[0]) && positive(o->half[1]) && positive(o->half[2])))
+    return sw_fail(err, errlen, "obstacle '%s': its three half sizes must be > 0", nm);
+  if (!positive(o->stiffness)) return sw_fail(err, errlen, "obstacle '%s': stiffness must be > 0", nm);
+  if (!nonneg(o->damping)) return sw_fail(err, errlen, "obstacle '%s': damping must be >= 0", nm);
+  if (o->carrier_rod >= nrod || o->carrier_rod < -1)
+    return sw_fail(err, errlen, "obstacle '%s': carrier rod %d does not exist (the scene has %d)", nm,
+                   o->carrier_rod, nrod);
+  return 1;
+}
+
 static int check_wave(const swWaveDesc *w, int nrod, char *err, size_t errlen) {
   const char *nm = w->name;
   if (w->rod < 0 || w->rod >= nrod)
@@ -301,6 +347,8 @@ int sw_env_check(const swEnvSpec *e, int nrod, char *err, size_t errlen) {
     if (!check_wave(&e->wave[k], nrod, err, errlen)) return 0;
   for (int k = 0; k < e->nprobe; k++)
     if (!check_probe(&e->probe[k], nrod, err, errlen)) return 0;
+  for (int k = 0; k < e->nobstacle; k++)
+    if (!check_obstacle(&e->obstacle[k], nrod, err, errlen)) return 0;
   return 1;
 }
 
@@ -328,13 +376,14 @@ static int resolve(const char **name, const int **rods, int *nrods, int nrod) {
 
 int sw_env_setup(swModel *m, const swEnvSpec *e, char *err, size_t errlen) {
   int ng = e ? e->nground : 0, nf = e ? e->nfluid : 0, nc = e ? e->ncontact : 0;
-  int nw = e ? e->nwave : 0, np = e ? e->nprobe : 0;
+  int nw = e ? e->nwave : 0, np = e ? e->nprobe : 0, no = e ? e->nobstacle : 0;
   m->ground = calloc((size_t)(ng ? ng : 1), sizeof *m->ground);
   m->fluid = calloc((size_t)(nf ? nf : 1), sizeof *m->fluid);
   m->contact = calloc((size_t)(nc ? nc : 1), sizeof *m->contact);
   m->wave = calloc((size_t)(nw ? nw : 1), sizeof *m->wave);
   m->probe = calloc((size_t)(np ? np : 1), sizeof *m->probe);
-  if (!m->ground || !m->fluid || !m->contact || !m->wave || !m->probe) goto oom;
+  m->obstacle = calloc((size_t)(no ? no : 1), sizeof *m->obstacle);
+  if (!m->ground || !m->fluid || !m->contact || !m->wave || !m->probe || !m->obstacle) goto oom;
   for (int k = 0; k < ng; k++) {
     m->ground[k] = e->ground[k];
     if (!resolve(&m->ground[k].name, &m->ground[k].rods, &m->ground[k].nrods, m->nrod)) goto oom;
@@ -367,11 +416,21 @@ int sw_env_setup(swModel *m, const swEnvSpec *e, char *err, size_t errlen) {
       if (node < 0) m->probe[k].node = n;
     }
   }
+  for (int k = 0; k < no; k++) {
+    m->obstacle[k] = e->obstacle[k];
+    if (!resolve(&m->obstacle[k].name, &m->obstacle[k].rods, &m->obstacle[k].nrods, m->nrod)) goto oom;
+    m->nobstacle = k + 1;
+    const int r = m->obstacle[k].carrier_rod, node = m->obstacle[k].carrier_node;
+    if (r >= 0 && (node < -1 || node > m->rod_nelem[r]))
+      return sw_fail(err, errlen, "obstacle '%s': carrier node %d out of range for rod '%s' (nodes "
+                     "0..%d, -1 = last)", m->obstacle[k].name, node, m->rod_name[r], m->rod_nelem[r]);
+  }
   /* each kind's derived data */
   if (!sw_fluid_setup(m, err, errlen)) return 0;
   sw_ground_setup(m);
   if (!sw_wave_setup(m)) goto oom;
   if (!sw_contact_setup(m)) goto oom;
+  if (!sw_obstacle_setup(m)) goto oom;
   return 1;
 oom:
   return sw_fail(err, errlen, "out of memory while building the environments");
@@ -380,6 +439,8 @@ oom:
 void sw_env_free(swModel *m) {
   sw_fluid_free(m);
   sw_contact_free(m);
+  sw_obstacle_free(m);
+  for (int k = 0; k < m->nobstacle; k++) disown(m->obstacle[k].name, m->obstacle[k].rods);
   for (int k = 0; k < m->nground; k++) disown(m->ground[k].name, m->ground[k].rods);
   for (int k = 0; k < m->nfluid; k++) disown(m->fluid[k].name, m->fluid[k].rods);
   for (int k = 0; k < m->ncontact; k++) disown(m->contact[k].name, m->contact[k].rods);
@@ -387,8 +448,10 @@ void sw_env_free(swModel *m) {
   for (int k = 0; k < m->nprobe; k++) disown(m->probe[k].name, m->probe[k].rods);
   sw_wave_free(m);
   free(m->ground); free(m->fluid); free(m->contact); free(m->wave); free(m->probe);
+  free(m->obstacle);
   m->ground = NULL; m->fluid = NULL; m->contact = NULL; m->wave = NULL; m->probe = NULL;
-  m->nground = m->nfluid = m->ncontact = m->nwave = m->nprobe = 0;
+  m->obstacle = NULL;
+  m->nground = m->nfluid = m->ncontact = m->nwave = m->nprobe = m->nobstacle = 0;
 }
 
 /* ---- dispatch from the step ---- */
@@ -401,9 +464,10 @@ void sw_env_loads(const swModel *m, swData *d) {
   sw_owned_slots(m, d, &lo, &hi);
   if (m->nwave) sw_wave_loads(m, d, lo, hi);
   if (m->nfluid) sw_fluid_loads(m, d, lo, hi);
-  if (m->ncontact) {
+  if (m->ncontact || m->nobstacle) {
     sw_team_barrier(d);
-    if (sw_team_leader(d)) sw_contact_loads(m, d);
+    if (sw_team_leader(d) && m->ncontact) sw_contact_loads(m, d);
+    if (sw_team_leader(d) && m->nobstacle) sw_obstacle_loads(m, d); /* a carrier may be any rod */
     sw_team_barrier(d);
   }
   if (m->nground) sw_ground_loads(m, d, lo, hi); /* last: the ground balances the rest */
@@ -414,6 +478,7 @@ double sw_env_energy(const swModel *m, const swData *d) {
   double energy = 0.0;
   if (m->nground) energy += sw_ground_energy(m, d);
   if (m->ncontact) energy += sw_contact_energy(m, d);
+  if (m->nobstacle) energy += sw_obstacle_energy(m, d);
   return energy;
 }
 
@@ -423,5 +488,11 @@ double sw_env_stable_dt(const swModel *m) {
   if (m->nfluid) dt = fmin(dt, sw_fluid_stable_dt(m));
   if (m->nground) dt = fmin(dt, sw_ground_stable_dt(m));
   if (m->ncontact) dt = fmin(dt, sw_contact_stable_dt(m));
+  if (m->nobstacle) dt = fmin(dt, sw_obstacle_stable_dt(m));
   return dt;
+}
+
+/* The state's scratch of contact and obstacles (sw_data_new). */
+int sw_env_data_new(const swModel *m, swData *d) {
+  return sw_contact_data_new(m, d) && sw_obstacle_data_new(m, d);
 }

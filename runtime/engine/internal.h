@@ -388,11 +388,12 @@ int sw_env_check(const swEnvSpec *e, int nrod, char *err, size_t errlen);
 int sw_env_setup(swModel *m, const swEnvSpec *e, char *err, size_t errlen);
 void sw_env_free(swModel *m);
 static inline int sw_has_env(const swModel *m) {
-  return m->nground + m->nfluid + m->ncontact + m->nwave > 0;
+  return m->nground + m->nfluid + m->ncontact + m->nwave + m->nobstacle > 0;
 }
 void sw_env_loads(const swModel *m, swData *d);
 double sw_env_energy(const swModel *m, const swData *d);
 double sw_env_stable_dt(const swModel *m);
+int sw_env_data_new(const swModel *m, swData *d);
 /* Fluids (fluid.c).  sw_fluid_setup fills the model's fluid_* planes and the
  * Stokes drag's step limit from m->fluid (called by sw_env_setup; 0 and a
  * message naming the fluid and rod when slender-body drag is meaningless);
@@ -452,6 +453,27 @@ void sw_contact_loads(const swModel *m, swData *d);
 void sw_contact_loads_with(const swModel *m, swData *d, swContactPhase phase);
 double sw_contact_energy(const swModel *m, const swData *d);
 double sw_contact_stable_dt(const swModel *m);
+
+/* Rigid obstacles (obstacle.c).  sw_obstacle_setup fills the model's
+ * obstacle_* arrays from m->obstacle (0: out of memory; from sw_env_setup),
+ * sw_obstacle_free releases them; sw_obstacle_data_new the contact records
+ * and chunk boxes of the state (data.c frees them); sw_obstacle_loads adds the contact
+ * loads on the rods and the carriers (from sw_env_loads, on one thread),
+ * sw_obstacle_loads_with by the chunk boxes or by brute force over all
+ * element-obstacle pairs (tests and benchmark); sw_obstacle_energy is the
+ * springs' energy, sw_obstacle_stable_dt their step limit.  Rod-rod
+ * contact's closest points of two segments serve the capsule. */
+#define SW_OBSTACLE_CHUNK 16
+typedef enum { SW_OBSTACLE_GRID = 0, SW_OBSTACLE_BRUTE = 1 } swObstaclePhase;
+int sw_obstacle_setup(swModel *m);
+void sw_obstacle_free(swModel *m);
+int sw_obstacle_data_new(const swModel *m, swData *d);
+void sw_obstacle_loads(const swModel *m, swData *d);
+void sw_obstacle_loads_with(const swModel *m, swData *d, swObstaclePhase phase);
+double sw_obstacle_energy(const swModel *m, const swData *d);
+double sw_obstacle_stable_dt(const swModel *m);
+double sw_segment_closest(const double *a0, const double *da, const double *b0, const double *db,
+                          double *s_out, double *t_out, double *pq);   /* contact.c */
 
 /* swell.c: rods whose geometry changes in time */
 int sw_swell_setup(swModel *m, const swSpec *s);

@@ -36,6 +36,8 @@ static inline void sw_v3_scale(double *r, const double *a, double s) {
 static inline double sw_v3_dot(const double *a, const double *b) {
   return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
 }
+/* x clamped to [0, 1] */
+static inline double sw_clamp01(double x) { return x < 0 ? 0 : (x > 1 ? 1 : x); }
 static inline double sw_v3_norm(const double *a) { return sqrt(sw_v3_dot(a, a)); }
 static inline void sw_v3_cross(double *r, const double *a, const double *b) {
   double r0 = a[1] * b[2] - a[2] * b[1];

@@ -276,10 +276,40 @@ typedef struct {
                                            to the element's start, m         */
   int contact_maxrows;       /* rows of the largest contact                  */
   int contact_nbucket;       /* hash grid buckets, a power of two            */
+  /* obstacle.c: rigid obstacles.  A fixed one's centre and axes are in the
+   * lab; a carried one's in the material frame of its carrier element, its
+   * centre from the carrier node (a joint's arm).  Rods are cut into chunks
+   * of SW_OBSTACLE_CHUNK elements for the broad phase: chunk c of rod r is
+   * obstacle_chunk_adr[r] + c. */
+  int nobstacle;
+  swObstacleDesc *obstacle;  /* (nobstacle)                                  */
+  int *obstacle_node;        /* (nobstacle) carrier's node slot (-1: fixed)  */
+  int *obstacle_elem;        /* (nobstacle) carrier's element slot (-1)      */
+  double *obstacle_arm;      /* (nobstacle*3) centre, m (see above)          */
+  double *obstacle_axes;     /* (nobstacle*9) rows: the shape's three axes   */
+  double *obstacle_extent;   /* (nobstacle*3) half sizes of the shape's box
+                                in its own frame (INFINITY along a cylinder) */
+  int *obstacle_chunk_adr;   /* (nrod+1) first chunk of each rod             */
+  int obstacle_nchunk;       /* chunks of all rods                           */
+  int obstacle_maxcontact;   /* contact records the state keeps              */
   int has_gravity;
   int has_damping;
   int has_exact_kick;        /* some rod's kick integrates its damping exactly */
 } swModel;
+
+/* One element touching one obstacle (obstacle.c).  The normal force acts
+ * along n at the point s of the element's segment; `anchor` is kept for a
+ * friction law that holds a contact still (the surface point it sticks to,
+ * in the obstacle's frame), unused by the frictionless law. */
+typedef struct {
+  int obstacle, elem;        /* obstacle index, element slot                 */
+  double s;                  /* the point's place on the segment, 0..1      */
+  double depth;              /* penetration r - D, m                         */
+  double normal[3];          /* out of the obstacle, lab                     */
+  double force;              /* normal force on the element, N (>= 0)       */
+  double anchor[3];          /* reserved for stick-slip friction             */
+  int stuck;                 /* reserved: 1 while the anchor holds           */
+} swObstacleContact;
 
 /* ---- the state (mutable) ---- */
 typedef struct {
@@ -390,6 +420,16 @@ typedef struct {
   int *contact_start;        /* (contact_nbucket+1) first sorted row of each bucket */
   int *contact_sorted_cell;  /* (contact_maxrows*3) cell of each sorted row  */
   unsigned long long *contact_occupied; /* (contact_nbucket/64+1) bit set: bucket not empty */
+  /* obstacle.c: the last evaluation's contacts (the record a friction law
+   * will keep its tangential anchor in), figures, and scratch */
+  swObstacleContact *obstacle_contact; /* (obstacle_maxcontact)              */
+  int obstacle_contacts;     /* contacts of the last evaluation (all, also
+                                those beyond the records' room)             */
+  double obstacle_max_depth; /* deepest penetration r - D, m (0: none)      */
+  long obstacle_tests;       /* element-obstacle pairs the narrow phase saw  */
+  double *obstacle_box;      /* ((obstacle_nchunk+nrod)*6) lo, hi of each
+                                chunk's elements with their radii, then of
+                                each rod's                                  */
   /* probe.c: the centre-of-mass samples (t, X) that mean-velocity probes
    * difference, a ring of SW_PROBE_RING per probe (probe.c) */
   double *probe_ring;        /* (nprobe*SW_PROBE_RING*4) t, X of each sample  */
@@ -424,6 +464,10 @@ void sw_model_free(swModel *m);
 swData *sw_data_new(const swModel *m);
 void sw_data_free(swData *d);
 void sw_reset(const swModel *m, swData *d);
+/* The deepest penetration r - D of obstacle k's rods at t = 0, m (<= 0:
+ * none touch it), and where: runtime rod id and element of that rod
+ * (obstacle.c; the compiler refuses a rod laid inside an obstacle). */
+double sw_obstacle_start_depth(const swModel *m, int k, int *rod, int *elem);
 
 /* Kernels. */
 void sw_internal_loads(const swModel *m, swData *d);   /* rod.c: strains and internal loads */

@@ -464,6 +464,46 @@ typedef struct {
 void sw_contact_desc_init(swContactDesc *c); /* fills defaults */
 int sw_spec_add_contact(swSpec *s, const swContactDesc *c);
 
+/* A rigid obstacle (obstacle.c): a sphere, a capsule, an infinite cylinder,
+ * a box or an ellipsoid, fixed in the lab or carried by an element of a rod
+ * (a bone), that the elements of its rods touch.  Each element is a capsule
+ * of its radius around the segment between its nodes; where it comes closer
+ * to the shape than its radius, a penalty k p along the shape's outward
+ * normal plus a damper gamma times the approach speed (never pulling) push
+ * it out, at the point of the segment nearest to the shape; a carried
+ * obstacle takes the opposite force and its couple back to its element
+ * (docs/physics.md, "Rigid obstacles").  The shape's own frame has its
+ * third axis along `axis` and its first along `normal` (made perpendicular
+ * to axis); both are lab directions at t = 0. */
+typedef enum {
+  SW_OBSTACLE_SPHERE = 0,     /* radius                                      */
+  SW_OBSTACLE_CAPSULE = 1,    /* radius, length (of the cylinder between the
+                                 centres of its round caps), along axis      */
+  SW_OBSTACLE_CYLINDER = 2,   /* radius, infinite along axis                 */
+  SW_OBSTACLE_BOX = 3,        /* half sizes along (normal, axis x normal, axis) */
+  SW_OBSTACLE_ELLIPSOID = 4   /* semi-axes along (normal, axis x normal, axis) */
+} swObstacleShape;
+typedef struct {
+  const char *name;
+  swObstacleShape shape;
+  double centre[3];         /* m, lab frame at t = 0                         */
+  double axis[3];           /* the shape's third axis, lab at t = 0 ((0,0,1)) */
+  double normal[3];         /* its first axis, lab at t = 0 ((1,0,0); the
+                               part perpendicular to axis is kept)           */
+  double radius;            /* m: sphere, capsule, cylinder                  */
+  double length;            /* m: capsule                                    */
+  double half[3];           /* m: box half sizes, ellipsoid semi-axes        */
+  double stiffness;         /* k, N/m per element                            */
+  double damping;           /* gamma, kg/s per element                       */
+  int carrier_rod;          /* -1: fixed in the lab; else the rod whose      */
+  int carrier_node;         /* node (-1: last) element carries it, as a joint's
+                               arm: node i's element is i (the last: n - 1) */
+  int nrods;                /* rods that touch it (0: all but the carrier)   */
+  const int *rods;
+} swObstacleDesc;
+void sw_obstacle_desc_init(swObstacleDesc *o); /* fills defaults */
+int sw_spec_add_obstacle(swSpec *s, const swObstacleDesc *o);
+
 /* The travelling muscle-torque wave of Gazzola et al. 2018 (sec. 4.3):
  *   tau(s, t) = ramp(t) beta(s) sin(2 pi t / T - 2 pi s / lambda + phi),
  * ramp(t) = min(1, t / ramp) (1 when ramp = 0).  tau is a bending moment,

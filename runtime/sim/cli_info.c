@@ -259,8 +259,21 @@ static const char *rod_list(char *buf, size_t len, const swModel *m, int nrods, 
 /* Grounds, fluids, contacts, torque waves and probes, one line each. */
 static void print_environments(const swModel *m) {
   char a[256], b[64];
-  printf("environments: %d grounds, %d fluids, %d contacts, %d torque waves, %d probes\n",
+  printf("environments: %d grounds, %d fluids, %d contacts, %d torque waves, %d probes",
          m->nground, m->nfluid, m->ncontact, m->nwave, m->nprobe);
+  if (m->nobstacle) printf(", %d obstacles", m->nobstacle);
+  printf("\n");
+  static const char *const shapes[] = {"sphere", "capsule", "cylinder", "box", "ellipsoid"};
+  for (int k = 0; k < m->nobstacle; k++) {
+    const swObstacleDesc *o = &m->obstacle[k];
+    printf("  obstacle %s: %s at (%g, %g, %g) m, stiffness %g N/m, damping %g kg/s, ", o->name,
+           shapes[o->shape], o->centre[0], o->centre[1], o->centre[2], o->stiffness, o->damping);
+    if (o->carrier_rod >= 0)
+      printf("carried by %s node %d, ", m->rod_name[o->carrier_rod],
+             o->carrier_node < 0 ? m->rod_nelem[o->carrier_rod] : o->carrier_node);
+    else printf("fixed, ");
+    printf("%s\n", rod_list(a, sizeof a, m, o->nrods, o->rods));
+  }
   for (int k = 0; k < m->nground; k++) {
     const swGroundDesc *g = &m->ground[k];
     printf("  ground %s: %s, stiffness %g N/m, damping %g kg/s, kinetic friction %g/%g/%g "
@@ -632,12 +645,13 @@ void sw_cli_print_info(const swCli *c, const swModel *m, double stable, const ch
            m->gravity_signal.kind != SW_SIG_CONST || m->gravity_signal.a != 1.0
                ? " times a signal of time" : "");
   else printf("gravity: none\n");
-  printf("forces in use: elasticity (stretch, shear, bend, twist)%s%s%s%s%s%s%s%s%s%s\n",
+  printf("forces in use: elasticity (stretch, shear, bend, twist)%s%s%s%s%s%s%s%s%s%s%s\n",
          m->has_gravity ? ", gravity" : "", m->nload ? ", point loads" : "",
          m->nbc ? ", boundary conditions" : "", m->njoint ? ", joints" : "",
          m->nmuscle ? ", muscles" : "", m->nwave ? ", torque waves" : "",
          m->nground ? ", ground contact and friction" : "", m->nfluid ? ", fluid" : "",
-         m->ncontact ? ", rod-rod contact" : "", m->has_damping ? ", damping" : "");
+         m->ncontact ? ", rod-rod contact" : "", m->nobstacle ? ", rigid obstacles" : "",
+         m->has_damping ? ", damping" : "");
   print_law(m);
   printf("integrator: %s\n", m->integrator == SW_PEFRL ? "PEFRL"
                              : m->integrator == SW_IMEX ? "position Verlet, stiff terms linearly implicit (imex)"

@@ -1,0 +1,626 @@
+/* obstacle.c — rigid obstacles: spheres, capsules, infinite cylinders, boxes
+ * and ellipsoids, fixed in the lab or carried by a rod element (a bone),
+ * pushing back the elements of rods that touch them.
+ *
+ * Design.  Each element is the segment a0..a1 between its nodes, a capsule
+ * of radius r around it (as in contact.c), so a thin rod cannot slip
+ * between two nodes through a small obstacle.  The narrow phase works in
+ * the shape's own frame (centre c, orthonormal axes e1 = normal, e2 =
+ * axis x normal, e3 = axis; a point y is q_k = e_k . (y - c)): it finds the
+ * point p = a0 + s (a1 - a0), s in [0, 1], of the segment whose signed
+ * distance D to the shape's surface is least, and the outward unit normal n
+ * of the surface there.  The element touches when its penetration
+ * p_e = r - D > 0, and stores U = k p_e^2 / 2.  Because s minimises D,
+ * dD/da0 = (1 - s) n and dD/da1 = s n (Danskin's theorem, as in contact.c),
+ * so the spring's force k p_e n split (1 - s, s) over the two nodes is the
+ * exact gradient of U: with damping 0 the contact is conservative, and U is
+ * reported with the elastic energy (sw_obstacle_energy), as the ground's
+ * penalty is.  The damper adds gamma times the approach speed of p and the
+ * obstacle's material point there, never letting the normal force pull:
+ * max(gamma approach, -k p_e), into ext_force as well, so the kick books the
+ * energy it takes (as the ground and rod-rod contact do).
+ *
+ * The distance per shape (docs/physics.md, "Rigid obstacles"):
+ *  - sphere (radius R): p is the point of the segment nearest to c (the
+ *    projection of c, clamped), D = |q| - R, n = q / |q|;
+ *  - infinite cylinder (radius R along e3): the segment's point nearest to
+ *    the axis line, from the segment's part across the axis (q1, q2),
+ *    D = |(q1, q2)| - R, n = (q1, q2, 0) / |.|; parallel to the axis: the
+ *    middle of the element;
+ *  - capsule (radius R around the axis segment from -L/2 to L/2 along e3):
+ *    the closest points of two segments (Ericson 2005, sec. 5.1.9,
+ *    contact.c's sw_segment_closest), D = |p - q_axis| - R;
+ *  - box (half sizes h): the signed distance of a point to a box (Quilez,
+ *    "distance functions": outside |max(|q| - h, 0)|, inside
+ *    max_k(|q_k| - h_k)), n its gradient;
+ *  - ellipsoid (semi-axes a): the closest surface point by Eberly's
+ *    bisection on the Lagrange multiplier ("Distance from a point to an
+ *    ellipse, an ellipsoid, or a hyperellipsoid", Geometric Tools 2013),
+ *    n = (x_k / a_k^2) normalised at that point.
+ * For the box and the ellipsoid the distance along the segment, a convex
+ * function of s (the signed distance to a convex body is convex), is
+ * minimised by golden-section search to 1e-12 of the segment; an element
+ * that meets it equally at both ends (lying along a face) takes its middle,
+ * the ground's point for the same plane.
+ *
+ * A carried obstacle's centre and axes live in the material frame of its
+ * carrier element, the centre measured from the carrier node (a joint's arm,
+ * joint.c): at time t, c = x_node + Q^T o and e_k = Q^T e_k^mat.  It takes
+ * the opposite of each contact force, at the node, with the couple
+ * (p - x_node) x (-f) on the element (in its material frame): force and
+ * couple about any point balance those on the rods, and both are the
+ * gradient of U in the carrier's position and rotation, so the pair stays
+ * conservative.  Its material point at p moves at v_node + w x (p - x_node).
+ *
+ * Broad phase.  Rods are cut into chunks of SW_OBSTACLE_CHUNK elements,
+ * whose boxes (nodes +- the largest radius) and each rod's box (their
+ * union) are taken once per evaluation; an obstacle's lab box (its frame
+ * box turned into the lab: centre +- sum_k |e_k| h_k; unbounded along a
+ * cylinder's axis) is tested against the box of each of its rods, then of
+ * the chunks of a rod it overlaps, and only the elements of chunks that
+ * overlap it reach the narrow phase.  The cost is obstacles x rods box
+ * tests, chunks of the rods near an obstacle, and the elements near it
+ * (bench/bench_obstacle.c).  Nothing is allocated
+ * in the step; the brute force loop over all pairs is kept for tests and
+ * the benchmark (SW_OBSTACLE_BRUTE).
+ */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "sinew.h"
+#include "vec.h"
+#include "internal.h"
+
+/* ---- setup ---- */
+
+/* Unit e3 along axis, e1 the part of normal across it (or any normal to
+ * it), e2 = e3 x e1: rows of E. */
+static void frame_of(const swObstacleDesc *o, double E[9]) {
+  double e3[3], e1[3], e2[3];
+  sw_v3_scale(e3, o->axis, 1.0 / sw_v3_norm(o->axis));
+  double along = sw_v3_dot(o->normal, e3);
+  for (int k = 0; k < 3; k++) e1[k] = o->normal[k] - along * e3[k];
+  if (!(sw_v3_norm(e1) > 1e-9 * sw_v3_norm(o->normal))) {
+    const double ex[3] = {1, 0, 0}, ey[3] = {0, 1, 0};
+    sw_v3_cross(e1, e3, fabs(e3[0]) < 0.9 ? ex : ey);
+  }
+  sw_v3_scale(e1, e1, 1.0 / sw_v3_norm(e1));
+  sw_v3_cross(e2, e3, e1);
+  memcpy(E, e1, sizeof e1);
+  memcpy(E + 3, e2, sizeof e2);
+  memcpy(E + 6, e3, sizeof e3);
+}
+
+int sw_obstacle_setup(swModel *m) {
+  const int K = m->nobstacle;
+  size_t k1 = (size_t)(K ? K : 1);
+  m->obstacle_node = calloc(k1, sizeof(int));
+  m->obstacle_elem = calloc(k1, sizeof(int));
+  m->obstacle_arm = calloc(3 * k1, sizeof(double));
+  m->obstacle_axes = calloc(9 * k1, sizeof(double));
+  m->obstacle_extent = calloc(3 * k1, sizeof(double));
+  m->obstacle_chunk_adr = calloc((size_t)m->nrod + 1, sizeof(int));
+  if (!m->obstacle_node || !m->obstacle_elem || !m->obstacle_arm || !m->obstacle_axes ||
+      !m->obstacle_extent || !m->obstacle_chunk_adr)
+    return 0;
+  long listed = 0;
+  for (int k = 0; k < K; k++) {
+    const swObstacleDesc *o = &m->obstacle[k];
+    double E[9], *ext = m->obstacle_extent + 3 * k;
+    frame_of(o, E);
+    switch (o->shape) {
+    case SW_OBSTACLE_SPHERE: ext[0] = ext[1] = ext[2] = o->radius; break;
+    case SW_OBSTACLE_CAPSULE: ext[0] = ext[1] = o->radius, ext[2] = 0.5 * o->length + o->radius; break;
+    case SW_OBSTACLE_CYLINDER: ext[0] = ext[1] = o->radius, ext[2] = INFINITY; break;
+    default: memcpy(ext, o->half, 3 * sizeof(double)); break;
+    }
+    m->obstacle_node[k] = m->obstacle_elem[k] = -1;
+    if (o->carrier_rod >= 0) {
+      /* in the carrier element's material frame at t = 0: o = Q0 (c - x0) */
+      const int r = o->carrier_rod, n = m->rod_nelem[r];
+      const int node = o->carrier_node < 0 ? n : o->carrier_node;
+      const int slot = m->node_adr[r] + node, e = m->elem_adr[r] + (node < n ? node : n - 1);
+      double Q0[9], x0[3], rel[3];
+      sw_getQ(m, m->Q0, e, Q0);
+      sw_get3(m, m->x0, slot, x0);
+      sw_v3_sub(rel, o->centre, x0);
+      sw_mat_vec(m->obstacle_arm + 3 * k, Q0, rel);
+      for (int a = 0; a < 3; a++) sw_mat_vec(m->obstacle_axes + 9 * k + 3 * a, Q0, E + 3 * a);
+      m->obstacle_node[k] = slot;
+      m->obstacle_elem[k] = e;
+    } else {
+      memcpy(m->obstacle_arm + 3 * k, o->centre, 3 * sizeof(double));
+      memcpy(m->obstacle_axes + 9 * k, E, sizeof E);
+    }
+    for (int j = 0; j < o->nrods; j++) listed += m->rod_nelem[o->rods[j]];
+  }
+  int chunks = 0;
+  for (int r = 0; r < m->nrod; r++) {
+    m->obstacle_chunk_adr[r] = chunks;
+    chunks += (m->rod_nelem[r] + SW_OBSTACLE_CHUNK - 1) / SW_OBSTACLE_CHUNK;
+  }
+  m->obstacle_chunk_adr[m->nrod] = chunks;
+  m->obstacle_nchunk = chunks;
+  /* records: every listed element once in contact, at most four each */
+  long room = 4L * m->nelem + 64;
+  m->obstacle_maxcontact = (int)(listed < room ? listed : room);
+  return 1;
+}
+
+void sw_obstacle_free(swModel *m) {
+  free(m->obstacle_node);
+  free(m->obstacle_elem);
+  free(m->obstacle_arm);
+  free(m->obstacle_axes);
+  free(m->obstacle_extent);
+  free(m->obstacle_chunk_adr);
+  m->obstacle_node = m->obstacle_elem = m->obstacle_chunk_adr = NULL;
+  m->obstacle_arm = m->obstacle_axes = m->obstacle_extent = NULL;
+}
+
+int sw_obstacle_data_new(const swModel *m, swData *d) {
+  if (!m->nobstacle) return 1;
+  d->obstacle_contact = calloc((size_t)(m->obstacle_maxcontact ? m->obstacle_maxcontact : 1),
+                               sizeof *d->obstacle_contact);
+  d->obstacle_box = calloc(6 * ((size_t)m->obstacle_nchunk + (size_t)m->nrod + 1), sizeof(double));
+  return d->obstacle_contact && d->obstacle_box;
+}
+
+/* ---- where an obstacle is ---- */
+
+typedef struct {
+  double c[3], E[9];  /* centre and axis rows, lab                         */
+  double v[3], w[3];  /* velocity of the centre and angular velocity, lab  */
+  double anchor[3];   /* the carrier node (carried only)                   */
+  int carried;
+} swPose;
+
+/* Obstacle k's pose in the state x, Q (and v, omega when not NULL). */
+static swPose pose_of(const swModel *m, const double *x, const double *v, const double *Q,
+                      const double *omega, int k) {
+  swPose P;
+  memset(&P, 0, sizeof P);
+  const double *arm = m->obstacle_arm + 3 * k, *axes = m->obstacle_axes + 9 * k;
+  if (m->obstacle_node[k] < 0) {
+    memcpy(P.c, arm, sizeof P.c);
+    memcpy(P.E, axes, sizeof P.E);
+    return P;
+  }
+  const int node = m->obstacle_node[k], e = m->obstacle_elem[k];
+  double Qe[9], r[3];
+  sw_getQ(m, Q, e, Qe);
+  sw_get3(m, x, node, P.anchor);
+  sw_matT_vec(r, Qe, arm);
+  sw_v3_add(P.c, P.anchor, r);
+  for (int a = 0; a < 3; a++) sw_matT_vec(P.E + 3 * a, Qe, axes + 3 * a);
+  if (v) {
+    double wm[3], wr[3];
+    sw_get3(m, omega, e, wm);
+    sw_matT_vec(P.w, Qe, wm);
+    sw_get3(m, v, node, P.v);
+    sw_v3_cross(wr, P.w, r);
+    sw_v3_add(P.v, P.v, wr);
+  }
+  P.carried = 1;
+  return P;
+}
+
+static void to_local(double q[3], const swPose *P, const double y[3]) {
+  double rel[3];
+  sw_v3_sub(rel, y, P->c);
+  for (int k = 0; k < 3; k++) q[k] = sw_v3_dot(P->E + 3 * k, rel);
+}
+
+/* ---- the narrow phase: signed distance of a segment to a shape ---- */
+
+/* Signed distance of the local point q to a box of half sizes h, and the
+ * outward normal there (Quilez's box distance). */
+static double box_distance(const double h[3], const double q[3], double n[3]) {
+  double out[3], inside = -INFINITY;
+  int face = 0;
+  for (int k = 0; k < 3; k++) {
+    double g = fabs(q[k]) - h[k];
+    out[k] = g > 0 ? g : 0;
+    if (g > inside) inside = g, face = k;
+  }
+  double len = sw_v3_norm(out);
+  if (len > 0) {
+    for (int k = 0; k < 3; k++) n[k] = copysign(out[k], q[k]) / len;
+    return len;
+  }
+  n[0] = n[1] = n[2] = 0;
+  n[face] = q[face] < 0 ? -1 : 1;
+  return inside;
+}
+
+/* Signed distance of the local point q to the ellipsoid of semi-axes a and
+ * the outward normal at its closest point (Eberly 2013): the closest point
+ * is x_k = a_k^2 q_k / (t + a_k^2) with t the root of
+ *   F(t) = sum_k (a_k q_k / (t + a_k^2))^2 - 1,
+ * which is decreasing and convex on (-a_min^2, inf), so Newton's method
+ * from a point left of the root, where F >= 0 (t = 0 outside, t = -a_min^2
+ * + a_min |q_min| inside), moves right and never passes it (Eberly bisects
+ * on the same bracket; Newton takes a few steps instead of ~100).  A
+ * coordinate exactly 0 is taken as 1e-12 a_k, so that the root stays right
+ * of the pole. */
+static double ellipsoid_distance(const double a[3], const double q0[3], double n[3]) {
+  double q[3], g = -1;
+  int kmin = 0;
+  for (int k = 0; k < 3; k++) {
+    q[k] = fabs(q0[k]) > 1e-12 * a[k] ? q0[k] : copysign(1e-12 * a[k], q0[k]);
+    if (a[k] < a[kmin]) kmin = k;
+    g += (q[k] / a[k]) * (q[k] / a[k]);
+  }
+  double t = g < 0 ? -a[kmin] * a[kmin] + a[kmin] * fabs(q[kmin]) : 0.0;
+  for (int it = 0; it < 100; it++) {
+    double F = -1, dF = 0;
+    for (int k = 0; k < 3; k++) {
+      const double den = t + a[k] * a[k], z = a[k] * q[k] / den;
+      F += z * z;
+      dF -= 2 * z * z / den;
+    }
+    const double step = F / dF;
+    if (!(step < 0) || t - step == t) break; /* at the root to round-off */
+    t -= step;
+  }
+  double x[3], diff[3];
+  for (int k = 0; k < 3; k++) {
+    x[k] = a[k] * a[k] * q[k] / (t + a[k] * a[k]);
+    n[k] = x[k] / (a[k] * a[k]);
+    diff[k] = q0[k] - x[k];
+  }
+  sw_v3_scale(n, n, 1.0 / sw_v3_norm(n));
+  const double dist = sw_v3_norm(diff);
+  return g < 0 ? -dist : dist;
+}
+
+typedef double (*swPointDistance)(const double h[3], const double q[3], double n[3]);
+
+/* min over s in [0, 1] of f(a + s d), convex in s: golden-section search to
+ * 1e-12, the middle when both ends are as near (a face along the element). */
+static double segment_search(swPointDistance f, const double h[3], const double a[3],
+                             const double d[3], double *s_out, double n[3]) {
+  const double g = 0.5 * (sqrt(5.0) - 1.0);
+  double q[3], nn[3];
+  double lo = 0, hi = 1, x1 = hi - g, x2 = lo + g;
+#define AT(s) (q[0] = a[0] + (s) * d[0], q[1] = a[1] + (s) * d[1], q[2] = a[2] + (s) * d[2], f(h, q, nn))
+  const double f0 = AT(0.0), f1 = AT(1.0);
+  double y1 = AT(x1), y2 = AT(x2);
+  while (hi - lo > 1e-12) {
+    if (y1 <= y2) hi = x2, x2 = x1, y2 = y1, x1 = hi - g * (hi - lo), y1 = AT(x1);
+    else lo = x1, x1 = x2, y1 = y2, x2 = lo + g * (hi - lo), y2 = AT(x2);
+  }
+  double s = 0.5 * (lo + hi), best = AT(s);
+  const double tol = 1e-12 * (fabs(best) + sw_v3_norm(d));
+  if (fabs(f0 - f1) <= tol && f0 - best <= tol) s = 0.5;  /* lying along a face */
+  else if (f0 <= best) s = 0.0;
+  else if (f1 <= best) s = 1.0;
+  double D = AT(s);
+#undef AT
+  memcpy(n, nn, sizeof nn);
+  *s_out = s;
+  return D;
+}
+
+/* Unit vector across the segment direction d (for a segment whose nearest
+ * point lies on the axis or at the centre itself). */
+static void any_normal(double n[3], const double d[3]) {
+  const double ex[3] = {1, 0, 0}, ey[3] = {0, 1, 0};
+  sw_v3_cross(n, d, fabs(d[0]) < 0.9 * sw_v3_norm(d) ? ex : ey);
+  double len = sw_v3_norm(n);
+  if (len > 0) sw_v3_scale(n, n, 1.0 / len);
+  else n[0] = 0, n[1] = 0, n[2] = 1;
+}
+
+/* The least signed distance D from the local segment a + s d to obstacle
+ * o's surface, its s and the outward normal n (local frame).  *s_out
+ * brings in the element's radius: a distance known to exceed it may be
+ * returned as a lower bound (the ellipsoid's quick rejection). */
+static double segment_distance(const swObstacleDesc *o, const double a[3], const double d[3],
+                               double *s_out, double n[3]) {
+  double s = 0.5, p[3], D;
+  const double dd = sw_v3_dot(d, d);
+  switch (o->shape) {
+  case SW_OBSTACLE_SPHERE: /* the projection of the centre, clamped */
+    s = dd > 0 ? sw_clamp01(-sw_v3_dot(a, d) / dd) : 0.0;
+    for (int k = 0; k < 3; k++) p[k] = a[k] + s * d[k];
+    D = sw_v3_norm(p);
+    if (D > 0) sw_v3_scale(n, p, 1.0 / D);
+    else any_normal(n, d);
+    D -= o->radius;
+    break;
+  case SW_OBSTACLE_CYLINDER: { /* nearest to the e3 axis, across it */
+    const double across = d[0] * d[0] + d[1] * d[1];
+    s = across > 1e-14 * dd ? sw_clamp01(-(a[0] * d[0] + a[1] * d[1]) / across) : 0.5;
+    for (int k = 0; k < 3; k++) p[k] = a[k] + s * d[k];
+    p[2] = 0;
+    D = sw_v3_norm(p);
+    if (D > 0) sw_v3_scale(n, p, 1.0 / D);
+    else {
+      const double e3[3] = {0, 0, 1};
+      any_normal(n, e3);
+    }
+    D -= o->radius;
+    break;
+  }
+  case SW_OBSTACLE_CAPSULE: { /* two segments' closest points */
+    const double b0[3] = {0, 0, -0.5 * o->length}, db[3] = {0, 0, o->length};
+    double t, pq[3];
+    D = sqrt(sw_segment_closest(a, d, b0, db, &s, &t, pq));
+    if (D > 0) sw_v3_scale(n, pq, 1.0 / D);
+    else any_normal(n, d);
+    D -= o->radius;
+    break;
+  }
+  case SW_OBSTACLE_BOX: D = segment_search(box_distance, o->half, a, d, &s, n); break;
+  default: {
+    /* in the coordinates scaled by the semi-axes the ellipsoid is the unit
+     * ball: a segment whose scaled distance rho from the centre is > 1 is
+     * at least (rho - 1) a_min from the surface, which rejects most */
+    const double *h = o->half;
+    double as[3], ds[3], ps[3];
+    for (int k = 0; k < 3; k++) as[k] = a[k] / h[k], ds[k] = d[k] / h[k];
+    const double dds = sw_v3_dot(ds, ds), u = dds > 0 ? sw_clamp01(-sw_v3_dot(as, ds) / dds) : 0.0;
+    for (int k = 0; k < 3; k++) ps[k] = as[k] + u * ds[k];
+    const double rho = sw_v3_norm(ps), hmin = fmin(h[0], fmin(h[1], h[2]));
+    if (rho > 1 && (rho - 1) * hmin > *s_out) {
+      *s_out = u;
+      n[0] = n[1] = 0, n[2] = 1;
+      return (rho - 1) * hmin; /* a lower bound, beyond the element's radius */
+    }
+    D = segment_search(ellipsoid_distance, o->half, a, d, &s, n);
+    break;
+  }
+  }
+  *s_out = s;
+  return D;
+}
+
+/* ---- one element against one obstacle ---- */
+
+typedef struct {
+  double *force, *ext_force, *torque, *ext_torque; /* NULL: energy only */
+  swObstacleContact *rec;
+  int room;
+  double energy, max_depth;
+  int contacts;
+  long tests;
+} Sums;
+
+/* Element i (nodes ia, ia + 1, element slot e) of a rod against obstacle k
+ * at pose P: the loads on both sides (when sum->force), the energy. */
+static void element_contact(const swModel *m, const swData *d, int k, const swPose *P, int ia, int e,
+                            Sums *sum) {
+  const swObstacleDesc *o = &m->obstacle[k];
+  sum->tests++;
+  double x0[3], x1[3], a[3], b[3], dl[3];
+  sw_get3(m, d->x, ia, x0);
+  sw_get3(m, d->x, ia + 1, x1);
+  to_local(a, P, x0);
+  to_local(b, P, x1);
+  sw_v3_sub(dl, b, a);
+  const double r = d->radius_now[e];
+  /* the shape lies within its frame box, which the element's ball about
+   * its middle must reach (a cylinder: across its axis only) */
+  const double *ext = m->obstacle_extent + 3 * k, half = 0.5 * sw_v3_norm(dl) + r;
+  for (int j = 0; j < 3; j++)
+    if (fabs(0.5 * (a[j] + b[j])) > ext[j] + half) return;
+  double s = r, nl[3];
+  const double D = segment_distance(o, a, dl, &s, nl);
+  const double depth = r - D;
+  if (!(depth > 0)) return;
+  sum->energy += 0.5 * o->stiffness * depth * depth;
+  if (depth > sum->max_depth) sum->max_depth = depth;
+  sum->contacts++;
+  if (!sum->force) return;
+  double n[3] = {0, 0, 0}, p[3];
+  for (int j = 0; j < 3; j++)
+    for (int q = 0; q < 3; q++) n[q] += nl[j] * P->E[3 * j + q];
+  for (int q = 0; q < 3; q++) p[q] = x0[q] + s * (x1[q] - x0[q]);
+  /* approach speed of the element's point and the obstacle's point at p */
+  double v0[3], v1[3], vo[3] = {0, 0, 0};
+  sw_get3(m, d->v, ia, v0);
+  sw_get3(m, d->v, ia + 1, v1);
+  if (P->carried) {
+    double rel[3];
+    sw_v3_sub(rel, p, P->c);
+    sw_v3_cross(vo, P->w, rel);
+    sw_v3_add(vo, vo, P->v);
+  }
+  double approach = 0;
+  for (int q = 0; q < 3; q++) approach -= ((1 - s) * v0[q] + s * v1[q] - vo[q]) * n[q];
+  const double spring = o->stiffness * depth;
+  const double damper = fmax(o->damping * approach, -spring); /* never pulls */
+  const double w[2] = {1 - s, s};
+  for (int j = 0; j < 2; j++)
+    for (int q = 0; q < 3; q++) {
+      SW_AT(m, sum->force, ia + j, q) += w[j] * (spring + damper) * n[q];
+      SW_AT(m, sum->ext_force, ia + j, q) += w[j] * damper * n[q];
+    }
+  if (P->carried) {
+    /* the carrier takes -f at its node and (p - x_node) x (-f) on its element */
+    const int node = m->obstacle_node[k], ec = m->obstacle_elem[k];
+    double lever[3], c[3], cd[3], Q[9], cm[3], cdm[3];
+    sw_v3_sub(lever, p, P->anchor);
+    sw_v3_cross(c, lever, n);
+    sw_v3_scale(cd, c, -damper);
+    sw_v3_scale(c, c, -(spring + damper));
+    sw_getQ(m, d->Q, ec, Q);
+    sw_mat_vec(cm, Q, c);
+    sw_mat_vec(cdm, Q, cd);
+    for (int q = 0; q < 3; q++) {
+      SW_AT(m, sum->force, node, q) -= (spring + damper) * n[q];
+      SW_AT(m, sum->ext_force, node, q) -= damper * n[q];
+      SW_AT(m, sum->torque, ec, q) += cm[q];
+      SW_AT(m, sum->ext_torque, ec, q) += cdm[q];
+    }
+  }
+  if (sum->contacts <= sum->room) {
+    swObstacleContact *rec = &sum->rec[sum->contacts - 1];
+    memset(rec, 0, sizeof *rec);
+    rec->obstacle = k;
+    rec->elem = e;
+    rec->s = s;
+    rec->depth = depth;
+    memcpy(rec->normal, n, sizeof n);
+    rec->force = spring + damper;
+  }
+}
+
+/* ---- broad phase ---- */
+
+/* The boxes of every chunk of every rod (nodes +- the chunk's widest
+ * radius), and after them each rod's (their union), written through the
+ * state's scratch pointer. */
+static void chunk_boxes(const swModel *m, const swData *d) {
+  for (int r = 0; r < m->nrod; r++) {
+    const int n = m->rod_nelem[r], na = m->node_adr[r], ea = m->elem_adr[r];
+    double *whole = d->obstacle_box + 6 * (m->obstacle_nchunk + r);
+    for (int q = 0; q < 3; q++) whole[q] = INFINITY, whole[3 + q] = -INFINITY;
+    for (int c = 0, i0 = 0; i0 < n; c++, i0 += SW_OBSTACLE_CHUNK) {
+      const int i1 = i0 + SW_OBSTACLE_CHUNK < n ? i0 + SW_OBSTACLE_CHUNK : n;
+      double *box = d->obstacle_box + 6 * (m->obstacle_chunk_adr[r] + c), wide = 0;
+      for (int q = 0; q < 3; q++) {
+        double lo = INFINITY, hi = -INFINITY;
+        for (int i = i0; i <= i1; i++) {
+          const double y = SW_AT(m, d->x, na + i, q);
+          lo = sw_min(lo, y);
+          hi = sw_max(hi, y);
+        }
+        box[q] = lo, box[3 + q] = hi;
+      }
+      for (int i = i0; i < i1; i++) wide = sw_max(wide, d->radius_now[ea + i]);
+      for (int q = 0; q < 3; q++) {
+        box[q] -= wide, box[3 + q] += wide;
+        whole[q] = sw_min(whole[q], box[q]), whole[3 + q] = sw_max(whole[3 + q], box[3 + q]);
+      }
+    }
+  }
+}
+
+static int boxes_apart(const double *a, const double *b) {
+  int apart = 0;
+  for (int q = 0; q < 3; q++) apart |= a[q] > b[3 + q] || a[3 + q] < b[q];
+  return apart;
+}
+
+/* Obstacle k's lab box at pose P: c +- sum_j |e_j| h_j (an unbounded
+ * extent counts only along the lab directions its axis has a part in). */
+static void obstacle_box(const swModel *m, int k, const swPose *P, double box[6]) {
+  const double *ext = m->obstacle_extent + 3 * k;
+  for (int q = 0; q < 3; q++) {
+    double reach = 0;
+    for (int j = 0; j < 3; j++) {
+      const double e = fabs(P->E[3 * j + q]);
+      reach += isinf(ext[j]) ? (e > 0 ? INFINITY : 0.0) : e * ext[j];
+    }
+    box[q] = P->c[q] - reach;
+    box[3 + q] = P->c[q] + reach;
+  }
+}
+
+static void visit(const swModel *m, const swData *d, swObstaclePhase phase, Sums *sum) {
+  if (phase == SW_OBSTACLE_GRID) chunk_boxes(m, d);
+  for (int k = 0; k < m->nobstacle; k++) {
+    const swObstacleDesc *o = &m->obstacle[k];
+    const swPose P = pose_of(m, d->x, d->v, d->Q, d->omega, k);
+    double box[6];
+    obstacle_box(m, k, &P, box);
+    for (int j = 0; j < o->nrods; j++) {
+      const int r = o->rods[j], n = m->rod_nelem[r], na = m->node_adr[r], ea = m->elem_adr[r];
+      if (r == o->carrier_rod) continue; /* a bone does not touch what it carries */
+      const int grid = phase == SW_OBSTACLE_GRID;
+      if (grid && boxes_apart(d->obstacle_box + 6 * (m->obstacle_nchunk + r), box)) continue;
+      for (int c = 0, i0 = 0; i0 < n; c++, i0 += SW_OBSTACLE_CHUNK) {
+        const int i1 = i0 + SW_OBSTACLE_CHUNK < n ? i0 + SW_OBSTACLE_CHUNK : n;
+        if (grid && boxes_apart(d->obstacle_box + 6 * (m->obstacle_chunk_adr[r] + c), box)) continue;
+        for (int i = i0; i < i1; i++) element_contact(m, d, k, &P, na + i, ea + i, sum);
+      }
+    }
+  }
+}
+
+/* ---- the kernels ---- */
+
+void sw_obstacle_loads_with(const swModel *m, swData *d, swObstaclePhase phase) {
+  Sums sum = {d->force, d->ext_force, d->torque, d->ext_torque, d->obstacle_contact,
+              m->obstacle_maxcontact, 0, 0, 0, 0};
+  visit(m, d, phase, &sum);
+  d->obstacle_contacts = sum.contacts;
+  d->obstacle_max_depth = sum.max_depth;
+  d->obstacle_tests = sum.tests;
+}
+
+void sw_obstacle_loads(const swModel *m, swData *d) { sw_obstacle_loads_with(m, d, SW_OBSTACLE_GRID); }
+
+/* The energy of the obstacle springs at the current positions, J. */
+double sw_obstacle_energy(const swModel *m, const swData *d) {
+  Sums sum = {NULL, NULL, NULL, NULL, NULL, 0, 0, 0, 0, 0};
+  visit(m, d, SW_OBSTACLE_GRID, &sum);
+  return sum.energy;
+}
+
+/* The deepest penetration r - D of obstacle k's rods at t = 0 (m; <= 0:
+ * none), and where (rod, element of the rod), from the initial positions. */
+double sw_obstacle_start_depth(const swModel *m, int k, int *rod, int *elem) {
+  const swObstacleDesc *o = &m->obstacle[k];
+  const swPose P = pose_of(m, m->x0, NULL, m->Q0, NULL, k);
+  double worst = -INFINITY;
+  *rod = *elem = -1;
+  for (int j = 0; j < o->nrods; j++) {
+    const int r = o->rods[j], na = m->node_adr[r], ea = m->elem_adr[r];
+    if (r == o->carrier_rod) continue;
+    for (int i = 0; i < m->rod_nelem[r]; i++) {
+      double x0[3], x1[3], a[3], b[3], dl[3], s = INFINITY, n[3]; /* s: no quick rejection */
+      sw_get3(m, m->x0, na + i, x0);
+      sw_get3(m, m->x0, na + i + 1, x1);
+      to_local(a, &P, x0);
+      to_local(b, &P, x1);
+      sw_v3_sub(dl, b, a);
+      const double depth = m->radius[ea + i] - segment_distance(o, a, dl, &s, n);
+      if (depth > worst) worst = depth, *rod = r, *elem = i;
+    }
+  }
+  return worst;
+}
+
+/* Step limit of the obstacle springs and dampers.  A node is pressed by
+ * its (one or two) elements, each with full weight when the contact point
+ * is at the node (s = 0 or 1): w^2 = nel k / m_i, c = nel gamma / m_i, one
+ * obstacle at a time.  A carrier node takes one element's spring through
+ * its mass and, at the lever l = |arm| + the shape's reach, through its
+ * element's least moment of inertia: w^2 = k (1 / m + l^2 / J).  The
+ * scheme's limit at zeta = c / (2 w), times 0.95, as ground.c's. */
+static double limit_of(const swModel *m, double w2, double c) {
+  if (!(w2 > 0)) return c > 0 ? 0.95 * 2.0 / c : INFINITY;
+  const double w = sqrt(w2);
+  return 0.95 * sw_integrator_stability_limit(m->integrator, c / (2 * w)) / w;
+}
+
+double sw_obstacle_stable_dt(const swModel *m) {
+  double dt = INFINITY;
+  for (int k = 0; k < m->nobstacle; k++) {
+    const swObstacleDesc *o = &m->obstacle[k];
+    for (int j = 0; j < o->nrods; j++) {
+      const int r = o->rods[j], n = m->rod_nelem[r], na = m->node_adr[r];
+      if (r == o->carrier_rod) continue;
+      for (int i = 0; i <= n; i++) {
+        const int nel = (i > 0) + (i < n);
+        dt = fmin(dt, limit_of(m, nel * o->stiffness * m->inv_mass[na + i],
+                               nel * o->damping * m->inv_mass[na + i]));
+      }
+    }
+    if (o->carrier_rod < 0) continue;
+    const double *ext = m->obstacle_extent + 3 * k;
+    double reach = 0;
+    for (int j = 0; j < 3; j++) reach = fmax(reach, isinf(ext[j]) ? 0.0 : ext[j]);
+    const double lever = sw_v3_norm(m->obstacle_arm + 3 * k) + reach;
+    const int e = m->obstacle_elem[k], node = m->obstacle_node[k];
+    double J = INFINITY;
+    for (int q = 0; q < 3; q++) J = fmin(J, SW_AT(m, m->inertia, e, q));
+    const double inv = m->inv_mass[node] + lever * lever / J;
+    dt = fmin(dt, limit_of(m, o->stiffness * inv, o->damping * inv));
+  }
+  return dt;
+}
