@@ -180,7 +180,8 @@ STUDIES = [
 # their own (the wing: 10 min a run)
 OPEN = [("feathered wing", (50e-9, "Table 10"), (0.51, "Table 10"),
          "`pigeon_wing`: measured in \"The kinematic wing\" below"),
-        ("artificial muscle on the arm", (50e-9, "Table 6"), (0.7, "Table 6"), "not modelled")]
+        ("artificial muscle on the arm", (50e-9, "Table 6"), (0.7, "Table 6"),
+         "`elbow_assisted`: measured in \"The elbow assisted by an artificial muscle\" below")]
 
 rows = []
 open(os.path.join(OUT, "commands.txt"), "w").close()
