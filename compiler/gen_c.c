@@ -470,7 +470,8 @@ static void emit_build(FILE *out, swArena *a, const swScene *sc) {
     fputc('\n', out);
     gen_origin(out, act->loc, "  ");
     if (act->is_bc) {
-      static const char *kinds[] = {"SW_BC_CLAMP", "SW_BC_VELOCITY", "SW_BC_OMEGA"};
+      static const char *kinds[] = {"SW_BC_CLAMP", "SW_BC_VELOCITY", "SW_BC_OMEGA", "SW_BC_SLIDE_LINE",
+                                    "SW_BC_SLIDE_PLANE"};
       fputs("  {\n    swBCDesc bc = {0};\n", out);
       fprintf(out, "    bc.kind = %s;\n    bc.rod = %d;", kinds[act->kind], gen_rod_id(sc, act->rod));
       rod_comment(out, sc, act->rod);
@@ -479,6 +480,7 @@ static void emit_build(FILE *out, swArena *a, const swScene *sc) {
         for (int k = 0; k < 3; k++)
           fprintf(out, "    bc.vec[%d] = %s;\n", k, val_c(a, &act->vec, k));
       gen_emit_signal(out, a, "bc.signal", act->sig);
+      if (act->until.kind == VAL_NUM) fprintf(out, "    bc.until = %s;\n", val_c(a, &act->until, 0));
       fputs("    ok &= sw_spec_add_bc(s, &bc) >= 0;\n  }\n", out);
     } else {
       static const char *kinds[] = {"SW_LOAD_FORCE", "SW_LOAD_TORQUE"};

@@ -321,6 +321,7 @@ swSpec *gen_spec(const swScene *sc) {
       if (a->vec.kind == VAL_VEC)
         for (int k = 0; k < 3; k++) b.vec[k] = a->vec.v[k];
       b.signal = gen_signal(a->sig);
+      if (a->until.kind == VAL_NUM) b.until = a->until.v[0];
       sw_spec_add_bc(s, &b);
     } else {
       swLoadDesc l;

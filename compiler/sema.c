@@ -398,7 +398,9 @@ void sema_items(swSema *S, swScope *scope, const swAst *items, int first) {
       run_loop(S, scope, it);
       break;
     case AST_ACTION:
-      if (sema_is_signal_def(it)) sema_signal_def(S, scope, it);
+      if (sema_action_until(it) && (sema_is_signal_def(it) || sema_is_objective_word(it->text)))
+        sema_until_misplaced(it);
+      else if (sema_is_signal_def(it)) sema_signal_def(S, scope, it);
       else if (sema_is_objective_word(it->text)) sema_objective_later(S, scope, it);
       else sema_action(S, scope, it);
       break;

@@ -213,6 +213,8 @@ typedef struct {
   int rod, index;             /* node/element (loads) or end 0/1 (BCs)      */
   swValue vec;                /* scale vector (3)                          */
   swSignalVal *sig;           /* NULL: constant                            */
+  swValue until;              /* BCs: the time the hold lets go, s;
+                                 VAL_ERROR: held for the whole run          */
 } swSceneAction;
 
 typedef struct {

@@ -170,6 +170,10 @@ swValue sema_rod_length(swSema *S, swSymbol *rod, swLoc loc);
 /* sema_stmt.c */
 void sema_joint(swSema *S, swScope *scope, const swAst *item);
 void sema_action(swSema *S, swScope *scope, const swAst *item);
+/* The "until T" of an action (an argument named until, its last child), or
+ * NULL; and the error for one on a statement that holds nothing. */
+const swAst *sema_action_until(const swAst *item);
+void sema_until_misplaced(const swAst *item);
 void sema_simulate(swSema *S, swScope *scope, const swAst *item);
 void sema_output(swSema *S, swScope *scope, const swAst *item);      /* sema_output.c */
 void sema_output_selections(swSema *S);

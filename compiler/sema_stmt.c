@@ -412,7 +412,8 @@ void sema_joint(swSema *S, swScope *scope, const swAst *it) {
 /* ---- actions ---- */
 
 static const char *const actions[] = {"clamp", "gravity", "force", "torque", "velocity",
-                                      "angular_velocity", "activate", "passive"};
+                                      "angular_velocity", "activate", "passive", "slide",
+                                      "slide_in_plane"};
 enum { NACTIONS = sizeof actions / sizeof actions[0] };
 
 static void add_action(swSema *S, const swSceneAction *a) {
@@ -453,6 +454,53 @@ static int action_value(swSema *S, swScope *scope, const swAst *e, swDim want, c
   return act->vec.kind != VAL_ERROR;
 }
 
+const swAst *sema_action_until(const swAst *it) {
+  const swAst *last = it->nkid ? it->kid[it->nkid - 1] : NULL;
+  return last && last->kind == AST_ARG && last->name && !strcmp(last->name, "until") ? last : NULL;
+}
+
+/* "STATEMENT ... until T;" on a statement that holds nothing. */
+void sema_until_misplaced(const swAst *it) {
+  diag_error(sema_action_until(it)->loc, "'until' ends a hold: it applies to clamp, slide, "
+             "slide_in_plane, velocity and angular_velocity, not to '%s'", it->text);
+}
+
+/* The time a hold lets its end go (seconds, known when the scene is built:
+ * a param may set it); VAL_ERROR when reported. */
+static swValue hold_until(swSema *S, swScope *scope, const swAst *until) {
+  swValue t = sema_eval(S, scope, until->kid[0]);
+  if (t.kind == VAL_WORD) {
+    sema_report_unknown(S, scope, t.word, t.loc, "name");
+    return val_error();
+  }
+  if (t.kind == VAL_SIGNAL) {
+    diag_error(t.loc, "'until' takes a time (until 0.5 s), not a signal of time");
+    return val_error();
+  }
+  t = sema_expect_value(S, t, 1, DIM_TIME, "'until'");
+  if (t.kind == VAL_ERROR || !sema_known_at_build(S, &t, "'until'")) return val_error();
+  if (val_is_const(&t) && !sema_positive(S, &t, "'until'", "s")) return val_error();
+  return t;
+}
+
+/* A slide's end is held by no other statement on its node (clamp, velocity
+ * or another slide): the two holds would contradict each other. */
+static int slide_alone(swSema *S, const swSceneAction *a, const char *word) {
+  for (int i = 0; i < S->scene->nact; i++) {
+    const swSceneAction *o = &S->scene->act[i];
+    if (!o->is_bc || o->rod != a->rod || o->index != a->index || o->kind == SW_BC_OMEGA) continue;
+    if (o->kind != SW_BC_SLIDE_LINE && o->kind != SW_BC_SLIDE_PLANE && a->kind != SW_BC_SLIDE_LINE &&
+        a->kind != SW_BC_SLIDE_PLANE)
+      continue;
+    char first[300];
+    diag_error(a->loc, "'%s' holds an end that another statement already holds (at %s): a "
+               "slide keeps the end node on a line or plane, and cannot share it with clamp, "
+               "velocity or another slide", word, diag_where_from(o->loc, a->loc, first, sizeof first));
+    return 0;
+  }
+  return 1;
+}
+
 void sema_action(swSema *S, swScope *scope, const swAst *it) {
   const char *word = it->text;
   int k;
@@ -464,12 +512,18 @@ void sema_action(swSema *S, swScope *scope, const swAst *it) {
      * misspelt one is only an unknown statement here */
     static const char *const all[] = {"clamp", "gravity", "force", "torque", "velocity",
                                       "angular_velocity", "activate", "passive", "maximize",
-                                      "minimize", "penalty"};
+                                      "minimize", "penalty", "slide", "slide_in_plane"};
     const char *near = diag_suggest(word, all, (int)(sizeof all / sizeof all[0]));
     if (near) diag_error(wloc, "unknown statement '%s'; did you mean '%s'?", word, near);
     else
-      diag_error(wloc, "unknown statement '%s' (expected clamp, gravity, force, torque, "
-                 "velocity, angular_velocity, activate or passive)", word);
+      diag_error(wloc, "unknown statement '%s' (expected clamp, slide, slide_in_plane, gravity, "
+                 "force, torque, velocity, angular_velocity, activate or passive)", word);
+    return;
+  }
+  const int is_hold = k == 0 || k == 4 || k == 5 || k == 8 || k == 9;
+  const swAst *until = sema_action_until(it);
+  if (until && !is_hold) {
+    sema_until_misplaced(it);
     return;
   }
   if (k == 6) {
@@ -480,7 +534,7 @@ void sema_action(swSema *S, swScope *scope, const swAst *it) {
     sema_passive(S, scope, it);
     return;
   }
-  int has_value = it->nkid == 2;
+  int has_value = it->nkid - (until != NULL) == 2;
   if (k == 0 || k == 1) {
     if (has_value) {
       diag_error(it->kid[1]->loc, "'%s' takes no '= value'", word);
@@ -543,7 +597,7 @@ void sema_action(swSema *S, swScope *scope, const swAst *it) {
   act.loc = it->loc;
   act.rod = p.rod;
   int n = S->scene->rod[p.rod].nelem;
-  if (k == 0 || k == 4 || k == 5) {   /* boundary conditions act on a rod's end */
+  if (is_hold) {   /* boundary conditions act on a rod's end */
     if (p.node != 0 && p.node != n) {
       diag_error(p.loc, "'%s' applies to the start or end of a rod, not to a point inside it",
                  word);
@@ -551,14 +605,48 @@ void sema_action(swSema *S, swScope *scope, const swAst *it) {
     }
     act.is_bc = 1;
     act.index = p.node == 0 ? 0 : 1;
-    act.kind = k == 0 ? SW_BC_CLAMP : k == 4 ? SW_BC_VELOCITY : SW_BC_OMEGA;
+    act.kind = k == 0 ? SW_BC_CLAMP : k == 4 ? SW_BC_VELOCITY : k == 5 ? SW_BC_OMEGA
+             : k == 8 ? SW_BC_SLIDE_LINE : SW_BC_SLIDE_PLANE;
+    act.until = until ? hold_until(S, scope, until) : val_error();
+    if (until && act.until.kind == VAL_ERROR) return;
+    const swSceneRod *rod = &S->scene->rod[p.rod];
+    if ((until || k >= 8) && (rod->rigid || rod->implicit)) {
+      diag_error(it->loc, "%s on the %s rod '%s' is not supported: a %s rod keeps its holds "
+                 "whole for the whole run (clamp it, or join it with a joint)",
+                 k >= 8 ? "a slide" : "a hold that ends ('until')", rod->rigid ? "rigid" : "implicit",
+                 rod->name, rod->rigid ? "rigid" : "implicit");
+      return;
+    }
     if (k == 0) {
       act.vec = sema_vec3(S, 0, 0, 0, DIM_NONE, it->loc);
       add_action(S, &act);
       return;
     }
+    if (k >= 8) { /* slide POINT = DIRECTION;  slide_in_plane POINT = NORMAL; */
+      swValue dir = sema_eval(S, scope, it->kid[1]);
+      if (dir.kind == VAL_WORD) {
+        sema_report_unknown(S, scope, dir.word, dir.loc, "name");
+        return;
+      }
+      if (dir.kind == VAL_SIGNAL) {
+        diag_error(dir.loc, "'%s' takes a fixed direction, not a signal of time", word);
+        return;
+      }
+      char dir_what[64];
+      snprintf(dir_what, sizeof dir_what, "'%s' (%s)", word, k == 8 ? "the line's direction" : "the plane's normal");
+      act.vec = sema_expect_value(S, dir, 3, DIM_NONE, dir_what);
+      if (act.vec.kind == VAL_ERROR || !sema_known_at_build(S, &act.vec, dir_what)) return;
+      if (val_is_const(&act.vec) && act.vec.v[0] == 0 && act.vec.v[1] == 0 && act.vec.v[2] == 0) {
+        diag_error(dir.loc, "%s must not be (0, 0, 0)", dir_what);
+        return;
+      }
+      act.sig = NULL;
+      if (slide_alone(S, &act, word)) add_action(S, &act);
+      return;
+    }
     swDim want = k == 4 ? dim_make(0, 1, -1, 0) : dim_make(0, 0, -1, 1);
-    if (action_value(S, scope, it->kid[1], want, k == 4 ? "velocity" : "angular_velocity", &act))
+    if (action_value(S, scope, it->kid[1], want, k == 4 ? "velocity" : "angular_velocity", &act) &&
+        slide_alone(S, &act, word))
       add_action(S, &act);
     return;
   }

@@ -104,7 +104,7 @@ static void sinew_yyerror(swLoc *loc, yyscan_t scanner, struct swLexState *st, c
 %token IMPORT "'import'" PARAM "'param'" LET "'let'" JOINT "'joint'"
 %token COMPONENT "'component'" USE "'use'" SIMULATE "'simulate'"
 %token OUTPUT "'output'" EVERY "'every'" EXPECT "'expect'"
-%token AND "'and'" OR "'or'" LE "'<='" GE "'>='" IN "'in'" FOR "'for'"
+%token AND "'and'" OR "'or'" LE "'<='" GE "'>='" IN "'in'" FOR "'for'" UNTIL "'until'"
 
 %left OR
 %left AND
@@ -194,6 +194,15 @@ item
   | IDENT expr ';'           { $$ = node(st, AST_ACTION, @1); $$->text = $1; push(st, $$, $2); }
   | IDENT expr '=' expr ';'  { $$ = node(st, AST_ACTION, @1); $$->text = $1;
                                push(st, $$, $2); push(st, $$, $4); }
+  /* ACTION operand [= value] until T;     clamp rope.start until 0.5 s;
+     the time goes last, as an argument named "until" (sema_stmt.c) */
+  | IDENT expr UNTIL expr ';'
+                             { $$ = node(st, AST_ACTION, @1); $$->text = $1; push(st, $$, $2);
+                               push(st, $$, push(st, named(st, AST_ARG, @3, "until"), $4)); }
+  | IDENT expr '=' expr UNTIL expr ';'
+                             { $$ = node(st, AST_ACTION, @1); $$->text = $1;
+                               push(st, $$, $2); push(st, $$, $4);
+                               push(st, $$, push(st, named(st, AST_ARG, @5, "until"), $6)); }
   /* simulate { fields } */
   | SIMULATE body            { $$ = $2; $$->kind = AST_SIMULATE; $$->loc = @1; }
   /* output "file.h5" [every T] [{ selections }] */

@@ -22,6 +22,24 @@
  * the kick is F_c . (v_old + v_new)/2 h, the same midpoint rule the
  * integrator uses for the loads.  Positions of a clamped end never move
  * because its velocities are zero after every kick.
+ *
+ * Partial holds.  A slide keeps the end node on a line (free along the unit
+ * direction a) or on a plane (free across its unit normal n) through its
+ * start position: the kick's free velocity is projected onto the free
+ * subspace, v_new = (v_free . a) a, or v_new = v_free - (v_free . n) n.  The
+ * constraint force m (v_new - v_free) / h is then normal to the free
+ * subspace, so the hold does no work along it and takes no share of a load
+ * along it: a dead load along the line reaches the rod whole.  The node's
+ * positions stay on the line or plane (each drift moves it by h v_new).
+ * The end element's frame is free (hold it with an angular velocity).
+ *
+ * Release.  A condition with `until` > 0 acts on the kicks whose loads are
+ * taken before that time; at the first kick at or after it (sw_bc_release)
+ * it lets its end go for good (d->bc_free[k] = 1, state that a restart
+ * keeps).  The end keeps the velocity the hold left it with: nothing jumps.
+ * A clamp's domain (below) goes with it; the elastic energy it stored is
+ * booked as work the clamp takes back, W -= U_domain, so that the energy
+ * diagnostic K + U - W stays level across the release.
  */
 #include <string.h>
 #include "sinew.h"
@@ -53,18 +71,61 @@ static int bc_target(const swModel *m, const swData *d, const swBCDesc *b, doubl
     sw_mat_vec(welem, Q, wl);
     return 2;
   }
+  case SW_BC_SLIDE_LINE:
+  case SW_BC_SLIDE_PLANE:
+    return 4; /* the node's free velocity projected (slide_velocity) */
   }
   return 0;
 }
 
+/* The velocity a slide leaves its node with: v projected onto the line along
+ * the unit a, or onto the plane across the unit normal a (the header). */
+static void slide_velocity(const swBCDesc *b, const double v[3], double out[3]) {
+  const double along = sw_v3_dot(v, b->vec);
+  for (int c = 0; c < 3; c++)
+    out[c] = b->kind == SW_BC_SLIDE_LINE ? along * b->vec[c] : v[c] - along * b->vec[c];
+}
+
+/* Whether condition k still holds its end. */
+static inline int bc_holds(const swData *d, int k) { return d->bc_free[k] == 0.0; }
+
+/* Whether a condition lets its end go at a kick whose loads are those of
+ * time t (the header, "Release"). */
+static inline int bc_due(const swModel *m, const swData *d, int k, double t) {
+  return m->bc[k].until > 0 && bc_holds(d, k) && t >= m->bc[k].until;
+}
+
+int sw_bc_release_due(const swModel *m, const swData *d, double t) {
+  for (int k = 0; k < m->nbc; k++)
+    if (bc_due(m, d, k, t)) return 1;
+  return 0;
+}
+
+static double clamp_domain_energy(const swModel *m, const swData *d, const swBCDesc *b);
+
+void sw_bc_release(const swModel *m, swData *d, double t) {
+  for (int k = 0; k < m->nbc; k++) {
+    if (!bc_due(m, d, k, t)) continue;
+    if (m->bc[k].kind == SW_BC_CLAMP && !sw_rod_is_rigid(m, m->bc[k].rod))
+      d->work -= clamp_domain_energy(m, d, &m->bc[k]); /* the domain's energy, taken back */
+    d->bc_free[k] = 1;
+  }
+}
+
 void sw_apply_bc_velocity(const swModel *m, swData *d, double t) {
   for (int k = 0; k < m->nbc; k++) {
-    if (sw_rod_is_rigid(m, m->bc[k].rod)) continue; /* a clamp holds the body (rigid.c) */
+    if (sw_rod_is_rigid(m, m->bc[k].rod) || !bc_holds(d, k)) continue; /* a clamp holds the body (rigid.c) */
     int node, elem;
     double vn[3], we[3];
     int what = bc_target(m, d, &m->bc[k], t, &node, &elem, vn, we);
     if (what & 1) sw_set3(m, d->v, node, vn);
     if (what & 2) sw_set3(m, d->omega, elem, we);
+    if (what & 4) {
+      double v[3];
+      for (int c = 0; c < 3; c++) v[c] = SW_AT(m, d->v, node, c);
+      slide_velocity(&m->bc[k], v, vn);
+      sw_set3(m, d->v, node, vn);
+    }
   }
 }
 
@@ -95,9 +156,19 @@ void sw_bc_kick(const swModel *m, swData *d, double h, double t, int lo, int hi,
     const int end_node = sw_bc_node(m, b);
     if (end_node >= hi && m->bc_slot_order) break;
     if (end_node < lo || end_node >= hi) continue; /* before the signal is evaluated */
+    if (!bc_holds(d, k)) { /* let go: the end's free kick stands */
+      work[k] = 0;
+      continue;
+    }
     int node, elem;
     double vn[3], we[3];
     int what = bc_target(m, d, b, t, &node, &elem, vn, we);
+    if (what & 4) { /* a slide: the free velocity, projected */
+      double v[3];
+      for (int c = 0; c < 3; c++) v[c] = SW_AT(m, d->v, node, c);
+      slide_velocity(b, v, vn);
+      what = 1;
+    }
     /* The kick booked the external load's work with the free velocity,
      * h f . (v_old + v_free) / 2; rebook it with the prescribed one and add
      * the constraint force's, h f_c = m (v_new - v_free). */
@@ -158,7 +229,7 @@ void sw_bc_loads(const swModel *m, swData *d, int lo, int hi, int so) {
   for (int k = first_bc(m, lo); k < m->nbc; k++) { /* the end element is the node's slot or the one before */
     const swBCDesc *b = &m->bc[k];
     if (sw_bc_node(m, b) > hi && m->bc_slot_order) break;
-    if (b->kind != SW_BC_CLAMP) continue;
+    if (b->kind != SW_BC_CLAMP || !bc_holds(d, k)) continue;
     const int end = m->elem_adr[b->rod] + (b->end ? m->rod_nelem[b->rod] - 1 : 0);
     if (end < lo || end >= hi) continue;
     double kappa[3], c[3], h[3], D;
@@ -178,14 +249,17 @@ void sw_bc_loads(const swModel *m, swData *d, int lo, int hi, int so) {
   }
 }
 
+/* The elastic energy of a clamp's domain, 1/2 D^ B^ kappa . kappa. */
+static double clamp_domain_energy(const swModel *m, const swData *d, const swBCDesc *b) {
+  double kappa[3], c[3], D, u = 0;
+  int e = clamp_domain(m, d, b, kappa, c, &D);
+  for (int i = 0; i < 3; i++) u += 0.5 * D * SW_AT(m, sw_swell_clamp_bend(m, d), e, i) * kappa[i] * kappa[i];
+  return u;
+}
+
 double sw_bc_energy(const swModel *m, const swData *d) {
   double u = 0;
-  for (int k = 0; k < m->nbc; k++) {
-    const swBCDesc *b = &m->bc[k];
-    if (b->kind != SW_BC_CLAMP) continue;
-    double kappa[3], c[3], D;
-    int e = clamp_domain(m, d, b, kappa, c, &D);
-    for (int i = 0; i < 3; i++) u += 0.5 * D * SW_AT(m, sw_swell_clamp_bend(m, d), e, i) * kappa[i] * kappa[i];
-  }
+  for (int k = 0; k < m->nbc; k++)
+    if (m->bc[k].kind == SW_BC_CLAMP && bc_holds(d, k)) u += clamp_domain_energy(m, d, &m->bc[k]);
   return u;
 }

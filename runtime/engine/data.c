@@ -22,7 +22,7 @@ void sw_data_free(swData *d) {
   free(d->sigma); free(d->stress); free(d->vor_dilatation); free(d->kappa); free(d->couple);
   free(d->force); free(d->torque); free(d->ext_force); free(d->ext_torque);
   free(d->scratch_f); free(d->scratch_h); free(d->scratch_flag); free(d->scratch_phi);
-  free(d->chunk_sum); free(d->bc_work); free(d->joint_scratch); free(d->team);
+  free(d->chunk_sum); free(d->bc_work); free(d->bc_free); free(d->joint_scratch); free(d->team);
   free(d->joint_force); free(d->joint_angle); free(d->joint_limit_torque);
   free(d->kinematic_force); free(d->kinematic_turn); free(d->kinematic_delta);
   free(d->fil_activation); free(d->fil_stretch); free(d->fil_rate); free(d->fil_tension); free(d->fil_sys);
@@ -53,6 +53,7 @@ swData *sw_data_new(const swModel *m) {
   d->scratch_flag = sw_palloc(m, 1); d->scratch_phi = sw_palloc(m, 3);
   d->chunk_sum = sw_dalloc((size_t)sw_nchunk(m, m->stride));
   d->bc_work = sw_dalloc((size_t)m->nbc);
+  d->bc_free = sw_dalloc((size_t)m->nbc);
   d->joint_scratch = sw_dalloc(SW_JOINT_ROW * (size_t)m->njoint);
   d->threads = 1;
   d->team_size = 1;
@@ -74,7 +75,7 @@ swData *sw_data_new(const swModel *m) {
       !d->sigma || !d->stress || !d->vor_dilatation || !d->kappa ||
       !d->couple || !d->force || !d->torque || !d->ext_force || !d->ext_torque ||
       !d->scratch_f || !d->scratch_h || !d->scratch_flag || !d->scratch_phi ||
-      !d->chunk_sum || !d->bc_work || !d->joint_scratch || !d->team || !d->joint_force ||
+      !d->chunk_sum || !d->bc_work || !d->bc_free || !d->joint_scratch || !d->team || !d->joint_force ||
       !d->joint_angle || !d->joint_limit_torque || !d->kinematic_force || !d->kinematic_turn || !d->kinematic_delta || !d->fil_activation || !d->fil_stretch ||
       !d->fil_rate || !d->fil_tension || !d->fil_sys || !d->ring_row || !d->hold) {
     sw_data_free(d);
@@ -117,6 +118,7 @@ void sw_reset(const swModel *m, swData *d) {
   sw_probe_reset(m, d);
   d->contact_pairs = 0; /* contact.c's figures are those of the last evaluation */
   d->contact_max_overlap = 0;
+  if (m->nbc) memset(d->bc_free, 0, sizeof *d->bc_free * (size_t)m->nbc); /* every hold holds */
   sw_apply_bc_velocity(m, d, 0.0);
   sw_internal_loads(m, d); /* strains of the initial state */
   if (m->nmuscle) {

@@ -352,6 +352,11 @@ static void drift(const swModel *m, swData *d, double h) {
  * (position Verlet's v_{n+1} is the velocity at t_{n+1} = t_kick + h/2). */
 static void kick(const swModel *m, swData *d, double h, double span) {
   const int n = m->nslot_elastic;
+  if (m->nbc && sw_bc_release_due(m, d, d->time)) { /* a hold lets go (boundary.c); rare */
+    sw_team_barrier(d);
+    if (sw_team_leader(d)) sw_bc_release(m, d, d->time);
+    sw_team_barrier(d);
+  }
   compute_loads(m, d, h);
   if (m->nimplicit) sw_implicit_kick(m, d, h); /* the implicit rods' loads (rod_implicit.c) */
   if (m->nrigid || m->nrigid_block) { /* the bodies' loads, and the implicit joints'
@@ -446,6 +451,7 @@ static inline __attribute__((always_inline)) void sweep_slots(const swModel *m, 
 }
 
 static void sweep(const swModel *m, swData *d, double h, double span, double hd) {
+  if (m->nbc && sw_bc_release_due(m, d, d->time)) sw_bc_release(m, d, d->time); /* one thread */
   if (m->has_exact_kick)
     sweep_slots(m, d, h, span, hd, 1);
   else

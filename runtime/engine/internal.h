@@ -132,6 +132,10 @@ void sw_external_loads_slots(const swModel *m, swData *d, int lo, int hi, int so
  * its end (slots [lo, hi)); the kick's work of condition k into work[k]. */
 void sw_bc_kick(const swModel *m, swData *d, double h, double t, int lo, int hi, int so, double *work);
 void sw_bc_loads(const swModel *m, swData *d, int lo, int hi, int so);
+/* Whether a condition lets its end go at a kick whose loads are those of
+ * time t, and the release itself (on one thread: it books the work). */
+int sw_bc_release_due(const swModel *m, const swData *d, double t);
+void sw_bc_release(const swModel *m, swData *d, double t);
 
 /* The dilatation that divides element e's rotational inertia: J^ / e on
  * Gazzola's rods, J^ alone on variational ones (rod.c, Simo's kinetic

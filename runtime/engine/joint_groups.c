@@ -44,10 +44,12 @@ static int elastic_attachable(const swModel *m, int rod, int node, int elem) {
   return m->kick_exact[node] == 0.0 && m->kick_exact[elem] == 0.0;
 }
 
-/* The kind of the boundary condition on node `node` of rod `rod`, or -1. */
+/* The kind of the boundary condition on node `node` of rod `rod`, or -1.  A
+ * clamp that lets go (until) is a prescribed motion like a velocity. */
 static int bc_on_node(const swModel *m, int rod, int node) {
   for (int k = 0; k < m->nbc; k++)
-    if (m->bc[k].rod == rod && sw_bc_node(m, &m->bc[k]) == node) return (int)m->bc[k].kind;
+    if (m->bc[k].rod == rod && sw_bc_node(m, &m->bc[k]) == node)
+      return m->bc[k].kind == SW_BC_CLAMP && m->bc[k].until > 0 ? SW_BC_VELOCITY : (int)m->bc[k].kind;
   return -1;
 }
 

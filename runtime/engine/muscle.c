@@ -391,7 +391,7 @@ static int filament_implicit_bits(const swModel *m, int r) {
   int bits = SW_FIL_IMPLICIT;
   for (int k = 0; k < m->nbc; k++) {
     if (m->bc[k].rod != r || m->bc[k].kind == SW_BC_OMEGA) continue; /* OMEGA: frames only */
-    if (m->bc[k].kind != SW_BC_CLAMP) return 0;                      /* a prescribed dv */
+    if (m->bc[k].kind != SW_BC_CLAMP || m->bc[k].until > 0) return 0; /* a prescribed dv */
     bits |= m->bc[k].end ? SW_FIL_HELD_END : SW_FIL_HELD_START;
   }
   for (int i = m->node_adr[r]; i <= m->node_adr[r] + m->rod_nelem[r]; i++)

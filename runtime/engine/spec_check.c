@@ -133,15 +133,26 @@ int sw_check_loads_bcs(const swSpec *s, char *err, size_t errlen) {
     if (b->end != 0 && b->end != 1)
       return sw_fail(err, errlen, "boundary condition %d on rod '%s': end must be 0 (start) or 1 (end)",
                   k, nm);
-    if (b->kind < SW_BC_CLAMP || b->kind > SW_BC_OMEGA)
+    if (b->kind < SW_BC_CLAMP || b->kind > SW_BC_SLIDE_PLANE)
       return sw_fail(err, errlen, "boundary condition %d on rod '%s': unknown kind %d", k, nm, (int)b->kind);
     if (!isfinite(b->vec[0]) || !isfinite(b->vec[1]) || !isfinite(b->vec[2]))
       return sw_fail(err, errlen, "boundary condition %d on rod '%s': vector is not finite", k, nm);
     if (!check_signal(&b->signal, err, errlen, "boundary condition", k, nm)) return 0;
-    if (s->rod[b->rod].rigid && b->kind != SW_BC_CLAMP)
+    const int slide = b->kind == SW_BC_SLIDE_LINE || b->kind == SW_BC_SLIDE_PLANE;
+    if (s->rod[b->rod].rigid && b->kind != SW_BC_CLAMP && !slide)
       return sw_fail(err, errlen, "boundary condition %d on rod '%s': a prescribed %s is not "
                   "supported on a rigid rod (clamp it, or hold it with a joint)", k, nm,
                   b->kind == SW_BC_VELOCITY ? "velocity" : "angular velocity");
+    if (!isfinite(b->until) || b->until < 0)
+      return sw_fail(err, errlen, "boundary condition %d on rod '%s': until must be a time >= 0 "
+                  "(0: for ever), got %g", k, nm, b->until);
+    if (slide && !(sw_v3_norm(b->vec) > 0))
+      return sw_fail(err, errlen, "boundary condition %d on rod '%s': a slide needs a direction, "
+                  "not (0, 0, 0)", k, nm);
+    if ((slide || b->until > 0) && (s->rod[b->rod].rigid || s->rod[b->rod].implicit))
+      return sw_fail(err, errlen, "boundary condition %d on rod '%s': a %s is not supported on a "
+                  "%s rod (boundary.c)", k, nm, slide ? "slide" : "hold released with until",
+                  s->rod[b->rod].rigid ? "rigid" : "implicit");
   }
   return 1;
 }

@@ -372,6 +372,9 @@ typedef struct {
   /* one partial sum per chunk (the kick's work), added in chunk order, and
    * the work of each boundary condition in a kick (nbc) */
   double *chunk_sum, *bc_work;
+  /* 1 once boundary condition k has let its end go (its `until`), else 0
+   * (nbc): state, saved by --restart */
+  double *bc_free;
   int kick_pending;          /* integrate.c: a kick whose work and rigid part */
   double kick_h;             /* the next drift's leader adds (its h)          */
   int held;                  /* integrate.c: the last step's trailing half

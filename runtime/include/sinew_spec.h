@@ -148,14 +148,20 @@ typedef struct {
 typedef enum {
   SW_BC_CLAMP = 0,     /* end node and end element held in place           */
   SW_BC_VELOCITY = 1,  /* end node velocity = vec * signal(t), lab frame   */
-  SW_BC_OMEGA = 2      /* end element angular velocity = vec*signal, lab  */
+  SW_BC_OMEGA = 2,     /* end element angular velocity = vec*signal, lab  */
+  SW_BC_SLIDE_LINE = 3,  /* end node kept on the line through its start
+                            position along vec, free along it; frame free */
+  SW_BC_SLIDE_PLANE = 4  /* end node kept on the plane through its start
+                            position normal to vec, free in it; frame free */
 } swBCKind;
 typedef struct {
   swBCKind kind;
   int rod;
   int end;           /* 0 = start (node 0, element 0), 1 = end             */
-  double vec[3];
+  double vec[3];     /* SLIDE_*: the direction (any length but zero)       */
   swSignal signal;
+  double until;      /* s: the hold acts on the kicks before this time and
+                        then lets the end go (boundary.c); 0 = for ever    */
 } swBCDesc;
 
 /* A rod's description for the output (owned copies of swRodDesc's kind,

@@ -624,7 +624,7 @@ void sw_cli_print_info(const swCli *c, const swModel *m, double stable, const ch
     (void)area;
   }
   print_environments(m);
-  int nforce = 0, ntorque = 0, nclamp = 0, nvel = 0, nomega = 0;
+  int nforce = 0, ntorque = 0, nclamp = 0, nvel = 0, nomega = 0, nslide = 0, nuntil = 0;
   for (int k = 0; k < m->nload; k++) {
     if (m->load[k].kind == SW_LOAD_TORQUE) ntorque++;
     else nforce++;
@@ -634,12 +634,18 @@ void sw_cli_print_info(const swCli *c, const swModel *m, double stable, const ch
     case SW_BC_CLAMP: nclamp++; break;
     case SW_BC_VELOCITY: nvel++; break;
     case SW_BC_OMEGA: nomega++; break;
+    case SW_BC_SLIDE_LINE:
+    case SW_BC_SLIDE_PLANE: nslide++; break;
     }
+  for (int k = 0; k < m->nbc; k++) nuntil += m->bc[k].until > 0;
   printf("loads: %d (%d point force%s, %d point couple%s)\n", m->nload, nforce,
          nforce == 1 ? "" : "s", ntorque, ntorque == 1 ? "" : "s");
   printf("boundary conditions: %d (%d clamped end%s, %d prescribed velocit%s, "
-         "%d prescribed angular velocit%s)\n", m->nbc, nclamp, nclamp == 1 ? "" : "s", nvel,
+         "%d prescribed angular velocit%s", m->nbc, nclamp, nclamp == 1 ? "" : "s", nvel,
          nvel == 1 ? "y" : "ies", nomega, nomega == 1 ? "y" : "ies");
+  if (nslide) printf(", %d sliding end%s", nslide, nslide == 1 ? "" : "s");
+  if (nuntil) printf("; %d released at a time", nuntil);
+  printf(")\n");
   if (m->has_gravity)
     printf("gravity: (%g, %g, %g) m/s^2%s\n", m->gravity[0], m->gravity[1], m->gravity[2],
            m->gravity_signal.kind != SW_SIG_CONST || m->gravity_signal.a != 1.0

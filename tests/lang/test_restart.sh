@@ -11,7 +11,8 @@
 #   errors (exit 2); a run of implicit rods, whose kicks keep their
 #   factorisations over several steps (rod_implicit.c), continued from its
 #   file, gives the uninterrupted run's datasets to the bit; the file's
-#   integrator is taken when none is given, and another one is refused.
+#   integrator is taken when none is given, and another one is refused; a
+#   run whose holds let go (until) continued from before and after a release.
 . "$(dirname "$0")/tap.sh"
 cd "$ROOT" || exit 1
 SC=$SINEWC_CHECK
@@ -105,5 +106,22 @@ diag <run
 ok $rc "a run of 0.13 s continued to 0.3 s, its integrator taken from the file (exit $rc)"
 h5diff snake_part.h5 snake_full.h5 >diff 2>&1; ok $? "every dataset equals the uninterrupted run's (h5diff)"
 diag <diff
+
+# 5. holds let go mid-way (examples/constructs/holds.sinew: the rope's clamp
+# at 10 ms, the shaken start's velocity at 5 ms): whether a hold has let go
+# is part of the checkpoint, continued before and after the release
+cd "$ROOT" || exit 1
+"$SC" examples/constructs/holds.sinew -o "$TMP/holds" 2>"$TMP/err"; ok $? "the holds construct compiles"
+diag <"$TMP/err"
+cd "$TMP" || exit 1
+./holds --out holds_full.h5 --quiet 2>err; ok $? "an uninterrupted run of 20 ms, the holds let go at 5 and 10 ms"
+for cut in 7ms 12ms; do
+  ./holds --duration $cut --out holds_$cut.h5 --quiet 2>err
+  ./holds --restart holds_$cut.h5 --quiet >run 2>&1; rc=$?
+  ok $rc "a run of $cut continued to 20 ms, its expectations passing (exit $rc)"
+  diag <run
+  h5diff holds_$cut.h5 holds_full.h5 >diff 2>&1; ok $? "every dataset equals the uninterrupted run's (h5diff, cut at $cut)"
+  diag <diff
+done
 
 done_testing
