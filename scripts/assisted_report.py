@@ -43,20 +43,18 @@ def load(path):
             run["force"] = np.linalg.norm(f["joints/am[1].attach/force"][:], axis=1)
             x = f["rods/am[1].coil/position"][:]
             run["length"] = np.linalg.norm(x[:, -1] - x[:, 0], axis=1)
-            # the surface gap between neighbouring turns (nodes one turn
-            # apart: 9 turns), against which the coil's self-contact acts
-            per_turn = (x.shape[1] - 1) // 9
-            run["x"] = x
-            run["per_turn"] = per_turn
             if "rods/am[1].coil/curvature" in f:
                 run["k3"] = f["rods/am[1].coil/curvature"][:, :, 2].mean(axis=1)
             run["rate"] = rate = float(dict(zip([n.decode() if isinstance(n, bytes) else n
                                           for n in f["params"]["name"]],
                                          f["params"]["value"]))["release_rate"])
-            radius = R0 * (1 + rate * t)
+            # the surface gap between neighbouring turns (nodes one turn
+            # apart: 9 turns), against which the coil's self-contact acts;
+            # the model's radius ramps over the 0.7 s of the study
+            per_turn = (x.shape[1] - 1) // 9
+            radius = R0 * (1 + rate * np.minimum(t, 0.7))
             d = np.linalg.norm(x[:, per_turn:] - x[:, :-per_turn], axis=2).min(axis=1)
             run["turn_gap"] = d - 2 * radius
-            del run["x"]
     return run
 
 
@@ -174,7 +172,7 @@ def plot(runs, out):
     if ams:
         r = runs[ams[-1]]
         t = r["t"]
-        radius = R0 * (1 + r["rate"] * t)
+        radius = R0 * (1 + r["rate"] * np.minimum(t, 0.7))
         a2 = ax[2].twinx()
         if "k3" in r:
             ax[2].plot(t, r["k3"], color="k", label="k3, mean over the coil")
