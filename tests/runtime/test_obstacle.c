@@ -380,6 +380,13 @@ static void test_validation(void **state) {
   o.stiffness = 0;
   expect_reject(&o, "obstacle 'post': stiffness must be > 0");
   o.stiffness = 1;
+  o.static_friction = -0.1;
+  expect_reject(&o, "obstacle 'post': friction coefficients must be >= 0");
+  o.static_friction = 0.2, o.kinetic_friction = 0.3;
+  expect_reject(&o, "obstacle 'post': kinetic friction 0.3 exceeds static friction 0.2");
+  o.kinetic_friction = 0.2, o.tangential_stiffness = -1;
+  expect_reject(&o, "obstacle 'post': tangential stiffness must be >= 0");
+  o.static_friction = o.kinetic_friction = o.tangential_stiffness = 0;
   o.carrier_rod = 0, o.carrier_node = 9;
   expect_reject(&o, "obstacle 'post': carrier node 9 out of range for rod 'rod' (nodes 0..4, -1 = last)");
 }
