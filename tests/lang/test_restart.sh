@@ -11,7 +11,9 @@
 #   errors (exit 2); a run of implicit rods, whose kicks keep their
 #   factorisations over several steps (rod_implicit.c), continued from its
 #   file, gives the uninterrupted run's datasets to the bit; the file's
-#   integrator is taken when none is given, and another one is refused.
+#   integrator is taken when none is given, and another one is refused; a
+#   rope held on a post by friction, whose anchors are state, continued
+#   likewise gives the uninterrupted run's datasets to the bit.
 . "$(dirname "$0")/tap.sh"
 cd "$ROOT" || exit 1
 SC=$SINEWC_CHECK
@@ -104,6 +106,19 @@ diag <run
 ./snake --restart snake_part.h5 --duration 0.3s --quiet >run 2>&1; rc=$?
 ok $rc "a run of 0.13 s continued to 0.3 s, its integrator taken from the file (exit $rc)"
 h5diff snake_part.h5 snake_full.h5 >diff 2>&1; ok $? "every dataset equals the uninterrupted run's (h5diff)"
+diag <diff
+
+# 5. friction's anchors (obstacle.c) are state: a rope held on a post by
+#    stick-slip friction, continued part way through its settling
+cd "$ROOT" || exit 1
+"$SC" examples/constructs/friction.sinew -o "$TMP/fric" 2>"$TMP/err"; ok $? "the rope on a post with friction compiles"
+diag <"$TMP/err"
+cd "$TMP" || exit 1
+./fric --duration 30ms --out fric_full.h5 --quiet 2>err; ok $? "an uninterrupted run of 30 ms"
+./fric --duration 14ms --out fric_part.h5 --quiet 2>err; ok $? "a run of 14 ms, its anchors half stuck, half slipping"
+./fric --restart fric_part.h5 --duration 30ms --quiet >run 2>&1; rc=$?
+ok $rc "continued to 30 ms (exit $rc)"
+h5diff fric_part.h5 fric_full.h5 >diff 2>&1; ok $? "every dataset equals the uninterrupted run's (h5diff)"
 diag <diff
 
 done_testing
