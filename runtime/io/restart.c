@@ -7,8 +7,9 @@
  * velocities: the state proper (x, v, Q, omega, the dilatation, rigid bodies,
  * muscle activation), what a step carries over (a pending kick's work per
  * slot and per chunk, the unwrapped hinge angles, the probes' rings of
- * samples, the implicit joints' system, the obstacles' friction anchors) and the scratch arrays as well, since
- * copying them costs little and leaves nothing to argue about; the scalars
+ * samples, the implicit joints' system, the obstacles' friction anchors)
+ * and the scratch arrays as well, since copying them costs little and
+ * leaves nothing to argue about; the scalars
  * (time, step, work, the pending kick, whether the last step's half drift
  * is held) go as attributes, and so do the expectations' running minima and
  * maxima (expect.c).  Second, a checkpoint is taken of the held state at a
