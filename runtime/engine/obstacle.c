@@ -431,8 +431,9 @@ typedef struct {
 
 /* The tangential force on element (x0, x1; v0, v1) of the pair sum->key,
  * touching obstacle k at pose P at segment point s with normal n and normal
- * force N: F (lab), and the point pe = a0 + s0 (a1 - a0) where it acts; the pair's new anchor
- * row appended to sum->anchor.  Returns 0 without friction. */
+ * force N: F (lab), the point pe = a0 + s0 (a1 - a0) where it acts and s0;
+ * the pair's new anchor row appended to sum->anchor, its record (when kept)
+ * filled.  Returns 0 without friction. */
 static int friction_force(const swModel *m, int k, const swPose *P, const double x0[3],
                           const double x1[3], const double v0[3], const double v1[3], double s,
                           const double n[3], double N, Sums *sum, double F[3], double pe[3],
