@@ -179,6 +179,9 @@ int gen_obstacle_fields(const swSceneObstacle *o, swLowField *out) {
     F(half, 3, &o->half),
     F(stiffness, 1, &o->stiffness),
     F(damping, 1, &o->damping),
+    F(static_friction, 1, &o->static_friction),
+    F(kinetic_friction, 1, &o->kinetic_friction),
+    F(tangential_stiffness, 1, &o->tangential_stiffness),
   };
   return given(f, (int)(sizeof f / sizeof f[0]), out);
 }

@@ -358,6 +358,8 @@ typedef struct {
   swLoc loc;
   swObstacleShape shape;
   swValue centre, axis, normal, radius, length, half, stiffness, damping;
+  swValue static_friction, kinetic_friction, tangential_stiffness; /* friction: the
+                                     one `friction` sets both coefficients */
   int carrier_rod, carrier_node;  /* runtime rod id and node (-1: fixed)    */
   const char *carrier_name;
   swRodList rods;

@@ -15,7 +15,8 @@
  * rods of component instances are reached as members (arm.humerus), and an
  * instance or a loop stands for every rod and muscle it holds.
  * They are resolved to runtime rod ids here, since ids are fixed once a rod
- * or muscle is evaluated.  The terrain's height(x, y) is sema_terrain.c's.
+ * or muscle is evaluated.  The terrain's height(x, y) is sema_terrain.c's,
+ * the obstacle sema_obstacle.c's (with this file's field helpers).
  * Physics: runtime/include/sinew.h "environments" and docs/physics.md.
  */
 #include <math.h>
@@ -36,14 +37,12 @@ int sema_is_env_kind(const char *kind) {
 }
 
 /* dimensions of the environments' fields */
-static const swDim DIM_STIFFNESS = {{1, 0, -2, 0}};   /* N/m  */
-static const swDim DIM_DAMPING = {{1, 0, -1, 0}};     /* kg/s */
 static const swDim DIM_SPEED = {{0, 1, -1, 0}};       /* m/s  */
 static const swDim DIM_VISCOSITY = {{1, -1, -1, 0}};  /* Pa s */
 static const swDim DIM_TORQUE = {{1, 2, -2, 0}};      /* N m  */
 
 /* Grows a scene array by one and returns the new slot (zeroed). */
-static void *append(void **arr, int *n, int *cap, size_t item) {
+void *sema_env_append(void **arr, int *n, int *cap, size_t item) {
   if (*n == *cap) {
     *cap = *cap ? 2 * *cap : 4;
     void *p = realloc(*arr, (size_t)*cap * item);
@@ -218,7 +217,7 @@ static swValue friction(swSema *S, swScope *sc, const swFields *f, const char *k
 
 /* An optional field of dimension `want` (n components) that must be >= 0
  * (pos = 0) or > 0 (pos = 1). */
-static swValue bounded(swSema *S, swScope *sc, const swFields *f, const char *key, int n,
+swValue sema_env_bounded(swSema *S, swScope *sc, const swFields *f, const char *key, int n,
                        swDim want, int pos) {
   if (!sema_field(f, key)) return val_error();
   swValue v = sema_field_value(S, sc, f, key, n, want);
@@ -236,7 +235,7 @@ static swValue bounded(swSema *S, swScope *sc, const swFields *f, const char *ke
   return v;
 }
 
-static swValue nonzero_vector(swSema *S, swScope *sc, const swFields *f, const char *key,
+swValue sema_env_nonzero_vector(swSema *S, swScope *sc, const swFields *f, const char *key,
                               swDim want) {
   if (!sema_field(f, key)) return val_error();
   swValue v = sema_field_value(S, sc, f, key, 3, want);
@@ -247,7 +246,7 @@ static swValue nonzero_vector(swSema *S, swScope *sc, const swFields *f, const c
   return v;
 }
 
-static int rods_field(swSema *S, swScope *sc, const swFields *f, const char *what,
+int sema_env_rods_field(swSema *S, swScope *sc, const swFields *f, const char *what,
                       swRodList *out) {
   memset(out, 0, sizeof *out);
   const swAst *e = sema_field(f, "rods");
@@ -287,7 +286,7 @@ static void ground(swSema *S, swScope *sc, const swAst *it, const char *name, co
   } else {
     g.origin = sema_field(&f, "origin") ? sema_field_value(S, sc, &f, "origin", 3, DIM_LENGTH)
                : val_error();
-    g.normal = nonzero_vector(S, sc, &f, "normal", DIM_NONE);
+    g.normal = sema_env_nonzero_vector(S, sc, &f, "normal", DIM_NONE);
     ok &= !sema_field(&f, "origin") || g.origin.kind != VAL_ERROR;
     ok &= !sema_field(&f, "normal") || g.normal.kind != VAL_ERROR;
   }
@@ -296,12 +295,12 @@ static void ground(swSema *S, swScope *sc, const swAst *it, const char *name, co
                "stiffness = 100 N/m;)", what);
     ok = 0;
   }
-  g.stiffness = bounded(S, sc, &f, "stiffness", 1, DIM_STIFFNESS, 1);
-  g.damping = bounded(S, sc, &f, "damping", 1, DIM_DAMPING, 0);
+  g.stiffness = sema_env_bounded(S, sc, &f, "stiffness", 1, DIM_STIFFNESS, 1);
+  g.damping = sema_env_bounded(S, sc, &f, "damping", 1, DIM_DAMPING, 0);
   g.mu_kinetic = friction(S, sc, &f, "mu_kinetic");
   g.mu_static = friction(S, sc, &f, "mu_static");
-  g.mu_rolling = bounded(S, sc, &f, "mu_rolling", 1, DIM_NONE, 0);
-  g.slip_velocity = bounded(S, sc, &f, "slip_velocity", 1, DIM_SPEED, 1);
+  g.mu_rolling = sema_env_bounded(S, sc, &f, "mu_rolling", 1, DIM_NONE, 0);
+  g.slip_velocity = sema_env_bounded(S, sc, &f, "slip_velocity", 1, DIM_SPEED, 1);
   const char *keys[] = {"stiffness", "damping", "mu_kinetic", "mu_static", "mu_rolling",
                         "slip_velocity"};
   const swValue *vals[] = {&g.stiffness, &g.damping, &g.mu_kinetic, &g.mu_static, &g.mu_rolling,
@@ -314,10 +313,10 @@ static void ground(swSema *S, swScope *sc, const swAst *it, const char *name, co
     if (t < 0) ok = 0;
     else g.contact_point = t;
   }
-  ok &= rods_field(S, sc, &f, what, &g.rods);
+  ok &= sema_env_rods_field(S, sc, &f, what, &g.rods);
   if (!ok) return;
   swScene *scn = S->scene;
-  *(swSceneGround *)append((void **)&scn->ground, &scn->nground, &scn->capground, sizeof g) = g;
+  *(swSceneGround *)sema_env_append((void **)&scn->ground, &scn->nground, &scn->capground, sizeof g) = g;
 }
 
 static const char *const fluid_keys[] = {"model", "viscosity", "density", "drag_coefficient",
@@ -349,10 +348,10 @@ static void fluid(swSema *S, swScope *sc, const swAst *it, const char *name, con
     else fl.area = !strcmp(w, "silhouette") ? SW_FLUID_SILHOUETTE
                    : !strcmp(w, "cross_section") ? SW_FLUID_CROSS_SECTION : SW_FLUID_BROADSIDE;
   }
-  fl.viscosity = bounded(S, sc, &f, "viscosity", 1, DIM_VISCOSITY, 1);
-  fl.density = bounded(S, sc, &f, "density", 1, DIM_DENSITY, 1);
-  fl.drag_coefficient = bounded(S, sc, &f, "drag_coefficient", 1, DIM_NONE, 1);
-  fl.body_length = bounded(S, sc, &f, "body_length", 1, DIM_LENGTH, 1);
+  fl.viscosity = sema_env_bounded(S, sc, &f, "viscosity", 1, DIM_VISCOSITY, 1);
+  fl.density = sema_env_bounded(S, sc, &f, "density", 1, DIM_DENSITY, 1);
+  fl.drag_coefficient = sema_env_bounded(S, sc, &f, "drag_coefficient", 1, DIM_NONE, 1);
+  fl.body_length = sema_env_bounded(S, sc, &f, "body_length", 1, DIM_LENGTH, 1);
   fl.velocity = sema_field(&f, "flow") ? sema_field_value(S, sc, &f, "flow", 3, DIM_SPEED)
                 : val_error();
   const char *keys[] = {"viscosity", "density", "drag_coefficient", "body_length", "flow"};
@@ -390,10 +389,10 @@ static void fluid(swSema *S, swScope *sc, const swAst *it, const char *name, con
   for (int i = 0; ok && fl.model == SW_FLUID_QUADRATIC && i < 2; i++)
     if ((unused = sema_field(&f, stokes_only[i])))
       diag_warning(unused->loc, "'%s' has no effect on quadratic drag", stokes_only[i]);
-  ok &= rods_field(S, sc, &f, what, &fl.rods);
+  ok &= sema_env_rods_field(S, sc, &f, what, &fl.rods);
   if (!ok) return;
   swScene *scn = S->scene;
-  *(swSceneFluid *)append((void **)&scn->fluid, &scn->nfluid, &scn->capfluid, sizeof fl) = fl;
+  *(swSceneFluid *)sema_env_append((void **)&scn->fluid, &scn->nfluid, &scn->capfluid, sizeof fl) = fl;
 }
 
 static const char *const contact_keys[] = {"rods", "stiffness", "damping", "self"};
@@ -410,8 +409,8 @@ static void contact(swSema *S, swScope *sc, const swAst *it, const char *name, c
     sema_missing(&f, it->loc, "%s needs a 'stiffness' (e.g. stiffness = 1e4 N/m;)", what);
     ok = 0;
   }
-  c.stiffness = bounded(S, sc, &f, "stiffness", 1, DIM_STIFFNESS, 1);
-  c.damping = bounded(S, sc, &f, "damping", 1, DIM_DAMPING, 0);
+  c.stiffness = sema_env_bounded(S, sc, &f, "stiffness", 1, DIM_STIFFNESS, 1);
+  c.damping = sema_env_bounded(S, sc, &f, "damping", 1, DIM_DAMPING, 0);
   if (sema_field(&f, "stiffness") && c.stiffness.kind == VAL_ERROR) ok = 0;
   if (sema_field(&f, "damping") && c.damping.kind == VAL_ERROR) ok = 0;
   const swAst *self = sema_field(&f, "self");
@@ -420,7 +419,7 @@ static void contact(swSema *S, swScope *sc, const swAst *it, const char *name, c
     if (t < 0) ok = 0;
     else c.self = t;
   }
-  if (!rods_field(S, sc, &f, what, &c.rods)) ok = 0;
+  if (!sema_env_rods_field(S, sc, &f, what, &c.rods)) ok = 0;
   else if (c.rods.n == 1 && !c.self && (!self || ok)) {
     diag_error(sema_field(&f, "rods")->loc, "%s lists one rod and no self-contact, so nothing "
                "can touch: list two rods or more, or add self = true;", what);
@@ -428,142 +427,8 @@ static void contact(swSema *S, swScope *sc, const swAst *it, const char *name, c
   }
   if (!ok) return;
   swScene *scn = S->scene;
-  *(swSceneContact *)append((void **)&scn->contact, &scn->ncontact, &scn->capcontact,
+  *(swSceneContact *)sema_env_append((void **)&scn->contact, &scn->ncontact, &scn->capcontact,
                             sizeof c) = c;
-}
-
-/* ---- obstacle NAME { shape = ...; } ---- */
-
-static const char *const obstacle_keys[] = {"shape", "centre", "axis", "normal", "radius", "length",
-                                            "size", "semi_axes", "stiffness", "damping",
-                                            "carried_by", "rods"};
-/* swObstacleShape's order */
-static const char *const obstacle_shapes[] = {"sphere", "capsule", "cylinder", "box", "ellipsoid"};
-
-/* The size fields each shape reads: radius, length, size, semi_axes. */
-static int shape_reads(swObstacleShape shape, const char *key) {
-  static const char *const reads[][2] = {{"radius", NULL}, {"radius", "length"}, {"radius", NULL},
-                                         {"size", NULL}, {"semi_axes", NULL}};
-  return (reads[shape][0] && !strcmp(key, reads[shape][0])) ||
-         (reads[shape][1] && !strcmp(key, reads[shape][1]));
-}
-
-/* v / 2, its C expressions too (a box's size to its half sizes). */
-static swValue halved(swSema *S, swValue v) {
-  swValue h = v;
-  h.v = ast_alloc(S->a, (size_t)v.n * sizeof *h.v);
-  for (int k = 0; k < v.n; k++) h.v[k] = 0.5 * v.v[k];
-  if (v.c) {
-    h.c = ast_alloc(S->a, (size_t)v.n * sizeof *h.c);
-    for (int k = 0; k < v.n; k++) {
-      if (!v.c[k]) {
-        h.c[k] = NULL;
-        continue;
-      }
-      size_t len = strlen(v.c[k]) + 16;
-      char *c = ast_alloc(S->a, len);
-      snprintf(c, len, "(0.5 * (%s))", v.c[k]);
-      h.c[k] = c;
-    }
-  }
-  return h;
-}
-
-static void obstacle(swSema *S, swScope *sc, const swAst *it, const char *name, const char *what) {
-  swFields f;
-  sema_fields(S, it, 0, what, obstacle_keys, (int)(sizeof obstacle_keys / sizeof obstacle_keys[0]), &f);
-  swSceneObstacle o;
-  memset(&o, 0, sizeof o);
-  o.name = name;
-  o.loc = it->loc;
-  o.carrier_rod = o.carrier_node = -1;
-  int ok = 1;
-  const swAst *se = sema_field(&f, "shape");
-  if (!se) {
-    sema_missing(&f, it->loc, "%s needs a 'shape': sphere, capsule, cylinder, box or ellipsoid "
-                 "(e.g. shape = sphere;)", what);
-    return;
-  }
-  const char *shape = sema_word(S, sc, se, "obstacle shape", obstacle_shapes, 5);
-  if (!shape) return;
-  for (int k = 0; k < 5; k++)
-    if (!strcmp(shape, obstacle_shapes[k])) o.shape = (swObstacleShape)k;
-  /* the size fields: those of the shape required, the others warned of */
-  static const char *const sizes[] = {"radius", "length", "size", "semi_axes"};
-  static const char *const example[] = {"radius = 1 cm;", "length = 5 cm;", "size = (10, 10, 1) cm;",
-                                        "semi_axes = (3, 2, 1) cm;"};
-  for (int i = 0; i < 4; i++) {
-    const swAst *e = sema_field(&f, sizes[i]);
-    if (!shape_reads(o.shape, sizes[i])) {
-      if (e) diag_warning(e->loc, "'%s' has no effect on a %s", sizes[i], shape);
-      continue;
-    }
-    if (!e) {
-      sema_missing(&f, it->loc, "%s, a %s, needs a '%s' (e.g. %s)", what, shape, sizes[i], example[i]);
-      ok = 0;
-      continue;
-    }
-    swValue v = i < 2 ? bounded(S, sc, &f, sizes[i], 1, DIM_LENGTH, i == 0)
-                      : sema_field_value(S, sc, &f, sizes[i], 3, DIM_LENGTH);
-    for (int k = 0; i >= 2 && v.kind != VAL_ERROR && k < 3; k++)
-      if (!(v.v[k] > 0)) {
-        diag_error(v.loc, "'%s' must be positive in each direction, got %g m", sizes[i], v.v[k]);
-        v = val_error();
-      }
-    if (v.kind == VAL_ERROR) ok = 0;
-    if (i == 0) o.radius = v;
-    else if (i == 1) o.length = v;
-    else o.half = i == 2 && v.kind != VAL_ERROR ? halved(S, v) : v;
-  }
-  if (!sema_field(&f, "stiffness")) {
-    sema_missing(&f, it->loc, "%s needs a 'stiffness' (the penalty of its surface, e.g. "
-                 "stiffness = 1e3 N/m;)", what);
-    ok = 0;
-  }
-  o.stiffness = bounded(S, sc, &f, "stiffness", 1, DIM_STIFFNESS, 1);
-  o.damping = bounded(S, sc, &f, "damping", 1, DIM_DAMPING, 0);
-  o.axis = nonzero_vector(S, sc, &f, "axis", DIM_NONE);
-  o.normal = nonzero_vector(S, sc, &f, "normal", DIM_NONE);
-  o.centre = sema_field(&f, "centre") ? sema_field_value(S, sc, &f, "centre", 3, DIM_LENGTH) : val_error();
-  const char *keys[] = {"stiffness", "damping", "axis", "normal", "centre"};
-  const swValue *vals[] = {&o.stiffness, &o.damping, &o.axis, &o.normal, &o.centre};
-  for (int i = 0; i < 5; i++)
-    if (sema_field(&f, keys[i]) && vals[i]->kind == VAL_ERROR) ok = 0;
-  const swAst *cb = sema_field(&f, "carried_by");
-  if (cb) {
-    swValue p = sema_eval(S, sc, cb);
-    if (p.kind == VAL_WORD) {
-      sema_report_unknown(S, sc, p.word, p.loc, "rod");
-      ok = 0;
-    } else if (p.kind != VAL_ERROR && p.kind != VAL_POINT) {
-      diag_error(cb->loc, "'carried_by' is a point on a rod (humerus.at(0.5), humerus.end), the "
-                 "element that carries %s", what);
-      ok = 0;
-    } else if (p.kind == VAL_ERROR || !sema_point_fixed(&p, "the point that carries an obstacle")) {
-      ok = 0;
-    } else {
-      o.carrier_rod = S->scene->rod[p.rod].id;
-      o.carrier_node = p.node;
-      o.carrier_name = S->scene->rod[p.rod].name;
-      if (!sema_field(&f, "centre")) o.centre = p; /* at the point itself */
-    }
-  } else if (!sema_field(&f, "centre") && ok) {
-    sema_missing(&f, it->loc, "%s needs a 'centre' (e.g. centre = (0, 0, 0) m;) or 'carried_by' "
-                 "(a point on a rod it moves with)", what);
-    ok = 0;
-  }
-  if (o.centre.kind == VAL_POINT) o.centre.kind = VAL_VEC; /* its position */
-  ok &= rods_field(S, sc, &f, what, &o.rods);
-  for (int i = 0; ok && o.carrier_rod >= 0 && i < o.rods.n; i++)
-    if (o.rods.id[i] == o.carrier_rod) {
-      diag_error(sema_field(&f, "rods")->loc, "%s is carried by '%s', which cannot touch it; list "
-                 "the other rods", what, o.carrier_name);
-      ok = 0;
-    }
-  if (!ok) return;
-  swScene *scn = S->scene;
-  *(swSceneObstacle *)append((void **)&scn->obstacle, &scn->nobstacle, &scn->capobstacle,
-                             sizeof o) = o;
 }
 
 static const char *const wave_keys[] = {"rod", "coefficients", "wavelength", "period", "phase",
@@ -627,12 +492,12 @@ static void wave(swSema *S, swScope *sc, const swAst *it, const char *name, cons
     w.coef = v;
     if (v.kind == VAL_ERROR) ok = 0;
   }
-  w.wavelength = bounded(S, sc, &f, "wavelength", 1, DIM_LENGTH, 1);
-  w.period = bounded(S, sc, &f, "period", 1, DIM_TIME, 1);
+  w.wavelength = sema_env_bounded(S, sc, &f, "wavelength", 1, DIM_LENGTH, 1);
+  w.period = sema_env_bounded(S, sc, &f, "period", 1, DIM_TIME, 1);
   w.phase = sema_field(&f, "phase") ? sema_field_value(S, sc, &f, "phase", 1, DIM_ANGLE)
             : val_error();
-  w.ramp = bounded(S, sc, &f, "ramp", 1, DIM_TIME, 0);
-  w.direction = nonzero_vector(S, sc, &f, "direction", DIM_NONE);
+  w.ramp = sema_env_bounded(S, sc, &f, "ramp", 1, DIM_TIME, 0);
+  w.direction = sema_env_nonzero_vector(S, sc, &f, "direction", DIM_NONE);
   const char *keys[] = {"wavelength", "period", "phase", "ramp", "direction"};
   const swValue *vals[] = {&w.wavelength, &w.period, &w.phase, &w.ramp, &w.direction};
   for (int i = 0; i < 5; i++)
@@ -645,7 +510,7 @@ static void wave(swSema *S, swScope *sc, const swAst *it, const char *name, cons
   }
   if (!ok) return;
   swScene *scn = S->scene;
-  *(swSceneWave *)append((void **)&scn->wave, &scn->nwave, &scn->capwave, sizeof w) = w;
+  *(swSceneWave *)sema_env_append((void **)&scn->wave, &scn->nwave, &scn->capwave, sizeof w) = w;
 }
 
 void sema_env(swSema *S, swScope *scope, const swAst *it) {
@@ -669,7 +534,7 @@ void sema_env(swSema *S, swScope *scope, const swAst *it) {
   case ENV_TERRAIN: ground(S, scope, it, name, w, 1); break;
   case ENV_FLUID: fluid(S, scope, it, name, w); break;
   case ENV_CONTACT: contact(S, scope, it, name, w); break;
-  case ENV_OBSTACLE: obstacle(S, scope, it, name, w); break;
+  case ENV_OBSTACLE: sema_obstacle(S, scope, it, name, w); break;
   default: wave(S, scope, it, name, w); break;
   }
 }
@@ -774,9 +639,9 @@ void sema_probe(swSema *S, swScope *scope, const swAst *fl) {
   swSceneProbe p;
   if (make_probe(S, scope, fl, &p)) {
     swScene *scn = S->scene;
-    *(swSceneProbe *)append((void **)&scn->probe, &scn->nprobe, &scn->capprobe, sizeof p) = p;
+    *(swSceneProbe *)sema_env_append((void **)&scn->probe, &scn->nprobe, &scn->capprobe, sizeof p) = p;
   } else {
-    *(const char **)append((void **)&S->bad_probe, &S->nbad_probe, &S->capbad_probe,
+    *(const char **)sema_env_append((void **)&S->bad_probe, &S->nbad_probe, &S->capbad_probe,
                            sizeof(const char *)) = target->name;
   }
 }

@@ -328,4 +328,17 @@ int sema_rod_swell(swSema *S, swScope *scope, const swFields *f, swSceneRod *r, 
                    int shape_unknown);
 void sema_swell_check(swSema *S);
 
+/* The environments' field helpers (sema_env.c): a scene array grown by one
+ * (zeroed slot); an optional field of dimension `want` that must be >= 0
+ * (pos = 0) or > 0; a vector that must not be zero; the `rods` list.  The
+ * obstacle definition (sema_obstacle.c). */
+static const swDim DIM_STIFFNESS = {{1, 0, -2, 0}};   /* N/m  */
+static const swDim DIM_DAMPING = {{1, 0, -1, 0}};     /* kg/s */
+void *sema_env_append(void **arr, int *n, int *cap, size_t item);
+swValue sema_env_bounded(swSema *S, swScope *sc, const swFields *f, const char *key, int n, swDim want,
+                         int pos);
+swValue sema_env_nonzero_vector(swSema *S, swScope *sc, const swFields *f, const char *key, swDim want);
+int sema_env_rods_field(swSema *S, swScope *sc, const swFields *f, const char *what, swRodList *out);
+void sema_obstacle(swSema *S, swScope *sc, const swAst *it, const char *name, const char *what);
+
 #endif

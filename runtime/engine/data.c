@@ -33,6 +33,7 @@ void sw_data_free(swData *d) {
   sw_swell_data_free(d);
   /* the contact grid's scratch (contact.c, through the environment's data_new) */
   free(d->obstacle_contact); free(d->obstacle_box); /* obstacle.c's, likewise */
+  free(d->obstacle_anchor); free(d->obstacle_anchor_old);
   free(d->contact_cell); free(d->contact_bucket); free(d->contact_sorted);
   free(d->contact_start); free(d->contact_occupied); free(d->contact_sorted_cell);
   free(d);
@@ -116,6 +117,7 @@ void sw_reset(const swModel *m, swData *d) {
   if (m->nrigid) sw_rigid_reset(m, d);
   if (m->nimplicit) sw_implicit_reset(m, d); /* no factorisation kept */
   sw_probe_reset(m, d);
+  if (d->obstacle_anchor) d->obstacle_anchor[0] = 0; /* no friction anchor yet (obstacle.c) */
   d->contact_pairs = 0; /* contact.c's figures are those of the last evaluation */
   d->contact_max_overlap = 0;
   if (m->nbc) memset(d->bc_free, 0, sizeof *d->bc_free * (size_t)m->nbc); /* every hold holds */

@@ -294,6 +294,13 @@ static int check_obstacle(const swObstacleDesc *o, int nrod, char *err, size_t e
     return sw_fail(err, errlen, "obstacle '%s': its three half sizes must be > 0", nm);
   if (!positive(o->stiffness)) return sw_fail(err, errlen, "obstacle '%s': stiffness must be > 0", nm);
   if (!nonneg(o->damping)) return sw_fail(err, errlen, "obstacle '%s': damping must be >= 0", nm);
+  if (!nonneg(o->static_friction) || !nonneg(o->kinetic_friction))
+    return sw_fail(err, errlen, "obstacle '%s': friction coefficients must be >= 0", nm);
+  if (o->kinetic_friction > o->static_friction)
+    return sw_fail(err, errlen, "obstacle '%s': kinetic friction %g exceeds static friction %g", nm,
+                   o->kinetic_friction, o->static_friction);
+  if (!nonneg(o->tangential_stiffness))
+    return sw_fail(err, errlen, "obstacle '%s': tangential stiffness must be >= 0", nm);
   if (o->carrier_rod >= nrod || o->carrier_rod < -1)
     return sw_fail(err, errlen, "obstacle '%s': carrier rod %d does not exist (the scene has %d)", nm,
                    o->carrier_rod, nrod);

@@ -52,6 +52,34 @@
  * gradient of U in the carrier's position and rotation, so the pair stays
  * conservative.  Its material point at p moves at v_node + w x (p - x_node).
  *
+ * Friction (mu_s > 0): an elastic-Coulomb law with a spring anchor, the
+ * tangential "spring and slider" of Cundall & Strack, Geotechnique 29 (1979)
+ * 47, eqs. 5-7, as DEM codes (LIGGGHTS' tangential_history) keep it.  When
+ * element e first touches obstacle k, the pair records its anchor: the
+ * material point s0 = s of the segment and the obstacle's point y0 there
+ * (p in the obstacle's frame).  At each evaluation, with pe = a0 + s0 (a1 -
+ * a0) and po = c + E^T y0 (which moves with a carried obstacle), the
+ * separation u = pe - po and the relative velocity w of the two material
+ * points, their tangential parts u_t = u - (u.n) n, w_t, give the trial force
+ *   F = -k_t u_t - gamma w_t.
+ * If |F| <= mu_s N (N the normal force, spring plus damper) the contact is
+ * stuck: F acts and the anchor stays, so a constant load finds a static
+ * equilibrium (the spring holds exactly, no creep).  Otherwise it slips: F
+ * becomes mu_k N F / |F| and the obstacle's point slides tangentially to
+ * where the spring alone gives that force, u_t = -F / k_t.  F acts at pe,
+ * split (1 - s0, s0) over the nodes; a carried obstacle takes -F at its
+ * node and (pe - x_node) x (-F) on its element, as the normal force.  The
+ * whole tangential force goes into ext_force as well, so the kick books its
+ * work (the spring's stored energy and what slip dissipates) as external
+ * work, as ground.c books its friction: kinetic + elastic - work stays
+ * constant.  Anchors live in d->obstacle_anchor, a table of rows ordered by
+ * the key (obstacle, place of the element in the obstacle's rod list),
+ * rebuilt at each evaluation by a merge with the previous one (no
+ * allocation, no search); a pair that stops touching loses its anchor.
+ * The table holds obstacle_maxcontact rows; contacts beyond it (never with
+ * the default room, one row per listed element up to 4 per element of the
+ * model) are frictionless.  The table is state: checkpoints save it.
+ *
  * Broad phase.  Rods are cut into chunks of SW_OBSTACLE_CHUNK elements,
  * whose boxes (nodes +- the largest radius) and each rod's box (their
  * union) are taken once per evaluation; an obstacle's lab box (its frame
@@ -164,7 +192,10 @@ int sw_obstacle_data_new(const swModel *m, swData *d) {
   d->obstacle_contact = calloc((size_t)(m->obstacle_maxcontact ? m->obstacle_maxcontact : 1),
                                sizeof *d->obstacle_contact);
   d->obstacle_box = calloc(6 * ((size_t)m->obstacle_nchunk + (size_t)m->nrod + 1), sizeof(double));
-  return d->obstacle_contact && d->obstacle_box;
+  const size_t anchors = 1 + (size_t)m->obstacle_maxcontact * SW_OBSTACLE_ANCHOR_ROW;
+  d->obstacle_anchor = calloc(anchors, sizeof(double));
+  d->obstacle_anchor_old = calloc(anchors, sizeof(double));
+  return d->obstacle_contact && d->obstacle_box && d->obstacle_anchor && d->obstacle_anchor_old;
 }
 
 /* ---- where an obstacle is ---- */
@@ -386,7 +417,127 @@ typedef struct {
   double energy, max_depth;
   int contacts;
   long tests;
+  /* friction: the previous anchors (old, rows), the cursor in them, the
+   * new table (rows written), the pair's key, the stuck and slipping */
+  const double *old;
+  int old_rows, cursor;
+  double *anchor;
+  int rows;
+  double key;
+  int stuck, slipping;
 } Sums;
+
+/* ---- friction: the anchor of a touching pair (see the design) ---- */
+
+/* The tangential force on element (x0, x1; v0, v1) of the pair sum->key,
+ * touching obstacle k at pose P at segment point s with normal n and normal
+ * force N: F (lab), the point pe = a0 + s0 (a1 - a0) where it acts and s0;
+ * the pair's new anchor row appended to sum->anchor, its record (when kept)
+ * filled.  Returns 0 without friction. */
+static int friction_force(const swModel *m, int k, const swPose *P, const double x0[3],
+                          const double x1[3], const double v0[3], const double v1[3], double s,
+                          const double n[3], double N, Sums *sum, double F[3], double pe[3],
+                          double *s0_out, swObstacleContact *rec) {
+  const swObstacleDesc *o = &m->obstacle[k];
+  if (!(o->static_friction > 0) || !sum->anchor) return 0;
+  if (sum->rows >= m->obstacle_maxcontact) return 0; /* beyond the table: frictionless */
+  /* the previous anchor of this pair (rows ordered by key) or a new one at p */
+  while (sum->cursor < sum->old_rows && sum->old[SW_OBSTACLE_ANCHOR_ROW * sum->cursor] < sum->key)
+    sum->cursor++;
+  const double *row = sum->old + SW_OBSTACLE_ANCHOR_ROW * sum->cursor;
+  const int known = sum->cursor < sum->old_rows && row[0] == sum->key;
+  double s0 = s, y0[3], po[3];
+  for (int q = 0; q < 3; q++) pe[q] = x0[q] + s * (x1[q] - x0[q]);
+  if (known) {
+    s0 = row[1];
+    memcpy(y0, row + 2, sizeof y0);
+    for (int q = 0; q < 3; q++) pe[q] = x0[q] + s0 * (x1[q] - x0[q]);
+  } else {
+    to_local(y0, P, pe);
+  }
+  for (int q = 0; q < 3; q++) po[q] = P->c[q];
+  for (int j = 0; j < 3; j++)
+    for (int q = 0; q < 3; q++) po[q] += y0[j] * P->E[3 * j + q];
+  /* the separation and the relative velocity of the two material points,
+   * tangential parts */
+  double u[3], w[3], vo[3] = {0, 0, 0};
+  if (P->carried) {
+    double rel[3];
+    sw_v3_sub(rel, po, P->c);
+    sw_v3_cross(vo, P->w, rel);
+    sw_v3_add(vo, vo, P->v);
+  }
+  for (int q = 0; q < 3; q++) {
+    u[q] = pe[q] - po[q];
+    w[q] = (1 - s0) * v0[q] + s0 * v1[q] - vo[q];
+  }
+  const double un = sw_v3_dot(u, n), wn = sw_v3_dot(w, n);
+  const double kt = o->tangential_stiffness > 0 ? o->tangential_stiffness : o->stiffness;
+  for (int q = 0; q < 3; q++) {
+    u[q] -= un * n[q];
+    w[q] -= wn * n[q];
+    F[q] = -kt * u[q] - o->damping * w[q];
+  }
+  /* Coulomb's cap: stuck below mu_s N, else slipping at mu_k N */
+  const double mag = sw_v3_norm(F);
+  int stuck = 1;
+  if (mag > o->static_friction * N) {
+    stuck = 0;
+    const double scale = mag > 0 ? o->kinetic_friction * N / mag : 0.0;
+    for (int q = 0; q < 3; q++) {
+      F[q] *= scale;
+      /* the obstacle's point slides so that the spring alone gives F:
+       * u_t -> -F / k_t, po -> po + u_t - (-F / k_t) */
+      po[q] += u[q] + F[q] / kt;
+    }
+    to_local(y0, P, po);
+  }
+  double *out = sum->anchor + SW_OBSTACLE_ANCHOR_ROW * sum->rows++;
+  out[0] = sum->key;
+  out[1] = s0;
+  memcpy(out + 2, y0, sizeof y0);
+  out[5] = stuck;
+  *s0_out = s0;
+  if (stuck) sum->stuck++;
+  else sum->slipping++;
+  if (rec) {
+    memcpy(rec->anchor, y0, sizeof y0);
+    rec->s_anchor = s0;
+    memcpy(rec->friction, F, 3 * sizeof(double));
+    rec->stuck = stuck;
+  }
+  return 1;
+}
+
+/* A contact force a dir on the element of nodes ia, ia + 1, at the point
+ * pt = a0 + s (a1 - a0), split (1 - s, s); its part b dir external too (the
+ * kick books its work); a carried obstacle takes the opposite at its node
+ * and its couple (pt - x_node) x (-a dir) on its element. */
+static void apply(const swModel *m, const swData *d, int k, const swPose *P, int ia, double s,
+                  const double pt[3], const double dir[3], double a, double b, Sums *sum) {
+  const double w[2] = {1 - s, s};
+  for (int j = 0; j < 2; j++)
+    for (int q = 0; q < 3; q++) {
+      SW_AT(m, sum->force, ia + j, q) += w[j] * a * dir[q];
+      SW_AT(m, sum->ext_force, ia + j, q) += w[j] * b * dir[q];
+    }
+  if (!P->carried) return;
+  const int node = m->obstacle_node[k], ec = m->obstacle_elem[k];
+  double lever[3], c[3], cd[3], Q[9], cm[3], cdm[3];
+  sw_v3_sub(lever, pt, P->anchor);
+  sw_v3_cross(c, lever, dir);
+  sw_v3_scale(cd, c, -b);
+  sw_v3_scale(c, c, -a);
+  sw_getQ(m, d->Q, ec, Q);
+  sw_mat_vec(cm, Q, c);
+  sw_mat_vec(cdm, Q, cd);
+  for (int q = 0; q < 3; q++) {
+    SW_AT(m, sum->force, node, q) -= a * dir[q];
+    SW_AT(m, sum->ext_force, node, q) -= b * dir[q];
+    SW_AT(m, sum->torque, ec, q) += cm[q];
+    SW_AT(m, sum->ext_torque, ec, q) += cdm[q];
+  }
+}
 
 /* Element i (nodes ia, ia + 1, element slot e) of a rod against obstacle k
  * at pose P: the loads on both sides (when sum->force), the energy. */
@@ -432,32 +583,10 @@ static void element_contact(const swModel *m, const swData *d, int k, const swPo
   for (int q = 0; q < 3; q++) approach -= ((1 - s) * v0[q] + s * v1[q] - vo[q]) * n[q];
   const double spring = o->stiffness * depth;
   const double damper = fmax(o->damping * approach, -spring); /* never pulls */
-  const double w[2] = {1 - s, s};
-  for (int j = 0; j < 2; j++)
-    for (int q = 0; q < 3; q++) {
-      SW_AT(m, sum->force, ia + j, q) += w[j] * (spring + damper) * n[q];
-      SW_AT(m, sum->ext_force, ia + j, q) += w[j] * damper * n[q];
-    }
-  if (P->carried) {
-    /* the carrier takes -f at its node and (p - x_node) x (-f) on its element */
-    const int node = m->obstacle_node[k], ec = m->obstacle_elem[k];
-    double lever[3], c[3], cd[3], Q[9], cm[3], cdm[3];
-    sw_v3_sub(lever, p, P->anchor);
-    sw_v3_cross(c, lever, n);
-    sw_v3_scale(cd, c, -damper);
-    sw_v3_scale(c, c, -(spring + damper));
-    sw_getQ(m, d->Q, ec, Q);
-    sw_mat_vec(cm, Q, c);
-    sw_mat_vec(cdm, Q, cd);
-    for (int q = 0; q < 3; q++) {
-      SW_AT(m, sum->force, node, q) -= (spring + damper) * n[q];
-      SW_AT(m, sum->ext_force, node, q) -= damper * n[q];
-      SW_AT(m, sum->torque, ec, q) += cm[q];
-      SW_AT(m, sum->ext_torque, ec, q) += cdm[q];
-    }
-  }
+  apply(m, d, k, P, ia, s, p, n, spring + damper, damper, sum);
+  swObstacleContact *rec = NULL;
   if (sum->contacts <= sum->room) {
-    swObstacleContact *rec = &sum->rec[sum->contacts - 1];
+    rec = &sum->rec[sum->contacts - 1];
     memset(rec, 0, sizeof *rec);
     rec->obstacle = k;
     rec->elem = e;
@@ -465,6 +594,15 @@ static void element_contact(const swModel *m, const swData *d, int k, const swPo
     rec->depth = depth;
     memcpy(rec->normal, n, sizeof n);
     rec->force = spring + damper;
+  }
+  double F[3], pe[3], s0;
+  if (friction_force(m, k, P, x0, x1, v0, v1, s, n, spring + damper, sum, F, pe, &s0, rec)) {
+    const double mag = sw_v3_norm(F);
+    if (mag > 0) { /* all of it external: the kick books its work */
+      double dir[3];
+      sw_v3_scale(dir, F, 1.0 / mag);
+      apply(m, d, k, P, ia, s0, pe, dir, mag, mag, sum);
+    }
   }
 }
 
@@ -527,15 +665,23 @@ static void visit(const swModel *m, const swData *d, swObstaclePhase phase, Sums
     const swPose P = pose_of(m, d->x, d->v, d->Q, d->omega, k);
     double box[6];
     obstacle_box(m, k, &P, box);
+    /* the pairs' keys, increasing in the order of the visit: obstacle k's
+     * listed elements are at most nelem */
+    double base = (double)k * (m->nelem + 1);
     for (int j = 0; j < o->nrods; j++) {
       const int r = o->rods[j], n = m->rod_nelem[r], na = m->node_adr[r], ea = m->elem_adr[r];
+      const double first = base;
+      base += n;
       if (r == o->carrier_rod) continue; /* a bone does not touch what it carries */
       const int grid = phase == SW_OBSTACLE_GRID;
       if (grid && boxes_apart(d->obstacle_box + 6 * (m->obstacle_nchunk + r), box)) continue;
       for (int c = 0, i0 = 0; i0 < n; c++, i0 += SW_OBSTACLE_CHUNK) {
         const int i1 = i0 + SW_OBSTACLE_CHUNK < n ? i0 + SW_OBSTACLE_CHUNK : n;
         if (grid && boxes_apart(d->obstacle_box + 6 * (m->obstacle_chunk_adr[r] + c), box)) continue;
-        for (int i = i0; i < i1; i++) element_contact(m, d, k, &P, na + i, ea + i, sum);
+        for (int i = i0; i < i1; i++) {
+          sum->key = first + i;
+          element_contact(m, d, k, &P, na + i, ea + i, sum);
+        }
       }
     }
   }
@@ -544,9 +690,19 @@ static void visit(const swModel *m, const swData *d, swObstaclePhase phase, Sums
 /* ---- the kernels ---- */
 
 void sw_obstacle_loads_with(const swModel *m, swData *d, swObstaclePhase phase) {
-  Sums sum = {d->force, d->ext_force, d->torque, d->ext_torque, d->obstacle_contact,
-              m->obstacle_maxcontact, 0, 0, 0, 0};
+  /* the last evaluation's anchors become the old ones, read by the merge */
+  double *old = d->obstacle_anchor;
+  d->obstacle_anchor = d->obstacle_anchor_old;
+  d->obstacle_anchor_old = old;
+  Sums sum;
+  memset(&sum, 0, sizeof sum);
+  sum.force = d->force, sum.ext_force = d->ext_force, sum.torque = d->torque;
+  sum.ext_torque = d->ext_torque, sum.rec = d->obstacle_contact, sum.room = m->obstacle_maxcontact;
+  sum.old = old + 1, sum.old_rows = (int)old[0], sum.anchor = d->obstacle_anchor + 1;
   visit(m, d, phase, &sum);
+  d->obstacle_anchor[0] = sum.rows;
+  d->obstacle_stuck = sum.stuck;
+  d->obstacle_slipping = sum.slipping;
   d->obstacle_contacts = sum.contacts;
   d->obstacle_max_depth = sum.max_depth;
   d->obstacle_tests = sum.tests;
@@ -556,7 +712,8 @@ void sw_obstacle_loads(const swModel *m, swData *d) { sw_obstacle_loads_with(m, 
 
 /* The energy of the obstacle springs at the current positions, J. */
 double sw_obstacle_energy(const swModel *m, const swData *d) {
-  Sums sum = {NULL, NULL, NULL, NULL, NULL, 0, 0, 0, 0, 0};
+  Sums sum;
+  memset(&sum, 0, sizeof sum);
   visit(m, d, SW_OBSTACLE_GRID, &sum);
   return sum.energy;
 }
@@ -591,7 +748,9 @@ double sw_obstacle_start_depth(const swModel *m, int k, int *rod, int *elem) {
  * obstacle at a time.  A carrier node takes one element's spring through
  * its mass and, at the lever l = |arm| + the shape's reach, through its
  * element's least moment of inertia: w^2 = k (1 / m + l^2 / J).  The
- * scheme's limit at zeta = c / (2 w), times 0.95, as ground.c's. */
+ * scheme's limit at zeta = c / (2 w), times 0.95, as ground.c's.  With
+ * friction k is the larger of k and k_t: the tangential spring presses the
+ * same nodes across the normal, so the two add in no direction. */
 static double limit_of(const swModel *m, double w2, double c) {
   if (!(w2 > 0)) return c > 0 ? 0.95 * 2.0 / c : INFINITY;
   const double w = sqrt(w2);
@@ -602,12 +761,14 @@ double sw_obstacle_stable_dt(const swModel *m) {
   double dt = INFINITY;
   for (int k = 0; k < m->nobstacle; k++) {
     const swObstacleDesc *o = &m->obstacle[k];
+    /* the tangential spring acts across the normal one: the larger counts */
+    const double stiff = o->static_friction > 0 ? fmax(o->stiffness, o->tangential_stiffness) : o->stiffness;
     for (int j = 0; j < o->nrods; j++) {
       const int r = o->rods[j], n = m->rod_nelem[r], na = m->node_adr[r];
       if (r == o->carrier_rod) continue;
       for (int i = 0; i <= n; i++) {
         const int nel = (i > 0) + (i < n);
-        dt = fmin(dt, limit_of(m, nel * o->stiffness * m->inv_mass[na + i],
+        dt = fmin(dt, limit_of(m, nel * stiff * m->inv_mass[na + i],
                                nel * o->damping * m->inv_mass[na + i]));
       }
     }
@@ -620,7 +781,7 @@ double sw_obstacle_stable_dt(const swModel *m) {
     double J = INFINITY;
     for (int q = 0; q < 3; q++) J = fmin(J, SW_AT(m, m->inertia, e, q));
     const double inv = m->inv_mass[node] + lever * lever / J;
-    dt = fmin(dt, limit_of(m, o->stiffness * inv, o->damping * inv));
+    dt = fmin(dt, limit_of(m, stiff * inv, o->damping * inv));
   }
   return dt;
 }

@@ -298,18 +298,22 @@ typedef struct {
 } swModel;
 
 /* One element touching one obstacle (obstacle.c).  The normal force acts
- * along n at the point s of the element's segment; `anchor` is kept for a
- * friction law that holds a contact still (the surface point it sticks to,
- * in the obstacle's frame), unused by the frictionless law. */
+ * along n at the point s of the element's segment; with friction, the
+ * tangential force `friction` acts at the anchor's material point s_anchor,
+ * tied to the obstacle's point `anchor` (in the obstacle's frame). */
 typedef struct {
   int obstacle, elem;        /* obstacle index, element slot                 */
   double s;                  /* the point's place on the segment, 0..1      */
   double depth;              /* penetration r - D, m                         */
   double normal[3];          /* out of the obstacle, lab                     */
   double force;              /* normal force on the element, N (>= 0)       */
-  double anchor[3];          /* reserved for stick-slip friction             */
-  int stuck;                 /* reserved: 1 while the anchor holds           */
+  double anchor[3];          /* the obstacle's anchor point, its frame, m    */
+  double s_anchor;           /* the element's anchor point on its segment    */
+  double friction[3];        /* tangential force on the element, lab, N      */
+  int stuck;                 /* 1 while the anchor holds (0: slipping or no
+                                friction)                                    */
 } swObstacleContact;
+#define SW_OBSTACLE_ANCHOR_ROW 6   /* key, s, anchor (3), stuck               */
 
 /* ---- the state (mutable) ---- */
 typedef struct {
@@ -430,6 +434,14 @@ typedef struct {
                                 those beyond the records' room)             */
   double obstacle_max_depth; /* deepest penetration r - D, m (0: none)      */
   long obstacle_tests;       /* element-obstacle pairs the narrow phase saw  */
+  /* the friction's anchors (obstacle.c): [0] the rows in use, then rows of
+   * SW_OBSTACLE_ANCHOR_ROW: key (obstacle, element), s, the obstacle's
+   * point (its frame), stuck; in the order of the key.  State: the
+   * checkpoint keeps it; `_old` is the previous evaluation's, scratch. */
+  double *obstacle_anchor;   /* (1 + obstacle_maxcontact*SW_OBSTACLE_ANCHOR_ROW) */
+  double *obstacle_anchor_old;
+  int obstacle_stuck;        /* contacts of the last evaluation held still   */
+  int obstacle_slipping;     /* and those slipping                           */
   double *obstacle_box;      /* ((obstacle_nchunk+nrod)*6) lo, hi of each
                                 chunk's elements with their radii, then of
                                 each rod's                                  */

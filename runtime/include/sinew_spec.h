@@ -478,7 +478,12 @@ int sw_spec_add_contact(swSpec *s, const swContactDesc *c);
  * normal plus a damper gamma times the approach speed (never pulling) push
  * it out, at the point of the segment nearest to the shape; a carried
  * obstacle takes the opposite force and its couple back to its element
- * (docs/physics.md, "Rigid obstacles").  The shape's own frame has its
+ * (docs/physics.md, "Rigid obstacles").  With friction (mu_s > 0) each
+ * touching element keeps an anchor, the material point where it touched and
+ * the obstacle's point there, tied by a tangential spring k_t (and the
+ * damper gamma) capped at mu_s N: below the cap the contact holds still,
+ * beyond it the anchor slides and the force is mu_k N (an elastic-Coulomb
+ * law, Cundall & Strack 1979).  The shape's own frame has its
  * third axis along `axis` and its first along `normal` (made perpendicular
  * to axis); both are lab directions at t = 0. */
 typedef enum {
@@ -501,6 +506,9 @@ typedef struct {
   double half[3];           /* m: box half sizes, ellipsoid semi-axes        */
   double stiffness;         /* k, N/m per element                            */
   double damping;           /* gamma, kg/s per element                       */
+  double static_friction;   /* mu_s (0: frictionless, the default)           */
+  double kinetic_friction;  /* mu_k <= mu_s, the force while slipping        */
+  double tangential_stiffness; /* k_t, N/m per element (0: the stiffness k)  */
   int carrier_rod;          /* -1: fixed in the lab; else the rod whose      */
   int carrier_node;         /* node (-1: last) element carries it, as a joint's
                                arm: node i's element is i (the last: n - 1) */

@@ -7,8 +7,9 @@
  * velocities: the state proper (x, v, Q, omega, the dilatation, rigid bodies,
  * muscle activation), what a step carries over (a pending kick's work per
  * slot and per chunk, the unwrapped hinge angles, the probes' rings of
- * samples, the implicit joints' system) and the scratch arrays as well, since
- * copying them costs little and leaves nothing to argue about; the scalars
+ * samples, the implicit joints' system, the obstacles' friction anchors)
+ * and the scratch arrays as well, since copying them costs little and
+ * leaves nothing to argue about; the scalars
  * (time, step, work, the pending kick, whether the last step's half drift
  * is held) go as attributes, and so do the expectations' running minima and
  * maxima (expect.c).  Second, a checkpoint is taken of the held state at a
@@ -38,7 +39,7 @@
 /* ---- what is saved ---- */
 
 enum { PER_SLOT, PER_CHUNK, PER_BC, PER_JOINT, PER_FIL, PER_BODY, PER_PROBE_RING, RIGID_SYS, PER_RING,
-       IMPLICIT_SYS };
+       IMPLICIT_SYS, OBSTACLE_ANCHORS };
 
 typedef struct {
   const char *name;
@@ -70,6 +71,7 @@ static const swSaved saved[] = {
     SAVED(fil_tension, PER_FIL, 1),   SAVED(probe_ring, PER_PROBE_RING, 4),
     SAVED(ring_row, PER_RING, SW_RING_ROW),
     SAVED(implicit_sys, IMPLICIT_SYS, 1), /* the implicit rods' kept factorisations */
+    SAVED(obstacle_anchor, OBSTACLE_ANCHORS, 1), /* the friction's anchors (obstacle.c) */
 };
 #define NSAVED (sizeof saved / sizeof saved[0])
 
@@ -86,6 +88,9 @@ static size_t saved_len(const swModel *m, const swSaved *s) {
   case RIGID_SYS: n = sw_rigid_joints_scratch(m); break;
   case PER_RING: n = (size_t)m->nring; break;
   case IMPLICIT_SYS: n = sw_implicit_scratch(m); break;
+  case OBSTACLE_ANCHORS:
+    n = m->nobstacle ? 1 + (size_t)m->obstacle_maxcontact * SW_OBSTACLE_ANCHOR_ROW : 0;
+    break;
   }
   return n * (size_t)s->count;
 }

@@ -268,6 +268,9 @@ static void print_environments(const swModel *m) {
     const swObstacleDesc *o = &m->obstacle[k];
     printf("  obstacle %s: %s at (%g, %g, %g) m, stiffness %g N/m, damping %g kg/s, ", o->name,
            shapes[o->shape], o->centre[0], o->centre[1], o->centre[2], o->stiffness, o->damping);
+    if (o->static_friction > 0)
+      printf("friction %g static, %g kinetic, tangential stiffness %g N/m, ", o->static_friction,
+             o->kinetic_friction, o->tangential_stiffness > 0 ? o->tangential_stiffness : o->stiffness);
     if (o->carrier_rod >= 0)
       printf("carried by %s node %d, ", m->rod_name[o->carrier_rod],
              o->carrier_node < 0 ? m->rod_nelem[o->carrier_rod] : o->carrier_node);

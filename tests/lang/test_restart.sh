@@ -12,7 +12,9 @@
 #   factorisations over several steps (rod_implicit.c), continued from its
 #   file, gives the uninterrupted run's datasets to the bit; the file's
 #   integrator is taken when none is given, and another one is refused; a
-#   run whose holds let go (until) continued from before and after a release.
+#   run whose holds let go (until) continued from before and after a release;
+#   a rope held on a post by friction, whose anchors are state, continued
+#   likewise gives the uninterrupted run's datasets to the bit.
 . "$(dirname "$0")/tap.sh"
 cd "$ROOT" || exit 1
 SC=$SINEWC_CHECK
@@ -123,5 +125,18 @@ for cut in 7ms 12ms; do
   h5diff holds_$cut.h5 holds_full.h5 >diff 2>&1; ok $? "every dataset equals the uninterrupted run's (h5diff, cut at $cut)"
   diag <diff
 done
+
+# 6. friction's anchors (obstacle.c) are state: a rope held on a post by
+#    stick-slip friction, continued part way through its settling
+cd "$ROOT" || exit 1
+"$SC" examples/constructs/friction.sinew -o "$TMP/fric" 2>"$TMP/err"; ok $? "the rope on a post with friction compiles"
+diag <"$TMP/err"
+cd "$TMP" || exit 1
+./fric --duration 30ms --out fric_full.h5 --quiet 2>err; ok $? "an uninterrupted run of 30 ms"
+./fric --duration 14ms --out fric_part.h5 --quiet 2>err; ok $? "a run of 14 ms, its anchors half stuck, half slipping"
+./fric --restart fric_part.h5 --duration 30ms --quiet >run 2>&1; rc=$?
+ok $rc "continued to 30 ms (exit $rc)"
+h5diff fric_part.h5 fric_full.h5 >diff 2>&1; ok $? "every dataset equals the uninterrupted run's (h5diff)"
+diag <diff
 
 done_testing
