@@ -278,13 +278,13 @@ void sema_eval_rod(swSema *S, swSymbol *sym) {
     else r.weightless = !truth;
   }
   /* the shapes, now that the rod is placed and its elements known */
-  const int placed = ok && shaped;
-  if (placed && !sema_rod_place_shapes(S, &r, &sh, sema_field(&f, "normal") != NULL, what))
+  const int tried = ok && shaped;   /* an earlier error leaves the shapes unplaced */
+  if (tried && !sema_rod_place_shapes(S, &r, &sh, sema_field(&f, "normal") != NULL, what))
     ok = 0;
   /* the radius, and the geometry that changes in time (sema_swell.c); a
    * shape not placed after an earlier error leaves the rest twist unknown,
    * not absent */
-  if (!sema_rod_swell(S, sc, &f, &r, what, shaped && !placed)) ok = 0;
+  if (!sema_rod_swell(S, sc, &f, &r, what, shaped && !tried)) ok = 0;
   const swValue *all[] = {&r.youngs, &r.density, &r.shear_modulus, &r.poisson, &r.start,
                           &r.direction, &r.normal, &r.length, &r.radius_start, &r.radius_end,
                           &r.shear_hardening, &r.twist_hardening, &r.rest_kappa, &r.rest_sigma,

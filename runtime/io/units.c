@@ -9,12 +9,14 @@
  * is a decimal number (no hex, inf or nan) optionally followed, with or
  * without a space, by a unit expression: factors separated by '/', '*', '·'
  * or a space, each optionally raised to an integer power ("kg m^-3",
- * "m/s^2"), or begun by '/' for a rate ("2/s", as a model writes 2 / s).  A space binds tighter than '/' and '*', as juxtaposition does
- * in a model: "N/m s" is N/(m s), "kg/m/s" is kg m^-1 s^-1.  Conversion is done in decimal where it can be:
- * units whose scale is a power of ten shift the number's decimal exponent and
- * the text is converted once by strtod, so "1.75 g/cm^3" is exactly 1750 and
- * "50 ns" is the double nearest 5e-8, as a user who compares with a value in
- * SI expects; only the other factors (deg, min, h) multiply afterwards.
+ * "m/s^2"), or begun by '/' for a rate ("2/s", as a model writes 2 / s).
+ * A space binds tighter than '/' and '*', as juxtaposition does in a model:
+ * "N/m s" is N/(m s), "kg/m/s" is kg m^-1 s^-1.  Conversion is done in
+ * decimal where it can be: units whose scale is a power of ten shift the
+ * number's decimal exponent and the text is converted once by strtod, so
+ * "1.75 g/cm^3" is exactly 1750 and "50 ns" is the double nearest 5e-8, as a
+ * user who compares with a value in SI expects; only the other factors (deg,
+ * min, h) multiply afterwards.
  * Error messages name the offending piece and quote what was written. */
 #include <ctype.h>
 #include <math.h>
