@@ -358,7 +358,7 @@ wing: deps
 # (docs/validation.md, "The elbow assisted by an artificial muscle"; Zhang
 # et al. 2019, Suppl. Fig. 7): examples/elbow_assisted.sinew healthy,
 # injured and with the AM at three release rates, 0.7 s each, two at a
-# time, then build/assisted/assisted.png and assisted.md (about 6 min on
+# time, then build/assisted/assisted.png and assisted.md (about 8 min on
 # this machine's 2 cores; never part of `make test`, whose test_assisted
 # runs 30 ms).  ASSISTED_ARGS="am_1" for one case.
 .PHONY: assisted

@@ -12,7 +12,7 @@
 # "max rate"); default all.  DIR (default build/assisted) gets CASE.h5 and
 # CASE.log (the simulator's summary with its wall time), assisted.png and
 # assisted.md (scripts/assisted_report.py).  A complete run is not made
-# again.  About 40 s for each arm without the AM and 2 min with it, at the
+# again.  About 35 s for each arm without the AM and 2 to 3 min with it, at the
 # default step (the AM's, 0.33 us), on one core here; two runs at a time.
 # --duration T runs each case for T only (a try; never taken for complete),
 # --dt DT at another step (for the step study of docs/validation.md).
