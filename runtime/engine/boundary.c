@@ -46,9 +46,18 @@
 #include "vec.h"
 #include "internal.h"
 
+/* The velocity a slide leaves its node with: v projected onto the line along
+ * the unit a, or onto the plane across the unit normal a (the header). */
+static void slide_velocity(const swBCDesc *b, const double v[3], double out[3]) {
+  const double along = sw_v3_dot(v, b->vec);
+  for (int c = 0; c < 3; c++)
+    out[c] = b->kind == SW_BC_SLIDE_LINE ? along * b->vec[c] : v[c] - along * b->vec[c];
+}
+
 /* Prescribed node velocity (lab) and element angular velocity (material) of
- * boundary condition b at time t.  Returns which of the two it constrains:
- * bit 0 the node, bit 1 the element. */
+ * boundary condition b at time t; a slide's node velocity is its free one
+ * (d->v, after the kick) projected.  Returns which of the two it
+ * constrains: bit 0 the node, bit 1 the element. */
 static int bc_target(const swModel *m, const swData *d, const swBCDesc *b, double t,
                      int *node, int *elem, double vnode[3], double welem[3]) {
   int n = m->rod_nelem[b->rod];
@@ -72,19 +81,16 @@ static int bc_target(const swModel *m, const swData *d, const swBCDesc *b, doubl
     return 2;
   }
   case SW_BC_SLIDE_LINE:
-  case SW_BC_SLIDE_PLANE:
-    return 4; /* the node's free velocity projected (slide_velocity) */
+  case SW_BC_SLIDE_PLANE: {
+    double v[3];
+    for (int c = 0; c < 3; c++) v[c] = SW_AT(m, d->v, *node, c);
+    slide_velocity(b, v, vnode);
+    return 1;
+  }
   }
   return 0;
 }
 
-/* The velocity a slide leaves its node with: v projected onto the line along
- * the unit a, or onto the plane across the unit normal a (the header). */
-static void slide_velocity(const swBCDesc *b, const double v[3], double out[3]) {
-  const double along = sw_v3_dot(v, b->vec);
-  for (int c = 0; c < 3; c++)
-    out[c] = b->kind == SW_BC_SLIDE_LINE ? along * b->vec[c] : v[c] - along * b->vec[c];
-}
 
 /* Whether condition k still holds its end. */
 static inline int bc_holds(const swData *d, int k) { return d->bc_free[k] == 0.0; }
@@ -120,12 +126,6 @@ void sw_apply_bc_velocity(const swModel *m, swData *d, double t) {
     int what = bc_target(m, d, &m->bc[k], t, &node, &elem, vn, we);
     if (what & 1) sw_set3(m, d->v, node, vn);
     if (what & 2) sw_set3(m, d->omega, elem, we);
-    if (what & 4) {
-      double v[3];
-      for (int c = 0; c < 3; c++) v[c] = SW_AT(m, d->v, node, c);
-      slide_velocity(&m->bc[k], v, vn);
-      sw_set3(m, d->v, node, vn);
-    }
   }
 }
 
@@ -163,12 +163,6 @@ void sw_bc_kick(const swModel *m, swData *d, double h, double t, int lo, int hi,
     int node, elem;
     double vn[3], we[3];
     int what = bc_target(m, d, b, t, &node, &elem, vn, we);
-    if (what & 4) { /* a slide: the free velocity, projected */
-      double v[3];
-      for (int c = 0; c < 3; c++) v[c] = SW_AT(m, d->v, node, c);
-      slide_velocity(b, v, vn);
-      what = 1;
-    }
     /* The kick booked the external load's work with the free velocity,
      * h f . (v_old + v_free) / 2; rebook it with the prescribed one and add
      * the constraint force's, h f_c = m (v_new - v_free). */
