@@ -377,6 +377,19 @@ tradeoff: deps
 	@$(MAKE) --no-print-directory bin/sinewc
 	@sh scripts/tradeoff.sh
 
+# `make reproduce quick` (about half an hour on two cores) or `make
+# reproduce full` (the reference's settings, hours): every study of Zhang et
+# al. 2019 that sinew reproduces, run by scripts/reproduce.sh, and
+# docs/reproduction.md written from what the runs measured (a claim of the
+# reference, sinew's figure, a verdict, the evidence when they differ).
+# REPRODUCE_STUDIES="snake_continuum walker" for some of them.
+.PHONY: reproduce quick full
+reproduce: deps
+	@$(MAKE) --no-print-directory all
+	@sh scripts/reproduce.sh $(or $(filter quick full,$(MAKECMDGOALS)),quick) $(REPRODUCE_STUDIES)
+quick full:
+	@:
+
 # `make install PREFIX=...`: compiler, runtime library and header, models,
 # and the plot tool.
 PREFIX ?= /usr/local

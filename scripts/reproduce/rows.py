@@ -6,7 +6,9 @@ the reference, sinew's figure and a verdict.  This module is the one way
 those reach the page: Study(outdir) collects the meta data (title, the
 reference's place, models, command lines, plots, notes) and the rows, and
 write() leaves OUTDIR/meta.json and OUTDIR/rows.jsonl, which
-scripts/reproduce_page.py reads.  A verdict is "agree" or "differ" for a
+scripts/reproduce_page.py reads, with OUTDIR/conventions.jsonl: the
+defaults of sinew that differ from the reference's code, each with its
+effect measured on the study's scenes.  A verdict is "agree" or "differ" for a
 number compared with the reference's, "holds" or "fails" for a statement;
 every row carries whether its figure is bitwise reproducible run to run.
 """
@@ -22,6 +24,7 @@ class Study:
         self.meta = {"title": title, "reference": reference, "models": list(models),
                      "commands": list(commands), "plots": list(plots), "notes": notes}
         self.rows = []
+        self.conventions = []
 
     def command(self, line):
         self.meta["commands"].append(line)
@@ -53,6 +56,12 @@ class Study:
     def statement(self, figure, claim, holds, figure_text, why="", bitwise=True):
         self.row(figure, claim, figure_text, "holds" if holds else "fails", why, bitwise)
 
+    def convention(self, default, reference_code, scenes, effect):
+        """A default of sinew that is not the reference code's, the scenes
+        it touches and its effect as measured by this study's runs."""
+        self.conventions.append({"default": default, "reference": reference_code,
+                                 "scenes": scenes, "effect": effect})
+
     def write(self):
         os.makedirs(self.outdir, exist_ok=True)
         with open(os.path.join(self.outdir, "meta.json"), "w") as f:
@@ -60,3 +69,6 @@ class Study:
         with open(os.path.join(self.outdir, "rows.jsonl"), "w") as f:
             for r in self.rows:
                 f.write(json.dumps(r) + "\n")
+        with open(os.path.join(self.outdir, "conventions.jsonl"), "w") as f:
+            for c in self.conventions:
+                f.write(json.dumps(c) + "\n")

@@ -1,0 +1,148 @@
+#!/usr/bin/env python3
+"""snake_continuum_report.py — the rows of the continuum snake's study for
+`make reproduce` (scripts/reproduce/snake_continuum.sh runs the scenes).
+
+Design.  Every figure is measured from this run's HDF5: the speed of the
+centre of mass over whole periods after the 1 s ramp (2-5 s, the window in
+which the reference's own code is free of its instability, and 2-10 s in a
+full run), and its lateral peak to peak over 2-5 s with the linear drift
+removed (bench/oracle/analyze.py's measure, so that the two codes are
+measured alike).  They are compared with the reference's Fig. 10 claims and
+with PyElastica's runs of the same settings (bench/oracle/
+snake_oracle_results.json, which names how they were made).
+
+  snake_continuum_report.py OUTDIR quick|full DURATION
+"""
+import json
+import os
+import sys
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import h5py  # noqa: E402
+import numpy as np  # noqa: E402
+import matplotlib  # noqa: E402
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+from rows import Study  # noqa: E402
+
+ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+
+
+def load(path):
+    with h5py.File(path, "r") as f:
+        return f["/time"][:], f["/probes/com"][:]
+
+
+def speed(t, com, t0, t1):
+    k0, k1 = np.argmin(abs(t - t0)), np.argmin(abs(t - t1))
+    return float(np.hypot(*(com[k1, :2] - com[k0, :2])) / (t[k1] - t[k0]))
+
+
+def lateral_ptp(t, com, t0=2.0, t1=5.0):
+    w = (t >= t0 - 1e-9) & (t <= t1 + 1e-9)
+    y = com[w, 1]
+    return float(np.ptp(y - np.polyval(np.polyfit(t[w], y, 1), t[w])))
+
+
+def main():
+    out, budget, duration = sys.argv[1], sys.argv[2], sys.argv[3]
+    with open(os.path.join(ROOT, "bench/oracle/snake_oracle_results.json")) as f:
+        oracle = json.load(f)
+    names = ["original", "both25", "shear25", "twist25", "RC_original"] + (["RC_both25"] if budget == "full" else [])
+    runs = {n: load(os.path.join(out, n + ".h5")) for n in names}
+    tend = min(r[0][-1] for r in runs.values())
+    v25 = {n: speed(*runs[n], 2, 5) for n in names}
+    lat = {n: lateral_ptp(*runs[n]) for n in names}
+    s = Study(out, "Continuum snake and its hardening", "Suppl. Note 6.5, Fig. 10",
+              models=["examples/snake_hardening.sinew", "models/continuum_snake.sinew"],
+              commands=["SINEW_PATH=models bin/sinewc examples/snake_hardening.sinew -o SIM",
+                        "SIM --duration %s --set shear=1 --set twist=1   # original" % duration,
+                        "SIM --duration %s                               # shear and twist x25" % duration,
+                        "SIM --duration %s --set twist=1                 # shear x25" % duration,
+                        "SIM --duration %s --set shear=1                 # twist x25" % duration,
+                        "# the reference code's conventions: rotational_damping = 5 N s/rad on the body, "
+                        "contact_point = true on the ground (sed, scripts/reproduce/snake_continuum.sh)"])
+    src = "PyElastica, the reference's own code, on the same settings (bench/oracle/snake_oracle_results.json)"
+    # the baseline: the original snake under the reference code's conventions against its code
+    s.compare("Fig. 10b, original", "original snake, speed 2-5 s: %.4f m/s (%s)" % (oracle["speed_2_5"]["original"], src),
+              v25["RC_original"], oracle["speed_2_5"]["original"], 0.02, "m/s",
+              why_differ="the conventions of the reference's code are taken here; a difference is "
+                         "the models' own")
+    s.compare("Fig. 10b, original", "original snake, centre of mass lateral peak to peak 2-5 s: %.4f m (%s)"
+              % (oracle["com_lateral_ptp_2_5"]["original"], src),
+              lat["RC_original"], oracle["com_lateral_ptp_2_5"]["original"], 0.05, "m",
+              why_differ="not explained yet: the speed agrees to about 1% under the same conventions, so the "
+                         "two codes' gaits differ in their sideways sway; a candidate, not tested: the friction laws differ in their "
+                         "regularisation of a slip near zero (sinew: a cap, docs/physics.md 'Ground and "
+                         "terrain'; the reference's code: a linear ramp), which acts where the sway turns")
+    # Fig. 10's claim: hardening changes the gait
+    for n, label in (("both25", "shear and twist x25"), ("shear25", "shear x25"), ("twist25", "twist x25")):
+        dv = v25[n] / v25["original"] - 1
+        dl = lat[n] / lat["original"] - 1
+        ov = oracle["speed_2_5"][n] / oracle["speed_2_5"]["original"] - 1
+        o10 = oracle["speed_2_10"][n] / oracle["speed_2_10"]["original"] - 1
+        grew = oracle["rms_axial_strain_10s"][n] > 10 * oracle["rms_axial_strain_10s"]["original"]
+        if grew:
+            why = ("the reference's own code gives %+.1f%% over 2-5 s, while its gait is clean, and %+.0f%% over "
+                   "2-10 s only after a grid-scale oscillation of its shear-hardened rod grows (rms axial strain "
+                   "%.1g at 10 s against %.1g in the original); sinew's hardened rods stay free of it (tests "
+                   "test_hardening, test_hardening_implicit): Fig. 10's difference is that instability of the "
+                   "reference's code, not the physics" %
+                   (100 * ov, 100 * o10, oracle["rms_axial_strain_10s"][n],
+                    oracle["rms_axial_strain_10s"]["original"]))
+        else:
+            why = ("the reference's own code gives %+.1f%% over 2-5 s and %+.1f%% over 2-10 s: twist hardening "
+                   "changes nothing there either" % (100 * ov, 100 * o10))
+        s.row("Fig. 10b, %s" % label,
+              "hardening changes the snake's speed by up to 10% and its lateral excursion by up to 60%",
+              "speed 2-5 s %+.2f%%, lateral peak to peak %+.1f%% (sinew's conventions)" % (100 * dv, 100 * dl),
+              "differ", why)
+    s.statement("Fig. 10b, against the oracle", "(the oracle's clean window) hardening x25 changes the speed "
+                "over 2-5 s by %+.1f%% in the reference's own code" %
+                (100 * (oracle["speed_2_5"]["both25"] / oracle["speed_2_5"]["original"] - 1)),
+                abs(v25["both25"] / v25["original"] - 1) < 0.01,
+                "sinew: %+.2f%% (within 1%% as the oracle's)" % (100 * (v25["both25"] / v25["original"] - 1)))
+    if budget == "full":
+        v210 = {n: speed(*runs[n], 2, 10) for n in names}
+        s.row("Fig. 10b, x25, reference conventions",
+              "hardening changes the speed by up to 10% (2-10 s)",
+              "under the reference code's conventions: original %.4f, x25 %.4f m/s (%+.0f%%)"
+              % (v210["RC_original"], v210["RC_both25"], 100 * (v210["RC_both25"] / v210["RC_original"] - 1)),
+              "differ",
+              "under the reference's rotational dissipation the x25 snake leaves its gait for one about three "
+              "times faster, at a time that moves with dt (docs/validation.md, 'Environments and locomotion'): "
+              "a perturbation of the discretisation grows, as in the reference's own code")
+    # the convention's effect, measured
+    dv = v25["original"] / v25["RC_original"] - 1
+    s.convention("rotational dissipation proportional to mass (the body's gamma per unit mass on the angular "
+                 "velocity), friction on the centreline",
+                 "gamma = 5 kg m^-1 s^-1 as a couple per unit length on the angular velocity "
+                 "(rotational_damping = 5 N s/rad), friction at the contact point with its rolling couple "
+                 "(contact_point = true)",
+                 "snake_continuum, snake_hardening, snake_terrain",
+                 "original snake, speed 2-5 s: %.4f m/s with sinew's defaults against %.4f with the reference's "
+                 "(%+.1f%%); the shipped scenes keep sinew's defaults, under which no hardened snake switches "
+                 "gait" % (v25["original"], v25["RC_original"], 100 * dv))
+    # plot: centre of mass x against time, like Fig. 10b
+    fig, ax = plt.subplots(figsize=(6.4, 3.6))
+    for n, label, c in (("original", "original", "k"), ("twist25", "twist x25", "tab:red"),
+                        ("shear25", "shear x25", "tab:blue"), ("both25", "both x25", "tab:green"),
+                        ("RC_original", "original, reference conventions", "0.6")):
+        t, com = runs[n]
+        ax.plot(t, com[:, 0], color=c, lw=1.2, ls="--" if n.startswith("RC") else "-", label=label)
+    ax.set_xlabel("t (s)")
+    ax.set_ylabel("centre of mass x (m)")
+    ax.set_xlim(0, tend)
+    ax.legend(fontsize=8, frameon=False)
+    fig.tight_layout()
+    fig.savefig(os.path.join(out, "com.png"), dpi=110)
+    s.plot("com.png")
+    if budget == "quick":
+        s.note("The quick budget runs %s of the reference's 10 s: the window 2-5 s, in which the reference's "
+               "own code is free of the instability, is whole." % duration)
+    s.write()
+
+
+if __name__ == "__main__":
+    main()
