@@ -1,19 +1,20 @@
 /* test_twist.c — twist mechanics of the rod against the classical
  * stability theory: Greenhill's critical twist of a rod clamped at both
- * ends.
+ * ends, and of a rod whose far end slides in a sleeve under a dead axial
+ * force.
  *
  * Reference.  A straight, isotropic, inextensible and unshearable rod of
  * length L, bending stiffness B = E I and twist stiffness C = G J, carrying
- * an axial twisting moment M and no axial force, has lateral deflections
- * u = x + i y that obey, to first order (Love, A Treatise on the
- * Mathematical Theory of Elasticity, 4th ed. 1927, sec. 270-272; Greenhill,
- * Proc. Inst. Mech. Eng. 1883; van der Heijden & Thompson, Nonlinear
- * Dynamics 21:71, 2000, eq. 1 with the axial force zero)
+ * an axial twisting moment M and an axial compressive force P (P < 0:
+ * tension), has lateral deflections u = x + i y that obey, to first order
+ * (Love, A Treatise on the Mathematical Theory of Elasticity, 4th ed. 1927,
+ * sec. 270-272; Greenhill, Proc. Inst. Mech. Eng. 1883; van der Heijden &
+ * Thompson, Nonlinear Dynamics 21:71, 2000, eq. 1)
  *
- *     B u'''' - i M u''' = 0,
+ *     B u'''' - i M u''' + P u'' = 0.
  *
- * so u = a + b s + c s^2 + d exp(i mu s) with mu = M / B.  Clamped ends,
- * u = u' = 0 at s = 0 and s = L, leave a non-zero solution when
+ * Without P, u = a + b s + c s^2 + d exp(i mu s) with mu = M / B.  Clamped
+ * ends, u = u' = 0 at s = 0 and s = L, leave a non-zero solution when
  *
  *     (e^{i theta} - 1) - (i theta / 2)(1 + e^{i theta}) = 0,  theta = M L / B,
  *
@@ -25,22 +26,21 @@
  * Phi_c = 8.9868 (1 + nu).  The test finds the root of tan x = x by Newton
  * itself rather than quoting it.
  *
- * Measurement.  The straight twisted rod is an equilibrium at every twist;
- * past Phi_c its lowest lateral mode has a negative stiffness and grows as
- * exp(sigma t), with sigma^2 = -omega^2(Phi), a smooth function of the
- * twist that crosses zero at the rod's own critical twist.  Each run starts
- * the rod straight with its frames turned uniformly through Phi between
- * its clamped ends (sw_spec_set_start_shape; the clamps hold the start
- * frames, boundary.c), gives it a lateral velocity of 1e-10 m/s, and fits
- * sigma to the logarithm of the largest lateral deflection over its last
- * hundredfold growth, still far inside the linear range.  Three twists
- * above the reference (1.02, 1.04, 1.06 Phi_c) give three sigma^2; the
- * parabola through them crosses zero at the measured critical twist.
- * Slow twisting of one end (SW_BC_OMEGA) finds the same point only as the
- * twist at which a deflection first becomes visible, which lags the
- * bifurcation by the time the growth needs: this measures the bifurcation
- * itself.  The rod is slender (r / L = 0.005): its shear flexibility moves
- * the critical twist by about pi^2 (r/L)^2 E / (4/3 G) ~ 5e-4 of it.
+ * With P, u = a + b s + c exp(i k1 s) + d exp(i k2 s), k1,2 the roots of
+ * B k^2 - M k - P = 0.  The same four clamped conditions (derived here; with
+ * pinned ends the same equation gives Greenhill's M^2/(4 B^2) + P/B =
+ * pi^2/L^2) leave a non-zero solution when, with t1,2 = k1,2 L / 2,
+ *
+ *     (t2 - t1) sin t1 sin t2 = t1 t2 sin(t2 - t1),
+ *
+ * which gives Euler's clamped load P = 4 pi^2 B / L^2 at M = 0 and
+ * tan t1 = t1 at P = 0.  The sleeve below holds the far end so: its node on
+ * the axis (slide) and its frame still (angular_velocity 0), free to move
+ * along the axis, where a dead force P pushes; the twist between the ends
+ * is prescribed, so M = C Phi / L is the holds' reaction.  A finite-
+ * difference eigenproblem for M at fixed P with u = u' = 0 at both ends (400
+ * points; outside this test) gives the same roots to 1e-4: M_c L / B =
+ * 5.8176 at P L^2 / B = 2 pi^2 and 14.3106 at -4 pi^2.
  */
 #include "testutil.h"
 #include "internal.h"
@@ -58,9 +58,37 @@ static double tan_root(void) {
 /* Greenhill's clamped-clamped critical twist angle, rad. */
 static double greenhill_twist(void) { return 2 * tan_root() * (1 + POISSON); }
 
-/* A rod of n elements along z, clamped at both ends, its frames turned
- * uniformly through phi from the first element to the last. */
-static swModel *twisted_rod(int n, double phi) {
+/* Clamped-clamped Greenhill with an axial force: M_c L / B at P L^2 / B = p
+ * (> 0 compression), the first zero above the least M with real k1,2 of the
+ * condition above divided by t2 (so that it holds at P = 0 too). */
+static double greenhill_cond(double m, double p) {
+  const double dd = sqrt(m * m + 4 * p), t1 = (m + dd) / 4, t2 = (m - dd) / 4;
+  return (t2 - t1) * sin(t1) * (t2 != 0 ? sin(t2) / t2 : 1) - t1 * sin(t2 - t1);
+}
+static double greenhill_moment(double p) {
+  double lo = sqrt(fmax(0, -4 * p)) + 1e-3, hi = lo;
+  const double g0 = greenhill_cond(lo, p);
+  while (greenhill_cond(hi, p) * g0 > 0 && hi < 100) lo = hi, hi += 0.01; /* scan, then bisect */
+  for (int k = 0; k < 60; k++) {
+    const double mid = 0.5 * (lo + hi);
+    if (greenhill_cond(mid, p) * g0 > 0) lo = mid;
+    else hi = mid;
+  }
+  return 0.5 * (lo + hi);
+}
+
+/* The far end: clamped, or in a sleeve (slide along z, frame held) with the
+ * dead axial force `load` (N, > 0 compression) on it. */
+typedef struct {
+  int sleeve;
+  double load;
+} FarEnd;
+static const FarEnd CLAMPED = {0, 0};
+
+/* A rod of n elements along z, clamped at its start, its far end as `far`,
+ * its frames turned uniformly through phi from the first element to the
+ * last; with a load it starts shortened by P / (E A), in equilibrium. */
+static swModel *twisted_rod(int n, double phi, FarEnd far) {
   swSpec *s = sw_spec_new();
   swRodDesc r;
   sw_rod_desc_init(&r);
@@ -73,7 +101,8 @@ static swModel *twisted_rod(int n, double phi) {
   r.poisson = POISSON;
   int id = sw_spec_add_rod(s, &r);
   double *x = calloc(3 * (size_t)(n + 1), sizeof(double)), *Q = calloc(9 * (size_t)n, sizeof(double));
-  for (int i = 0; i <= n; i++) x[3 * i + 2] = LEN * i / n;
+  const double strain = far.load / (YOUNGS * M_PI * RADIUS * RADIUS);
+  for (int i = 0; i <= n; i++) x[3 * i + 2] = LEN * (1 - strain) * i / n;
   for (int i = 0; i < n; i++) {
     const double a = phi * i / (n - 1), c = cos(a), sn = sin(a);
     double *q = Q + 9 * i;
@@ -84,9 +113,18 @@ static swModel *twisted_rod(int n, double phi) {
   assert_int_equal(sw_spec_set_start_shape(s, id, x, Q), SW_OK);
   free(x);
   free(Q);
-  for (int end = 0; end < 2; end++) {
+  for (int end = 0; end < 2 - far.sleeve; end++) {
     swBCDesc b = {.kind = SW_BC_CLAMP, .rod = id, .end = end, .signal = sw_signal_const(1)};
     sw_spec_add_bc(s, &b);
+  }
+  if (far.sleeve) {
+    swBCDesc line = {.kind = SW_BC_SLIDE_LINE, .rod = id, .end = 1, .vec = {0, 0, 1}, .signal = sw_signal_const(1)};
+    swBCDesc still = {.kind = SW_BC_OMEGA, .rod = id, .end = 1, .signal = sw_signal_const(1)};
+    swLoadDesc push = {.kind = SW_LOAD_FORCE, .rod = id, .index = -1, .vec = {0, 0, -far.load},
+                       .signal = sw_signal_const(1)};
+    sw_spec_add_bc(s, &line);
+    sw_spec_add_bc(s, &still);
+    sw_spec_add_load(s, &push);
   }
   swModel *m = sw_test_compile_at(s, 0.9);
   sw_spec_free(s);
@@ -106,8 +144,8 @@ static double lateral(const swModel *m, const swData *d) {
 
 /* The growth rate sigma (1/s) of the lateral deflection of the rod of n
  * elements twisted through phi; 0 if it did not grow a thousandfold. */
-static double growth_rate(int n, double phi) {
-  swModel *m = twisted_rod(n, phi);
+static double growth_rate(int n, double phi, FarEnd far) {
+  swModel *m = twisted_rod(n, phi, far);
   swData *d = sw_data_new(m);
   for (int i = 1; i < n; i++) /* a lateral nudge, zero at the clamps */
     SW_AT(m, d->v, m->node_adr[0] + i, 0) = 1e-10 * pow(sin(M_PI * i / n), 2);
@@ -138,13 +176,13 @@ static double growth_rate(int n, double phi) {
 }
 
 /* The critical twist of the rod of n elements: the zero of the parabola
- * through sigma^2 at three twists above the reference. */
-static double critical_twist(int n) {
-  const double ref = greenhill_twist(), f[3] = {1.02, 1.04, 1.06};
+ * through sigma^2 at the twists (lo, lo + 0.02, lo + 0.04) ref. */
+static double critical_twist(int n, double ref, double lo, FarEnd far) {
+  const double f[3] = {lo, lo + 0.02, lo + 0.04};
   double p[3], y[3];
   for (int k = 0; k < 3; k++) {
     p[k] = f[k] * ref;
-    const double sg = growth_rate(n, p[k]);
+    const double sg = growth_rate(n, p[k], far);
     y[k] = sg * sg;
   }
   /* Newton's divided differences: y = y0 + a (p - p0) + b (p - p0)(p - p1) */
@@ -169,7 +207,7 @@ static void test_greenhill(void **state) {
   fprintf(stderr, "# %s: reference Phi_c = 2 x (root of tan x = x) x (1 + nu) = %.9f rad "
           "(M_c L / B = %.6f = %.4f pi)\n", __func__, ref, 2 * tan_root(), 2 * tan_root() / M_PI);
   for (int k = 0; k < nres; k++) {
-    ratio[k] = critical_twist(ns[k]) / ref;
+    ratio[k] = critical_twist(ns[k], ref, 1.02, CLAMPED) / ref;
     fprintf(stderr, "# %s: n = %d: Phi_c(sinew) / Phi_c(Greenhill) = %.5f\n", __func__, ns[k],
             ratio[k]);
     assert_true(fabs(ratio[k] - 1) < 0.02);
@@ -183,9 +221,49 @@ static void test_greenhill(void **state) {
   }
 }
 
+/* A sleeve at the far end under a dead axial force, compressive (half of
+ * Euler's clamped load P_E = 4 pi^2 B / L^2) and tensile (P_E): the critical
+ * twist at 50 and 100 elements against the clamped-clamped condition with
+ * P.  Unlike the twist alone (test_greenhill, where the rod's length drops
+ * out of Phi_c = M_c L / C), the force's share P L^2 / B depends on where
+ * the discrete clamps sit, within an element of the ends: the error is of
+ * first order, and the extrapolation 2 r(100) - r(50) is checked (the
+ * sanitized build: tension at 50 elements only). */
+static void test_greenhill_sleeve(void **state) {
+  (void)state;
+  const double bend = YOUNGS * M_PI * pow(RADIUS, 4) / 4, euler = 4 * M_PI * M_PI * bend / (LEN * LEN);
+  const double share[2] = {-1.0, 0.5};
+  const int ns[2] = {50, 100};
+  const int nload = sw_test_sanitized() ? 1 : 2, nres = sw_test_sanitized() ? 1 : 2;
+  /* the condition's own limit at P -> 0: tan x = x */
+  SW_EXPECT_REL("M_c L / B as P -> 0", greenhill_moment(1e-9), 2 * tan_root(), 1e-6);
+  for (int j = 0; j < nload; j++) {
+    const double p = share[j] * euler * LEN * LEN / bend, mc = greenhill_moment(p);
+    const double ref = mc * (1 + POISSON);
+    const FarEnd far = {1, share[j] * euler};
+    fprintf(stderr, "# %s: P = %+.2f x 4 pi^2 B / L^2 = %+.6f N: M_c L / B = %.6f, Phi_c = %.6f rad\n",
+            __func__, share[j], far.load, mc, ref);
+    double ratio[2];
+    for (int k = 0; k < nres; k++) {
+      ratio[k] = critical_twist(ns[k], ref, 1.04, far) / ref;
+      fprintf(stderr, "# %s: P = %+.2f P_E, n = %d: Phi_c(sinew) / Phi_c(Greenhill) = %.5f\n", __func__,
+              share[j], ns[k], ratio[k]);
+      assert_true(fabs(ratio[k] - 1) < 0.02);
+    }
+    if (nres == 2) {
+      const double rich = 2 * ratio[1] - ratio[0];
+      fprintf(stderr, "# %s: P = %+.2f P_E: error ratio (n = 50 / n = 100) %.2f, extrapolated ratio %.5f\n",
+              __func__, share[j], (ratio[0] - 1) / (ratio[1] - 1), rich);
+      assert_true((ratio[0] - 1) / (ratio[1] - 1) > 1.6 && (ratio[0] - 1) / (ratio[1] - 1) < 2.6);
+      SW_EXPECT_REL("extrapolated ratio", rich, 1.0, 1e-3);
+    }
+  }
+}
+
 int main(void) {
   const struct CMUnitTest tests[] = {
       cmocka_unit_test(test_greenhill),
+      cmocka_unit_test(test_greenhill_sleeve),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);
 }
