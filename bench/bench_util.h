@@ -1,12 +1,15 @@
 /* bench_util.h — the clock, the median and the report splicing shared by the
- * benchmarks (bench_rigid.c, bench_contact.c, bench_obstacle.c, bench_scaling.c),
- * and the format of a time. */
+ * benchmarks (bench_rigid.c, bench_contact.c, bench_obstacle.c, bench_pile.c,
+ * bench_scaling.c), the format of a time, and what the contact benchmarks
+ * all do to a scene: compile it at a share of its stable step, and time
+ * whole steps in batches. */
 #ifndef SW_BENCH_UTIL_H
 #define SW_BENCH_UTIL_H
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <time.h>
+#include "sinew.h"
 
 static inline double wall_seconds(void) {
   struct timespec ts;
@@ -77,6 +80,40 @@ static inline const char *bench_fmt_time(char *buf, size_t len, double ns) {
   else if (ns >= 1e3) snprintf(buf, len, "%.3g us", ns * 1e-3);
   else snprintf(buf, len, "%.3g ns", ns);
   return buf;
+}
+
+/* Prints "prog: what: detail" and exits 1. */
+static inline void bench_die(const char *prog, const char *what, const char *detail) {
+  fprintf(stderr, "%s: %s%s%s\n", prog, what, detail ? ": " : "", detail ? detail : "");
+  exit(1);
+}
+
+/* Compiles s once for its stable-step estimate, sets dt to `share` of it
+ * and compiles again; exits with the compiler's message on failure. */
+static inline swModel *bench_compile_at(const char *prog, swSpec *s, double share) {
+  char err[512] = "";
+  swModel *m0 = sw_compile(s, err, sizeof err);
+  if (!m0) bench_die(prog, "sw_compile failed", err);
+  sw_spec_set_dt(s, share * sw_stable_dt(m0));
+  sw_model_free(m0);
+  swModel *m = sw_compile(s, err, sizeof err);
+  if (!m) bench_die(prog, "sw_compile failed", err);
+  return m;
+}
+
+/* ns per step of sw_steps(), `chunk` steps a call, over at least `seconds`
+ * of calls (one batch); exits on a failed step. */
+static inline double bench_ns_per_step(const char *prog, const swModel *m, swData *d, int chunk,
+                                       double seconds) {
+  long count = 0;
+  double spent = 0;
+  while (spent < seconds || count == 0) {
+    double t0 = wall_seconds();
+    if (sw_steps(m, d, chunk) != SW_OK) bench_die(prog, "sw_steps failed", d->error);
+    spent += wall_seconds() - t0;
+    count += chunk;
+  }
+  return 1e9 * spent / (double)count;
 }
 
 #endif
