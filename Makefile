@@ -234,7 +234,7 @@ build/bench/bench_obstacle: bench/bench_obstacle.c bench/bench_util.h build/libs
 # own section.
 BENCH_PILE = build/bench/bench_pile
 build/bench/bench_pile: bench/bench_pile.c bench/bench_util.h build/libsinewrt.a | build/bench
-	$(CC) $(ALL_CFLAGS) $(TEST_INC) $< -o $@ build/libsinewrt.a $(LIBS)
+	$(CC) $(ALL_CFLAGS) $(BENCH_FLAGS) $(TEST_INC) $< -o $@ build/libsinewrt.a $(LIBS)
 # bench_scaling (10^2 to 10^6 elements, one rod or many, 1 and 2 threads,
 # memory per element) replaces or appends its own section.
 BENCH_SCALING = build/bench/bench_scaling

@@ -82,6 +82,39 @@ static inline const char *bench_fmt_time(char *buf, size_t len, double ns) {
   return buf;
 }
 
+/* The CPU's model name from /proc/cpuinfo ("unknown CPU" without it). */
+static inline void bench_cpu_model(char *out, size_t len) {
+  snprintf(out, len, "unknown CPU");
+  FILE *f = fopen("/proc/cpuinfo", "r");
+  char line[512];
+  while (f && fgets(line, sizeof line, f)) {
+    const char *colon = strchr(line, ':');
+    if (strncmp(line, "model name", 10) != 0 || !colon) continue;
+    snprintf(out, len, "%s", colon + 1 + strspn(colon + 1, " \t"));
+    out[strcspn(out, "\r\n")] = 0;
+    break;
+  }
+  if (f) fclose(f);
+}
+
+/* The vector instructions this file was compiled for, from the compiler's
+ * predefined macros (-march=native names the build machine's). */
+static inline const char *bench_isa(void) {
+#if defined(__AVX512F__)
+  return "AVX-512 (x86-64-v4 or above)";
+#elif defined(__AVX2__) && defined(__FMA__)
+  return "AVX2 and FMA (x86-64-v3)";
+#elif defined(__SSE4_2__)
+  return "SSE4.2 (x86-64-v2)";
+#elif defined(__x86_64__)
+  return "SSE2 (x86-64)";
+#elif defined(__aarch64__)
+  return "AArch64 (NEON)";
+#else
+  return "unknown";
+#endif
+}
+
 /* Prints "prog: what: detail" and exits 1. */
 static inline void bench_die(const char *prog, const char *what, const char *detail) {
   fprintf(stderr, "%s: %s%s%s\n", prog, what, detail ? ": " : "", detail ? detail : "");
