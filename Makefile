@@ -141,9 +141,9 @@ build/portable/rt/%.o: runtime/%.c $(RT_HDR)
 build/libsinewrt-portable.a: $(RT_POBJ)
 	ar rcs $@ $^
 
-build/tests/%: tests/runtime/%.c tests/runtime/testutil.h tests/runtime/h5read.h build/libsinewrt.a | build/tests
+build/tests/%: tests/runtime/%.c tests/runtime/testutil.h tests/runtime/h5read.h tests/runtime/twist_rod.h build/libsinewrt.a | build/tests
 	$(CC) $(ALL_CFLAGS) $(TEST_INC) -Itests/runtime $< -o $@ build/libsinewrt.a $(LIBS) -lcmocka
-build/asan/tests/%: tests/runtime/%.c tests/runtime/testutil.h tests/runtime/h5read.h build/asan/libsinewrt.a | build/asan/tests
+build/asan/tests/%: tests/runtime/%.c tests/runtime/testutil.h tests/runtime/h5read.h tests/runtime/twist_rod.h build/asan/libsinewrt.a | build/asan/tests
 	$(CC) $(SAN_CFLAGS) $(TEST_INC) -Itests/runtime $< -o $@ build/asan/libsinewrt.a $(LIBS) -lcmocka
 
 build/rt build/tests build/asan/tests build/bench:
