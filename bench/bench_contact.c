@@ -103,7 +103,7 @@ static double time_eval(Scene *sc, swContactPhase phase) {
   return 1e9 * spent / (double)count;
 }
 
-static double time_step(Scene *sc) { return bench_ns_per_step("bench_contact", sc->m, sc->d, 4, BATCH_SECONDS); }
+static double time_step(Scene *sc) { return bench_ns_per_step("bench_contact", sc->m, sc->d, 4, BATCH_SECONDS, NULL); }
 
 static void measure(Scene *sc) {
   double grid[NREP], brute[NREP], step[NREP];

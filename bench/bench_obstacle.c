@@ -81,7 +81,7 @@ static double time_eval(Scene *sc, swObstaclePhase phase) {
 
 static double time_step(Scene *sc) {
   sw_reset(sc->m, sc->d); /* from the scene as laid, each batch */
-  return bench_ns_per_step("bench_obstacle", sc->m, sc->d, 4, BATCH_SECONDS);
+  return bench_ns_per_step("bench_obstacle", sc->m, sc->d, 4, BATCH_SECONDS, NULL);
 }
 
 static void measure(Scene *sc) {

@@ -48,6 +48,7 @@ typedef struct {
   swData *d;
   int nelem, pairs, touching;  /* rod-rod pairs, element-obstacle contacts */
   double ns_step, ns_kernels;  /* a step, and contact + obstacle kernels   */
+  double ns_cpu;               /* the step's CPU time (the thread's)       */
   double size;                 /* pile: ropes; post: R                     */
 } Scene;
 
@@ -170,38 +171,43 @@ static void settle_and_measure(Scene *sc, double settle) {
   sc->nelem = sc->m->nelem;
   const int steps = (int)ceil(settle / sc->m->dt);
   if (sw_steps(sc->m, sc->d, steps) != SW_OK) bench_die(PROG, "sw_steps failed", sc->d->error);
-  double step[NREP], kern[NREP];
+  double step[NREP], kern[NREP], cpu[NREP];
   for (int rep = 0; rep < NREP; rep++) {
-    step[rep] = bench_ns_per_step(PROG, sc->m, sc->d, 8, BATCH_SECONDS);
+    step[rep] = bench_ns_per_step(PROG, sc->m, sc->d, 8, BATCH_SECONDS, &cpu[rep]);
     kern[rep] = time_kernels(sc);
   }
   sc->pairs = sc->d->contact_pairs;
   sc->touching = sc->d->obstacle_contacts;
   sc->ns_step = median(step, NREP);
   sc->ns_kernels = median(kern, NREP);
+  sc->ns_cpu = median(cpu, NREP);
 }
 
 static void write_row(FILE *f, const char *what, const Scene *sc) {
-  char st[32], pe[32];
-  fprintf(f, "| %s | %d | %d | %d | %.2f | %s | %s | %.0f%% |\n", what, sc->nelem, sc->pairs, sc->touching,
+  char st[32], pe[32], pc[32];
+  fprintf(f, "| %s | %d | %d | %d | %.2f | %s | %s | %s | %.0f%% |\n", what, sc->nelem, sc->pairs, sc->touching,
           (double)(sc->pairs + sc->touching) / sc->nelem, bench_fmt_time(st, sizeof st, sc->ns_step),
-          bench_fmt_time(pe, sizeof pe, sc->ns_step / sc->nelem), 100 * sc->ns_kernels / sc->ns_step);
+          bench_fmt_time(pe, sizeof pe, sc->ns_step / sc->nelem), bench_fmt_time(pc, sizeof pc, sc->ns_cpu / sc->nelem),
+          100 * sc->ns_kernels / sc->ns_step);
 }
 
 static double pile_min_per_elem(const Scene *pile) {
   double v = INFINITY;
-  for (int i = 0; i < NPILE; i++) v = fmin(v, pile[i].ns_step / pile[i].nelem);
+  for (int i = 0; i < NPILE; i++) v = fmin(v, pile[i].ns_cpu / pile[i].nelem);
   return v;
 }
 static double pile_max_per_elem(const Scene *pile) {
   double v = 0;
-  for (int i = 0; i < NPILE; i++) v = fmax(v, pile[i].ns_step / pile[i].nelem);
+  for (int i = 0; i < NPILE; i++) v = fmax(v, pile[i].ns_cpu / pile[i].nelem);
   return v;
 }
 
 static void write_section(FILE *f, const Scene *pile, const Scene *post) {
-  char cpu[160];
+  char cpu[160], load[32] = "unknown";
   bench_cpu_model(cpu, sizeof cpu);
+  FILE *la = fopen("/proc/loadavg", "r");
+  if (la && fscanf(la, "%31s", load) != 1) snprintf(load, sizeof load, "unknown");
+  if (la) fclose(la);
   fprintf(f, "%s\n\n", SECTION);
   fprintf(f, "Written by bench/bench_pile.c, which `make bench` runs after bench_obstacle (same\n"
              "machine, compiler and flags as above; this section is replaced on every run).\n\n"
@@ -215,12 +221,16 @@ static void write_section(FILE *f, const Scene *pile, const Scene *post) {
              "  for %.2f s.\n"
              "- Step: `sw_steps` at half the stable estimate, the scene moving on; median of %d\n"
              "  batches of at least %.2f s. Kernels: contact.c's and obstacle.c's evaluations\n"
-             "  alone over the step (over 100%%: the two medians' noise). Contacts: those of\n"
-             "  the last evaluation.\n"
-             "- Machine: %s, built with `%s` (%s); one thread.\n\n",
-          SETTLE_SECONDS, POST_N, POST_SETTLE_SECONDS, NREP, BATCH_SECONDS, cpu, SW_BENCH_CFLAGS, bench_isa());
+             "  alone over the step (over 100%%: the two medians' noise). CPU: the thread's CPU\n"
+             "  time over the same batches (what the wall time is, less the waits for a core\n"
+             "  on a shared machine). Contacts: those of the last evaluation.\n"
+             "- Machine: %s, built with `%s` (%s); one thread; the load average\n"
+             "  (/proc/loadavg, 1 min) was %s when the last scene was measured.\n\n",
+          SETTLE_SECONDS, POST_N, POST_SETTLE_SECONDS, NREP, BATCH_SECONDS, cpu, SW_BENCH_CFLAGS, bench_isa(),
+          load);
   fprintf(f, "| scene | elements | rod-rod pairs | element-obstacle contacts | contacts per element "
-             "| step | per element-step | kernels / step |\n|:--|--:|--:|--:|--:|--:|--:|--:|\n");
+             "| step | per element-step | CPU per element-step | kernels / step |\n"
+             "|:--|--:|--:|--:|--:|--:|--:|--:|--:|\n");
   char what[64];
   for (int i = 0; i < NPILE; i++) {
     snprintf(what, sizeof what, "pile, %d rope%s of %d", PILE[i].ropes, PILE[i].ropes > 1 ? "s" : "",
@@ -231,25 +241,32 @@ static void write_section(FILE *f, const Scene *pile, const Scene *post) {
     snprintf(what, sizeof what, "post, R = %g cm", 100 * POST_R[i]);
     write_row(f, what, &post[i]);
   }
-  /* the post's step against its contacts: least squares, ns a contact */
+  /* the post's step (CPU time) against its contacts: least squares, ns a contact */
   double sx = 0, sy = 0, sxx = 0, sxy = 0;
   for (int i = 0; i < NPOST; i++) {
-    const double c = post[i].touching, t = post[i].ns_step;
+    const double c = post[i].touching, t = post[i].ns_cpu;
     sx += c, sy += t, sxx += c * c, sxy += c * t;
   }
   const double slope = (NPOST * sxy - sx * sy) / (NPOST * sxx - sx * sx), base = (sy - slope * sx) / NPOST;
   char b[32], c[32], lo[32], hi[32];
+  const Scene *first = &pile[0], *last = &pile[NPILE - 1];
   fprintf(f, "\nOn the post the step grows with the elements touching it: a least-squares\n"
-             "line through the five rows gives %s a step with none and %s more for each\n"
+             "line through the five rows' CPU times gives %s a step with none and %s more for each\n"
              "frictional contact (its anchor found, moved and kept); on this shared machine the\n"
-             "rows move by tens of percent from run to run, so that slope is rough. The pile costs\n"
-             "%s to %s per element-step, about flat while the elements grow eightfold and the\n"
-             "contacts with them (about one per element): the broad phase keeps the cost linear,\n"
-             "but in a dense pile each element has, by estimate, tens of candidates in its grid\n"
-             "cell (side: the element length plus two radii) and its 13 half-neighbours, most of\n"
-             "them within reach, so contact is nearly all of the step, some 30 times a free rope's.\n",
+             "rows' wall times move by tens of percent from run to run. The pile costs %s to\n"
+             "%s of CPU per element-step, %.1f times as much per element at %d elements as at\n"
+             "%d while the elements grow %d times (and the contacts per element from %.2f to\n"
+             "%.2f, and the grid's arrays outgrow the caches): far from the square a pairwise\n"
+             "search would give. In a dense pile each element has, by estimate, tens of\n"
+             "candidates in its grid cell (side: the element length plus two radii) and its 13\n"
+             "half-neighbours, most of them within reach, so contact is nearly all of the step,\n"
+             "30 to 60 times a free rope's step per element (bench_rod's first table). The whole\n"
+             "benchmark takes about 35 s of CPU.\n",
           bench_fmt_time(b, sizeof b, base), bench_fmt_time(c, sizeof c, slope),
-          bench_fmt_time(lo, sizeof lo, pile_min_per_elem(pile)), bench_fmt_time(hi, sizeof hi, pile_max_per_elem(pile)));
+          bench_fmt_time(lo, sizeof lo, pile_min_per_elem(pile)), bench_fmt_time(hi, sizeof hi, pile_max_per_elem(pile)),
+          (last->ns_cpu / last->nelem) / (first->ns_cpu / first->nelem), last->nelem, first->nelem,
+          last->nelem / first->nelem, (double)(first->pairs + first->touching) / first->nelem,
+          (double)(last->pairs + last->touching) / last->nelem);
 }
 
 int main(int argc, char **argv) {

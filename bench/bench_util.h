@@ -17,6 +17,14 @@ static inline double wall_seconds(void) {
   return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
 }
 
+/* The CPU time of the calling thread, s: on a machine others share, what
+ * the step cost without the time it waited for a core. */
+static inline double thread_cpu_seconds(void) {
+  struct timespec ts;
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
+  return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
 static inline int cmp_double(const void *a, const void *b) {
   double x = *(const double *)a, y = *(const double *)b;
   return (x > y) - (x < y);
@@ -135,17 +143,20 @@ static inline swModel *bench_compile_at(const char *prog, swSpec *s, double shar
 }
 
 /* ns per step of sw_steps(), `chunk` steps a call, over at least `seconds`
- * of calls (one batch); exits on a failed step. */
+ * of calls (one batch), and in *cpu_ns (unless NULL) the thread's CPU time
+ * per step over the same calls; exits on a failed step. */
 static inline double bench_ns_per_step(const char *prog, const swModel *m, swData *d, int chunk,
-                                       double seconds) {
+                                       double seconds, double *cpu_ns) {
   long count = 0;
-  double spent = 0;
+  double spent = 0, cpu = 0;
   while (spent < seconds || count == 0) {
-    double t0 = wall_seconds();
+    double t0 = wall_seconds(), c0 = thread_cpu_seconds();
     if (sw_steps(m, d, chunk) != SW_OK) bench_die(prog, "sw_steps failed", d->error);
+    cpu += thread_cpu_seconds() - c0;
     spent += wall_seconds() - t0;
     count += chunk;
   }
+  if (cpu_ns) *cpu_ns = 1e9 * cpu / (double)count;
   return 1e9 * spent / (double)count;
 }
 
