@@ -141,9 +141,9 @@ build/portable/rt/%.o: runtime/%.c $(RT_HDR)
 build/libsinewrt-portable.a: $(RT_POBJ)
 	ar rcs $@ $^
 
-build/tests/%: tests/runtime/%.c tests/runtime/testutil.h tests/runtime/h5read.h build/libsinewrt.a | build/tests
+build/tests/%: tests/runtime/%.c tests/runtime/testutil.h tests/runtime/h5read.h tests/runtime/twist_rod.h build/libsinewrt.a | build/tests
 	$(CC) $(ALL_CFLAGS) $(TEST_INC) -Itests/runtime $< -o $@ build/libsinewrt.a $(LIBS) -lcmocka
-build/asan/tests/%: tests/runtime/%.c tests/runtime/testutil.h tests/runtime/h5read.h build/asan/libsinewrt.a | build/asan/tests
+build/asan/tests/%: tests/runtime/%.c tests/runtime/testutil.h tests/runtime/h5read.h tests/runtime/twist_rod.h build/asan/libsinewrt.a | build/asan/tests
 	$(CC) $(SAN_CFLAGS) $(TEST_INC) -Itests/runtime $< -o $@ build/asan/libsinewrt.a $(LIBS) -lcmocka
 
 build/rt build/tests build/asan/tests build/bench:
@@ -229,13 +229,19 @@ build/bench/bench_contact: bench/bench_contact.c bench/bench_util.h build/libsin
 BENCH_OBSTACLE = build/bench/bench_obstacle
 build/bench/bench_obstacle: bench/bench_obstacle.c bench/bench_util.h build/libsinewrt.a | build/bench
 	$(CC) $(ALL_CFLAGS) $(TEST_INC) $< -o $@ build/libsinewrt.a $(LIBS)
+# bench_pile (contact-heavy scenes: a rope pile settled in a box, a rope on
+# a post, ns per element-step against the contacts) replaces or appends its
+# own section.
+BENCH_PILE = build/bench/bench_pile
+build/bench/bench_pile: bench/bench_pile.c bench/bench_util.h build/libsinewrt.a | build/bench
+	$(CC) $(ALL_CFLAGS) $(BENCH_FLAGS) $(TEST_INC) $< -o $@ build/libsinewrt.a $(LIBS)
 # bench_scaling (10^2 to 10^6 elements, one rod or many, 1 and 2 threads,
 # memory per element) replaces or appends its own section.
 BENCH_SCALING = build/bench/bench_scaling
 build/bench/bench_scaling: bench/bench_scaling.c bench/bench_util.h build/libsinewrt.a | build/bench
 	$(CC) $(ALL_CFLAGS) $< -o $@ build/libsinewrt.a $(LIBS)
 bench: deps
-	@$(MAKE) --no-print-directory $(BENCH_BIN) $(BENCH_RIGID) $(BENCH_CONTACT) $(BENCH_OBSTACLE) $(BENCH_SCALING) bin/sinewc
+	@$(MAKE) --no-print-directory $(BENCH_BIN) $(BENCH_RIGID) $(BENCH_CONTACT) $(BENCH_OBSTACLE) $(BENCH_PILE) $(BENCH_SCALING) bin/sinewc
 	@./$(BENCH_BIN) docs/benchmarks.md
 	@sh bench/bench_isa.sh docs/benchmarks.md   # bench_rod at x86-64-v3 and -v4, before issue 31 and now, side by side, and the vectorizer on aarch64 (~6 min, ~3 more the first time)
 	@sh bench/bench_pyelastica.sh docs/benchmarks.md   # PyElastica's Verlet against bench_rod's, n = 50, 100, 200, interleaved (~6 min; only with PyElastica's source in SW_PYELASTICA or build/pyelastica)
@@ -243,6 +249,7 @@ bench: deps
 	@./$(BENCH_RIGID) docs/benchmarks.md
 	@./$(BENCH_CONTACT) docs/benchmarks.md
 	@./$(BENCH_OBSTACLE) docs/benchmarks.md
+	@./$(BENCH_PILE) docs/benchmarks.md   # ~1 min
 	@./$(BENCH_SCALING) docs/benchmarks.md   # ~2 min
 	@sh bench/bench_speedup.sh      # the elbow, before issue 10 and now, side by side (~2 min)
 	@sh bench/bench_elbow.sh        # the elbow at 50 ns and at the stable dt (~20 min)

@@ -31,10 +31,7 @@ static const double BATCH_SECONDS = 0.05;
 static const double ROD_L = 0.05, ROD_R = 0.001;
 static const char SECTION[] = "## Rod-rod contact";
 
-static void die(const char *msg, const char *detail) {
-  fprintf(stderr, "bench_contact: %s%s%s\n", msg, detail ? ": " : "", detail ? detail : "");
-  exit(1);
-}
+static void die(const char *msg, const char *detail) { bench_die("bench_contact", msg, detail); }
 
 static unsigned long long rng_state = 0x9E3779B97F4A7C15ull;
 static double uniform(void) {
@@ -86,13 +83,7 @@ static void build(Scene *sc) {
   c.damping = 0.1;
   c.self = 1;
   if (sw_spec_add_contact(s, &c) < 0) die("out of memory", NULL);
-  char err[512] = "";
-  swModel *m0 = sw_compile(s, err, sizeof err);
-  if (!m0) die("sw_compile failed", err);
-  sw_spec_set_dt(s, 0.5 * sw_stable_dt(m0));
-  sw_model_free(m0);
-  sc->m = sw_compile(s, err, sizeof err);
-  if (!sc->m) die("sw_compile failed", err);
+  sc->m = bench_compile_at("bench_contact", s, 0.5);
   sw_spec_free(s);
   sc->d = sw_data_new(sc->m);
   if (!sc->d) die("out of memory", NULL);
@@ -112,17 +103,7 @@ static double time_eval(Scene *sc, swContactPhase phase) {
   return 1e9 * spent / (double)count;
 }
 
-static double time_step(Scene *sc) {
-  long count = 0;
-  double spent = 0;
-  while (spent < BATCH_SECONDS) {
-    double t0 = wall_seconds();
-    if (sw_steps(sc->m, sc->d, 4) != SW_OK) die("sw_steps failed", sc->d->error);
-    spent += wall_seconds() - t0;
-    count += 4;
-  }
-  return 1e9 * spent / (double)count;
-}
+static double time_step(Scene *sc) { return bench_ns_per_step("bench_contact", sc->m, sc->d, 4, BATCH_SECONDS, NULL); }
 
 static void measure(Scene *sc) {
   double grid[NREP], brute[NREP], step[NREP];

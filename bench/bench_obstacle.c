@@ -28,10 +28,7 @@ typedef struct {
   double ns_grid, ns_brute, ns_step;
 } Scene;
 
-static void die(const char *what, const char *detail) {
-  fprintf(stderr, "bench_obstacle: %s%s%s\n", what, detail ? ": " : "", detail ? detail : "");
-  exit(1);
-}
+static void die(const char *what, const char *detail) { bench_die("bench_obstacle", what, detail); }
 
 /* The rope along x at z = 1 mm over z = 0, 1 m long; obstacles on a 2 m
  * square, their tops at z = 0 (the rope rests on the few under it). */
@@ -63,13 +60,7 @@ static void build(Scene *sc, int nobs) {
     o.stiffness = 100, o.damping = 0.01;
     if (sw_spec_add_obstacle(s, &o) < 0) die("cannot add an obstacle", NULL);
   }
-  char err[256] = "";
-  swModel *m0 = sw_compile(s, err, sizeof err);
-  if (!m0) die("sw_compile failed", err);
-  sw_spec_set_dt(s, 0.5 * sw_stable_dt(m0));
-  sw_model_free(m0);
-  sc->m = sw_compile(s, err, sizeof err);
-  if (!sc->m) die("sw_compile failed", err);
+  sc->m = bench_compile_at("bench_obstacle", s, 0.5);
   sw_spec_free(s);
   sc->d = sw_data_new(sc->m);
   if (!sc->d) die("out of memory", NULL);
@@ -89,16 +80,8 @@ static double time_eval(Scene *sc, swObstaclePhase phase) {
 }
 
 static double time_step(Scene *sc) {
-  long count = 0;
-  double spent = 0;
   sw_reset(sc->m, sc->d); /* from the scene as laid, each batch */
-  while (spent < BATCH_SECONDS) {
-    double t0 = wall_seconds();
-    if (sw_steps(sc->m, sc->d, 4) != SW_OK) die("sw_steps failed", sc->d->error);
-    spent += wall_seconds() - t0;
-    count += 4;
-  }
-  return 1e9 * spent / (double)count;
+  return bench_ns_per_step("bench_obstacle", sc->m, sc->d, 4, BATCH_SECONDS, NULL);
 }
 
 static void measure(Scene *sc) {

@@ -1,16 +1,27 @@
 /* bench_util.h — the clock, the median and the report splicing shared by the
- * benchmarks (bench_rigid.c, bench_contact.c, bench_obstacle.c, bench_scaling.c),
- * and the format of a time. */
+ * benchmarks (bench_rigid.c, bench_contact.c, bench_obstacle.c, bench_pile.c,
+ * bench_scaling.c), the format of a time, and what the contact benchmarks
+ * all do to a scene: compile it at a share of its stable step, and time
+ * whole steps in batches. */
 #ifndef SW_BENCH_UTIL_H
 #define SW_BENCH_UTIL_H
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <time.h>
+#include "sinew.h"
 
 static inline double wall_seconds(void) {
   struct timespec ts;
   clock_gettime(CLOCK_MONOTONIC, &ts);
+  return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
+/* The CPU time of the calling thread, s: on a machine others share, what
+ * the step cost without the time it waited for a core. */
+static inline double thread_cpu_seconds(void) {
+  struct timespec ts;
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
   return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
 }
 
@@ -77,6 +88,76 @@ static inline const char *bench_fmt_time(char *buf, size_t len, double ns) {
   else if (ns >= 1e3) snprintf(buf, len, "%.3g us", ns * 1e-3);
   else snprintf(buf, len, "%.3g ns", ns);
   return buf;
+}
+
+/* The CPU's model name from /proc/cpuinfo ("unknown CPU" without it). */
+static inline void bench_cpu_model(char *out, size_t len) {
+  snprintf(out, len, "unknown CPU");
+  FILE *f = fopen("/proc/cpuinfo", "r");
+  char line[512];
+  while (f && fgets(line, sizeof line, f)) {
+    const char *colon = strchr(line, ':');
+    if (strncmp(line, "model name", 10) != 0 || !colon) continue;
+    snprintf(out, len, "%s", colon + 1 + strspn(colon + 1, " \t"));
+    out[strcspn(out, "\r\n")] = 0;
+    break;
+  }
+  if (f) fclose(f);
+}
+
+/* The vector instructions this file was compiled for, from the compiler's
+ * predefined macros (-march=native names the build machine's). */
+static inline const char *bench_isa(void) {
+#if defined(__AVX512F__)
+  return "AVX-512 (x86-64-v4 or above)";
+#elif defined(__AVX2__) && defined(__FMA__)
+  return "AVX2 and FMA (x86-64-v3)";
+#elif defined(__SSE4_2__)
+  return "SSE4.2 (x86-64-v2)";
+#elif defined(__x86_64__)
+  return "SSE2 (x86-64)";
+#elif defined(__aarch64__)
+  return "AArch64 (NEON)";
+#else
+  return "unknown";
+#endif
+}
+
+/* Prints "prog: what: detail" and exits 1. */
+static inline void bench_die(const char *prog, const char *what, const char *detail) {
+  fprintf(stderr, "%s: %s%s%s\n", prog, what, detail ? ": " : "", detail ? detail : "");
+  exit(1);
+}
+
+/* Compiles s once for its stable-step estimate, sets dt to `share` of it
+ * and compiles again; exits with the compiler's message on failure. */
+static inline swModel *bench_compile_at(const char *prog, swSpec *s, double share) {
+  char err[512] = "";
+  swModel *m0 = sw_compile(s, err, sizeof err);
+  if (!m0) bench_die(prog, "sw_compile failed", err);
+  sw_spec_set_dt(s, share * sw_stable_dt(m0));
+  sw_model_free(m0);
+  swModel *m = sw_compile(s, err, sizeof err);
+  if (!m) bench_die(prog, "sw_compile failed", err);
+  return m;
+}
+
+/* ns per step of sw_steps(), `chunk` steps a call, over at least `seconds`
+ * of calls (one batch), and in *cpu_ns (unless NULL) the thread's CPU time
+ * per step over the same calls; exits on a failed step. */
+static inline double bench_ns_per_step(const char *prog, const swModel *m, swData *d, int chunk,
+                                       double seconds, double *cpu_ns) {
+  long count = 0;
+  double spent = 0, cpu = 0;
+  while (spent < seconds || count == 0) {
+    double t0 = wall_seconds(), c0 = thread_cpu_seconds();
+    if (sw_steps(m, d, chunk) != SW_OK) bench_die(prog, "sw_steps failed", d->error);
+    cpu += thread_cpu_seconds() - c0;
+    spent += wall_seconds() - t0;
+    count += chunk;
+  }
+  if (cpu_ns) *cpu_ns = 1e9 * cpu / (double)count;
+  return 1e9 * spent / (double)count;
 }
 
 #endif

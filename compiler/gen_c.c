@@ -471,7 +471,7 @@ static void emit_build(FILE *out, swArena *a, const swScene *sc) {
     gen_origin(out, act->loc, "  ");
     if (act->is_bc) {
       static const char *kinds[] = {"SW_BC_CLAMP", "SW_BC_VELOCITY", "SW_BC_OMEGA", "SW_BC_SLIDE_LINE",
-                                    "SW_BC_SLIDE_PLANE"};
+                                    "SW_BC_SLIDE_PLANE", "SW_BC_SLEEVE"};
       fputs("  {\n    swBCDesc bc = {0};\n", out);
       fprintf(out, "    bc.kind = %s;\n    bc.rod = %d;", kinds[act->kind], gen_rod_id(sc, act->rod));
       rod_comment(out, sc, act->rod);

@@ -413,7 +413,7 @@ void sema_joint(swSema *S, swScope *scope, const swAst *it) {
 
 static const char *const actions[] = {"clamp", "gravity", "force", "torque", "velocity",
                                       "angular_velocity", "activate", "passive", "slide",
-                                      "slide_in_plane"};
+                                      "slide_in_plane", "sleeve"};
 enum { NACTIONS = sizeof actions / sizeof actions[0] };
 
 static void add_action(swSema *S, const swSceneAction *a) {
@@ -462,7 +462,7 @@ const swAst *sema_action_until(const swAst *it) {
 /* "STATEMENT ... until T;" on a statement that holds nothing. */
 void sema_until_misplaced(const swAst *it) {
   diag_error(sema_action_until(it)->loc, "'until' ends a hold: it applies to clamp, slide, "
-             "slide_in_plane, velocity and angular_velocity, not to '%s'", it->text);
+             "slide_in_plane, sleeve, velocity and angular_velocity, not to '%s'", it->text);
 }
 
 /* The time a hold lets its end go (seconds, known when the scene is built:
@@ -484,11 +484,22 @@ static swValue hold_until(swSema *S, swScope *scope, const swAst *until) {
 }
 
 /* A slide's end is held by no other statement on its node (clamp, velocity
- * or another slide): the two holds would contradict each other. */
+ * or another slide), and a sleeve's by none on its node or its frame (nor
+ * angular_velocity): the two holds would contradict each other. */
 static int slide_alone(swSema *S, const swSceneAction *a, const char *word) {
   for (int i = 0; i < S->scene->nact; i++) {
     const swSceneAction *o = &S->scene->act[i];
-    if (!o->is_bc || o->rod != a->rod || o->index != a->index || o->kind == SW_BC_OMEGA) continue;
+    if (!o->is_bc || o->rod != a->rod || o->index != a->index) continue;
+    const int sleeve = o->kind == SW_BC_SLEEVE || a->kind == SW_BC_SLEEVE;
+    if (sleeve) {
+      char first[300];
+      diag_error(a->loc, "'%s' holds an end that another statement already holds (at %s): a "
+                 "sleeve keeps the end node on a line and the end's frame turning about it, and "
+                 "cannot share the end with any other hold", word,
+                 diag_where_from(o->loc, a->loc, first, sizeof first));
+      return 0;
+    }
+    if (o->kind == SW_BC_OMEGA) continue;
     if (o->kind != SW_BC_SLIDE_LINE && o->kind != SW_BC_SLIDE_PLANE && a->kind != SW_BC_SLIDE_LINE &&
         a->kind != SW_BC_SLIDE_PLANE)
       continue;
@@ -512,15 +523,15 @@ void sema_action(swSema *S, swScope *scope, const swAst *it) {
      * misspelt one is only an unknown statement here */
     static const char *const all[] = {"clamp", "gravity", "force", "torque", "velocity",
                                       "angular_velocity", "activate", "passive", "maximize",
-                                      "minimize", "penalty", "slide", "slide_in_plane"};
+                                      "minimize", "penalty", "slide", "slide_in_plane", "sleeve"};
     const char *near = diag_suggest(word, all, (int)(sizeof all / sizeof all[0]));
     if (near) diag_error(wloc, "unknown statement '%s'; did you mean '%s'?", word, near);
     else
-      diag_error(wloc, "unknown statement '%s' (expected clamp, slide, slide_in_plane, gravity, "
+      diag_error(wloc, "unknown statement '%s' (expected clamp, slide, slide_in_plane, sleeve, gravity, "
                  "force, torque, velocity, angular_velocity, activate or passive)", word);
     return;
   }
-  const int is_hold = k == 0 || k == 4 || k == 5 || k == 8 || k == 9;
+  const int is_hold = k == 0 || k == 4 || k == 5 || k >= 8;
   const swAst *until = sema_action_until(it);
   if (until && !is_hold) {
     sema_until_misplaced(it);
@@ -606,14 +617,14 @@ void sema_action(swSema *S, swScope *scope, const swAst *it) {
     act.is_bc = 1;
     act.index = p.node == 0 ? 0 : 1;
     act.kind = k == 0 ? SW_BC_CLAMP : k == 4 ? SW_BC_VELOCITY : k == 5 ? SW_BC_OMEGA
-             : k == 8 ? SW_BC_SLIDE_LINE : SW_BC_SLIDE_PLANE;
+             : k == 8 ? SW_BC_SLIDE_LINE : k == 9 ? SW_BC_SLIDE_PLANE : SW_BC_SLEEVE;
     act.until = until ? hold_until(S, scope, until) : val_error();
     if (until && act.until.kind == VAL_ERROR) return;
     const swSceneRod *rod = &S->scene->rod[p.rod];
     if ((until || k >= 8) && (rod->rigid || rod->implicit)) {
       diag_error(it->loc, "%s on the %s rod '%s' is not supported: a %s rod keeps its holds "
                  "whole for the whole run (clamp it, or join it with a joint)",
-                 k >= 8 ? "a slide" : "a hold that ends ('until')", rod->rigid ? "rigid" : "implicit",
+                 k >= 8 ? (k == 10 ? "a sleeve" : "a slide") : "a hold that ends ('until')", rod->rigid ? "rigid" : "implicit",
                  rod->name, rod->rigid ? "rigid" : "implicit");
       return;
     }
@@ -622,7 +633,7 @@ void sema_action(swSema *S, swScope *scope, const swAst *it) {
       add_action(S, &act);
       return;
     }
-    if (k >= 8) { /* slide POINT = DIRECTION;  slide_in_plane POINT = NORMAL; */
+    if (k >= 8) { /* slide, sleeve POINT = DIRECTION;  slide_in_plane POINT = NORMAL; */
       swValue dir = sema_eval(S, scope, it->kid[1]);
       if (dir.kind == VAL_WORD) {
         sema_report_unknown(S, scope, dir.word, dir.loc, "name");
@@ -633,7 +644,7 @@ void sema_action(swSema *S, swScope *scope, const swAst *it) {
         return;
       }
       char dir_what[64];
-      snprintf(dir_what, sizeof dir_what, "'%s' (%s)", word, k == 8 ? "the line's direction" : "the plane's normal");
+      snprintf(dir_what, sizeof dir_what, "'%s' (%s)", word, k != 9 ? "the line's direction" : "the plane's normal");
       act.vec = sema_expect_value(S, dir, 3, DIM_NONE, dir_what);
       if (act.vec.kind == VAL_ERROR || !sema_known_at_build(S, &act.vec, dir_what)) return;
       if (val_is_const(&act.vec) && act.vec.v[0] == 0 && act.vec.v[1] == 0 && act.vec.v[2] == 0) {

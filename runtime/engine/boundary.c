@@ -31,7 +31,13 @@
  * subspace, so the hold does no work along it and takes no share of a load
  * along it: a dead load along the line reaches the rod whole.  The node's
  * positions stay on the line or plane (each drift moves it by h v_new).
- * The end element's frame is free (hold it with an angular velocity).
+ * The end element's frame is free (hold it with an angular velocity).  A
+ * sleeve is a slide on a line whose end element may turn only about the
+ * line: its free angular velocity w (material frame) is projected onto the
+ * line's direction there, w_new = (w_free . a_m) a_m with a_m = Q a, so the
+ * constraint couple J (w_new - w_free) / h is across the line, does no work
+ * about it, and a dead torque about the line (a twisting couple) reaches
+ * the rod whole; the element's d3, along the line at the start, stays so.
  *
  * Release.  A condition with `until` > 0 acts on the kicks whose loads are
  * taken before that time; at the first kick at or after it (sw_bc_release)
@@ -51,7 +57,7 @@
 static void slide_velocity(const swBCDesc *b, const double v[3], double out[3]) {
   const double along = sw_v3_dot(v, b->vec);
   for (int c = 0; c < 3; c++)
-    out[c] = b->kind == SW_BC_SLIDE_LINE ? along * b->vec[c] : v[c] - along * b->vec[c];
+    out[c] = b->kind != SW_BC_SLIDE_PLANE ? along * b->vec[c] : v[c] - along * b->vec[c];
 }
 
 /* Prescribed node velocity (lab) and element angular velocity (material) of
@@ -86,6 +92,15 @@ static int bc_target(const swModel *m, const swData *d, const swBCDesc *b, doubl
     for (int c = 0; c < 3; c++) v[c] = SW_AT(m, d->v, *node, c);
     slide_velocity(b, v, vnode);
     return 1;
+  }
+  case SW_BC_SLEEVE: { /* the node as on a line, the frame turning about it (the header) */
+    double v[3], w[3], a[3], Q[9];
+    for (int c = 0; c < 3; c++) v[c] = SW_AT(m, d->v, *node, c), w[c] = SW_AT(m, d->omega, *elem, c);
+    slide_velocity(b, v, vnode);
+    sw_getQ(m, d->Q, *elem, Q);
+    sw_mat_vec(a, Q, b->vec);
+    sw_v3_scale(welem, a, sw_v3_dot(w, a));
+    return 3;
   }
   }
   return 0;

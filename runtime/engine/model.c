@@ -339,7 +339,7 @@ swModel *sw_compile(const swSpec *s, char *err, size_t errlen) {
   if (s->nload) memcpy(m->load, s->load, sizeof *m->load * (size_t)s->nload);
   if (s->nbc) memcpy(m->bc, s->bc, sizeof *m->bc * (size_t)s->nbc);
   for (int k = 0; k < m->nbc; k++) /* a slide's direction, made a unit vector (boundary.c) */
-    if (m->bc[k].kind == SW_BC_SLIDE_LINE || m->bc[k].kind == SW_BC_SLIDE_PLANE)
+    if (m->bc[k].kind == SW_BC_SLIDE_LINE || m->bc[k].kind == SW_BC_SLIDE_PLANE || m->bc[k].kind == SW_BC_SLEEVE)
       sw_v3_scale(m->bc[k].vec, m->bc[k].vec, 1.0 / sw_v3_norm(m->bc[k].vec));
   m->bc_slot_order = 1; /* boundary.c looks only near a call's slots then */
   for (int k = 1; k < m->nbc; k++)

@@ -133,12 +133,12 @@ int sw_check_loads_bcs(const swSpec *s, char *err, size_t errlen) {
     if (b->end != 0 && b->end != 1)
       return sw_fail(err, errlen, "boundary condition %d on rod '%s': end must be 0 (start) or 1 (end)",
                   k, nm);
-    if (b->kind < SW_BC_CLAMP || b->kind > SW_BC_SLIDE_PLANE)
+    if (b->kind < SW_BC_CLAMP || b->kind > SW_BC_SLEEVE)
       return sw_fail(err, errlen, "boundary condition %d on rod '%s': unknown kind %d", k, nm, (int)b->kind);
     if (!isfinite(b->vec[0]) || !isfinite(b->vec[1]) || !isfinite(b->vec[2]))
       return sw_fail(err, errlen, "boundary condition %d on rod '%s': vector is not finite", k, nm);
     if (!check_signal(&b->signal, err, errlen, "boundary condition", k, nm)) return 0;
-    const int slide = b->kind == SW_BC_SLIDE_LINE || b->kind == SW_BC_SLIDE_PLANE;
+    const int slide = b->kind == SW_BC_SLIDE_LINE || b->kind == SW_BC_SLIDE_PLANE || b->kind == SW_BC_SLEEVE;
     if (s->rod[b->rod].rigid && b->kind != SW_BC_CLAMP && !slide)
       return sw_fail(err, errlen, "boundary condition %d on rod '%s': a prescribed %s is not "
                   "supported on a rigid rod (clamp it, or hold it with a joint)", k, nm,

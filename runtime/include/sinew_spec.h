@@ -151,8 +151,10 @@ typedef enum {
   SW_BC_OMEGA = 2,     /* end element angular velocity = vec*signal, lab  */
   SW_BC_SLIDE_LINE = 3,  /* end node kept on the line through its start
                             position along vec, free along it; frame free */
-  SW_BC_SLIDE_PLANE = 4  /* end node kept on the plane through its start
+  SW_BC_SLIDE_PLANE = 4, /* end node kept on the plane through its start
                             position normal to vec, free in it; frame free */
+  SW_BC_SLEEVE = 5       /* a sleeve: the end node as SLIDE_LINE, the end
+                            element's frame free to turn about vec only   */
 } swBCKind;
 typedef struct {
   swBCKind kind;

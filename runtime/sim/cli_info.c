@@ -638,7 +638,8 @@ void sw_cli_print_info(const swCli *c, const swModel *m, double stable, const ch
     case SW_BC_VELOCITY: nvel++; break;
     case SW_BC_OMEGA: nomega++; break;
     case SW_BC_SLIDE_LINE:
-    case SW_BC_SLIDE_PLANE: nslide++; break;
+    case SW_BC_SLIDE_PLANE:
+    case SW_BC_SLEEVE: nslide++; break;
     }
   for (int k = 0; k < m->nbc; k++) nuntil += m->bc[k].until > 0;
   printf("loads: %d (%d point force%s, %d point couple%s)\n", m->nload, nforce,
