@@ -107,9 +107,11 @@ def table(runs, out):
     sys.stdout.write(text)
 
 
-def check(runs, t_from):
+def check(runs, t_from, found=None):
     """The reference's statements, each over the runs' common span from
-    t_from: True when it holds at every one of 50 times there."""
+    t_from: True when it holds at every one of 50 times there.  Each is
+    printed and, when found is a list, appended to it as (statement,
+    holds, figure)."""
     ams = [(r["rate"], r) for n, r in runs.items() if n.startswith("am_")]
     ams.sort(key=lambda x: x[0])
     tend = min(r["t"][-1] for r in runs.values())
@@ -120,6 +122,8 @@ def check(runs, t_from):
     def claim(text, holds, figure):
         nonlocal ok
         ok &= bool(holds)
+        if found is not None:
+            found.append((text, bool(holds), figure))
         print("%s: %s (%s)" % ("holds" if holds else "FAILS", text, figure))
 
     if "healthy" in flex and "injured" in flex:
