@@ -234,7 +234,7 @@ def analyse(path, rod="strand", every_crossing=1):
         tau = float((Q[k, 0].T @ m)[2])
         tw, wr, _ = sinew_link.link(X[k], Q[k], Q[0, 0], Q[k, -1])
         dmin, ncl = contacts(X[k], pi_, pj, r)
-        acn = crossings(X[k]) if k % every_crossing == 0 else float("nan")
+        acn = crossings(X[k]) if (k % every_crossing == 0 or k == nf - 1) else float("nan")
         imposed = imp[k]
         rows.append((t[k], imposed, tau, tw, wr, tw + wr, acn, ncl, dmin / (2 * r), X[k, -1, 2]))
     rows = np.array(rows)
@@ -261,7 +261,9 @@ def summarise(rows, ref):
              lk_err=float(np.abs(rows[:, 5] - rows[:, 1]).max()),
              final_tau=float(tau[post].mean()) if post.any() else float(tau[-1]),
              final_wr=float(rows[-1, 4]), final_tw=float(rows[-1, 3]),
-             final_acn=float(rows[-1, 6]), final_contacts=int(rows[-1, 7]),
+             final_acn=float(rows[-1, 6]),
+             wr_at_phic=float(np.interp(ref["Phic_turns"], ph[t <= ref["twist_time"]], np.abs(rows[t <= ref["twist_time"], 4]))),
+             turns_wr_01=float(ph[np.argmax(np.abs(rows[:, 4]) > 0.1)]) if (np.abs(rows[:, 4]) > 0.1).any() else float("nan"), final_contacts=int(rows[-1, 7]),
              min_gap=float(np.nanmin(rows[:, 8])), final_z=float(rows[-1, 9]))
     s["plateau_ratio"] = s["final_tau"] / ref["M_plateau"]
     return s
@@ -306,8 +308,9 @@ def main(argv=None):
     ap.add_argument("--json")
     ap.add_argument("--plot")
     ap.add_argument("--quiet", action="store_true")
+    ap.add_argument("--crossings-every", type=int, default=1, help="crossings of every K-th frame only (and the last)")
     a = ap.parse_args(argv)
-    rows, ref = analyse(a.file)
+    rows, ref = analyse(a.file, every_crossing=a.crossings_every)
     s = summarise(rows, ref)
     hdr = "t_s,imposed_turns,torque_Nm,Tw,Wr,Lk,crossings,contacts,min_dist_over_2r,z_end"
     if a.csv:
