@@ -20,7 +20,11 @@ Design.
     force times l / 2 in the lever arm, which a straight or slowly loaded rod
     makes vanish.
   * Pre-buckling slope: a straight rod twisted through Phi carries
-    M = C Phi / L (C = G J, J = pi r^4 / 2), whatever the tension.
+    M = C Phi / L (C = G J, J = pi r^4 / 2), whatever the tension.  The
+    discrete rod twists over L - l/2: its clamp holds a frame at the end
+    node (boundary.c: a half Voronoi domain), the turned end its last
+    element's frame, at the element's centre; so it reads C / (L - l / 2),
+    first order in l = L / n.
   * Buckling (Greenhill, with tension): linearised about the straight rod
     under tension F and axial moment M, the lateral deflection u = x + i y
     obeys B u'''' - i M u''' - F u'' = 0 (Love 1927, secs. 270-272; van der
@@ -242,7 +246,7 @@ def analyse(path, rod="strand", every_crossing=1):
     M0, Phi0 = greenhill_tension(B, C, 1e-12 * B / L ** 2, L)
     th, Mp, w = ply(B, F, r)
     ref = dict(L=L, r=r, B=B, C=C, F=F, turns=turns, twist_time=T, n=n,
-               slope_ref=C / L, Mc=Mc, Phic_turns=Phic / (2 * math.pi),
+               slope_ref=C / L, slope_discrete=C / (L - 0.5 * L / n), Mc=Mc, Phic_turns=Phic / (2 * math.pi),
                Mc_free=M0, Phic_free_turns=Phi0 / (2 * math.pi),
                Mc_long=2 * math.sqrt(B * F), lam=L * math.sqrt(F / B),
                ply_theta_deg=math.degrees(th), M_plateau=Mp, ply_writhe_per_m=w)
@@ -256,6 +260,7 @@ def summarise(rows, ref):
     slope = np.polyfit(ph[pre] * 2 * math.pi, tau[pre], 1)[0] if pre.sum() >= 2 else float("nan")
     post = t >= ref["twist_time"] - 1e-9
     s = dict(slope=slope, slope_ratio=slope / ref["slope_ref"],
+             slope_ratio_discrete=slope / ref["slope_discrete"],
              peak_tau=float(tau[k_pk]), peak_turns=float(ph[k_pk]),
              peak_ratio=float(ph[k_pk] / ref["Phic_turns"]),
              lk_err=float(np.abs(rows[:, 5] - rows[:, 1]).max()),
