@@ -51,7 +51,14 @@ Design.
     whence sin^4 theta (2 cos^2 theta / cos 2 theta - 1/2) = F R^2 / B and
     M3.  This is the zero-temperature, hard-wall limit of those papers'
     energy balance, derived here; it leaves out the end loop and the two
-    tails' transition into the ply, which a short ply feels.
+    tails' transition into the ply, which a short ply feels: it holds for a
+    ply much longer than the loop, whose size is sqrt(B / F).
+  * Loop: a single loop closed by contact, the first structure past
+    buckling, stores one turn of writhe for the energy of the elastica's
+    homoclinic loop under tension, 8 sqrt(B F) (Love 1927, sec. 263; the
+    localised solution of Thompson & Champneys, Proc. R. Soc. A 452:117,
+    1996); paid at the torque that adds a turn, M_loop = 8 sqrt(B F) /
+    (2 pi) = (4 / pi) sqrt(B F) (the Maxwell torque of forming the loop).
   * Crossings: the average crossing number, the number of crossings of the
     centreline projected on a plane, averaged over 200 directions spread
     evenly on the sphere (its signed version averages to the writhe).
@@ -249,7 +256,8 @@ def analyse(path, rod="strand", every_crossing=1):
                slope_ref=C / L, slope_discrete=C / (L - 0.5 * L / n), Mc=Mc, Phic_turns=Phic / (2 * math.pi),
                Mc_free=M0, Phic_free_turns=Phi0 / (2 * math.pi),
                Mc_long=2 * math.sqrt(B * F), lam=L * math.sqrt(F / B),
-               ply_theta_deg=math.degrees(th), M_plateau=Mp, ply_writhe_per_m=w)
+               ply_theta_deg=math.degrees(th), M_plateau=Mp, ply_writhe_per_m=w,
+               M_loop=4 / math.pi * math.sqrt(B * F), loop_size=math.sqrt(B / F))
     return rows, ref
 
 
@@ -268,7 +276,9 @@ def summarise(rows, ref):
              final_wr=float(rows[-1, 4]), final_tw=float(rows[-1, 3]),
              final_acn=float(rows[-1, 6]),
              wr_at_phic=float(np.interp(ref["Phic_turns"], ph[t <= ref["twist_time"]], np.abs(rows[t <= ref["twist_time"], 4]))),
-             turns_wr_01=float(ph[np.argmax(np.abs(rows[:, 4]) > 0.1)]) if (np.abs(rows[:, 4]) > 0.1).any() else float("nan"), final_contacts=int(rows[-1, 7]),
+             turns_wr_01=float(ph[np.argmax(np.abs(rows[:, 4]) > 0.1)]) if (np.abs(rows[:, 4]) > 0.1).any() else float("nan"),
+             turns_wr_001=float(np.interp(0.01, np.abs(rows[:k_pk + 1, 4]), ph[:k_pk + 1])),
+             first_lk_jump_t=float(t[np.argmax(np.abs(rows[:, 5] - rows[:, 1]) > 0.5)]) if (np.abs(rows[:, 5] - rows[:, 1]) > 0.5).any() else float("nan"), final_contacts=int(rows[-1, 7]),
              min_gap=float(np.nanmin(rows[:, 8])), final_z=float(rows[-1, 9]))
     s["plateau_ratio"] = s["final_tau"] / ref["M_plateau"]
     return s
