@@ -53,6 +53,17 @@ def plateau(rows, j):
     return float(v.mean()), float((v.max() - v.min()) / v.mean()), float(ph[ok].max() - ph[ok].min())
 
 
+def writhe_rate(rows, j):
+    """dWr / d(turns) over the same stretch: the share of each further turn
+    that goes into writhe."""
+    s, r = j["summary"], j["ref"]
+    t, ph = rows[:, 0], rows[:, 1]
+    ok = (ph > s["peak_turns"] + 0.3) & (t <= r["twist_time"] + 1e-9) & (np.abs(rows[:, 5] - rows[:, 1]) < 0.5)
+    if ok.sum() < 3:
+        return float("nan")
+    return float(np.polyfit(ph[ok], rows[ok, 4], 1)[0])
+
+
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("dir")
@@ -62,8 +73,8 @@ def main():
     print("| run | C/(L-l/2) slope ratio | Phi_c Greenhill (turns) | onset, abs(Wr) = 0.01 (turns) | "
           "torque peak (mN m) at (turns) | plateau torque (mN m), spread, over (turns) | "
           "(4/pi) sqrt(BF), ply model (mN m) | max abs(Lk - rotation) | min distance / 2r | "
-          "final Wr, ACN, contacts |")
-    print("|---|---|---|---|---|---|---|---|---|---|")
+          "dWr/dturn after the snap | final Wr, ACN, contacts, end z (m) |")
+    print("|---|---|---|---|---|---|---|---|---|---|---|")
     for n, (rows, j) in runs.items():
         if j is None:
             continue
@@ -73,7 +84,7 @@ def main():
               f"({s['turns_wr_001'] / r['Phic_turns']:.3f} Phi_c) | {1e3 * s['peak_tau']:.3f} at {s['peak_turns']:.2f} | "
               f"{1e3 * pm:.4f}, {100 * spread:.0f} %, {over:.2f} | {1e3 * r['M_loop']:.4f}, {1e3 * r['M_plateau']:.4f} | "
               f"{s['lk_err']:.2e} (first jump t = {s['first_lk_jump_t']:g} s) | {s['min_gap']:.4f} | "
-              f"{s['final_wr']:.3f}, {s['final_acn']:.2f}, {s['final_contacts']} |")
+              f"{writhe_rate(rows, j):.3f} | {s['final_wr']:.3f}, {s['final_acn']:.2f}, {s['final_contacts']}, {s['final_z']:.3f} |")
     # onset against sqrt(rate)
     on, rate = [], []
     for k in RATES:
