@@ -232,6 +232,7 @@ def analyse(path, rod="strand", every_crossing=1):
     def _s(v):
         return v.decode() if isinstance(v, bytes) else v
     F = [float(p["value"]) * scale[_s(p["unit"])] for p in f["params"][...] if _s(p["name"]) == "tension"][0]
+    damp = [float(p["value"]) for p in f["params"][...] if _s(p["name"]) == "damp" and _s(p["unit"]) == "kg/m/s"]
     # the imposed rotation: the end element's d1 about z, unwrapped
     ang = np.unwrap(np.arctan2(Q[:nf, -1, 0, 1], Q[:nf, -1, 0, 0]) - math.atan2(Q[0, -1, 0, 1], Q[0, -1, 0, 0]))
     imp = ang / (2 * math.pi)
@@ -257,7 +258,8 @@ def analyse(path, rod="strand", every_crossing=1):
                Mc_free=M0, Phic_free_turns=Phi0 / (2 * math.pi),
                Mc_long=2 * math.sqrt(B * F), lam=L * math.sqrt(F / B),
                ply_theta_deg=math.degrees(th), M_plateau=Mp, ply_writhe_per_m=w,
-               M_loop=4 / math.pi * math.sqrt(B * F), loop_size=math.sqrt(B / F))
+               M_loop=4 / math.pi * math.sqrt(B * F), loop_size=math.sqrt(B / F),
+               damping=damp[0] if damp else float("nan"))
     return rows, ref
 
 

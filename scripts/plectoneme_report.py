@@ -10,7 +10,9 @@ critical twist under tension, the loop's and the ply's torques; (b) its
 writhe, twist, average crossing number and self-contacts at the slowest
 rate, and the control's link; (c) the buckling onset (|Wr| = 0.01 turns)
 against the square root of the twisting rate, extrapolated to rate zero;
-(d) the thin rod's torque and writhe.
+(d) the torque of the three rods (thick at the slowest rate, thin, very
+thin) over the loop's torque against the rotation over Phi_c, beside each
+one's long-ply torque.
 
 Design.  A bifurcation crossed by a slow ramp of its parameter is seen late:
 the unstable mode must grow from the imperfection, and near the threshold
@@ -53,6 +55,28 @@ def plateau(rows, j):
     return float(v.mean()), float((v.max() - v.min()) / v.mean()), float(ph[ok].max() - ph[ok].min())
 
 
+def held(rows, j):
+    """Mean torque over the last 2 s of the hold, if Lk held to then."""
+    t = rows[:, 0]
+    ok = t >= t[-1] - 2.0
+    if (np.abs(rows[:, 5] - rows[:, 1]) > 0.5).any() or t[-1] <= j["ref"]["twist_time"] + 2.0:
+        return float("nan")
+    return float(rows[ok, 2].mean())
+
+
+def drag(rows, j):
+    """The damping's drag on the whole rod moving at the end's reel-in speed
+    after the snap, over the tension: gamma |dz/dt| L / F (an upper bound of
+    how far the twisting is from quasi-static)."""
+    s, r = j["summary"], j["ref"]
+    t, ph = rows[:, 0], rows[:, 1]
+    ok = (ph > s["peak_turns"] + 0.3) & (t <= r["twist_time"] + 1e-9)
+    if ok.sum() < 3:
+        return float("nan")
+    v = abs(np.polyfit(t[ok], rows[ok, 9], 1)[0])
+    return r.get("damping", float("nan")) * v * r["L"] / r["F"]
+
+
 def writhe_rate(rows, j):
     """dWr / d(turns) over the same stretch: the share of each further turn
     that goes into writhe."""
@@ -69,12 +93,12 @@ def main():
     ap.add_argument("dir")
     ap.add_argument("--plot")
     a = ap.parse_args()
-    runs = {n: load(a.dir, n) for n in [f"thick_{k}" for k in RATES] + ["control_40", "thin"]}
+    runs = {n: load(a.dir, n) for n in [f"thick_{k}" for k in RATES] + ["control_40", "thin", "vthin"]}
     print("| run | C/(L-l/2) slope ratio | Phi_c Greenhill (turns) | onset, abs(Wr) = 0.01 (turns) | "
           "torque peak (mN m) at (turns) | plateau torque (mN m), spread, over (turns) | "
           "(4/pi) sqrt(BF), ply model (mN m) | max abs(Lk - rotation) | min distance / 2r | "
           "dWr/dturn after the snap | final Wr, ACN, contacts, end z (m) |")
-    print("|---|---|---|---|---|---|---|---|---|---|---|")
+    print("|---|---|---|---|---|---|---|---|---|---|---|---|---|")
     for n, (rows, j) in runs.items():
         if j is None:
             continue
@@ -82,7 +106,8 @@ def main():
         pm, spread, over = plateau(rows, j)
         print(f"| {n} | {s['slope_ratio_discrete']:.5f} | {r['Phic_turns']:.4f} | {s['turns_wr_001']:.3f} "
               f"({s['turns_wr_001'] / r['Phic_turns']:.3f} Phi_c) | {1e3 * s['peak_tau']:.3f} at {s['peak_turns']:.2f} | "
-              f"{1e3 * pm:.4f}, {100 * spread:.0f} %, {over:.2f} | {1e3 * r['M_loop']:.4f}, {1e3 * r['M_plateau']:.4f} | "
+              f"{1e3 * pm:.4f}, {100 * spread:.0f} %, {over:.2f} | {1e3 * held(rows, j):.4f} | {drag(rows, j):.2f} | "
+              f"{1e3 * r['M_loop']:.4f}, {1e3 * r['M_plateau']:.4f} | "
               f"{s['lk_err']:.2e} (first jump t = {s['first_lk_jump_t']:g} s) | {s['min_gap']:.4f} | "
               f"{writhe_rate(rows, j):.3f} | {s['final_wr']:.3f}, {s['final_acn']:.2f}, {s['final_contacts']}, {s['final_z']:.3f} |")
     # onset against sqrt(rate)
@@ -161,20 +186,24 @@ def main():
         ax[1, 0].set_ylabel("onset (turns)")
         ax[1, 0].set_title("(c) buckling onset against the rate", fontsize=9)
         ax[1, 0].legend(fontsize=7)
-    rt, jt = runs["thin"]
-    if jt is not None:
+    d = ax[1, 1]
+    for name, c in (("thick_160", "k"), ("thin", "b"), ("vthin", "m")):
+        rt, jt = runs[name]
+        if jt is None:
+            continue
         q = jt["ref"]
         ramp = rt[:, 0] <= q["twist_time"] + 1e-9
-        d = ax[1, 1]
-        d.plot(rt[ramp, 1], 1e3 * rt[ramp, 2], "k-", label="torque (mN m)")
-        d.plot(rt[~ramp, 1], 1e3 * rt[~ramp, 2], "o", mfc="none", color="k", ms=4)
-        d.plot(rt[:, 1], 0.1 * rt[:, 4], "b-", lw=0.8, label="Wr / 10 (turns)")
-        d.axvline(q["Phic_turns"], color="r", ls=":", label="Greenhill under tension")
-        d.axhline(1e3 * q["M_loop"], color="m", ls="--", lw=0.8, label="loop: (4/pi) sqrt(B F)")
-        d.axhline(1e3 * q["M_plateau"], color="g", ls="--", lw=0.8, label="long touching ply")
-        d.set_xlabel("end rotation (turns)")
-        d.set_title(f"(d) r = 2.5 mm, n = 100, L sqrt(F/B) = {q['lam']:.0f}, 6 turns in 80 s", fontsize=9)
-        d.legend(fontsize=7)
+        good = np.abs(rt[:, 5] - rt[:, 1]) < 0.5
+        lab = f"r = {1e3 * q['r']:g} mm, L sqrt(F/B) = {q['lam']:.0f}, n = {q['n']}"
+        d.plot(rt[ramp & good, 1] / q["Phic_turns"], rt[ramp & good, 2] / q["M_loop"], "-", color=c, lw=1, label=lab)
+        d.plot(rt[~ramp & good, 1] / q["Phic_turns"], rt[~ramp & good, 2] / q["M_loop"], "o", mfc="none", color=c, ms=4)
+        d.axhline(q["M_plateau"] / q["M_loop"], color=c, ls="--", lw=0.8)
+    d.axhline(1.0, color="0.5", ls=":", label="loop: (4/pi) sqrt(B F)")
+    d.set_ylim(0, 3)
+    d.set_xlabel("end rotation / Phi_c")
+    d.set_ylabel("torque / ((4/pi) sqrt(B F))")
+    d.set_title("(d) after the snap, three rods; dashed: each one's long ply", fontsize=9)
+    d.legend(fontsize=7)
     fig.tight_layout()
     fig.savefig(a.plot, dpi=100)
 

@@ -13,10 +13,16 @@
 #   control_40                      thick_40 without self-contact (stiffness
 #                                   1e-9 N/m): the rod passes through itself
 #   thin                            r = 2.5 mm, n = 100, L sqrt(F/B) = 6,
-#                                   6 turns in 80 s, held 20 s: a longer ply
+#                                   damping 0.075 kg/m/s (the thick rod's
+#                                   damping time rho A / gamma), 6 turns in
+#                                   80 s, held 20 s: a longer ply
+#   vthin                           r = 1.25 mm, n = 150, L sqrt(F/B) = 8,
+#                                   damping 0.003 kg/m/s, 7 turns in 70 s,
+#                                   held 15 s: longer still
 # then docs/img/plectoneme.png and DIR/plectoneme.md
 # (scripts/plectoneme_report.py).  A run whose .json exists is not made
-# again.  About 4 min on this machine's 2 cores, two runs at a time.
+# again.  About 30 min on this machine's 2 cores (vthin 20 of them), two
+# runs at a time.
 set -eu
 ROOT=$(cd "$(dirname "$0")/.." && pwd)
 OUT=build/plectoneme
@@ -34,6 +40,7 @@ for tt in 40 80 160; do
   "$SC" --let n=50 --let radius=5mm --let twist_time=${tt}s --let hold=10s "$MODEL" -o "$OUT/thick_$tt"
 done
 "$SC" --let n=100 --let radius=2.5mm --let twist_time=80s --let hold=20s "$MODEL" -o "$OUT/thin"
+"$SC" --let n=150 --let radius=1.25mm --let twist_time=70s --let hold=15s "$MODEL" -o "$OUT/vthin"
 
 run() {   # run NAME BINARY ARGS...: the run, then its analysis
   name=$1; bin=$2; shift 2
@@ -43,11 +50,12 @@ run() {   # run NAME BINARY ARGS...: the run, then its analysis
     --csv "$OUT/$name.csv" --json "$OUT/$name.json" >>"$OUT/$name.log" 2>&1
   echo "plectoneme_study: $name done"
 }
-run thick_160 thick_160 --set turns=4 &
+run vthin vthin --set turns=7 --set tension=0.12272mN --set damp=0.003kg/m/s &
+run thick_160 thick_160 --set turns=4
 run thick_40 thick_40 --set turns=4
 run thick_80 thick_80 --set turns=4
 run control_40 thick_40 --set turns=4 --set kc=1e-9N/m
+run thin thin --set turns=6 --set tension=1.1045mN --set damp=0.075kg/m/s
 wait
-run thin thin --set turns=6 --set tension=1.1045mN
 "$PY" "$ROOT/scripts/plectoneme_report.py" "$OUT" --plot "$ROOT/docs/img/plectoneme.png" >"$OUT/plectoneme.md"
 cat "$OUT/plectoneme.md"
