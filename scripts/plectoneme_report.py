@@ -42,13 +42,25 @@ def load(d, name):
     return rows, json.load(open(p + ".json"))
 
 
-def plateau(rows, j):
-    """Mean torque and its spread over the twisting after the snap: from
-    0.3 turns past the peak to the end of the twist, before any Lk jump."""
+def after_snap(rows, j):
+    """The frames of the twisting after the snap, before any Lk jump: from
+    0.2 turns after the torque has fallen half-way from its peak to its last
+    value, to the end of the twist."""
     s, r = j["summary"], j["ref"]
     t, ph, tau = rows[:, 0], rows[:, 1], rows[:, 2]
-    ok = (ph > s["peak_turns"] + 0.3) & (t <= r["twist_time"] + 1e-9)
-    ok &= np.abs(rows[:, 5] - rows[:, 1]) < 0.5
+    k = int(np.argmax(tau))
+    half = 0.5 * (tau[k] + tau[-1])
+    down = np.nonzero((np.arange(len(tau)) > k) & (tau < half))[0]
+    if not len(down):
+        return np.zeros(len(t), bool)
+    ok = (ph > ph[down[0]] + 0.2) & (t <= r["twist_time"] + 1e-9)
+    return ok & (np.abs(rows[:, 5] - rows[:, 1]) < 0.5)
+
+
+def plateau(rows, j):
+    """Mean torque and its spread over the twisting after the snap."""
+    t, ph, tau = rows[:, 0], rows[:, 1], rows[:, 2]
+    ok = after_snap(rows, j)
     if not ok.any():
         return float("nan"), float("nan"), 0.0
     v = tau[ok]
@@ -68,9 +80,9 @@ def drag(rows, j):
     """The damping's drag on the whole rod moving at the end's reel-in speed
     after the snap, over the tension: gamma |dz/dt| L / F (an upper bound of
     how far the twisting is from quasi-static)."""
-    s, r = j["summary"], j["ref"]
-    t, ph = rows[:, 0], rows[:, 1]
-    ok = (ph > s["peak_turns"] + 0.3) & (t <= r["twist_time"] + 1e-9)
+    r = j["ref"]
+    t = rows[:, 0]
+    ok = after_snap(rows, j)
     if ok.sum() < 3:
         return float("nan")
     v = abs(np.polyfit(t[ok], rows[ok, 9], 1)[0])
@@ -80,9 +92,8 @@ def drag(rows, j):
 def writhe_rate(rows, j):
     """dWr / d(turns) over the same stretch: the share of each further turn
     that goes into writhe."""
-    s, r = j["summary"], j["ref"]
-    t, ph = rows[:, 0], rows[:, 1]
-    ok = (ph > s["peak_turns"] + 0.3) & (t <= r["twist_time"] + 1e-9) & (np.abs(rows[:, 5] - rows[:, 1]) < 0.5)
+    ph = rows[:, 1]
+    ok = after_snap(rows, j)
     if ok.sum() < 3:
         return float("nan")
     return float(np.polyfit(ph[ok], rows[ok, 4], 1)[0])
