@@ -39,9 +39,10 @@ Design.
   * Plateau: a ply of two strands of the rod wound round each other as
     helices of radius R at angle theta to the ply's axis, touching
     (R = r: the strands' axes 2 r apart), has curvature sin^2 theta / R and
-    writhe sin(2 theta) / (4 pi R) per length of rod in it (Fuller's
-    formula, as used by Marko & Siggia, Macromolecules 28:8759, 1995, and
-    Neukirch & Marko, PRL 106:138104, 2011).  Taking a length dl of rod from
+    writhe sin(2 theta) / (4 pi R) per length of rod in it (the writhe of
+    an interwound ply as Neukirch & Marko, PRL 106:138104, 2011, use it;
+    checked with sinew-link's writhe() on ideal plies of 4 and 8 turns,
+    whose difference per length matched it to 4e-6).  Taking a length dl of rod from
     the straight tails into the ply costs (B kappa^2 / 2 + F) dl (bending,
     and work against F as the end is reeled in) and buys dWr of writhe, paid
     for at the torque M3 = C times the twist density, uniform along a
@@ -49,15 +50,17 @@ Design.
         M3 sin(theta) cos(theta) / R = B sin^4(theta) / (2 R^2) + F,
         M3 cos(2 theta) / R          = 2 B sin^3(theta) cos(theta) / R^2,
     whence sin^4 theta (2 cos^2 theta / cos 2 theta - 1/2) = F R^2 / B and
-    M3.  This is the zero-temperature, hard-wall limit of those papers'
+    M3.  This is the zero-temperature, hard-wall limit of that paper's
     energy balance, derived here; it leaves out the end loop and the two
     tails' transition into the ply, which a short ply feels: it holds for a
     ply much longer than the loop, whose size is sqrt(B / F).
   * Loop: a single loop closed by contact, the first structure past
-    buckling, stores one turn of writhe for the energy of the elastica's
-    homoclinic loop under tension, 8 sqrt(B F) (Love 1927, sec. 263; the
-    localised solution of Thompson & Champneys, Proc. R. Soc. A 452:117,
-    1996); paid at the torque that adds a turn, M_loop = 8 sqrt(B F) /
+    buckling, stores about one turn of writhe for the energy of the planar
+    elastica's homoclinic loop under tension: with theta' = 2 a sech(a s),
+    a = sqrt(F / B), the bending energy (B / 2) int theta'^2 ds = 4 sqrt(B F)
+    and the end shortening int (1 - cos theta) ds = 4 / a, so 8 sqrt(B F)
+    with the work against F (the loop is the limit of the localised
+    solutions of Thompson & Champneys, Proc. R. Soc. A 452:117, 1996); paid at the torque that adds a turn, M_loop = 8 sqrt(B F) /
     (2 pi) = (4 / pi) sqrt(B F) (the Maxwell torque of forming the loop).
   * Crossings: the average crossing number, the number of crossings of the
     centreline projected on a plane, averaged over 200 directions spread
