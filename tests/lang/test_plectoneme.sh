@@ -25,6 +25,8 @@
 #             and writhe above 1, a self-contact
 #   control   with the contact's stiffness 1e-9 N/m the rod passes through
 #             itself: Lk jumps by 2 (a strand passage)
+#   reference the long ply's writhe per length, sin(2 theta) / (4 pi R),
+#             against Gauss's integral on ideal plies, to 1e-3
 . "$(dirname "$0")/tap.sh"
 scratch plectoneme
 PY=/usr/bin/python3
@@ -84,4 +86,26 @@ sys.exit(0 if s_final_acn > 1 and s_final_wr > 1 and s_final_contacts >= 1 and s
 check "control without self-contact: the rod passes through itself (Lk jumps by 2)" '
 print(f"control: largest |Lk - rotation| {c_lk_err:.4f} turns, final Wr {c_final_wr:.2e}, Tw {c_final_tw:.4f}")
 sys.exit(0 if abs(c_lk_err - 2) < 0.05 else 1)'
+"$PY" - "$ROOT/scripts/sinew-link" >"$TMP/out" 2>&1 <<'PYEOF'
+# the long ply's writhe per length of rod, sin(2 theta) / (4 pi R), which the
+# plateau's reference (scripts/plectoneme.py) rests on, against Gauss's
+# integral (sinew-link's writhe) on ideal closed plies of 2 and 4 turns
+import importlib.machinery, importlib.util, math, sys
+import numpy as np
+ld = importlib.machinery.SourceFileLoader("sl", sys.argv[1])
+m = importlib.util.module_from_spec(importlib.util.spec_from_loader("sl", ld)); ld.exec_module(m)
+R, th = 1.0, math.radians(20)
+def ply(turns, pts=100):
+    phi = np.linspace(0, 2 * math.pi * turns, pts * turns + 1)
+    up = np.stack([R * np.cos(phi), R * np.sin(phi), R * phi / math.tan(th)], 1)
+    down = np.stack([-up[:, 0], -up[:, 1], up[:, 2]], 1)[::-1]
+    return np.vstack([up, down[1:]]), 2 * R / math.sin(th) * phi[-1]
+(a, la), (b, lb) = ply(2), ply(4)
+w = abs(m.writhe(b) - m.writhe(a)) / (lb - la)
+ref = math.sin(2 * th) / (4 * math.pi * R)
+print(f"ply writhe per length {w:.7f} /m, sin(2 theta)/(4 pi R) {ref:.7f}, relative {w / ref - 1:.1e}")
+sys.exit(0 if abs(w / ref - 1) < 1e-3 else 1)
+PYEOF
+ok $? "the long ply's writhe density (the plateau's reference) against Gauss's integral"
+diag <"$TMP/out"
 done_testing
