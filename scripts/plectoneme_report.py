@@ -106,7 +106,7 @@ def main():
     a = ap.parse_args()
     runs = {n: load(a.dir, n) for n in [f"thick_{k}" for k in RATES] + ["control_40", "thin", "vthin"]}
     print("| run | C/(L-l/2) slope ratio | Phi_c Greenhill (turns) | onset, abs(Wr) = 0.01 (turns) | "
-          "torque peak (mN m) at (turns) | plateau torque (mN m), spread, over (turns) | "
+          "torque peak (mN m) at (turns) | torque after the snap (mN m), spread, over (turns) | held (mN m) | drag / F | "
           "(4/pi) sqrt(BF), ply model (mN m) | max abs(Lk - rotation) | min distance / 2r | "
           "dWr/dturn after the snap | final Wr, ACN, contacts, end z (m) |")
     print("|---|---|---|---|---|---|---|---|---|---|---|---|---|")
