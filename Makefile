@@ -373,6 +373,18 @@ assisted: deps
 	@$(MAKE) --no-print-directory all
 	@sh scripts/assisted_study.sh --out build/assisted $(ASSISTED_ARGS)
 
+# `make plectoneme`: the twisted rod under tension that buckles into a
+# plectoneme with self-contact (docs/validation.md, "Self-contact: the
+# plectoneme"; issue 34): examples/plectoneme.sinew at three twisting rates,
+# the control without self-contact and a thinner rod, then
+# docs/img/plectoneme.png and build/plectoneme/plectoneme.md (about 4 min
+# on this machine's 2 cores; never part of `make test`, whose
+# test_plectoneme runs one short case).
+.PHONY: plectoneme
+plectoneme: deps
+	@$(MAKE) --no-print-directory bin/sinewc
+	@sh scripts/plectoneme_study.sh --out build/plectoneme
+
 # `make tradeoff`: speed against accuracy, measured (docs/tradeoff.md): runs
 # scripts/sinew-study over the cantilever, the elbow (five compile-time
 # variants, 0.5 s against Verlet at 50 ns) and the snake, and rewrites the

@@ -485,7 +485,9 @@ static swValue hold_until(swSema *S, swScope *scope, const swAst *until) {
 
 /* A slide's end is held by no other statement on its node (clamp, velocity
  * or another slide), and a sleeve's by none on its node or its frame (nor
- * angular_velocity): the two holds would contradict each other. */
+ * angular_velocity): the two holds would contradict each other.  An
+ * angular_velocity holds the end element's frame, not the node, so it goes
+ * with a slide whichever of the two is written first. */
 static int slide_alone(swSema *S, const swSceneAction *a, const char *word) {
   for (int i = 0; i < S->scene->nact; i++) {
     const swSceneAction *o = &S->scene->act[i];
@@ -499,7 +501,7 @@ static int slide_alone(swSema *S, const swSceneAction *a, const char *word) {
                  diag_where_from(o->loc, a->loc, first, sizeof first));
       return 0;
     }
-    if (o->kind == SW_BC_OMEGA) continue;
+    if (o->kind == SW_BC_OMEGA || a->kind == SW_BC_OMEGA) continue;
     if (o->kind != SW_BC_SLIDE_LINE && o->kind != SW_BC_SLIDE_PLANE && a->kind != SW_BC_SLIDE_LINE &&
         a->kind != SW_BC_SLIDE_PLANE)
       continue;
