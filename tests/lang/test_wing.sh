@@ -25,7 +25,7 @@ echo "# sinewc and cc took $(($(date +%s) - start)) s"
 /usr/bin/python3 "$ROOT/tests/lang/tables_check.py" "$ROOT/tests/reference/tables.tsv" "$tmp" "$ROOT" \
   pigeon_wing >"$tmp/tables" 2>&1
 rc=$?
-grep -v '^ok - ' "$tmp/tables"
+sed 's/^ok - /# checked: /' "$tmp/tables"
 ok $rc "its $(grep -c '^ok - ' "$tmp/tables") rows of the reference's tables hold (tables.tsv: checked or documented deviations)"
 (cd "$tmp" && ./wing --quiet --duration 20us --every 10us --out "$tmp/wing.h5") 2>"$tmp/err"
 ok $? "it runs 20 us (37 steps)"
