@@ -58,4 +58,21 @@ while IFS= read -r line; do
 done <"$TMP/check"
 [ $rc -eq 0 ] || [ $TAP_FAILED -gt 0 ] || ok 1 "tables_check.py failed: $(tail -1 "$TMP/check")"
 echo "# $ELSEWHERE: $(grep -c "	$ELSEWHERE	" "$TSV") rows, checked by tests/lang/test_wing.sh"
+
+# every shipped scene or model that cites a Suppl. Table is read by a row:
+# it is a scene of the data file, or a model one of them imports
+missing=""
+for f in "$ROOT"/examples/*.sinew "$ROOT"/models/*.sinew; do
+  grep -q 'Table [0-9]' "$f" || continue
+  name=$(basename "$f" .sinew)
+  grep -q "	$name	" "$TSV" && continue
+  used=0
+  for s in $scenes; do
+    for g in "$ROOT/examples/$s.sinew" "$ROOT/models/$s.sinew"; do
+      [ -f "$g" ] && grep -q "^import \"$name.sinew\"" "$g" && used=1
+    done
+  done
+  [ $used -eq 1 ] || missing="$missing ${f#"$ROOT"/}"
+done
+[ -z "$missing" ]; ok $? "every scene and model of examples/ and models/ citing a Suppl. Table has rows in tables.tsv${missing:+ (not:$missing)}"
 done_testing
