@@ -525,8 +525,9 @@ static void print_materials(const swModel *m) {
     if (seen) continue;
     for (int q = r; q < m->nrod; q++)
       if (same_material(&m->rod_info[q], info)) count++, last = q;
-    printf("  %s: E %.6g Pa, G %.6g Pa, density %.6g kg/m^3; ", info->material ? info->material : "(unnamed)",
-           info->youngs, info->shear_modulus, info->density);
+    printf("  %s: E %.6g Pa, G %.6g Pa, density %.6g kg/m^3; ",
+           info->material ? info->material : "(unnamed)", info->youngs, info->shear_modulus,
+           info->density);
     if (count == 1) printf("rod %s\n", m->rod_name[r]);
     else if (count == 2) printf("rods %s, %s\n", m->rod_name[r], m->rod_name[last]);
     else printf("%d rods, %s ... %s\n", count, m->rod_name[r], m->rod_name[last]);
