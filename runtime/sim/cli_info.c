@@ -511,6 +511,7 @@ static void rod_rest(const swModel *m, int r, double *length, double *mass) {
  * rod, so that a scene of thousands of rods prints a few lines; what a
  * reference's table gives (tests/lang/test_tables.sh reads them). */
 static void print_materials(const swModel *m) {
+  if (!m->rod_info) return;
   int nmat = 0;
   for (int r = 0; r < m->nrod; r++) {
     int seen = 0;
