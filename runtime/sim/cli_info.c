@@ -658,10 +658,11 @@ void sw_cli_print_info(const swCli *c, const swModel *m, double stable, const ch
              m->fil_area[f0] * 1e6, m->fil_area[f1 - 1] * 1e6, fibres, fmax, m->fil_l0[f0]);
     else
       printf("  %s: %d filaments (%.4g to %.4g mm^2, %.0f fibres), area %.6g mm^2, F_max %.6g N, "
-             "l0 %.6g m, twitch %s to %s", m->muscle_name[i], f1 - f0, m->fil_area[f0] * 1e6,
-             m->fil_area[f1 - 1] * 1e6, fibres, area * 1e6, fmax, m->fil_l0[f0],
-             sw_cli_format_time(a, sizeof a, m->fil_tau[f0]),
-             sw_cli_format_time(b, sizeof b, m->fil_tau[f1 - 1]));
+             "l0 %.6g m, twitch %s to %s, Hill a %.4g F_qs, v_max %.4g l0/s", m->muscle_name[i],
+             f1 - f0, m->fil_area[f0] * 1e6, m->fil_area[f1 - 1] * 1e6, fibres, area * 1e6, fmax,
+             m->fil_l0[f0], sw_cli_format_time(a, sizeof a, m->fil_tau[f0]),
+             sw_cli_format_time(b, sizeof b, m->fil_tau[f1 - 1]), m->fil_hill_a[f0],
+             m->fil_v_max[f0]);
     if (passive) printf(", %d passive", passive);
     printf("\n");
   }

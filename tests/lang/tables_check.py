@@ -120,12 +120,14 @@ def parse_info(text):
                                               "spring_max": num(m.group(3) or m.group(2))}
         elif section == "muscles":
             m = re.match(r"(\S+): (\d+) filaments \(([-0-9.e+]+) to ([-0-9.e+]+) mm\^2, (\d+) fibres\)"
-                         r"(?:, area ([-0-9.e+]+) mm\^2)?.*?(?:F_max|at most) ([-0-9.e+]+) N.*?l0 ([-0-9.e+]+) m",
-                         body)
+                         r"(?:, area ([-0-9.e+]+) mm\^2)?.*?(?:F_max|at most) ([-0-9.e+]+) N.*?l0 ([-0-9.e+]+) m"
+                         r"(?:.*?Hill a ([-0-9.e+]+) F_qs, v_max ([-0-9.e+]+) l0/s)?", body)
             if m:
                 info["muscle"][m.group(1)] = {
                     "filaments": int(m.group(2)), "area": num(m.group(6) or "nan") * 1e-6,
                     "F_max": num(m.group(7)), "l0": num(m.group(8)), "fibres": int(m.group(5))}
+                if m.group(9):   # a Hill muscle (not a prescribed force)
+                    info["muscle"][m.group(1)].update(hill_a=num(m.group(9)), v_max=num(m.group(10)))
         elif section == "environments":
             m = re.match(r"ground (\S+): \w+, stiffness ([-0-9.e+]+) N/m, damping ([-0-9.e+]+) kg/s, "
                          r"kinetic friction ([-0-9.e+]+)/([-0-9.e+]+)/([-0-9.e+]+) \(forward/backward/"
