@@ -490,12 +490,49 @@ static int loop_group(char *const *pat, int n, int i) {
   return count;
 }
 
+/* Two rods of one material: the same name and the same constants. */
+static int same_material(const swRodInfo *a, const swRodInfo *b) {
+  const char *na = a->material ? a->material : "", *nb = b->material ? b->material : "";
+  return !strcmp(na, nb) && a->youngs == b->youngs && a->shear_modulus == b->shear_modulus &&
+         a->density == b->density;
+}
+
 /* Rod r at rest: its length and mass. */
 static void rod_rest(const swModel *m, int r, double *length, double *mass) {
   const int n = m->rod_nelem[r], ea = m->elem_adr[r], na = m->node_adr[r];
   *length = *mass = 0;
   for (int i = 0; i < n; i++) *length += m->rest_len[ea + i];
   for (int i = 0; i <= n; i++) *mass += m->mass[na + i];
+}
+
+/* The rods' materials, one line for each distinct (name, E, G, density):
+ * the moduli and density the model was given (G before any hardening, the
+ * density at t = 0), and the rods that have it.  Grouped by value, not by
+ * rod, so that a scene of thousands of rods prints a few lines; what a
+ * reference's table gives (tests/lang/test_tables.sh reads them). */
+static void print_materials(const swModel *m) {
+  if (!m->rod_info) return;
+  int nmat = 0;
+  for (int r = 0; r < m->nrod; r++) {
+    int seen = 0;
+    for (int q = 0; q < r && !seen; q++) seen = same_material(&m->rod_info[q], &m->rod_info[r]);
+    nmat += !seen;
+  }
+  printf("materials: %d\n", nmat);
+  for (int r = 0; r < m->nrod; r++) {
+    const swRodInfo *info = &m->rod_info[r];
+    int seen = 0, count = 0, last = r;
+    for (int q = 0; q < r && !seen; q++) seen = same_material(&m->rod_info[q], info);
+    if (seen) continue;
+    for (int q = r; q < m->nrod; q++)
+      if (same_material(&m->rod_info[q], info)) count++, last = q;
+    printf("  %s: E %.6g Pa, G %.6g Pa, density %.6g kg/m^3; ",
+           info->material ? info->material : "(unnamed)", info->youngs, info->shear_modulus,
+           info->density);
+    if (count == 1) printf("rod %s\n", m->rod_name[r]);
+    else if (count == 2) printf("rods %s, %s\n", m->rod_name[r], m->rod_name[last]);
+    else printf("%d rods, %s ... %s\n", count, m->rod_name[r], m->rod_name[last]);
+  }
 }
 
 /* One line for the rods of pattern pat[first]: their count and the ranges
@@ -565,11 +602,14 @@ void sw_cli_print_info(const swCli *c, const swModel *m, double stable, const ch
            m->weight && m->weight[na] == 0 && m->mass[na] > 0 ? ", weightless (no gravity)" : "");
   }
   free_patterns(rod_pat, m->nrod);
+  print_materials(m);
   printf("joints: %d\n", m->njoint);
   for (int j = 0; j < m->njoint; j++) {
     const char *name = m->joint_name && m->joint_name[j] ? m->joint_name[j]
                        : m->joint && m->joint[j].name ? m->joint[j].name : "(unnamed)";
-    printf("  %s: %s\n", name, m->joint ? sw_joint_kind_name(m->joint[j].kind) : "joint");
+    printf("  %s: %s", name, m->joint ? sw_joint_kind_name(m->joint[j].kind) : "joint");
+    if (m->joint) printf(", stiffness %g N/m", m->joint[j].stiffness);
+    printf("\n");
   }
   if (m->nkinematic) {   /* kinematic.c: frames imposed, no couple back */
     printf("kinematic joints: %d (a follower element turns with its leader's)\n", m->nkinematic);
@@ -617,14 +657,14 @@ void sw_cli_print_info(const swCli *c, const swModel *m, double stable, const ch
              "most %.6g N (no Hill law), l0 %.6g m", m->muscle_name[i], f1 - f0,
              m->fil_area[f0] * 1e6, m->fil_area[f1 - 1] * 1e6, fibres, fmax, m->fil_l0[f0]);
     else
-      printf("  %s: %d filaments (%.4g to %.4g mm^2, %.0f fibres), F_max %.6g N, l0 %.6g m, "
-             "twitch %s to %s", m->muscle_name[i], f1 - f0, m->fil_area[f0] * 1e6,
-             m->fil_area[f1 - 1] * 1e6, fibres, fmax, m->fil_l0[f0],
-             sw_cli_format_time(a, sizeof a, m->fil_tau[f0]),
-             sw_cli_format_time(b, sizeof b, m->fil_tau[f1 - 1]));
+      printf("  %s: %d filaments (%.4g to %.4g mm^2, %.0f fibres), area %.6g mm^2, F_max %.6g N, "
+             "l0 %.6g m, twitch %s to %s, Hill a %.4g F_qs, v_max %.4g l0/s", m->muscle_name[i],
+             f1 - f0, m->fil_area[f0] * 1e6, m->fil_area[f1 - 1] * 1e6, fibres, area * 1e6, fmax,
+             m->fil_l0[f0], sw_cli_format_time(a, sizeof a, m->fil_tau[f0]),
+             sw_cli_format_time(b, sizeof b, m->fil_tau[f1 - 1]), m->fil_hill_a[f0],
+             m->fil_v_max[f0]);
     if (passive) printf(", %d passive", passive);
     printf("\n");
-    (void)area;
   }
   print_environments(m);
   int nforce = 0, ntorque = 0, nclamp = 0, nvel = 0, nomega = 0, nslide = 0, nuntil = 0;

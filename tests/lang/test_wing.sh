@@ -19,6 +19,14 @@ start=$(date +%s)
 "$SINEWC" "$ROOT/models/pigeon_wing.sinew" -o "$tmp/wing" 2>"$tmp/err"; ok $? "it compiles"
 diag <"$tmp/err"
 echo "# sinewc and cc took $(($(date +%s) - start)) s"
+# its numbers against Suppl. Tables 1, 2 and 10 (tests/reference/tables.tsv;
+# tests/lang/test_tables.sh checks the other scenes' the same way)
+"$tmp/wing" --info >"$tmp/pigeon_wing.info" 2>"$tmp/err" || diag <"$tmp/err"
+/usr/bin/python3 "$ROOT/tests/lang/tables_check.py" "$ROOT/tests/reference/tables.tsv" "$tmp" "$ROOT" \
+  pigeon_wing >"$tmp/tables" 2>&1
+rc=$?
+sed 's/^ok - /# checked: /' "$tmp/tables"
+ok $rc "its $(grep -c '^ok - ' "$tmp/tables") rows of the reference's tables hold (tables.tsv: checked or documented deviations)"
 (cd "$tmp" && ./wing --quiet --duration 20us --every 10us --out "$tmp/wing.h5") 2>"$tmp/err"
 ok $? "it runs 20 us (37 steps)"
 diag <"$tmp/err"
