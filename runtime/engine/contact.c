@@ -103,6 +103,12 @@ int sw_contact_setup(swModel *m) {
   while (nb < 2 * widest) nb *= 2;
   m->contact_nbucket = nb;
   m->contact_maxrows = widest;
+  /* friction's anchors: up to four touching pairs per element of the
+   * contacts with friction (rods lying along each other touch three) */
+  long room = 0;
+  for (int c = 0; c < m->ncontact; c++)
+    if (m->contact[c].static_friction > 0) room += 4L * (m->contact_row_adr[c + 1] - m->contact_row_adr[c]);
+  m->contact_maxanchor = room ? (int)(room + 64) : 0;
   return 1;
 }
 
@@ -123,6 +129,12 @@ int sw_contact_data_new(const swModel *m, swData *d) {
   d->contact_start = calloc((size_t)m->contact_nbucket + 1, sizeof(int));
   d->contact_occupied = calloc((size_t)m->contact_nbucket / 64 + 1, sizeof(unsigned long long));
   d->contact_sorted_cell = calloc(3 * R, sizeof(int));
+  if (m->contact_maxanchor) {
+    const size_t anchors = 1 + (size_t)m->contact_maxanchor * SW_CONTACT_ANCHOR_ROW;
+    d->contact_anchor = calloc(anchors, sizeof(double));
+    d->contact_anchor_old = calloc(anchors, sizeof(double));
+    if (!d->contact_anchor || !d->contact_anchor_old) return 0;
+  }
   return d->contact_cell && d->contact_bucket && d->contact_sorted && d->contact_start &&
          d->contact_occupied && d->contact_sorted_cell;
 }
@@ -195,7 +207,72 @@ typedef struct {
   double *force, *ext_force; /* NULL: energy only */
   double energy, max_overlap;
   int pairs;
+  /* friction: the previous anchors (old, old_rows), the new table (rows
+   * written, room), the stuck and slipping */
+  const double *old;
+  int old_rows;
+  double *anchor;
+  int rows, room;
+  int stuck, slipping;
 } Sums;
+
+/* ---- friction: the anchor of a touching pair (see the design) ---- */
+
+/* One side of a touching pair: the element's first node slot, its element
+ * slot and the closest point's place on its segment. */
+typedef struct {
+  int node, elem;
+  double at;
+} Side;
+
+static void point_at(const swModel *m, const double *x, const Side *e, double at, double p[3]) {
+  for (int q = 0; q < 3; q++)
+    p[q] = (1 - at) * SW_AT(m, x, e->node, q) + at * SW_AT(m, x, e->node + 1, q);
+}
+
+/* The tangential force F on side a of the pair (a, b) of key `key`, rows
+ * ordered a before b, touching with normal n (any sign) and normal force N;
+ * the points where it acts (sa on a, tb on b) and the pair's new anchor row
+ * appended to sum->anchor.  Returns 0 without friction. */
+static int friction_force(const swModel *m, const swData *d, const swContactDesc *cd, double key,
+                          const Side *a, const Side *b, const double n[3], double N, Sums *sum,
+                          double F[3], double *sa, double *tb) {
+  if (!(cd->static_friction > 0) || !sum->anchor) return 0;
+  if (sum->rows >= sum->room) return 0; /* beyond the table: frictionless */
+  const double *row = sw_anchor_find(sum->old, sum->old_rows, SW_CONTACT_ANCHOR_ROW, key);
+  double s0 = a->at, t0 = b->at, z[3] = {0, 0, 0}, Qb[9], off[3];
+  if (row) s0 = row[1], t0 = row[2], memcpy(z, row + 3, sizeof z);
+  sw_getQ(m, d->Q, b->elem, Qb);
+  /* the anchor points: a's at s0, b's at t0 shifted by the spring's offset
+   * z (b's material frame); their separation and relative velocity */
+  double pa[3], pb[3], va[3], vb[3], u[3], w[3];
+  point_at(m, d->x, a, s0, pa);
+  point_at(m, d->x, b, t0, pb);
+  point_at(m, d->v, a, s0, va);
+  point_at(m, d->v, b, t0, vb);
+  sw_matT_vec(off, Qb, z);
+  for (int q = 0; q < 3; q++) u[q] = pa[q] - pb[q] - off[q], w[q] = va[q] - vb[q];
+  const double un = sw_v3_dot(u, n), wn = sw_v3_dot(w, n);
+  for (int q = 0; q < 3; q++) u[q] -= un * n[q], w[q] -= wn * n[q];
+  const double kt = cd->tangential_stiffness > 0 ? cd->tangential_stiffness : cd->stiffness;
+  const int stuck = sw_coulomb_cap(u, w, kt, cd->damping, cd->static_friction, cd->kinetic_friction, N, F);
+  if (!stuck) {
+    /* re-anchored at the closest points, whose separation is along n, with
+     * the spring stretched to give F alone: u_t = -z_t = -F / k_t */
+    double zl[3];
+    s0 = a->at, t0 = b->at;
+    sw_v3_scale(zl, F, 1.0 / kt);
+    sw_mat_vec(z, Qb, zl);
+  }
+  double *out = sum->anchor + SW_CONTACT_ANCHOR_ROW * sum->rows++;
+  out[0] = key, out[1] = s0, out[2] = t0;
+  memcpy(out + 3, z, sizeof z);
+  out[6] = stuck;
+  if (stuck) sum->stuck++;
+  else sum->slipping++;
+  *sa = s0, *tb = t0;
+  return 1;
+}
 
 static void pair_contact(const swModel *m, const swData *d, const swContactDesc *cd, int ra,
                          int rb, Sums *sum) {
@@ -248,6 +325,26 @@ static void pair_contact(const swModel *m, const swData *d, const swContactDesc 
     for (int k = 0; k < 3; k++) {
       SW_AT(m, sum->force, node[j], k) += w[j] * (spring + damper) * n[k];
       SW_AT(m, sum->ext_force, node[j], k) += w[j] * damper * n[k];
+    }
+  /* friction: the side of the lower row first, so that a pair's anchor is
+   * the same whichever way the broad phase met it */
+  Side sa = {ia, ea, s}, sb = {ib, eb, t};
+  const int lower = ra < rb;
+  const double nrows = m->contact_row_adr[m->ncontact];
+  const double key = lower ? ra * nrows + rb : rb * nrows + ra;
+  double F[3], at_a, at_b;
+  if (!friction_force(m, d, cd, key, lower ? &sa : &sb, lower ? &sb : &sa, n, spring + damper, sum,
+                      F, &at_a, &at_b))
+    return;
+  /* F on the lower row's element at its anchor point, -F on the other's:
+   * split over the nodes, all of it external too (the kick books its work) */
+  const Side *first = lower ? &sa : &sb, *second = lower ? &sb : &sa;
+  const double wf[4] = {1 - at_a, at_a, -(1 - at_b), -at_b};
+  const int nf[4] = {first->node, first->node + 1, second->node, second->node + 1};
+  for (int j = 0; j < 4; j++)
+    for (int k = 0; k < 3; k++) {
+      SW_AT(m, sum->force, nf[j], k) += wf[j] * F[k];
+      SW_AT(m, sum->ext_force, nf[j], k) += wf[j] * F[k];
     }
 }
 
@@ -340,13 +437,29 @@ static void brute_pairs(const swModel *m, const swData *d, int c, Sums *sum) {
 /* ---- the kernels ---- */
 
 void sw_contact_loads_with(const swModel *m, swData *d, swContactPhase phase) {
-  Sums sum = {d->force, d->ext_force, 0, 0, 0};
+  Sums sum;
+  memset(&sum, 0, sizeof sum);
+  sum.force = d->force, sum.ext_force = d->ext_force;
+  if (m->contact_maxanchor) {
+    /* the last evaluation's anchors become the old ones, found by bisection */
+    double *old = d->contact_anchor;
+    d->contact_anchor = d->contact_anchor_old;
+    d->contact_anchor_old = old;
+    sum.old = old + 1, sum.old_rows = (int)old[0];
+    sum.anchor = d->contact_anchor + 1, sum.room = m->contact_maxanchor;
+  }
   for (int c = 0; c < m->ncontact; c++) {
     if (phase == SW_CONTACT_BRUTE) brute_pairs(m, d, c, &sum);
     else grid_pairs(m, d, c, &sum);
   }
+  if (m->contact_maxanchor) {
+    sw_anchor_sort(sum.anchor, sum.rows, SW_CONTACT_ANCHOR_ROW);
+    d->contact_anchor[0] = sum.rows;
+  }
   d->contact_pairs = sum.pairs;
   d->contact_max_overlap = sum.max_overlap;
+  d->contact_stuck = sum.stuck;
+  d->contact_slipping = sum.slipping;
 }
 
 void sw_contact_loads(const swModel *m, swData *d) { sw_contact_loads_with(m, d, SW_CONTACT_GRID); }
@@ -355,7 +468,8 @@ void sw_contact_loads(const swModel *m, swData *d) { sw_contact_loads_with(m, d,
  * scratch is written through the state's pointers (its contents are not
  * part of the state). */
 double sw_contact_energy(const swModel *m, const swData *d) {
-  Sums sum = {NULL, NULL, 0, 0, 0};
+  Sums sum;
+  memset(&sum, 0, sizeof sum);
   for (int c = 0; c < m->ncontact; c++) grid_pairs(m, d, c, &sum);
   return sum.energy;
 }
@@ -370,6 +484,8 @@ double sw_contact_stable_dt(const swModel *m) {
   double dt = INFINITY;
   for (int c = 0; c < m->ncontact; c++) {
     const swContactDesc *cd = &m->contact[c];
+    /* the tangential spring acts across the normal one: the larger counts */
+    const double stiff = cd->static_friction > 0 ? fmax(cd->stiffness, cd->tangential_stiffness) : cd->stiffness;
     for (int row = m->contact_row_adr[c]; row < m->contact_row_adr[c + 1]; row++) {
       int e = m->contact_elem[row], rod = m->contact_rod[row];
       int i = m->node_adr[rod] + (e - m->elem_adr[rod]); /* the element's first node */
@@ -384,7 +500,7 @@ double sw_contact_stable_dt(const swModel *m) {
                     m->inv_rest_len[q];
           }
         }
-        double w = sqrt((2 * ksum + 6 * cd->stiffness) * m->inv_mass[node]);
+        double w = sqrt((2 * ksum + 6 * stiff) * m->inv_mass[node]);
         double rate = 6 * cd->damping * m->inv_mass[node];
         if (m->rod_damping[rod] == SW_DAMP_LINEAR) rate += m->node_gamma[node] * m->inv_mass[node];
         dt = fmin(dt, 0.95 * sw_integrator_stability_limit(m->integrator, rate / (2 * w)) / w);
