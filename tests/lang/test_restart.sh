@@ -139,4 +139,17 @@ ok $rc "continued to 30 ms (exit $rc)"
 h5diff fric_part.h5 fric_full.h5 >diff 2>&1; ok $? "every dataset equals the uninterrupted run's (h5diff)"
 diag <diff
 
+# 6. rod-rod friction's anchors (contact.c) are state too: one stick held
+#    on a bar, one sliding over it, continued part way
+cd "$ROOT" || exit 1
+"$SC" examples/constructs/rod_friction.sinew -o "$TMP/rodfric" 2>"$TMP/err"; ok $? "the sticks on a bar with rod-rod friction compile"
+diag <"$TMP/err"
+cd "$TMP" || exit 1
+./rodfric --duration 40ms --out rodfric_full.h5 --quiet 2>err; ok $? "an uninterrupted run of 40 ms"
+./rodfric --duration 18ms --out rodfric_part.h5 --quiet 2>err; ok $? "a run of 18 ms, one pair stuck, one slipping"
+./rodfric --restart rodfric_part.h5 --duration 40ms --quiet >run 2>&1; rc=$?
+ok $rc "continued to 40 ms (exit $rc)"
+h5diff rodfric_part.h5 rodfric_full.h5 >diff 2>&1; ok $? "every dataset equals the uninterrupted run's (h5diff)"
+diag <diff
+
 done_testing
