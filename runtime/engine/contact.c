@@ -204,7 +204,7 @@ static void crossing_normal(double *n, const double *da, const double *db) {
 /* Contact of the elements of rows ra, rb of description c: adds the loads
  * (when force != NULL) and returns the overlap (<= 0: none). */
 typedef struct {
-  double *force, *ext_force; /* NULL: energy only */
+  double *force, *ext_force, *torque, *ext_torque; /* NULL: energy only */
   double energy, max_overlap;
   int pairs;
   /* friction: the previous anchors (old, old_rows), the new table (rows
@@ -219,10 +219,14 @@ typedef struct {
 /* ---- friction: the anchor of a touching pair (see the design) ---- */
 
 /* One side of a touching pair: the element's first node slot, its element
- * slot and the closest point's place on its segment. */
+ * slot, the closest point's place on its segment and the element's radius;
+ * and, once friction_force has run, its anchor: the place `at` on the
+ * segment and the arm from the centreline point there to the anchored
+ * surface point (lab). */
 typedef struct {
   int node, elem;
-  double at;
+  double at, radius;
+  double anchor_at, arm[3];
 } Side;
 
 static void point_at(const swModel *m, const double *x, const Side *e, double at, double p[3]) {
@@ -230,48 +234,97 @@ static void point_at(const swModel *m, const double *x, const Side *e, double at
     p[q] = (1 - at) * SW_AT(m, x, e->node, q) + at * SW_AT(m, x, e->node + 1, q);
 }
 
-/* The tangential force F on side a of the pair (a, b) of key `key`, rows
- * ordered a before b, touching with normal n (any sign) and normal force N;
- * the points where it acts (sa on a, tb on b) and the pair's new anchor row
- * appended to sum->anchor.  Returns 0 without friction. */
+/* The anchored surface point of side e with arm y (its element's frame):
+ * the place, its arm in the lab, velocity v_c + omega x arm. */
+static void surface_point(const swModel *m, const swData *d, Side *e, double at, const double y[3],
+                          double p[3], double v[3]) {
+  double Q[9], wm[3], w[3], wr[3];
+  sw_getQ(m, d->Q, e->elem, Q);
+  sw_matT_vec(e->arm, Q, y);
+  sw_get3(m, d->omega, e->elem, wm);
+  sw_matT_vec(w, Q, wm);
+  sw_v3_cross(wr, w, e->arm);
+  point_at(m, d->x, e, at, p);
+  point_at(m, d->v, e, at, v);
+  sw_v3_add(p, p, e->arm);
+  sw_v3_add(v, v, wr);
+  e->anchor_at = at;
+}
+
+/* The arm y (element e's frame) of the surface point at lab offset off. */
+static void arm_of(const swModel *m, const swData *d, const Side *e, const double off[3], double y[3]) {
+  double Q[9];
+  sw_getQ(m, d->Q, e->elem, Q);
+  sw_mat_vec(y, Q, off);
+}
+
+/* The tangential force F on side a of the pair (a, b) of key `key` (a the
+ * lower row), touching with the normal n from b to a and the normal force
+ * N; the sides' anchors filled, the pair's new anchor row appended to
+ * sum->anchor.  Returns 0 without friction. */
 static int friction_force(const swModel *m, const swData *d, const swContactDesc *cd, double key,
-                          const Side *a, const Side *b, const double n[3], double N, Sums *sum,
-                          double F[3], double *sa, double *tb) {
+                          Side *a, Side *b, const double n[3], double N, Sums *sum, double F[3]) {
   if (!(cd->static_friction > 0) || !sum->anchor) return 0;
   if (sum->rows >= sum->room) return 0; /* beyond the table: frictionless */
   const double *row = sw_anchor_find(sum->old, sum->old_rows, SW_CONTACT_ANCHOR_ROW, key);
-  double s0 = a->at, t0 = b->at, z[3] = {0, 0, 0}, Qb[9], off[3];
-  if (row) s0 = row[1], t0 = row[2], memcpy(z, row + 3, sizeof z);
-  sw_getQ(m, d->Q, b->elem, Qb);
-  /* the anchor points: a's at s0, b's at t0 shifted by the spring's offset
-   * z (b's material frame); their separation and relative velocity */
+  double ya[3], yb[3], off[3];
+  if (row) {
+    memcpy(ya, row + 3, sizeof ya);
+    memcpy(yb, row + 6, sizeof yb);
+  } else { /* the surface points that touch: a's towards b, b's towards a */
+    sw_v3_scale(off, n, -a->radius);
+    arm_of(m, d, a, off, ya);
+    sw_v3_scale(off, n, b->radius);
+    arm_of(m, d, b, off, yb);
+  }
+  /* the two material points, their separation and relative velocity,
+   * tangential parts */
   double pa[3], pb[3], va[3], vb[3], u[3], w[3];
-  point_at(m, d->x, a, s0, pa);
-  point_at(m, d->x, b, t0, pb);
-  point_at(m, d->v, a, s0, va);
-  point_at(m, d->v, b, t0, vb);
-  sw_matT_vec(off, Qb, z);
-  for (int q = 0; q < 3; q++) u[q] = pa[q] - pb[q] - off[q], w[q] = va[q] - vb[q];
+  surface_point(m, d, a, row ? row[1] : a->at, ya, pa, va);
+  surface_point(m, d, b, row ? row[2] : b->at, yb, pb, vb);
+  for (int q = 0; q < 3; q++) u[q] = pa[q] - pb[q], w[q] = va[q] - vb[q];
   const double un = sw_v3_dot(u, n), wn = sw_v3_dot(w, n);
   for (int q = 0; q < 3; q++) u[q] -= un * n[q], w[q] -= wn * n[q];
   const double kt = cd->tangential_stiffness > 0 ? cd->tangential_stiffness : cd->stiffness;
   const int stuck = sw_coulomb_cap(u, w, kt, cd->damping, cd->static_friction, cd->kinetic_friction, N, F);
   if (!stuck) {
-    /* re-anchored at the closest points, whose separation is along n, with
-     * the spring stretched to give F alone: u_t = -z_t = -F / k_t */
-    double zl[3];
-    s0 = a->at, t0 = b->at;
-    sw_v3_scale(zl, F, 1.0 / kt);
-    sw_mat_vec(z, Qb, zl);
+    /* re-anchored at the touching surface points of the closest points,
+     * b's shifted by F / k_t so that the spring alone gives F: u_t = -F / k_t */
+    sw_v3_scale(off, n, -a->radius);
+    arm_of(m, d, a, off, ya);
+    for (int q = 0; q < 3; q++) off[q] = b->radius * n[q] + F[q] / kt;
+    arm_of(m, d, b, off, yb);
+    surface_point(m, d, a, a->at, ya, pa, va);
+    surface_point(m, d, b, b->at, yb, pb, vb);
   }
   double *out = sum->anchor + SW_CONTACT_ANCHOR_ROW * sum->rows++;
-  out[0] = key, out[1] = s0, out[2] = t0;
-  memcpy(out + 3, z, sizeof z);
-  out[6] = stuck;
+  out[0] = key, out[1] = a->anchor_at, out[2] = b->anchor_at;
+  memcpy(out + 3, ya, sizeof ya);
+  memcpy(out + 6, yb, sizeof yb);
+  out[9] = stuck;
   if (stuck) sum->stuck++;
   else sum->slipping++;
-  *sa = s0, *tb = t0;
   return 1;
+}
+
+/* The force f on side e at its anchor: split over its nodes at the
+ * centreline point, the couple arm x f on its element (material frame);
+ * all of it external too (the kick books its work). */
+static void apply_at_anchor(const swModel *m, const swData *d, const Side *e, const double f[3], Sums *sum) {
+  const double w[2] = {1 - e->anchor_at, e->anchor_at};
+  double c[3], Q[9], cm[3];
+  for (int j = 0; j < 2; j++)
+    for (int q = 0; q < 3; q++) {
+      SW_AT(m, sum->force, e->node + j, q) += w[j] * f[q];
+      SW_AT(m, sum->ext_force, e->node + j, q) += w[j] * f[q];
+    }
+  sw_v3_cross(c, e->arm, f);
+  sw_getQ(m, d->Q, e->elem, Q);
+  sw_mat_vec(cm, Q, c);
+  for (int q = 0; q < 3; q++) {
+    SW_AT(m, sum->torque, e->elem, q) += cm[q];
+    SW_AT(m, sum->ext_torque, e->elem, q) += cm[q];
+  }
 }
 
 static void pair_contact(const swModel *m, const swData *d, const swContactDesc *cd, int ra,
@@ -327,25 +380,19 @@ static void pair_contact(const swModel *m, const swData *d, const swContactDesc 
       SW_AT(m, sum->ext_force, node[j], k) += w[j] * damper * n[k];
     }
   /* friction: the side of the lower row first, so that a pair's anchor is
-   * the same whichever way the broad phase met it */
-  Side sa = {ia, ea, s}, sb = {ib, eb, t};
+   * the same whichever way the broad phase met it; n from its partner to it */
+  Side sa = {ia, ea, s, d->radius_now[ea], 0, {0, 0, 0}};
+  Side sb = {ib, eb, t, d->radius_now[eb], 0, {0, 0, 0}};
   const int lower = ra < rb;
   const double nrows = m->contact_row_adr[m->ncontact];
   const double key = lower ? ra * nrows + rb : rb * nrows + ra;
-  double F[3], at_a, at_b;
-  if (!friction_force(m, d, cd, key, lower ? &sa : &sb, lower ? &sb : &sa, n, spring + damper, sum,
-                      F, &at_a, &at_b))
-    return;
-  /* F on the lower row's element at its anchor point, -F on the other's:
-   * split over the nodes, all of it external too (the kick books its work) */
-  const Side *first = lower ? &sa : &sb, *second = lower ? &sb : &sa;
-  const double wf[4] = {1 - at_a, at_a, -(1 - at_b), -at_b};
-  const int nf[4] = {first->node, first->node + 1, second->node, second->node + 1};
-  for (int j = 0; j < 4; j++)
-    for (int k = 0; k < 3; k++) {
-      SW_AT(m, sum->force, nf[j], k) += wf[j] * F[k];
-      SW_AT(m, sum->ext_force, nf[j], k) += wf[j] * F[k];
-    }
+  Side *first = lower ? &sa : &sb, *second = lower ? &sb : &sa;
+  double nf[3], F[3], G[3];
+  sw_v3_scale(nf, n, lower ? 1.0 : -1.0);
+  if (!friction_force(m, d, cd, key, first, second, nf, spring + damper, sum, F)) return;
+  sw_v3_scale(G, F, -1.0);
+  apply_at_anchor(m, d, first, F, sum);
+  apply_at_anchor(m, d, second, G, sum);
 }
 
 /* ---- broad phase ---- */
@@ -440,6 +487,7 @@ void sw_contact_loads_with(const swModel *m, swData *d, swContactPhase phase) {
   Sums sum;
   memset(&sum, 0, sizeof sum);
   sum.force = d->force, sum.ext_force = d->ext_force;
+  sum.torque = d->torque, sum.ext_torque = d->ext_torque;
   if (m->contact_maxanchor) {
     /* the last evaluation's anchors become the old ones, found by bisection */
     double *old = d->contact_anchor;

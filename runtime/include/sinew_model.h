@@ -316,7 +316,7 @@ typedef struct {
                                 friction)                                    */
 } swObstacleContact;
 #define SW_OBSTACLE_ANCHOR_ROW 6   /* key, s, anchor (3), stuck               */
-#define SW_CONTACT_ANCHOR_ROW 7    /* key, s, t, offset (3), stuck (contact.c) */
+#define SW_CONTACT_ANCHOR_ROW 10   /* key, s, t, arm a (3), arm b (3), stuck (contact.c) */
 
 /* ---- the state (mutable) ---- */
 typedef struct {
@@ -432,8 +432,9 @@ typedef struct {
   unsigned long long *contact_occupied; /* (contact_nbucket/64+1) bit set: bucket not empty */
   /* the friction's anchors (contact.c): [0] the rows in use, then rows of
    * SW_CONTACT_ANCHOR_ROW: key (the pair's two rows), s and t of the anchor
-   * points on the elements of the lower and higher row, the spring's offset
-   * in the higher row's element frame, stuck; in the order of the key.
+   * points on the segments of the lower and higher row's elements, the
+   * arms from there to the anchored surface points (each in its element's
+   * frame), stuck; in the order of the key.
    * State: the checkpoint keeps it; `_old` is scratch. */
   double *contact_anchor;    /* (1 + contact_maxanchor*SW_CONTACT_ANCHOR_ROW) */
   double *contact_anchor_old;
