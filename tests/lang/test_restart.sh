@@ -140,9 +140,9 @@ h5diff fric_part.h5 fric_full.h5 >diff 2>&1; ok $? "every dataset equals the uni
 diag <diff
 
 # 6. rod-rod friction's anchors (contact.c) are state too: one stick held
-#    on a bar, one sliding over it, continued part way
+#    on two bars, one sliding over them, continued part way
 cd "$ROOT" || exit 1
-"$SC" examples/constructs/rod_friction.sinew -o "$TMP/rodfric" 2>"$TMP/err"; ok $? "the sticks on a bar with rod-rod friction compile"
+"$SC" examples/constructs/rod_friction.sinew -o "$TMP/rodfric" 2>"$TMP/err"; ok $? "the sticks on two bars with rod-rod friction compile"
 diag <"$TMP/err"
 cd "$TMP" || exit 1
 ./rodfric --duration 40ms --out rodfric_full.h5 --quiet 2>err; ok $? "an uninterrupted run of 40 ms"
