@@ -24,6 +24,37 @@
  * max(gamma_c * approach, -k_c delta).  It goes into ext_force as well as
  * force, so that integrate.c's kick books the energy it takes.
  *
+ * Friction (mu_s > 0): the obstacles' elastic-Coulomb law (friction.c;
+ * Cundall & Strack 1979) between two rods.  When a pair first touches it
+ * records its anchor: on each element the point of its surface that
+ * touches, the centreline point s (t) plus the arm -r_a n (r_b n), the arm
+ * kept in the element's material frame, so that the anchor moves, turns and
+ * rolls with its element.  At each evaluation the anchors' separation
+ * u = p_a - p_b and relative velocity w (v_s + omega x arm, each side), their
+ * tangential parts, give friction.c's capped force F on a, -F on b; a pair
+ * that slips is re-anchored at the touching surface points of the current
+ * closest points, b's moved by F / k_t so that the spring alone gives F.
+ * Each force acts at its anchor: split (1 - s, s) over the element's nodes
+ * at the centreline point, with the couple arm x F on the element.  Forces
+ * and couples are then the gradient of k_t |u_t|^2 / 2 in the positions and
+ * rotations (n held), and since the two anchors are apart only by the
+ * overlap along n and the spring's stretch, the part of the energy's change
+ * that holding n misses is second order: the law is passive (a hairpin's
+ * self-contact friction never does positive work; test_rod_friction.c).
+ * Anchored on the centrelines instead, the points would be r_a + r_b apart
+ * along n, and the turning of n under that lever fed energy in (9 % of
+ * the kinetic energy in the same hairpin).  The pair of forces is equal and
+ * opposite: momentum is kept to round-off; angular momentum up to the
+ * moment of the pair about their separation (the overlap), small.  The
+ * whole tangential force and its couples go into ext_force, ext_torque as
+ * well: the kick books their work as obstacle.c's.  The anchors are a table
+ * of rows in the state (d->contact_anchor, keyed by the pair's two rows,
+ * ordered), rebuilt at each evaluation: the grid meets pairs in no
+ * particular order, so a pair's old row is found by bisection and the new
+ * table sorted once written (friction.c).  It holds contact_maxanchor rows,
+ * four per element of the contacts with friction; pairs beyond it are
+ * frictionless.  The table is state: checkpoints save it.
+ *
  * Which pairs.  Every pair of elements of different rods of the
  * description's set; with `self`, also pairs of one rod whose rest arc
  * length strictly between them (the "gap") is at least pi (r_a + r_b) / 2:

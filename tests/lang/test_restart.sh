@@ -14,7 +14,8 @@
 #   integrator is taken when none is given, and another one is refused; a
 #   run whose holds let go (until) continued from before and after a release;
 #   a rope held on a post by friction, whose anchors are state, continued
-#   likewise gives the uninterrupted run's datasets to the bit.
+#   likewise gives the uninterrupted run's datasets to the bit, and so do
+#   two sticks on two bars, one held by rod-rod friction and one sliding.
 . "$(dirname "$0")/tap.sh"
 cd "$ROOT" || exit 1
 SC=$SINEWC_CHECK
