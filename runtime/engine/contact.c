@@ -558,7 +558,9 @@ double sw_contact_energy(const swModel *m, const swData *d) {
  * contact"), each a spring k_c to a node that moves too: with the rod's own
  * transverse row (joint_node_dt in stability.c), Gershgorin gives
  *   w^2 = (2 sum_elements max(EA, 4GA/3) / l + 2 * 3 k_c) / m_i,
- * and the damper the rate c = 2 * 3 gamma_c / m_i. */
+ * and the damper the rate c = 2 * 3 gamma_c / m_i.  With friction k_c is
+ * max(k_c, k_t): the tangential spring presses the same nodes across the
+ * normal one, and its couples turn an element no faster (w^2 <= 4 k_t / m_e). */
 double sw_contact_stable_dt(const swModel *m) {
   double dt = INFINITY;
   for (int c = 0; c < m->ncontact; c++) {

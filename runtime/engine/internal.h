@@ -443,7 +443,8 @@ const char *sw_probe_kind_name(swProbeKind kind);
 const char *sw_joint_kind_name(swJointKind kind);
 const char *sw_probe_units(swProbeKind kind);
 /* Rod-rod contact (contact.c).  sw_contact_setup lists each contact's
- * elements in the model (0: out of memory; from sw_env_setup), sw_contact_free
+ * elements in the model and sizes the friction's anchor table (0: out of
+ * memory; from sw_env_setup), sw_contact_free
  * releases them (sw_env_free); sw_contact_data_new/free the hash grid's
  * scratch in the state (sw_data_new/free); sw_contact_loads adds the contact
  * loads (from sw_env_loads), sw_contact_loads_with by the grid or by brute

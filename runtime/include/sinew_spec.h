@@ -461,10 +461,11 @@ int sw_spec_add_fluid(swSpec *s, const swFluidDesc *f);
  * it, whose centrelines come closer than the sum of their radii repel with
  * k_c times the overlap plus gamma_c times the approach speed (Zhang et al.
  * 2019, Suppl. Table 4); a broad phase keeps far pairs out.  With friction
- * (mu_s > 0) each touching pair keeps an anchor, a material point on each
- * element, tied by a tangential spring k_t (and the damper gamma_c) capped
- * at mu_s N, slipping at mu_k N beyond: the law of the obstacles' friction
- * (docs/physics.md, "Rod-rod contact"). */
+ * (mu_s > 0) each touching pair keeps an anchor, the material point of
+ * each element's surface where they touched, tied by a tangential spring
+ * k_t (and the damper gamma_c) capped at mu_s N, slipping at mu_k N beyond:
+ * the law of the obstacles' friction, acting at the surfaces with its
+ * couples (docs/physics.md, "Rod-rod contact"). */
 typedef struct {
   const char *name;
   double stiffness;         /* k_c, N/m                                      */
