@@ -163,6 +163,9 @@ int gen_contact_fields(const swSceneContact *c, swLowField *out) {
   const swLowField f[] = {
     F(stiffness, 1, &c->stiffness),
     F(damping, 1, &c->damping),
+    F(static_friction, 1, &c->static_friction),
+    F(kinetic_friction, 1, &c->kinetic_friction),
+    F(tangential_stiffness, 1, &c->tangential_stiffness),
   };
   return given(f, (int)(sizeof f / sizeof f[0]), out);
 }

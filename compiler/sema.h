@@ -346,6 +346,7 @@ typedef struct {
   const char *name;
   swLoc loc;
   swValue stiffness, damping;
+  swValue static_friction, kinetic_friction, tangential_stiffness; /* val_error: not given */
   int self;
   swRodList rods;
 } swSceneContact;

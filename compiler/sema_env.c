@@ -395,11 +395,52 @@ static void fluid(swSema *S, swScope *sc, const swAst *it, const char *name, con
   *(swSceneFluid *)sema_env_append((void **)&scn->fluid, &scn->nfluid, &scn->capfluid, sizeof fl) = fl;
 }
 
-static const char *const contact_keys[] = {"rods", "stiffness", "damping", "self"};
+/* The friction of an obstacle or a rod-rod contact: `friction` (mu_s =
+ * mu_k) or static_friction and kinetic_friction (either alone sets both),
+ * and tangential_stiffness, into *mu_s, *mu_k, *k_t; 0 after an error. */
+int sema_env_friction(swSema *S, swScope *sc, const swFields *f, const char *what, swValue *mu_s,
+                      swValue *mu_k, swValue *k_t) {
+  const swAst *one = sema_field(f, "friction"), *st = sema_field(f, "static_friction");
+  const swAst *ki = sema_field(f, "kinetic_friction"), *kt = sema_field(f, "tangential_stiffness");
+  *mu_s = *mu_k = *k_t = val_error();
+  if (one && (st || ki)) {
+    diag_error(one->loc, "%s: give either 'friction' (static and kinetic alike) or "
+               "'static_friction' and 'kinetic_friction', not both", what);
+    return 0;
+  }
+  int ok = 1;
+  if (one) {
+    *mu_s = *mu_k = sema_env_bounded(S, sc, f, "friction", 1, DIM_NONE, 0);
+    ok &= mu_s->kind != VAL_ERROR;
+  } else if (st || ki) {
+    if (st) *mu_s = sema_env_bounded(S, sc, f, "static_friction", 1, DIM_NONE, 0);
+    if (ki) *mu_k = sema_env_bounded(S, sc, f, "kinetic_friction", 1, DIM_NONE, 0);
+    ok &= (!st || mu_s->kind != VAL_ERROR) && (!ki || mu_k->kind != VAL_ERROR);
+    if (!st) *mu_s = *mu_k;
+    if (!ki) *mu_k = *mu_s;
+    if (ok && st && ki && mu_k->v[0] > mu_s->v[0]) {
+      diag_error(mu_k->loc, "%s: 'kinetic_friction' (%g) must not exceed "
+                 "'static_friction' (%g): a contact that slips would need more force to go on "
+                 "slipping than to start", what, mu_k->v[0], mu_s->v[0]);
+      ok = 0;
+    }
+  }
+  if (kt) {
+    *k_t = sema_env_bounded(S, sc, f, "tangential_stiffness", 1, DIM_STIFFNESS, 1);
+    ok &= k_t->kind != VAL_ERROR;
+    if (!one && !st && !ki)
+      diag_warning(kt->loc, "'tangential_stiffness' has no effect without friction (friction = 0.3;)");
+  }
+  return ok;
+}
+
+static const char *const contact_keys[] = {"rods", "stiffness", "damping", "self", "friction",
+                                           "static_friction", "kinetic_friction",
+                                           "tangential_stiffness"};
 
 static void contact(swSema *S, swScope *sc, const swAst *it, const char *name, const char *what) {
   swFields f;
-  sema_fields(S, it, 0, what, contact_keys, 4, &f);
+  sema_fields(S, it, 0, what, contact_keys, (int)(sizeof contact_keys / sizeof contact_keys[0]), &f);
   swSceneContact c;
   memset(&c, 0, sizeof c);
   c.name = name;
@@ -413,6 +454,8 @@ static void contact(swSema *S, swScope *sc, const swAst *it, const char *name, c
   c.damping = sema_env_bounded(S, sc, &f, "damping", 1, DIM_DAMPING, 0);
   if (sema_field(&f, "stiffness") && c.stiffness.kind == VAL_ERROR) ok = 0;
   if (sema_field(&f, "damping") && c.damping.kind == VAL_ERROR) ok = 0;
+  ok &= sema_env_friction(S, sc, &f, what, &c.static_friction, &c.kinetic_friction,
+                          &c.tangential_stiffness);
   const swAst *self = sema_field(&f, "self");
   if (self) {
     int t = sema_truth(S, sc, self, "'self'");

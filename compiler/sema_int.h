@@ -330,7 +330,8 @@ void sema_swell_check(swSema *S);
 
 /* The environments' field helpers (sema_env.c): a scene array grown by one
  * (zeroed slot); an optional field of dimension `want` that must be >= 0
- * (pos = 0) or > 0; a vector that must not be zero; the `rods` list.  The
+ * (pos = 0) or > 0; a vector that must not be zero; the `rods` list; the
+ * friction fields of obstacles and contacts.  The
  * obstacle definition (sema_obstacle.c). */
 static const swDim DIM_STIFFNESS = {{1, 0, -2, 0}};   /* N/m  */
 static const swDim DIM_DAMPING = {{1, 0, -1, 0}};     /* kg/s */
@@ -339,6 +340,8 @@ swValue sema_env_bounded(swSema *S, swScope *sc, const swFields *f, const char *
                          int pos);
 swValue sema_env_nonzero_vector(swSema *S, swScope *sc, const swFields *f, const char *key, swDim want);
 int sema_env_rods_field(swSema *S, swScope *sc, const swFields *f, const char *what, swRodList *out);
+int sema_env_friction(swSema *S, swScope *sc, const swFields *f, const char *what, swValue *mu_s,
+                      swValue *mu_k, swValue *k_t);
 void sema_obstacle(swSema *S, swScope *sc, const swAst *it, const char *name, const char *what);
 
 #endif

@@ -1,5 +1,5 @@
 /* sema_obstacle.c — the obstacle definition: obstacle NAME { shape = ...; },
- * its shape and size fields, its friction and its carrier, checked with
+ * its shape and size fields, its friction (sema_env_friction) and its carrier, checked with
  * sema_env.c's field helpers and appended to the scene as the other
  * environments are (sema_env.c says how).  Physics: docs/physics.md, "Rigid
  * obstacles".
@@ -47,45 +47,6 @@ static swValue halved(swSema *S, swValue v) {
     }
   }
   return h;
-}
-
-/* The friction of an obstacle: `friction` (mu_s = mu_k) or static_friction
- * and kinetic_friction (either alone sets both), and tangential_stiffness;
- * 0 after an error. */
-static int obstacle_friction(swSema *S, swScope *sc, const swFields *f, const char *what,
-                             swSceneObstacle *o) {
-  const swAst *one = sema_field(f, "friction"), *st = sema_field(f, "static_friction");
-  const swAst *ki = sema_field(f, "kinetic_friction"), *kt = sema_field(f, "tangential_stiffness");
-  o->static_friction = o->kinetic_friction = o->tangential_stiffness = val_error();
-  if (one && (st || ki)) {
-    diag_error(one->loc, "%s: give either 'friction' (static and kinetic alike) or "
-               "'static_friction' and 'kinetic_friction', not both", what);
-    return 0;
-  }
-  int ok = 1;
-  if (one) {
-    o->static_friction = o->kinetic_friction = sema_env_bounded(S, sc, f, "friction", 1, DIM_NONE, 0);
-    ok &= o->static_friction.kind != VAL_ERROR;
-  } else if (st || ki) {
-    if (st) o->static_friction = sema_env_bounded(S, sc, f, "static_friction", 1, DIM_NONE, 0);
-    if (ki) o->kinetic_friction = sema_env_bounded(S, sc, f, "kinetic_friction", 1, DIM_NONE, 0);
-    ok &= (!st || o->static_friction.kind != VAL_ERROR) && (!ki || o->kinetic_friction.kind != VAL_ERROR);
-    if (!st) o->static_friction = o->kinetic_friction;
-    if (!ki) o->kinetic_friction = o->static_friction;
-    if (ok && st && ki && o->kinetic_friction.v[0] > o->static_friction.v[0]) {
-      diag_error(o->kinetic_friction.loc, "%s: 'kinetic_friction' (%g) must not exceed "
-                 "'static_friction' (%g): a contact that slips would need more force to go on "
-                 "slipping than to start", what, o->kinetic_friction.v[0], o->static_friction.v[0]);
-      ok = 0;
-    }
-  }
-  if (kt) {
-    o->tangential_stiffness = sema_env_bounded(S, sc, f, "tangential_stiffness", 1, DIM_STIFFNESS, 1);
-    ok &= o->tangential_stiffness.kind != VAL_ERROR;
-    if (!one && !st && !ki)
-      diag_warning(kt->loc, "'tangential_stiffness' has no effect without friction (friction = 0.3;)");
-  }
-  return ok;
 }
 
 void sema_obstacle(swSema *S, swScope *sc, const swAst *it, const char *name, const char *what) {
@@ -148,7 +109,7 @@ void sema_obstacle(swSema *S, swScope *sc, const swAst *it, const char *name, co
   const swValue *vals[] = {&o.stiffness, &o.damping, &o.axis, &o.normal, &o.centre};
   for (int i = 0; i < 5; i++)
     if (sema_field(&f, keys[i]) && vals[i]->kind == VAL_ERROR) ok = 0;
-  ok &= obstacle_friction(S, sc, &f, what, &o);
+  ok &= sema_env_friction(S, sc, &f, what, &o.static_friction, &o.kinetic_friction, &o.tangential_stiffness);
   const swAst *cb = sema_field(&f, "carried_by");
   if (cb) {
     swValue p = sema_eval(S, sc, cb);

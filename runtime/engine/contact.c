@@ -24,6 +24,37 @@
  * max(gamma_c * approach, -k_c delta).  It goes into ext_force as well as
  * force, so that integrate.c's kick books the energy it takes.
  *
+ * Friction (mu_s > 0): the obstacles' elastic-Coulomb law (friction.c;
+ * Cundall & Strack 1979) between two rods.  When a pair first touches it
+ * records its anchor: on each element the point of its surface that
+ * touches, the centreline point s (t) plus the arm -r_a n (r_b n), the arm
+ * kept in the element's material frame, so that the anchor moves, turns and
+ * rolls with its element.  At each evaluation the anchors' separation
+ * u = p_a - p_b and relative velocity w (v_s + omega x arm, each side), their
+ * tangential parts, give friction.c's capped force F on a, -F on b; a pair
+ * that slips is re-anchored at the touching surface points of the current
+ * closest points, b's moved by F / k_t so that the spring alone gives F.
+ * Each force acts at its anchor: split (1 - s, s) over the element's nodes
+ * at the centreline point, with the couple arm x F on the element.  Forces
+ * and couples are then the gradient of k_t |u_t|^2 / 2 in the positions and
+ * rotations (n held), and since the two anchors are apart only by the
+ * overlap along n and the spring's stretch, the part of the energy's change
+ * that holding n misses is second order: the law is passive (a hairpin's
+ * self-contact friction never does positive work; test_rod_friction.c).
+ * Anchored on the centrelines instead, the points would be r_a + r_b apart
+ * along n, and the turning of n under that lever fed energy in (9 % of
+ * the kinetic energy in the same hairpin).  The pair of forces is equal and
+ * opposite: momentum is kept to round-off; angular momentum up to the
+ * moment of the pair about their separation (the overlap), small.  The
+ * whole tangential force and its couples go into ext_force, ext_torque as
+ * well: the kick books their work as obstacle.c's.  The anchors are a table
+ * of rows in the state (d->contact_anchor, keyed by the pair's two rows,
+ * ordered), rebuilt at each evaluation: the grid meets pairs in no
+ * particular order, so a pair's old row is found by bisection and the new
+ * table sorted once written (friction.c).  It holds contact_maxanchor rows,
+ * four per element of the contacts with friction; pairs beyond it are
+ * frictionless.  The table is state: checkpoints save it.
+ *
  * Which pairs.  Every pair of elements of different rods of the
  * description's set; with `self`, also pairs of one rod whose rest arc
  * length strictly between them (the "gap") is at least pi (r_a + r_b) / 2:
@@ -103,6 +134,12 @@ int sw_contact_setup(swModel *m) {
   while (nb < 2 * widest) nb *= 2;
   m->contact_nbucket = nb;
   m->contact_maxrows = widest;
+  /* friction's anchors: up to four touching pairs per element of the
+   * contacts with friction (rods lying along each other touch three) */
+  long room = 0;
+  for (int c = 0; c < m->ncontact; c++)
+    if (m->contact[c].static_friction > 0) room += 4L * (m->contact_row_adr[c + 1] - m->contact_row_adr[c]);
+  m->contact_maxanchor = room ? (int)(room + 64) : 0;
   return 1;
 }
 
@@ -123,6 +160,12 @@ int sw_contact_data_new(const swModel *m, swData *d) {
   d->contact_start = calloc((size_t)m->contact_nbucket + 1, sizeof(int));
   d->contact_occupied = calloc((size_t)m->contact_nbucket / 64 + 1, sizeof(unsigned long long));
   d->contact_sorted_cell = calloc(3 * R, sizeof(int));
+  if (m->contact_maxanchor) {
+    const size_t anchors = 1 + (size_t)m->contact_maxanchor * SW_CONTACT_ANCHOR_ROW;
+    d->contact_anchor = calloc(anchors, sizeof(double));
+    d->contact_anchor_old = calloc(anchors, sizeof(double));
+    if (!d->contact_anchor || !d->contact_anchor_old) return 0;
+  }
   return d->contact_cell && d->contact_bucket && d->contact_sorted && d->contact_start &&
          d->contact_occupied && d->contact_sorted_cell;
 }
@@ -192,10 +235,128 @@ static void crossing_normal(double *n, const double *da, const double *db) {
 /* Contact of the elements of rows ra, rb of description c: adds the loads
  * (when force != NULL) and returns the overlap (<= 0: none). */
 typedef struct {
-  double *force, *ext_force; /* NULL: energy only */
+  double *force, *ext_force, *torque, *ext_torque; /* NULL: energy only */
   double energy, max_overlap;
   int pairs;
+  /* friction: the previous anchors (old, old_rows), the new table (rows
+   * written, room), the stuck and slipping */
+  const double *old;
+  int old_rows;
+  double *anchor;
+  int rows, room;
+  int stuck, slipping;
 } Sums;
+
+/* ---- friction: the anchor of a touching pair (see the design) ---- */
+
+/* One side of a touching pair: the element's first node slot, its element
+ * slot, the closest point's place on its segment and the element's radius;
+ * and, once friction_force has run, its anchor: the place `at` on the
+ * segment and the arm from the centreline point there to the anchored
+ * surface point (lab). */
+typedef struct {
+  int node, elem;
+  double at, radius;
+  double anchor_at, arm[3];
+} Side;
+
+static void point_at(const swModel *m, const double *x, const Side *e, double at, double p[3]) {
+  for (int q = 0; q < 3; q++)
+    p[q] = (1 - at) * SW_AT(m, x, e->node, q) + at * SW_AT(m, x, e->node + 1, q);
+}
+
+/* The anchored surface point of side e with arm y (its element's frame):
+ * the place, its arm in the lab, velocity v_c + omega x arm. */
+static void surface_point(const swModel *m, const swData *d, Side *e, double at, const double y[3],
+                          double p[3], double v[3]) {
+  double Q[9], wm[3], w[3], wr[3];
+  sw_getQ(m, d->Q, e->elem, Q);
+  sw_matT_vec(e->arm, Q, y);
+  sw_get3(m, d->omega, e->elem, wm);
+  sw_matT_vec(w, Q, wm);
+  sw_v3_cross(wr, w, e->arm);
+  point_at(m, d->x, e, at, p);
+  point_at(m, d->v, e, at, v);
+  sw_v3_add(p, p, e->arm);
+  sw_v3_add(v, v, wr);
+  e->anchor_at = at;
+}
+
+/* The arm y (element e's frame) of the surface point at lab offset off. */
+static void arm_of(const swModel *m, const swData *d, const Side *e, const double off[3], double y[3]) {
+  double Q[9];
+  sw_getQ(m, d->Q, e->elem, Q);
+  sw_mat_vec(y, Q, off);
+}
+
+/* The tangential force F on side a of the pair (a, b) of key `key` (a the
+ * lower row), touching with the normal n from b to a and the normal force
+ * N; the sides' anchors filled, the pair's new anchor row appended to
+ * sum->anchor.  Returns 0 without friction. */
+static int friction_force(const swModel *m, const swData *d, const swContactDesc *cd, double key,
+                          Side *a, Side *b, const double n[3], double N, Sums *sum, double F[3]) {
+  if (!(cd->static_friction > 0) || !sum->anchor) return 0;
+  if (sum->rows >= sum->room) return 0; /* beyond the table: frictionless */
+  const double *row = sw_anchor_find(sum->old, sum->old_rows, SW_CONTACT_ANCHOR_ROW, key);
+  double ya[3], yb[3], off[3];
+  if (row) {
+    memcpy(ya, row + 3, sizeof ya);
+    memcpy(yb, row + 6, sizeof yb);
+  } else { /* the surface points that touch: a's towards b, b's towards a */
+    sw_v3_scale(off, n, -a->radius);
+    arm_of(m, d, a, off, ya);
+    sw_v3_scale(off, n, b->radius);
+    arm_of(m, d, b, off, yb);
+  }
+  /* the two material points, their separation and relative velocity,
+   * tangential parts */
+  double pa[3], pb[3], va[3], vb[3], u[3], w[3];
+  surface_point(m, d, a, row ? row[1] : a->at, ya, pa, va);
+  surface_point(m, d, b, row ? row[2] : b->at, yb, pb, vb);
+  for (int q = 0; q < 3; q++) u[q] = pa[q] - pb[q], w[q] = va[q] - vb[q];
+  const double un = sw_v3_dot(u, n), wn = sw_v3_dot(w, n);
+  for (int q = 0; q < 3; q++) u[q] -= un * n[q], w[q] -= wn * n[q];
+  const double kt = cd->tangential_stiffness > 0 ? cd->tangential_stiffness : cd->stiffness;
+  const int stuck = sw_coulomb_cap(u, w, kt, cd->damping, cd->static_friction, cd->kinetic_friction, N, F);
+  if (!stuck) {
+    /* re-anchored at the touching surface points of the closest points,
+     * b's shifted by F / k_t so that the spring alone gives F: u_t = -F / k_t */
+    sw_v3_scale(off, n, -a->radius);
+    arm_of(m, d, a, off, ya);
+    for (int q = 0; q < 3; q++) off[q] = b->radius * n[q] + F[q] / kt;
+    arm_of(m, d, b, off, yb);
+    surface_point(m, d, a, a->at, ya, pa, va);
+    surface_point(m, d, b, b->at, yb, pb, vb);
+  }
+  double *out = sum->anchor + SW_CONTACT_ANCHOR_ROW * sum->rows++;
+  out[0] = key, out[1] = a->anchor_at, out[2] = b->anchor_at;
+  memcpy(out + 3, ya, sizeof ya);
+  memcpy(out + 6, yb, sizeof yb);
+  out[9] = stuck;
+  if (stuck) sum->stuck++;
+  else sum->slipping++;
+  return 1;
+}
+
+/* The force f on side e at its anchor: split over its nodes at the
+ * centreline point, the couple arm x f on its element (material frame);
+ * all of it external too (the kick books its work). */
+static void apply_at_anchor(const swModel *m, const swData *d, const Side *e, const double f[3], Sums *sum) {
+  const double w[2] = {1 - e->anchor_at, e->anchor_at};
+  double c[3], Q[9], cm[3];
+  for (int j = 0; j < 2; j++)
+    for (int q = 0; q < 3; q++) {
+      SW_AT(m, sum->force, e->node + j, q) += w[j] * f[q];
+      SW_AT(m, sum->ext_force, e->node + j, q) += w[j] * f[q];
+    }
+  sw_v3_cross(c, e->arm, f);
+  sw_getQ(m, d->Q, e->elem, Q);
+  sw_mat_vec(cm, Q, c);
+  for (int q = 0; q < 3; q++) {
+    SW_AT(m, sum->torque, e->elem, q) += cm[q];
+    SW_AT(m, sum->ext_torque, e->elem, q) += cm[q];
+  }
+}
 
 static void pair_contact(const swModel *m, const swData *d, const swContactDesc *cd, int ra,
                          int rb, Sums *sum) {
@@ -249,6 +410,20 @@ static void pair_contact(const swModel *m, const swData *d, const swContactDesc 
       SW_AT(m, sum->force, node[j], k) += w[j] * (spring + damper) * n[k];
       SW_AT(m, sum->ext_force, node[j], k) += w[j] * damper * n[k];
     }
+  /* friction: the side of the lower row first, so that a pair's anchor is
+   * the same whichever way the broad phase met it; n from its partner to it */
+  Side sa = {ia, ea, s, d->radius_now[ea], 0, {0, 0, 0}};
+  Side sb = {ib, eb, t, d->radius_now[eb], 0, {0, 0, 0}};
+  const int lower = ra < rb;
+  const double nrows = m->contact_row_adr[m->ncontact];
+  const double key = lower ? ra * nrows + rb : rb * nrows + ra;
+  Side *first = lower ? &sa : &sb, *second = lower ? &sb : &sa;
+  double nf[3], F[3], G[3];
+  sw_v3_scale(nf, n, lower ? 1.0 : -1.0);
+  if (!friction_force(m, d, cd, key, first, second, nf, spring + damper, sum, F)) return;
+  sw_v3_scale(G, F, -1.0);
+  apply_at_anchor(m, d, first, F, sum);
+  apply_at_anchor(m, d, second, G, sum);
 }
 
 /* ---- broad phase ---- */
@@ -340,13 +515,30 @@ static void brute_pairs(const swModel *m, const swData *d, int c, Sums *sum) {
 /* ---- the kernels ---- */
 
 void sw_contact_loads_with(const swModel *m, swData *d, swContactPhase phase) {
-  Sums sum = {d->force, d->ext_force, 0, 0, 0};
+  Sums sum;
+  memset(&sum, 0, sizeof sum);
+  sum.force = d->force, sum.ext_force = d->ext_force;
+  sum.torque = d->torque, sum.ext_torque = d->ext_torque;
+  if (m->contact_maxanchor) {
+    /* the last evaluation's anchors become the old ones, found by bisection */
+    double *old = d->contact_anchor;
+    d->contact_anchor = d->contact_anchor_old;
+    d->contact_anchor_old = old;
+    sum.old = old + 1, sum.old_rows = (int)old[0];
+    sum.anchor = d->contact_anchor + 1, sum.room = m->contact_maxanchor;
+  }
   for (int c = 0; c < m->ncontact; c++) {
     if (phase == SW_CONTACT_BRUTE) brute_pairs(m, d, c, &sum);
     else grid_pairs(m, d, c, &sum);
   }
+  if (m->contact_maxanchor) {
+    sw_anchor_sort(sum.anchor, sum.rows, SW_CONTACT_ANCHOR_ROW);
+    d->contact_anchor[0] = sum.rows;
+  }
   d->contact_pairs = sum.pairs;
   d->contact_max_overlap = sum.max_overlap;
+  d->contact_stuck = sum.stuck;
+  d->contact_slipping = sum.slipping;
 }
 
 void sw_contact_loads(const swModel *m, swData *d) { sw_contact_loads_with(m, d, SW_CONTACT_GRID); }
@@ -355,7 +547,8 @@ void sw_contact_loads(const swModel *m, swData *d) { sw_contact_loads_with(m, d,
  * scratch is written through the state's pointers (its contents are not
  * part of the state). */
 double sw_contact_energy(const swModel *m, const swData *d) {
-  Sums sum = {NULL, NULL, 0, 0, 0};
+  Sums sum;
+  memset(&sum, 0, sizeof sum);
   for (int c = 0; c < m->ncontact; c++) grid_pairs(m, d, c, &sum);
   return sum.energy;
 }
@@ -365,11 +558,15 @@ double sw_contact_energy(const swModel *m, const swData *d) {
  * contact"), each a spring k_c to a node that moves too: with the rod's own
  * transverse row (joint_node_dt in stability.c), Gershgorin gives
  *   w^2 = (2 sum_elements max(EA, 4GA/3) / l + 2 * 3 k_c) / m_i,
- * and the damper the rate c = 2 * 3 gamma_c / m_i. */
+ * and the damper the rate c = 2 * 3 gamma_c / m_i.  With friction k_c is
+ * max(k_c, k_t): the tangential spring presses the same nodes across the
+ * normal one, and its couples turn an element no faster (w^2 <= 4 k_t / m_e). */
 double sw_contact_stable_dt(const swModel *m) {
   double dt = INFINITY;
   for (int c = 0; c < m->ncontact; c++) {
     const swContactDesc *cd = &m->contact[c];
+    /* the tangential spring acts across the normal one: the larger counts */
+    const double stiff = cd->static_friction > 0 ? fmax(cd->stiffness, cd->tangential_stiffness) : cd->stiffness;
     for (int row = m->contact_row_adr[c]; row < m->contact_row_adr[c + 1]; row++) {
       int e = m->contact_elem[row], rod = m->contact_rod[row];
       int i = m->node_adr[rod] + (e - m->elem_adr[rod]); /* the element's first node */
@@ -384,7 +581,7 @@ double sw_contact_stable_dt(const swModel *m) {
                     m->inv_rest_len[q];
           }
         }
-        double w = sqrt((2 * ksum + 6 * cd->stiffness) * m->inv_mass[node]);
+        double w = sqrt((2 * ksum + 6 * stiff) * m->inv_mass[node]);
         double rate = 6 * cd->damping * m->inv_mass[node];
         if (m->rod_damping[rod] == SW_DAMP_LINEAR) rate += m->node_gamma[node] * m->inv_mass[node];
         dt = fmin(dt, 0.95 * sw_integrator_stability_limit(m->integrator, rate / (2 * w)) / w);

@@ -34,6 +34,7 @@ void sw_data_free(swData *d) {
   /* the contact grid's scratch (contact.c, through the environment's data_new) */
   free(d->obstacle_contact); free(d->obstacle_box); /* obstacle.c's, likewise */
   free(d->obstacle_anchor); free(d->obstacle_anchor_old);
+  free(d->contact_anchor); free(d->contact_anchor_old);
   free(d->contact_cell); free(d->contact_bucket); free(d->contact_sorted);
   free(d->contact_start); free(d->contact_occupied); free(d->contact_sorted_cell);
   free(d);
@@ -120,6 +121,8 @@ void sw_reset(const swModel *m, swData *d) {
   if (d->obstacle_anchor) d->obstacle_anchor[0] = 0; /* no friction anchor yet (obstacle.c) */
   d->contact_pairs = 0; /* contact.c's figures are those of the last evaluation */
   d->contact_max_overlap = 0;
+  if (d->contact_anchor) d->contact_anchor[0] = 0; /* no friction anchor yet (contact.c) */
+  d->contact_stuck = d->contact_slipping = 0;
   if (m->nbc) memset(d->bc_free, 0, sizeof *d->bc_free * (size_t)m->nbc); /* every hold holds */
   sw_apply_bc_velocity(m, d, 0.0);
   sw_internal_loads(m, d); /* strains of the initial state */

@@ -273,6 +273,13 @@ static int check_contact(const swContactDesc *c, int nrod, char *err, size_t err
     return sw_fail(err, errlen, "contact '%s': self must be 0 or 1, got %d", nm, c->self);
   if (!c->self && c->nrods == 1)
     return sw_fail(err, errlen, "contact '%s': one rod and no self-contact: nothing can touch", nm);
+  if (!nonneg(c->static_friction) || !nonneg(c->kinetic_friction))
+    return sw_fail(err, errlen, "contact '%s': friction coefficients must be >= 0", nm);
+  if (c->kinetic_friction > c->static_friction)
+    return sw_fail(err, errlen, "contact '%s': kinetic friction %g exceeds static friction %g", nm,
+                   c->kinetic_friction, c->static_friction);
+  if (!nonneg(c->tangential_stiffness))
+    return sw_fail(err, errlen, "contact '%s': tangential stiffness must be >= 0", nm);
   return 1;
 }
 

@@ -443,7 +443,8 @@ const char *sw_probe_kind_name(swProbeKind kind);
 const char *sw_joint_kind_name(swJointKind kind);
 const char *sw_probe_units(swProbeKind kind);
 /* Rod-rod contact (contact.c).  sw_contact_setup lists each contact's
- * elements in the model (0: out of memory; from sw_env_setup), sw_contact_free
+ * elements in the model and sizes the friction's anchor table (0: out of
+ * memory; from sw_env_setup), sw_contact_free
  * releases them (sw_env_free); sw_contact_data_new/free the hash grid's
  * scratch in the state (sw_data_new/free); sw_contact_loads adds the contact
  * loads (from sw_env_loads), sw_contact_loads_with by the grid or by brute
@@ -478,6 +479,18 @@ double sw_obstacle_energy(const swModel *m, const swData *d);
 double sw_obstacle_stable_dt(const swModel *m);
 double sw_segment_closest(const double *a0, const double *da, const double *b0, const double *db,
                           double *s_out, double *t_out, double *pq);   /* contact.c */
+
+/* The elastic-Coulomb friction law of obstacle.c and contact.c (friction.c):
+ * sw_coulomb_cap turns the tangential separation u_t and relative velocity
+ * w_t of a pair's anchor points into the force F = -k_t u_t - gamma w_t,
+ * capped at mu_k N when it exceeds mu_s N; returns 1 if stuck, 0 if it
+ * slips.  Anchor tables are rows of `width` doubles ordered by their first
+ * (the key): sw_anchor_find bisects for a key (NULL: none), sw_anchor_sort
+ * sorts n rows in place. */
+int sw_coulomb_cap(const double ut[3], const double wt[3], double kt, double gamma, double mu_s,
+                   double mu_k, double N, double F[3]);
+const double *sw_anchor_find(const double *rows, int n, int width, double key);
+void sw_anchor_sort(double *rows, int n, int width);
 
 /* swell.c: rods whose geometry changes in time */
 int sw_swell_setup(swModel *m, const swSpec *s);

@@ -72,7 +72,8 @@
  * whole tangential force goes into ext_force as well, so the kick books its
  * work (the spring's stored energy and what slip dissipates) as external
  * work, as ground.c books its friction: kinetic + elastic - work stays
- * constant.  Anchors live in d->obstacle_anchor, a table of rows ordered by
+ * constant.  The cap is friction.c's sw_coulomb_cap, which rod-rod contact
+ * shares.  Anchors live in d->obstacle_anchor, a table of rows ordered by
  * the key (obstacle, place of the element in the obstacle's rod list),
  * rebuilt at each evaluation by a merge with the previous one (no
  * allocation, no search); a pair that stops touching loses its anchor.
@@ -476,20 +477,13 @@ static int friction_force(const swModel *m, int k, const swPose *P, const double
   for (int q = 0; q < 3; q++) {
     u[q] -= un * n[q];
     w[q] -= wn * n[q];
-    F[q] = -kt * u[q] - o->damping * w[q];
   }
-  /* Coulomb's cap: stuck below mu_s N, else slipping at mu_k N */
-  const double mag = sw_v3_norm(F);
-  int stuck = 1;
-  if (mag > o->static_friction * N) {
-    stuck = 0;
-    const double scale = mag > 0 ? o->kinetic_friction * N / mag : 0.0;
-    for (int q = 0; q < 3; q++) {
-      F[q] *= scale;
-      /* the obstacle's point slides so that the spring alone gives F:
-       * u_t -> -F / k_t, po -> po + u_t - (-F / k_t) */
-      po[q] += u[q] + F[q] / kt;
-    }
+  /* Coulomb's cap (friction.c): stuck below mu_s N, else slipping at mu_k N */
+  const int stuck = sw_coulomb_cap(u, w, kt, o->damping, o->static_friction, o->kinetic_friction, N, F);
+  if (!stuck) {
+    /* the obstacle's point slides so that the spring alone gives F:
+     * u_t -> -F / k_t, po -> po + u_t - (-F / k_t) */
+    for (int q = 0; q < 3; q++) po[q] += u[q] + F[q] / kt;
     to_local(y0, P, po);
   }
   double *out = sum->anchor + SW_OBSTACLE_ANCHOR_ROW * sum->rows++;

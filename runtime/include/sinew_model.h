@@ -275,6 +275,8 @@ typedef struct {
   double *contact_arc;       /* (rows)     rest arc length from the rod's start
                                            to the element's start, m         */
   int contact_maxrows;       /* rows of the largest contact                  */
+  int contact_maxanchor;     /* friction anchors the state keeps (0: no
+                                contact has friction)                        */
   int contact_nbucket;       /* hash grid buckets, a power of two            */
   /* obstacle.c: rigid obstacles.  A fixed one's centre and axes are in the
    * lab; a carried one's in the material frame of its carrier element, its
@@ -314,6 +316,7 @@ typedef struct {
                                 friction)                                    */
 } swObstacleContact;
 #define SW_OBSTACLE_ANCHOR_ROW 6   /* key, s, anchor (3), stuck               */
+#define SW_CONTACT_ANCHOR_ROW 10   /* key, s, t, arm a (3), arm b (3), stuck (contact.c) */
 
 /* ---- the state (mutable) ---- */
 typedef struct {
@@ -427,6 +430,16 @@ typedef struct {
   int *contact_start;        /* (contact_nbucket+1) first sorted row of each bucket */
   int *contact_sorted_cell;  /* (contact_maxrows*3) cell of each sorted row  */
   unsigned long long *contact_occupied; /* (contact_nbucket/64+1) bit set: bucket not empty */
+  /* the friction's anchors (contact.c): [0] the rows in use, then rows of
+   * SW_CONTACT_ANCHOR_ROW: key (the pair's two rows), s and t of the anchor
+   * points on the segments of the lower and higher row's elements, the
+   * arms from there to the anchored surface points (each in its element's
+   * frame), stuck; in the order of the key.
+   * State: the checkpoint keeps it; `_old` is scratch. */
+  double *contact_anchor;    /* (1 + contact_maxanchor*SW_CONTACT_ANCHOR_ROW) */
+  double *contact_anchor_old;
+  int contact_stuck;         /* pairs of the last evaluation held still      */
+  int contact_slipping;      /* and those slipping                           */
   /* obstacle.c: the last evaluation's contacts (the record a friction law
    * will keep its tangential anchor in), figures, and scratch */
   swObstacleContact *obstacle_contact; /* (obstacle_maxcontact)              */

@@ -460,11 +460,19 @@ int sw_spec_add_fluid(swSpec *s, const swFluidDesc *f);
  * rods, and, with `self`, pairs within one rod that are not neighbours along
  * it, whose centrelines come closer than the sum of their radii repel with
  * k_c times the overlap plus gamma_c times the approach speed (Zhang et al.
- * 2019, Suppl. Table 4); a broad phase keeps far pairs out. */
+ * 2019, Suppl. Table 4); a broad phase keeps far pairs out.  With friction
+ * (mu_s > 0) each touching pair keeps an anchor, the material point of
+ * each element's surface where they touched, tied by a tangential spring
+ * k_t (and the damper gamma_c) capped at mu_s N, slipping at mu_k N beyond:
+ * the law of the obstacles' friction, acting at the surfaces with its
+ * couples (docs/physics.md, "Rod-rod contact"). */
 typedef struct {
   const char *name;
   double stiffness;         /* k_c, N/m                                      */
   double damping;           /* gamma_c, kg/s                                 */
+  double static_friction;   /* mu_s (0: frictionless, the default)           */
+  double kinetic_friction;  /* mu_k <= mu_s, the force while slipping        */
+  double tangential_stiffness; /* k_t, N/m per pair (0: the stiffness k_c)   */
   int self;                 /* 1: also within each rod                       */
   int nrods;                /* rods in contact (0: all)                      */
   const int *rods;

@@ -7,7 +7,8 @@
  * velocities: the state proper (x, v, Q, omega, the dilatation, rigid bodies,
  * muscle activation), what a step carries over (a pending kick's work per
  * slot and per chunk, the unwrapped hinge angles, the probes' rings of
- * samples, the implicit joints' system, the obstacles' friction anchors)
+ * samples, the implicit joints' system, the friction anchors of obstacles
+ * and of rod-rod contact)
  * and the scratch arrays as well, since copying them costs little and
  * leaves nothing to argue about; the scalars
  * (time, step, work, the pending kick, whether the last step's half drift
@@ -39,7 +40,7 @@
 /* ---- what is saved ---- */
 
 enum { PER_SLOT, PER_CHUNK, PER_BC, PER_JOINT, PER_FIL, PER_BODY, PER_PROBE_RING, RIGID_SYS, PER_RING,
-       IMPLICIT_SYS, OBSTACLE_ANCHORS };
+       IMPLICIT_SYS, OBSTACLE_ANCHORS, CONTACT_ANCHORS };
 
 typedef struct {
   const char *name;
@@ -72,6 +73,7 @@ static const swSaved saved[] = {
     SAVED(ring_row, PER_RING, SW_RING_ROW),
     SAVED(implicit_sys, IMPLICIT_SYS, 1), /* the implicit rods' kept factorisations */
     SAVED(obstacle_anchor, OBSTACLE_ANCHORS, 1), /* the friction's anchors (obstacle.c) */
+    SAVED(contact_anchor, CONTACT_ANCHORS, 1),   /* and rod-rod contact's (contact.c) */
 };
 #define NSAVED (sizeof saved / sizeof saved[0])
 
@@ -90,6 +92,9 @@ static size_t saved_len(const swModel *m, const swSaved *s) {
   case IMPLICIT_SYS: n = sw_implicit_scratch(m); break;
   case OBSTACLE_ANCHORS:
     n = m->nobstacle ? 1 + (size_t)m->obstacle_maxcontact * SW_OBSTACLE_ANCHOR_ROW : 0;
+    break;
+  case CONTACT_ANCHORS:
+    n = m->contact_maxanchor ? 1 + (size_t)m->contact_maxanchor * SW_CONTACT_ANCHOR_ROW : 0;
     break;
   }
   return n * (size_t)s->count;

@@ -303,8 +303,12 @@ static void print_environments(const swModel *m) {
   }
   for (int k = 0; k < m->ncontact; k++) {
     const swContactDesc *c = &m->contact[k];
-    printf("  contact %s: stiffness %g N/m, damping %g kg/s%s, %s\n", c->name, c->stiffness,
-           c->damping, c->self ? ", self-contact" : "", rod_list(a, sizeof a, m, c->nrods, c->rods));
+    printf("  contact %s: stiffness %g N/m, damping %g kg/s%s, ", c->name, c->stiffness, c->damping,
+           c->self ? ", self-contact" : "");
+    if (c->static_friction > 0)
+      printf("friction %g static, %g kinetic, tangential stiffness %g N/m, ", c->static_friction,
+             c->kinetic_friction, c->tangential_stiffness > 0 ? c->tangential_stiffness : c->stiffness);
+    printf("%s\n", rod_list(a, sizeof a, m, c->nrods, c->rods));
   }
   for (int k = 0; k < m->nwave; k++) {
     const swWaveDesc *w = &m->wave[k];

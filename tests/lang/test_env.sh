@@ -30,8 +30,8 @@ ground { stiffness = 10 N/m; }
 terrain ramp_up { height(x, y) = 0.1 * x - 2 cm; stiffness = 1 N/m; rods = (arm.left, band); }
 fluid water { viscosity = visc; rods = (band, snake); }
 fluid air { model = quadratic; density = 1.2 kg/m^3; drag_coefficient = 1; flow = (1, 0, 0) m/s; }
-contact touch { rods = (arm.left, arm.right); stiffness = 1e4 N/m; }
-contact coil { rods = snake; stiffness = 1e4 N/m; self = true; }
+contact touch { rods = (arm.left, arm.right); stiffness = 1e4 N/m; friction = 0.4; }
+contact coil { rods = snake; stiffness = 1e4 N/m; self = true; static_friction = 0.6; kinetic_friction = 0.5; tangential_stiffness = 5e3 N/m; }
 torque_wave body { rod = snake; coefficients = (0, 1, 2, 1, 0) mN m; wavelength = 0.5 m; period = 0.2 s; reverse = true; }
 force snake.end = (0, 0, 1) mN * sine(1, 5 Hz, period = 0.1 s);
 activate band = 0.5 * bspline(0, 1, 1, 0, over = 50 ms, from = 1 ms, period = 100 ms);
@@ -73,6 +73,10 @@ has 'ground.height = height_2;' "a terrain points at its height function"
 has 'ground.height_ctx = height_P;' "and passes the params through ctx"
 has 'fluid.model = SW_FLUID_QUADRATIC;' "the quadratic drag model"
 has 'contact.self = 1;' "self-contact"
+has 'contact.kinetic_friction = 0.4;' "one friction number is the kinetic coefficient"
+has 'contact.static_friction = 0.4;' "and the static one"
+has 'contact.static_friction = 0.6;' "a self-contact's own static coefficient"
+has 'contact.tangential_stiffness = 5000.0;' "and its tangential stiffness, in N/m"
 has 'wave.ncoef = 5;' "the wave's coefficient count"
 has 'wave.coef[2] = 0.002;' "coefficients in SI (N m)"
 has 'wave.reverse = 1;' "reverse"

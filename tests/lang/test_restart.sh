@@ -14,7 +14,8 @@
 #   integrator is taken when none is given, and another one is refused; a
 #   run whose holds let go (until) continued from before and after a release;
 #   a rope held on a post by friction, whose anchors are state, continued
-#   likewise gives the uninterrupted run's datasets to the bit.
+#   likewise gives the uninterrupted run's datasets to the bit, and so do
+#   two sticks on two bars, one held by rod-rod friction and one sliding.
 . "$(dirname "$0")/tap.sh"
 cd "$ROOT" || exit 1
 SC=$SINEWC_CHECK
@@ -137,6 +138,19 @@ cd "$TMP" || exit 1
 ./fric --restart fric_part.h5 --duration 30ms --quiet >run 2>&1; rc=$?
 ok $rc "continued to 30 ms (exit $rc)"
 h5diff fric_part.h5 fric_full.h5 >diff 2>&1; ok $? "every dataset equals the uninterrupted run's (h5diff)"
+diag <diff
+
+# 6. rod-rod friction's anchors (contact.c) are state too: one stick held
+#    on two bars, one sliding over them, continued part way
+cd "$ROOT" || exit 1
+"$SC" examples/constructs/rod_friction.sinew -o "$TMP/rodfric" 2>"$TMP/err"; ok $? "the sticks on two bars with rod-rod friction compile"
+diag <"$TMP/err"
+cd "$TMP" || exit 1
+./rodfric --duration 40ms --out rodfric_full.h5 --quiet 2>err; ok $? "an uninterrupted run of 40 ms"
+./rodfric --duration 18ms --out rodfric_part.h5 --quiet 2>err; ok $? "a run of 18 ms, one pair stuck, one slipping"
+./rodfric --restart rodfric_part.h5 --duration 40ms --quiet >run 2>&1; rc=$?
+ok $rc "continued to 40 ms (exit $rc)"
+h5diff rodfric_part.h5 rodfric_full.h5 >diff 2>&1; ok $? "every dataset equals the uninterrupted run's (h5diff)"
 diag <diff
 
 done_testing
