@@ -38,6 +38,15 @@ def load(out, name):
         return f["/time"][:], f[ANGLE][:], f[FORCE][:]
 
 
+def out_of_plane(out, name):
+    """The largest |y| of any node in any frame: the hinge turns about y and
+    the scene is symmetric about the x-z plane."""
+    with h5py.File(os.path.join(out, name + ".h5"), "r") as f:
+        names = []
+        f["rods"].visit(lambda n: names.append(n) if n.endswith("position") else None)
+        return max(float(np.max(abs(f["rods/" + n][..., 1]))) for n in names)
+
+
 def rough(x):
     return float(np.sqrt(np.mean(np.diff(x, 2) ** 2)))
 
@@ -68,6 +77,14 @@ def main():
         d = float(np.max(abs(an - a0)))
         diffs[n] = d
         k = int(np.argmax(abs(an - a0)))
+        if d == 0:
+            planar = out_of_plane(out, "original")
+            s.statement("Suppl. Fig. 6b, %s" % label.split(" (")[0],
+                        "hardening %s does not change the elbow's joint angle over the flexion" % label,
+                        True, "bitwise the original's run (largest difference 0 deg)",
+                        "the motion stays in the x-z plane to the last bit (largest |y| of any node in any frame "
+                        "%.3g m), so no twist arises for the hardening to act on" % planar)
+            continue
         s.statement("Suppl. Fig. 6b, %s" % label.split(" (")[0],
                     "hardening %s does not change the elbow's joint angle over the flexion" % label,
                     d <= 0.01 * span,
@@ -75,7 +92,8 @@ def main():
                     "%.2g times the step's own error (%.2e deg, dt against dt/2)"
                     % (np.degrees(d), t[k], d / span, np.degrees(span), d / step_err if step_err else np.inf,
                        np.degrees(step_err)),
-                    "within 1%% of the range of motion (make demo's measure)" if d <= 0.01 * span else
+                    "within 1% of the range of motion (make demo's measure); the step's error shows the "
+                    "difference is the hardening's own, small" if d <= 0.01 * span else
                     "beyond 1% of the range of motion")
     ra, rf = rough(a0), rough(f0)
     worst = max(max(rough(runs[n][1]) / ra, rough(runs[n][2]) / rf) for n, _, _ in CASES)
@@ -115,14 +133,18 @@ def main():
     ax.set_ylabel("elbow flexion (deg)")
     ax.legend(fontsize=8, frameon=False)
     for n, label, c in CASES:
-        axd.semilogy(t[1:], np.degrees(abs(runs[n][1] - a0))[1:] + 1e-12, color=c, lw=1)
+        dn = np.degrees(abs(runs[n][1] - a0))
+        if not dn.any():
+            axd.plot([], [], color=c, lw=1, label="%s: bitwise the original" % n)
+            continue
+        axd.semilogy(t[1:], dn[1:] + 1e-12, color=c, lw=2.5 if n == "shear" else 1, label=n)
     axd.semilogy(t[1:], np.degrees(abs(runs["original_dt2"][1] - a0))[1:] + 1e-12, color="0.5", lw=1,
                  label="original, dt/2 against dt")
     axd.axhline(np.degrees(0.01 * span), color="k", lw=0.8, ls=":", label="1% of the range of motion")
     axd.set_ylabel("|difference| (deg)")
     axd.set_xlabel("t (s)")
     axd.set_ylim(1e-8, None)
-    axd.legend(fontsize=7, frameon=False)
+    axd.legend(fontsize=7, frameon=False, loc="lower right", ncol=2)
     fig.tight_layout()
     fig.savefig(os.path.join(out, "elbow_hardening.png"), dpi=110)
     s.plot("elbow_hardening.png")
