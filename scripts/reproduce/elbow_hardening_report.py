@@ -167,7 +167,8 @@ def main():
     s.note("Both budgets run the reference's 0.5 s (Suppl. Table 5) at the scene's explicit step, %.4g ns (half "
            "the stable estimate; the reference's 50 ns is %s; the original is %.1e deg from the stored 50 ns "
            "run of the same flexion, examples/reference/elbow_flexion_50ns.csv, over 0-0.48 s). The arm reaches "
-           "the elbow's 150 deg stop (models/human_arm.sinew) at %s s (original, twist, shear, both). The hardening factors are the "
+           "the elbow's 150 deg stop (models/human_arm.sinew) at %s s (original, twist, shear, both). The "
+           "hardening factors are the "
            "reference's: muscles x10^4 and tendons x10 on both shear and twist, the bones not hardened."
            % (dt * 1e9, "run too, for the original and both hardened" if budget == "full" else
               "not run", np.degrees(d_ref),

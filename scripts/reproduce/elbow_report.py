@@ -169,7 +169,8 @@ def report(out, budget, omegas):
                 eta, F, Fmax = f[grp + "/stretch"][:], f[grp + "/force"][:], float(f[grp].attrs["F_max"])
             k = int(np.argmax(eta < 0.85))
             if k < 3 or k + 2 >= len(t):
-                raise SystemExit("elbow_report.py: isokinetic_%s: %s does not pass eta = 0.85 inside the run" % (om, head))
+                raise SystemExit("elbow_report.py: isokinetic_%s: %s does not pass eta = 0.85 inside the run"
+                                 % (om, head))
             wk = (eta[k - 1] - 0.85) / (eta[k - 1] - eta[k])
             Fk = F[k - 1] + wk * (F[k] - F[k - 1])
             u = -(eta[k + 1] - eta[k - 2]) / (t[k + 1] - t[k - 2])   # centred on the crossing, l0/s
@@ -296,7 +297,8 @@ def report(out, budget, omegas):
     if quick:
         s.note("The quick budget runs the isometric head with its tendons implicit under imex at 50 us (the "
                "scenes' explicit step is 0.78 us; at 100 us the settled stretch moves by 1e-6 at F_set = 500 N; "
-               "50 us is needed for the extra pull's start), each load 10 s (full: 15 s); the force-velocity at 80, 160 and 240 deg/s (full: six rates from "
+               "50 us is needed for the extra pull's start), each load 10 s (full: 15 s); the force-velocity at "
+               "80, 160 and 240 deg/s (full: six rates from "
                "40 to 240 deg/s), at the scene's explicit step in both; the flexion in make demo's "
                "configuration (imex at 125 us with implicit bones and tendons; full: position Verlet at the "
                "scene's step). Neither budget runs the reference's 50 ns but through its stored curve: the "
