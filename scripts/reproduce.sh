@@ -23,18 +23,19 @@ BUDGET=quick
 OUT=
 PAGE=docs/reproduction.md
 STUDIES_ALL="elbow elbow_hardening assisted swimmer walker snake_continuum snake_terrain snake_muscular wing"
-while [ $# -gt 0 ]; do
+STUDIES=
+while [ $# -gt 0 ]; do   # options and studies in any order
   case $1 in
     quick|full) BUDGET=$1; shift ;;
     --out) OUT=$2; shift 2 ;;
     --page) PAGE=$2; shift 2 ;;
     -h|--help) sed -n '2,20p' "$0"; exit 0 ;;
     -*) echo "reproduce.sh: unknown option $1" >&2; exit 2 ;;
-    *) break ;;
+    *) STUDIES="$STUDIES $1"; shift ;;
   esac
 done
 OUT=${OUT:-build/reproduce/$BUDGET}
-STUDIES=${*:-$STUDIES_ALL}
+STUDIES=${STUDIES:-$STUDIES_ALL}
 for s in $STUDIES; do
   [ -x "scripts/reproduce/$s.sh" ] || [ -f "scripts/reproduce/$s.sh" ] || {
     echo "reproduce.sh: no study '$s' (scripts/reproduce/$s.sh); the studies are: $STUDIES_ALL" >&2

@@ -26,26 +26,33 @@ static const char *snake_sim(const char *scene, const char *name) {
   return compile_with("bin/sinewc", scene, name);
 }
 
-/* Write tmpdir/models/continuum_snake.sinew with `elements = n` (the
- * shipped model with its element count replaced), so that scenes importing
- * it get n elements. */
-static void snake_model_with(int n) {
-  FILE *in = fopen("models/continuum_snake.sinew", "r");
+/* Copy file `from` to `to` with its one occurrence of `what` replaced by
+ * `with` (a variant of a shipped scene). */
+static void edit_copy(const char *from, const char *to, const char *what, const char *with) {
+  FILE *in = fopen(from, "r");
   assert_non_null(in);
   char text[16384];
   size_t len = fread(text, 1, sizeof text - 1, in);
   fclose(in);
   text[len] = 0;
-  char *at = strstr(text, "elements = 50;");
+  char *at = strstr(text, what);
   assert_non_null(at);
-  char path[700];
-  snprintf(path, sizeof path, "%s/continuum_snake.sinew", models);
-  FILE *out = fopen(path, "w");
+  FILE *out = fopen(to, "w");
   assert_non_null(out);
   fwrite(text, 1, (size_t)(at - text), out);
-  fprintf(out, "elements = %d;", n);
-  fputs(at + strlen("elements = 50;"), out);
+  fputs(with, out);
+  fputs(at + strlen(what), out);
   fclose(out);
+}
+
+/* Write tmpdir/models/continuum_snake.sinew with `elements = n` (the
+ * shipped model with its element count replaced), so that scenes importing
+ * it get n elements. */
+static void snake_model_with(int n) {
+  char path[700], with[32];
+  snprintf(path, sizeof path, "%s/continuum_snake.sinew", models);
+  snprintf(with, sizeof with, "elements = %d;", n);
+  edit_copy("models/continuum_snake.sinew", path, "elements = 50;", with);
 }
 
 /* Centre-of-mass displacement per second between times t0 and t1 (m/s). */
@@ -326,7 +333,10 @@ static void test_hardening_implicit(void **state) {
 }
 
 /* The barrier of Suppl. Figs. 11-12 (snake_terrain.sinew): the snake
- * reaches it at about 17 s.  Asserted: both snakes run through the climb
+ * reaches it at about 17 s from where the scene lays it; here it starts
+ * 1.3 m nearer (its tail at x = 1.3 m, the scene otherwise as shipped), so
+ * 18 s take it as far up as the scene's 26 s would (the full 30 s runs are
+ * `make bench` and `make reproduce`).  Asserted: both snakes run through the climb
  * (the roll that once made them unstable there is bounded, wave.c) and get
  * onto the slope, their centre of mass rising above the flat's 0.025 m by
  * more than a radius.  Printed: how far each gets, against the reference's
@@ -335,12 +345,16 @@ static void test_hardening_implicit(void **state) {
 static void test_terrain(void **state) {
   (void)state;
   snake_model_with(50);
-  const char *sim = snake_sim("examples/snake_terrain.sinew", "terrain");
+  char scene[700];
+  snprintf(scene, sizeof scene, "%s/snake_terrain_near.sinew", models);
+  edit_copy("examples/snake_terrain.sinew", scene, "implicit = implicit);",
+            "implicit = implicit, tail = (1.3, 0, 0.025) m);");
+  const char *sim = snake_sim(scene, "terrain");
   static const char *hardening[2] = {"hardening=100", "hardening=1"};
   for (int h = 0; h < 2; h++) {
     char out[700];
     snprintf(out, sizeof out, "%s/terrain_%d.h5", tmpdir, h);
-    simulate(sim, out, "--duration", "26 s", "--set", hardening[h], NULL);
+    simulate(sim, out, "--duration", "18 s", "--set", hardening[h], NULL);
     size_t nt, nc;
     double *t = read_dataset(out, "/time", &nt);
     double *com = read_dataset(out, "/probes/com", &nc);
@@ -353,7 +367,7 @@ static void test_terrain(void **state) {
             "x = %.3f m, highest z = %.3f m (the barrier's top is x = 4 m, z = 0.2 m)\n",
             __func__, hardening[h], t[nt - 1], com[3 * (nt - 1)], com[3 * (nt - 1) + 2], xmax,
             zmax);
-    assert_true(t[nt - 1] > 25.9);
+    assert_true(t[nt - 1] > 17.9);
     assert_true(zmax > 0.025 + 0.025);
     free(t);
     free(com);
