@@ -11,8 +11,10 @@
 # figures from this run, verdicts).  This driver runs the modules one after
 # the other (each uses the machine's cores as it sees fit), times each, and
 # keeps going when one fails: its section of the page then says it failed
-# and where its log is.  scripts/reproduce_page.py then writes the page from
-# every module's files, with the commit, the machine and the budget.
+# and where its log is; its status file records the commit and the time it
+# ran.  scripts/reproduce_page.py then writes the page from every module's
+# files (a study run again alone replaces its own section only), with the
+# commits, the machine and the budget.
 # quick (the default) is meant to take about half an hour on two cores;
 # full is the reference's settings, hours.  A module may keep runs that are
 # complete from a previous call with the same budget.
@@ -51,12 +53,16 @@ for s in $STUDIES; do
   mkdir -p "$dir"
   rm -f "$dir/status" "$dir/rows.jsonl" "$dir/meta.json"
   echo "reproduce.sh: $s ..."
+  load=$(cut -d' ' -f1 /proc/loadavg 2>/dev/null || echo 0)
   t0=$(date +%s.%N)
   sh "scripts/reproduce/$s.sh" "$BUDGET" "$dir" > "$dir/module.log" 2>&1
   rc=$?
   t1=$(date +%s.%N)
   wall=$(awk "BEGIN { printf \"%.0f\", $t1 - $t0 }")
-  printf '{"exit": %d, "wall": %s, "budget": "%s"}\n' "$rc" "$wall" "$BUDGET" > "$dir/status"
+  commit=$(git rev-parse --short=12 HEAD 2>/dev/null || echo unknown)
+  [ -n "$(git status --porcelain --untracked-files=no 2>/dev/null)" ] && commit="$commit+"
+  printf '{"exit": %d, "wall": %s, "budget": "%s", "commit": "%s", "made": "%s", "load": %s}\n' "$rc" "$wall" \
+    "$BUDGET" "$commit" "$(date -u '+%Y-%m-%d %H:%M UTC')" "$load" > "$dir/status"
   if [ $rc -ne 0 ]; then
     failed=$((failed + 1))
     echo "reproduce.sh: $s FAILED (exit $rc, $wall s; $dir/module.log):" >&2

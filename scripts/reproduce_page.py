@@ -99,8 +99,8 @@ def main():
     w("| | |\n|---|---|")
     w("| budget | `%s`%s |" % (a.budget, " (shortened runs: each study's notes say what is cut)"
                                 if a.budget == "quick" else " (the reference's settings)"))
-    w("| commit | `%s`%s |" % (commit, " with uncommitted changes" if dirty else ""))
-    w("| made | %s |" % datetime.datetime.now(datetime.timezone.utc).strftime("%Y-%m-%d %H:%M UTC"))
+    w("| page written at | `%s`%s, %s |" % (commit, " with uncommitted changes" if dirty else "",
+                                           datetime.datetime.now(datetime.timezone.utc).strftime("%Y-%m-%d %H:%M UTC")))
     w("| machine | %s (%s), %d logical CPUs |\n" % (cpu(), isa(), os.cpu_count() or 0))
     w("Verdicts: **agree** (a number within the stated tolerance of the reference's), **differ** "
       "(it is not; the row says why, with the evidence), **holds** or **fails** (a statement of the "
@@ -114,8 +114,8 @@ def main():
         loaded.append((s, d) + load(d))
 
     w("## Summary\n")
-    w("| study | reference | claims | agree or hold | differ or fail | wall |")
-    w("|---|---|--:|--:|--:|--:|")
+    w("| study | reference | claims | agree or hold | differ or fail | wall (load average at its start) | run at (commit; + uncommitted changes) |")
+    w("|---|---|--:|--:|--:|--:|---|")
     total = [0, 0, 0, 0.0]
     for s, d, meta, rows, conv, status in loaded:
         good = sum(r["verdict"] in GOOD for r in rows)
@@ -123,13 +123,16 @@ def main():
         title = meta["title"] if meta else s
         ref = meta["reference"] if meta else ""
         state = "" if status and status["exit"] == 0 else " (**run failed**)"
-        w("| [%s](#%s)%s | %s | %d | %d | %d | %s |" % (cell(title), s, state, cell(ref), len(rows), good,
-                                                   len(rows) - good, duration(wall)))
+        when = "`%s`, %s" % (status.get("commit", "?"), status.get("made", "?")) if status else "-"
+        w("| [%s](#%s)%s | %s | %d | %d | %d | %s | %s |" % (cell(title), s, state, cell(ref), len(rows), good,
+                                                        len(rows) - good, duration(wall) +
+                                                        (" (%.1f)" % status["load"] if status and "load" in status else ""),
+                                                        when))
         total[0] += len(rows)
         total[1] += good
         total[2] += len(rows) - good
         total[3] += wall
-    w("| **all** | | %d | %d | %d | %s |\n" % (total[0], total[1], total[2], duration(total[3])))
+    w("| **all** | | %d | %d | %d | %s | |\n" % (total[0], total[1], total[2], duration(total[3])))
 
     conventions = []
     nonbitwise = []
