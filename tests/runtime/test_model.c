@@ -243,13 +243,13 @@ static void test_reject_bc_rod_and_kind(void **state) {
     swRodDesc arm = good_rod("arm");
     sw_spec_add_rod(s, &arm);
     swBCDesc b = sw_test_clamp(k == 0 ? 3 : 0, 0);
-    if (k == 1) b.kind = (swBCKind)5;
+    if (k == 1) b.kind = (swBCKind)(SW_BC_SLEEVE + 1);   /* one past the last kind */
     sw_spec_add_bc(s, &b);
     char err[256];
     expect_reject(s, err, sizeof err);
     fprintf(stderr, "# %s: \"%s\"\n", __func__, err);
     expect_message(err, "boundary condition 0");
-    expect_message(err, k == 0 ? "rod index 3" : "unknown kind 5");
+    expect_message(err, k == 0 ? "rod index 3" : "unknown kind 6");
   }
 }
 
