@@ -30,6 +30,7 @@ sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from rows import Study
 
 PERIOD = 0.5   # s, the scene's stimulation period (walker.sinew: `let period`)
+CONTRACT = 0.15   # s, the muscle shortens for this long after each pulse (its stretch is lowest near 0.15 s)
 CASES = [("original", "original", "k"), ("twist", "twist hardened", "tab:blue"),
          ("shear", "shear hardened", "tab:red"), ("both", "twist and shear hardened", "tab:green")]
 STEPS = [("original_dt120", "original, 120 ns", "0.45"), ("original_dt241", "original, 241 ns", "0.7")]
@@ -42,11 +43,30 @@ def load(path):
         com = f["probes/com"][:]
         feet = {k: np.mean([f["rods/%s/position" % r][:, :, 0].mean(axis=1) for r in v], axis=0)
                 for k, v in FEET.items()}
-        lift = max(float((f["rods/%s/position" % r][:, :, 2] - f["rods/%s/node_radius" % r][:][None, :]).max())
-                   for v in FEET.values() for r in v)
+        # a foot's lift: its nodes' mean height above the dish (z = r at rest)
+        lift = {k: np.mean([(f["rods/%s/position" % r][:, :, 2] - f["rods/%s/node_radius" % r][:][None, :]).mean(axis=1)
+                            for r in v], axis=0) for k, v in FEET.items()}
         stretch = f["muscles/ring/stretch"][:]
     return {"t": t, "x": com[:, 0] - com[0, 0], "y": com[:, 1] - com[0, 1], "feet": {k: v - v[0] for k, v in feet.items()},
             "lift": lift, "stretch": stretch}
+
+
+def gait_of(run, name, nstroke):
+    """The feet's slide while the muscle contracts (the first CONTRACT of a
+    stroke) and while it relaxes (the rest), averaged over the strokes, the
+    feet's largest mean lift off the dish and the muscle's shortest stretch."""
+    t = run["t"]
+    slide = {k: [0.0, 0.0] for k in FEET}
+    for i in range(max(nstroke, 1)):
+        t0, t1, t2 = i * PERIOD, i * PERIOD + CONTRACT, min((i + 1) * PERIOD, t[-1])
+        for k in FEET:
+            x = lambda tt: float(np.interp(tt, t, run["feet"][k]))
+            slide[k][0] += (x(t1) - x(t0)) / max(nstroke, 1)
+            slide[k][1] += (x(t2) - x(t1)) / max(nstroke, 1)
+    return ("%s: contracting, rear feet %+.3f mm, front %+.3f mm; relaxing, rear %+.3f mm, front %+.3f mm "
+            "(a stroke's mean); feet lift up to %.0f um (rear) and %.0f um (front); muscle stretch down to %.4f"
+            % (name, 1e3 * slide["rear"][0], 1e3 * slide["front"][0], 1e3 * slide["rear"][1], 1e3 * slide["front"][1],
+               1e6 * run["lift"]["rear"].max(), 1e6 * run["lift"]["front"].max(), run["stretch"].min()))
 
 
 def at(run, t):
@@ -100,9 +120,7 @@ def main():
     rel = ", ".join("%s %+.1f%%" % (c, 100 * (speed[c] - speed["original"]) / speed["original"])
                     for c in cases if c != "original")
     strokes = "; ".join("%s %s" % (c, " ".join("%.3f" % (1e3 * a) for a in per[c])) for c in per)
-    gait = "; ".join("%s: rear feet %+.3f mm, front feet %+.3f mm, muscle stretch down to %.4f, feet lift up to %.2g um"
-                     % (c, 1e3 * runs[c]["feet"]["rear"][-1], 1e3 * runs[c]["feet"]["front"][-1],
-                        runs[c]["stretch"].min(), 1e6 * runs[c]["lift"]) for c in cases)
+    gait = "; ".join(gait_of(runs[c], c, nstroke) for c in cases)
     noise = ("the original walks at %.4g mm/s at 66.66 ns, %s: the step alone moves its speed by up to %.1f%%"
              % (1e3 * speed["original"], ", ".join("%.4g mm/s at %s ns" % (1e3 * speed[k], k[-3:]) for k in others),
                 step))
