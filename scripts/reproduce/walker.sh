@@ -13,9 +13,14 @@
 # moves with the step says how large a difference between cases the step
 # alone can make (the feet's stick-slip is sensitive).
 #
-# BUDGET full: the reference's 10 s (20 strokes); quick: 0.3 s, one stroke
-# (the twitch and the settling after it).  WALKER_DURATION overrides the
-# duration (a time with its unit).  scripts/reproduce/walker_report.py
+# Then the original and the shear-hardened walker at half the common step,
+# 33.33 ns: whether their difference is the hardening's or the step's.
+#
+# BUDGET full: the reference's 10 s (20 strokes), all eight runs; quick:
+# 0.3 s, one stroke (the twitch and the settling after it), the four cases
+# only.  WALKER_DURATION overrides the duration (a time with its unit),
+# WALKER_CHECK_DURATION that of the two runs at half the step (default: the
+# same).  scripts/reproduce/walker_report.py
 # measures the runs and writes rows.jsonl, meta.json and the plot.
 set -e
 BUDGET=${1:?usage: walker.sh quick|full OUTDIR}
@@ -26,6 +31,7 @@ full) DUR=10s ;;
 *) echo "walker.sh: budget must be quick or full, not '$BUDGET'" >&2; exit 2 ;;
 esac
 DUR=${WALKER_DURATION:-$DUR}
+CHECK=${WALKER_CHECK_DURATION:-$DUR}
 mkdir -p "$OUTDIR"
 : > "$OUTDIR/commands.txt"
 . scripts/reproduce/runs.sh
@@ -40,7 +46,11 @@ run both $SIM --duration $DUR $TWIST $SHEAR
 run shear $SIM --duration $DUR $SHEAR
 run twist $SIM --duration $DUR $DT $TWIST
 run original $SIM --duration $DUR $DT
-run original_dt120 $SIM --duration $DUR --dt 120.366ns
-run original_dt241 $SIM --duration $DUR
+if [ "$BUDGET" = full ]; then
+  run original_dt120 $SIM --duration $DUR --dt 120.366ns
+  run original_dt241 $SIM --duration $DUR
+  run original_dt33 $SIM --duration $CHECK --dt 3.333222225925803e-08
+  run shear_dt33 $SIM --duration $CHECK --dt 3.333222225925803e-08 $SHEAR
+fi
 finish
 /usr/bin/python3 scripts/reproduce/walker_report.py "$BUDGET" "$OUTDIR"
