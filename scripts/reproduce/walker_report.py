@@ -135,6 +135,8 @@ def main():
              % ("; ".join("%.4g mm/s at 66.66 ns, %.4g at %s ns (%.3g s)" % (1e3 * sw[k][0], 1e3 * sw[k][1],
                                                                           k.split("_dt")[1], sw[k][2]) for k in others),
                 step))
+    if not others:
+        noise = "no run at another step in this budget (full has them)"
     if "shear_dt33" in runs and "original_dt33" in runs:
         o2, s2, w2 = window("original_dt33", "shear_dt33")
         o1 = at(runs["original"], w2) / w2
@@ -157,7 +159,7 @@ def main():
            and abs(speed[c] - speed["original"]) / abs(speed["original"]) > max(0.1, 2 * step / 100)]
     st.statement("Suppl. Note 6.4", "both twist- and shear-hardening significantly affect the walker's forward "
                  "displacement", set(big) == {"twist", "shear"},
-                 "%s; significant taken as a change of the speed above 10%% and above twice the step's %.1f%%: %s"
+                 "%s; significant taken as a change of the speed above 10%% and above twice the step's (%.1f%%): %s"
                  % (rel, step, ", ".join(big) if big else "neither"), why="gait " + gait)
 
     st.note("The four cases run at one step, 66.66 ns, as the reference's at its 75 ns (Table 8): half the "
