@@ -145,7 +145,8 @@ def main():
                    "original's %.4g (%+.1f%%), at 66.66 ns %.4g against %.4g (%+.1f%%)"
                    % (w2, 1e3 * s2, 1e3 * o2, 100 * (s2 - o2) / o2, 1e3 * s1, 1e3 * o1, 100 * (s1 - o1) / o1))
         noise += "; " + halving
-    over = "over %.3g s (%d stroke%s)" % (T, nstroke, "" if nstroke == 1 else "s")
+    over = ("over %.3g s (%d stroke%s)" % (T, nstroke, "" if nstroke == 1 else "s") if nstroke
+            else "over %.3g s (the first stroke's twitch and settling, less than a period)" % T)
 
     why = ("speeds %s: %s (%s); %s; advance per stroke (mm): %s" % (over, speeds, rel, noise, strokes))
     st.compare("Suppl. Fig. 9b", "speed varies by up to ~43% between the fastest (shear-hardened) and the "
