@@ -169,6 +169,8 @@ swModel *sw_compile(const swSpec *s, char *err, size_t errlen) {
                                          : s->rod[r].youngs / (2 * (1 + s->rod[r].poisson));
       m->rod_info[r].density = s->rod[r].density;
       m->rod_info[r].length = s->rod[r].length;
+      m->rod_info[r].shear_hardening = s->rod[r].shear_hardening;
+      m->rod_info[r].twist_hardening = s->rod[r].twist_hardening;
       m->rod_nelem[r] = n;
       m->node_adr[r] = m->elem_adr[r] = m->vor_adr[r] = m->nslot;
       m->nslot += n + 1;

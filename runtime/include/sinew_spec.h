@@ -172,6 +172,7 @@ typedef struct {
   char *kind, *material, *where;
   double youngs, shear_modulus, density;  /* Pa, Pa (G, before hardening), kg/m^3 */
   double length;                          /* rest length, m                   */
+  double shear_hardening, twist_hardening; /* factors on G in S11, S22 and B33 */
 } swRodInfo;
 
 typedef struct swSpec swSpec;

@@ -539,6 +539,15 @@ static void print_materials(const swModel *m) {
   }
 }
 
+/* The end of a rod's line: its hardened G (model.c: shear_hardening
+ * multiplies G in S11 and S22, twist_hardening in B33), when hardened. */
+static void print_hardening(const swModel *m, int r) {
+  const double hs = m->rod_info[r].shear_hardening, ht = m->rod_info[r].twist_hardening;
+  if (hs != 1) printf(", shear G x%g = %.4g Pa", hs, hs * m->rod_info[r].shear_modulus);
+  if (ht != 1) printf(", twist G x%g = %.4g Pa", ht, ht * m->rod_info[r].shear_modulus);
+  putchar('\n');
+}
+
 /* One line for the rods of pattern pat[first]: their count and the ranges
  * of what a rod line shows. */
 static void print_rod_group(const swModel *m, char *const *pat, int first, int members) {
@@ -565,10 +574,11 @@ static void print_rod_group(const swModel *m, char *const *pat, int first, int m
   if (emax != emin) printf(" to %d", emax);
   printf(" elements, length %.4g to %.4g m, radius %.4g", lmin, lmax, rmin * 1e3);
   if (rmax != rmin) printf(" to %.4g", rmax * 1e3);
-  printf(" mm, mass %.4g to %.4g kg, stable dt %s to %s%s\n", mmin, mmax,
+  printf(" mm, mass %.4g to %.4g kg, stable dt %s to %s%s", mmin, mmax,
          isinf(dmin) ? "none" : sw_cli_format_time(a, sizeof a, dmin),
          isinf(dmax) ? "none" : sw_cli_format_time(b, sizeof b, dmax),
          damping == SW_DAMP_ANALYTIC ? ", analytic damping" : damping == SW_DAMP_LINEAR ? ", linear damping" : "");
+  print_hardening(m, first);   /* the first member's */
 }
 
 void sw_cli_print_info(const swCli *c, const swModel *m, double stable, const char *dt_source,
@@ -598,12 +608,13 @@ void sw_cli_print_info(const swCli *c, const swModel *m, double stable, const ch
       printf(" at t = 0, x%.4g to x%.4g in time (mass %s%s)", m->swell_range[2 * sk],
              m->swell_range[2 * sk + 1], m->swell_flags[sk] & SW_SWELL_MASS_GROWS ? "grows" : "conserved",
              m->swell_flags[sk] & SW_SWELL_TWIST_RADIUS ? ", rest twist ~ r0/r" : "");
-    printf(", mass %.6g kg%s, stable dt %s%s%s%s\n", mass, sk >= 0 ? " at t = 0" : "",
+    printf(", mass %.6g kg%s, stable dt %s%s%s%s", mass, sk >= 0 ? " at t = 0" : "",
            isinf(m->rod_wave_dt[r]) ? "none" : sw_cli_format_time(a, sizeof a, m->rod_wave_dt[r]),
            m->rod_damping[r] == SW_DAMP_ANALYTIC ? ", analytic damping"
            : m->rod_damping[r] == SW_DAMP_LINEAR ? ", linear damping" : "",
            m->nrigid && m->rod_rigid[r] >= 0 ? ", rigid" : m->nimplicit && m->rod_implicit[r] ? ", implicit" : "",
            m->weight && m->weight[na] == 0 && m->mass[na] > 0 ? ", weightless (no gravity)" : "");
+    print_hardening(m, r);
   }
   free_patterns(rod_pat, m->nrod);
   print_materials(m);
