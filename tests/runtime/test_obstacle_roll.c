@@ -21,15 +21,29 @@
  * booked balance kinetic + elastic - work stays constant.
  *
  * Anchored on the centreline instead of the touching surface, the friction
- * ties the rod's axis to the box: the rod neither rolls down the slope nor
- * turns its spin into rolling (measured before the anchor moved: 0 m/s^2
- * and a rod spinning in place; docs/validation.md). */
+ * ties the rod's axis to the box: the rod neither rolls nor spins up (on the
+ * slope with mu_s = 0.3 it slid at g (sin - mu_k cos) = 2.781 m/s^2 instead
+ * of rolling at 3.27, and a spun rod kept spinning in place at 30 rad/s).
+ * Anchored at the surface but with the anchor kept as a material point of
+ * the rod while stuck, a rolling rod carries it up its side (the spring sees
+ * only the tangential part): the rod then rolls about a point off its
+ * bottom, at 3.291 m/s^2 (+0.6 %) spinning up at 320 rad/s^2 (-2.2 %), and a
+ * spun rod ends at 0.0978 m/s and 10.42 rad/s; re-anchoring at the touching
+ * point at every evaluation, the stretch kept, removes it
+ * (docs/physics.md, "Rigid obstacles"). */
 #include "testutil.h"
 #include "vec.h"
 #include "internal.h"
 
 static const double G = 9.81, R = 0.01, L = 0.1, RHO = 1000;
 enum { N = 4 };
+/* The closed forms are for a rigid cylinder on a rigid plane; the model's
+ * largest departure from them is the penalty: the rod sinks by
+ * k^-1 * its weight per element, 6.7e-6 m = 6.7e-4 r, so that the contact's
+ * lever (r at the anchor) and the centre's height (r - depth) differ by
+ * that fraction.  1e-3 bounds it; the rest (the rod's elasticity, the step)
+ * is smaller. */
+static const double TOL = 1e-3;
 
 /* The rod along y lying on the face (normal n) of a box, its centre at `at`
  * along the face; the box 1 cm thick, 1 m along t (the face's direction
@@ -134,12 +148,12 @@ static void incline(int rolling) {
           u1, u2, w1, w2, R * fabs(w2) - u2, d->obstacle_contacts, d->obstacle_stuck,
           d->obstacle_slipping, E0 - mech, (E0 - mech) / K, rise, booked - B0);
   if (rolling) {
-    SW_EXPECT_REL("acceleration down the slope, rolling (m/s^2)", acc, 2.0 / 3.0 * G * sin(a), 1e-2);
-    SW_EXPECT_REL("spin-up about the axis, rolling (rad/s^2)", spin, 2.0 / 3.0 * G * sin(a) / R, 1e-2);
+    SW_EXPECT_REL("acceleration down the slope, rolling (m/s^2)", acc, 2.0 / 3.0 * G * sin(a), TOL);
+    SW_EXPECT_REL("spin-up about the axis, rolling (rad/s^2)", spin, 2.0 / 3.0 * G * sin(a) / R, TOL);
   } else {
     SW_EXPECT_REL("acceleration down the slope, sliding (m/s^2)", acc,
-                  G * (sin(a) - mu_k * cos(a)), 1e-2);
-    SW_EXPECT_REL("spin-up about the axis, sliding (rad/s^2)", spin, 2 * mu_k * G * cos(a) / R, 1e-2);
+                  G * (sin(a) - mu_k * cos(a)), TOL);
+    SW_EXPECT_REL("spin-up about the axis, sliding (rad/s^2)", spin, 2 * mu_k * G * cos(a) / R, TOL);
   }
   SW_EXPECT_ABS("largest rise of the mechanical energy / kinetic", rise / K, 0.0, 1e-4);
   SW_EXPECT_ABS("booked balance drift / kinetic", (booked - B0) / K, 0.0, 1e-3);
@@ -167,9 +181,9 @@ static void test_spin_turns_to_rolling(void **state) {
   fprintf(stderr, "# spin %.0f rad/s: after 60 ms v = %.4f m/s, spin %.3f rad/s (%d stuck, %d "
           "slipping); kinetic energy left %.4f of the initial; largest rise %.3e J\n", w0, v, w,
           d->obstacle_stuck, d->obstacle_slipping, 1 - (E0 - mech) / K0, rise);
-  SW_EXPECT_REL("rolling speed after the spin (m/s)", v, R * w0 / 3, 1e-2);
-  SW_EXPECT_REL("spin left (rad/s)", w, w0 / 3, 1e-2);
-  SW_EXPECT_REL("energy taken by friction / initial spin energy", (E0 - mech) / K0, 2.0 / 3.0, 1e-2);
+  SW_EXPECT_REL("rolling speed after the spin (m/s)", v, R * w0 / 3, TOL);
+  SW_EXPECT_REL("spin left (rad/s)", w, w0 / 3, TOL);
+  SW_EXPECT_REL("energy taken by friction / initial spin energy", (E0 - mech) / K0, 2.0 / 3.0, TOL);
   SW_EXPECT_ABS("largest rise of the mechanical energy / initial", rise / K0, 0.0, 1e-4);
   SW_EXPECT_ABS("booked balance drift / initial", (booked - B0) / K0, 0.0, 1e-3);
   sw_data_free(d);
