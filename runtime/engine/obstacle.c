@@ -764,7 +764,11 @@ double sw_obstacle_start_depth(const swModel *m, int k, int *rod, int *elem) {
  * element's least moment of inertia: w^2 = k (1 / m + l^2 / J).  The
  * scheme's limit at zeta = c / (2 w), times 0.95, as ground.c's.  With
  * friction k is the larger of k and k_t: the tangential spring presses the
- * same nodes across the normal, so the two add in no direction. */
+ * same nodes across the normal, so the two add in no direction.  It acts at
+ * the surface too, and so turns the element: its point moves with the
+ * nodes and with the element's rotation at the lever r, w^2 = k_t (1 / m_i
+ * + r^2 / J) with m_i the lighter node and J the element's least moment of
+ * inertia (r^2 / J = 4 / m_e for a solid section), the damper likewise. */
 static double limit_of(const swModel *m, double w2, double c) {
   if (!(w2 > 0)) return c > 0 ? 0.95 * 2.0 / c : INFINITY;
   const double w = sqrt(w2);
@@ -784,6 +788,14 @@ double sw_obstacle_stable_dt(const swModel *m) {
         const int nel = (i > 0) + (i < n);
         dt = fmin(dt, limit_of(m, nel * stiff * m->inv_mass[na + i],
                                nel * o->damping * m->inv_mass[na + i]));
+      }
+      for (int i = 0; i < n && o->static_friction > 0; i++) { /* the friction's couple */
+        const int e = m->elem_adr[r] + i;
+        const double kt = o->tangential_stiffness > 0 ? o->tangential_stiffness : o->stiffness;
+        double J = INFINITY;
+        for (int q = 0; q < 3; q++) J = fmin(J, SW_AT(m, m->inertia, e, q));
+        const double inv = fmax(m->inv_mass[na + i], m->inv_mass[na + i + 1]) + m->radius[e] * m->radius[e] / J;
+        dt = fmin(dt, limit_of(m, kt * inv, o->damping * inv));
       }
     }
     if (o->carrier_rod < 0) continue;

@@ -249,7 +249,7 @@ static void carried_run(double gamma, double mu) {
                 P[2] - P0[2]}) / Pref, 0.0, 1e-12);
   /* with friction the bone also twists about its own axis, and the rod,
    * whose friction acts at its surface with a couple, rolls and twists:
-   * the change is then 4e-12 damped and 1.6e-10 undamped whatever dt (5e-16
+   * the change is then 4e-11 damped and 1.6e-10 undamped whatever dt (5e-16
    * without).  Not the friction's: the loads of every evaluation balance to
    * 1e-19 N m, and between contacts, with no load but the rods' own, the
    * change wanders by 5e-11 (a frictionless blow that moved 1.5 cm along
