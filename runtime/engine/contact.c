@@ -31,11 +31,17 @@
  * kept in the element's material frame, so that the anchor moves, turns and
  * rolls with its element.  At each evaluation the anchors' separation
  * u = p_a - p_b and relative velocity w (v_s + omega x arm, each side), their
- * tangential parts, give friction.c's capped force F on a, -F on b; a pair
- * that slips is re-anchored at the touching surface points of the current
- * closest points, b's moved by F / k_t so that the spring alone gives F.
- * Each force acts at its anchor: split (1 - s, s) over the element's nodes
- * at the centreline point, with the couple arm x F on the element.  Forces
+ * tangential parts, give friction.c's capped force F on a, -F on b.  Each
+ * force acts at its anchor: split (1 - s, s) over the element's nodes at
+ * the centreline point, with the couple arm x F on the element.  The pair
+ * is then re-anchored at the touching surface points with the spring's
+ * tangential stretch kept (sw_friction_reanchor): u_t while stuck, the
+ * places s, t kept; -F / k_t when slipping, at the current closest points
+ * (where F then acts), b's point moved so that the spring alone gives F.
+ * So a stuck rod that rolls keeps its anchor where it touches: kept as a
+ * material point, the anchor would ride up the rod's side while the spring,
+ * which sees only u_t, let it, and the rod would roll about a point off its
+ * bottom (test_obstacle_roll measured it on an obstacle).  Forces
  * and couples are then the gradient of k_t |u_t|^2 / 2 in the positions and
  * rotations (n held), and since the two anchors are apart only by the
  * overlap along n and the spring's stretch, the part of the energy's change

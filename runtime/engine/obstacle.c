@@ -54,26 +54,40 @@
  *
  * Friction (mu_s > 0): an elastic-Coulomb law with a spring anchor, the
  * tangential "spring and slider" of Cundall & Strack, Geotechnique 29 (1979)
- * 47, eqs. 5-7, as DEM codes (LIGGGHTS' tangential_history) keep it.  When
- * element e first touches obstacle k, the pair records its anchor: the
- * material point s0 = s of the segment and the obstacle's point y0 there
- * (p in the obstacle's frame).  At each evaluation, with pe = a0 + s0 (a1 -
- * a0) and po = c + E^T y0 (which moves with a carried obstacle), the
- * separation u = pe - po and the relative velocity w of the two material
- * points, their tangential parts u_t = u - (u.n) n, w_t, give the trial force
+ * 47, eqs. 5-7, as DEM codes (LIGGGHTS' tangential_history) keep it, with
+ * anchors at the touching surfaces as rod-rod contact has them (contact.c;
+ * friction.c holds what both use).  When element e first touches obstacle
+ * k, the pair records its anchor: on the rod the touching surface point,
+ * the centreline point s0 = s plus the arm -r n kept in the element's
+ * material frame (so it moves, turns and rolls with the element); on the
+ * obstacle its touching surface point p - D n, y0 in the obstacle's frame
+ * (so it moves with a carried obstacle).  At each evaluation the two
+ * anchors' separation u = p_a - p_o and relative velocity w (v_s + omega x
+ * arm on the rod), their tangential parts u_t = u - (u.n) n, w_t, give the
+ * trial force
  *   F = -k_t u_t - gamma w_t.
  * If |F| <= mu_s N (N the normal force, spring plus damper) the contact is
- * stuck: F acts and the anchor stays, so a constant load finds a static
- * equilibrium (the spring holds exactly, no creep).  Otherwise it slips: F
- * becomes mu_k N F / |F| and the obstacle's point slides tangentially to
- * where the spring alone gives that force, u_t = -F / k_t.  F acts at pe,
- * split (1 - s0, s0) over the nodes; a carried obstacle takes -F at its
- * node and (pe - x_node) x (-F) on its element, as the normal force.  The
- * whole tangential force goes into ext_force as well, so the kick books its
- * work (the spring's stored energy and what slip dissipates) as external
- * work, as ground.c books its friction: kinetic + elastic - work stays
- * constant.  The cap is friction.c's sw_coulomb_cap, which rod-rod contact
- * shares.  Anchors live in d->obstacle_anchor, a table of rows ordered by
+ * stuck; otherwise it slips and F becomes mu_k N F / |F| (friction.c's
+ * sw_coulomb_cap).  F acts on the rod at its anchor, split (1 - s0, s0)
+ * over the nodes with the couple arm x F on the element; a carried obstacle
+ * takes -F at its node and (p_a - x_node) x (-F) on its element, so force
+ * and moment balance exactly.  The pair is then re-anchored at the touching
+ * surface points of the current closest point with the spring's tangential
+ * stretch kept: u_t while stuck (the rod's place s0 kept), -F / k_t when
+ * slipping (the place moved to s, and F applied at the new anchor), so that
+ * the spring alone gives F.  A constant load thus finds a static
+ * equilibrium (the spring holds exactly, no creep), a stuck rod rolls as a
+ * cylinder should (its anchor stays where it touches instead of riding up
+ * its side, which the spring, blind to u . n, would let it do), and since
+ * the anchors are apart only by the depth along n, the law is passive (the
+ * part of the energy's change that holding n misses is proportional to
+ * u . n).  Anchored on the centreline instead, the friction tied the rod's
+ * axis to the obstacle: a rod could not roll (test_obstacle_roll).  The
+ * whole tangential force and its couples go into ext_force, ext_torque as
+ * well, so the kick books their work (the spring's stored energy and what
+ * slip dissipates) as external work, as ground.c books its friction:
+ * kinetic + elastic - work stays constant.  Anchors live in
+ * d->obstacle_anchor, a table of rows (key, s0, arm, y0, stuck) ordered by
  * the key (obstacle, place of the element in the obstacle's rod list),
  * rebuilt at each evaluation by a merge with the previous one (no
  * allocation, no search); a pair that stops touching loses its anchor.
