@@ -252,7 +252,7 @@ static void carried_run(double gamma, double mu) {
    * the change is then 4e-11 damped and 1.6e-10 undamped whatever dt (5e-16
    * without).  Not the friction's: the loads of every evaluation balance to
    * 1e-19 N m, and between contacts, with no load but the rods' own, the
-   * change wanders by 5e-11 (a frictionless blow that moved 1.5 cm along
+   * change wanders by 1e-10 (a frictionless blow that moved 1.5 cm along
    * the capsule, off its symmetry, so that the normal forces twist the bone
    * too, changes it by 4e-13; the same rod spun at 3000 rad/s about a tilted
    * axis, by 1.3e-11) */
