@@ -299,11 +299,9 @@ static int friction_force(const swModel *m, const swData *d, const swContactDesc
   double stretch[3], ca[3], cb[3], rel[3];
   const double at_a = sw_friction_reanchor(a, stuck, u, F, kt, stretch);
   const double at_b = sw_friction_reanchor(b, stuck, u, F, kt, stretch);
-  for (int q = 0; q < 3; q++) {
-    ca[q] = (1 - at_a) * SW_AT(m, d->x, a->node, q) + at_a * SW_AT(m, d->x, a->node + 1, q);
-    cb[q] = (1 - at_b) * SW_AT(m, d->x, b->node, q) + at_b * SW_AT(m, d->x, b->node + 1, q);
-    rel[q] = ca[q] - cb[q];
-  }
+  sw_side_centre(m, d->x, a, at_a, ca);
+  sw_side_centre(m, d->x, b, at_b, cb);
+  sw_v3_sub(rel, ca, cb);
   const double reln = sw_v3_dot(rel, n);
   sw_v3_scale(off, n, -a->radius);
   sw_side_arm(m, d, a, off, ya);

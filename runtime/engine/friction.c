@@ -96,7 +96,7 @@ void sw_anchor_sort(double *rows, int n, int width) {
 
 /* ---- a rod element's anchor at its surface (both kernels) ---- */
 
-static void point_at(const swModel *m, const double *x, const swFrictionSide *e, double at, double p[3]) {
+void sw_side_centre(const swModel *m, const double *x, const swFrictionSide *e, double at, double p[3]) {
   for (int q = 0; q < 3; q++)
     p[q] = (1 - at) * SW_AT(m, x, e->node, q) + at * SW_AT(m, x, e->node + 1, q);
 }
@@ -109,8 +109,8 @@ void sw_side_point(const swModel *m, const swData *d, swFrictionSide *e, double 
   sw_get3(m, d->omega, e->elem, wm);
   sw_matT_vec(w, Q, wm);
   sw_v3_cross(wr, w, e->arm);
-  point_at(m, d->x, e, at, p);
-  point_at(m, d->v, e, at, v);
+  sw_side_centre(m, d->x, e, at, p);
+  sw_side_centre(m, d->v, e, at, v);
   sw_v3_add(p, p, e->arm);
   sw_v3_add(v, v, wr);
   e->anchor_at = at;

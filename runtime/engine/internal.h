@@ -501,12 +501,14 @@ void sw_anchor_sort(double *rows, int n, int width);
  * v_c + omega x arm; sw_side_arm turns a lab offset into an arm y;
  * sw_side_apply puts the force f at the anchor: split over the nodes at the
  * centreline point, the couple arm x f on the element, all of it into the
- * external loads too (the kick books its work). */
+ * external loads too (the kick books its work); sw_side_centre interpolates
+ * the node array x (positions or velocities) at the place `at`. */
 typedef struct {
   int node, elem;
   double at, radius;
   double anchor_at, arm[3];
 } swFrictionSide;
+void sw_side_centre(const swModel *m, const double *x, const swFrictionSide *e, double at, double p[3]);
 void sw_side_point(const swModel *m, const swData *d, swFrictionSide *e, double at, const double y[3],
                    double p[3], double v[3]);
 void sw_side_arm(const swModel *m, const swData *d, const swFrictionSide *e, const double off[3],

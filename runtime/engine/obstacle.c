@@ -501,8 +501,8 @@ static int friction_force(const swModel *m, const swData *d, int k, const swPose
   const double at = sw_friction_reanchor(rod, stuck, u, F, kt, stretch);
   sw_v3_scale(off, n, -rod->radius);
   sw_side_arm(m, d, rod, off, ya_new);
-  for (int q = 0; q < 3; q++)
-    po[q] = (1 - at) * SW_AT(m, d->x, rod->node, q) + at * SW_AT(m, d->x, rod->node + 1, q) - D * n[q] - stretch[q];
+  sw_side_centre(m, d->x, rod, at, po);
+  for (int q = 0; q < 3; q++) po[q] -= D * n[q] + stretch[q];
   to_local(y0, P, po);
   if (!stuck) sw_side_point(m, d, rod, at, ya_new, pa, va);
   double *out = sum->anchor + SW_OBSTACLE_ANCHOR_ROW * sum->rows++;
@@ -626,9 +626,8 @@ static void element_contact(const swModel *m, const swData *d, int k, const swPo
     sw_side_apply(m, d, &side, F, sum->force, sum->ext_force, sum->torque, sum->ext_torque);
     if (P->carried) {
       double pa[3];
-      for (int q = 0; q < 3; q++)
-        pa[q] = (1 - side.anchor_at) * SW_AT(m, d->x, ia, q) + side.anchor_at * SW_AT(m, d->x, ia + 1, q) +
-                side.arm[q];
+      sw_side_centre(m, d->x, &side, side.anchor_at, pa);
+      sw_v3_add(pa, pa, side.arm);
       carrier_takes(m, d, k, P, pa, F, F, sum);
     }
   }
@@ -808,7 +807,8 @@ double sw_obstacle_stable_dt(const swModel *m) {
         const double kt = o->tangential_stiffness > 0 ? o->tangential_stiffness : o->stiffness;
         double J = INFINITY;
         for (int q = 0; q < 3; q++) J = fmin(J, SW_AT(m, m->inertia, e, q));
-        const double inv = fmax(m->inv_mass[na + i], m->inv_mass[na + i + 1]) + m->radius[e] * m->radius[e] / J;
+        const double lighter = fmax(m->inv_mass[na + i], m->inv_mass[na + i + 1]);
+        const double inv = lighter + m->radius[e] * m->radius[e] / J;
         dt = fmin(dt, limit_of(m, kt * inv, o->damping * inv));
       }
     }

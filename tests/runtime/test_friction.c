@@ -91,7 +91,9 @@ static const double RAMP = 0.16;
 
 /* The capstan's ratio for a rope of radius ROPE_R whose friction acts at
  * its surface on the drum of radius CYL_R (see the top). */
-static double capstan_ratio(double mu, double theta) { return exp(mu * theta * CYL_R / (CYL_R + ROPE_R)); }
+static double capstan_ratio(double mu, double theta) {
+  return exp(mu * theta * CYL_R / (CYL_R + ROPE_R));
+}
 
 /* The ratio T2/T1 at which the rope slides, T2 ramped from T1 to 1.6
  * capstan_ratio T1 over RAMP after SETTLE: where the slack node has moved
