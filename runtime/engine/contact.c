@@ -31,11 +31,17 @@
  * kept in the element's material frame, so that the anchor moves, turns and
  * rolls with its element.  At each evaluation the anchors' separation
  * u = p_a - p_b and relative velocity w (v_s + omega x arm, each side), their
- * tangential parts, give friction.c's capped force F on a, -F on b; a pair
- * that slips is re-anchored at the touching surface points of the current
- * closest points, b's moved by F / k_t so that the spring alone gives F.
- * Each force acts at its anchor: split (1 - s, s) over the element's nodes
- * at the centreline point, with the couple arm x F on the element.  Forces
+ * tangential parts, give friction.c's capped force F on a, -F on b.  Each
+ * force acts at its anchor: split (1 - s, s) over the element's nodes at
+ * the centreline point, with the couple arm x F on the element.  The pair
+ * is then re-anchored at the touching surface points with the spring's
+ * tangential stretch kept (sw_friction_reanchor): u_t while stuck, the
+ * places s, t kept; -F / k_t when slipping, at the current closest points
+ * (where F then acts), b's point moved so that the spring alone gives F.
+ * So a stuck rod that rolls keeps its anchor where it touches: kept as a
+ * material point, the anchor would ride up the rod's side while the spring,
+ * which sees only u_t, let it, and the rod would roll about a point off its
+ * bottom (test_obstacle_roll measured it on an obstacle).  Forces
  * and couples are then the gradient of k_t |u_t|^2 / 2 in the positions and
  * rotations (n held), and since the two anchors are apart only by the
  * overlap along n and the spring's stretch, the part of the energy's change
@@ -249,45 +255,10 @@ typedef struct {
 
 /* ---- friction: the anchor of a touching pair (see the design) ---- */
 
-/* One side of a touching pair: the element's first node slot, its element
- * slot, the closest point's place on its segment and the element's radius;
- * and, once friction_force has run, its anchor: the place `at` on the
- * segment and the arm from the centreline point there to the anchored
- * surface point (lab). */
-typedef struct {
-  int node, elem;
-  double at, radius;
-  double anchor_at, arm[3];
-} Side;
-
-static void point_at(const swModel *m, const double *x, const Side *e, double at, double p[3]) {
-  for (int q = 0; q < 3; q++)
-    p[q] = (1 - at) * SW_AT(m, x, e->node, q) + at * SW_AT(m, x, e->node + 1, q);
-}
-
-/* The anchored surface point of side e with arm y (its element's frame):
- * the place, its arm in the lab, velocity v_c + omega x arm. */
-static void surface_point(const swModel *m, const swData *d, Side *e, double at, const double y[3],
-                          double p[3], double v[3]) {
-  double Q[9], wm[3], w[3], wr[3];
-  sw_getQ(m, d->Q, e->elem, Q);
-  sw_matT_vec(e->arm, Q, y);
-  sw_get3(m, d->omega, e->elem, wm);
-  sw_matT_vec(w, Q, wm);
-  sw_v3_cross(wr, w, e->arm);
-  point_at(m, d->x, e, at, p);
-  point_at(m, d->v, e, at, v);
-  sw_v3_add(p, p, e->arm);
-  sw_v3_add(v, v, wr);
-  e->anchor_at = at;
-}
-
-/* The arm y (element e's frame) of the surface point at lab offset off. */
-static void arm_of(const swModel *m, const swData *d, const Side *e, const double off[3], double y[3]) {
-  double Q[9];
-  sw_getQ(m, d->Q, e->elem, Q);
-  sw_mat_vec(y, Q, off);
-}
+/* One side of a touching pair: friction.c's swFrictionSide (the element,
+ * the closest point's place, the radius; once anchored, the anchor's place
+ * and arm), whose anchored surface point sw_side_point places. */
+typedef swFrictionSide Side;
 
 /* The tangential force F on side a of the pair (a, b) of key `key` (a the
  * lower row), touching with the normal n from b to a and the normal force
@@ -304,58 +275,50 @@ static int friction_force(const swModel *m, const swData *d, const swContactDesc
     memcpy(yb, row + 6, sizeof yb);
   } else { /* the surface points that touch: a's towards b, b's towards a */
     sw_v3_scale(off, n, -a->radius);
-    arm_of(m, d, a, off, ya);
+    sw_side_arm(m, d, a, off, ya);
     sw_v3_scale(off, n, b->radius);
-    arm_of(m, d, b, off, yb);
+    sw_side_arm(m, d, b, off, yb);
   }
   /* the two material points, their separation and relative velocity,
    * tangential parts */
   double pa[3], pb[3], va[3], vb[3], u[3], w[3];
-  surface_point(m, d, a, row ? row[1] : a->at, ya, pa, va);
-  surface_point(m, d, b, row ? row[2] : b->at, yb, pb, vb);
+  sw_side_point(m, d, a, row ? row[1] : a->at, ya, pa, va);
+  sw_side_point(m, d, b, row ? row[2] : b->at, yb, pb, vb);
   for (int q = 0; q < 3; q++) u[q] = pa[q] - pb[q], w[q] = va[q] - vb[q];
   const double un = sw_v3_dot(u, n), wn = sw_v3_dot(w, n);
   for (int q = 0; q < 3; q++) u[q] -= un * n[q], w[q] -= wn * n[q];
   const double kt = cd->tangential_stiffness > 0 ? cd->tangential_stiffness : cd->stiffness;
   const int stuck = sw_coulomb_cap(u, w, kt, cd->damping, cd->static_friction, cd->kinetic_friction, N, F);
+  /* re-anchored at the touching surface points (friction.c), the places
+   * kept while stuck, the spring's tangential stretch kept: a's arm -r_a n,
+   * b's r_b n plus the tangential part of the centreline points' offset
+   * less the stretch, so that p_a - p_b has the tangential part `stretch`
+   * (a stuck rod that rolls keeps its anchor where it touches instead of
+   * carrying it up its side).  F acts at the anchors it came from while
+   * stuck, at the new ones when slipping. */
+  double stretch[3], ca[3], cb[3], rel[3];
+  const double at_a = sw_friction_reanchor(a, stuck, u, F, kt, stretch);
+  const double at_b = sw_friction_reanchor(b, stuck, u, F, kt, stretch);
+  sw_side_centre(m, d->x, a, at_a, ca);
+  sw_side_centre(m, d->x, b, at_b, cb);
+  sw_v3_sub(rel, ca, cb);
+  const double reln = sw_v3_dot(rel, n);
+  sw_v3_scale(off, n, -a->radius);
+  sw_side_arm(m, d, a, off, ya);
+  for (int q = 0; q < 3; q++) off[q] = b->radius * n[q] + rel[q] - reln * n[q] - stretch[q];
+  sw_side_arm(m, d, b, off, yb);
   if (!stuck) {
-    /* re-anchored at the touching surface points of the closest points,
-     * b's shifted by F / k_t so that the spring alone gives F: u_t = -F / k_t */
-    sw_v3_scale(off, n, -a->radius);
-    arm_of(m, d, a, off, ya);
-    for (int q = 0; q < 3; q++) off[q] = b->radius * n[q] + F[q] / kt;
-    arm_of(m, d, b, off, yb);
-    surface_point(m, d, a, a->at, ya, pa, va);
-    surface_point(m, d, b, b->at, yb, pb, vb);
+    sw_side_point(m, d, a, at_a, ya, pa, va);
+    sw_side_point(m, d, b, at_b, yb, pb, vb);
   }
   double *out = sum->anchor + SW_CONTACT_ANCHOR_ROW * sum->rows++;
-  out[0] = key, out[1] = a->anchor_at, out[2] = b->anchor_at;
+  out[0] = key, out[1] = at_a, out[2] = at_b;
   memcpy(out + 3, ya, sizeof ya);
   memcpy(out + 6, yb, sizeof yb);
   out[9] = stuck;
   if (stuck) sum->stuck++;
   else sum->slipping++;
   return 1;
-}
-
-/* The force f on side e at its anchor: split over its nodes at the
- * centreline point, the couple arm x f on its element (material frame);
- * all of it external too (the kick books its work). */
-static void apply_at_anchor(const swModel *m, const swData *d, const Side *e, const double f[3], Sums *sum) {
-  const double w[2] = {1 - e->anchor_at, e->anchor_at};
-  double c[3], Q[9], cm[3];
-  for (int j = 0; j < 2; j++)
-    for (int q = 0; q < 3; q++) {
-      SW_AT(m, sum->force, e->node + j, q) += w[j] * f[q];
-      SW_AT(m, sum->ext_force, e->node + j, q) += w[j] * f[q];
-    }
-  sw_v3_cross(c, e->arm, f);
-  sw_getQ(m, d->Q, e->elem, Q);
-  sw_mat_vec(cm, Q, c);
-  for (int q = 0; q < 3; q++) {
-    SW_AT(m, sum->torque, e->elem, q) += cm[q];
-    SW_AT(m, sum->ext_torque, e->elem, q) += cm[q];
-  }
 }
 
 static void pair_contact(const swModel *m, const swData *d, const swContactDesc *cd, int ra,
@@ -422,8 +385,8 @@ static void pair_contact(const swModel *m, const swData *d, const swContactDesc 
   sw_v3_scale(nf, n, lower ? 1.0 : -1.0);
   if (!friction_force(m, d, cd, key, first, second, nf, spring + damper, sum, F)) return;
   sw_v3_scale(G, F, -1.0);
-  apply_at_anchor(m, d, first, F, sum);
-  apply_at_anchor(m, d, second, G, sum);
+  sw_side_apply(m, d, first, F, sum->force, sum->ext_force, sum->torque, sum->ext_torque);
+  sw_side_apply(m, d, second, G, sum->force, sum->ext_force, sum->torque, sum->ext_torque);
 }
 
 /* ---- broad phase ---- */

@@ -26,6 +26,16 @@
  * (sw_anchor_find) and sorts the new table once written (sw_anchor_sort, a
  * heapsort in place: no allocation in the step, and a result that depends
  * only on the rows, so that a continued run repeats the uninterrupted one).
+ *
+ * On the rod's side both kernels anchor at the element's touching surface
+ * point: the centreline point at `at` plus an arm kept in the element's
+ * material frame, which moves, turns and rolls with the element; the force
+ * acts there, split over the nodes with the couple arm x F on the element
+ * (sw_side_point, sw_side_arm, sw_side_apply).  A stuck contact therefore
+ * holds sliding but lets the rod roll, and the law stays passive: with the
+ * normal held the forces and couples are the gradient of k_t |u_t|^2 / 2,
+ * and what turning the normal adds is proportional to u . n, only the
+ * overlap for two surface points (docs/physics.md, "Rod-rod contact").
  */
 #include <math.h>
 #include <string.h>
@@ -82,4 +92,57 @@ void sw_anchor_sort(double *rows, int n, int width) {
     swap_rows(rows, rows + (size_t)end * width, width);
     sift(rows, end, width, 0);
   }
+}
+
+/* ---- a rod element's anchor at its surface (both kernels) ---- */
+
+void sw_side_centre(const swModel *m, const double *x, const swFrictionSide *e, double at, double p[3]) {
+  for (int q = 0; q < 3; q++)
+    p[q] = (1 - at) * SW_AT(m, x, e->node, q) + at * SW_AT(m, x, e->node + 1, q);
+}
+
+void sw_side_point(const swModel *m, const swData *d, swFrictionSide *e, double at, const double y[3],
+                   double p[3], double v[3]) {
+  double Q[9], wm[3], w[3], wr[3];
+  sw_getQ(m, d->Q, e->elem, Q);
+  sw_matT_vec(e->arm, Q, y);
+  sw_get3(m, d->omega, e->elem, wm);
+  sw_matT_vec(w, Q, wm);
+  sw_v3_cross(wr, w, e->arm);
+  sw_side_centre(m, d->x, e, at, p);
+  sw_side_centre(m, d->v, e, at, v);
+  sw_v3_add(p, p, e->arm);
+  sw_v3_add(v, v, wr);
+  e->anchor_at = at;
+}
+
+void sw_side_arm(const swModel *m, const swData *d, const swFrictionSide *e, const double off[3],
+                 double y[3]) {
+  double Q[9];
+  sw_getQ(m, d->Q, e->elem, Q);
+  sw_mat_vec(y, Q, off);
+}
+
+void sw_side_apply(const swModel *m, const swData *d, const swFrictionSide *e, const double f[3],
+                   double *force, double *ext_force, double *torque, double *ext_torque) {
+  const double w[2] = {1 - e->anchor_at, e->anchor_at};
+  double c[3], Q[9], cm[3];
+  for (int j = 0; j < 2; j++)
+    for (int q = 0; q < 3; q++) {
+      SW_AT(m, force, e->node + j, q) += w[j] * f[q];
+      SW_AT(m, ext_force, e->node + j, q) += w[j] * f[q];
+    }
+  sw_v3_cross(c, e->arm, f);
+  sw_getQ(m, d->Q, e->elem, Q);
+  sw_mat_vec(cm, Q, c);
+  for (int q = 0; q < 3; q++) {
+    SW_AT(m, torque, e->elem, q) += cm[q];
+    SW_AT(m, ext_torque, e->elem, q) += cm[q];
+  }
+}
+
+double sw_friction_reanchor(const swFrictionSide *e, int stuck, const double ut[3], const double F[3],
+                            double kt, double stretch[3]) {
+  for (int q = 0; q < 3; q++) stretch[q] = stuck ? ut[q] : -F[q] / kt;
+  return stuck ? e->anchor_at : e->at;
 }

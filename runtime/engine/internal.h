@@ -492,6 +492,37 @@ int sw_coulomb_cap(const double ut[3], const double wt[3], double kt, double gam
 const double *sw_anchor_find(const double *rows, int n, int width, double key);
 void sw_anchor_sort(double *rows, int n, int width);
 
+/* A rod element's side of a touching pair with friction (friction.c), for
+ * both kernels: the element's first node slot, its element slot, the
+ * closest point's place `at` on its segment and the element's radius; once
+ * anchored, the anchor's place anchor_at and its arm from the centreline
+ * point there to the anchored surface point (lab).  sw_side_point places
+ * the anchor of arm y (element frame) at `at`: the point and its velocity
+ * v_c + omega x arm; sw_side_arm turns a lab offset into an arm y;
+ * sw_side_apply puts the force f at the anchor: split over the nodes at the
+ * centreline point, the couple arm x f on the element, all of it into the
+ * external loads too (the kick books its work); sw_side_centre interpolates
+ * the node array x (positions or velocities) at the place `at`. */
+typedef struct {
+  int node, elem;
+  double at, radius;
+  double anchor_at, arm[3];
+} swFrictionSide;
+void sw_side_centre(const swModel *m, const double *x, const swFrictionSide *e, double at, double p[3]);
+void sw_side_point(const swModel *m, const swData *d, swFrictionSide *e, double at, const double y[3],
+                   double p[3], double v[3]);
+void sw_side_arm(const swModel *m, const swData *d, const swFrictionSide *e, const double off[3],
+                 double y[3]);
+void sw_side_apply(const swModel *m, const swData *d, const swFrictionSide *e, const double f[3],
+                   double *force, double *ext_force, double *torque, double *ext_torque);
+/* After the cap both kernels re-anchor each pair at its touching surface
+ * points (arms -r n from the centreline) and keep the spring's tangential
+ * stretch: sw_friction_reanchor gives the stretch (u_t when stuck, -F / k_t
+ * when slipping, so that the spring alone gives F) and the place on side
+ * e's segment (kept while stuck, the closest point's when slipping). */
+double sw_friction_reanchor(const swFrictionSide *e, int stuck, const double ut[3], const double F[3],
+                            double kt, double stretch[3]);
+
 /* swell.c: rods whose geometry changes in time */
 int sw_swell_setup(swModel *m, const swSpec *s);
 void sw_swell_free(swModel *m);

@@ -54,26 +54,40 @@
  *
  * Friction (mu_s > 0): an elastic-Coulomb law with a spring anchor, the
  * tangential "spring and slider" of Cundall & Strack, Geotechnique 29 (1979)
- * 47, eqs. 5-7, as DEM codes (LIGGGHTS' tangential_history) keep it.  When
- * element e first touches obstacle k, the pair records its anchor: the
- * material point s0 = s of the segment and the obstacle's point y0 there
- * (p in the obstacle's frame).  At each evaluation, with pe = a0 + s0 (a1 -
- * a0) and po = c + E^T y0 (which moves with a carried obstacle), the
- * separation u = pe - po and the relative velocity w of the two material
- * points, their tangential parts u_t = u - (u.n) n, w_t, give the trial force
+ * 47, eqs. 5-7, as DEM codes (LIGGGHTS' tangential_history) keep it, with
+ * anchors at the touching surfaces as rod-rod contact has them (contact.c;
+ * friction.c holds what both use).  When element e first touches obstacle
+ * k, the pair records its anchor: on the rod the touching surface point,
+ * the centreline point s0 = s plus the arm -r n kept in the element's
+ * material frame (so it moves, turns and rolls with the element); on the
+ * obstacle its touching surface point p - D n, y0 in the obstacle's frame
+ * (so it moves with a carried obstacle).  At each evaluation the two
+ * anchors' separation u = p_a - p_o and relative velocity w (v_s + omega x
+ * arm on the rod), their tangential parts u_t = u - (u.n) n, w_t, give the
+ * trial force
  *   F = -k_t u_t - gamma w_t.
  * If |F| <= mu_s N (N the normal force, spring plus damper) the contact is
- * stuck: F acts and the anchor stays, so a constant load finds a static
- * equilibrium (the spring holds exactly, no creep).  Otherwise it slips: F
- * becomes mu_k N F / |F| and the obstacle's point slides tangentially to
- * where the spring alone gives that force, u_t = -F / k_t.  F acts at pe,
- * split (1 - s0, s0) over the nodes; a carried obstacle takes -F at its
- * node and (pe - x_node) x (-F) on its element, as the normal force.  The
- * whole tangential force goes into ext_force as well, so the kick books its
- * work (the spring's stored energy and what slip dissipates) as external
- * work, as ground.c books its friction: kinetic + elastic - work stays
- * constant.  The cap is friction.c's sw_coulomb_cap, which rod-rod contact
- * shares.  Anchors live in d->obstacle_anchor, a table of rows ordered by
+ * stuck; otherwise it slips and F becomes mu_k N F / |F| (friction.c's
+ * sw_coulomb_cap).  F acts on the rod at its anchor, split (1 - s0, s0)
+ * over the nodes with the couple arm x F on the element; a carried obstacle
+ * takes -F at its node and (p_a - x_node) x (-F) on its element, so force
+ * and moment balance exactly.  The pair is then re-anchored at the touching
+ * surface points of the current closest point with the spring's tangential
+ * stretch kept: u_t while stuck (the rod's place s0 kept), -F / k_t when
+ * slipping (the place moved to s, and F applied at the new anchor), so that
+ * the spring alone gives F.  A constant load thus finds a static
+ * equilibrium (the spring holds exactly, no creep), a stuck rod rolls as a
+ * cylinder should (its anchor stays where it touches instead of riding up
+ * its side, which the spring, blind to u . n, would let it do), and since
+ * the anchors are apart only by the depth along n, the law is passive (the
+ * part of the energy's change that holding n misses is proportional to
+ * u . n).  Anchored on the centreline instead, the friction tied the rod's
+ * axis to the obstacle: a rod could not roll (test_obstacle_roll).  The
+ * whole tangential force and its couples go into ext_force, ext_torque as
+ * well, so the kick books their work (the spring's stored energy and what
+ * slip dissipates) as external work, as ground.c books its friction:
+ * kinetic + elastic - work stays constant.  Anchors live in
+ * d->obstacle_anchor, a table of rows (key, s0, arm, y0, stuck) ordered by
  * the key (obstacle, place of the element in the obstacle's rod list),
  * rebuilt at each evaluation by a merge with the previous one (no
  * allocation, no search); a pair that stops touching loses its anchor.
@@ -430,77 +444,103 @@ typedef struct {
 
 /* ---- friction: the anchor of a touching pair (see the design) ---- */
 
-/* The tangential force on element (x0, x1; v0, v1) of the pair sum->key,
- * touching obstacle k at pose P at segment point s with normal n and normal
- * force N: F (lab), the point pe = a0 + s0 (a1 - a0) where it acts and s0;
- * the pair's new anchor row appended to sum->anchor, its record (when kept)
- * filled.  Returns 0 without friction. */
-static int friction_force(const swModel *m, int k, const swPose *P, const double x0[3],
-                          const double x1[3], const double v0[3], const double v1[3], double s,
-                          const double n[3], double N, Sums *sum, double F[3], double pe[3],
-                          double *s0_out, swObstacleContact *rec) {
+/* The tangential force F on the rod's side `rod` of the pair sum->key,
+ * touching obstacle k at pose P: the element's centreline point p at s,
+ * distance D from the surface, normal n, normal force N.  The rod's anchor
+ * is left in `rod` (place and arm, for sw_side_apply), the pair's new
+ * anchor row appended to sum->anchor, its record (when kept) filled.
+ * Returns 0 without friction. */
+static int friction_force(const swModel *m, const swData *d, int k, const swPose *P,
+                          swFrictionSide *rod, const double p[3], double D, const double n[3],
+                          double N, Sums *sum, double F[3], swObstacleContact *rec) {
   const swObstacleDesc *o = &m->obstacle[k];
   if (!(o->static_friction > 0) || !sum->anchor) return 0;
   if (sum->rows >= m->obstacle_maxcontact) return 0; /* beyond the table: frictionless */
-  /* the previous anchor of this pair (rows ordered by key) or a new one at p */
+  /* the previous anchor of this pair (rows ordered by key) or a new one:
+   * the two touching surface points, the rod's p - r n (its arm -r n) and
+   * the obstacle's p - D n */
   while (sum->cursor < sum->old_rows && sum->old[SW_OBSTACLE_ANCHOR_ROW * sum->cursor] < sum->key)
     sum->cursor++;
   const double *row = sum->old + SW_OBSTACLE_ANCHOR_ROW * sum->cursor;
   const int known = sum->cursor < sum->old_rows && row[0] == sum->key;
-  double s0 = s, y0[3], po[3];
-  for (int q = 0; q < 3; q++) pe[q] = x0[q] + s * (x1[q] - x0[q]);
+  double ya[3], y0[3], off[3], po[3];
   if (known) {
-    s0 = row[1];
-    memcpy(y0, row + 2, sizeof y0);
-    for (int q = 0; q < 3; q++) pe[q] = x0[q] + s0 * (x1[q] - x0[q]);
+    memcpy(ya, row + 2, sizeof ya);
+    memcpy(y0, row + 5, sizeof y0);
   } else {
-    to_local(y0, P, pe);
+    sw_v3_scale(off, n, -rod->radius);
+    sw_side_arm(m, d, rod, off, ya);
+    for (int q = 0; q < 3; q++) po[q] = p[q] - D * n[q];
+    to_local(y0, P, po);
   }
+  /* the two material points, their separation and relative velocity,
+   * tangential parts */
+  double pa[3], va[3], u[3], w[3], vo[3] = {0, 0, 0};
+  sw_side_point(m, d, rod, known ? row[1] : rod->at, ya, pa, va);
   for (int q = 0; q < 3; q++) po[q] = P->c[q];
   for (int j = 0; j < 3; j++)
     for (int q = 0; q < 3; q++) po[q] += y0[j] * P->E[3 * j + q];
-  /* the separation and the relative velocity of the two material points,
-   * tangential parts */
-  double u[3], w[3], vo[3] = {0, 0, 0};
   if (P->carried) {
     double rel[3];
     sw_v3_sub(rel, po, P->c);
     sw_v3_cross(vo, P->w, rel);
     sw_v3_add(vo, vo, P->v);
   }
-  for (int q = 0; q < 3; q++) {
-    u[q] = pe[q] - po[q];
-    w[q] = (1 - s0) * v0[q] + s0 * v1[q] - vo[q];
-  }
+  for (int q = 0; q < 3; q++) u[q] = pa[q] - po[q], w[q] = va[q] - vo[q];
   const double un = sw_v3_dot(u, n), wn = sw_v3_dot(w, n);
+  for (int q = 0; q < 3; q++) u[q] -= un * n[q], w[q] -= wn * n[q];
   const double kt = o->tangential_stiffness > 0 ? o->tangential_stiffness : o->stiffness;
-  for (int q = 0; q < 3; q++) {
-    u[q] -= un * n[q];
-    w[q] -= wn * n[q];
-  }
   /* Coulomb's cap (friction.c): stuck below mu_s N, else slipping at mu_k N */
   const int stuck = sw_coulomb_cap(u, w, kt, o->damping, o->static_friction, o->kinetic_friction, N, F);
-  if (!stuck) {
-    /* the obstacle's point slides so that the spring alone gives F:
-     * u_t -> -F / k_t, po -> po + u_t - (-F / k_t) */
-    for (int q = 0; q < 3; q++) po[q] += u[q] + F[q] / kt;
-    to_local(y0, P, po);
-  }
+  /* re-anchored at the touching surface points (friction.c), the rod's
+   * place kept while stuck, the spring's tangential stretch kept, the
+   * obstacle's point moved by it: a stuck rod that rolls keeps its anchor
+   * where it touches instead of carrying it up its side.  F acts at the
+   * anchor it came from while stuck, at the new one when slipping. */
+  double stretch[3], ya_new[3];
+  const double at = sw_friction_reanchor(rod, stuck, u, F, kt, stretch);
+  sw_v3_scale(off, n, -rod->radius);
+  sw_side_arm(m, d, rod, off, ya_new);
+  sw_side_centre(m, d->x, rod, at, po);
+  for (int q = 0; q < 3; q++) po[q] -= D * n[q] + stretch[q];
+  to_local(y0, P, po);
+  if (!stuck) sw_side_point(m, d, rod, at, ya_new, pa, va);
   double *out = sum->anchor + SW_OBSTACLE_ANCHOR_ROW * sum->rows++;
   out[0] = sum->key;
-  out[1] = s0;
-  memcpy(out + 2, y0, sizeof y0);
-  out[5] = stuck;
-  *s0_out = s0;
+  out[1] = at;
+  memcpy(out + 2, ya_new, sizeof ya_new);
+  memcpy(out + 5, y0, sizeof y0);
+  out[8] = stuck;
   if (stuck) sum->stuck++;
   else sum->slipping++;
   if (rec) {
     memcpy(rec->anchor, y0, sizeof y0);
-    rec->s_anchor = s0;
+    rec->s_anchor = at;
     memcpy(rec->friction, F, 3 * sizeof(double));
     rec->stuck = stuck;
   }
   return 1;
+}
+
+/* A carried obstacle's share of a force f on the rod at the point pt (its
+ * part fe external): -f at its node, the couple (pt - x_node) x (-f) on its
+ * element (material frame). */
+static void carrier_takes(const swModel *m, const swData *d, int k, const swPose *P, const double pt[3],
+                          const double f[3], const double fe[3], Sums *sum) {
+  const int node = m->obstacle_node[k], ec = m->obstacle_elem[k];
+  double lever[3], c[3], ce[3], Q[9], cm[3], cem[3];
+  sw_v3_sub(lever, pt, P->anchor);
+  sw_v3_cross(c, f, lever); /* (pt - x_node) x (-f) */
+  sw_v3_cross(ce, fe, lever);
+  sw_getQ(m, d->Q, ec, Q);
+  sw_mat_vec(cm, Q, c);
+  sw_mat_vec(cem, Q, ce);
+  for (int q = 0; q < 3; q++) {
+    SW_AT(m, sum->force, node, q) -= f[q];
+    SW_AT(m, sum->ext_force, node, q) -= fe[q];
+    SW_AT(m, sum->torque, ec, q) += cm[q];
+    SW_AT(m, sum->ext_torque, ec, q) += cem[q];
+  }
 }
 
 /* A contact force a dir on the element of nodes ia, ia + 1, at the point
@@ -516,21 +556,10 @@ static void apply(const swModel *m, const swData *d, int k, const swPose *P, int
       SW_AT(m, sum->ext_force, ia + j, q) += w[j] * b * dir[q];
     }
   if (!P->carried) return;
-  const int node = m->obstacle_node[k], ec = m->obstacle_elem[k];
-  double lever[3], c[3], cd[3], Q[9], cm[3], cdm[3];
-  sw_v3_sub(lever, pt, P->anchor);
-  sw_v3_cross(c, lever, dir);
-  sw_v3_scale(cd, c, -b);
-  sw_v3_scale(c, c, -a);
-  sw_getQ(m, d->Q, ec, Q);
-  sw_mat_vec(cm, Q, c);
-  sw_mat_vec(cdm, Q, cd);
-  for (int q = 0; q < 3; q++) {
-    SW_AT(m, sum->force, node, q) -= a * dir[q];
-    SW_AT(m, sum->ext_force, node, q) -= b * dir[q];
-    SW_AT(m, sum->torque, ec, q) += cm[q];
-    SW_AT(m, sum->ext_torque, ec, q) += cdm[q];
-  }
+  double f[3], fe[3];
+  sw_v3_scale(f, dir, a);
+  sw_v3_scale(fe, dir, b);
+  carrier_takes(m, d, k, P, pt, f, fe, sum);
 }
 
 /* Element i (nodes ia, ia + 1, element slot e) of a rod against obstacle k
@@ -589,13 +618,17 @@ static void element_contact(const swModel *m, const swData *d, int k, const swPo
     memcpy(rec->normal, n, sizeof n);
     rec->force = spring + damper;
   }
-  double F[3], pe[3], s0;
-  if (friction_force(m, k, P, x0, x1, v0, v1, s, n, spring + damper, sum, F, pe, &s0, rec)) {
-    const double mag = sw_v3_norm(F);
-    if (mag > 0) { /* all of it external: the kick books its work */
-      double dir[3];
-      sw_v3_scale(dir, F, 1.0 / mag);
-      apply(m, d, k, P, ia, s0, pe, dir, mag, mag, sum);
+  /* friction at the touching surfaces: F on the rod at its anchor (with
+   * its couple), -F on a carried obstacle there */
+  swFrictionSide side = {ia, e, s, r, s, {0, 0, 0}};
+  double F[3];
+  if (friction_force(m, d, k, P, &side, p, D, n, spring + damper, sum, F, rec)) {
+    sw_side_apply(m, d, &side, F, sum->force, sum->ext_force, sum->torque, sum->ext_torque);
+    if (P->carried) {
+      double pa[3];
+      sw_side_centre(m, d->x, &side, side.anchor_at, pa);
+      sw_v3_add(pa, pa, side.arm);
+      carrier_takes(m, d, k, P, pa, F, F, sum);
     }
   }
 }
@@ -744,7 +777,11 @@ double sw_obstacle_start_depth(const swModel *m, int k, int *rod, int *elem) {
  * element's least moment of inertia: w^2 = k (1 / m + l^2 / J).  The
  * scheme's limit at zeta = c / (2 w), times 0.95, as ground.c's.  With
  * friction k is the larger of k and k_t: the tangential spring presses the
- * same nodes across the normal, so the two add in no direction. */
+ * same nodes across the normal, so the two add in no direction.  It acts at
+ * the surface too, and so turns the element: its point moves with the
+ * nodes and with the element's rotation at the lever r, w^2 = k_t (1 / m_i
+ * + r^2 / J) with m_i the lighter node and J the element's least moment of
+ * inertia (r^2 / J = 4 / m_e for a solid section), the damper likewise. */
 static double limit_of(const swModel *m, double w2, double c) {
   if (!(w2 > 0)) return c > 0 ? 0.95 * 2.0 / c : INFINITY;
   const double w = sqrt(w2);
@@ -764,6 +801,15 @@ double sw_obstacle_stable_dt(const swModel *m) {
         const int nel = (i > 0) + (i < n);
         dt = fmin(dt, limit_of(m, nel * stiff * m->inv_mass[na + i],
                                nel * o->damping * m->inv_mass[na + i]));
+      }
+      for (int i = 0; i < n && o->static_friction > 0; i++) { /* the friction's couple */
+        const int e = m->elem_adr[r] + i;
+        const double kt = o->tangential_stiffness > 0 ? o->tangential_stiffness : o->stiffness;
+        double J = INFINITY;
+        for (int q = 0; q < 3; q++) J = fmin(J, SW_AT(m, m->inertia, e, q));
+        const double lighter = fmax(m->inv_mass[na + i], m->inv_mass[na + i + 1]);
+        const double inv = lighter + m->radius[e] * m->radius[e] / J;
+        dt = fmin(dt, limit_of(m, kt * inv, o->damping * inv));
       }
     }
     if (o->carrier_rod < 0) continue;

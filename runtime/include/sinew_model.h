@@ -301,8 +301,9 @@ typedef struct {
 
 /* One element touching one obstacle (obstacle.c).  The normal force acts
  * along n at the point s of the element's segment; with friction, the
- * tangential force `friction` acts at the anchor's material point s_anchor,
- * tied to the obstacle's point `anchor` (in the obstacle's frame). */
+ * tangential force `friction` acts at the rod's anchored surface point (its
+ * centreline point s_anchor plus an arm in the element's frame, with the
+ * couple), tied to the obstacle's point `anchor` (in the obstacle's frame). */
 typedef struct {
   int obstacle, elem;        /* obstacle index, element slot                 */
   double s;                  /* the point's place on the segment, 0..1      */
@@ -310,12 +311,12 @@ typedef struct {
   double normal[3];          /* out of the obstacle, lab                     */
   double force;              /* normal force on the element, N (>= 0)       */
   double anchor[3];          /* the obstacle's anchor point, its frame, m    */
-  double s_anchor;           /* the element's anchor point on its segment    */
+  double s_anchor;           /* the rod anchor's centreline place, 0..1     */
   double friction[3];        /* tangential force on the element, lab, N      */
   int stuck;                 /* 1 while the anchor holds (0: slipping or no
                                 friction)                                    */
 } swObstacleContact;
-#define SW_OBSTACLE_ANCHOR_ROW 6   /* key, s, anchor (3), stuck               */
+#define SW_OBSTACLE_ANCHOR_ROW 9   /* key, s, rod's arm (3), anchor (3), stuck */
 #define SW_CONTACT_ANCHOR_ROW 10   /* key, s, t, arm a (3), arm b (3), stuck (contact.c) */
 
 /* ---- the state (mutable) ---- */
@@ -448,8 +449,10 @@ typedef struct {
   double obstacle_max_depth; /* deepest penetration r - D, m (0: none)      */
   long obstacle_tests;       /* element-obstacle pairs the narrow phase saw  */
   /* the friction's anchors (obstacle.c): [0] the rows in use, then rows of
-   * SW_OBSTACLE_ANCHOR_ROW: key (obstacle, element), s, the obstacle's
-   * point (its frame), stuck; in the order of the key.  State: the
+   * SW_OBSTACLE_ANCHOR_ROW: key (obstacle, element), s, the arm from the
+   * rod's centreline point there to its anchored surface point (the
+   * element's material frame), the obstacle's point (its frame), stuck; in
+   * the order of the key.  State: the
    * checkpoint keeps it; `_old` is the previous evaluation's, scratch. */
   double *obstacle_anchor;   /* (1 + obstacle_maxcontact*SW_OBSTACLE_ANCHOR_ROW) */
   double *obstacle_anchor_old;
