@@ -477,6 +477,12 @@ void sw_obstacle_loads(const swModel *m, swData *d);
 void sw_obstacle_loads_with(const swModel *m, swData *d, swObstaclePhase phase);
 double sw_obstacle_energy(const swModel *m, const swData *d);
 double sw_obstacle_stable_dt(const swModel *m);
+/* obstacle_shape.c: the least signed distance from the local segment a + s d
+ * to obstacle o's surface, its s and the outward normal (the shape's frame);
+ * *s_out brings in the element's radius, beyond which a lower bound may be
+ * returned. */
+double sw_obstacle_segment_distance(const swObstacleDesc *o, const double a[3], const double d[3],
+                                    double *s_out, double n[3]);
 double sw_segment_closest(const double *a0, const double *da, const double *b0, const double *db,
                           double *s_out, double *t_out, double *pq);   /* contact.c */
 
