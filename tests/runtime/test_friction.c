@@ -32,15 +32,6 @@ enum { NROPE = 60 };
 static const double ROPE_L = 0.3, ROPE_R = 1e-3, CYL_R = 0.03, T1 = 1.0;
 static const double SETTLE = 0.04; /* s: the rope wraps and comes to rest */
 
-/* A table signal through (t, value) pairs. */
-static swSignal table(int n, const double *t, const double *v) {
-  swSignal g = sw_signal_const(1.0);
-  g.kind = SW_SIG_TABLE;
-  g.npts = n;
-  for (int k = 0; k < n; k++) g.times[k] = t[k], g.values[k] = v[k];
-  return g;
-}
-
 /* The rope along x over the top of a cylinder along y (centre at the
  * origin), its middle node at the top; T1 on node 0 (along -x for theta =
  * pi/2, down for pi) and T2 = T1 ratio(t) down on the last node.  Both
@@ -59,10 +50,10 @@ static swModel *capstan_scene(double mu, double theta, double ratio, double ramp
   const double ts[3] = {0, 0.005, 1}, vs[3] = {0, 1, 1};
   const double tt[4] = {0, 0.005, SETTLE, SETTLE + ramp}, vt[4] = {0, 1, 1, ratio};
   swLoadDesc slack = sw_test_load(SW_LOAD_FORCE, 0, 0, theta < 2 ? -T1 : 0, 0, theta < 2 ? 0 : -T1);
-  slack.signal = table(3, ts, vs);
+  slack.signal = sw_test_table(3, ts, vs);
   assert_true(sw_spec_add_load(s, &slack) >= 0);
   swLoadDesc tight = sw_test_load(SW_LOAD_FORCE, 0, -1, 0, 0, -T1);
-  tight.signal = table(4, tt, vt);
+  tight.signal = sw_test_table(4, tt, vt);
   assert_true(sw_spec_add_load(s, &tight) >= 0);
   swObstacleDesc o;
   sw_obstacle_desc_init(&o);

@@ -47,14 +47,6 @@ static const double LB = 0.03, LS = 0.08, SPAN = 0.03; /* m: rails, slider, rail
 static const double EB = 1e10, ES = 1e10;             /* Pa: both nearly rigid */
 static const double SETTLE = 0.02;                    /* s: the slider settles under N0 */
 
-static swSignal table(int n, const double *t, const double *v) {
-  swSignal g = sw_signal_const(1.0);
-  g.kind = SW_SIG_TABLE;
-  g.npts = n;
-  for (int k = 0; k < n; k++) g.times[k] = t[k], g.values[k] = v[k];
-  return g;
-}
-
 /* Two rails along x at y = -SPAN and +SPAN (3 elements of 1 cm, clamped),
  * the slider along y (4 elements of 2 cm) across them, touching each at
  * the middle of an end element; N0 / 4 down on the four nodes of those
@@ -83,10 +75,10 @@ static swModel *crossed_scene(double top, double ramp, double mu_s, double mu_k)
   static const int loaded[4] = {0, 1, 3, 4};
   for (int j = 0; j < 4; j++) {
     swLoadDesc press = sw_test_load(SW_LOAD_FORCE, 2, loaded[j], 0, 0, -0.25 * N0);
-    press.signal = table(3, tn, vn);
+    press.signal = sw_test_table(3, tn, vn);
     assert_true(sw_spec_add_load(s, &press) >= 0);
     swLoadDesc pull = sw_test_load(SW_LOAD_FORCE, 2, loaded[j], 0, 0.25 * N0, 0);
-    pull.signal = table(3, tt, vt);
+    pull.signal = sw_test_table(3, tt, vt);
     assert_true(sw_spec_add_load(s, &pull) >= 0);
   }
   swContactDesc c;

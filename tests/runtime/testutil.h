@@ -140,6 +140,15 @@ static inline swRodDesc sw_test_rod(const char *name, int n, double length, doub
   return r;
 }
 
+/* A table signal through n (time, value) pairs (n <= SW_SIGNAL_MAXPTS). */
+static inline swSignal sw_test_table(int n, const double *t, const double *v) {
+  swSignal g = sw_signal_const(1.0);
+  g.kind = SW_SIG_TABLE;
+  g.npts = n;
+  for (int k = 0; k < n; k++) g.times[k] = t[k], g.values[k] = v[k];
+  return g;
+}
+
 static inline swLoadDesc sw_test_load(swLoadKind kind, int rod, int index, double x, double y, double z) {
   swLoadDesc l;
   memset(&l, 0, sizeof l);
