@@ -47,7 +47,8 @@ def main():
     if "hard" in v:
         t, pct, deg = v["hard"]
         s.row("Fig. 13b", "twist and shear x10 on every rod change the joint angles by up to ~3%",
-              "the run stops at %.1f ms (unstable); up to there %.2f%% (%.3g deg)" % (1e3 * t, pct, deg)
+              "the run stops at %.1f ms (unstable); up to there %.3g deg (%.2f%% of the angle's range over "
+              "those %.0f ms)" % (1e3 * t, deg, pct, 1e3 * t)
               if t < tend - 1e-6 else "%.2f%% (%.3g deg) over %.3f s" % (pct, deg, t),
               "differ" if t < tend - 1e-6 or pct > 6 else "agree",
               "sinew's kinematic joints impose the follower's turn and feed no couple back (Suppl. Note 5.3), "
