@@ -19,7 +19,8 @@
 # a study has run.  DIR/walltime.txt gets a line per run:
 # ARCH, ranks, budget, wall seconds, evaluations.  Then
 # scripts/study_snake_report.py writes the table and plots of
-# docs/validation.md ("The muscular snake's study").
+# docs/validation.md ("The muscular snake's study"), the plots into
+# $STUDY_IMG when it is set, else docs/img.
 #
 # --chain: the same question asked pair by pair.  An n-pair design is
 # nearly an (n+1)-pair design whose extra pair pulls with 0 N (the idle
@@ -114,4 +115,4 @@ for a in $ARCHS; do
       'BEGIN {printf "%s %d %d %.1f %d\n", a, np, b, t1 - t0, n}' >> "$OUT/walltime.txt" ;;
   esac
 done
-/usr/bin/python3 "$ROOT/scripts/study_snake_report.py" "$OUT"
+/usr/bin/python3 "$ROOT/scripts/study_snake_report.py" "$OUT" --img "${STUDY_IMG:-docs/img}"

@@ -10,6 +10,7 @@
 #   scripts/reproduce/snake_muscular.sh quick|full OUTDIR
 set -eu
 BUDGET=$1 OUT=$2
+export STUDY_IMG="$OUT"   # the study's own plots stay with this run, not in docs/img
 case $BUDGET in
   quick) sh scripts/study_snake.sh --budget 32 --out "$OUT" ;;
   full) sh scripts/study_snake.sh --budget 300 --out "$OUT"
