@@ -14,10 +14,11 @@
  * N the normal force (spring plus damper, >= 0).  A constant load below
  * mu_s N thus finds a static equilibrium, the spring holding exactly (no
  * creep, unlike a regularised Coulomb law whose stuck state is a slow slide);
- * above it the force is mu_k N.  sw_coulomb_cap is that law; where the
- * anchor moves to is the kernel's business (obstacle.c moves the obstacle's
- * point by u_t + F / k_t; contact.c re-anchors at the current closest
- * points with the spring's stretch -F / k_t kept).
+ * above it the force is mu_k N.  sw_coulomb_cap is that law.  Both kernels
+ * then re-anchor the pair at its current touching points with the spring's
+ * tangential stretch kept, u_t while stuck and -F / k_t while slipping
+ * (sw_friction_reanchor), so that a rolling rod does not carry its anchor up
+ * its side.
  *
  * Both kernels keep their anchors in a table of fixed-width rows, the first
  * number of a row its pair's key, ordered by key.  obstacle.c visits its
