@@ -186,13 +186,7 @@ static swModel *incline_scene(double alpha) {
   assert_int_equal(sw_spec_add_rod(s, &rod), 0);
   const double g[3] = {0, 0, -G};
   sw_spec_set_gravity(s, g);
-  swObstacleDesc o;
-  sw_obstacle_desc_init(&o);
-  o.name = "slope";
-  o.shape = SW_OBSTACLE_BOX;
-  for (int k = 0; k < 3; k++) o.normal[k] = n[k], o.centre[k] = -0.01 * n[k];
-  o.axis[0] = 0, o.axis[1] = 1, o.axis[2] = 0;
-  o.half[0] = 0.01, o.half[1] = 0.2, o.half[2] = 0.05; /* 1 cm thick, 40 cm long */
+  swObstacleDesc o = sw_test_slope(n, 0.2, 0.05); /* 40 cm long */
   o.stiffness = 100;
   o.damping = 0.05;
   o.static_friction = MU_S;

@@ -61,13 +61,7 @@ static swModel *scene(const double n[3], const double t[3], double at, double mu
   assert_int_equal(sw_spec_add_rod(s, &rod), 0);
   const double g[3] = {0, 0, -G};
   sw_spec_set_gravity(s, g);
-  swObstacleDesc o;
-  sw_obstacle_desc_init(&o);
-  o.name = "slope";
-  o.shape = SW_OBSTACLE_BOX;
-  for (int k = 0; k < 3; k++) o.normal[k] = n[k], o.centre[k] = -0.01 * n[k];
-  o.axis[0] = 0, o.axis[1] = 1, o.axis[2] = 0; /* e2 = y x n = t */
-  o.half[0] = 0.01, o.half[1] = 0.5, o.half[2] = 0.2;
+  swObstacleDesc o = sw_test_slope(n, 0.5, 0.2);
   o.stiffness = 1e4;
   o.damping = 1.0; /* zeta 0.06 for an element's mass */
   o.static_friction = mu_s;

@@ -140,6 +140,21 @@ static inline swRodDesc sw_test_rod(const char *name, int n, double length, doub
   return r;
 }
 
+/* A slope for a rod to lie on: a box obstacle 1 cm thick whose top face
+ * passes through the origin with outward normal n (in the x-z plane), its
+ * axis along y; half_a is its half size along y x n (down the slope), half_y
+ * along y.  Stiffness, damping and friction are the caller's. */
+static inline swObstacleDesc sw_test_slope(const double n[3], double half_a, double half_y) {
+  swObstacleDesc o;
+  sw_obstacle_desc_init(&o);
+  o.name = "slope";
+  o.shape = SW_OBSTACLE_BOX;
+  for (int k = 0; k < 3; k++) o.normal[k] = n[k], o.centre[k] = -0.01 * n[k];
+  o.axis[0] = 0, o.axis[1] = 1, o.axis[2] = 0; /* e2 = y x n: down the slope */
+  o.half[0] = 0.01, o.half[1] = half_a, o.half[2] = half_y;
+  return o;
+}
+
 /* A table signal through n (time, value) pairs (n <= SW_SIGNAL_MAXPTS). */
 static inline swSignal sw_test_table(int n, const double *t, const double *v) {
   swSignal g = sw_signal_const(1.0);
