@@ -29,6 +29,12 @@ class Study:
     def command(self, line):
         self.meta["commands"].append(line)
 
+    def commands_from(self, path):
+        """The command lines a module's run helper logged (scripts/reproduce/runs.sh), one a line."""
+        with open(path) as f:
+            for line in f:
+                self.command(line.strip())
+
     def plot(self, name):
         self.meta["plots"].append(name)
 

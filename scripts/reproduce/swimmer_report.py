@@ -62,9 +62,7 @@ def main():
 
     st = Study(outdir, "Twist and shear hardening of the flagella swimmer",
                "Suppl. Note 6.3, Table 7, Fig. 8", models=["examples/flagella_swimmer.sinew"])
-    with open(os.path.join(outdir, "commands.txt")) as f:
-        for line in f:
-            st.command(line.strip())
+    st.commands_from(os.path.join(outdir, "commands.txt"))
 
     fig, ax = plt.subplots(figsize=(6, 3.6))
     for name, label, colour in CASES:

@@ -94,9 +94,7 @@ def main():
 
     st = Study(outdir, "Twist and shear hardening of the bio-hybrid walker",
                "Suppl. Note 6.4, Table 8, Fig. 9", models=["examples/walker.sinew"])
-    with open(os.path.join(outdir, "commands.txt")) as f:
-        for line in f:
-            st.command(line.strip())
+    st.commands_from(os.path.join(outdir, "commands.txt"))
 
     # the plot: displacement against time, the four cases (+ the original at dt/2)
     fig, ax = plt.subplots(figsize=(6, 3.6))

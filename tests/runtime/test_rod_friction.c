@@ -205,27 +205,10 @@ static void rod_momentum(const swModel *m, const swData *d, int r, double P[3]) 
     for (int k = 0; k < 3; k++) P[k] += m->mass[i] * SW_AT(m, d->v, i, k);
 }
 
-/* The angular momentum about the origin of all rods: nodes' x m v and the
- * elements' spin Q^T J w / e. */
+/* The angular momentum about the origin of all rods (testutil.h). */
 static void angular_momentum(const swModel *m, const swData *d, double L[3]) {
-  L[0] = L[1] = L[2] = 0;
-  for (int r = 0; r < m->nrod; r++) {
-    for (int i = m->node_adr[r]; i <= m->node_adr[r] + m->rod_nelem[r]; i++) {
-      double x[3], v[3], xv[3];
-      sw_get3(m, d->x, i, x);
-      sw_get3(m, d->v, i, v);
-      sw_v3_cross(xv, x, v);
-      for (int k = 0; k < 3; k++) L[k] += m->mass[i] * xv[k];
-    }
-    for (int e = m->elem_adr[r]; e < m->elem_adr[r] + m->rod_nelem[r]; e++) {
-      double Q[9], w[3], Jw[3], lab[3];
-      sw_getQ(m, d->Q, e, Q);
-      sw_get3(m, d->omega, e, w);
-      for (int k = 0; k < 3; k++) Jw[k] = SW_AT(m, m->inertia, e, k) * w[k] / d->dilatation[e];
-      sw_matT_vec(lab, Q, Jw);
-      for (int k = 0; k < 3; k++) L[k] += lab[k];
-    }
-  }
+  double P[3];
+  sw_test_momenta(m, d, P, L);
 }
 
 static void test_momentum(void **state) {

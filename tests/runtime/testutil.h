@@ -140,6 +140,29 @@ static inline swRodDesc sw_test_rod(const char *name, int n, double length, doub
   return r;
 }
 
+/* Linear and angular momentum (about the origin) of every rod: the nodes'
+ * m v and x x m v, and the elements' spins Q^T J w / e (e the dilatation,
+ * as the kick has it; Q's rows are the directors). */
+static inline void sw_test_momenta(const swModel *m, const swData *d, double P[3], double L[3]) {
+  P[0] = P[1] = P[2] = L[0] = L[1] = L[2] = 0;
+  for (int r = 0; r < m->nrod; r++) {
+    for (int i = m->node_adr[r]; i <= m->node_adr[r] + m->rod_nelem[r]; i++) {
+      double x[3], v[3];
+      sw_get3(m, d->x, i, x);
+      sw_get3(m, d->v, i, v);
+      const double xv[3] = {x[1] * v[2] - x[2] * v[1], x[2] * v[0] - x[0] * v[2], x[0] * v[1] - x[1] * v[0]};
+      for (int k = 0; k < 3; k++) P[k] += m->mass[i] * v[k], L[k] += m->mass[i] * xv[k];
+    }
+    for (int e = m->elem_adr[r]; e < m->elem_adr[r] + m->rod_nelem[r]; e++) {
+      double Q[9], w[3], Jw[3];
+      sw_getQ(m, d->Q, e, Q);
+      sw_get3(m, d->omega, e, w);
+      for (int k = 0; k < 3; k++) Jw[k] = SW_AT(m, m->inertia, e, k) * w[k] / d->dilatation[e];
+      for (int k = 0; k < 3; k++) L[k] += Q[k] * Jw[0] + Q[3 + k] * Jw[1] + Q[6 + k] * Jw[2];
+    }
+  }
+}
+
 /* A slope for a rod to lie on: a box obstacle 1 cm thick whose top face
  * passes through the origin with outward normal n (in the x-z plane), its
  * axis along y; half_a is its half size along y x n (down the slope), half_y
