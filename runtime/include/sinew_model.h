@@ -421,6 +421,9 @@ typedef struct {
                                            b at its start and end nodes      */
   double *ring_row;          /* (nring*SW_RING_ROW) each ring's contact and
                                            load, last evaluation (muscle_via.c) */
+  double *ring_imp;          /* (nring*SW_RING_IMP) an implicit ring's part of
+                                           the kick's solve, this evaluation
+                                           (via_implicit.c; not saved)       */
   /* environments, updated with each force evaluation */
   /* contact.c: the last evaluation's figures, and the hash grid's scratch */
   int contact_pairs;         /* element pairs in contact                     */
