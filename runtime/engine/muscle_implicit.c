@@ -23,8 +23,11 @@
  * end velocity, with analytic damping, or rigid stay explicit (their kick is
  * not dv = h M^-1 F).
  *
- * A filament whose ends are leaves of the joints' system (joint_ports.c)
- * is solved in two parts: sw_muscle_system_part before the system, with
+ * A filament's via rings join the solve under imex (via_implicit.c: p
+ * and s are taken through them, and their forces follow T).
+ *
+ * A filament whose ends are leaves of the joints' system (joint_ports.c),
+ * or attachments in it (joint_groups.c, dense_ends), is solved in two parts: sw_muscle_system_part before the system, with
  * the interior nodes only, and sw_muscle_system_tension after it, from the
  * ends' velocity changes.
  */

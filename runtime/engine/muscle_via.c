@@ -72,7 +72,9 @@
  *   nu = 0.1 * 2 sqrt(k m), m the lightest node of the filament (any node
  *        may come into the ring): a tenth of critical, as joint.c.
  * The ring is one more spring on the contact node; sw_via_stable_dt bounds
- * the step by it (stability.c takes the filament bounds).
+ * the step by it (stability.c takes the filament bounds).  Under imex the
+ * rings of an implicit filament are taken into its Hill solve
+ * (via_implicit.c), and only their bone's side bounds the step.
  */
 #include <math.h>
 #include <string.h>
