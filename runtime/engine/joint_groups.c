@@ -16,7 +16,8 @@
  * are eliminated before it is factored; a filament whose ends are both
  * such leaves (or clamped) has its damping solved in the system, its ends
  * eliminated as one unit, and so does one whose ends are attachments that
- * are not leaves (dense_ends), its damper between their unknowns.  All of it is computed once, at setup, into the
+ * are not leaves (dense_ends), its damper between their unknowns.  All of
+ * it is computed once, at setup, into the
  * model's rigid_* arrays; rigid_joint.c's kick only reads them.
  */
 #include <stdlib.h>
@@ -454,7 +455,8 @@ int sw_rigid_joints_setup(swModel *m) {
   if (!m->joint_implicit || !m->joint_block || !m->joint_port || !m->rod_block || !m->rigid_block ||
       !m->rigid_block_body || !m->rigid_block_node || !m->rigid_block_elem || !m->rigid_block_rot ||
       !m->rigid_block_off || !m->rigid_block_dof || !m->rigid_block_rod || !m->rigid_block_leaf ||
-      !m->rigid_block_partner || !m->rigid_block_fil || !m->fil_system || !m->fil_block || !m->rigid_leaf_unit ||
+      !m->rigid_block_partner || !m->rigid_block_fil || !m->fil_system || !m->fil_block ||
+      !m->rigid_leaf_unit ||
       !m->rigid_block_port_adr || !m->rigid_port_node || !m->rigid_port_elem ||
       !m->rigid_port_rot || !m->rigid_port_off || !m->rigid_group_adr ||
       !m->rigid_group_joint_adr || !m->rigid_group_joint || !m->rigid_block_env ||

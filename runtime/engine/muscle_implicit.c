@@ -27,9 +27,10 @@
  * and s are taken through them, and their forces follow T).
  *
  * A filament whose ends are leaves of the joints' system (joint_ports.c),
- * or attachments in it (joint_groups.c, dense_ends), is solved in two parts: sw_muscle_system_part before the system, with
- * the interior nodes only, and sw_muscle_system_tension after it, from the
- * ends' velocity changes.
+ * or attachments in it (joint_groups.c, dense_ends), is solved in two
+ * parts: sw_muscle_system_part before the system, with the interior nodes
+ * only, and sw_muscle_system_tension after it, from the ends' velocity
+ * changes.
  */
 #include <math.h>
 #include <string.h>

@@ -352,9 +352,8 @@ static void print_stiff_parts(const swModel *m) {
   }
   if (nimplicit) {
     int nring = 0; /* via rings taken with their filament (via_implicit.c) */
-    for (int f = 0; f < m->nfil; f++)
-      for (int q = m->fil_ring_adr ? m->fil_ring_adr[f] : 0; m->fil_ring_adr && q < m->fil_ring_adr[f + 1]; q++)
-        nring += sw_via_ring_implicit(m, f, q);
+    for (int f = 0; m->nring && f < m->nfil; f++)
+      for (int q = m->fil_ring_adr[f]; q < m->fil_ring_adr[f + 1]; q++) nring += sw_via_ring_implicit(m, f, q);
     printf("  linearly implicit: the Hill damping of %d of %d muscle filaments", nimplicit, m->nfil);
     if (m->nring) printf(", %d of %d via rings (the bone's side explicit)", nring, m->nring);
     printf("\n");

@@ -167,8 +167,8 @@ static void converges(int rigid, int via, double dt, const char *what) {
 static void check_path(int rigid) {
   double ring, fil, est;
   bounds(rigid, &ring, &fil, &est);
-  fprintf(stderr, "#   %s bones: the ring's explicit bound %.3g s; under imex the filament's %.3g s, the scene's %.3g s\n",
-          rigid ? "rigid" : "elastic", ring, fil, est);
+  fprintf(stderr, "#   %s bones: the ring's explicit bound %.3g s; under imex the filament's %.3g s, "
+          "the scene's %.3g s\n", rigid ? "rigid" : "elastic", ring, fil, est);
   assert_true(fil > 3 * ring); /* the ring no longer bounds the filament */
   assert_true(est > 1.5 * ring);
   converges(rigid, 1, fmin(3 * ring, 0.9 * est), rigid ? "rigid bones, ring" : "elastic bones, ring");
