@@ -17,8 +17,8 @@
  * such leaves (or clamped) has its damping solved in the system, its ends
  * eliminated as one unit, and so does one whose ends are attachments that
  * are not leaves (dense_ends), its damper between their unknowns.  All of
- * it is computed once, at setup, into the
- * model's rigid_* arrays; rigid_joint.c's kick only reads them.
+ * it is computed once, at setup, into the model's rigid_* arrays;
+ * rigid_joint.c's kick only reads them.
  */
 #include <stdlib.h>
 #include <string.h>
