@@ -267,6 +267,7 @@ bench: deps
 	@sh bench/bench_implicit_snake.sh # the hardened snakes, explicit vs implicit rods (~4 min)
 	@sh bench/bench_implicit_step.sh f3f867e # the implicit rod step against the explicit one, n = 50, 100, 200, before issue 31 and now, interleaved (~3 min; prints the table of docs/benchmarks.md, "The implicit rod step (issue 31)")
 	@sh bench/bench_rigid_groups.sh # the implicit rigid joints, before issue 13's groups and now (~5 min)
+	@sh bench/bench_snake_eval.sh d64eaa7 # the muscular snake's 5 s evaluation and example, before their rings and Hill damping joined the system and now, interleaved (~4 min; the table of docs/benchmarks.md, "Rings and Hill damping in the system")
 	@sh bench/bench_study.sh        # a study's evaluations per second on 1, 2 and 4 MPI ranks, and the muscular snake's on 1 and 2 (~5 min)
 	@sh bench/bench_time_to_solution.sh # each study of Zhang et al. 2019: its step checked against a quarter of it, its whole simulated time run (~8 min of CPU; 16 min on a shared machine)
 

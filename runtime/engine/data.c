@@ -26,7 +26,7 @@ void sw_data_free(swData *d) {
   free(d->joint_force); free(d->joint_angle); free(d->joint_limit_torque);
   free(d->kinematic_force); free(d->kinematic_turn); free(d->kinematic_delta);
   free(d->fil_activation); free(d->fil_stretch); free(d->fil_rate); free(d->fil_tension); free(d->fil_sys);
-  free(d->ring_row); free(d->hold);
+  free(d->ring_row); free(d->ring_imp); free(d->hold);
   free(d->rigid_X); free(d->rigid_V); free(d->rigid_R); free(d->rigid_L); free(d->rigid_omega);
   free(d->rigid_load); free(d->rigid_sys); free(d->implicit_sys);
   sw_probe_data_free(d);
@@ -71,6 +71,7 @@ swData *sw_data_new(const swModel *m) {
   d->fil_tension = sw_dalloc(F);
   d->fil_sys = sw_dalloc(8 * F);
   d->ring_row = sw_dalloc(SW_RING_ROW * (size_t)m->nring);
+  d->ring_imp = sw_dalloc(SW_RING_IMP * (size_t)m->nring);
   d->hold = sw_dalloc(sw_hold_size(m));
   if (!d->x || !d->v || !d->Q || !d->omega || !d->length || !d->dilatation ||
       !d->shortest || !d->shortest_time ||
@@ -79,7 +80,7 @@ swData *sw_data_new(const swModel *m) {
       !d->scratch_f || !d->scratch_h || !d->scratch_flag || !d->scratch_phi ||
       !d->chunk_sum || !d->bc_work || !d->bc_free || !d->joint_scratch || !d->team || !d->joint_force ||
       !d->joint_angle || !d->joint_limit_torque || !d->kinematic_force || !d->kinematic_turn || !d->kinematic_delta || !d->fil_activation || !d->fil_stretch ||
-      !d->fil_rate || !d->fil_tension || !d->fil_sys || !d->ring_row || !d->hold) {
+      !d->fil_rate || !d->fil_tension || !d->fil_sys || !d->ring_row || !d->ring_imp || !d->hold) {
     sw_data_free(d);
     return NULL;
   }

@@ -252,7 +252,7 @@ double sw_stable_dt_filament(const swModel *m, int f);
  * part without its ends, then, after the system's solve, its tension from
  * the ends' velocity changes (NULL: clamped). */
 double sw_muscle_tension_slope(const swModel *m, int f, double eta, double edot, double a);
-double sw_muscle_implicit_tension(const swModel *m, const swData *d, int f, double T0, double eta,
+double sw_muscle_implicit_tension(const swModel *m, swData *d, int f, double T0, double eta,
                                   double edot, double h);
 double sw_muscle_system_part(const swModel *m, swData *d, int f, double T0, double eta, double edot,
                              double h);
@@ -272,6 +272,20 @@ int sw_via_lay(const swMuscleDesc *md, const double *normal, double *x, double *
 void sw_via_setup_ring(swModel *m, int q, const swMuscleDesc *md, int k, int f);
 void sw_via_rows(const swModel *m, swData *d, int f);
 void sw_via_apply(const swModel *m, swData *d, int lo, int hi);
+void sw_via_add(const swModel *m, swData *d, int f, int q, const double *F, int lo, int hi);
+void sw_via_contact(const swModel *m, const swData *d, int f, int q, int *a, double *s, double *tau);
+/* The rings of an implicit filament under imex (via_implicit.c): whether
+ * ring q of filament f is one; the Hill solve's sums p and s of filament f
+ * taken through its rings over a kick h (each ring's part stored in
+ * d->ring_imp, SW_RING_IMP doubles, for this evaluation); the rings' force
+ * changes at the tension T; their rows cleared before an evaluation; the
+ * changes into slots [lo, hi). */
+#define SW_RING_IMP 14
+int sw_via_ring_implicit(const swModel *m, int f, int q);
+void sw_via_implicit_sums(const swModel *m, swData *d, int f, double h, double *p, double *s);
+void sw_via_implicit_force(const swModel *m, swData *d, int f, double T);
+void sw_via_implicit_clear(const swModel *m, swData *d, int f);
+void sw_via_implicit_add(const swModel *m, swData *d, int f, int lo, int hi);
 void sw_via_reset(const swModel *m, swData *d);
 double sw_via_stable_dt(const swModel *m, int f);
 double sw_via_path(const swModel *m, const swData *d, int f);

@@ -15,8 +15,10 @@
  * attachments whose joints all reach one port, go last in their group and
  * are eliminated before it is factored; a filament whose ends are both
  * such leaves (or clamped) has its damping solved in the system, its ends
- * eliminated as one unit.  All of it is computed once, at setup, into the
- * model's rigid_* arrays; rigid_joint.c's kick only reads them.
+ * eliminated as one unit, and so does one whose ends are attachments that
+ * are not leaves (dense_ends), its damper between their unknowns.  All of
+ * it is computed once, at setup, into the model's rigid_* arrays;
+ * rigid_joint.c's kick only reads them.
  */
 #include <stdlib.h>
 #include <string.h>
@@ -121,6 +123,37 @@ static void hill_ready(const swModel *m, const int *fil_of_rod, int *ready) {
   free(seen);
 }
 
+/* Filaments whose ends are dense members of the system (issue 31): an
+ * implicit filament not solved through ports (hill_ready) whose every end
+ * is an attachment member that is not a leaf, or clamped, has its Hill
+ * damping solved in the system too, as h c' b b^T between its end nodes'
+ * unknowns (rigid_joint.c, muscle_implicit.c's system_part).  Otherwise its
+ * own solve would take its ends as free masses under the kick's loads, the
+ * joints' springs among them, and carry those springs' forces into the
+ * tension explicitly: on the muscular snake, whose filaments are tied to
+ * rigid tendons, that grew a lateral swing of the tendons (365 Hz) from a
+ * step of 45 us (spans of 0.15 of the body) or 63 us (0.35).  fend[2 f +
+ * e]: the member at end e of filament f (setup's numbering), -1 when
+ * clamped, or both -1 when f is not such a filament; fil_system marked.
+ * at_node: the member on each node slot, leaf: each member's leaf port. */
+static void dense_ends(swModel *m, const int *at_node, const int *leaf, const int *ready, int *fend) {
+  for (int f = 0; f < m->nfil; f++) {
+    const int bits = m->fil_implicit[f], r = m->fil_rod[f];
+    const int ends[2] = {m->node_adr[r], m->node_adr[r] + m->rod_nelem[r]};
+    const int held[2] = {(bits & SW_FIL_HELD_START) != 0, (bits & SW_FIL_HELD_END) != 0};
+    fend[2 * f] = fend[2 * f + 1] = -1;
+    if (!(bits & SW_FIL_IMPLICIT) || ready[f]) continue;
+    int ok = 1, k[2];
+    for (int e = 0; e < 2; e++) {
+      k[e] = held[e] ? -1 : at_node[ends[e]];
+      if (!held[e] && (k[e] < 0 || leaf[k[e]] >= 0)) ok = 0;
+    }
+    if (!ok || (k[0] < 0 && k[1] < 0)) continue;
+    fend[2 * f] = k[0], fend[2 * f + 1] = k[1];
+    m->fil_system[f] = 1;
+  }
+}
+
 /* Whether joint j ties an implicit filament that is not ready to a port. */
 static int hill_on_port(const swModel *m, int j, const Side *s, const int *fil_of_rod,
                         const int *ready) {
@@ -149,7 +182,7 @@ static int find_root(int *parent, int s) {
  * scratch of nb ints.  On return m->joint_block holds the blocks. */
 static void number_groups(swModel *m, const int *member, const int *body, const int *node,
                           const int *elem, const int *rod, const int *rdof, const int *leaf,
-                          const int *partner, int *root, int *group_of, int *next) {
+                          const int *partner, const int *fend, int *root, int *group_of, int *next) {
   const int nb = m->nrigid_block;
   for (int s = 0; s < nb; s++) root[s] = s, group_of[s] = -1;
   for (int j = 0; j < m->njoint; j++) { /* the edges */
@@ -161,6 +194,11 @@ static void number_groups(swModel *m, const int *member, const int *body, const 
   for (int s = 0; s < nb; s++) /* a filament's two ends, eliminated together */
     if (partner[s] > s) {
       const int ra = find_root(root, s), rb = find_root(root, partner[s]);
+      if (ra != rb) root[ra > rb ? ra : rb] = ra < rb ? ra : rb;
+    }
+  for (int f = 0; f < m->nfil; f++) /* a filament's dense ends (dense_ends), likewise */
+    if (fend[2 * f] >= 0 && fend[2 * f + 1] >= 0) {
+      const int ra = find_root(root, fend[2 * f]), rb = find_root(root, fend[2 * f + 1]);
       if (ra != rb) root[ra > rb ? ra : rb] = ra < rb ? ra : rb;
     }
   for (int s = 0; s < nb; s++) root[s] = find_root(root, s);
@@ -235,6 +273,12 @@ static void number_groups(swModel *m, const int *member, const int *body, const 
     const int sa = m->joint_block[2 * j], sb = m->joint_block[2 * j + 1];
     if (!m->joint_implicit[j] || sa < 0 || sb < 0) continue;
     if (m->rigid_block_leaf[sa] >= 0 || m->rigid_block_leaf[sb] >= 0) continue; /* eliminated first */
+    const int lo = sa < sb ? sa : sb, hi = sa < sb ? sb : sa;
+    if (lo < m->rigid_block_env[hi]) m->rigid_block_env[hi] = lo;
+  }
+  for (int f = 0; f < m->nfil; f++) { /* a dense filament's damping couples its ends */
+    if (fend[2 * f] < 0 || fend[2 * f + 1] < 0) continue;
+    const int sa = block[fend[2 * f]], sb = block[fend[2 * f + 1]];
     const int lo = sa < sb ? sa : sb, hi = sa < sb ? sb : sa;
     if (lo < m->rigid_block_env[hi]) m->rigid_block_env[hi] = lo;
   }
@@ -396,6 +440,7 @@ int sw_rigid_joints_setup(swModel *m) {
   m->rigid_block_fil = malloc(NB * sizeof(int));
   m->rigid_leaf_unit = malloc(10 * NB * sizeof(int));
   m->fil_system = calloc((size_t)(m->nfil ? m->nfil : 1), sizeof(int));
+  m->fil_block = malloc(2 * (size_t)(m->nfil ? m->nfil : 1) * sizeof(int));
   m->rigid_block_port_adr = malloc((NB + 1) * sizeof(int));
   m->rigid_port_node = malloc(2 * J * sizeof(int));
   m->rigid_port_elem = malloc(2 * J * sizeof(int));
@@ -410,7 +455,8 @@ int sw_rigid_joints_setup(swModel *m) {
   if (!m->joint_implicit || !m->joint_block || !m->joint_port || !m->rod_block || !m->rigid_block ||
       !m->rigid_block_body || !m->rigid_block_node || !m->rigid_block_elem || !m->rigid_block_rot ||
       !m->rigid_block_off || !m->rigid_block_dof || !m->rigid_block_rod || !m->rigid_block_leaf ||
-      !m->rigid_block_partner || !m->rigid_block_fil || !m->fil_system || !m->rigid_leaf_unit ||
+      !m->rigid_block_partner || !m->rigid_block_fil || !m->fil_system || !m->fil_block ||
+      !m->rigid_leaf_unit ||
       !m->rigid_block_port_adr || !m->rigid_port_node || !m->rigid_port_elem ||
       !m->rigid_port_rot || !m->rigid_port_off || !m->rigid_group_adr ||
       !m->rigid_group_joint_adr || !m->rigid_group_joint || !m->rigid_block_env ||
@@ -418,6 +464,7 @@ int sw_rigid_joints_setup(swModel *m) {
     return 0;
   for (int b = 0; b < m->nrigid; b++) m->rigid_block[b] = -1;
   for (size_t r = 0; r < R; r++) m->rod_block[r] = -1;
+  for (int q = 0; q < 2 * m->nfil; q++) m->fil_block[q] = -1;
   for (size_t q = 0; q < 2 * J; q++) m->joint_block[q] = m->joint_port[q] = -1;
   m->rigid_group_adr[0] = m->rigid_group_joint_adr[0] = m->rigid_block_port_adr[0] = 0;
   if (m->integrator != SW_IMEX) return 1;
@@ -425,7 +472,7 @@ int sw_rigid_joints_setup(swModel *m) {
    * their number, body/node/elem/rod what each is; the ports likewise */
   const size_t S = (size_t)m->stride;
   const size_t F = (size_t)(m->nfil ? m->nfil : 1);
-  int *scratch = malloc((2 * J + 11 * NB + 2 * S + 10 * J + 2 * R + F) * sizeof(int));
+  int *scratch = malloc((2 * J + 11 * NB + 2 * S + 10 * J + 2 * R + 3 * F) * sizeof(int));
   if (!scratch) return 0;
   int *member = scratch, *body = member + 2 * J, *node = body + NB, *elem = node + NB;
   int *rod = elem + NB, *rdof = rod + NB, *leaf = rdof + NB;
@@ -435,6 +482,7 @@ int sw_rigid_joints_setup(swModel *m) {
   int *pmember = port_at + S, *pnode = pmember + 2 * J, *pelem = pnode + 2 * J;
   int *prot = pelem + 2 * J, *porder = prot + 2 * J; /* 2 J + NB: number_ports' */
   int *rod_first = porder + 2 * J + NB, *fil_of_rod = rod_first + R, *ready = fil_of_rod + R;
+  int *fend = ready + F; /* dense_ends: each filament's end members, -1 */
   for (size_t r = 0; r < R; r++) fil_of_rod[r] = -1;
   for (int f = 0; f < m->nfil; f++) fil_of_rod[m->fil_rod[f]] = f;
   hill_ready(m, fil_of_rod, ready);
@@ -482,15 +530,17 @@ int sw_rigid_joints_setup(swModel *m) {
   m->nrigid_block = nb;
   m->nrigid_port = np;
   find_leaves(m, nb, member, node, rod, leaf);
+  dense_ends(m, at_node, leaf, ready, fend);
   int *partner = at_node, *lfil = port_at; /* the node maps are read no more (S >= nb) */
   pair_leaves(m, nb, member, leaf, fil_of_rod, ready, partner, lfil);
-  if (nb) number_groups(m, member, body, node, elem, rod, rdof, leaf, partner, first, first + NB,
+  if (nb) number_groups(m, member, body, node, elem, rod, rdof, leaf, partner, fend, first, first + NB,
                         first + 2 * NB);
   /* block[] of number_groups: its root array, first[0 .. nb) */
   for (int k = 0; k < nb; k++) {
     m->rigid_block_partner[first[k]] = partner[k] >= 0 ? first[partner[k]] : -1;
     m->rigid_block_fil[first[k]] = lfil[k];
   }
+  for (int q = 0; q < 2 * m->nfil; q++) m->fil_block[q] = fend[q] >= 0 ? first[fend[q]] : -1;
   if (np) number_ports(m, np, pmember, pnode, pelem, prot, first, porder);
   pair_envelope(m);
   store_units(m);
@@ -521,6 +571,7 @@ void sw_rigid_joints_free(swModel *m) {
   free(m->rigid_block_fil);
   free(m->rigid_leaf_unit);
   free(m->fil_system);
+  free(m->fil_block);
   free(m->rigid_block_port_adr);
   free(m->rigid_port_node);
   free(m->rigid_port_elem);

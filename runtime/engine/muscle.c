@@ -612,6 +612,7 @@ static void filament_tension(const swModel *m, swData *d, int mu, int f, double 
     l += len[e];
     ldot += q[e];
   }
+  if (m->nring) sw_via_implicit_clear(m, d, f); /* set again by an implicit kick's solve */
   if (!(m->fil_tau[f] > 0) && !m->muscle_prescribed[mu]) d->fil_activation[f] = drive(m, f, u);
   const double inv_l0 = 1.0 / m->fil_l0[f];
   const double eta = l * inv_l0, edot = ldot * inv_l0;
@@ -701,6 +702,11 @@ static void muscle_tensions(const swModel *m, swData *d, double h) {
 static void muscle_pull(const swModel *m, swData *d) {
   int lo, hi;
   sw_owned_slots(m, d, &lo, &hi);
+  if (m->nring) /* the implicit rings' force changes (via_implicit.c), on the
+                 * filament and its bones; a filament in the joints' system
+                 * has them after the system's solve (system_tension) */
+    for (int f = 0; f < m->nfil; f++)
+      if (!(m->fil_system && m->fil_system[f])) sw_via_implicit_add(m, d, f, lo, hi);
   clip_to_filaments(m, &lo, &hi);
   if (lo < hi) filament_pull(m, d, lo, hi);
 }

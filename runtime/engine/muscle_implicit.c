@@ -23,10 +23,14 @@
  * end velocity, with analytic damping, or rigid stay explicit (their kick is
  * not dv = h M^-1 F).
  *
- * A filament whose ends are leaves of the joints' system (joint_ports.c)
- * is solved in two parts: sw_muscle_system_part before the system, with
- * the interior nodes only, and sw_muscle_system_tension after it, from the
- * ends' velocity changes.
+ * A filament's via rings join the solve under imex (via_implicit.c: p
+ * and s are taken through them, and their forces follow T).
+ *
+ * A filament whose ends are leaves of the joints' system (joint_ports.c),
+ * or attachments in it (joint_groups.c, dense_ends), is solved in two
+ * parts: sw_muscle_system_part before the system, with the interior nodes
+ * only, and sw_muscle_system_tension after it, from the ends' velocity
+ * changes.
  */
 #include <math.h>
 #include <string.h>
@@ -58,12 +62,15 @@ static void tangent(const swModel *m, const swData *d, int lo, int i, int n, dou
 }
 
 /* The implicit tension of filament f over a kick h (the header):
- * (T0 + c h p) / (1 + c h s), c = dT/d(dl/dt), floored at 0. */
-double sw_muscle_implicit_tension(const swModel *m, const swData *d, int f, double T0, double eta,
+ * (T0 + c h p) / (1 + c h s), c = dT/d(dl/dt), floored at 0; with its via
+ * rings taken implicitly too (via_implicit.c: p and s through the rings,
+ * and the rings' force changes once T is known). */
+double sw_muscle_implicit_tension(const swModel *m, swData *d, int f, double T0, double eta,
                                   double edot, double h) {
   const int r = m->fil_rod[f], lo = m->elem_adr[r], n = m->rod_nelem[r], bits = m->fil_implicit[f];
+  const int rings = m->nring && m->fil_ring_adr[f] < m->fil_ring_adr[f + 1];
   const double c = sw_muscle_tension_slope(m, f, eta, edot, d->fil_activation[f]) / m->fil_l0[f];
-  if (!(c > 0)) return T0;
+  if (!(c > 0) && !rings) return T0;
   double p = 0, s = 0, t_before[3] = {0, 0, 0};
   for (int i = 0; i <= n; i++) { /* node lo + i: b_i = t_{i-1} - t_i */
     double t[3], b[3], F[3];
@@ -76,8 +83,14 @@ double sw_muscle_implicit_tension(const swModel *m, const swData *d, int f, doub
     s += im * sw_v3_dot(b, b);
     memcpy(t_before, t, sizeof t);
   }
-  const double T = (T0 + c * h * p) / (1.0 + c * h * s);
-  return T > 0 ? T : 0;
+  if (rings) sw_via_implicit_sums(m, d, f, h, &p, &s);
+  double T = T0;
+  if (c > 0) {
+    T = (T0 + c * h * p) / (1.0 + c * h * s);
+    if (!(T > 0)) T = 0;
+  }
+  if (rings) sw_via_implicit_force(m, d, f, T);
+  return T;
 }
 
 /* A filament whose ends are leaves of the joints' system (joint_ports.c,
@@ -109,6 +122,7 @@ double sw_muscle_system_part(const swModel *m, swData *d, int f, double T0, doub
     p += m->inv_mass[lo + i] * sw_v3_dot(b, F);
     s += m->inv_mass[lo + i] * sw_v3_dot(b, b);
   }
+  if (m->nring && m->fil_ring_adr[f] < m->fil_ring_adr[f + 1]) sw_via_implicit_sums(m, d, f, h, &p, &s);
   sys[0] = (T0 + c * h * p) / (1.0 + c * h * s);
   sys[1] = c / (1.0 + c * h * s);
   return sys[0];
@@ -138,5 +152,9 @@ void sw_muscle_system_tension(const swModel *m, swData *d, int f, const double *
       SW_AT(m, d->ext_force, lo + i, k) += dF;
     }
     memcpy(t_before, t, sizeof t);
+  }
+  if (m->nring) { /* the rings' force changes at T, on every slot (the leader's) */
+    sw_via_implicit_force(m, d, f, T);
+    sw_via_implicit_add(m, d, f, 0, m->nslot);
   }
 }

@@ -72,7 +72,9 @@
  *   nu = 0.1 * 2 sqrt(k m), m the lightest node of the filament (any node
  *        may come into the ring): a tenth of critical, as joint.c.
  * The ring is one more spring on the contact node; sw_via_stable_dt bounds
- * the step by it (stability.c takes the filament bounds).
+ * the step by it (stability.c takes the filament bounds).  Under imex the
+ * rings of an implicit filament are taken into its Hill solve
+ * (via_implicit.c), and only their bone's side bounds the step.
  */
 #include <math.h>
 #include <string.h>
@@ -354,38 +356,57 @@ static inline void add_if(const swModel *m, double *a, int i, int lo, int hi, co
   for (int k = 0; k < 3; k++) SW_AT(m, a, i, k) += w * v[k];
 }
 
+/* Force F on ring q's filament f at its contact (the row's), shared by the
+ * contact's two nodes, and -F on its bone: half on each node of the
+ * carrying element and the couple (c - x_c) x (-F) on it; into the slots
+ * [lo, hi) only, as external loads. */
+void sw_via_add(const swModel *m, swData *d, int f, int q, const double *F, int lo, int hi) {
+  const double *row = d->ring_row + SW_RING_ROW * (size_t)q;
+  const int a = m->node_adr[m->fil_rod[f]] + (int)row[RING_J];
+  const double s = row[RING_S];
+  add_if(m, d->force, a, lo, hi, F, 1 - s);
+  add_if(m, d->ext_force, a, lo, hi, F, 1 - s);
+  add_if(m, d->force, a + 1, lo, hi, F, s);
+  add_if(m, d->ext_force, a + 1, lo, hi, F, s);
+  const int e = m->ring_elem[q];
+  if (e < 0) return;
+  add_if(m, d->force, e, lo, hi, F, -0.5);
+  add_if(m, d->ext_force, e, lo, hi, F, -0.5);
+  add_if(m, d->force, e + 1, lo, hi, F, -0.5);
+  add_if(m, d->ext_force, e + 1, lo, hi, F, -0.5);
+  if (e < lo || e >= hi) return;
+  /* the couple (c - x_c) x (-F), in the element's material frame */
+  double xa[3], xb[3], arm[3], C[3], Q[9], Cm[3];
+  sw_get3(m, d->x, e, xa);
+  sw_get3(m, d->x, e + 1, xb);
+  for (int k = 0; k < 3; k++) arm[k] = row[RING_C + k] - 0.5 * (xa[k] + xb[k]);
+  sw_v3_cross(C, F, arm); /* = arm x (-F) */
+  sw_getQ(m, d->Q, e, Q);
+  sw_mat_vec(Cm, Q, C);
+  add_if(m, d->torque, e, lo, hi, Cm, 1.0);
+  add_if(m, d->ext_torque, e, lo, hi, Cm, 1.0);
+}
+
 /* Every ring's row into the slots [lo, hi) (this thread's), ring by ring,
  * so each slot gets them in the same order for any number of threads. */
 void sw_via_apply(const swModel *m, swData *d, int lo, int hi) {
-  for (int f = 0; f < m->nfil; f++) {
-    const int na = m->node_adr[m->fil_rod[f]];
-    for (int q = m->fil_ring_adr[f]; q < m->fil_ring_adr[f + 1]; q++) {
-      const double *row = d->ring_row + SW_RING_ROW * q, *F = row + RING_F;
-      const int a = na + (int)row[RING_J];
-      const double s = row[RING_S];
-      add_if(m, d->force, a, lo, hi, F, 1 - s);
-      add_if(m, d->ext_force, a, lo, hi, F, 1 - s);
-      add_if(m, d->force, a + 1, lo, hi, F, s);
-      add_if(m, d->ext_force, a + 1, lo, hi, F, s);
-      const int e = m->ring_elem[q];
-      if (e < 0) continue;
-      add_if(m, d->force, e, lo, hi, F, -0.5);
-      add_if(m, d->ext_force, e, lo, hi, F, -0.5);
-      add_if(m, d->force, e + 1, lo, hi, F, -0.5);
-      add_if(m, d->ext_force, e + 1, lo, hi, F, -0.5);
-      if (e < lo || e >= hi) continue;
-      /* the couple (c - x_c) x (-F), in the element's material frame */
-      double xa[3], xb[3], arm[3], C[3], Q[9], Cm[3];
-      sw_get3(m, d->x, e, xa);
-      sw_get3(m, d->x, e + 1, xb);
-      for (int k = 0; k < 3; k++) arm[k] = row[RING_C + k] - 0.5 * (xa[k] + xb[k]);
-      sw_v3_cross(C, F, arm); /* = arm x (-F) */
-      sw_getQ(m, d->Q, e, Q);
-      sw_mat_vec(Cm, Q, C);
-      add_if(m, d->torque, e, lo, hi, Cm, 1.0);
-      add_if(m, d->ext_torque, e, lo, hi, Cm, 1.0);
-    }
-  }
+  for (int f = 0; f < m->nfil; f++)
+    for (int q = m->fil_ring_adr[f]; q < m->fil_ring_adr[f + 1]; q++)
+      sw_via_add(m, d, f, q, d->ring_row + SW_RING_ROW * (size_t)q + RING_F, lo, hi);
+}
+
+/* Ring q's (of filament f) contact, from its row: the filament's node before it (slot),
+ * the share s of the node after, and the unit tangent there (ring_row's). */
+void sw_via_contact(const swModel *m, const swData *d, int f, int q, int *a, double *s, double *tau) {
+  const double *row = d->ring_row + SW_RING_ROW * (size_t)q;
+  const int r = m->fil_rod[f], na = m->node_adr[r], n = m->rod_nelem[r];
+  *a = na + (int)row[RING_J];
+  *s = row[RING_S];
+  double ta[3], tb[3];
+  node_tangent(m, d, na, n, *a, ta);
+  node_tangent(m, d, na, n, *a + 1, tb);
+  for (int k = 0; k < 3; k++) tau[k] = (1 - *s) * ta[k] + *s * tb[k];
+  sw_v3_scale(tau, tau, 1.0 / sw_v3_norm(tau));
 }
 
 void sw_via_reset(const swModel *m, swData *d) {
@@ -396,10 +417,50 @@ void sw_via_reset(const swModel *m, swData *d) {
   }
 }
 
+/* The rod of element slot e. */
+static int rod_of_slot(const swModel *m, int e) {
+  for (int r = 0; r < m->nrod; r++)
+    if (m->elem_adr[r] <= e && e < m->elem_adr[r] + m->rod_nelem[r]) return r;
+  return 0;
+}
+
+/* Whether ring q's contact at rest is on an element touching an end of
+ * filament f whose velocity the joints' system gives (via_implicit.c: the
+ * ring's share there stays explicit): the filament's node nearest to the
+ * ring's point at t = 0 is next to such an end. */
+static int rest_contact_at_system_end(const swModel *m, int f, int q) {
+  if (!m->fil_system || !m->fil_system[f]) return 0;
+  const int r = m->fil_rod[f], na = m->node_adr[r], n = m->rod_nelem[r], e = m->ring_elem[q];
+  double p[3];
+  if (e < 0) memcpy(p, m->ring_point + 3 * q, sizeof p);
+  else {
+    double a[3], b[3], Q[9], arm[3];
+    sw_get3(m, m->x0, e, a);
+    sw_get3(m, m->x0, e + 1, b);
+    sw_getQ(m, m->Q0, e, Q);
+    sw_matT_vec(arm, Q, m->ring_point + 3 * q);
+    for (int k = 0; k < 3; k++) p[k] = 0.5 * (a[k] + b[k]) + arm[k];
+  }
+  int near = 0;
+  double best = INFINITY;
+  for (int i = 0; i <= n; i++) {
+    double x[3], g[3];
+    sw_get3(m, m->x0, na + i, x);
+    sw_v3_sub(g, p, x);
+    if (sw_v3_dot(g, g) < best) best = sw_v3_dot(g, g), near = i;
+  }
+  return near <= 1 || near >= n - 1;
+}
+
 /* The rings' bound on filament f's step: the ring is one more spring k (and
  * damper nu) on the node in contact, whose Gershgorin row (stability.c's
  * joint_node_dt) is then w^2 = (4 max(EA, GA)/l + k) / m at the lightest
- * node and shortest element, with damping rate nu / m. */
+ * node and shortest element, with damping rate nu / m.  A ring taken
+ * implicitly (via_implicit.c) leaves only its bone's side explicit: the
+ * same row at the lighter node of the carrying element, with its axial
+ * stiffness (none for a rigid bone or a point in space); when its contact
+ * at rest touches an end of a filament in the joints' system, whose share
+ * stays explicit, the filament's row as well. */
 double sw_via_stable_dt(const swModel *m, int f) {
   double dt = INFINITY;
   const int r = m->fil_rod[f], na = m->node_adr[r], n = m->rod_nelem[r], ea = m->elem_adr[r];
@@ -410,8 +471,17 @@ double sw_via_stable_dt(const swModel *m, int f) {
     axial = fmax(axial, fmax(SW_AT(m, m->shear_stiff, e, 2), SW_AT(m, m->shear_stiff, e, 0)) *
                             m->inv_rest_len[e]);
   for (int q = m->fil_ring_adr[f]; q < m->fil_ring_adr[f + 1]; q++) {
-    const double w = sqrt((4.0 * axial + m->ring_stiffness[q]) / mass);
-    const double c = m->ring_damping[q] / mass;
+    double mq = mass, aq = axial;
+    if (sw_via_ring_implicit(m, f, q) && !rest_contact_at_system_end(m, f, q)) {
+      const int e = m->ring_elem[q];
+      if (e < 0) continue;
+      mq = fmin(m->mass[e], m->mass[e + 1]);
+      aq = e < m->nslot_elastic && !(m->nimplicit && m->rod_implicit[rod_of_slot(m, e)])
+               ? fmax(SW_AT(m, m->shear_stiff, e, 2), SW_AT(m, m->shear_stiff, e, 0)) * m->inv_rest_len[e]
+               : 0.0;
+    }
+    const double w = sqrt((4.0 * aq + m->ring_stiffness[q]) / mq);
+    const double c = m->ring_damping[q] / mq;
     dt = fmin(dt, sw_integrator_stability_limit(m->integrator, c / (2 * w)) / w);
   }
   return dt;

@@ -359,6 +359,39 @@ static void unit_dashpot(const swModel *m, const swData *d, double h, double *le
     for (int c = 0; c < u.du; c++) u.ws[i * u.du + c] += w * b[i] * b[c];
 }
 
+/* The dense filaments of group g (joint_groups.c, dense_ends): each one's
+ * damping between its end nodes, h c' b b^T over their velocity unknowns
+ * (muscle_implicit.c, system_part; the rows of A's lower triangle), or,
+ * with du the solution, its tension and the pull that follows
+ * (system_tension). */
+static void dense_filaments(const swModel *m, swData *d, double h, int g, double *A, int n,
+                            const double *du) {
+  const int first = m->rigid_group_adr[g], last = m->rigid_group_adr[g + 1];
+  for (int f = 0; f < m->nfil; f++) {
+    const int *kb = m->fil_block + 2 * f;
+    const int k = kb[0] >= 0 ? kb[0] : kb[1];
+    if (k < first || k >= last) continue; /* none, or another group's */
+    const double *sys = d->fil_sys + 8 * (size_t)f;
+    const double *v[2] = {NULL, NULL};
+    int o[2] = {-1, -1};
+    for (int e = 0; e < 2; e++)
+      if (kb[e] >= 0) o[e] = m->rigid_block_off[kb[e]], v[e] = du ? du + o[e] : NULL;
+    if (du) {
+      sw_muscle_ops(m)->system_tension(m, d, f, v[0], v[1]);
+      continue;
+    }
+    const double w = h * sys[1];
+    for (int a = 0; a < 2; a++)
+      for (int b = 0; b < 2; b++) {
+        if (o[a] < 0 || o[b] < 0 || o[a] < o[b]) continue; /* row a at or below row b */
+        const double *ba = sys + (a ? 5 : 2), *bb = sys + (b ? 5 : 2);
+        for (int i = 0; i < 3; i++)
+          for (int c = 0; c < 3; c++)
+            if (o[a] > o[b] || c <= i) A[(size_t)(o[a] + i) * n + o[b] + c] += w * ba[i] * bb[c];
+      }
+  }
+}
+
 /* The trapezoidal loads of group g (the header): its system assembled into
  * A (n x n, n its dense members' unknowns) and rhs, its leaves eliminated
  * and its implicit rods condensed to their ports (joint_ports.c), factored
@@ -464,6 +497,7 @@ static int group_kick(const swModel *m, swData *d, double h, int g, double *A, d
                  Jp[s], Jp[t], PtP, ggT);
       }
   }
+  if (m->fil_block) dense_filaments(m, d, h, g, A, n, NULL);
   /* the leaves' units eliminated into their ports, in their order, the
    * consecutive ones of the same shape together (sw_leaf_condense) */
   Unit batch[UNIT_BATCH];
@@ -531,6 +565,7 @@ static int group_kick(const swModel *m, swData *d, double h, int g, double *A, d
     }
     sw_muscle_ops(m)->system_tension(m, d, f, dv[0], dv[1]);
   }
+  if (m->fil_block) dense_filaments(m, d, h, g, A, n, rhs);
   return 1;
 }
 

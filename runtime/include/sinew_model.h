@@ -152,7 +152,12 @@ typedef struct {
   int *rod_block;            /* (nrod)     an implicit rod's member, -1      */
   int *fil_system;           /* (nfil or 1) 1: the filament's implicit Hill
                                            damping is solved within that
-                                           system, its ends being leaves      */
+                                           system, its ends being leaves or
+                                           dense members                      */
+  int *fil_block;            /* (2*nfil or 2) such a filament whose ends are
+                                           dense members: the block of its start
+                                           and of its end, -1 when clamped; -1, -1
+                                           for the others (joint_groups.c)    */
   int *rigid_group_joint_adr; /* (nrigid_group+1) first entry of each group
                                            in rigid_group_joint              */
   int *rigid_group_joint;    /* (implicit joints) each group's joints, in
@@ -421,6 +426,9 @@ typedef struct {
                                            b at its start and end nodes      */
   double *ring_row;          /* (nring*SW_RING_ROW) each ring's contact and
                                            load, last evaluation (muscle_via.c) */
+  double *ring_imp;          /* (nring*SW_RING_IMP) an implicit ring's part of
+                                           the kick's solve, this evaluation
+                                           (via_implicit.c; not saved)       */
   /* environments, updated with each force evaluation */
   /* contact.c: the last evaluation's figures, and the hash grid's scratch */
   int contact_pairs;         /* element pairs in contact                     */

@@ -350,8 +350,14 @@ static void print_stiff_parts(const swModel *m) {
       if (m->rod_rigid[r] >= 0) printf("%s %s", k++ ? "," : "", m->rod_name[r]);
     printf("%s\n", nrigid > 8 ? ", ..." : "");
   }
-  if (nimplicit)
-    printf("  linearly implicit: the Hill damping of %d of %d muscle filaments\n", nimplicit, m->nfil);
+  if (nimplicit) {
+    int nring = 0; /* via rings taken with their filament (via_implicit.c) */
+    for (int f = 0; m->nring && f < m->nfil; f++)
+      for (int q = m->fil_ring_adr[f]; q < m->fil_ring_adr[f + 1]; q++) nring += sw_via_ring_implicit(m, f, q);
+    printf("  linearly implicit: the Hill damping of %d of %d muscle filaments", nimplicit, m->nfil);
+    if (m->nring) printf(", %d of %d via rings (the bone's side explicit)", nring, m->nring);
+    printf("\n");
+  }
   int nrod_implicit = 0;
   for (int r = 0; r < m->nrod; r++) nrod_implicit += m->rod_implicit[r];
   if (nrod_implicit) {
