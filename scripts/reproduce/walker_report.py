@@ -186,7 +186,7 @@ def main():
     st.commands_from(os.path.join(outdir, "commands.txt"))
 
     # the plot: displacement against time, the four cases (+ the original at dt/2)
-    fig, ax = plt.subplots(figsize=(6, 3.6))
+    fig, ax = plt.subplots(figsize=(6.4, 4.2))
     for name, label, colour in CASES:
         if name in runs:
             ax.plot(runs[name]["t"], 1e3 * runs[name]["x"], color=colour, label=label)
@@ -194,12 +194,12 @@ def main():
         if name in runs:
             ax.plot(runs[name]["t"], 1e3 * runs[name]["x"], color=colour, ls=ls, lw=1, label=label)
     ax.set_xlabel("time (s)")
-    ax.set_ylabel("forward displacement of the centre of mass (mm)")
+    ax.set_ylabel("centre of mass, forward (mm)")
     ax.set_title("walker: muscle x10, scaffold x$10^4$ in G (%s, %.3g s)" % (budget, T), fontsize=9)
-    ax.legend(fontsize=8)
+    ax.legend(fontsize=7, ncol=2, loc="upper center", bbox_to_anchor=(0.5, -0.16))
     ax.grid(alpha=0.3)
     fig.tight_layout()
-    fig.savefig(os.path.join(outdir, "walker_hardening.png"), dpi=120)
+    fig.savefig(os.path.join(outdir, "walker_hardening.png"), dpi=120, bbox_inches="tight")
     st.plot("walker_hardening.png")
 
     cases = [c for c, _, _ in CASES if c in runs]
