@@ -19,7 +19,7 @@
 # hardening slows the walker (docs/validation.md: the scaffold's feet).
 #
 # And the original and the shear-hardened walker on a damped dish
-# (dish_damping = 0.1 kg/s, a third of critical for a foot element on its
+# (dish_damping = 0.1 kg/s, a quarter to a third of critical for a foot element on its
 # contact spring, against Table 8's 1e-6 kg/s): whether the feet's hopping
 # on the undamped dish is what separates them (docs/validation.md).
 #
