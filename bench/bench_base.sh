@@ -1,5 +1,6 @@
 # bench_base.sh — sourced by the benchmarks that run a tree of an earlier
-# commit beside this one (bench_speedup.sh, bench_rigid_groups.sh).
+# commit beside this one (bench_speedup.sh, bench_rigid_groups.sh,
+# bench_snake_eval.sh).
 # bench_base DIR REV: DIR holds a git worktree of REV with its bin/sinewc and
 # runtime built by its own Makefile (once: kept while DIR/bin/sinewc exists).
 bench_base() {

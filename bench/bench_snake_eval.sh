@@ -3,8 +3,8 @@
 # solution (issue 31): one whole 5 s evaluation of the four-pair study scene
 # (examples/study/snake_pairs4.sinew) and the four-pair example
 # (examples/snake_muscular.sinew), each as the code at OLD_REV writes it
-# (its scene files, its step, its compiler and runtime: git archive into a
-# temporary tree, its own `make bin/sinewc`) and as this tree does, run
+# (its scene files, its step, its compiler and runtime: a worktree of it,
+# bench_base.sh) and as this tree does, run
 # interleaved ROUNDS times (default 5; the order alternates from round to
 # round), one thread.  Prints the medians of the process's CPU time (user +
 # system, start-up included; on a machine whose cores are shared the wall
@@ -15,13 +15,15 @@
 set -eu
 old=$1 rounds=${2:-5}
 root=$(cd "$(dirname "$0")/.." && pwd)
+cd "$root"
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
-mkdir -p "$tmp/tree" "$tmp/old" "$tmp/new"
-git -C "$root" archive "$old" | tar -x -C "$tmp/tree"
-make -C "$tmp/tree" -j1 bin/sinewc >/dev/null 2>&1
+mkdir -p "$tmp/old" "$tmp/new"
+. bench/bench_base.sh
+tree=$root/build/bench/base-$old
+bench_base "$tree" "$old"
 for s in pairs4:study/snake_pairs4 example:snake_muscular; do
-  (cd "$tmp/tree" && SINEW_PATH="$tmp/tree/models" bin/sinewc "examples/${s#*:}.sinew" -o "$tmp/old/${s%%:*}")
+  (cd "$tree" && SINEW_PATH="$tree/models" bin/sinewc "examples/${s#*:}.sinew" -o "$tmp/old/${s%%:*}")
   SINEW_PATH="$root/models" "$root/bin/sinewc" "$root/examples/${s#*:}.sinew" -o "$tmp/new/${s%%:*}"
 done
 speed() { # speed FILE.h5: the example's mean speed over 1-5 s, m/s
