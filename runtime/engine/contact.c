@@ -59,7 +59,8 @@
  * particular order, so a pair's old row is found by bisection and the new
  * table sorted once written (friction.c).  It holds contact_maxanchor rows,
  * four per element of the contacts with friction; pairs beyond it are
- * frictionless.  The table is state: checkpoints save it.
+ * frictionless, counted in d->friction_full, of which the run warns.  The
+ * table is state: checkpoints save it.
  *
  * Which pairs.  Every pair of elements of different rods of the
  * description's set; with `self`, also pairs of one rod whose rest arc
@@ -250,7 +251,7 @@ typedef struct {
   int old_rows;
   double *anchor;
   int rows, room;
-  int stuck, slipping;
+  int stuck, slipping, full; /* full: pairs beyond the table */
 } Sums;
 
 /* ---- friction: the anchor of a touching pair (see the design) ---- */
@@ -267,7 +268,10 @@ typedef swFrictionSide Side;
 static int friction_force(const swModel *m, const swData *d, const swContactDesc *cd, double key,
                           Side *a, Side *b, const double n[3], double N, Sums *sum, double F[3]) {
   if (!(cd->static_friction > 0) || !sum->anchor) return 0;
-  if (sum->rows >= sum->room) return 0; /* beyond the table: frictionless */
+  if (sum->rows >= sum->room) { /* beyond the table: frictionless, counted */
+    sum->full++;
+    return 0;
+  }
   const double *row = sw_anchor_find(sum->old, sum->old_rows, SW_CONTACT_ANCHOR_ROW, key);
   double ya[3], yb[3], off[3];
   if (row) {
@@ -502,6 +506,7 @@ void sw_contact_loads_with(const swModel *m, swData *d, swContactPhase phase) {
   d->contact_max_overlap = sum.max_overlap;
   d->contact_stuck = sum.stuck;
   d->contact_slipping = sum.slipping;
+  d->friction_full += sum.full;
 }
 
 void sw_contact_loads(const swModel *m, swData *d) { sw_contact_loads_with(m, d, SW_CONTACT_GRID); }

@@ -124,6 +124,7 @@ void sw_reset(const swModel *m, swData *d) {
   d->contact_max_overlap = 0;
   if (d->contact_anchor) d->contact_anchor[0] = 0; /* no friction anchor yet (contact.c) */
   d->contact_stuck = d->contact_slipping = 0;
+  d->friction_full = 0;
   if (m->nbc) memset(d->bc_free, 0, sizeof *d->bc_free * (size_t)m->nbc); /* every hold holds */
   sw_apply_bc_velocity(m, d, 0.0);
   sw_internal_loads(m, d); /* strains of the initial state */

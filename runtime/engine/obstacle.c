@@ -93,7 +93,8 @@
  * allocation, no search); a pair that stops touching loses its anchor.
  * The table holds obstacle_maxcontact rows; contacts beyond it (never with
  * the default room, one row per listed element up to 4 per element of the
- * model) are frictionless.  The table is state: checkpoints save it.
+ * model) are frictionless, counted in d->friction_full, of which the run
+ * warns.  The table is state: checkpoints save it.
  *
  * Broad phase.  Rods are cut into chunks of SW_OBSTACLE_CHUNK elements,
  * whose boxes (nodes +- the largest radius) and each rod's box (their
@@ -277,7 +278,7 @@ typedef struct {
   double *anchor;
   int rows;
   double key;
-  int stuck, slipping;
+  int stuck, slipping, full; /* full: contacts beyond the table */
 } Sums;
 
 /* ---- friction: the anchor of a touching pair (see the design) ---- */
@@ -293,7 +294,10 @@ static int friction_force(const swModel *m, const swData *d, int k, const swPose
                           double N, Sums *sum, double F[3], swObstacleContact *rec) {
   const swObstacleDesc *o = &m->obstacle[k];
   if (!(o->static_friction > 0) || !sum->anchor) return 0;
-  if (sum->rows >= m->obstacle_maxcontact) return 0; /* beyond the table: frictionless */
+  if (sum->rows >= m->obstacle_maxcontact) { /* beyond the table: frictionless, counted */
+    sum->full++;
+    return 0;
+  }
   /* the previous anchor of this pair (rows ordered by key) or a new one:
    * the two touching surface points, the rod's p - r n (its arm -r n) and
    * the obstacle's p - D n */
@@ -568,6 +572,7 @@ void sw_obstacle_loads_with(const swModel *m, swData *d, swObstaclePhase phase) 
   d->obstacle_anchor[0] = sum.rows;
   d->obstacle_stuck = sum.stuck;
   d->obstacle_slipping = sum.slipping;
+  d->friction_full += sum.full;
   d->obstacle_contacts = sum.contacts;
   d->obstacle_max_depth = sum.max_depth;
   d->obstacle_tests = sum.tests;

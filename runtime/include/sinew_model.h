@@ -449,6 +449,11 @@ typedef struct {
   double *contact_anchor_old;
   int contact_stuck;         /* pairs of the last evaluation held still      */
   int contact_slipping;      /* and those slipping                           */
+  long friction_full;        /* touching pairs, over the run's evaluations,
+                                left frictionless because the anchor table
+                                (contact.c's or obstacle.c's) was full;
+                                sw_run warns of them (not saved: a
+                                continued run counts its own)            */
   /* obstacle.c: the last evaluation's contacts (the record a friction law
    * will keep its tangential anchor in), figures, and scratch */
   swObstacleContact *obstacle_contact; /* (obstacle_maxcontact)              */

@@ -242,6 +242,10 @@ int sw_run(const swModel *m, swData *d, swOutput *out, const swRunOptions *ro) {
     if (rc == SW_OK) rc = SW_EINTERRUPT;
   }
   progress_end(&p);
+  if (d->friction_full) /* contact.c, obstacle.c: never silently */
+    say(log, "sinew: warning: %ld times a touching pair found the friction anchors' table full "
+             "(4 rows per element in contact) and was frictionless for that evaluation; the "
+             "friction of this run is short there\n", d->friction_full);
   if (log) fflush(log);
   if (handler_installed) sigaction(SIGINT, &previous, NULL);
   return rc;

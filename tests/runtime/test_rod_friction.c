@@ -361,6 +361,48 @@ static void test_self_friction(void **state) {
   assert_true(free == 0 && rubbed < 0); /* friction took energy */
 }
 
+/* N two-element rods crossing at one point (their middle nodes), all
+ * touching each other: up to 4 element pairs a pair of rods against the
+ * anchors' room of 4 rows an element, 8 N + 64.  Below it nothing is
+ * dropped; above it the pairs beyond the room are counted in
+ * d->friction_full (of which sw_run warns), never silently frictionless. */
+static long crossed_star(int nrod) {
+  swSpec *s = sw_spec_new();
+  const double L = 0.05, r = 2e-3, ez[3] = {0, 0, 1};
+  char name[nrod][16];
+  for (int k = 0; k < nrod; k++) {
+    const double a = M_PI * k / nrod, dir[3] = {cos(a), sin(a), 0};
+    const double st[3] = {-0.5 * L * dir[0], -0.5 * L * dir[1], 0.1 * r * k};
+    snprintf(name[k], sizeof name[k], "r%d", k);
+    swRodDesc rod = sw_test_rod(name[k], 2, L, r, st, dir, ez);
+    rod.density = 1000, rod.youngs = 1e7, rod.poisson = 0.5;
+    assert_int_equal(sw_spec_add_rod(s, &rod), k);
+  }
+  swContactDesc c;
+  sw_contact_desc_init(&c);
+  c.stiffness = 2e3, c.damping = 0.05;
+  c.static_friction = 0.6, c.kinetic_friction = 0.4;
+  assert_int_equal(sw_spec_add_contact(s, &c), 0);
+  swModel *m = sw_test_compile_at(s, 0.5);
+  sw_spec_free(s);
+  swData *d = sw_data_new(m);
+  assert_int_equal(sw_steps(m, d, 1), SW_OK);
+  const long full = d->friction_full, over = d->contact_pairs - m->contact_maxanchor;
+  fprintf(stderr, "# %d crossed rods: %d pairs touching, room %d rows, %ld left frictionless\n", nrod,
+          d->contact_pairs, m->contact_maxanchor, full);
+  assert_true(d->contact_pairs >= nrod * (nrod - 1) / 2); /* every two rods touch */
+  assert_int_equal(full, over > 0 ? over : 0);
+  sw_data_free(d);
+  sw_model_free(m);
+  return full;
+}
+
+static void test_table_full(void **state) {
+  (void)state;
+  assert_int_equal(crossed_star(6), 0); /* room 112 */
+  assert_true(crossed_star(24) > 0);    /* room 256 */
+}
+
 int main(void) {
   const struct CMUnitTest tests[] = {
       cmocka_unit_test(test_crossed_holds),
@@ -368,6 +410,7 @@ int main(void) {
       cmocka_unit_test(test_crossed_slides),
       cmocka_unit_test(test_momentum),
       cmocka_unit_test(test_self_friction),
+      cmocka_unit_test(test_table_full),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);
 }
