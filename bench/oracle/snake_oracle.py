@@ -124,6 +124,10 @@ def local_planes(element_position, r0, mode):
 def terrain_contact_kernel(
     mode,
     r0,
+    arm,
+    total_normal,
+    cap_h,
+    mean_velocity,
     surface_tol,
     slip_velocity_tol,
     k,
@@ -163,6 +167,8 @@ def terrain_contact_kernel(
     element_velocity = _node_to_element_velocity(
         mass=mass, node_velocity_collection=velocity_collection
     )
+    if mean_velocity:  # sinew's element velocity: the plain mean of its two nodes
+        element_velocity = 0.5 * (velocity_collection[:, 1:] + velocity_collection[:, :-1])
     v_n = _batch_dot(normals, element_velocity)
     plane_response_force_total = np.zeros((3, n_elem))
     for i in range(3):
@@ -179,7 +185,10 @@ def terrain_contact_kernel(
             plane_response_force[:, e] = 0.0
             plane_response_force_total[:, e] = 0.0
     _elements_to_nodes_inplace(plane_response_force_total, external_forces)
-    plane_response_force_mag = _batch_norm(plane_response_force)
+    if total_normal:  # sinew's: friction from the whole response (balance, penalty, damper), never pulling
+        plane_response_force_mag = np.maximum(_batch_dot(plane_response_force_total, normals), 0.0)
+    else:  # PyElastica's: from the balance alone
+        plane_response_force_mag = _batch_norm(plane_response_force)
 
     # ---- anisotropic kinetic friction (as ..._with_anisotropic_friction) ----
     t_n = _batch_dot(normals, tangents)
@@ -201,7 +210,7 @@ def terrain_contact_kernel(
     torque_arm = np.zeros((3, n_elem))
     for i in range(3):
         for e in range(n_elem):
-            torque_arm[i, e] = -normals[i, e] * radius[e]
+            torque_arm[i, e] = -normals[i, e] * radius[e] * arm
     v_roll = _batch_dot(element_velocity, rolling_direction)
     # director_collection^T applied = lab frame; same expression as PyElastica
     QT = np.zeros((3, 3, n_elem))
@@ -233,6 +242,21 @@ def terrain_contact_kernel(
                 (1.0 - slip_rollf[e]) * kinetic_mu_sideways * plane_response_force_mag[e]
                 * u_roll[e] * rolling_direction[i, e]
             ) * contact[e]
+    if cap_h > 0.0:  # sinew's cap: no kinetic force larger than m |u| / h, the one that stops the slip in a step
+        m_e = 0.5 * (mass[1:] + mass[:-1])
+        m_e[0] += 0.5 * mass[0]
+        m_e[-1] += 0.5 * mass[-1]
+        for e in range(n_elem):
+            # the contact point moves as 1 / (1/m_e + r^2/J_a), J_a = m_e r^2 / 2 for a solid cylinder
+            m_b = 1.0 / (1.0 / m_e[e] + 2.0 * arm * arm / m_e[e])
+            fa = np.sqrt(f_ax[0, e] ** 2 + f_ax[1, e] ** 2 + f_ax[2, e] ** 2)
+            la = m_e[e] * abs(v_ax_mag[e]) / cap_h
+            if fa > la:
+                f_ax[:, e] *= la / fa
+            fb = np.sqrt(f_roll[0, e] ** 2 + f_roll[1, e] ** 2 + f_roll[2, e] ** 2)
+            lb = m_b * abs(slip_roll_mag[e]) / cap_h
+            if fb > lb:
+                f_roll[:, e] *= lb / fb
     _elements_to_nodes_inplace(f_ax, external_forces)
     _elements_to_nodes_inplace(f_roll, external_forces)
     external_torques += _batch_matvec(director_collection, _batch_cross(torque_arm, f_roll))
@@ -241,12 +265,17 @@ def terrain_contact_kernel(
 
 
 class TerrainContact(ea.NoForces):
-    def __init__(self, k, nu, slip_velocity_tol, kinetic_mu_array, r0, mode=1):
+    def __init__(self, k, nu, slip_velocity_tol, kinetic_mu_array, r0, mode=1, arm=1.0,
+                 total_normal=False, cap_h=0.0, mean_velocity=False, surface_tol=1.0e-4):
         super().__init__()
+        self.total_normal = bool(total_normal)
+        self.cap_h = np.float64(cap_h)
+        self.mean_velocity = bool(mean_velocity)
+        self.arm = np.float64(arm)  # 1: friction at the contact point (as PyElastica); 0: at the centreline
         self.r0 = np.float64(r0)  # fixed offset of the contact surface below h(x)
         self.k = np.float64(k)
         self.nu = np.float64(nu)
-        self.surface_tol = np.float64(1.0e-4)  # as PyElastica's plane contact
+        self.surface_tol = np.float64(surface_tol)  # 1e-4 m: as PyElastica's plane contact
         self.slip_velocity_tol = np.float64(slip_velocity_tol)
         self.mu_f, self.mu_b, self.mu_s = [np.float64(m) for m in kinetic_mu_array]
         self.mode = int(mode)
@@ -256,6 +285,10 @@ class TerrainContact(ea.NoForces):
         self.last_normal_force = terrain_contact_kernel(
             self.mode,
             self.r0,
+            self.arm,
+            self.total_normal,
+            self.cap_h,
+            self.mean_velocity,
             self.surface_tol,
             self.slip_velocity_tol,
             self.k,
@@ -277,6 +310,41 @@ class TerrainContact(ea.NoForces):
 
     def apply_torques(self, system, time=0.0):
         pass
+
+
+# --------------------------------------------------------------------------
+# muscle torque about a body-fixed axis (sinew's torque_wave)
+# --------------------------------------------------------------------------
+@njit(cache=True)
+def body_fixed_muscle_kernel(time, my_spline, s, angular_frequency, wave_number, phase_shift,
+                             ramp_up_time, director_collection, external_torques):
+    """The moment of PyElastica's MuscleTorques (the same spline, phase,
+    ramp and nodes 1..n-1, s from the head), but at node k about the
+    normalised mean of the two adjacent elements' d1 (the axis the moment
+    had in each element's material frame at t = 0, when d1 = z), as sinew's
+    torque_wave applies it, instead of about the lab's z."""
+    factor = min(1.0, time / ramp_up_time)
+    mag = factor * my_spline * np.sin(angular_frequency * time - wave_number * s + phase_shift)
+    n = director_collection.shape[2]
+    for k in range(1, n):
+        tk = mag[n - 1 - k]  # PyElastica's torque_mag[::-1][k]
+        m = director_collection[0, :, k - 1] + director_collection[0, :, k]
+        m = m / np.sqrt(m[0] * m[0] + m[1] * m[1] + m[2] * m[2])
+        for i in range(3):
+            ci = 0.0
+            cj = 0.0
+            for j in range(3):
+                ci += director_collection[i, j, k] * m[j]
+                cj += director_collection[i, j, k - 1] * m[j]
+            external_torques[i, k] += tk * ci
+            external_torques[i, k - 1] -= tk * cj
+
+
+class BodyFixedMuscleTorques(ea.MuscleTorques):
+    def apply_torques(self, system, time=np.float64(0.0)):
+        body_fixed_muscle_kernel(np.float64(time), self.my_spline, self.s, self.angular_frequency,
+                                 self.wave_number, self.phase_shift, self.ramp_up_time,
+                                 system.director_collection, system.external_torques)
 
 
 # --------------------------------------------------------------------------
@@ -339,7 +407,7 @@ def build(args):
     b_coeff = np.array([0.0, 17.4, 48.5, 5.4, 14.7, 0.0])
     wave_length = 0.97 * L
     sim.add_forcing_to(rod).using(
-        ea.MuscleTorques,
+        BodyFixedMuscleTorques if args.muscle_axis == "body" else ea.MuscleTorques,
         base_length=L,
         b_coeff=b_coeff,
         period=period,
@@ -379,6 +447,11 @@ def build(args):
             kinetic_mu_array=kinetic_mu,
             r0=r,
             mode={"flatterrain": 0, "terrain": 1, "slopeterrain": 2}[args.ground],
+            arm=args.arm,
+            total_normal=args.normal == "total",
+            cap_h=args.dt if args.cap else 0.0,
+            mean_velocity=args.element_velocity == "mean",
+            surface_tol=args.surface_tol,
         )
     dl = L / n
     if args.damping == "perlength":
@@ -416,6 +489,23 @@ def main():
     p.add_argument("--sample", type=float, default=0.01)
     p.add_argument("--slip_tol", type=float, default=1e-8)
     p.add_argument("--damping", choices=["perlength", "permass"], default="perlength")
+    p.add_argument("--arm", type=float, default=1.0,
+                   help="terrain grounds only: 1 = friction at the contact point, r below the axis, with its "
+                        "rolling couple (PyElastica's); 0 = friction at the centreline, no couple (sinew's default)")
+    p.add_argument("--normal", choices=["balance", "total"], default="balance",
+                   help="terrain grounds only: the normal force friction scales with: PyElastica's balance of the "
+                        "element's loads, or sinew's whole response (balance, penalty and damper)")
+    p.add_argument("--cap", action="store_true",
+                   help="terrain grounds only: cap each kinetic friction force at m |u| / dt (sinew's)")
+    p.add_argument("--element_velocity", choices=["weighted", "mean"], default="weighted",
+                   help="terrain grounds only: element velocity as PyElastica's mass-weighted mean of its nodes, "
+                        "or their plain mean (sinew's)")
+    p.add_argument("--surface_tol", type=float, default=1.0e-4,
+                   help="terrain grounds only: gap above the radius up to which an element still touches "
+                        "(PyElastica's 1e-4 m; sinew's default is 1e-6 r)")
+    p.add_argument("--muscle_axis", choices=["lab", "body"], default="lab",
+                   help="the muscle moment about the lab's z (PyElastica's MuscleTorques) or about each "
+                        "node's body-fixed axis, the mean of its two elements' d1 (sinew's torque_wave)")
     p.add_argument("--out", required=True)
     p.add_argument("--save_every", type=float, default=5.0, help="checkpoint interval (s)")
     args = p.parse_args()

@@ -6,7 +6,9 @@ import numpy as np
 sys.argv = [sys.argv[0]]
 import snake_oracle as so
 def mk(ground):
-    a = argparse.Namespace(ground=ground, shear=1.0, twist=1.0, T=1.0, dt=1e-5, n=50, sample=0.01, slip_tol=1e-8, out='x', save_every=1, damping='perlength')
+    a = argparse.Namespace(ground=ground, shear=1.0, twist=1.0, T=1.0, dt=1e-5, n=50, sample=0.01, slip_tol=1e-8, out='x', save_every=1, damping='perlength',
+                           arm=1.0, normal='balance', cap=False, element_velocity='weighted', surface_tol=1e-4,
+                           muscle_axis='lab')
     return so.build(a)
 for ga, gb, nsteps in (('flat', 'flatterrain', 30000), ('slope', 'slopeterrain', 500)):
     simA, rodA, _ = mk(ga); simB, rodB, _ = mk(gb)
