@@ -265,6 +265,14 @@ void sw_muscle_system_tension(const swModel *m, swData *d, int f, const double *
  * model; the rings' rows of filament f from the state (SW_RING_ROW doubles
  * each in d->ring_row) and the rows into slots [lo, hi); the rows' contact
  * search reset; the rings' step bound; the path length now. */
+/* The rod of element slot e (a real element; 0 otherwise).  Rods' slots
+ * are not in rod order (elastic rods come first, sinew.h "Layout"), so each
+ * rod's range is tested. */
+static inline int sw_rod_of_elem(const swModel *m, int e) {
+  for (int r = 0; r < m->nrod; r++)
+    if (m->elem_adr[r] <= e && e < m->elem_adr[r] + m->rod_nelem[r]) return r;
+  return 0;
+}
 #define SW_RING_ROW 8
 int sw_via_check(const swMuscleDesc *md, int nrod, char *err, size_t errlen);
 double sw_via_path_rest(const swMuscleDesc *md);

@@ -417,13 +417,6 @@ void sw_via_reset(const swModel *m, swData *d) {
   }
 }
 
-/* The rod of element slot e. */
-static int rod_of_slot(const swModel *m, int e) {
-  for (int r = 0; r < m->nrod; r++)
-    if (m->elem_adr[r] <= e && e < m->elem_adr[r] + m->rod_nelem[r]) return r;
-  return 0;
-}
-
 /* Whether ring q's contact at rest is on an element touching an end of
  * filament f whose velocity the joints' system gives (via_implicit.c: the
  * ring's share there stays explicit): the filament's node nearest to the
@@ -476,7 +469,7 @@ double sw_via_stable_dt(const swModel *m, int f) {
       const int e = m->ring_elem[q];
       if (e < 0) continue;
       mq = fmin(m->mass[e], m->mass[e + 1]);
-      aq = e < m->nslot_elastic && !(m->nimplicit && m->rod_implicit[rod_of_slot(m, e)])
+      aq = e < m->nslot_elastic && !(m->nimplicit && m->rod_implicit[sw_rod_of_elem(m, e)])
                ? fmax(SW_AT(m, m->shear_stiff, e, 2), SW_AT(m, m->shear_stiff, e, 0)) * m->inv_rest_len[e]
                : 0.0;
     }

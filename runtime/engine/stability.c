@@ -281,15 +281,6 @@ double sw_stable_dt_rod_at(const swModel *m, int r, double e, double eps) {
   return dt;
 }
 
-/* The rod of element slot e (a real element).  Rods' slots are not in rod
- * order (elastic rods come first, sinew.h "Layout"), so each rod's range is
- * tested. */
-static int rod_of_elem(const swModel *m, int e) {
-  for (int r = 0; r < m->nrod; r++)
-    if (m->elem_adr[r] <= e && e < m->elem_adr[r] + m->rod_nelem[r]) return r;
-  return 0;
-}
-
 /* Node i's side of joint j: the joint spring k is one more spring on the
  * node, so the Gershgorin row of the node in the lumped chain (of which the
  * rod's axial bound 4 EA/(l m) is the interior-node instance) bounds the
@@ -299,7 +290,7 @@ static int rod_of_elem(const swModel *m, int e) {
  * transverse row).  The joint damper adds c = s nu / m_i to the node's
  * damping rate. */
 static double joint_node_dt(const swModel *m, const swJointDesc *jd, int i, int e, int s) {
-  int r = rod_of_elem(m, e);
+  int r = sw_rod_of_elem(m, e);
   int first = m->node_adr[r], last = first + m->rod_nelem[r];
   double ksum = 0;
   for (int q = i - 1; q <= i; q++) { /* elements q = i-1 and i of node i */
@@ -321,7 +312,7 @@ static double joint_node_dt(const swModel *m, const swJointDesc *jd, int i, int 
  * penalty k_l acts about the hinge axis (or the cone's swing), k_t across
  * it, so the row takes the larger of the two (joint.c, "Limits"). */
 static double joint_elem_dt(const swModel *m, const swJointDesc *jd, int e, int s) {
-  int r = rod_of_elem(m, e), i = e - m->elem_adr[r], n = m->rod_nelem[r], va = m->vor_adr[r];
+  int r = sw_rod_of_elem(m, e), i = e - m->elem_adr[r], n = m->rod_nelem[r], va = m->vor_adr[r];
   double l = m->rest_len[e], rad = m->radius[e], A = SW_PI * rad * rad;
   double rho = SW_AT(m, m->inertia, e, 0) / (l * A * rad * rad / 4.0);
   double Gs = SW_AT(m, m->shear_stiff, e, 0) / (A * 4.0 / 3.0);

@@ -62,11 +62,8 @@ int sw_via_ring_implicit(const swModel *m, int f, int q) {
   if (m->integrator != SW_IMEX || !m->fil_implicit || !(m->fil_implicit[f] & SW_FIL_IMPLICIT)) return 0;
   if (!(m->ring_stiffness[q] > 0) && !(m->ring_damping[q] > 0)) return 0;
   if (!m->fil_system || !m->fil_system[f] || m->ring_elem[q] < 0) return 1;
-  const int e = m->ring_elem[q];
-  for (int r = 0; r < m->nrod; r++)
-    if (m->elem_adr[r] <= e && e < m->elem_adr[r] + m->rod_nelem[r])
-      return !sw_rod_is_rigid(m, r) && !(m->nimplicit && m->rod_implicit[r]);
-  return 0;
+  const int r = sw_rod_of_elem(m, m->ring_elem[q]);
+  return !sw_rod_is_rigid(m, r) && !(m->nimplicit && m->rod_implicit[r]);
 }
 
 /* D at node i (0..n) of filament f's rod: its inverse mass, 0 where its dv
