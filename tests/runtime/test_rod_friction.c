@@ -211,6 +211,19 @@ static void angular_momentum(const swModel *m, const swData *d, double L[3]) {
   sw_test_momenta(m, d, P, L);
 }
 
+/* The rods of s touching with friction (mu_s 0.6, mu_k 0.4, 2e3 N/m),
+ * compiled at half the stable step; s is freed. */
+static swModel *rubbing_model(swSpec *s) {
+  swContactDesc c;
+  sw_contact_desc_init(&c);
+  c.stiffness = 2e3, c.damping = 0.05;
+  c.static_friction = 0.6, c.kinetic_friction = 0.4;
+  assert_int_equal(sw_spec_add_contact(s, &c), 0);
+  swModel *m = sw_test_compile_at(s, 0.5);
+  sw_spec_free(s);
+  return m;
+}
+
 static void test_momentum(void **state) {
   (void)state;
   swSpec *s = sw_spec_new();
@@ -220,13 +233,7 @@ static void test_momentum(void **state) {
   a.density = b.density = 1000, a.youngs = b.youngs = 1e7, a.poisson = b.poisson = 0.5;
   assert_int_equal(sw_spec_add_rod(s, &a), 0);
   assert_int_equal(sw_spec_add_rod(s, &b), 1);
-  swContactDesc c;
-  sw_contact_desc_init(&c);
-  c.stiffness = 2e3, c.damping = 0.05;
-  c.static_friction = 0.6, c.kinetic_friction = 0.4;
-  assert_int_equal(sw_spec_add_contact(s, &c), 0);
-  swModel *m = sw_test_compile_at(s, 0.5);
-  sw_spec_free(s);
+  swModel *m = rubbing_model(s);
   swData *d = sw_data_new(m);
   /* b comes down on a at 0.2 m/s, sliding across it at 0.15 m/s along x
    * and 0.1 m/s along y: its pairs stick at times and slip at others */
@@ -378,13 +385,7 @@ static long crossed_star(int nrod) {
     rod.density = 1000, rod.youngs = 1e7, rod.poisson = 0.5;
     assert_int_equal(sw_spec_add_rod(s, &rod), k);
   }
-  swContactDesc c;
-  sw_contact_desc_init(&c);
-  c.stiffness = 2e3, c.damping = 0.05;
-  c.static_friction = 0.6, c.kinetic_friction = 0.4;
-  assert_int_equal(sw_spec_add_contact(s, &c), 0);
-  swModel *m = sw_test_compile_at(s, 0.5);
-  sw_spec_free(s);
+  swModel *m = rubbing_model(s);
   swData *d = sw_data_new(m);
   assert_int_equal(sw_steps(m, d, 1), SW_OK);
   const long full = d->friction_full, over = d->contact_pairs - m->contact_maxanchor;
