@@ -60,7 +60,11 @@ for s in $STUDIES; do
   t1=$(date +%s.%N)
   wall=$(awk "BEGIN { printf \"%.0f\", $t1 - $t0 }")
   commit=$(git rev-parse --short=12 HEAD 2>/dev/null || echo unknown)
-  [ -n "$(git status --porcelain --untracked-files=no 2>/dev/null)" ] && commit="$commit+"
+  # "+": the sources differ from the commit (the page and its plots, which
+  # this command writes, do not count)
+  case $PAGE in /*) mine= ;; *) mine=":(exclude)$PAGE" ;; esac
+  [ -n "$(git status --porcelain --untracked-files=no -- . ${mine:+"$mine"} \
+      ${mine:+":(exclude)$(dirname "$PAGE")/img/reproduce"} 2>/dev/null)" ] && commit="$commit+"
   printf '{"exit": %d, "wall": %s, "budget": "%s", "commit": "%s", "made": "%s", "load": %s}\n' "$rc" "$wall" \
     "$BUDGET" "$commit" "$(date -u '+%Y-%m-%d %H:%M UTC')" "$load" > "$dir/status"
   if [ $rc -ne 0 ]; then

@@ -87,7 +87,11 @@ def main():
     os.makedirs(imgdir, exist_ok=True)
 
     commit = sh("git", "rev-parse", "--short=12", "HEAD")
-    dirty = sh("git", "status", "--porcelain", "--untracked-files=no")
+    # the sources against the commit: the page and its plots, which this
+    # writes, do not count
+    mine = [os.path.relpath(p, ROOT) for p in (page, imgdir)]
+    dirty = sh("git", "status", "--porcelain", "--untracked-files=no", "--", ".",
+               *[":(exclude)" + p for p in mine if not p.startswith("..")])
     out = []
     w = out.append
     w("# The reference reproduced\n")
