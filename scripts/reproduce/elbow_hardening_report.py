@@ -161,9 +161,7 @@ def main():
     axd.set_xlabel("t (s)")
     axd.set_ylim(1e-8, None)
     axd.legend(fontsize=7, frameon=False, loc="lower right", ncol=2)
-    fig.tight_layout()
-    fig.savefig(os.path.join(out, "elbow_hardening.png"), dpi=110)
-    s.plot("elbow_hardening.png")
+    s.save_plot(fig, "elbow_hardening.png")
     s.note("Both budgets run the reference's 0.5 s (Suppl. Table 5) at the scene's explicit step, %.4g ns (half "
            "the stable estimate; the reference's 50 ns is %s; the original is %.1e deg from the stored 50 ns "
            "run of the same flexion, examples/reference/elbow_flexion_50ns.csv). As the reference's arm has no "

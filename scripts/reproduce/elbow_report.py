@@ -263,9 +263,7 @@ def report(out, budget, omegas):
     ax2.set_ylabel("F / F_qs(0.85)")
     ax2.set_title("force-velocity, isokinetic arm (Main Fig. 1d)", fontsize=10)
     ax2.legend(fontsize=7, frameon=False)
-    fig.tight_layout()
-    fig.savefig(os.path.join(out, "force_length_velocity.png"), dpi=110)
-    s.plot("force_length_velocity.png")
+    s.save_plot(fig, "force_length_velocity.png")
     fig, ax = plt.subplots(figsize=(6.4, 3.4))
     ax.plot(ref[:, 0], np.degrees(-ref[:, 1]), "k", lw=2.5, alpha=0.4, label="50 ns reference (position Verlet)")
     ax.plot(t, np.degrees(-a), "tab:blue", lw=1, label="this run" + (" (imex, 125 us)" if quick else ""))
@@ -273,9 +271,7 @@ def report(out, budget, omegas):
     ax.set_xlabel("t (s)")
     ax.set_ylabel("elbow flexion (deg)")
     ax.legend(fontsize=8, frameon=False)
-    fig.tight_layout()
-    fig.savefig(os.path.join(out, "flexion.png"), dpi=110)
-    s.plot("flexion.png")
+    s.save_plot(fig, "flexion.png")
 
     s.note("Sinew's arm is not the reference's in its geometry: its biceps runs straight from the top of the "
            "humerus to the radius (models/human_arm.sinew), so its stretch passes 0.85 near %.0f deg of flexion, "

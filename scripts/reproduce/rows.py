@@ -38,6 +38,12 @@ class Study:
     def plot(self, name):
         self.meta["plots"].append(name)
 
+    def save_plot(self, fig, name, dpi=110, **savefig):
+        """fig laid out, written as name in the study's folder, and listed."""
+        fig.tight_layout()
+        fig.savefig(os.path.join(self.outdir, name), dpi=dpi, **savefig)
+        self.plot(name)
+
     def note(self, text):
         self.meta["notes"] = (self.meta["notes"] + "\n\n" + text).strip()
 

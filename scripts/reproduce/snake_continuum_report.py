@@ -191,9 +191,7 @@ def main():
     ax.set_ylabel("centre of mass x (m)")
     ax.set_xlim(0, tend)
     ax.legend(fontsize=8, frameon=False)
-    fig.tight_layout()
-    fig.savefig(os.path.join(out, "com.png"), dpi=110)
-    s.plot("com.png")
+    s.save_plot(fig, "com.png")
     if budget == "quick":
         s.note("The quick budget runs %s of the reference's 10 s: the window 2-5 s, in which the reference's "
                "own code is free of the instability, is whole." % duration)

@@ -111,9 +111,7 @@ def main():
     ax.set_aspect("equal", adjustable="datalim")
     ax.set_title("centre of mass, t = 0 to 3 s (Suppl. Fig. 2b)")
     ax.legend(fontsize=8, frameon=False)
-    fig.tight_layout()
-    fig.savefig(os.path.join(out, "com_3s.png"), dpi=110)
-    s.plot("com_3s.png")
+    s.save_plot(fig, "com_3s.png")
     s.note("Every evaluation runs 5 s of the scene at dt = 20 us (imex) and scores the centre of mass's mean forward "
            "speed over 1-5 s less a penalty for lifting it more than 5 mm. The evaluations of a study are spread "
            "over MPI ranks, but each one's result depends only on its design: the study files are the same for "

@@ -79,9 +79,7 @@ def main():
     ax.set_xlabel("x (m)")
     ax.set_ylabel("centre of mass z (m)")
     ax.legend(fontsize=8, frameon=False)
-    fig.tight_layout()
-    fig.savefig(os.path.join(out, "terrain.png"), dpi=110)
-    s.plot("terrain.png")
+    s.save_plot(fig, "terrain.png")
     s.write()
 
 

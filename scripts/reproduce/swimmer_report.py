@@ -75,9 +75,7 @@ def main():
     ax.set_title("flagella swimmer: substrate and cell x100 in G (%s, %.3g s)" % (budget, T), fontsize=9)
     ax.legend(fontsize=8)
     ax.grid(alpha=0.3)
-    fig.tight_layout()
-    fig.savefig(os.path.join(outdir, "swimmer_hardening.png"), dpi=120)
-    st.plot("swimmer_hardening.png")
+    st.save_plot(fig, "swimmer_hardening.png", dpi=120)
 
     nb = int(T * BEAT + 1e-9)   # whole beats: the stroke's back-and-forth cancels there
     tb = nb / BEAT

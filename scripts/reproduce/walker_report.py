@@ -198,9 +198,7 @@ def main():
     ax.set_title("walker: muscle x10, scaffold x$10^4$ in G (%s, %.3g s)" % (budget, T), fontsize=9)
     ax.legend(fontsize=7, ncol=2, loc="upper center", bbox_to_anchor=(0.5, -0.16))
     ax.grid(alpha=0.3)
-    fig.tight_layout()
-    fig.savefig(os.path.join(outdir, "walker_hardening.png"), dpi=120, bbox_inches="tight")
-    st.plot("walker_hardening.png")
+    st.save_plot(fig, "walker_hardening.png", dpi=120, bbox_inches="tight")
 
     cases = [c for c, _, _ in CASES if c in runs]
     fast = max(cases, key=lambda c: speed[c])
