@@ -127,30 +127,30 @@ for cut in 7ms 12ms; do
   diag <diff
 done
 
+# continued NAME SCENE FULL PART WHAT COMPILED PARTWHAT: SCENE compiled,
+# run FULL ms in one go and PART ms, the part continued to FULL: the same
+# datasets to the bit
+continued() {
+  cd "$ROOT" || exit 1
+  "$SC" "$2" -o "$TMP/$1" 2>"$TMP/err"; ok $? "$6"
+  diag <"$TMP/err"
+  cd "$TMP" || exit 1
+  ./$1 --duration ${3}ms --out $1_full.h5 --quiet 2>err; ok $? "an uninterrupted run of $3 ms"
+  ./$1 --duration ${4}ms --out $1_part.h5 --quiet 2>err; ok $? "a run of $4 ms, $5"
+  ./$1 --restart $1_part.h5 --duration ${3}ms --quiet >run 2>&1; rc=$?
+  ok $rc "continued to $3 ms (exit $rc)"
+  h5diff $1_part.h5 $1_full.h5 >diff 2>&1; ok $? "every dataset equals the uninterrupted run's (h5diff)"
+  diag <diff
+}
+
 # 6. friction's anchors (obstacle.c) are state: a rope held on a post by
 #    stick-slip friction, continued part way through its settling
-cd "$ROOT" || exit 1
-"$SC" examples/constructs/friction.sinew -o "$TMP/fric" 2>"$TMP/err"; ok $? "the rope on a post with friction compiles"
-diag <"$TMP/err"
-cd "$TMP" || exit 1
-./fric --duration 30ms --out fric_full.h5 --quiet 2>err; ok $? "an uninterrupted run of 30 ms"
-./fric --duration 14ms --out fric_part.h5 --quiet 2>err; ok $? "a run of 14 ms, its anchors half stuck, half slipping"
-./fric --restart fric_part.h5 --duration 30ms --quiet >run 2>&1; rc=$?
-ok $rc "continued to 30 ms (exit $rc)"
-h5diff fric_part.h5 fric_full.h5 >diff 2>&1; ok $? "every dataset equals the uninterrupted run's (h5diff)"
-diag <diff
+continued fric examples/constructs/friction.sinew 30 14 "its anchors half stuck, half slipping" \
+  "the rope on a post with friction compiles"
 
-# 6. rod-rod friction's anchors (contact.c) are state too: one stick held
+# 7. rod-rod friction's anchors (contact.c) are state too: one stick held
 #    on two bars, one sliding over them, continued part way
-cd "$ROOT" || exit 1
-"$SC" examples/constructs/rod_friction.sinew -o "$TMP/rodfric" 2>"$TMP/err"; ok $? "the sticks on two bars with rod-rod friction compile"
-diag <"$TMP/err"
-cd "$TMP" || exit 1
-./rodfric --duration 40ms --out rodfric_full.h5 --quiet 2>err; ok $? "an uninterrupted run of 40 ms"
-./rodfric --duration 18ms --out rodfric_part.h5 --quiet 2>err; ok $? "a run of 18 ms, one pair stuck, one slipping"
-./rodfric --restart rodfric_part.h5 --duration 40ms --quiet >run 2>&1; rc=$?
-ok $rc "continued to 40 ms (exit $rc)"
-h5diff rodfric_part.h5 rodfric_full.h5 >diff 2>&1; ok $? "every dataset equals the uninterrupted run's (h5diff)"
-diag <diff
+continued rodfric examples/constructs/rod_friction.sinew 40 18 "one pair stuck, one slipping" \
+  "the sticks on two bars with rod-rod friction compile"
 
 done_testing
