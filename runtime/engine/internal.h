@@ -364,6 +364,13 @@ int sw_rigid_joints_setup(swModel *m);
 void sw_rigid_joints_free(swModel *m);
 size_t sw_rigid_joints_scratch(const swModel *m);
 int sw_rigid_group_unknowns(const swModel *m, int g); /* group g's unknowns */
+/* The order of each group's dense members (joint_order.c): members 0 ..
+ * nb - 1 in group group[s] (-1: not ordered), dof[s] unknowns each, joined
+ * by the nedge pairs edges[2 q], edges[2 q + 1]; order[] receives the
+ * ordered members group by group, each group's chosen to cost its envelope
+ * Cholesky least.  Returns 0 when out of memory. */
+int sw_order_members(int nb, const int *group, int ngroup, const int *dof, int nedge,
+                     const int *edges, int *order);
 int sw_rigid_joints_kick(const swModel *m, swData *d, double h, double *load);
 /* Implicit rods and leaves in that system (joint_ports.c): a rod member k's
  * block S and right-hand side S p0 into A (n x n, its unknowns from off)

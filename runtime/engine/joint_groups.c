@@ -174,15 +174,61 @@ static int find_root(int *parent, int s) {
   return s;
 }
 
+/* The dense members (not leaves) of every group, group by group, each
+ * group's in the order joint_order.c chooses (a new array, NULL when out of
+ * memory).  Its edges are what the envelope takes (number_groups below,
+ * pair_envelope): the implicit joints between dense members, each dense
+ * filament's two ends, and the ports' members of each leaf pair; its
+ * unknowns a body's six, a rod member's ports', an attachment's three and
+ * its element's three when a joint turns it.  Members numbered as setup met
+ * them; root and group_of as number_groups has them. */
+static int *dense_member_order(const swModel *m, const int *member, const int *body, const int *rod,
+                               const int *rdof, const int *leaf, const int *leaf_member,
+                               const int *partner, const int *fend, const int *root,
+                               const int *group_of) {
+  const int nb = m->nrigid_block;
+  const size_t N = (size_t)nb, E = (size_t)m->njoint + (size_t)m->nfil + N + 1;
+  int *group = malloc(N * sizeof(int)), *dof = malloc(N * sizeof(int));
+  int *edges = malloc(2 * E * sizeof(int)), *order = malloc(N * sizeof(int));
+  int ok = group && dof && edges && order, ne = 0;
+  for (int s = 0; ok && s < nb; s++) {
+    group[s] = leaf[s] < 0 ? group_of[root[s]] : -1;
+    dof[s] = body[s] >= 0 ? 6 : rod[s] >= 0 ? rdof[s] : 3;
+  }
+  for (int j = 0; ok && j < m->njoint; j++) {
+    const int sa = member[2 * j], sb = member[2 * j + 1];
+    if (!m->joint_implicit[j]) continue;
+    const swJointDesc *jd = &m->joint[j]; /* an attachment whose element it turns */
+    if (jd->kind != SW_JOINT_SPHERICAL || sw_joint_limited(jd))
+      for (int side = 0; side < 2; side++) {
+        const int k = member[2 * j + side];
+        if (k >= 0 && body[k] < 0 && rod[k] < 0) dof[k] = 6;
+      }
+    if (sa >= 0 && sb >= 0 && leaf[sa] < 0 && leaf[sb] < 0) edges[2 * ne] = sa, edges[2 * ne + 1] = sb, ne++;
+  }
+  for (int f = 0; ok && f < m->nfil; f++)
+    if (fend[2 * f] >= 0 && fend[2 * f + 1] >= 0)
+      edges[2 * ne] = fend[2 * f], edges[2 * ne + 1] = fend[2 * f + 1], ne++;
+  for (int s = 0; ok && s < nb; s++)
+    if (partner[s] > s && leaf_member[s] >= 0 && leaf_member[partner[s]] >= 0 &&
+        leaf_member[s] != leaf_member[partner[s]])
+      edges[2 * ne] = leaf_member[s], edges[2 * ne + 1] = leaf_member[partner[s]], ne++;
+  if (ok) ok = sw_order_members(nb, group, m->nrigid_group, dof, ne, edges, order);
+  free(group), free(dof), free(edges);
+  if (!ok) free(order), order = NULL;
+  return order;
+}
+
 /* The groups of the system, its members and joints numbered group by group
  * (the header).  On entry the members are numbered in the order the joints
  * first meet them (the one system's numbering, which the groups keep):
  * member[2 j + side] is that number of joint j's side (-1: still), and
  * body, node and elem describe each member; root, group_of and next are
  * scratch of nb ints.  On return m->joint_block holds the blocks. */
-static void number_groups(swModel *m, const int *member, const int *body, const int *node,
-                          const int *elem, const int *rod, const int *rdof, const int *leaf,
-                          const int *partner, const int *fend, int *root, int *group_of, int *next) {
+static int number_groups(swModel *m, const int *member, const int *body, const int *node,
+                         const int *elem, const int *rod, const int *rdof, const int *leaf,
+                         const int *leaf_member, const int *partner, const int *fend, int *root,
+                         int *group_of, int *next) {
   const int nb = m->nrigid_block;
   for (int s = 0; s < nb; s++) root[s] = s, group_of[s] = -1;
   for (int j = 0; j < m->njoint; j++) { /* the edges */
@@ -206,27 +252,34 @@ static void number_groups(swModel *m, const int *member, const int *body, const 
   for (int s = 0; s < nb; s++)
     if (group_of[root[s]] < 0) group_of[root[s]] = ngroup++;
   m->nrigid_group = ngroup;
-  /* the blocks: sorted by group, each group's members in the one system's
-   * order (a counting sort), its leaves (joint_ports.c) after the others */
+  /* the order of each group's dense members (joint_order.c) */
+  int *dense_order = dense_member_order(m, member, body, rod, rdof, leaf, leaf_member, partner, fend,
+                                        root, group_of);
+  if (!dense_order) return 0;
+  /* the blocks: sorted by group, each group's dense members in that order,
+   * its leaves (joint_ports.c) after them in the order setup met them */
   int *adr = m->rigid_group_adr, *jadr = m->rigid_group_joint_adr, *block = root;
   for (int g = 0; g <= ngroup; g++) adr[g] = jadr[g] = 0;
   for (int s = 0; s < nb; s++) adr[group_of[root[s]] + 1]++;
   for (int g = 0; g < ngroup; g++) adr[g + 1] += adr[g];
   memcpy(next, adr, (size_t)ngroup * sizeof(int));
-  for (int pass = 0; pass < 2; pass++)
-    for (int s = 0; s < nb; s++) {
-      if ((leaf[s] >= 0) != pass) continue;
-      const int k = next[group_of[root[s]]]++;
-      block[s] = k; /* root[s] is read no more for s */
-      m->rigid_block_body[k] = body[s];
-      m->rigid_block_node[k] = node[s];
-      m->rigid_block_elem[k] = elem[s];
-      m->rigid_block_rod[k] = rod[s];
-      m->rigid_block_leaf[k] = leaf[s]; /* a port's number before sorting: setup renumbers */
-      m->rigid_block_dof[k] = rdof[s];  /* a rod member's: its ports' */
-      m->rigid_block_rot[k] = 0;
-      if (body[s] >= 0) m->rigid_block[body[s]] = k;
-    }
+  int ndense = 0;
+  for (int s = 0; s < nb; s++) ndense += leaf[s] < 0;
+  for (int t = 0; t < ndense + nb; t++) { /* the dense members, then the leaves */
+    const int s = t < ndense ? dense_order[t] : t - ndense;
+    if (t >= ndense && leaf[s] < 0) continue;
+    const int k = next[group_of[root[s]]]++;
+    block[s] = k; /* root[s] is read no more for s */
+    m->rigid_block_body[k] = body[s];
+    m->rigid_block_node[k] = node[s];
+    m->rigid_block_elem[k] = elem[s];
+    m->rigid_block_rod[k] = rod[s];
+    m->rigid_block_leaf[k] = leaf[s]; /* a port's number before sorting: setup renumbers */
+    m->rigid_block_dof[k] = rdof[s];  /* a rod member's: its ports' */
+    m->rigid_block_rot[k] = 0;
+    if (body[s] >= 0) m->rigid_block[body[s]] = k;
+  }
+  free(dense_order);
   for (int q = 0; q < 2 * m->njoint; q++) m->joint_block[q] = member[q] >= 0 ? block[member[q]] : -1;
   /* the joints likewise, each group's in joint order; the group of a joint
    * is that of a member on it */
@@ -286,6 +339,7 @@ static void number_groups(swModel *m, const int *member, const int *body, const 
   for (int t = 0; t < nb; t++)
     for (int s = m->rigid_block_env[t]; s < t; s++)
       if (m->rigid_block_reach[s] < t) m->rigid_block_reach[s] = t;
+  return 1;
 }
 
 /* The ports' numbers sorted by member (each member's in the order the
@@ -472,7 +526,7 @@ int sw_rigid_joints_setup(swModel *m) {
    * their number, body/node/elem/rod what each is; the ports likewise */
   const size_t S = (size_t)m->stride;
   const size_t F = (size_t)(m->nfil ? m->nfil : 1);
-  int *scratch = malloc((2 * J + 11 * NB + 2 * S + 10 * J + 2 * R + 3 * F) * sizeof(int));
+  int *scratch = malloc((2 * J + 12 * NB + 2 * S + 10 * J + 2 * R + 3 * F) * sizeof(int));
   if (!scratch) return 0;
   int *member = scratch, *body = member + 2 * J, *node = body + NB, *elem = node + NB;
   int *rod = elem + NB, *rdof = rod + NB, *leaf = rdof + NB;
@@ -483,6 +537,7 @@ int sw_rigid_joints_setup(swModel *m) {
   int *prot = pelem + 2 * J, *porder = prot + 2 * J; /* 2 J + NB: number_ports' */
   int *rod_first = porder + 2 * J + NB, *fil_of_rod = rod_first + R, *ready = fil_of_rod + R;
   int *fend = ready + F; /* dense_ends: each filament's end members, -1 */
+  int *leaf_member = fend + 2 * F; /* each leaf's port's member, -1 */
   for (size_t r = 0; r < R; r++) fil_of_rod[r] = -1;
   for (int f = 0; f < m->nfil; f++) fil_of_rod[m->fil_rod[f]] = f;
   hill_ready(m, fil_of_rod, ready);
@@ -533,8 +588,13 @@ int sw_rigid_joints_setup(swModel *m) {
   dense_ends(m, at_node, leaf, ready, fend);
   int *partner = at_node, *lfil = port_at; /* the node maps are read no more (S >= nb) */
   pair_leaves(m, nb, member, leaf, fil_of_rod, ready, partner, lfil);
-  if (nb) number_groups(m, member, body, node, elem, rod, rdof, leaf, partner, fend, first, first + NB,
-                        first + 2 * NB);
+  for (int k = 0; k < nb; k++) /* each leaf's port's member: a leaf pair's coupling */
+    leaf_member[k] = leaf[k] >= 0 ? pmember[leaf[k]] : -1;
+  if (nb && !number_groups(m, member, body, node, elem, rod, rdof, leaf, leaf_member, partner, fend,
+                           first, first + NB, first + 2 * NB)) {
+    free(scratch);
+    return 0;
+  }
   /* block[] of number_groups: its root array, first[0 .. nb) */
   for (int k = 0; k < nb; k++) {
     m->rigid_block_partner[first[k]] = partner[k] >= 0 ? first[partner[k]] : -1;

@@ -50,12 +50,14 @@
  * reach back one body, costs about 6 n x 12^2 / 2 flops instead of
  * (6 n)^3 / 3 (8 bones: 48 unknowns, 3.5e3 flops against 3.7e4).  The
  * groups are found once, at setup, by union-find and numbered in the order
- * their bodies are first met in the joints, as the one system numbered its
- * bodies, and each group keeps its bodies in that order; so a block is the
- * whole system's rows and columns in the same order, and its factor and
- * solution are the whole's to the bit (the whole's factor is block
- * diagonal too, and zero outside the envelope: an entry there is 0 less
- * products with a zero factor, and so is each term the sums skip).  The
+ * their bodies are first met in the joints; within a group the members
+ * take the order that makes the envelope's work least (joint_order.c: the
+ * muscular snake's ring of a pair, 3455 multiply-adds instead of 9773 in
+ * the order met).  A block is the rows and columns of the one system over
+ * all the groups in that order, and its factor and solution are that
+ * whole's to the bit (the whole's factor is block diagonal too, and zero
+ * outside the envelope: an entry there is 0 less products with a zero
+ * factor, and so is each term the sums skip).  The
  * bodies' new velocities replace the loads they would have had (F_eff =
  * M dV / h, tau_eff = I dw / h) and rigid.c's kick goes on as before.
  *
