@@ -177,6 +177,12 @@ long sw_expect_next(const swModel *m, long step) {
 
 /* ---- quantities ---- */
 
+/* A probe's component, or its size. */
+static double probe_value(const swExpectDesc *e, const double row[3]) {
+  if (e->component < 3) return row[e->component];
+  return sqrt(row[0] * row[0] + row[1] * row[1] + row[2] * row[2]);
+}
+
 static double quantity(const swModel *m, swData *d, const swExpectDesc *e) {
   switch (e->quantity) {
   case SW_EXPECT_JOINT_ANGLE:
@@ -192,20 +198,35 @@ static double quantity(const swModel *m, swData *d, const swExpectDesc *e) {
   case SW_EXPECT_PROBE: {
     double row[3];
     sw_probe_measure(m, d, e->index, row);
-    if (e->component < 3) return row[e->component];
-    return sqrt(row[0] * row[0] + row[1] * row[1] + row[2] * row[2]);
+    return probe_value(e, row);
   }
   }
   return NAN;
 }
 
-void sw_expect_sample(const swModel *m, swData *d, swExpectRun *r) {
+/* Whether every entry can be read at a held step (probe.c, "Read at a held
+ * step"): probes of positions and velocities of elastic rods only. */
+int sw_expect_held_ok(const swModel *m) {
+  for (int k = 0; k < m->nexpect; k++)
+    if (m->expect[k].quantity != SW_EXPECT_PROBE || !sw_probe_held_ok(m, m->expect[k].index)) return 0;
+  return m->nexpect > 0;
+}
+
+/* The entries due at d->step sampled: from the whole state, or (held) from
+ * the held one, each probe as the whole step would show it. */
+static void sample(const swModel *m, swData *d, swExpectRun *r, int held) {
   if (!r) return;
   for (int k = 0; k < m->nexpect; k++) {
     long first, last;
     steps_of(m, &m->expect[k], &first, &last);
     if (d->step < first || d->step > last) continue;
-    const double v = quantity(m, d, &m->expect[k]);
+    double v, row[3];
+    if (held) {
+      sw_probe_measure_held(m, d, m->expect[k].index, row);
+      v = probe_value(&m->expect[k], row);
+    } else {
+      v = quantity(m, d, &m->expect[k]);
+    }
     if (!r->count[k] || !(v >= r->min[k])) r->min[k] = v; /* a NaN sticks */
     if (!r->count[k] || !(v <= r->max[k])) r->max[k] = v;
     if (r->count[k]) r->trapezoid[k] += 0.5 * (r->latest[k] + v);
@@ -214,6 +235,9 @@ void sw_expect_sample(const swModel *m, swData *d, swExpectRun *r) {
     r->last[k] = d->step;
   }
 }
+
+void sw_expect_sample(const swModel *m, swData *d, swExpectRun *r) { sample(m, d, r, 0); }
+void sw_expect_sample_held(const swModel *m, swData *d, swExpectRun *r) { sample(m, d, r, 1); }
 
 /* ---- the record of a run and its report ---- */
 

@@ -28,6 +28,13 @@ long sw_expect_next(const swModel *m, long step);
 void sw_expect_run_save(const swModel *m, const swExpectRun *r, double *out);
 void sw_expect_run_load(const swModel *m, swExpectRun *r, const double *in);
 void sw_expect_sample(const swModel *m, swData *d, swExpectRun *r);
+/* At a held step (integrate.c), when sw_expect_held_ok: the entries due
+ * sampled from the held state as the whole step would show them (probe.c,
+ * "Read at a held step"), without sw_whole_begin. */
+int sw_expect_held_ok(const swModel *m);
+void sw_expect_sample_held(const swModel *m, swData *d, swExpectRun *r);
+int sw_probe_held_ok(const swModel *m, int p);                              /* probe.c */
+void sw_probe_measure_held(const swModel *m, const swData *d, int p, double out[3]);
 /* The values of the objective's reductions (the entries with `reduce`, in
  * order) into R; SW_OK, or SW_EUSAGE with the reason in why when one was
  * not reached.  sw_expect_reduced_last: the last step any of them samples. */

@@ -114,6 +114,67 @@ void sw_probe_measure(const swModel *m, swData *d, int p, double out[3]) {
   out[0] = out[1] = out[2] = 0;
 }
 
+/* ---- Read at a held step (integrate.c, "Held steps") ----
+ * Between held steps the nodes sit half a drift short of the whole step,
+ * x_{n+1/2}, with the step's new velocities v_{n+1}; what the whole step
+ * would show for a node of an elastic rod is the half drift's
+ *   x_{n+1} = x_{n+1/2} + (h/2) v_{n+1}
+ * (drift_nodes, integrate.c: the same operation, rounded as it rounds;
+ * nothing else of the half drift or of the step's end moves an elastic
+ * node or its velocity).  So the centre of mass, its velocity and a node
+ * of elastic rods are read there without making the whole step: the run
+ * loop samples the objective's reductions so at every step instead of
+ * saving, completing and restoring the state (the muscular snake's
+ * max_over of its centre of mass's height: 10% of an evaluation). */
+int sw_probe_held_ok(const swModel *m, int p) {
+  const swProbeDesc *pd = &m->probe[p];
+  if (pd->kind == SW_PROBE_MEAN_VELOCITY) return 0;
+  const int nr = pd->kind == SW_PROBE_NODE ? 1 : pd->nrods;
+  for (int k = 0; k < nr; k++) {
+    const int r = pd->kind == SW_PROBE_NODE ? pd->rod : pd->rods[k];
+    if (sw_rod_is_rigid(m, r) || m->node_adr[r] + m->rod_nelem[r] >= m->nslot_elastic) return 0;
+  }
+  return 1;
+}
+
+/* mass_mean of the positions half a drift on (the header's x_{n+1}). */
+static void mass_mean_drifted(const swModel *m, const swData *d, const swProbeDesc *p, double hh,
+                              double out[3]) {
+  double sum[3] = {0, 0, 0}, mass = 0;
+  for (int k = 0; k < p->nrods; k++) {
+    const int r = p->rods[k], na = m->node_adr[r], nn = m->rod_nelem[r] + 1;
+    for (int i = na; i < na + nn; i++) {
+      for (int q = 0; q < 3; q++) {
+        double x = SW_AT(m, d->x, i, q);
+        x += hh * SW_AT(m, d->v, i, q);
+        sum[q] += m->mass[i] * x;
+      }
+      mass += m->mass[i];
+    }
+  }
+  sw_v3_scale(out, sum, 1.0 / mass);
+}
+
+void sw_probe_measure_held(const swModel *m, const swData *d, int p, double out[3]) {
+  const swProbeDesc *pd = &m->probe[p];
+  const double hh = 0.5 * m->dt;
+  switch (pd->kind) {
+  case SW_PROBE_COM: mass_mean_drifted(m, d, pd, hh, out); return;
+  case SW_PROBE_COM_VELOCITY: mass_mean(m, pd, d->v, out); return;
+  case SW_PROBE_NODE: {
+    const int i = m->node_adr[pd->rod] + pd->node;
+    for (int q = 0; q < 3; q++) {
+      double x = SW_AT(m, d->x, i, q);
+      x += hh * SW_AT(m, d->v, i, q);
+      out[q] = x;
+    }
+    return;
+  }
+  case SW_PROBE_MEAN_VELOCITY: break; /* sw_probe_held_ok refuses it */
+  }
+  out[0] = out[1] = out[2] = 0;
+}
+
 const char *sw_probe_kind_name(swProbeKind kind) {
   switch (kind) {
   case SW_PROBE_COM: return "center_of_mass";
