@@ -28,7 +28,7 @@ void sw_data_free(swData *d) {
   free(d->fil_activation); free(d->fil_stretch); free(d->fil_rate); free(d->fil_tension); free(d->fil_sys);
   free(d->ring_row); free(d->ring_imp); free(d->hold);
   free(d->rigid_X); free(d->rigid_V); free(d->rigid_R); free(d->rigid_L); free(d->rigid_omega);
-  free(d->rigid_load); free(d->rigid_sys); free(d->implicit_sys);
+  free(d->rigid_load); free(d->rigid_sys); free(d->rigid_lanes); free(d->implicit_sys);
   sw_probe_data_free(d);
   sw_swell_data_free(d);
   /* the contact grid's scratch (contact.c, through the environment's data_new) */
@@ -88,9 +88,10 @@ swData *sw_data_new(const swModel *m) {
   d->rigid_X = sw_dalloc(3 * B); d->rigid_V = sw_dalloc(3 * B); d->rigid_R = sw_dalloc(9 * B);
   d->rigid_L = sw_dalloc(3 * B); d->rigid_omega = sw_dalloc(3 * B); d->rigid_load = sw_dalloc(6 * B);
   d->rigid_sys = sw_dalloc(sw_rigid_joints_scratch(m));
+  d->rigid_lanes = sw_dalloc(sw_rigid_lanes_scratch(m));
   d->implicit_sys = sw_dalloc(sw_implicit_scratch(m));
   if (!d->rigid_X || !d->rigid_V || !d->rigid_R || !d->rigid_L || !d->rigid_omega ||
-      !d->rigid_load || !d->rigid_sys || !d->implicit_sys ||
+      !d->rigid_load || !d->rigid_sys || !d->rigid_lanes || !d->implicit_sys ||
       !sw_probe_data_new(m, d) ||
       (sw_env_ops(m) && !sw_env_ops(m)->data_new(m, d))) { /* the contact grid's scratch */
     sw_data_free(d);

@@ -234,7 +234,8 @@ typedef struct {
   void (*rings)(const swModel *m, swData *d);
   /* a filament in the joints' system (m->fil_system): its tension from its
    * end nodes' velocity changes (NULL: held), the pull on its other nodes
-   * adjusted to it (joint_ports.c, after the system's solve) */
+   * adjusted to it and its via rings' force changes computed, which
+   * rigid_joint.c adds (after the system's solve) */
   void (*system_tension)(const swModel *m, swData *d, int f, const double *dv_start,
                          const double *dv_end);
 } swMuscleOps;
@@ -379,6 +380,19 @@ int sw_rigid_group_unknowns(const swModel *m, int g); /* group g's unknowns */
 int sw_order_members(int nb, const int *group, int ngroup, const int *dof, int nedge,
                      const int *edges, int *order);
 int sw_rigid_joints_kick(const swModel *m, swData *d, double h, double *load);
+/* Groups of one shape solved together (joint_lanes.c): setup fills
+ * m->rigid_group_lanes; sw_cholesky_lanes factors and solves the nl <=
+ * SW_GROUP_LANES blocks A[u] (n x n, their lower triangles within the
+ * envelope of the first group's env, reach, off, dof numbered from base)
+ * with right-hand sides rhs[u], solutions into rhs, the bits of
+ * rigid_joint.c's scalar solve of each, leaving A as it was; 0 (rhs as it
+ * was too) when a block is not positive definite.  ws: the doubles
+ * sw_rigid_lanes_scratch gives (swData.rigid_lanes). */
+#define SW_GROUP_LANES 4
+int sw_group_lanes_setup(swModel *m);
+size_t sw_rigid_lanes_scratch(const swModel *m);
+int sw_cholesky_lanes(double *const *A, double *const *rhs, int nl, int n, const int *env,
+                      const int *reach, const int *off, const int *dof, int base, double *ws);
 /* Implicit rods and leaves in that system (joint_ports.c): a rod member k's
  * block S and right-hand side S p0 into A (n x n, its unknowns from off)
  * and rhs, with its workspace ws (sw_port_member_scratch doubles; 0: the

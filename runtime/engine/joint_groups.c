@@ -477,6 +477,7 @@ int sw_rigid_joints_setup(swModel *m) {
   const size_t J = (size_t)(m->njoint ? m->njoint : 1), B = (size_t)(m->nrigid ? m->nrigid : 1);
   const size_t R = (size_t)(m->nrod ? m->nrod : 1);
   const size_t NB = B + 2 * J; /* members: at most every body and every joint's two sides */
+  m->rigid_group_lanes = NULL;
   m->joint_implicit = calloc(J, sizeof(int));
   m->joint_block = malloc(2 * J * sizeof(int));
   m->joint_port = malloc(2 * J * sizeof(int));
@@ -521,7 +522,7 @@ int sw_rigid_joints_setup(swModel *m) {
   for (int q = 0; q < 2 * m->nfil; q++) m->fil_block[q] = -1;
   for (size_t q = 0; q < 2 * J; q++) m->joint_block[q] = m->joint_port[q] = -1;
   m->rigid_group_adr[0] = m->rigid_group_joint_adr[0] = m->rigid_block_port_adr[0] = 0;
-  if (m->integrator != SW_IMEX) return 1;
+  if (m->integrator != SW_IMEX) return sw_group_lanes_setup(m);
   /* the members in the order the joints first meet them: member[2 j + side]
    * their number, body/node/elem/rod what each is; the ports likewise */
   const size_t S = (size_t)m->stride;
@@ -605,7 +606,7 @@ int sw_rigid_joints_setup(swModel *m) {
   pair_envelope(m);
   store_units(m);
   free(scratch);
-  return 1;
+  return sw_group_lanes_setup(m);
 }
 
 void sw_rigid_joints_free(swModel *m) {
@@ -621,6 +622,7 @@ void sw_rigid_joints_free(swModel *m) {
   free(m->rigid_group_adr);
   free(m->rigid_group_joint_adr);
   free(m->rigid_group_joint);
+  free(m->rigid_group_lanes);
   free(m->rigid_block_env);
   free(m->rigid_block_reach);
   free(m->joint_port);

@@ -153,8 +153,7 @@ void sw_muscle_system_tension(const swModel *m, swData *d, int f, const double *
     }
     memcpy(t_before, t, sizeof t);
   }
-  if (m->nring) { /* the rings' force changes at T, on every slot (the leader's) */
-    sw_via_implicit_force(m, d, f, T);
-    sw_via_implicit_add(m, d, f, 0, m->nslot);
-  }
+  /* the rings' force changes at T, added by the joints' system once the
+   * batch of groups the filament is in is solved (rigid_joint.c) */
+  if (m->nring) sw_via_implicit_force(m, d, f, T);
 }

@@ -394,16 +394,18 @@ static void dense_filaments(const swModel *m, swData *d, double h, int g, double
   }
 }
 
-/* The trapezoidal loads of group g (the header): its system assembled into
- * A (n x n, n its dense members' unknowns) and rhs, its leaves eliminated
- * and its implicit rods condensed to their ports (joint_ports.c), factored
- * and solved, and the loads of its members replaced: a body's in load[], an
- * attachment's node force and, when a joint couples its element's rotation,
- * element torque, an implicit rod's every node and element.  ws: the
- * leaves' and rods' workspace.  Returns 0 if the block (or a rod's system)
- * could not be factored. */
-static int group_kick(const swModel *m, swData *d, double h, int g, double *A, double *rhs,
-                      double *ws, double *load) {
+/* The trapezoidal loads of group g (the header), in three parts: its
+ * system assembled into A (n x n, n its dense members' unknowns) and rhs,
+ * its leaves eliminated and its implicit rods condensed to their ports
+ * (joint_ports.c) (group_assemble); factored and solved (cholesky_solve,
+ * or with groups of its shape, sw_cholesky_lanes); and the loads of its
+ * members replaced (group_finish): a body's in load[], an attachment's node
+ * force and, when a joint couples its element's rotation, element torque,
+ * an implicit rod's every node and element.  ws: the leaves' and rods'
+ * workspace.  Returns 0 if the block (or a rod's system) could not be
+ * factored. */
+static int group_assemble(const swModel *m, swData *d, double h, int g, double *A, double *rhs,
+                          double *ws, double *load) {
   const int first = m->rigid_group_adr[g], nb = m->rigid_group_adr[g + 1] - first;
   const int nd = dense_end(m, g) - first, n = sw_rigid_group_unknowns(m, g);
   const int *off = m->rigid_block_off + first, *dof = m->rigid_block_dof + first;
@@ -520,9 +522,21 @@ static int group_kick(const swModel *m, swData *d, double h, int g, double *A, d
     }
     if (s < nb) batch[nu++] = u;
   }
-  if (!cholesky_solve(A, n, rhs, rhs + n, m->rigid_block_env + first, m->rigid_block_reach + first,
-                      off, dof, first))
-    return 0;
+  return 1;
+}
+
+static int group_solve(const swModel *m, int g, double *A, double *rhs) {
+  const int first = m->rigid_group_adr[g], n = sw_rigid_group_unknowns(m, g);
+  return cholesky_solve(A, n, rhs, rhs + n, m->rigid_block_env + first, m->rigid_block_reach + first,
+                        m->rigid_block_off + first, m->rigid_block_dof + first, first);
+}
+
+static void group_finish(const swModel *m, swData *d, double h, int g, double *A, double *rhs,
+                         double *ws, double *load) {
+  const int first = m->rigid_group_adr[g], nb = m->rigid_group_adr[g + 1] - first;
+  const int nd = dense_end(m, g) - first, n = sw_rigid_group_unknowns(m, g);
+  const int *off = m->rigid_block_off + first, *dof = m->rigid_block_dof + first;
+  double *leaf_ws = ws, *rod_ws = ws + (size_t)(nb - nd) * SW_LEAF_WS;
   for (int s = 0, wrod = 0; s < nb; s++) { /* the loads that give du */
     const int k = first + s, b = m->rigid_block_body[k];
     if (m->rigid_block_rod[k] >= 0) {
@@ -568,7 +582,29 @@ static int group_kick(const swModel *m, swData *d, double h, int g, double *A, d
     sw_muscle_ops(m)->system_tension(m, d, f, dv[0], dv[1]);
   }
   if (m->fil_block) dense_filaments(m, d, h, g, A, n, rhs);
-  return 1;
+}
+
+/* The via rings' force changes of group g's filaments in the system, on
+ * both sides (sw_muscle_system_tension computed them at the solved
+ * tension), in the order group_finish set the tensions: its leaf pairs',
+ * then its dense filaments'.  Added once the batch the group is solved in
+ * is finished: a ring's bone-side force is explicit (via_implicit.c), and
+ * may fall on a member of another group (the muscular snake's rings sit on
+ * the backbone between its pairs' ribs), which takes it in its system when
+ * it is solved after, as a load of its kick, and on top of its solved
+ * loads when it was solved before or with it. */
+static void group_rings(const swModel *m, swData *d, int g) {
+  if (!m->nring) return;
+  const int first = m->rigid_group_adr[g], last = m->rigid_group_adr[g + 1];
+  for (int k = first; k < last; k++) {
+    const int f = m->rigid_block_fil[k];
+    if (f >= 0 && m->rigid_block_leaf[k] >= 0 && m->rigid_leaf_unit[10 * (size_t)k] == k)
+      sw_via_implicit_add(m, d, f, 0, m->nslot);
+  }
+  for (int f = 0; m->fil_block && f < m->nfil; f++) {
+    const int *kb = m->fil_block + 2 * f, k = kb[0] >= 0 ? kb[0] : kb[1];
+    if (k >= first && k < last) sw_via_implicit_add(m, d, f, 0, m->nslot);
+  }
 }
 
 /* load[6 b .. 6 b + 5] = (F, tau) of every moving body, on entry the kick's
@@ -581,11 +617,32 @@ static int group_kick(const swModel *m, swData *d, double h, int g, double *A, d
 int sw_rigid_joints_kick(const swModel *m, swData *d, double h, double *load) {
   int ok = 1;
   double *A = d->rigid_sys;
-  for (int g = 0; g < m->nrigid_group; g++) {
-    const size_t n = (size_t)sw_rigid_group_unknowns(m, g);
-    double *rhs = A + n * n;
-    ok &= group_kick(m, d, h, g, A, rhs, rhs + 2 * n, load);
-    A += group_scratch(m, g);
+  for (int g = 0; g < m->nrigid_group;) {
+    /* a batch of groups of one shape (joint_lanes.c), or one group */
+    const int nl = m->rigid_group_lanes[g] > 1 ? m->rigid_group_lanes[g] : 1;
+    double *Ab[SW_GROUP_LANES], *rhs[SW_GROUP_LANES], *ws[SW_GROUP_LANES];
+    int okb[SW_GROUP_LANES], all = 1;
+    for (int u = 0; u < nl; u++) {
+      const size_t n = (size_t)sw_rigid_group_unknowns(m, g + u);
+      Ab[u] = A, rhs[u] = A + n * n, ws[u] = rhs[u] + 2 * n;
+      okb[u] = group_assemble(m, d, h, g + u, Ab[u], rhs[u], ws[u], load);
+      all &= okb[u];
+      A += group_scratch(m, g + u);
+    }
+    const int first = m->rigid_group_adr[g];
+    const int together = nl > 1 && all &&
+        sw_cholesky_lanes(Ab, rhs, nl, sw_rigid_group_unknowns(m, g), m->rigid_block_env + first,
+                          m->rigid_block_reach + first, m->rigid_block_off + first,
+                          m->rigid_block_dof + first, first, d->rigid_lanes);
+    for (int u = 0; u < nl && !together; u++) /* one by one: alone, or a lane failed */
+      if (okb[u]) okb[u] = group_solve(m, g + u, Ab[u], rhs[u]);
+    for (int u = 0; u < nl; u++) {
+      if (okb[u]) group_finish(m, d, h, g + u, Ab[u], rhs[u], ws[u], load);
+      ok &= okb[u];
+    }
+    for (int u = 0; u < nl; u++)
+      if (okb[u]) group_rings(m, d, g + u);
+    g += nl;
   }
   return ok;
 }

@@ -162,6 +162,10 @@ typedef struct {
                                            in rigid_group_joint              */
   int *rigid_group_joint;    /* (implicit joints) each group's joints, in
                                            joint order                       */
+  int *rigid_group_lanes;    /* (nrigid_group or 1) groups of one shape solved
+                                           together from this one (at most
+                                           SW_GROUP_LANES), 0 inside such a
+                                           batch (joint_lanes.c)             */
   /* rods whose geometry changes in time (swell.c): their radius, stiffness,
    * inertia, mass and rest curvature follow signals; what the step reads of
    * these is swData's *_now arrays, which are these model arrays themselves
@@ -414,6 +418,7 @@ typedef struct {
   double *rigid_L;           /* (nrigid*3) angular momentum about X, lab, kg m^2/s */
   double *rigid_load;        /* (nrigid*6) a kick's force and torque on each body */
   double *rigid_sys;         /* the implicit joints' system (rigid_joint.c)    */
+  double *rigid_lanes;       /* its batches of groups, interleaved (joint_lanes.c) */
   double *implicit_sys;      /* the implicit rods' banded systems (rod_implicit.c) */
   double *rigid_omega;       /* (nrigid*3) angular velocity, lab, rad/s        */
   /* muscles, updated with each force evaluation (activation once a step) */

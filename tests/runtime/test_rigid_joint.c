@@ -129,7 +129,7 @@ static swModel *groups_scene(int copies, swSpec **spec) {
 /* The model's groups and their workspace, swapped in and out whole. */
 typedef struct {
   int *block, *block_body, *block_node, *block_elem, *block_rot, *block_off, *block_dof,
-      *joint_block, *env, *reach, *adr, *joint_adr, *joint;
+      *joint_block, *env, *reach, *adr, *joint_adr, *joint, *lanes;
   int ngroup;
   double *sys; /* a swData's workspace for them */
 } Grouping;
@@ -139,7 +139,7 @@ static void swap_grouping(swModel *m, swData *d, Grouping *g) {
                   m->rigid_block_rot, m->rigid_block_off, m->rigid_block_dof, m->joint_block,
                   m->rigid_block_env, m->rigid_block_reach,
                   m->rigid_group_adr, m->rigid_group_joint_adr, m->rigid_group_joint,
-                  m->nrigid_group, d->rigid_sys};
+                  m->rigid_group_lanes, m->nrigid_group, d->rigid_sys};
   m->rigid_block = g->block, m->rigid_block_body = g->block_body, m->rigid_block_env = g->env;
   m->rigid_block_node = g->block_node, m->rigid_block_elem = g->block_elem;
   m->rigid_block_rot = g->block_rot, m->joint_block = g->joint_block;
@@ -147,6 +147,7 @@ static void swap_grouping(swModel *m, swData *d, Grouping *g) {
   m->rigid_block_reach = g->reach;
   m->rigid_group_adr = g->adr;
   m->rigid_group_joint_adr = g->joint_adr, m->rigid_group_joint = g->joint;
+  m->rigid_group_lanes = g->lanes;
   m->nrigid_group = g->ngroup, d->rigid_sys = g->sys;
   *g = now;
 }
@@ -170,10 +171,11 @@ static Grouping one_group(const swModel *m) {
   w.adr = malloc(2 * sizeof(int));
   w.joint_adr = malloc(2 * sizeof(int));
   w.joint = malloc((size_t)m->njoint * sizeof(int));
+  w.lanes = malloc(sizeof(int));
   w.sys = malloc(((size_t)36 * nb * nb + 12 * (size_t)nb) * sizeof(double));
   assert_true(w.block && w.block_body && w.block_node && w.block_elem && w.block_rot &&
               w.block_off && w.block_dof &&
-              w.joint_block && w.env && w.reach && w.adr && w.joint_adr && w.joint && w.sys);
+              w.joint_block && w.env && w.reach && w.adr && w.joint_adr && w.joint && w.lanes && w.sys);
   memcpy(w.block, m->rigid_block, (size_t)m->nrigid * sizeof(int));
   memcpy(w.block_body, m->rigid_block_body, (size_t)nb * sizeof(int));
   memcpy(w.block_node, m->rigid_block_node, (size_t)nb * sizeof(int));
@@ -189,6 +191,7 @@ static Grouping one_group(const swModel *m) {
   w.adr[0] = 0, w.adr[1] = nb;
   w.joint_adr[0] = 0, w.joint_adr[1] = nj;
   w.ngroup = 1;
+  w.lanes[0] = 1;
   return w;
 }
 
@@ -196,6 +199,7 @@ static void free_grouping(Grouping *g) {
   free(g->block), free(g->block_body), free(g->block_node), free(g->block_elem), free(g->block_rot);
   free(g->block_off), free(g->block_dof);
   free(g->joint_block), free(g->env), free(g->reach), free(g->adr), free(g->joint_adr), free(g->joint);
+  free(g->lanes);
   free(g->sys);
 }
 
@@ -379,10 +383,82 @@ static void test_blocks_as_whole(void **state) {
   sw_spec_free(s);
 }
 
+/* Groups of one shape solved together, one per vector lane (joint_lanes.c),
+ * against each solved alone: five chains of three bones, the first hinged
+ * to space, the last past a limit, each its own group of 18 unknowns (a
+ * batch of four and one alone), started turning; the same bits. */
+static void test_lanes_as_alone(void **state) {
+  (void)state;
+  static const double along[3] = {1, 0, 0};
+  const int chains = 5;
+  const long nsteps = sw_test_sanitized() ? 200 : 1000;
+  swSpec *s = sw_spec_new();
+  for (int c = 0; c < chains; c++) {
+    const double y = 0.5 * c;
+    int a[3];
+    for (int i = 0; i < 3; i++) {
+      swRodDesc r = small_bone("l", 0.1 * i, y, 0, along, 1);
+      a[i] = sw_spec_add_rod(s, &r);
+    }
+    swJointDesc j = joint_of(SW_JOINT_HINGE, a[0], 0, -1, 0);
+    j.anchor[1] = y;
+    sw_spec_add_joint(s, &j);
+    j = joint_of(SW_JOINT_HINGE, a[0], -1, a[1], 0);
+    sw_spec_add_joint(s, &j);
+    j = joint_of(SW_JOINT_HINGE, a[1], -1, a[2], 0);
+    j.has_range = 1, j.angle_min = -0.01, j.angle_max = 0.01;
+    sw_spec_add_joint(s, &j);
+  }
+  const double g[3] = {0, 0, -9.81};
+  sw_spec_set_gravity(s, g);
+  sw_spec_set_integrator(s, SW_IMEX);
+  swModel *m = sw_test_compile_at(s, 0.5);
+  assert_int_equal(m->nrigid_group, chains);
+  fprintf(stderr, "# %s: %d groups, batches from each:", __func__, m->nrigid_group);
+  for (int k = 0; k < m->nrigid_group; k++) fprintf(stderr, " %d", m->rigid_group_lanes[k]);
+  fprintf(stderr, "\n");
+  assert_int_equal(m->rigid_group_lanes[0], 4);
+  assert_int_equal(m->rigid_group_lanes[4], 1);
+  swData *lanes = sw_data_new(m), *alone = sw_data_new(m);
+  assert_non_null(lanes);
+  assert_non_null(alone);
+  for (int r = 0; r < m->nrod; r++) { /* each chain turning its own way */
+    const double V[3] = {0.01 * r, -0.02, 0.03}, W[3] = {0.5 + 0.1 * r, -3.0 * r, 0.2};
+    assert_int_equal(sw_rigid_set_motion(m, lanes, r, V, W), SW_OK);
+    assert_int_equal(sw_rigid_set_motion(m, alone, r, V, W), SW_OK);
+  }
+  int *batched = m->rigid_group_lanes, ones[8] = {1, 1, 1, 1, 1, 1, 1, 1};
+  double limit = 0;
+  for (long k = 0; k < nsteps; k++) {
+    assert_int_equal(sw_step(m, lanes), SW_OK);
+    m->rigid_group_lanes = ones;
+    assert_int_equal(sw_step(m, alone), SW_OK);
+    m->rigid_group_lanes = batched;
+    for (int i = 0; i < 3 * m->njoint; i++) limit = fmax(limit, fabs(lanes->joint_limit_torque[i]));
+  }
+  double worst = 0;
+  long rows = differ(lanes->x, alone->x, 3 * (size_t)m->stride, &worst);
+  rows += differ(lanes->v, alone->v, 3 * (size_t)m->stride, &worst);
+  rows += differ(lanes->omega, alone->omega, 3 * (size_t)m->stride, &worst);
+  rows += differ(lanes->Q, alone->Q, 9 * (size_t)m->stride, &worst);
+  rows += differ(lanes->rigid_L, alone->rigid_L, 3 * (size_t)m->nrigid, &worst);
+  rows += differ(lanes->joint_limit_torque, alone->joint_limit_torque, 3 * (size_t)m->njoint, &worst);
+  fprintf(stderr, "# %s: %ld steps (t = %.3g s) in lanes and alone: %ld numbers of x, v, omega, "
+          "Q, L and the limits' torques differ, largest difference %.3g (the limits' largest "
+          "torque %.3g N m)\n", __func__, lanes->step, lanes->time, rows, worst, limit);
+  assert_int_equal(rows, 0);
+  assert_true(limit > 0);
+  sw_data_free(lanes);
+  sw_data_free(alone);
+  sw_model_free(m);
+  sw_spec_free(s);
+}
+
 int main(void) {
   const struct CMUnitTest tests[] = {
       cmocka_unit_test(test_groups),
       cmocka_unit_test(test_blocks_as_whole),
+      cmocka_unit_test(test_lanes_as_alone),
   };
   return cmocka_run_group_tests_name("rigid_joint", tests, NULL, NULL);
 }
