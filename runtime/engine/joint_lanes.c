@@ -28,7 +28,7 @@
 #include "internal.h"
 
 #define LANES SW_GROUP_LANES
-_Static_assert(LANES == 4, "take_off writes four lanes");
+_Static_assert(LANES == 4, "take_off and the copy in write four lanes");
 
 /* The dense members of group g: from its first block to its first leaf. */
 static int dense_members(const swModel *m, int g) {
@@ -94,11 +94,17 @@ int sw_cholesky_lanes(double *const *A, double *const *rhs, int nl, int n, const
   double (*restrict b)[LANES] = W + (size_t)n * n, (*restrict col)[LANES] = b + n;
   /* in: each row's envelope up to its diagonal (all the scalar factor
    * reads), and the right-hand sides; the lanes past nl repeat the last */
+  const double *a[LANES], *r[LANES];
+  for (int u = 0; u < LANES; u++) a[u] = A[u < nl ? u : nl - 1], r[u] = rhs[u < nl ? u : nl - 1];
   for (int s = 0, i = 0; i < n; i++) {
     if (i == off[s] + dof[s]) s++;
+    const size_t row = (size_t)i * n;
+    const double *restrict a0 = a[0] + row, *restrict a1 = a[1] + row, *restrict a2 = a[2] + row,
+                 *restrict a3 = a[3] + row;
+    double (*restrict Wi)[LANES] = W + row;
     for (int k = off[env[s] - base]; k <= i; k++)
-      for (int u = 0; u < LANES; u++) W[(size_t)i * n + k][u] = A[u < nl ? u : nl - 1][(size_t)i * n + k];
-    for (int u = 0; u < LANES; u++) b[i][u] = rhs[u < nl ? u : nl - 1][i];
+      Wi[k][0] = a0[k], Wi[k][1] = a1[k], Wi[k][2] = a2[k], Wi[k][3] = a3[k];
+    for (int u = 0; u < LANES; u++) b[i][u] = r[u][i];
   }
   for (int sj = 0, j = 0; j < n; j++) { /* cholesky_solve's factorisation, lane by lane */
     if (j == off[sj] + dof[sj]) sj++;
