@@ -11,12 +11,14 @@
 # /5 on the muscles: (c)), soft_twist (twist /5 on the muscles: (d));
 # default all.  DIR (default build/wing) gets VARIANT.h5, VARIANT.log (the
 # simulator's summary, its wall time), angles.png, frames.png, fig13.png and
-# fig13.md.  A run whose file is complete is not made again.  About 10 min
-# of an idle core per run at 0.55 us (15-18 with both cores busy, as two
-# runs at a time keep them), 45 min for the hardened ones at 0.19 us
-# (which stop early: docs/validation.md).  --duration T (e.g. 2ms) runs
-# each variant for T only, to try the script; such runs are never taken
-# for complete.
+# fig13.md.  A run whose file is complete is not made again.  The model's
+# step, 1 us, is above the hardened variants' stable estimates (375 ns for
+# (b)): those run at half of theirs, as the simulator chooses when a model
+# sets no step.  About 6.5 min of an idle core per run at 1 us (10-12 with
+# both cores busy, as two runs at a time keep them), 45 min for the
+# hardened ones at 0.19 us (which stop early: docs/validation.md).
+# --duration T (e.g. 2ms) runs each variant for T only, to try the script;
+# such runs are never taken for complete.
 set -eu
 ROOT=$(cd "$(dirname "$0")/.." && pwd)
 OUT=build/wing
@@ -49,10 +51,19 @@ complete() { # complete FILE: the run wrote its last frame (t = 0.51 s)
   [ -f "$1" ] && /usr/bin/python3 -c "import h5py,sys; t=h5py.File(sys.argv[1])['/time'][:]; sys.exit(0 if t[-1] > 0.5099 else 1)" "$1" 2>/dev/null
 }
 
+step() { # step SETTINGS...: --dt at half the variant's stable estimate when the model's step is above it
+  "$OUT/wing" --info "$@" 2>/dev/null | awk '/^dt: / && /stable estimate/ {
+    s = $0; sub(/.*stable estimate /, "", s); sub(/\).*/, "", s); split(s, e, " ")
+    f = e[2] == "ns" ? 1e-9 : e[2] == "us" ? 1e-6 : e[2] == "ms" ? 1e-3 : 1
+    split($0, d, " "); g = d[3] == "ns" ? 1e-9 : d[3] == "us" ? 1e-6 : d[3] == "ms" ? 1e-3 : 1
+    if (d[2] * g > e[1] * f) printf "--dt %.6gns\n", e[1] * f / 2 * 1e9 }'
+}
+
 run() { # run VARIANT
   if [ -z "$DURATION" ] && complete "$OUT/$1.h5"; then echo "wing_study.sh: $1 is complete"; return 0; fi
   set -- "$1" $(settings "$1")
   v=$1; shift
+  set -- "$@" $(step "$@")
   [ -n "$DURATION" ] && set -- "$@" --duration "$DURATION" --every 0.5ms
   echo "wing_study.sh: $v: $*"
   "$OUT/wing" --quiet "$@" --out "$OUT/$v.h5" > "$OUT/$v.log" 2>&1 || echo "wing_study.sh: $v stopped (see $OUT/$v.log)"
