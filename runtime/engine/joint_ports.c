@@ -53,6 +53,25 @@
  * unit of six unknowns joined to two ports (the same algebra with C = A_uQ
  * over both ports, which couples them), and the tension then follows from
  * the ends' velocity changes (system_tension in muscle.c).
+ *
+ * The band path (issue 32).  A group of one implicit rod and leaves alone
+ * (a feather's rachis and its barbs: no body, no other dense member, no
+ * leaf pair, which would join two ports; joint_groups.c decides it at
+ * setup, m->rigid_group_band) would make S a dense block of all the ports,
+ * p^3 / 3 flops to factor and 1 + p band solves to form (150 barbs on
+ * fixed joints: p = 900, 1e8 flops a kick).  There the rod's system is not
+ * condensed: rigid_joint.c assembles each port's block (its joints' J^T W
+ * J on the port, less C_a^T A_aa^-1 C_a of each leaf on it) and right-hand
+ * side (less C_a^T A_aa^-1 b_a), lab frame, and sw_band_group_solve adds
+ * them to the rod's band as E (.) E^T and E (.): as they are on the node's
+ * rows, turned by Q on the element's (w = Q w_lab), rows 6 i - 3 .. 6 i + 2
+ * or 6 i .. 6 i + 5, within the half-bandwidth.  (A + sum E K_q E^T) du =
+ * h F + sum E b_q is the linear system the dense path solves, factored and
+ * solved once; E^T du gives each port's lab velocity, from which each leaf
+ * is recovered.  Cost: the rod's own kick plus a few hundred flops per
+ * leaf, linear in the leaves (test_joint_band: 64 barbs on 128 elements,
+ * 120 us a kick against 27 ms).  The band is factored afresh every kick:
+ * the ports' blocks change with the state.
  */
 #include <math.h>
 #include <string.h>

@@ -416,7 +416,11 @@ static void dense_filaments(const swModel *m, swData *d, double h, int g, double
  * members replaced (group_finish): a body's in load[], an attachment's node
  * force and, when a joint couples its element's rotation, element torque,
  * an implicit rod's every node and element.  ws: the leaves' and rods'
- * workspace.  Returns 0 if the block (or a rod's system) could not be
+ * workspace.  In the band path (m->rigid_group_band, joint_ports.c) A is
+ * the ports' blocks (row length 6, port t's at row and column 6 t) and rhs
+ * their right-hand sides, the rod is not condensed, and the solve
+ * (sw_band_group_solve) sets the rod's loads and leaves the ports' lab
+ * velocity changes in rhs, from which group_finish recovers the leaves.  Returns 0 if the block (or a rod's system) could not be
  * factored. */
 static int group_assemble(const swModel *m, swData *d, double h, int g, double *A, double *rhs,
                           double *ws, double *load) {

@@ -66,16 +66,17 @@ static swModel *feather(int nel, int nleaf, const int *at, int spherical, int cl
   return sw_test_compile_at(s, 0.5);
 }
 
-/* A swData made for the band path (band 1) or the dense one (0). */
-static swData *data_for(swModel *m, int band) {
+/* Every group to the band path (band 1) or the dense one (0). */
+static void set_band(swModel *m, int band) {
   for (int g = 0; g < m->nrigid_group; g++) m->rigid_group_band[g] = band;
+}
+
+/* A swData made for that path (its workspace is the path's). */
+static swData *data_for(swModel *m, int band) {
+  set_band(m, band);
   swData *d = sw_data_new(m);
   assert_non_null(d);
   return d;
-}
-
-static void set_band(swModel *m, int band) {
-  for (int g = 0; g < m->nrigid_group; g++) m->rigid_group_band[g] = band;
 }
 
 /* Every node and element of d started moving, the same in every swData. */
