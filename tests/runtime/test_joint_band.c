@@ -5,9 +5,10 @@
  * that block), which solves the same linear system another way.
  *
  * Design.  A "feather": an implicit rachis (20 elements, clamped at its
- * start or free) carrying short explicit barbs (4 elements) joined at their
- * base nodes to its nodes by stiff implicit joints (fixed, and one
- * spherical; two barbs on one node), under gravity, every node and element
+ * start, free, or hinged to space there: that joint's block alone on its
+ * port) carrying short explicit barbs (4 elements) joined at their base
+ * nodes to its nodes by stiff implicit joints (fixed, and one spherical;
+ * two barbs on one node), under gravity, every node and element
  * started moving.  One model, two swData, each stepped with its own path
  * (m->rigid_group_band toggled around its step, as test_rigid_joint toggles
  * its batches; each swData's workspace sized for its path when it is
@@ -30,20 +31,33 @@ static const char *named(const char *stem) {
   return name;
 }
 
+/* How the rachis is held: free, clamped at its start, or hinged to space
+ * there (a joint of the rod alone, its port's block without a leaf). */
+enum { FREE, CLAMPED, HINGED };
+static const char *const held_name[3] = {"free", "clamped", "hinged to space"};
+
 /* A rachis of nel elements along x (0.2 m, r = 2 mm, E = 100 MPa, G = E/3),
- * implicit, clamped at its start when `clamped`; nleaf barbs (20 mm, r =
+ * implicit, held at its start as `held` says; nleaf barbs (20 mm, r =
  * 0.4 mm, E = 10 MPa, 4 elements), barb l at node at[l] of the rachis,
  * pointing alternately +y and -y and tilted up, joined base to that node by
  * a fixed joint, or spherical for barb `spherical`. */
-static swModel *feather(int nel, int nleaf, const int *at, int spherical, int clamped, swSpec **out) {
+static swModel *feather(int nel, int nleaf, const int *at, int spherical, int held, swSpec **out) {
   swSpec *s = sw_spec_new();
   const double L = 0.2, x0[3] = {0, 0, 0}, dx[3] = {1, 0, 0};
   swRodDesc r = sw_test_rod(named("rachis"), nel, L, 2e-3, x0, dx, NULL);
   r.youngs = 1e8, r.shear_modulus = 1e8 / 3, r.density = 1200, r.implicit = 1;
   const int rachis = sw_spec_add_rod(s, &r);
-  if (clamped) {
+  if (held == CLAMPED) {
     swBCDesc c = sw_test_clamp(rachis, 0);
     sw_spec_add_bc(s, &c);
+  } else if (held == HINGED) {
+    swJointDesc j;
+    sw_joint_desc_init(&j);
+    j.name = named("pin");
+    j.kind = SW_JOINT_HINGE;
+    j.rod_a = rachis, j.node_a = 0, j.rod_b = -1;
+    j.axis[1] = 1;
+    sw_spec_add_joint(s, &j);
   }
   for (int l = 0; l < nleaf; l++) {
     const double start[3] = {L * at[l] / nel, 0, 0};
@@ -119,10 +133,10 @@ static void differences(const swModel *m, const swData *a, const swData *b, doub
  * differ by no more than the one-ulp start makes them differ (within a
  * factor 10, the spread of such amplified round-off). */
 #define EARLY 20
-static void same_solution(int clamped) {
+static void same_solution(int held) {
   static const int at[7] = {2, 5, 8, 8, 11, 14, 20};
   swSpec *s;
-  swModel *m = feather(20, 7, at, 3, clamped, &s);
+  swModel *m = feather(20, 7, at, 3, held, &s);
   assert_int_equal(m->nrigid_group, 1);
   assert_int_equal(m->rigid_group_band[0], 1); /* one rod and its leaves */
   assert_int_equal(m->nrigid_block, 8);
@@ -149,7 +163,7 @@ static void same_solution(int clamped) {
   double fresh, kept;
   sw_implicit_counts(m, band, &fresh, &kept);
   fprintf(stderr, "# test_same_solution: %s rachis, 7 barbs, dt %.3g s, band kicks %g fresh, %g kept\n",
-          clamped ? "clamped" : "free", m->dt, fresh, kept);
+          held_name[held], m->dt, fresh, kept);
   fprintf(stderr, "#   after %d steps, band - dense: x %.2e m (rel. %.2e), v %.2e m/s (rel. %.2e), "
           "omega %.2e rad/s (rel. %.2e)\n", EARLY, ea[0], er[0], ea[1], er[1], ea[2], er[2]);
   fprintf(stderr, "#   after %ld steps, band - dense: x %.2e m (rel. %.2e), v %.2e m/s (rel. %.2e), "
@@ -170,8 +184,9 @@ static void same_solution(int clamped) {
 
 static void test_same_solution(void **state) {
   (void)state;
-  same_solution(1);
-  same_solution(0);
+  same_solution(CLAMPED);
+  same_solution(FREE);
+  same_solution(HINGED);
 }
 
 static double now(void) {
@@ -211,7 +226,7 @@ static void test_cost(void **state) {
     int at[64];
     for (int l = 0; l < leaves[c]; l++) at[l] = 2 + l * 128 / leaves[c];
     swSpec *s;
-    swModel *m = feather(128, leaves[c], at, -1, 1, &s);
+    swModel *m = feather(128, leaves[c], at, -1, CLAMPED, &s);
     assert_int_equal(m->rigid_group_band[0], 1);
     swData *band = data_for(m, 1);
     ws[c] = sw_rigid_joints_scratch(m);
