@@ -16,8 +16,10 @@
  * are eliminated before it is factored; a filament whose ends are both
  * such leaves (or clamped) has its damping solved in the system, its ends
  * eliminated as one unit, and so does one whose ends are attachments that
- * are not leaves (dense_ends), its damper between their unknowns.  All of
- * it is computed once, at setup, into the model's rigid_* arrays;
+ * are not leaves (dense_ends), its damper between their unknowns.  A group
+ * of one implicit rod and leaves alone takes the band path (band_group,
+ * joint_ports.c): no dense block, its leaves eliminated into the rod's
+ * band.  All of it is computed once, at setup, into the model's rigid_* arrays;
  * rigid_joint.c's kick only reads them.
  */
 #include <stdlib.h>

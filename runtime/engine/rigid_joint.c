@@ -420,8 +420,8 @@ static void dense_filaments(const swModel *m, swData *d, double h, int g, double
  * the ports' blocks (row length 6, port t's at row and column 6 t) and rhs
  * their right-hand sides, the rod is not condensed, and the solve
  * (sw_band_group_solve) sets the rod's loads and leaves the ports' lab
- * velocity changes in rhs, from which group_finish recovers the leaves.  Returns 0 if the block (or a rod's system) could not be
- * factored. */
+ * velocity changes in rhs, from which group_finish recovers the leaves.
+ * Returns 0 if the block (or a rod's system) could not be factored. */
 static int group_assemble(const swModel *m, swData *d, double h, int g, double *A, double *rhs,
                           double *ws, double *load) {
   const int first = m->rigid_group_adr[g], nb = m->rigid_group_adr[g + 1] - first;
