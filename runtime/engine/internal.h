@@ -336,6 +336,18 @@ size_t sw_implicit_unknowns(const swModel *m, int r);
 int sw_implicit_solve_many(const swModel *m, swData *d, int r, double h, double *X, int ld);
 void sw_implicit_apply(const swModel *m, swData *d, int r, const double *du, size_t stride,
                        double h);
+/* Rod r's band as the band path of the joints' system fills it
+ * (joint_ports.c, sw_band_group_solve): sw_implicit_band_begin assembles
+ * this kick's A = M + h/2 C + h^2/4 K afresh (no kept factorisation: the
+ * caller adds to it) and rhs = h F, returns the band (A(i, j) at
+ * sw_band_at) and points *rhs at the right-hand side (NULL: r is not an
+ * implicit rod); sw_implicit_band_solve factors it and solves it into rhs
+ * (0: not positive definite). */
+double *sw_implicit_band_begin(const swModel *m, swData *d, int r, double h, double **rhs);
+int sw_implicit_band_solve(const swModel *m, swData *d, int r);
+static inline double *sw_band_at(double *A, size_t i, size_t j) {
+  return A + i * (SW_IMPLICIT_BAND + 1) + SW_IMPLICIT_BAND - (i - j);
+}
 /* Rigid rods (rigid.c).  sw_rigid_setup fills the rigid_* arrays of the
  * model (mass, principal inertia, body-frame nodes and element frames; called
  * by sw_compile once the rods, loads and boundary conditions are in);
@@ -413,6 +425,15 @@ int sw_leaf_condense(double *const *ws, const int *const *qoff, int nu, int du, 
                      const int *qdof, double *A, int n, double *rhs); /* nu units of one shape */
 void sw_leaf_recover(double *ws, int du, int dQ, int np, const int *qoff, const int *qdof,
                      const double *u);
+/* The band path (joint_ports.c) of a group that is one implicit rod member
+ * k and leaves on its ports (m->rigid_group_band): each port's block of
+ * joints and eliminated leaves (lower triangle, port t's at P + 42 t, rows
+ * 6 apart: the diagonal blocks of a matrix of row length 6 whose port t
+ * starts at row and column 6 t) and right-hand side (R + 6 t) added to the
+ * rod's band through E, the band factored and solved, the rod's loads set,
+ * and each port's lab velocity change written over R (0: not factored). */
+#define SW_BAND_PORT 42
+int sw_band_group_solve(const swModel *m, swData *d, double h, int k, const double *P, double *R);
 /* Environments (environment.c).  The swSpec keeps them in an opaque slot
  * (sw_spec_env); sw_env_check validates them in sw_compile, sw_env_setup
  * puts resolved copies and each kind's derived data in the model, sw_env_free

@@ -16,8 +16,10 @@
  * are eliminated before it is factored; a filament whose ends are both
  * such leaves (or clamped) has its damping solved in the system, its ends
  * eliminated as one unit, and so does one whose ends are attachments that
- * are not leaves (dense_ends), its damper between their unknowns.  All of
- * it is computed once, at setup, into the model's rigid_* arrays;
+ * are not leaves (dense_ends), its damper between their unknowns.  A group
+ * of one implicit rod and leaves alone takes the band path (band_group,
+ * joint_ports.c): no dense block, its leaves eliminated into the rod's
+ * band.  All of it is computed once, at setup, into the model's rigid_* arrays;
  * rigid_joint.c's kick only reads them.
  */
 #include <stdlib.h>
@@ -473,11 +475,44 @@ static void pair_envelope(swModel *m) {
       if (m->rigid_block_reach[s] < t) m->rigid_block_reach[s] = t;
 }
 
+/* Whether group g takes the band path (joint_ports.c, sw_band_group_solve):
+ * its one dense member an implicit rod, every other a leaf alone (no
+ * filament's pair, which would join two ports), no joint between two of
+ * the rod's ports, no dense filament, and each port's element next to its
+ * node (rows within the half-bandwidth). */
+static int band_group(const swModel *m, int g) {
+  const int first = m->rigid_group_adr[g], last = m->rigid_group_adr[g + 1];
+  if (m->rigid_block_rod[first] < 0) return 0;
+  for (int k = first + 1; k < last; k++)
+    if (m->rigid_block_leaf[k] < 0 || m->rigid_block_partner[k] >= 0) return 0;
+  for (int q = m->rigid_group_joint_adr[g]; q < m->rigid_group_joint_adr[g + 1]; q++) {
+    const int j = m->rigid_group_joint[q];
+    if (m->joint_block[2 * j] == first && m->joint_block[2 * j + 1] == first) return 0;
+  }
+  for (int f = 0; f < 2 * m->nfil; f++)
+    if (m->fil_block[f] >= first && m->fil_block[f] < last) return 0;
+  const int r = m->rigid_block_rod[first];
+  for (int q = m->rigid_block_port_adr[first]; q < m->rigid_block_port_adr[first + 1]; q++) {
+    const int i = m->rigid_port_node[q] - m->node_adr[r], e = m->rigid_port_elem[q] - m->elem_adr[r];
+    if (m->rigid_port_rot[q] && e != i && e != i - 1) return 0;
+  }
+  return 1;
+}
+
+/* m->rigid_group_band, then the batches of groups of one shape
+ * (joint_lanes.c), which leave the band path's groups alone. */
+static int finish_groups(swModel *m) {
+  m->rigid_group_band = calloc((size_t)(m->nrigid_group > 0 ? m->nrigid_group : 1), sizeof(int));
+  if (!m->rigid_group_band) return 0;
+  for (int g = 0; g < m->nrigid_group; g++) m->rigid_group_band[g] = band_group(m, g);
+  return sw_group_lanes_setup(m);
+}
+
 int sw_rigid_joints_setup(swModel *m) {
   const size_t J = (size_t)(m->njoint ? m->njoint : 1), B = (size_t)(m->nrigid ? m->nrigid : 1);
   const size_t R = (size_t)(m->nrod ? m->nrod : 1);
   const size_t NB = B + 2 * J; /* members: at most every body and every joint's two sides */
-  m->rigid_group_lanes = NULL;
+  m->rigid_group_lanes = m->rigid_group_band = NULL;
   m->joint_implicit = calloc(J, sizeof(int));
   m->joint_block = malloc(2 * J * sizeof(int));
   m->joint_port = malloc(2 * J * sizeof(int));
@@ -522,7 +557,7 @@ int sw_rigid_joints_setup(swModel *m) {
   for (int q = 0; q < 2 * m->nfil; q++) m->fil_block[q] = -1;
   for (size_t q = 0; q < 2 * J; q++) m->joint_block[q] = m->joint_port[q] = -1;
   m->rigid_group_adr[0] = m->rigid_group_joint_adr[0] = m->rigid_block_port_adr[0] = 0;
-  if (m->integrator != SW_IMEX) return sw_group_lanes_setup(m);
+  if (m->integrator != SW_IMEX) return finish_groups(m);
   /* the members in the order the joints first meet them: member[2 j + side]
    * their number, body/node/elem/rod what each is; the ports likewise */
   const size_t S = (size_t)m->stride;
@@ -606,7 +641,7 @@ int sw_rigid_joints_setup(swModel *m) {
   pair_envelope(m);
   store_units(m);
   free(scratch);
-  return sw_group_lanes_setup(m);
+  return finish_groups(m);
 }
 
 void sw_rigid_joints_free(swModel *m) {
@@ -623,6 +658,7 @@ void sw_rigid_joints_free(swModel *m) {
   free(m->rigid_group_joint_adr);
   free(m->rigid_group_joint);
   free(m->rigid_group_lanes);
+  free(m->rigid_group_band);
   free(m->rigid_block_env);
   free(m->rigid_block_reach);
   free(m->joint_port);

@@ -43,6 +43,7 @@ static int dense_members(const swModel *m, int g) {
 static int same_shape(const swModel *m, int a, int b) {
   const int na = dense_members(m, a), fa = m->rigid_group_adr[a], fb = m->rigid_group_adr[b];
   if (na != dense_members(m, b) || na == 0) return 0;
+  if (m->rigid_group_band[a] || m->rigid_group_band[b]) return 0; /* solved in a rod's band */
   for (int s = 0; s < na; s++)
     if (m->rigid_block_dof[fa + s] != m->rigid_block_dof[fb + s] ||
         m->rigid_block_off[fa + s] != m->rigid_block_off[fb + s] ||

@@ -53,6 +53,25 @@
  * unit of six unknowns joined to two ports (the same algebra with C = A_uQ
  * over both ports, which couples them), and the tension then follows from
  * the ends' velocity changes (system_tension in muscle.c).
+ *
+ * The band path (issue 32).  A group of one implicit rod and leaves alone
+ * (a feather's rachis and its barbs: no body, no other dense member, no
+ * leaf pair, which would join two ports; joint_groups.c decides it at
+ * setup, m->rigid_group_band) would make S a dense block of all the ports,
+ * p^3 / 3 flops to factor and 1 + p band solves to form (150 barbs on
+ * fixed joints: p = 900, 1e8 flops a kick).  There the rod's system is not
+ * condensed: rigid_joint.c assembles each port's block (its joints' J^T W
+ * J on the port, less C_a^T A_aa^-1 C_a of each leaf on it) and right-hand
+ * side (less C_a^T A_aa^-1 b_a), lab frame, and sw_band_group_solve adds
+ * them to the rod's band as E (.) E^T and E (.): as they are on the node's
+ * rows, turned by Q on the element's (w = Q w_lab), rows 6 i - 3 .. 6 i + 2
+ * or 6 i .. 6 i + 5, within the half-bandwidth.  (A + sum E K_q E^T) du =
+ * h F + sum E b_q is the linear system the dense path solves, factored and
+ * solved once; E^T du gives each port's lab velocity, from which each leaf
+ * is recovered.  Cost: the rod's own kick plus a few hundred flops per
+ * leaf, linear in the leaves (test_joint_band: 64 barbs on 128 elements,
+ * 120 us a kick against 27 ms).  The band is factored afresh every kick:
+ * the ports' blocks change with the state.
  */
 #include <math.h>
 #include <string.h>
@@ -397,4 +416,74 @@ void sw_leaf_recover(double *ws, int du, int dQ, int np, const int *qoff, const 
       for (int c = 0; c < qdof[p]; c++) s -= X[a * dQ + c0 + c] * u[qoff[p] + c];
     b[a] = s;
   }
+}
+
+/* pos[a]: the band row of port q's unknown a, the node's three at 6 i and,
+ * when the port turns its element e, the element's three at 6 e + 3: rows
+ * 6 i - 3 .. 6 i + 2 (e = i - 1) or 6 i .. 6 i + 5 (e = i), within the
+ * half-bandwidth (joint_groups.c checks e at setup). */
+static void port_rows(const swModel *m, int r, int q, size_t *pos) {
+  const size_t i = (size_t)(m->rigid_port_node[q] - m->node_adr[r]);
+  for (size_t a = 0; a < 3; a++) pos[a] = 6 * i + a;
+  if (!m->rigid_port_rot[q]) return;
+  const size_t e = (size_t)(m->rigid_port_elem[q] - m->elem_adr[r]);
+  for (size_t a = 0; a < 3; a++) pos[3 + a] = 6 * e + 3 + a;
+}
+
+int sw_band_group_solve(const swModel *m, swData *d, double h, int k, const double *P, double *R) {
+  const int r = m->rigid_block_rod[k], q0 = m->rigid_block_port_adr[k];
+  double *b, *A = sw_implicit_band_begin(m, d, r, h, &b);
+  if (!A) return 0;
+  for (int q = q0; q < m->rigid_block_port_adr[k + 1]; q++) {
+    const int t = q - q0, dof = sw_port_dof(m, q);
+    const double *Pq = P + (size_t)SW_BAND_PORT * (size_t)t, *Rq = R + 6 * (size_t)t;
+    double G[36], g[6], Q[9];
+    for (int a = 0; a < dof; a++) { /* the lower triangle, both ways */
+      for (int c = 0; c <= a; c++) G[6 * a + c] = G[6 * c + a] = Pq[6 * a + c];
+      g[a] = Rq[a];
+    }
+    if (dof == 6) { /* E G E^T and E g, E = diag(I, Q): w = Q w_lab on the element's rows */
+      sw_getQ(m, d->Q, m->rigid_port_elem[q], Q);
+      for (int a = 0; a < 6; a++) { /* G E^T: columns 3-5 */
+        double s[3];
+        for (int c = 0; c < 3; c++) {
+          s[c] = 0;
+          for (int x = 0; x < 3; x++) s[c] += G[6 * a + 3 + x] * Q[3 * c + x];
+        }
+        for (int c = 0; c < 3; c++) G[6 * a + 3 + c] = s[c];
+      }
+      for (int c = 0; c < 6; c++) { /* then E on the left: rows 3-5 */
+        double s[3];
+        for (int a = 0; a < 3; a++) {
+          s[a] = 0;
+          for (int x = 0; x < 3; x++) s[a] += Q[3 * a + x] * G[6 * (3 + x) + c];
+        }
+        for (int a = 0; a < 3; a++) G[6 * (3 + a) + c] = s[a];
+      }
+      double w[3];
+      sw_mat_vec(w, Q, g + 3);
+      for (int a = 0; a < 3; a++) g[3 + a] = w[a];
+    }
+    size_t pos[6];
+    port_rows(m, r, q, pos);
+    for (int a = 0; a < dof; a++) { /* the band's lower triangle */
+      b[pos[a]] += g[a];
+      for (int c = 0; c < dof; c++)
+        if (pos[c] <= pos[a]) *sw_band_at(A, pos[a], pos[c]) += G[6 * a + c];
+    }
+  }
+  if (!sw_implicit_band_solve(m, d, r)) return 0;
+  for (int q = q0; q < m->rigid_block_port_adr[k + 1]; q++) { /* p = E^T du */
+    double *Rq = R + 6 * (size_t)(q - q0);
+    size_t pos[6];
+    port_rows(m, r, q, pos);
+    for (int a = 0; a < 3; a++) Rq[a] = b[pos[a]];
+    if (!m->rigid_port_rot[q]) continue;
+    double Q[9];
+    const double w[3] = {b[pos[3]], b[pos[4]], b[pos[5]]};
+    sw_getQ(m, d->Q, m->rigid_port_elem[q], Q);
+    sw_matT_vec(Rq + 3, Q, w); /* w_lab = Q^T w */
+  }
+  sw_implicit_apply(m, d, r, b, 1, h);
+  return 1;
 }

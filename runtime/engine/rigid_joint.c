@@ -108,10 +108,21 @@ int sw_rigid_group_unknowns(const swModel *m, int g) {
   return last < m->rigid_group_adr[g] ? 0 : m->rigid_block_off[last] + m->rigid_block_dof[last];
 }
 
+/* A group solved in its rod's band (m->rigid_group_band): its ports. */
+static int band_ports(const swModel *m, int g) {
+  const int k = m->rigid_group_adr[g];
+  return m->rigid_group_band[g] ? m->rigid_block_port_adr[k + 1] - m->rigid_block_port_adr[k] : 0;
+}
+
 /* Doubles of group g's workspace: its matrix, right-hand side and the
  * factorisation's column (cholesky_solve), then each leaf's and each rod
- * member's (joint_ports.c). */
+ * member's (joint_ports.c); in the band path, the ports' blocks and
+ * right-hand sides (sw_band_group_solve), then each leaf's. */
 static size_t group_scratch(const swModel *m, int g) {
+  if (m->rigid_group_band[g]) {
+    const int first = m->rigid_group_adr[g], nleaf = m->rigid_group_adr[g + 1] - first - 1;
+    return (size_t)band_ports(m, g) * (SW_BAND_PORT + 6) + (size_t)nleaf * SW_LEAF_WS;
+  }
   const size_t n = (size_t)sw_rigid_group_unknowns(m, g);
   size_t len = n * n + 2 * n;
   for (int k = m->rigid_group_adr[g]; k < m->rigid_group_adr[g + 1]; k++) {
@@ -308,10 +319,12 @@ typedef struct {
   int owner, ro, co, du, dQ, np, qoff[2], qdof[2];
 } Unit;
 
-static Unit leaf_unit(const swModel *m, double *leaf_ws, int k) {
+static Unit leaf_unit(const swModel *m, double *leaf_ws, int k, int band) {
   const int *w = m->rigid_leaf_unit + 10 * (size_t)k;
-  const Unit u = {leaf_ws + (size_t)m->rigid_block_off[w[0]] * SW_LEAF_WS,
-                  w[0], w[1], w[2], w[3], w[4], w[5], {w[6], w[7]}, {w[8], w[9]}};
+  Unit u = {leaf_ws + (size_t)m->rigid_block_off[w[0]] * SW_LEAF_WS,
+            w[0], w[1], w[2], w[3], w[4], w[5], {w[6], w[7]}, {w[8], w[9]}};
+  if (band >= 0) /* the band path's place of its one port: 6 t (sw_band_group_solve) */
+    u.qoff[0] = 6 * (m->rigid_block_leaf[u.owner] - m->rigid_block_port_adr[band]);
   return u;
 }
 
@@ -331,14 +344,15 @@ typedef struct {
   int off, dof;    /* in the dense block: a member's, or a rod member's port's */
 } SideSlot;
 
-static SideSlot side_slot(const swModel *m, int j, int side, int first) {
+static SideSlot side_slot(const swModel *m, int j, int side, int first, int band) {
   SideSlot t = {m->joint_block[2 * j + side], -1, 0, 0};
   if (t.block < 0) return t;
   const int k = t.block, q = m->joint_port[2 * j + side];
   t.dof = m->rigid_block_dof[k];
   if (m->rigid_block_leaf[k] >= 0) t.leaf = m->rigid_block_off[k];
   else t.off = m->rigid_block_off[k];
-  if (q >= 0) t.off += m->rigid_port_off[q], t.dof = sw_port_dof(m, q);
+  if (q >= 0 && band) t.off = 6 * (q - m->rigid_block_port_adr[k]), t.dof = sw_port_dof(m, q);
+  else if (q >= 0) t.off += m->rigid_port_off[q], t.dof = sw_port_dof(m, q);
   t.block -= first;
   return t;
 }
@@ -348,7 +362,7 @@ static SideSlot side_slot(const swModel *m, int j, int side, int first) {
 static void unit_dashpot(const swModel *m, const swData *d, double h, double *leaf_ws, int k) {
   const int f = m->rigid_block_fil[k];
   if (f < 0) return;
-  const Unit u = leaf_unit(m, leaf_ws, k);
+  const Unit u = leaf_unit(m, leaf_ws, k, -1);
   const double *sys = d->fil_sys + 8 * (size_t)f, w = h * sys[1];
   double b[12] = {0};
   const int ends[2] = {u.owner, m->rigid_block_partner[u.owner]};
@@ -402,25 +416,35 @@ static void dense_filaments(const swModel *m, swData *d, double h, int g, double
  * members replaced (group_finish): a body's in load[], an attachment's node
  * force and, when a joint couples its element's rotation, element torque,
  * an implicit rod's every node and element.  ws: the leaves' and rods'
- * workspace.  Returns 0 if the block (or a rod's system) could not be
- * factored. */
+ * workspace.  In the band path (m->rigid_group_band, joint_ports.c) A is
+ * the ports' blocks (row length 6, port t's at row and column 6 t) and rhs
+ * their right-hand sides, the rod is not condensed, and the solve
+ * (sw_band_group_solve) sets the rod's loads and leaves the ports' lab
+ * velocity changes in rhs, from which group_finish recovers the leaves.
+ * Returns 0 if the block (or a rod's system) could not be factored. */
 static int group_assemble(const swModel *m, swData *d, double h, int g, double *A, double *rhs,
                           double *ws, double *load) {
   const int first = m->rigid_group_adr[g], nb = m->rigid_group_adr[g + 1] - first;
-  const int nd = dense_end(m, g) - first, n = sw_rigid_group_unknowns(m, g);
+  const int band = m->rigid_group_band[g], bu = band ? first : -1; /* the band path (header) */
+  const int nd = dense_end(m, g) - first, n = band ? 6 : sw_rigid_group_unknowns(m, g);
   const int *off = m->rigid_block_off + first, *dof = m->rigid_block_dof + first;
   double *leaf_ws = ws, *rod_ws = ws + (size_t)(nb - nd) * SW_LEAF_WS;
+  if (band) { /* the ports' blocks (A, row length 6) and right-hand sides */
+    memset(A, 0, (size_t)band_ports(m, g) * SW_BAND_PORT * sizeof(double));
+    memset(rhs, 0, (size_t)band_ports(m, g) * 6 * sizeof(double));
+  }
   /* zeros where the assembly adds: each dense member's rows over its
    * envelope up to the end of its diagonal block (A's lower triangle, the
    * only part cholesky_solve reads, and the block sw_port_member_assemble
    * solves in).  The rest of A is neither added to nor read before the
    * factorisation writes it (or keeps the zeros it has from the start). */
-  for (int s = 0; s < nd; s++) {
+  for (int s = 0; s < nd && !band; s++) {
     const int c0 = off[m->rigid_block_env[first + s] - first], c1 = off[s] + dof[s];
     for (int i = off[s]; i < c1; i++) memset(A + (size_t)i * n + c0, 0, (size_t)(c1 - c0) * sizeof(double));
   }
   for (int s = 0, wrod = 0; s < nb; s++) { /* mass, and the right-hand side h F */
     const int k = first + s;
+    if (m->rigid_block_rod[k] >= 0 && band) continue; /* its band: sw_band_group_solve */
     if (m->rigid_block_rod[k] >= 0) { /* S and S p0 (joint_ports.c) */
       double *w = rod_ws + wrod;
       wrod += (int)sw_port_member_scratch(m, k);
@@ -430,7 +454,7 @@ static int group_assemble(const swModel *m, swData *d, double h, int g, double *
     double M, Il[9], F[6];
     member_inertia(m, d, k, load, &M, Il, F);
     const int leaf = m->rigid_block_leaf[k] >= 0;
-    const Unit u = leaf ? leaf_unit(m, leaf_ws, k) : (Unit){0};
+    const Unit u = leaf ? leaf_unit(m, leaf_ws, k, bu) : (Unit){0};
     double *B = leaf ? u.ws : A; /* a leaf's unit: A_uu, C, X, b */
     const size_t ld = leaf ? (size_t)u.du : (size_t)n, o = leaf ? (size_t)u.ro : (size_t)off[s];
     double *b = leaf ? B + 432 + o : rhs + o;
@@ -450,7 +474,7 @@ static int group_assemble(const swModel *m, swData *d, double h, int g, double *
   for (int q = m->rigid_group_joint_adr[g]; q < m->rigid_group_joint_adr[g + 1]; q++) {
     const int j = m->rigid_group_joint[q];
     const swJointDesc *jd = &m->joint[j];
-    const SideSlot side[2] = {side_slot(m, j, 0, first), side_slot(m, j, 1, first)};
+    const SideSlot side[2] = {side_slot(m, j, 0, first, band), side_slot(m, j, 1, first, band)};
     const int node[2] = {m->joint_node_a[j], m->joint_node_b[j]};
     /* the rotation's projector: the hinge's axis carried by side a */
     double P[9];
@@ -490,7 +514,7 @@ static int group_assemble(const swModel *m, swData *d, double h, int g, double *
         if (ss->block < 0 || st->block < 0) continue;
         const double sign = s == t ? 1.0 : -1.0; /* rates are side b minus side a */
         if (ss->leaf >= 0) { /* a leaf's own block (t = s) or its coupling to the port */
-          const Unit u = leaf_unit(m, leaf_ws, first + ss->block);
+          const Unit u = leaf_unit(m, leaf_ws, first + ss->block, bu);
           if (s == t) add_pair(u.ws, u.du, u.ro, ss->dof, u.ro, ss->dof, wpos, wrot, wlim, Jp[s], Jp[t], PtP, ggT);
           else add_pair(u.ws + 144, u.dQ, u.ro, ss->dof, u.co, st->dof, -wpos, -wrot, -wlim, Jp[s], Jp[t], PtP, ggT);
           continue;
@@ -501,7 +525,7 @@ static int group_assemble(const swModel *m, swData *d, double h, int g, double *
                  Jp[s], Jp[t], PtP, ggT);
       }
   }
-  if (m->fil_block) dense_filaments(m, d, h, g, A, n, NULL);
+  if (m->fil_block && !band) dense_filaments(m, d, h, g, A, n, NULL);
   /* the leaves' units eliminated into their ports, in their order, the
    * consecutive ones of the same shape together (sw_leaf_condense) */
   Unit batch[UNIT_BATCH];
@@ -510,7 +534,7 @@ static int group_assemble(const swModel *m, swData *d, double h, int g, double *
   for (int s = nd, nu = 0; s <= nb; s++) {
     Unit u = {0};
     if (s < nb) {
-      u = leaf_unit(m, leaf_ws, first + s);
+      u = leaf_unit(m, leaf_ws, first + s, bu);
       if (u.owner != first + s) continue;
       unit_dashpot(m, d, h, leaf_ws, first + s);
     }
@@ -525,8 +549,9 @@ static int group_assemble(const swModel *m, swData *d, double h, int g, double *
   return 1;
 }
 
-static int group_solve(const swModel *m, int g, double *A, double *rhs) {
+static int group_solve(const swModel *m, swData *d, double h, int g, double *A, double *rhs) {
   const int first = m->rigid_group_adr[g], n = sw_rigid_group_unknowns(m, g);
+  if (m->rigid_group_band[g]) return sw_band_group_solve(m, d, h, first, A, rhs);
   return cholesky_solve(A, n, rhs, rhs + n, m->rigid_block_env + first, m->rigid_block_reach + first,
                         m->rigid_block_off + first, m->rigid_block_dof + first, first);
 }
@@ -535,10 +560,12 @@ static void group_finish(const swModel *m, swData *d, double h, int g, double *A
                          double *ws, double *load) {
   const int first = m->rigid_group_adr[g], nb = m->rigid_group_adr[g + 1] - first;
   const int nd = dense_end(m, g) - first, n = sw_rigid_group_unknowns(m, g);
+  const int band = m->rigid_group_band[g], bu = band ? first : -1;
   const int *off = m->rigid_block_off + first, *dof = m->rigid_block_dof + first;
   double *leaf_ws = ws, *rod_ws = ws + (size_t)(nb - nd) * SW_LEAF_WS;
   for (int s = 0, wrod = 0; s < nb; s++) { /* the loads that give du */
     const int k = first + s, b = m->rigid_block_body[k];
+    if (m->rigid_block_rod[k] >= 0 && band) continue; /* set by sw_band_group_solve */
     if (m->rigid_block_rod[k] >= 0) {
       sw_port_member_finish(m, d, h, k, rod_ws + wrod, rhs + off[s]);
       wrod += (int)sw_port_member_scratch(m, k);
@@ -546,7 +573,7 @@ static void group_finish(const swModel *m, swData *d, double h, int g, double *A
     }
     const double *du = rhs + off[s];
     if (m->rigid_block_leaf[k] >= 0) { /* a unit's velocities, once, by its owner */
-      const Unit u = leaf_unit(m, leaf_ws, k);
+      const Unit u = leaf_unit(m, leaf_ws, k, bu);
       if (u.owner == k) sw_leaf_recover(u.ws, u.du, u.dQ, u.np, u.qoff, u.qdof, rhs);
       du = u.ws + 432 + u.ro;
     }
@@ -571,7 +598,7 @@ static void group_finish(const swModel *m, swData *d, double h, int g, double *A
   }
   for (int s = nd; s < nb; s++) { /* the filaments in the system: their tension */
     const int k = first + s, f = m->rigid_block_fil[k];
-    const Unit u = leaf_unit(m, leaf_ws, k);
+    const Unit u = leaf_unit(m, leaf_ws, k, bu);
     if (f < 0 || u.owner != k) continue;
     const double *dv[2] = {NULL, NULL}; /* start, end: NULL when clamped */
     const int ends[2] = {k, m->rigid_block_partner[k]};
@@ -581,7 +608,7 @@ static void group_finish(const swModel *m, swData *d, double h, int g, double *A
     }
     sw_muscle_ops(m)->system_tension(m, d, f, dv[0], dv[1]);
   }
-  if (m->fil_block) dense_filaments(m, d, h, g, A, n, rhs);
+  if (m->fil_block && !band) dense_filaments(m, d, h, g, A, n, rhs);
 }
 
 /* The via rings' force changes of group g's filaments in the system, on
@@ -623,8 +650,9 @@ int sw_rigid_joints_kick(const swModel *m, swData *d, double h, double *load) {
     double *Ab[SW_GROUP_LANES], *rhs[SW_GROUP_LANES], *ws[SW_GROUP_LANES];
     int okb[SW_GROUP_LANES], all = 1;
     for (int u = 0; u < nl; u++) {
-      const size_t n = (size_t)sw_rigid_group_unknowns(m, g + u);
+      const size_t n = (size_t)sw_rigid_group_unknowns(m, g + u), np = (size_t)band_ports(m, g + u);
       Ab[u] = A, rhs[u] = A + n * n, ws[u] = rhs[u] + 2 * n;
+      if (np) rhs[u] = A + np * SW_BAND_PORT, ws[u] = rhs[u] + 6 * np; /* the band path */
       okb[u] = group_assemble(m, d, h, g + u, Ab[u], rhs[u], ws[u], load);
       all &= okb[u];
       A += group_scratch(m, g + u);
@@ -635,7 +663,7 @@ int sw_rigid_joints_kick(const swModel *m, swData *d, double h, double *load) {
                           m->rigid_block_reach + first, m->rigid_block_off + first,
                           m->rigid_block_dof + first, first, d->rigid_lanes);
     for (int u = 0; u < nl && !together; u++) /* one by one: alone, or a lane failed */
-      if (okb[u]) okb[u] = group_solve(m, g + u, Ab[u], rhs[u]);
+      if (okb[u]) okb[u] = group_solve(m, d, h, g + u, Ab[u], rhs[u]);
     for (int u = 0; u < nl; u++) {
       if (okb[u]) group_finish(m, d, h, g + u, Ab[u], rhs[u], ws[u], load);
       ok &= okb[u];

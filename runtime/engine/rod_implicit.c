@@ -493,29 +493,25 @@ static void rod_rhs(const swModel *m, const swData *d, int r, double h, double *
   }
 }
 
-/* Rod r's system of this kick, A = M + h/2 C + h^2/4 K and rhs = h F, in
- * its workspace ws (rod_scratch); *rhs_out and *inv_out point into it.  The
- * factorisation of an earlier kick is kept when it holds (above), else A is
- * assembled and factored.  Returns 0 if A could not be factored. */
-static int rod_factor(const swModel *m, const swData *d, int k, double *ws, double h,
-                      double **rhs_out, double **inv_out) {
+/* The workspace of implicit rod k (rod_scratch): zeros, band, zeros,
+ * zeros, rhs, zeros, zeros, inv, what the factorisation was made of.  Its
+ * band A, right-hand side and inverse diagonal. */
+static double *rod_ws(const swModel *m, const swData *d, int k, double **rhs, double **inv) {
+  const size_t N = unknowns(m->rod_nelem[m->implicit_rod[k]]), PB = BAND * (BAND + 1);
+  double *ws = d->implicit_sys + m->implicit_adr[k], *A = ws + PB;
+  *rhs = A + N * (BAND + 1) + PB + BAND;
+  *inv = *rhs + N + 2 * BAND;
+  return A;
+}
+
+/* Rod k's matrix of this kick, A = M + h/2 C + h^2/4 K, assembled afresh
+ * into its band (and the zeros around the band and the right-hand side). */
+static void rod_assemble(const swModel *m, const swData *d, int k, double h) {
   const int r = m->implicit_rod[k], n = m->rod_nelem[r], na = m->node_adr[r], ea = m->elem_adr[r];
   const int damped = m->rod_damping[r] == SW_DAMP_LINEAR;
   const size_t N = unknowns(n), NB = N * (BAND + 1), PB = BAND * (BAND + 1);
-  /* the workspace (rod_scratch): zeros, band, zeros, zeros, rhs, zeros,
-   * zeros, inv, what the factorisation was made of */
-  double *A = ws + PB, *rhs = A + NB + PB + BAND, *inv = rhs + N + 2 * BAND;
-  double *kept = ws + system_len(n);
-  *rhs_out = rhs, *inv_out = inv;
-  rod_rhs(m, d, r, h, rhs);
-  /* a rod whose stiffness and inertia change in time (swell.c) factors
-   * afresh at every kick: a kept system would hold an earlier geometry's */
-  const int swells = m->nswell && sw_swell_of_rod(m, r) >= 0;
-  if (!swells && kept_holds(m, d, r, kept, h, m->implicit_wave_dt[k])) {
-    kept[KEPT_REUSED] += 1;
-    return 1;
-  }
-  memset(ws, 0, PB * sizeof(double));
+  double *rhs, *inv, *A = rod_ws(m, d, k, &rhs, &inv);
+  memset(A - PB, 0, PB * sizeof(double));
   memset(A + NB, 0, (PB + BAND) * sizeof(double));
   memset(rhs + N, 0, 2 * BAND * sizeof(double));
   const double c = damped ? 0.5 * h : 0.0;
@@ -536,10 +532,60 @@ static int rod_factor(const swModel *m, const swData *d, int k, double *ws, doub
     }
   }
   rod_holds(m, r, A, N);
+}
+
+/* Rod r's system of this kick, A = M + h/2 C + h^2/4 K and rhs = h F, in
+ * its workspace (rod_ws); *rhs_out and *inv_out point into it.  The
+ * factorisation of an earlier kick is kept when it holds (above), else A is
+ * assembled and factored.  Returns 0 if A could not be factored. */
+static int rod_factor(const swModel *m, const swData *d, int k, double *ws, double h,
+                      double **rhs_out, double **inv_out) {
+  const int r = m->implicit_rod[k], n = m->rod_nelem[r];
+  double *rhs, *inv, *A = rod_ws(m, d, k, &rhs, &inv);
+  double *kept = ws + system_len(n);
+  *rhs_out = rhs, *inv_out = inv;
+  rod_rhs(m, d, r, h, rhs);
+  /* a rod whose stiffness and inertia change in time (swell.c) factors
+   * afresh at every kick: a kept system would hold an earlier geometry's */
+  const int swells = m->nswell && sw_swell_of_rod(m, r) >= 0;
+  if (!swells && kept_holds(m, d, r, kept, h, m->implicit_wave_dt[k])) {
+    kept[KEPT_REUSED] += 1;
+    return 1;
+  }
+  rod_assemble(m, d, k, h);
   kept[KEPT_H] = 0; /* no factorisation kept unless this one succeeds */
-  if (!band_ldlt_factor(A, N, inv)) return 0;
+  if (!band_ldlt_factor(A, unknowns(n), inv)) return 0;
   keep(m, d, r, kept, h);
   kept[KEPT_FRESH] += 1;
+  return 1;
+}
+
+/* The implicit rods' number of rod r, or nimplicit. */
+static int implicit_of(const swModel *m, int r) {
+  int k = 0;
+  while (k < m->nimplicit && m->implicit_rod[k] != r) k++;
+  return k;
+}
+
+double *sw_implicit_band_begin(const swModel *m, swData *d, int r, double h, double **rhs) {
+  const int k = implicit_of(m, r);
+  if (k == m->nimplicit) return NULL;
+  double *inv, *A = rod_ws(m, d, k, rhs, &inv);
+  double *kept = d->implicit_sys + m->implicit_adr[k] + system_len(m->rod_nelem[r]);
+  rod_rhs(m, d, r, h, *rhs);
+  rod_assemble(m, d, k, h);
+  kept[KEPT_H] = 0; /* the band will hold more than the rod's own system: nothing kept */
+  return A;
+}
+
+int sw_implicit_band_solve(const swModel *m, swData *d, int r) {
+  const int k = implicit_of(m, r);
+  double *rhs, *inv, *A = rod_ws(m, d, k, &rhs, &inv);
+  double *kept = d->implicit_sys + m->implicit_adr[k] + system_len(m->rod_nelem[r]);
+  const size_t N = unknowns(m->rod_nelem[r]);
+  if (!band_ldlt_factor(A, N, inv)) return 0;
+  kept[KEPT_FRESH] += 1;
+  band_ldlt_solve(A, N, rhs, inv);
   return 1;
 }
 
@@ -572,8 +618,7 @@ static int rod_kick(const swModel *m, swData *d, int k, double h) {
 }
 
 int sw_implicit_solve_many(const swModel *m, swData *d, int r, double h, double *X, int ld) {
-  int k = 0;
-  while (k < m->nimplicit && m->implicit_rod[k] != r) k++;
+  const int k = implicit_of(m, r);
   double *rhs, *inv, *ws = k < m->nimplicit ? d->implicit_sys + m->implicit_adr[k] : NULL;
   if (!ws || !rod_factor(m, d, k, ws, h, &rhs, &inv)) return 0;
   const size_t N = unknowns(m->rod_nelem[r]), PB = BAND * (BAND + 1);

@@ -166,6 +166,13 @@ typedef struct {
                                            together from this one (at most
                                            SW_GROUP_LANES), 0 inside such a
                                            batch (joint_lanes.c)             */
+  int *rigid_group_band;     /* (nrigid_group or 1) 1: the group is one
+                                           implicit rod and leaves alone on its
+                                           ports, solved in the rod's band with
+                                           the leaves eliminated into it
+                                           (joint_ports.c, the band path: no
+                                           dense block of the ports); 0: its
+                                           dense block (joint_groups.c)       */
   /* rods whose geometry changes in time (swell.c): their radius, stiffness,
    * inertia, mass and rest curvature follow signals; what the step reads of
    * these is swData's *_now arrays, which are these model arrays themselves

@@ -1,0 +1,269 @@
+/* test_joint_band.c — the joints' system's band path (joint_ports.c,
+ * sw_band_group_solve): a group of one implicit rod and leaves alone on its
+ * ports solved in the rod's band, against the dense path of the same group
+ * (the rod condensed to its ports, S = C^-1, the leaves eliminated into
+ * that block), which solves the same linear system another way.
+ *
+ * Design.  A "feather": an implicit rachis (20 elements, clamped at its
+ * start, free, or hinged to space there: that joint's block alone on its
+ * port) carrying short explicit barbs (4 elements) joined at their base
+ * nodes to its nodes by stiff implicit joints (fixed, and one spherical;
+ * two barbs on one node), under gravity, every node and element
+ * started moving.  One model, two swData, each stepped with its own path
+ * (m->rigid_group_band toggled around its step, as test_rigid_joint toggles
+ * its batches; each swData's workspace sized for its path when it is
+ * made).  The band path factors the band afresh every kick (the leaves'
+ * blocks change with the state), so the dense path is made to as well
+ * (sw_implicit_reset before each step: no kept factorisation of the rod),
+ * and the two must agree to round-off.  Then the cost of one kick of the
+ * joints' system each way for 4, 16 and 64 barbs on a rachis of 128
+ * elements, printed (measured, not asserted), with the workspace each path
+ * needs (asserted: the band path's grows linearly in the ports). */
+#include <float.h>
+#include <time.h>
+#include "testutil.h"
+#include "internal.h"
+
+static const char *named(const char *stem) {
+  static char name[32];
+  static int count;
+  snprintf(name, sizeof name, "%s%d", stem, count++);
+  return name;
+}
+
+/* How the rachis is held: free, clamped at its start, or hinged to space
+ * there (a joint of the rod alone, its port's block without a leaf). */
+enum { FREE, CLAMPED, HINGED };
+static const char *const held_name[3] = {"free", "clamped", "hinged to space"};
+
+/* A rachis of nel elements along x (0.2 m, r = 2 mm, E = 100 MPa, G = E/3),
+ * implicit, held at its start as `held` says; nleaf barbs (20 mm, r =
+ * 0.4 mm, E = 10 MPa, 4 elements), barb l at node at[l] of the rachis,
+ * pointing alternately +y and -y and tilted up, joined base to that node by
+ * a fixed joint, or spherical for barb `spherical`. */
+static swModel *feather(int nel, int nleaf, const int *at, int spherical, int held, swSpec **out) {
+  swSpec *s = sw_spec_new();
+  const double L = 0.2, x0[3] = {0, 0, 0}, dx[3] = {1, 0, 0};
+  swRodDesc r = sw_test_rod(named("rachis"), nel, L, 2e-3, x0, dx, NULL);
+  r.youngs = 1e8, r.shear_modulus = 1e8 / 3, r.density = 1200, r.implicit = 1;
+  const int rachis = sw_spec_add_rod(s, &r);
+  if (held == CLAMPED) {
+    swBCDesc c = sw_test_clamp(rachis, 0);
+    sw_spec_add_bc(s, &c);
+  } else if (held == HINGED) {
+    swJointDesc j;
+    sw_joint_desc_init(&j);
+    j.name = named("pin");
+    j.kind = SW_JOINT_HINGE;
+    j.rod_a = rachis, j.node_a = 0, j.rod_b = -1;
+    j.axis[1] = 1;
+    sw_spec_add_joint(s, &j);
+  }
+  for (int l = 0; l < nleaf; l++) {
+    const double start[3] = {L * at[l] / nel, 0, 0};
+    const double dir[3] = {0.1 * l, l % 2 ? -1 : 1, 0.3}, nrm[3] = {1, 0, 0};
+    swRodDesc b = sw_test_rod(named("barb"), 4, 0.02, 4e-4, start, dir, nrm);
+    b.youngs = 1e7, b.shear_modulus = 1e7 / 3, b.density = 1200;
+    const int barb = sw_spec_add_rod(s, &b);
+    swJointDesc j;
+    sw_joint_desc_init(&j);
+    j.name = named("j");
+    j.kind = l == spherical ? SW_JOINT_SPHERICAL : SW_JOINT_FIXED;
+    j.rod_a = rachis, j.node_a = at[l];
+    j.rod_b = barb, j.node_b = 0;
+    sw_spec_add_joint(s, &j);
+  }
+  const double g[3] = {0, 0, -9.81};
+  sw_spec_set_gravity(s, g);
+  sw_spec_set_integrator(s, SW_IMEX);
+  *out = s;
+  return sw_test_compile_at(s, 0.5);
+}
+
+/* Every group to the band path (band 1) or the dense one (0). */
+static void set_band(swModel *m, int band) {
+  for (int g = 0; g < m->nrigid_group; g++) m->rigid_group_band[g] = band;
+}
+
+/* A swData made for that path (its workspace is the path's). */
+static swData *data_for(swModel *m, int band) {
+  set_band(m, band);
+  swData *d = sw_data_new(m);
+  assert_non_null(d);
+  return d;
+}
+
+/* Every node and element of d started moving, the same in every swData. */
+static void start_moving(const swModel *m, swData *d) {
+  for (int i = 0; i < m->stride; i++) {
+    SW_AT(m, d->v, i, 0) = 0.02 * sin(1.3 * i);
+    SW_AT(m, d->v, i, 1) = 0.03 * cos(0.7 * i);
+    SW_AT(m, d->v, i, 2) = 0.05 * sin(0.4 * i + 1);
+    SW_AT(m, d->omega, i, 0) = 0.5 * cos(0.9 * i);
+    SW_AT(m, d->omega, i, 1) = 0.3 * sin(1.1 * i);
+    SW_AT(m, d->omega, i, 2) = 0.2 * cos(0.3 * i + 2);
+  }
+}
+
+/* The largest |a - b| over n numbers, and the largest |b|. */
+static double worst(const double *a, const double *b, size_t n, double *scale) {
+  double w = 0;
+  *scale = 0;
+  for (size_t k = 0; k < n; k++) w = fmax(w, fabs(a[k] - b[k])), *scale = fmax(*scale, fabs(b[k]));
+  return w;
+}
+
+/* The largest differences of x, v and omega between a and b, each over the
+ * largest |.| of b: rel[0 .. 2]. */
+static void differences(const swModel *m, const swData *a, const swData *b, double *abs_, double *rel) {
+  const size_t n3 = 3 * (size_t)m->stride;
+  const double *pa[3] = {a->x, a->v, a->omega}, *pb[3] = {b->x, b->v, b->omega};
+  for (int q = 0; q < 3; q++) {
+    double scale;
+    abs_[q] = worst(pa[q], pb[q], n3, &scale);
+    rel[q] = abs_[q] / scale;
+  }
+}
+
+/* The feather stepped by both paths, and by the dense path from a start one
+ * unit in the last place away (every velocity times 1 + 2^-52): how far
+ * the scene itself carries a round-off.  After EARLY steps, before the
+ * barbs' fast rotations have amplified it, x, v and omega agree within
+ * 1e-12 of their largest; after the run, x still does, and v and omega
+ * differ by no more than the one-ulp start makes them differ (within a
+ * factor 10, the spread of such amplified round-off). */
+#define EARLY 20
+static void same_solution(int held) {
+  static const int at[7] = {2, 5, 8, 8, 11, 14, 20};
+  swSpec *s;
+  swModel *m = feather(20, 7, at, 3, held, &s);
+  assert_int_equal(m->nrigid_group, 1);
+  assert_int_equal(m->rigid_group_band[0], 1); /* one rod and its leaves */
+  assert_int_equal(m->nrigid_block, 8);
+  swData *band = data_for(m, 1), *dense = data_for(m, 0), *ulp = data_for(m, 0);
+  start_moving(m, band);
+  start_moving(m, dense);
+  start_moving(m, ulp);
+  for (int i = 0; i < 3 * m->stride; i++) ulp->v[i] *= 1 + DBL_EPSILON;
+  const long nsteps = sw_test_sanitized() ? 200 : 400;
+  double ea[3], er[3], da[3], dr[3], ua[3], ur[3];
+  for (long k = 0; k < nsteps; k++) {
+    set_band(m, 1);
+    assert_int_equal(sw_step(m, band), SW_OK);
+    set_band(m, 0);
+    sw_implicit_reset(m, dense); /* factored afresh, as the band path is */
+    assert_int_equal(sw_step(m, dense), SW_OK);
+    sw_implicit_reset(m, ulp);
+    assert_int_equal(sw_step(m, ulp), SW_OK);
+    if (k == EARLY - 1) differences(m, band, dense, ea, er);
+  }
+  set_band(m, 1);
+  differences(m, band, dense, da, dr);
+  differences(m, ulp, dense, ua, ur);
+  double fresh, kept;
+  sw_implicit_counts(m, band, &fresh, &kept);
+  fprintf(stderr, "# test_same_solution: %s rachis, 7 barbs, dt %.3g s, band kicks %g fresh, %g kept\n",
+          held_name[held], m->dt, fresh, kept);
+  fprintf(stderr, "#   after %d steps, band - dense: x %.2e m (rel. %.2e), v %.2e m/s (rel. %.2e), "
+          "omega %.2e rad/s (rel. %.2e)\n", EARLY, ea[0], er[0], ea[1], er[1], ea[2], er[2]);
+  fprintf(stderr, "#   after %ld steps, band - dense: x %.2e m (rel. %.2e), v %.2e m/s (rel. %.2e), "
+          "omega %.2e rad/s (rel. %.2e)\n", nsteps, da[0], dr[0], da[1], dr[1], da[2], dr[2]);
+  fprintf(stderr, "#   after %ld steps, dense from a one-ulp start - dense: x %.2e m (rel. %.2e), "
+          "v %.2e m/s (rel. %.2e), omega %.2e rad/s (rel. %.2e)\n",
+          nsteps, ua[0], ur[0], ua[1], ur[1], ua[2], ur[2]);
+  for (int q = 0; q < 3; q++) assert_true(er[q] <= 1e-12);
+  assert_true(dr[0] <= 1e-12);
+  for (int q = 1; q < 3; q++) assert_true(dr[q] <= fmax(1e-12, 10 * ur[q]));
+  double vmax;
+  (void)worst(dense->v, dense->v, 3 * (size_t)m->stride, &vmax);
+  assert_true(vmax > 0.01); /* it moved */
+  sw_data_free(band);
+  sw_data_free(dense);
+  sw_data_free(ulp);
+  sw_model_free(m);
+  sw_spec_free(s);
+}
+
+static void test_same_solution(void **state) {
+  (void)state;
+  same_solution(CLAMPED);
+  same_solution(FREE);
+  same_solution(HINGED);
+}
+
+static double now(void) {
+  struct timespec t;
+  clock_gettime(CLOCK_MONOTONIC, &t);
+  return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
+}
+
+/* Seconds per kick of the joints' system on d's state, each factored
+ * afresh (sw_implicit_reset, as a moving rod mostly is): the least mean
+ * over five batches of at least 3 kicks and 10 ms (the machine is shared;
+ * one batch of 2 under the sanitizers, where the dense path's 64 barbs take
+ * a quarter of a second a kick). */
+static double kick_time(const swModel *m, swData *d) {
+  const int batches = sw_test_sanitized() ? 1 : 5, least = sw_test_sanitized() ? 2 : 3;
+  double best = INFINITY;
+  for (int batch = 0; batch < batches; batch++) {
+    long k = 0;
+    const double t0 = now();
+    double t = t0;
+    while (k < least || t - t0 < 0.01) {
+      sw_implicit_reset(m, d);
+      assert_int_equal(sw_rigid_joints_kick(m, d, m->dt, d->rigid_load), 1);
+      k++;
+      t = now();
+    }
+    best = fmin(best, (t - t0) / (double)k);
+  }
+  return best;
+}
+
+static void test_cost(void **state) {
+  (void)state;
+  static const int leaves[3] = {4, 16, 64};
+  size_t ws[3];
+  for (int c = 0; c < 3; c++) {
+    int at[64];
+    for (int l = 0; l < leaves[c]; l++) at[l] = 2 + l * 128 / leaves[c];
+    swSpec *s;
+    swModel *m = feather(128, leaves[c], at, -1, CLAMPED, &s);
+    assert_int_equal(m->rigid_group_band[0], 1);
+    swData *band = data_for(m, 1);
+    ws[c] = sw_rigid_joints_scratch(m);
+    swData *dense = data_for(m, 0);
+    const size_t ws_dense = sw_rigid_joints_scratch(m);
+    start_moving(m, band);
+    start_moving(m, dense);
+    for (int k = 0; k < 3; k++) { /* a state of the run */
+      set_band(m, 1);
+      assert_int_equal(sw_step(m, band), SW_OK);
+      set_band(m, 0);
+      assert_int_equal(sw_step(m, dense), SW_OK);
+    }
+    set_band(m, 1);
+    const double tb = kick_time(m, band);
+    set_band(m, 0);
+    const double td = kick_time(m, dense);
+    set_band(m, 1);
+    fprintf(stderr, "# test_cost: %2d barbs (fixed joints, %3d port unknowns) on 128 elements: "
+            "band path %8.1f us per kick (%zu doubles of workspace), dense path %8.1f us "
+            "(%zu doubles), dense / band %.1f\n",
+            leaves[c], 6 * leaves[c], 1e6 * tb, ws[c], 1e6 * td, ws_dense, td / tb);
+    sw_data_free(band);
+    sw_data_free(dense);
+    sw_model_free(m);
+    sw_spec_free(s);
+  }
+  /* the band path's workspace: each port's block and each leaf's unit */
+  for (int c = 1; c < 3; c++) assert_int_equal(ws[c] * (size_t)leaves[0], ws[0] * (size_t)leaves[c]);
+}
+
+int main(void) {
+  const struct CMUnitTest tests[] = {
+      cmocka_unit_test(test_same_solution),
+      cmocka_unit_test(test_cost),
+  };
+  return cmocka_run_group_tests_name("joint_band", tests, NULL, NULL);
+}
