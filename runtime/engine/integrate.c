@@ -241,9 +241,9 @@ static inline __attribute__((always_inline)) void drift_frames_block(const swMod
     const double cw = sw_select(small, c, 1.0), sw = sw_select(small, sn, 0.0);
     sw3_store(w, S, i, sw3_scale((sw3){cw * wi.x + sw * wi.y, cw * wi.y - sw * wi.x, wi.z}, scl[j]));
   }
-  if (!turned) return;
-  for (int i = lo; i < hi; i++) {
+  for (int i = lo; i < hi && turned > 0; i++) { /* up to the last one past the series */
     if (sw_frame_small_turn(sw3_load(rot, S, i - so))) continue;
+    turned--;
     double Qe[9], phi[3];
     sw_getQ(m, d->Q, i, Qe);
     sw_get3(m, rot, i - so, phi);

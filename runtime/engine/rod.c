@@ -253,8 +253,9 @@ void sw_rod_pass(const swModel *m, swData *d, int lo, int hi, int so, double *fl
   const size_t S = (size_t)m->stride;
   const vorArrays va = {d->x, m->elem_ghost, m->rest_vor_len, m->inv_rest_vor_len, d->bend_now, d->kappa0_now,
                         d->length, d->kappa, d->couple, d->vor_dilatation, d->scratch_h, so};
-  for (int i = lo; i < hi; i++) {
+  for (int i = lo; i < hi && bent > 0; i++) { /* up to the last one flagged */
     if (flag[i - so] == 0.0) continue;
+    bent--;
     double Qa[9], Qb[9], phi[3];
     sw_getQ(m, d->Q, i, Qa);
     sw_getQ(m, d->Q, i + 1, Qb);
