@@ -167,7 +167,9 @@ static inline __attribute__((always_inline)) void drift_column(double *restrict 
  * sw_rotate_frame.  The rotations s a are scratch, at i - so (internal.h,
  * "Scratch windows"); psi = -(s a)_3 / 2 is recovered from them.  The
  * round-off of the two turns is taken out every few steps (end_step). */
-/* The drift's scratch: d->scratch_phi's planes (data.c), slot i at i - so. */
+/* The drift's scratch: d->scratch_phi's planes (data.c), s a (DRIFT_PHI, 3
+ * planes) of slot i at i - so as before, which the checkpoint saves
+ * (restart.c), the other values at i - wo, a block's window. */
 enum { DRIFT_PHI = 0, DRIFT_SCALE = 3, DRIFT_A = 4, DRIFT_B = 5, DRIFT_C = 6, DRIFT_SN = 7 };
 
 /* drift_frames_law on slots [lo, hi) of one block, in three loops: (1) the
@@ -180,8 +182,8 @@ enum { DRIFT_PHI = 0, DRIFT_SCALE = 3, DRIFT_A = 4, DRIFT_B = 5, DRIFT_C = 6, DR
  * AVX2's 16 registers (docs/performance.md, "AVX2 and AVX-512").  Their
  * values pass through the block's scratch (DRIFT_*, psi where c goes). */
 static inline __attribute__((always_inline)) void drift_frames_block(const swModel *m, swData *d, double h,
-                                                                   int lo, int hi, int so, const int simpson,
-                                                                   const int law) {
+                                                                   int lo, int hi, int so, int wo,
+                                                                   const int simpson, const int law) {
   const size_t S = (size_t)m->stride;
   const double *restrict x = d->x, *restrict v = d->v;
   double *restrict w = d->omega, *restrict Q = d->Q, *restrict dil = d->dilatation;
@@ -207,16 +209,17 @@ static inline __attribute__((always_inline)) void drift_frames_block(const swMod
     const double mean = sw_select(fixed_inertia, 1.0, mean_e), scale = sw_select(fixed_inertia, 1.0, ratio);
     const double sh = h * mean;
     const sw3 wi = sw3_load(w, S, i), phi = {sh * wi.x, sh * wi.y, 2.0 * sh * wi.z};
-    const int j = i - so;
-    sw3_store(rot, S, j, phi);
+    const int j = i - wo;
+    sw3_store(rot, S, i - so, phi);
     cc[j] = -sh * wi.z; /* psi; |psi| <= |phi| / 2: small with phi */
     scl[j] = scale;
     dil[i] = e_new;
   }
   int turned = 0; /* frames past the series */
 #pragma omp simd reduction(+ : turned)
-  for (int j = lo - so; j < hi - so; j++) {
-    const sw3 phi = sw3_load(rot, S, j);
+  for (int i = lo; i < hi; i++) {
+    const int j = i - wo;
+    const sw3 phi = sw3_load(rot, S, i - so);
     const double psi = cc[j];
     const swRodrigues rot_phi = sw_rodrigues_series(sw3_dot(phi, phi)), r = sw_rodrigues_series(psi * psi);
     ca[j] = rot_phi.a;
@@ -227,8 +230,8 @@ static inline __attribute__((always_inline)) void drift_frames_block(const swMod
   }
 #pragma omp simd
   for (int i = lo; i < hi; i++) {
-    const int j = i - so;
-    const sw3 phi = sw3_load(rot, S, j);
+    const int j = i - wo;
+    const sw3 phi = sw3_load(rot, S, i - so);
     const int small = sw_frame_small_turn(phi);
     const swRodrigues rot_phi = {ca[j], cb[j]};
     const double c = cc[j], sn = cs[j];
@@ -259,14 +262,15 @@ static inline __attribute__((always_inline)) void drift_frames_block(const swMod
 
 /* The frames' drift over slots [lo, hi) (drift_frames_block), block by
  * block, so that the scratch between its loops stays in the cache: each
- * block's at the range's first entries of the window (i - so for i from
- * lo), which are this thread's. */
+ * block's at the range's first entries of the window (where i - so is for
+ * i from lo), which are this thread's. */
 #define DRIFT_BLOCK 256
 static inline __attribute__((always_inline)) void drift_frames_law(const swModel *m, swData *d, double h,
                                                                  int lo, int hi, int so, const int simpson,
                                                                  const int law) {
   for (int b = lo; b < hi; b += DRIFT_BLOCK)
-    drift_frames_block(m, d, h, b, b + DRIFT_BLOCK < hi ? b + DRIFT_BLOCK : hi, b - (lo - so), simpson, law);
+    drift_frames_block(m, d, h, b, b + DRIFT_BLOCK < hi ? b + DRIFT_BLOCK : hi, so, b - (lo - so), simpson,
+                       law);
 }
 
 /* drift_frames_law for the model's laws: a model without variational rods
