@@ -4,8 +4,9 @@
 # runtime built at -march=x86-64-v3 (AVX2 and FMA: most laptops, AMD Zen 2
 # and 3) and at -march=x86-64-v4 (AVX-512), both with GCC's generic tuning,
 # so that on one CPU the one difference is the instruction set; and beside
-# them the same two builds of the code before issue 31 (git dbec346, built
-# once in build/bench/isa-base-LEVEL from `git archive`, and measured with
+# them the same two builds of the code of an earlier commit (by default git
+# dbec346, the code before issue 31; built once in
+# build/bench/isa-base-COMMIT-LEVEL from `git archive`, and measured with
 # this tree's bench_rod.c).  Each round runs every size once in each build,
 # the order alternating from round to round; the table gives the median over
 # the rounds of each run's median batch, and the ratio of the v3 and v4
@@ -24,6 +25,8 @@ out=${1:-docs/benchmarks.md}
 ROUNDS=${SW_BENCH_ISA_ROUNDS:-5}
 SIZES=${SW_BENCH_ISA_SIZES:-"25 50 100 200 400 800"}
 BASE=${SW_BENCH_ISA_BASE-dbec346}   # the last commit before issue 31's loops
+before_what=""
+[ "$BASE" = dbec346 ] && before_what=", before issue 31"
 TARGET=1.3
 title="x86-64 levels: AVX2 (x86-64-v3) and AVX-512 (x86-64-v4)"
 make --no-print-directory build/bench/bench_rod >/dev/null
@@ -40,8 +43,8 @@ section=$tmp/section
   echo "\"Position Verlet\" above, from the runtime and bench_rod built at"
   echo "\`-O3 -march=x86-64-v3\` (AVX2, FMA: most laptops, AMD Zen 2 and 3) and at"
   echo "\`-O3 -march=x86-64-v4\` (AVX-512), both with GCC's generic tuning, run on the"
-  echo "same CPU; \"before\" is the same two builds of the code before issue 31 (git"
-  echo "$BASE, measured with this tree's bench_rod.c). Each of $ROUNDS rounds runs every"
+  echo "same CPU; \"before\" is the same two builds of the code at git $BASE$before_what"
+  echo "(measured with this tree's bench_rod.c). Each of $ROUNDS rounds runs every"
   echo "size once in each build (\`bench_rod_v3 --verlet N\`, ...), the order alternating"
   echo "from round to round; a run's figure is the median of its 9 batches, and the"
   echo "table gives the median of the $ROUNDS runs, ns and cycles per element-step."
@@ -63,7 +66,7 @@ builds=""
 for l in $levels; do
   make --no-print-directory "build/bench/bench_rod_$l" >/dev/null
   # the code before, built once for this level by its own Makefile
-  dir=build/bench/isa-base-$l
+  dir=build/bench/isa-base-$BASE-$l
   if [ -n "$BASE" ] && [ ! -f "$dir/build/libsinewrt.a" ]; then
     echo "bench_isa: building git $BASE at x86-64-$l in $dir" >&2
     rm -rf "$dir" && mkdir -p "$dir"
@@ -80,6 +83,7 @@ for l in $levels; do
   fi
   builds="$builds $l"
 done
+load0=$(cut -d' ' -f1 /proc/loadavg 2>/dev/null || echo unknown)
 r=1
 while [ "$r" -le "$ROUNDS" ]; do
   order=$builds
@@ -94,8 +98,10 @@ while [ "$r" -le "$ROUNDS" ]; do
   echo "bench_isa: round $r of $ROUNDS" >&2
   r=$((r + 1))
 done
+load1=$(cut -d' ' -f2 /proc/loadavg 2>/dev/null || echo unknown)
 {
   echo "- Cycles:$(sed 's/^# cycles://' "$tmp/cycles")."
+  echo "- Load average when the timing began (1 min): $load0; when it ended (5 min): $load1 ($(nproc) logical CPUs; each run is one thread)."
   [ "$has_v4" = yes ] || echo "- This CPU has no AVX-512: the x86-64-v4 builds were not run."
   echo
 } >> "$section"

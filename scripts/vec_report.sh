@@ -9,8 +9,9 @@
 #
 # --aarch64: the same files compiled (not run) by Debian's cross compiler
 # aarch64-linux-gnu-gcc (package gcc-aarch64-linux-gnu, installed by
-# scripts/deps.sh when missing), MARCH armv8-a unless given (NEON, 16-byte
-# vectors, what every 64-bit Arm has) or e.g. armv8.2-a+sve (SVE, vectors of
+# scripts/deps.sh when missing, with libc6-dev-arm64-cross, its C headers),
+# MARCH armv8-a unless given (NEON, 16-byte vectors, what every 64-bit Arm
+# has) or e.g. armv8.2-a+sve (SVE, vectors of
 # a length the CPU chooses: "variable length").
 # --table: one Markdown table, for docs/benchmarks.md (bench/bench_isa.sh):
 # each function of those files in which x86-64-v3, x86-64-v4, armv8-a or
@@ -21,7 +22,8 @@ files="runtime/engine/rod.c runtime/engine/integrate.c runtime/engine/loads.c ru
 opts="-std=c11 -D_DEFAULT_SOURCE -O3 -fno-math-errno -fopenmp"
 cross=aarch64-linux-gnu-gcc
 need_cross() {
-  sh scripts/deps.sh gcc-aarch64-linux-gnu:/usr/bin/$cross
+  sh scripts/deps.sh gcc-aarch64-linux-gnu:/usr/bin/$cross \
+    libc6-dev-arm64-cross:/usr/aarch64-linux-gnu/include/stdio.h # a recommendation only
 }
 # the vectorized loops of file $3 by compiler $1 at -march=$2, one line each:
 # "file:line:col: optimized: ..." (runtime/ stripped), sorted

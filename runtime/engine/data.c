@@ -52,7 +52,7 @@ swData *sw_data_new(const swModel *m) {
   d->force = sw_palloc(m, 3); d->torque = sw_palloc(m, 3);
   d->ext_force = sw_palloc(m, 3); d->ext_torque = sw_palloc(m, 3);
   d->scratch_f = sw_palloc(m, 3); d->scratch_h = sw_palloc(m, 3);
-  d->scratch_flag = sw_palloc(m, 1); d->scratch_phi = sw_palloc(m, 3);
+  d->scratch_flag = sw_palloc(m, 1); d->scratch_phi = sw_palloc(m, 8);
   d->chunk_sum = sw_dalloc((size_t)sw_nchunk(m, m->stride));
   d->bc_work = sw_dalloc((size_t)m->nbc);
   d->bc_free = sw_dalloc((size_t)m->nbc);

@@ -167,17 +167,32 @@ static inline __attribute__((always_inline)) void drift_column(double *restrict 
  * sw_rotate_frame.  The rotations s a are scratch, at i - so (internal.h,
  * "Scratch windows"); psi = -(s a)_3 / 2 is recovered from them.  The
  * round-off of the two turns is taken out every few steps (end_step). */
-static inline __attribute__((always_inline)) void drift_frames_law(const swModel *m, swData *d, double h,
-                                                                 int lo, int hi, int so, const int simpson,
-                                                                 const int law) {
+/* The drift's scratch: d->scratch_phi's planes (data.c), s a (DRIFT_PHI, 3
+ * planes) of slot i at i - so as before, which the checkpoint saves
+ * (restart.c), the other values at i - wo, a block's window. */
+enum { DRIFT_PHI = 0, DRIFT_SCALE = 3, DRIFT_A = 4, DRIFT_B = 5, DRIFT_C = 6, DRIFT_SN = 7 };
+
+/* drift_frames_law on slots [lo, hi) of one block, in three loops: (1) the
+ * rotation s a, psi and w's rescaling; (2) the coefficients of the two
+ * turns, Rodrigues' series in |s a|^2 and in psi^2; (3) the turns.  Each
+ * slot gets the operations and the order of one loop; cut so, each loop is
+ * short enough that the processor overlaps many slots' chains of dependent
+ * operations (a square root and a division, then the two series, then the
+ * turns), where one loop over the whole work spilled and waited on them at
+ * AVX2's 16 registers (docs/performance.md, "AVX2 and AVX-512").  Their
+ * values pass through the block's scratch (DRIFT_*, psi where c goes). */
+static inline __attribute__((always_inline)) void drift_frames_block(const swModel *m, swData *d, double h,
+                                                                   int lo, int hi, int so, int wo,
+                                                                   const int simpson, const int law) {
   const size_t S = (size_t)m->stride;
   const double *restrict x = d->x, *restrict v = d->v;
   double *restrict w = d->omega, *restrict Q = d->Q, *restrict dil = d->dilatation;
   const double *restrict irl = m->inv_rest_len, *restrict ghost = m->elem_ghost;
   const double *restrict var = m->elem_variational;
-  double *restrict rot = d->scratch_phi;
-  int turned = 0; /* frames past the series */
-#pragma omp simd reduction(+ : turned)
+  double *restrict rot = d->scratch_phi, *restrict scl = d->scratch_phi + DRIFT_SCALE * S;
+  double *restrict ca = d->scratch_phi + DRIFT_A * S, *restrict cb = d->scratch_phi + DRIFT_B * S;
+  double *restrict cc = d->scratch_phi + DRIFT_C * S, *restrict cs = d->scratch_phi + DRIFT_SN * S;
+#pragma omp simd
   for (int i = lo; i < hi; i++) {
     const sw3 dx = sw3_sub(sw3_load(x, S, i + 1), sw3_load(x, S, i));
     const sw3 dv = sw3_sub(sw3_load(v, S, i + 1), sw3_load(v, S, i));
@@ -194,24 +209,44 @@ static inline __attribute__((always_inline)) void drift_frames_law(const swModel
     const double mean = sw_select(fixed_inertia, 1.0, mean_e), scale = sw_select(fixed_inertia, 1.0, ratio);
     const double sh = h * mean;
     const sw3 wi = sw3_load(w, S, i), phi = {sh * wi.x, sh * wi.y, 2.0 * sh * wi.z};
-    const double psi = -sh * wi.z; /* |psi| <= |phi| / 2: small with phi */
-    const int small = sw_frame_small_turn(phi);
+    const int j = i - wo;
+    sw3_store(rot, S, i - so, phi);
+    cc[j] = -sh * wi.z; /* psi; |psi| <= |phi| / 2: small with phi */
+    scl[j] = scale;
+    dil[i] = e_new;
+  }
+  int turned = 0; /* frames past the series */
+#pragma omp simd reduction(+ : turned)
+  for (int i = lo; i < hi; i++) {
+    const int j = i - wo;
+    const sw3 phi = sw3_load(rot, S, i - so);
+    const double psi = cc[j];
     const swRodrigues rot_phi = sw_rodrigues_series(sw3_dot(phi, phi)), r = sw_rodrigues_series(psi * psi);
-    const double c = 1.0 - r.b * psi * psi, sn = r.a * psi; /* cos, sin psi */
+    ca[j] = rot_phi.a;
+    cb[j] = rot_phi.b;
+    cc[j] = 1.0 - r.b * psi * psi; /* cos psi */
+    cs[j] = r.a * psi;             /* sin psi */
+    turned += !sw_frame_small_turn(phi);
+  }
+#pragma omp simd
+  for (int i = lo; i < hi; i++) {
+    const int j = i - wo;
+    const sw3 phi = sw3_load(rot, S, i - so);
+    const int small = sw_frame_small_turn(phi);
+    const swRodrigues rot_phi = {ca[j], cb[j]};
+    const double c = cc[j], sn = cs[j];
     /* a frame turning by more than the series allows keeps its old value
      * (and its w unturned) here and is turned after the loop */
     drift_column(Q, S, i, 0, small, phi, rot_phi, c, sn);
     drift_column(Q, S, i, 1, small, phi, rot_phi, c, sn);
     drift_column(Q, S, i, 2, small, phi, rot_phi, c, sn);
-    sw3_store(rot, S, i - so, phi);
-    turned += !small;
+    const sw3 wi = sw3_load(w, S, i);
     const double cw = sw_select(small, c, 1.0), sw = sw_select(small, sn, 0.0);
-    sw3_store(w, S, i, sw3_scale((sw3){cw * wi.x + sw * wi.y, cw * wi.y - sw * wi.x, wi.z}, scale));
-    dil[i] = e_new;
+    sw3_store(w, S, i, sw3_scale((sw3){cw * wi.x + sw * wi.y, cw * wi.y - sw * wi.x, wi.z}, scl[j]));
   }
-  if (!turned) return;
-  for (int i = lo; i < hi; i++) {
+  for (int i = lo; i < hi && turned > 0; i++) { /* up to the last one past the series */
     if (sw_frame_small_turn(sw3_load(rot, S, i - so))) continue;
+    turned--;
     double Qe[9], phi[3];
     sw_getQ(m, d->Q, i, Qe);
     sw_get3(m, rot, i - so, phi);
@@ -223,6 +258,19 @@ static inline __attribute__((always_inline)) void drift_frames_law(const swModel
     SW_AT(m, d->omega, i, 0) = c * w1 + sn * w2;
     SW_AT(m, d->omega, i, 1) = c * w2 - sn * w1;
   }
+}
+
+/* The frames' drift over slots [lo, hi) (drift_frames_block), block by
+ * block, so that the scratch between its loops stays in the cache: each
+ * block's at the range's first entries of the window (where i - so is for
+ * i from lo), which are this thread's. */
+#define DRIFT_BLOCK 256
+static inline __attribute__((always_inline)) void drift_frames_law(const swModel *m, swData *d, double h,
+                                                                 int lo, int hi, int so, const int simpson,
+                                                                 const int law) {
+  for (int b = lo; b < hi; b += DRIFT_BLOCK)
+    drift_frames_block(m, d, h, b, b + DRIFT_BLOCK < hi ? b + DRIFT_BLOCK : hi, so, b - (lo - so), simpson,
+                       law);
 }
 
 /* drift_frames_law for the model's laws: a model without variational rods

@@ -279,7 +279,45 @@ void sw_external_loads(const swModel *m, swData *d) {
   sw_external_loads_slots(m, d, lo, hi, 0);
 }
 
+/* base_loads and finish_loads in one pass, for models with neither point
+ * loads nor linear damping: each slot gets the same operations in the same
+ * order (ext_force = m g, ext_torque = 0, then each added into the totals),
+ * one loop instead of three for each component. */
+static void gravity_loads(const swModel *m, swData *d, int lo, int hi, int so) {
+  const size_t S = (size_t)m->stride;
+  const double *restrict mass = m->weight ? d->weight_now : d->mass_now;
+  int top = m->has_gravity ? (hi < m->nslot ? hi : m->nslot) : lo;
+  if (top < lo) top = lo;
+  const double scale = m->gravity_signal.kind == SW_SIG_CONST ? m->gravity_signal.a
+                                                              : sw_signal_eval(&m->gravity_signal, d->time);
+  for (int k = 0; k < 3; k++) {
+    double *restrict ef = d->ext_force + k * S, *restrict et = d->ext_torque + k * S;
+    double *restrict F = d->force + k * S, *restrict T = d->torque + k * S;
+    const double g = m->gravity[k] * scale;
+#pragma omp simd
+    for (int i = lo; i < top; i++) {
+      const double f = mass[i] * g, t = 0.0;
+      ef[i - so] = f;
+      et[i - so] = t;
+      F[i - so] += f;
+      T[i - so] += t;
+    }
+#pragma omp simd
+    for (int i = top; i < hi; i++) {
+      const double f = 0.0, t = 0.0;
+      ef[i - so] = f;
+      et[i - so] = t;
+      F[i - so] += f;
+      T[i - so] += t;
+    }
+  }
+}
+
 void sw_external_loads_slots(const swModel *m, swData *d, int lo, int hi, int so) {
+  if (!m->nload && !m->has_damping) {
+    gravity_loads(m, d, lo, hi, so);
+    return;
+  }
   base_loads(m, d, lo, hi, so);
   if (m->nload) point_loads(m, d, lo, hi, so); /* onto the base loads, before the damping reads them */
   finish_loads(m, d, lo, hi, so);

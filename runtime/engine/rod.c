@@ -160,28 +160,49 @@ static inline __attribute__((always_inline)) void element_pass_law(const swModel
   }
 }
 
-/* Domain i of the Voronoi pass, l1 being the length of element i + 1:
- * kappa = log(Q_{i+1} Q_i^T) / D^ (a ghost domain's is never used: its
- * stiffness is zero), the bending couple and the transport term.  Returns
- * 1, and flags it in flag[i - so], if it is a real domain bent past the
- * logarithm's series, else 0.  law as for the element pass. */
-static inline __attribute__((always_inline)) int voronoi_domain(vorArrays va, const double *restrict Q,
-                                                                const double *restrict var, size_t S, int i,
-                                                                double l1, double *restrict flag,
-                                                                const int law) {
-  const swSmallLog lg = sw_frame_log_small(sw_frame_load(Q, S, i), sw_frame_load(Q, S, i + 1));
-  const sw3 kv = sw3_scale(lg.phi, va.iD[i]);
+/* Domain i of the Voronoi pass, first part: w and t of the frame logarithm
+ * (vec.h, sw_frame_log_parts), held in the domain's scratch (w in kappa's
+ * planes, t in eps's) until the last part.  Returns 1, and flags it in
+ * flag[i - so], if it is a real domain bent past the logarithm's series,
+ * else 0. */
+static inline __attribute__((always_inline)) int voronoi_log(vorArrays va, const double *restrict Q, size_t S,
+                                                             int i, double *restrict flag) {
+  const swLogParts lg = sw_frame_log_parts(sw_frame_load(Q, S, i), sw_frame_load(Q, S, i + 1));
   const int redo = (lg.small == 0) & (va.ghost[i] == 0.0) & (va.ghost[i + 1] == 0.0);
-  flag[i - va.so] = redo;
-  const double beta = law ? sw_dexpinv_beta_small(sw3_dot(lg.phi, lg.phi)) : 0.0;
-  domain_couple(va, S, i, kv, va.len[i - va.so], l1, law, law && var[i] != 0.0, beta);
+  const int j = i - va.so;
+  sw3_store(va.kap, S, j, lg.w);
+  va.vdil[j] = lg.t;
+  flag[j] = redo;
   return redo;
+}
+
+/* Domain i of the Voronoi pass, last part, l1 being the length of element
+ * i + 1: phi = theta / (2 sin theta) w from the first part's w and the
+ * series' value f (in eps's scratch), kappa = phi / D^ (a ghost domain's is
+ * never used: its stiffness is zero), the bending couple and the transport
+ * term.  law as for the element pass. */
+static inline __attribute__((always_inline)) void voronoi_domain(vorArrays va, const double *restrict var,
+                                                                 size_t S, int i, double l1, const int law) {
+  const int j = i - va.so;
+  const sw3 w = sw3_load(va.kap, S, j);
+  const double f = va.vdil[j];
+  const sw3 phi = {f * w.x, f * w.y, f * w.z};
+  const sw3 kv = sw3_scale(phi, va.iD[i]);
+  const double beta = law ? sw_dexpinv_beta_small(sw3_dot(phi, phi)) : 0.0;
+  domain_couple(va, S, i, kv, va.len[j], l1, law, law && var[i] != 0.0, beta);
 }
 
 /* Voronoi pass over slots [lo, hi), after the element pass of [lo, hi),
  * whose lengths it reads; the last domain's second element is the next
- * range's, so its length is computed here (elem_length).  Returns how many
- * real domains were bent past the logarithm's series. */
+ * range's, so its length is computed here (elem_length).  Three loops: the
+ * frames' products (w, t), the series of the logarithm, the couples.  The
+ * series is a chain of 28 dependent operations per domain; alone in its
+ * loop, the processor overlaps the chains of many domains, where inside
+ * the whole domain's work it could overlap those of one or two vector
+ * iterations and waited on the chain (docs/performance.md, "AVX2 and
+ * AVX-512").  The operations and their order per domain are those of one
+ * loop.  Returns how many real domains were bent past the logarithm's
+ * series. */
 static inline __attribute__((always_inline)) int voronoi_pass_law(const swModel *m, swData *d, int lo, int hi,
                                                                   int so, double *restrict flag,
                                                                   const int law) {
@@ -192,8 +213,14 @@ static inline __attribute__((always_inline)) int voronoi_pass_law(const swModel 
   if (lo >= hi) return 0;
   int bent = 0;
 #pragma omp simd reduction(+ : bent)
-  for (int i = lo; i < hi - 1; i++) bent += voronoi_domain(va, Q, var, S, i, va.len[i + 1 - so], flag, law);
-  return bent + voronoi_domain(va, Q, var, S, hi - 1, elem_length(va, S, hi), flag, law);
+  for (int i = lo; i < hi; i++) bent += voronoi_log(va, Q, S, i, flag);
+  double *restrict t = d->vor_dilatation;
+#pragma omp simd
+  for (int j = lo - so; j < hi - so; j++) t[j] = sw_log_series(t[j]);
+#pragma omp simd
+  for (int i = lo; i < hi - 1; i++) voronoi_domain(va, var, S, i, va.len[i + 1 - so], law);
+  voronoi_domain(va, var, S, hi - 1, elem_length(va, S, hi), law);
+  return bent;
 }
 
 static void element_pass(const swModel *m, swData *d, int lo, int hi, int so) {
@@ -226,8 +253,9 @@ void sw_rod_pass(const swModel *m, swData *d, int lo, int hi, int so, double *fl
   const size_t S = (size_t)m->stride;
   const vorArrays va = {d->x, m->elem_ghost, m->rest_vor_len, m->inv_rest_vor_len, d->bend_now, d->kappa0_now,
                         d->length, d->kappa, d->couple, d->vor_dilatation, d->scratch_h, so};
-  for (int i = lo; i < hi; i++) {
+  for (int i = lo; i < hi && bent > 0; i++) { /* up to the last one flagged */
     if (flag[i - so] == 0.0) continue;
+    bent--;
     double Qa[9], Qb[9], phi[3];
     sw_getQ(m, d->Q, i, Qa);
     sw_getQ(m, d->Q, i + 1, Qb);

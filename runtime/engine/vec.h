@@ -250,23 +250,24 @@ static inline void sw_frame_store(double *Q, size_t S, int i, swFrame F) {
   sw3_store(Q, S, i, F.d1); sw3_store(Q + 3 * S, S, i, F.d2); sw3_store(Q + 6 * S, S, i, F.d3);
 }
 
-/* The small-angle side of sw_frame_log on frames held as values: kappa D^ =
- * log(Qb Qa^T) where sin^2 theta < SW_LOG_SERIES_S2 and cos theta > 0, which `small`
- * reports (1 or 0).  A loop over slots uses it and redoes the few slots
- * where it is 0 with sw_frame_log (rod.c): a vector loop cannot branch per
- * slot, and calling atan2 on every lane to keep a few would cost more than
- * the rest of the loop's arithmetic.  Where it is 1 it gives the bits
- * sw_frame_log gives.  (The tests are combined with & rather than &&, which
+/* The small-angle side of sw_frame_log on frames held as values, in two
+ * parts so that a loop over slots can run them as two loops (rod.c): the
+ * first, sw_frame_log_parts, gives w (= 2 sin(theta) n), t = sin^2 theta and
+ * whether the series serves (t < SW_LOG_SERIES_S2 and cos theta > 0, 1 or
+ * 0); the second is phi = sw_log_series(t) w.  Where `small` is 1 phi has
+ * the bits sw_frame_log gives; a loop redoes the few slots where it is 0
+ * with sw_frame_log: a vector loop cannot branch per slot, and calling
+ * atan2 on every lane to keep a few would cost more than the rest of the
+ * loop's arithmetic.  (The tests are combined with & rather than &&, which
  * would be a branch the vectorizer sees as control flow.) */
-typedef struct { sw3 phi; int small; } swSmallLog;
-static inline swSmallLog sw_frame_log_small(swFrame a, swFrame b) {
+typedef struct { sw3 w; double t; int small; } swLogParts;
+static inline swLogParts sw_frame_log_parts(swFrame a, swFrame b) {
   const double w0 = sw3_dot(b.d2, a.d3) - sw3_dot(b.d3, a.d2);
   const double w1 = sw3_dot(b.d3, a.d1) - sw3_dot(b.d1, a.d3);
   const double w2 = sw3_dot(b.d1, a.d2) - sw3_dot(b.d2, a.d1);
   const double tr = sw3_dot(b.d1, a.d1) + sw3_dot(b.d2, a.d2) + sw3_dot(b.d3, a.d3);
   const double t = 0.25 * (w0 * w0 + w1 * w1 + w2 * w2), c = 0.5 * (tr - 1.0);
-  const double f = sw_log_series(t);
-  return (swSmallLog){{f * w0, f * w1, f * w2}, (t < SW_LOG_SERIES_S2) & (c > 0.0)};
+  return (swLogParts){{w0, w1, w2}, t, (t < SW_LOG_SERIES_S2) & (c > 0.0)};
 }
 
 /* beta(theta) of the inverse of the SO(3) exponential's Jacobian,
@@ -277,7 +278,7 @@ static inline swSmallLog sw_frame_log_small(swFrame a, swFrame b) {
  * theta^4/30240 + ... (from that of cot(theta/2); B the Bernoulli numbers),
  * summed to n = 7, is exact to round-off below theta^2 = SW_BETA_SERIES_TH2
  * (truncation below 1e-20 of it), where the closed form loses digits; the
- * series alone serves sw_frame_log_small's range (theta^2 < 0.064).  rod.c
+ * series alone serves sw_frame_log_parts's range (theta^2 < 0.064).  rod.c
  * forms the variational bending couple with it. */
 #define SW_BETA_SERIES_TH2 0.07
 static inline double sw_dexpinv_beta_small(double th2) {

@@ -389,9 +389,10 @@ typedef struct {
   double *scratch_f, *scratch_h;
   /* per-slot scratch of integrate.c and rod.c: scratch_flag (1 plane) holds
    * the rod pass's bent-domain flags, then the kick's work per slot;
-   * scratch_phi (3 planes) the drift's rotation vectors, which muscle.c
-   * borrows while the loads are evaluated and the one-thread sweep uses for
-   * its bent-domain flags */
+   * scratch_phi (8 planes) the drift's rotation vectors (the first 3, which
+   * muscle.c borrows while the loads are evaluated and the one-thread sweep
+   * uses for its bent-domain flags) and, in the other 5, the values its
+   * loops pass on within a block (integrate.c, drift_frames_block) */
   double *scratch_flag, *scratch_phi;
   /* one partial sum per chunk (the kick's work), added in chunk order, and
    * the work of each boundary condition in a kick (nbc) */
