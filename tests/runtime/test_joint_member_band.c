@@ -10,7 +10,8 @@
  * to space at its other end or an implicit rod clamped there, and short
  * explicit barbs (4 elements) on fixed joints (one spherical) at its nodes,
  * one of them on the rachis' root, whose port stays in the group's block
- * with its leaf, and two on one node; gravity, every node and element
+ * with its leaf, and two on one node (and two on the implicit bone, whose
+ * band takes them too); gravity, every node and element
  * started moving.  One model, swData for each path (m->rigid_group_band
  * toggled around its step, as test_joint_band does; the dense path
  * factored afresh every kick as the band is).  The two must agree to
@@ -66,8 +67,9 @@ static swModel *feather(int bone, int nel, int nleaf, const int *at, int spheric
   j.kind = SW_JOINT_FIXED;
   j.rod_a = b, j.node_a = -1, j.rod_b = rachis, j.node_b = 0;
   sw_spec_add_joint(s, &j);
-  for (int l = 0; l < nleaf; l++) {
-    const double start[3] = {L * at[l] / nel, 0, 0};
+  for (int l = 0; l < nleaf + (bone == IMPLICIT ? 2 : 0); l++) {
+    const int on_bone = l >= nleaf; /* the implicit bone's two barbs, at its nodes 3 and 7 */
+    const double start[3] = {on_bone ? b0[0] + 0.01 * (3 + 4 * (l - nleaf)) : L * at[l] / nel, 0, 0};
     const double dir[3] = {0.1 * l, l % 2 ? -1 : 1, 0.3}, nrm[3] = {1, 0, 0};
     swRodDesc bb = sw_test_rod(named("barb"), 4, 0.02, 4e-4, start, dir, nrm);
     bb.youngs = 1e7, bb.shear_modulus = 1e7 / 3, bb.density = 1200;
@@ -75,7 +77,7 @@ static swModel *feather(int bone, int nel, int nleaf, const int *at, int spheric
     sw_joint_desc_init(&j);
     j.name = named("j");
     j.kind = l == spherical ? SW_JOINT_SPHERICAL : SW_JOINT_FIXED;
-    j.rod_a = rachis, j.node_a = at[l];
+    j.rod_a = on_bone ? b : rachis, j.node_a = on_bone ? 3 + 4 * (l - nleaf) : at[l];
     j.rod_b = barb, j.node_b = 0;
     sw_spec_add_joint(s, &j);
   }
@@ -163,8 +165,9 @@ static void same_solution(int bone) {
   set_band(m, 2);
   differences(m, band, dense, da, dr);
   differences(m, ulp, dense, ua, ur);
-  fprintf(stderr, "# test_same_solution: %s, rachis of 40 elements, 10 barbs, dt %.3g s; group "
-          "block %d unknowns (dense path %d)\n", bone_name[bone], m->dt, nb, nd);
+  fprintf(stderr, "# test_same_solution: %s, rachis of 40 elements, 10 barbs%s, dt %.3g s; group "
+          "block %d unknowns (dense path %d)\n", bone_name[bone], bone == IMPLICIT ? " (2 more on the bone)" : "",
+          m->dt, nb, nd);
   fprintf(stderr, "#   after %d steps, band - dense: x %.2e m (rel. %.2e), v %.2e m/s (rel. %.2e), "
           "omega %.2e rad/s (rel. %.2e)\n", EARLY, ea[0], er[0], ea[1], er[1], ea[2], er[2]);
   fprintf(stderr, "#   after %ld steps, band - dense: x %.2e m (rel. %.2e), v %.2e m/s (rel. %.2e), "
