@@ -559,9 +559,11 @@ static int member_bands(swModel *m) {
     m->rigid_group_band[g] = 2;
     for (int k = first, o = 0; k < last; k++)
       if (m->rigid_block_leaf[k] < 0) m->rigid_block_moff[k] = o, o += m->rigid_block_mdof[k];
-    for (int k = first; k < last; k++) /* a kept port's place in the group's block */
-      for (int q = m->rigid_block_port_adr[k]; m->rigid_block_rod[k] >= 0 && q < m->rigid_block_port_adr[k + 1]; q++)
+    for (int k = first; k < last; k++) { /* a kept port's place in the group's block */
+      if (m->rigid_block_rod[k] < 0) continue;
+      for (int q = m->rigid_block_port_adr[k]; q < m->rigid_block_port_adr[k + 1]; q++)
         if (m->rigid_port_moff[q] >= 0) m->rigid_port_moff[q] += m->rigid_block_moff[k];
+    }
   }
   free(lone);
   return 1;

@@ -122,9 +122,11 @@ int sw_rigid_group_unknowns(const swModel *m, int g) {
 static int member_band_ports(const swModel *m, int g) {
   int nbp = 0;
   if (m->rigid_group_band[g] != 2) return 0;
-  for (int k = m->rigid_group_adr[g]; k < m->rigid_group_adr[g + 1]; k++)
-    for (int q = m->rigid_block_port_adr[k]; m->rigid_block_rod[k] >= 0 && q < m->rigid_block_port_adr[k + 1]; q++)
+  for (int k = m->rigid_group_adr[g]; k < m->rigid_group_adr[g + 1]; k++) {
+    if (m->rigid_block_rod[k] < 0) continue;
+    for (int q = m->rigid_block_port_adr[k]; q < m->rigid_block_port_adr[k + 1]; q++)
       nbp += m->rigid_port_moff[q] < 0;
+  }
   return nbp;
 }
 
@@ -384,7 +386,8 @@ static SideSlot side_slot(const swModel *m, int j, int side, int first, int band
   t.dof = m->rigid_block_dof[k];
   if (m->rigid_block_leaf[k] >= 0) t.leaf = m->rigid_block_off[k];
   else t.off = band == 2 ? m->rigid_block_moff[k] : m->rigid_block_off[k];
-  if (q >= 0 && band == 1) t.off = 6 * (q - m->rigid_block_port_adr[k]), t.dof = sw_port_dof(m, q), t.inband = 1;
+  if (q >= 0 && band == 1)
+    t.off = 6 * (q - m->rigid_block_port_adr[k]), t.dof = sw_port_dof(m, q), t.inband = 1;
   else if (q >= 0 && band == 2) {
     const int mo = m->rigid_port_moff[q];
     t.off = mo >= 0 ? mo : 6 * (-1 - mo), t.dof = sw_port_dof(m, q), t.inband = mo < 0;

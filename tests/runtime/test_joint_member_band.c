@@ -166,8 +166,8 @@ static void same_solution(int bone) {
   differences(m, band, dense, da, dr);
   differences(m, ulp, dense, ua, ur);
   fprintf(stderr, "# test_same_solution: %s, rachis of 40 elements, 10 barbs%s, dt %.3g s; group "
-          "block %d unknowns (dense path %d)\n", bone_name[bone], bone == IMPLICIT ? " (2 more on the bone)" : "",
-          m->dt, nb, nd);
+          "block %d unknowns (dense path %d)\n", bone_name[bone],
+          bone == IMPLICIT ? " (2 more on the bone)" : "", m->dt, nb, nd);
   fprintf(stderr, "#   after %d steps, band - dense: x %.2e m (rel. %.2e), v %.2e m/s (rel. %.2e), "
           "omega %.2e rad/s (rel. %.2e)\n", EARLY, ea[0], er[0], ea[1], er[1], ea[2], er[2]);
   fprintf(stderr, "#   after %ld steps, band - dense: x %.2e m (rel. %.2e), v %.2e m/s (rel. %.2e), "
