@@ -345,6 +345,9 @@ void sw_implicit_apply(const swModel *m, swData *d, int r, const double *du, siz
  * (0: not positive definite). */
 double *sw_implicit_band_begin(const swModel *m, swData *d, int r, double h, double **rhs);
 int sw_implicit_band_solve(const swModel *m, swData *d, int r);
+/* The same band factored, and solved for rhs (into column 0 of X) and
+ * X's other columns at once (X as sw_implicit_solve_many's). */
+int sw_implicit_band_solve_many(const swModel *m, swData *d, int r, double *X, int ld);
 static inline double *sw_band_at(double *A, size_t i, size_t j) {
   return A + i * (SW_IMPLICIT_BAND + 1) + SW_IMPLICIT_BAND - (i - j);
 }
@@ -415,11 +418,16 @@ int sw_cholesky_lanes(double *const *A, double *const *rhs, int nl, int n, const
  * takes nu units of the same du, dQ, np and qdof, each with its workspace
  * ws[u] and ports' places qoff[u], in the order their updates of A are made). */
 static inline int sw_port_dof(const swModel *m, int q) { return m->rigid_port_rot[q] ? 6 : 3; }
-size_t sw_port_member_scratch(const swModel *m, int k);
+/* With band = 1 (rigid_group_band 2: a member's band path), the member's
+ * kept ports alone (rigid_port_moff), its band ports' blocks P + 42 t and
+ * right-hand sides R + 6 t (as sw_band_group_solve's) in its band first,
+ * S added to A and S p0 to rhs (the joints' and leaves' terms are in
+ * them), and the band ports' lab velocity changes written over R. */
+size_t sw_port_member_scratch(const swModel *m, int k, int band);
 int sw_port_member_assemble(const swModel *m, swData *d, double h, int k, double *ws, double *A,
-                            int n, int off, double *rhs);
+                            int n, int off, double *rhs, const double *P, const double *R);
 void sw_port_member_finish(const swModel *m, swData *d, double h, int k, double *ws,
-                           const double *pu);
+                           const double *pu, double *R);
 #define SW_LEAF_WS 444 /* a unit of leaves: up to 12 unknowns joined to up to 12 of ports */
 int sw_leaf_condense(double *const *ws, const int *const *qoff, int nu, int du, int dQ, int np,
                      const int *qdof, double *A, int n, double *rhs); /* nu units of one shape */

@@ -19,7 +19,9 @@
  * are not leaves (dense_ends), its damper between their unknowns.  A group
  * of one implicit rod and leaves alone takes the band path (band_group,
  * joint_ports.c): no dense block, its leaves eliminated into the rod's
- * band.  All of it is computed once, at setup, into the model's rigid_* arrays;
+ * band; in another group, a rod member's ports that only lone leaves reach
+ * go into its band likewise, the member keeping its other ports
+ * (member_bands).  All of it is computed once, at setup, into the model's rigid_* arrays;
  * rigid_joint.c's kick only reads them.
  */
 #include <stdlib.h>
@@ -499,13 +501,81 @@ static int band_group(const swModel *m, int g) {
   return 1;
 }
 
-/* m->rigid_group_band, then the batches of groups of one shape
- * (joint_lanes.c), which leave the band path's groups alone. */
+/* The band path of a member (joint_ports.c): in a group not on the band
+ * path, a port of a rod member is a band port when lone leaves are joined
+ * to it (no filament's, whose dashpot or pair stays dense) and nothing but
+ * them and still sides (space, a fixed body, a clamped node), and its
+ * element is next to its node; a member keeps its other ports, at least
+ * one (none would make the group one rod and leaves: the band path's).  A
+ * group with a band port is marked 2, its members' unknowns renumbered
+ * over the kept ports (rigid_block_moff, _mdof, rigid_port_moff); the
+ * dense numbering stays, for the dense path (rigid_group_band 0). */
+static int member_bands(swModel *m) {
+  const size_t NB = (size_t)(m->nrigid_block > 0 ? m->nrigid_block : 1);
+  const size_t NP = (size_t)(m->nrigid_port > 0 ? m->nrigid_port : 1);
+  m->rigid_block_moff = malloc(NB * sizeof(int));
+  m->rigid_block_mdof = malloc(NB * sizeof(int));
+  m->rigid_port_moff = malloc(NP * sizeof(int));
+  int *lone = calloc(2 * NP, sizeof(int)), *other = lone ? lone + NP : NULL;
+  if (!m->rigid_block_moff || !m->rigid_block_mdof || !m->rigid_port_moff || !lone) {
+    free(lone);
+    return 0;
+  }
+  memcpy(m->rigid_block_moff, m->rigid_block_off, (size_t)m->nrigid_block * sizeof(int));
+  memcpy(m->rigid_block_mdof, m->rigid_block_dof, (size_t)m->nrigid_block * sizeof(int));
+  memcpy(m->rigid_port_moff, m->rigid_port_off, (size_t)m->nrigid_port * sizeof(int));
+  for (int k = 0; k < m->nrigid_block; k++) {
+    const int q = m->rigid_block_leaf[k];
+    if (q < 0) continue;
+    if (m->rigid_block_partner[k] >= 0 || m->rigid_block_fil[k] >= 0) other[q] = 1;
+    else lone[q]++;
+  }
+  for (int j = 0; j < m->njoint; j++)
+    for (int side = 0; m->joint_implicit[j] && side < 2; side++) {
+      const int q = m->joint_port[2 * j + side], ob = m->joint_block[2 * j + 1 - side];
+      if (q >= 0 && ob >= 0 && m->rigid_block_leaf[ob] < 0) other[q] = 1; /* a dense member, or a port */
+    }
+  for (int g = 0; g < m->nrigid_group; g++) {
+    const int first = m->rigid_group_adr[g], last = m->rigid_group_adr[g + 1];
+    int nband = 0, dense_fil = 0; /* a dense filament (rigid_joint.c) reads the dense numbering */
+    for (int f = 0; f < 2 * m->nfil; f++) dense_fil |= m->fil_block[f] >= first && m->fil_block[f] < last;
+    if (m->rigid_group_band[g] || dense_fil) continue;
+    for (int k = first; k < last; k++) {
+      const int r = m->rigid_block_rod[k];
+      if (r < 0) continue;
+      int kept = 0, o = 0;
+      for (int q = m->rigid_block_port_adr[k]; q < m->rigid_block_port_adr[k + 1]; q++) {
+        const int i = m->rigid_port_node[q] - m->node_adr[r], e = m->rigid_port_elem[q] - m->elem_adr[r];
+        other[q] |= !lone[q] || (m->rigid_port_rot[q] && e != i && e != i - 1);
+        kept += other[q];
+      }
+      for (int q = m->rigid_block_port_adr[k]; q < m->rigid_block_port_adr[k + 1]; q++) {
+        if (kept && !other[q]) m->rigid_port_moff[q] = -1 - nband++;
+        else m->rigid_port_moff[q] = o, o += sw_port_dof(m, q);
+      }
+      m->rigid_block_mdof[k] = o;
+    }
+    if (!nband) continue;
+    m->rigid_group_band[g] = 2;
+    for (int k = first, o = 0; k < last; k++)
+      if (m->rigid_block_leaf[k] < 0) m->rigid_block_moff[k] = o, o += m->rigid_block_mdof[k];
+    for (int k = first; k < last; k++) { /* a kept port's place in the group's block */
+      if (m->rigid_block_rod[k] < 0) continue;
+      for (int q = m->rigid_block_port_adr[k]; q < m->rigid_block_port_adr[k + 1]; q++)
+        if (m->rigid_port_moff[q] >= 0) m->rigid_port_moff[q] += m->rigid_block_moff[k];
+    }
+  }
+  free(lone);
+  return 1;
+}
+
+/* m->rigid_group_band (the band path, then a member's), then the batches of
+ * groups of one shape (joint_lanes.c), which leave those groups alone. */
 static int finish_groups(swModel *m) {
   m->rigid_group_band = calloc((size_t)(m->nrigid_group > 0 ? m->nrigid_group : 1), sizeof(int));
   if (!m->rigid_group_band) return 0;
   for (int g = 0; g < m->nrigid_group; g++) m->rigid_group_band[g] = band_group(m, g);
-  return sw_group_lanes_setup(m);
+  return member_bands(m) && sw_group_lanes_setup(m);
 }
 
 int sw_rigid_joints_setup(swModel *m) {
@@ -513,6 +583,7 @@ int sw_rigid_joints_setup(swModel *m) {
   const size_t R = (size_t)(m->nrod ? m->nrod : 1);
   const size_t NB = B + 2 * J; /* members: at most every body and every joint's two sides */
   m->rigid_group_lanes = m->rigid_group_band = NULL;
+  m->rigid_block_moff = m->rigid_block_mdof = m->rigid_port_moff = NULL;
   m->joint_implicit = calloc(J, sizeof(int));
   m->joint_block = malloc(2 * J * sizeof(int));
   m->joint_port = malloc(2 * J * sizeof(int));
@@ -675,4 +746,7 @@ void sw_rigid_joints_free(swModel *m) {
   free(m->rigid_port_elem);
   free(m->rigid_port_rot);
   free(m->rigid_port_off);
+  free(m->rigid_block_moff);
+  free(m->rigid_block_mdof);
+  free(m->rigid_port_moff);
 }

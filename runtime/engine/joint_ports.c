@@ -72,6 +72,24 @@
  * leaf, linear in the leaves (test_joint_band: 64 barbs on 128 elements,
  * 120 us a kick against 27 ms).  The band is factored afresh every kick:
  * the ports' blocks change with the state.
+ *
+ * A member's band path (issue 32, m->rigid_group_band 2).  A rachis tied
+ * at its root to a bone is a member of the bone's group, with every barb's
+ * port in S (150 barbs: some 470 unknowns).  Its ports split at setup
+ * (joint_groups.c, member_bands): a band port is reached by lone leaves
+ * and still sides only; the member keeps the others (rigid_port_moff
+ * numbers them in the group's block, -1 - t the band ports).  Then
+ * rigid_joint.c assembles the band ports' blocks P and right-hand sides R
+ * as the band path does (joints, leaves eliminated), and only after them
+ * sw_port_member_assemble adds them to the rod's band through E, and
+ * condenses that band to the kept ports exactly as above: du0 = A'^-1 b',
+ * Z = A'^-1 E_k, S = (E_k^T Z)^-1, added to the group's block (which holds
+ * the kept ports' joints and leaves already).  The group sees the rod as
+ * its kept ports alone (6 unknowns for a fixed root); after its solve
+ * du = du0 - Z g, each band port's E^T du goes to R, and each leaf is
+ * recovered from it (test_joint_member_band: 64 barbs on 128 elements and
+ * a rigid bone, 91 us a kick against 12.8 ms; a block of 12 unknowns
+ * against 396).
  */
 #include <math.h>
 #include <string.h>
@@ -80,21 +98,31 @@
 #include "internal.h"
 
 /* A rod member's unknowns in its group: its ports' (3 per node, 3 more
- * when a joint turns the element). */
-static int member_ports(const swModel *m, int k) { return m->rigid_block_dof[k]; }
+ * when a joint turns the element), or under a member's band path (band)
+ * its kept ports'. */
+static int member_ports(const swModel *m, int k, int band) {
+  return band ? m->rigid_block_mdof[k] : m->rigid_block_dof[k];
+}
+
+/* Port q's first unknown in its member k, or < 0 for a band port. */
+static int port_col(const swModel *m, int k, int q, int band) {
+  if (!band) return m->rigid_port_off[q];
+  return m->rigid_port_moff[q] < 0 ? -1 : m->rigid_port_moff[q] - m->rigid_block_moff[k];
+}
 
 /* The row length of a rod member's right-hand sides: 1 + its ports'
  * unknowns, rounded up to whole blocks of the solve (rod_implicit.c). */
-static int rhs_row(const swModel *m, int k) {
+static int rhs_row(const swModel *m, int k, int band) {
   const int B = SW_SOLVE_BLOCK;
-  return (member_ports(m, k) + 1 + B - 1) / B * B;
+  return (member_ports(m, k, band) + 1 + B - 1) / B * B;
 }
 
 /* The workspace: X (N rows of rhs_row with SW_IMPLICIT_BAND rows of zeros
- * before and after), S (p x p), p0 and g (p each). */
-size_t sw_port_member_scratch(const swModel *m, int k) {
-  const size_t N = sw_implicit_unknowns(m, m->rigid_block_rod[k]), p = (size_t)member_ports(m, k);
-  return (N + 2 * SW_IMPLICIT_BAND) * (size_t)rhs_row(m, k) + p * p + 2 * p;
+ * before and after), S (p x p), p0 and g (p each), and under a member's
+ * band path C^-1 (p x p) before it is added to the group's block. */
+size_t sw_port_member_scratch(const swModel *m, int k, int band) {
+  const size_t N = sw_implicit_unknowns(m, m->rigid_block_rod[k]), p = (size_t)member_ports(m, k, band);
+  return (N + 2 * SW_IMPLICIT_BAND) * (size_t)rhs_row(m, k, band) + p * p * (band ? 2 : 1) + 2 * p;
 }
 
 /* In place: the lower triangle of the n x n SPD matrix C (row-major) turns
@@ -176,11 +204,12 @@ static inline __attribute__((always_inline)) void small_solve(const double *rest
 /* E^T of columns 0 .. p of X (N x nc): the ports' lab velocities, column
  * 0's into p0[a] and column 1 + c's into C[a p + c] (C = E^T Z). */
 static void ports_of(const swModel *m, const swData *d, int k, const double *X, int nc, int p,
-                     double *p0, double *C) {
+                     double *p0, double *C, int band) {
   const int r = m->rigid_block_rod[k], na = m->node_adr[r], ea = m->elem_adr[r];
   for (int q = m->rigid_block_port_adr[k]; q < m->rigid_block_port_adr[k + 1]; q++) {
     const size_t i = (size_t)(m->rigid_port_node[q] - na);
-    const int o = m->rigid_port_off[q];
+    const int o = port_col(m, k, q, band);
+    if (o < 0) continue; /* a band port: in the band */
     for (int a = 0; a < 3; a++) {
       const double *Xa = X + (6 * i + (size_t)a) * (size_t)nc;
       p0[o + a] = Xa[0];
@@ -201,17 +230,24 @@ static void ports_of(const swModel *m, const swData *d, int k, const double *X, 
   }
 }
 
+static void port_rows(const swModel *m, int r, int q, size_t *pos);
+static void add_port_block(const swModel *m, const swData *d, int r, int q, const double *Pq,
+                           const double *Rq, double *A, double *b);
+static void port_velocity(const swModel *m, const swData *d, int r, int q, const double *du,
+                          size_t stride, double *Rq);
+
 int sw_port_member_assemble(const swModel *m, swData *d, double h, int k, double *ws, double *A,
-                            int n, int off, double *rhs) {
-  const int r = m->rigid_block_rod[k], p = member_ports(m, k), nc = rhs_row(m, k);
-  const int na = m->node_adr[r], ea = m->elem_adr[r];
+                            int n, int off, double *rhs, const double *P, const double *R) {
+  const int band = P != NULL, r = m->rigid_block_rod[k], p = member_ports(m, k, band);
+  const int nc = rhs_row(m, k, band), na = m->node_adr[r], ea = m->elem_adr[r];
   const size_t N = sw_implicit_unknowns(m, r), NX = (N + 2 * SW_IMPLICIT_BAND) * (size_t)nc;
   double *X = ws + SW_IMPLICIT_BAND * (size_t)nc, *S = ws + NX, *p0 = S + (size_t)p * (size_t)p;
   double *inv = p0 + p; /* 1 / L(a, a) of C's factor, in g's place (the finish's) */
   memset(ws, 0, NX * sizeof(double));
   for (int q = m->rigid_block_port_adr[k]; q < m->rigid_block_port_adr[k + 1]; q++) { /* E */
     const size_t i = (size_t)(m->rigid_port_node[q] - na);
-    const int o = 1 + m->rigid_port_off[q];
+    const int o = 1 + port_col(m, k, q, band);
+    if (o < 1) continue; /* a band port: its block goes into the band below */
     for (int a = 0; a < 3; a++) X[(6 * i + (size_t)a) * (size_t)nc + (size_t)(o + a)] = 1;
     if (!m->rigid_port_rot[q]) continue;
     const size_t e = (size_t)(m->rigid_port_elem[q] - ea);
@@ -220,29 +256,51 @@ int sw_port_member_assemble(const swModel *m, swData *d, double h, int k, double
     for (int a = 0; a < 3; a++)
       for (int b = 0; b < 3; b++) X[(6 * e + 3 + (size_t)a) * (size_t)nc + (size_t)(o + 3 + b)] = Q[3 * a + b];
   }
-  if (!sw_implicit_solve_many(m, d, r, h, X, nc)) return 0; /* du0, Z */
-  ports_of(m, d, k, X, nc, p, p0, S); /* p0, and C = E^T Z into S */
+  int nbp = 0; /* band ports: without them the rod's own system, kept when it holds */
+  for (int q = m->rigid_block_port_adr[k]; band && q < m->rigid_block_port_adr[k + 1]; q++)
+    nbp += m->rigid_port_moff[q] < 0;
+  if (nbp) { /* the band ports' blocks in the band (sw_band_group_solve), then du0 and Z */
+    double *b, *Ab = sw_implicit_band_begin(m, d, r, h, &b);
+    if (!Ab) return 0;
+    for (int q = m->rigid_block_port_adr[k]; q < m->rigid_block_port_adr[k + 1]; q++) {
+      const int t = -1 - m->rigid_port_moff[q];
+      if (t >= 0) add_port_block(m, d, r, q, P + (size_t)SW_BAND_PORT * (size_t)t, R + 6 * (size_t)t, Ab, b);
+    }
+    if (!sw_implicit_band_solve_many(m, d, r, X, nc)) return 0;
+  } else if (!sw_implicit_solve_many(m, d, r, h, X, nc)) return 0; /* du0, Z */
+  ports_of(m, d, k, X, nc, p, p0, S, band); /* p0, and C = E^T Z into S */
   for (int a = 0; a < p; a++) /* symmetric up to round-off */
     for (int c = 0; c < a; c++) S[a * p + c] = S[c * p + a] = 0.5 * (S[a * p + c] + S[c * p + a]);
   if (!small_cholesky(S, p, inv)) return 0;
   /* S = C^-1: the identity solved for, all its columns at once, in the
-   * member's diagonal block of A (zero here; its row length is n) */
-  double *Ainv = A + (size_t)off * (size_t)n + off;
-  small_inverse_ld(S, p, inv, Ainv, n);
+   * member's diagonal block of A (zero here; its row length is n), or
+   * under a member's band path in the workspace (A's block holds the
+   * joints' and leaves' terms already) and added to A's lower triangle */
+  double *T = inv + p;
+  if (band) memset(T, 0, (size_t)p * (size_t)p * sizeof(double));
+  double *Ainv = band ? T : A + (size_t)off * (size_t)n + off;
+  const size_t ld = band ? (size_t)p : (size_t)n;
+  small_inverse_ld(S, p, inv, Ainv, (int)ld);
   for (int a = 0; a < p; a++) { /* S kept for the finish; rhs = S p0 */
     double s = 0;
     for (int c = 0; c < p; c++) {
-      S[a * p + c] = Ainv[(size_t)a * (size_t)n + c];
+      S[a * p + c] = Ainv[(size_t)a * ld + c];
       s += S[a * p + c] * p0[c];
     }
-    rhs[off + a] = s;
+    if (!band) {
+      rhs[off + a] = s;
+      continue;
+    }
+    rhs[off + a] += s;
+    for (int c = 0; c <= a; c++) A[(size_t)(off + a) * (size_t)n + (size_t)(off + c)] += S[a * p + c];
   }
   return 1;
 }
 
 void sw_port_member_finish(const swModel *m, swData *d, double h, int k, double *ws,
-                           const double *pu) {
-  const int r = m->rigid_block_rod[k], p = member_ports(m, k), nc = rhs_row(m, k);
+                           const double *pu, double *R) {
+  const int band = R != NULL, r = m->rigid_block_rod[k], p = member_ports(m, k, band);
+  const int nc = rhs_row(m, k, band);
   const size_t N = sw_implicit_unknowns(m, r), NX = (N + 2 * SW_IMPLICIT_BAND) * (size_t)nc;
   double *X = ws + SW_IMPLICIT_BAND * (size_t)nc, *S = ws + NX, *p0 = S + (size_t)p * (size_t)p;
   double *g = p0 + p;
@@ -255,6 +313,10 @@ void sw_port_member_finish(const swModel *m, swData *d, double h, int k, double 
     double *Xi = X + i * (size_t)nc, s = Xi[0];
     for (int c = 0; c < p; c++) s -= Xi[1 + c] * g[c];
     Xi[0] = s;
+  }
+  for (int q = m->rigid_block_port_adr[k]; band && q < m->rigid_block_port_adr[k + 1]; q++) {
+    const int t = -1 - m->rigid_port_moff[q]; /* a band port's lab velocity change, E^T du */
+    if (t >= 0) port_velocity(m, d, r, q, X, (size_t)nc, R + 6 * (size_t)t);
   }
   sw_implicit_apply(m, d, r, X, (size_t)nc, h);
 }
@@ -430,60 +492,70 @@ static void port_rows(const swModel *m, int r, int q, size_t *pos) {
   for (size_t a = 0; a < 3; a++) pos[3 + a] = 6 * e + 3 + a;
 }
 
+/* Port q's block Pq (lower triangle, rows 6 apart) and right-hand side Rq
+ * (lab frame) added to rod r's band A and rhs b through E: as they are on
+ * the node's rows, turned by Q on the element's (w = Q w_lab). */
+static void add_port_block(const swModel *m, const swData *d, int r, int q, const double *Pq,
+                           const double *Rq, double *A, double *b) {
+  const int dof = sw_port_dof(m, q);
+  double G[36], g[6], Q[9];
+  for (int a = 0; a < dof; a++) { /* the lower triangle, both ways */
+    for (int c = 0; c <= a; c++) G[6 * a + c] = G[6 * c + a] = Pq[6 * a + c];
+    g[a] = Rq[a];
+  }
+  if (dof == 6) { /* E G E^T and E g, E = diag(I, Q): w = Q w_lab on the element's rows */
+    sw_getQ(m, d->Q, m->rigid_port_elem[q], Q);
+    for (int a = 0; a < 6; a++) { /* G E^T: columns 3-5 */
+      double s[3];
+      for (int c = 0; c < 3; c++) {
+        s[c] = 0;
+        for (int x = 0; x < 3; x++) s[c] += G[6 * a + 3 + x] * Q[3 * c + x];
+      }
+      for (int c = 0; c < 3; c++) G[6 * a + 3 + c] = s[c];
+    }
+    for (int c = 0; c < 6; c++) { /* then E on the left: rows 3-5 */
+      double s[3];
+      for (int a = 0; a < 3; a++) {
+        s[a] = 0;
+        for (int x = 0; x < 3; x++) s[a] += Q[3 * a + x] * G[6 * (3 + x) + c];
+      }
+      for (int a = 0; a < 3; a++) G[6 * (3 + a) + c] = s[a];
+    }
+    double w[3];
+    sw_mat_vec(w, Q, g + 3);
+    for (int a = 0; a < 3; a++) g[3 + a] = w[a];
+  }
+  size_t pos[6];
+  port_rows(m, r, q, pos);
+  for (int a = 0; a < dof; a++) { /* the band's lower triangle */
+    b[pos[a]] += g[a];
+    for (int c = 0; c < dof; c++)
+      if (pos[c] <= pos[a]) *sw_band_at(A, pos[a], pos[c]) += G[6 * a + c];
+  }
+}
+
+/* Port q's lab velocity change E^T du into Rq (du's rows stride apart). */
+static void port_velocity(const swModel *m, const swData *d, int r, int q, const double *du,
+                          size_t stride, double *Rq) {
+  size_t pos[6];
+  port_rows(m, r, q, pos);
+  for (int a = 0; a < 3; a++) Rq[a] = du[pos[a] * stride];
+  if (!m->rigid_port_rot[q]) return;
+  double Q[9];
+  const double w[3] = {du[pos[3] * stride], du[pos[4] * stride], du[pos[5] * stride]};
+  sw_getQ(m, d->Q, m->rigid_port_elem[q], Q);
+  sw_matT_vec(Rq + 3, Q, w); /* w_lab = Q^T w */
+}
+
 int sw_band_group_solve(const swModel *m, swData *d, double h, int k, const double *P, double *R) {
   const int r = m->rigid_block_rod[k], q0 = m->rigid_block_port_adr[k];
   double *b, *A = sw_implicit_band_begin(m, d, r, h, &b);
   if (!A) return 0;
-  for (int q = q0; q < m->rigid_block_port_adr[k + 1]; q++) {
-    const int t = q - q0, dof = sw_port_dof(m, q);
-    const double *Pq = P + (size_t)SW_BAND_PORT * (size_t)t, *Rq = R + 6 * (size_t)t;
-    double G[36], g[6], Q[9];
-    for (int a = 0; a < dof; a++) { /* the lower triangle, both ways */
-      for (int c = 0; c <= a; c++) G[6 * a + c] = G[6 * c + a] = Pq[6 * a + c];
-      g[a] = Rq[a];
-    }
-    if (dof == 6) { /* E G E^T and E g, E = diag(I, Q): w = Q w_lab on the element's rows */
-      sw_getQ(m, d->Q, m->rigid_port_elem[q], Q);
-      for (int a = 0; a < 6; a++) { /* G E^T: columns 3-5 */
-        double s[3];
-        for (int c = 0; c < 3; c++) {
-          s[c] = 0;
-          for (int x = 0; x < 3; x++) s[c] += G[6 * a + 3 + x] * Q[3 * c + x];
-        }
-        for (int c = 0; c < 3; c++) G[6 * a + 3 + c] = s[c];
-      }
-      for (int c = 0; c < 6; c++) { /* then E on the left: rows 3-5 */
-        double s[3];
-        for (int a = 0; a < 3; a++) {
-          s[a] = 0;
-          for (int x = 0; x < 3; x++) s[a] += Q[3 * a + x] * G[6 * (3 + x) + c];
-        }
-        for (int a = 0; a < 3; a++) G[6 * (3 + a) + c] = s[a];
-      }
-      double w[3];
-      sw_mat_vec(w, Q, g + 3);
-      for (int a = 0; a < 3; a++) g[3 + a] = w[a];
-    }
-    size_t pos[6];
-    port_rows(m, r, q, pos);
-    for (int a = 0; a < dof; a++) { /* the band's lower triangle */
-      b[pos[a]] += g[a];
-      for (int c = 0; c < dof; c++)
-        if (pos[c] <= pos[a]) *sw_band_at(A, pos[a], pos[c]) += G[6 * a + c];
-    }
-  }
+  for (int q = q0; q < m->rigid_block_port_adr[k + 1]; q++)
+    add_port_block(m, d, r, q, P + (size_t)SW_BAND_PORT * (size_t)(q - q0), R + 6 * (size_t)(q - q0), A, b);
   if (!sw_implicit_band_solve(m, d, r)) return 0;
-  for (int q = q0; q < m->rigid_block_port_adr[k + 1]; q++) { /* p = E^T du */
-    double *Rq = R + 6 * (size_t)(q - q0);
-    size_t pos[6];
-    port_rows(m, r, q, pos);
-    for (int a = 0; a < 3; a++) Rq[a] = b[pos[a]];
-    if (!m->rigid_port_rot[q]) continue;
-    double Q[9];
-    const double w[3] = {b[pos[3]], b[pos[4]], b[pos[5]]};
-    sw_getQ(m, d->Q, m->rigid_port_elem[q], Q);
-    sw_matT_vec(Rq + 3, Q, w); /* w_lab = Q^T w */
-  }
+  for (int q = q0; q < m->rigid_block_port_adr[k + 1]; q++) /* p = E^T du */
+    port_velocity(m, d, r, q, b, 1, R + 6 * (size_t)(q - q0));
   sw_implicit_apply(m, d, r, b, 1, h);
   return 1;
 }

@@ -103,31 +103,55 @@ static int dense_end(const swModel *m, int g) {
   return end;
 }
 
+/* Group g's numbering of its members' unknowns: their first and count,
+ * over their kept ports under a member's band path (rigid_group_band 2,
+ * joint_ports.c). */
+static const int *group_off(const swModel *m, int g) {
+  return m->rigid_group_band[g] == 2 ? m->rigid_block_moff : m->rigid_block_off;
+}
+static const int *group_dof(const swModel *m, int g) {
+  return m->rigid_group_band[g] == 2 ? m->rigid_block_mdof : m->rigid_block_dof;
+}
+
 int sw_rigid_group_unknowns(const swModel *m, int g) {
   const int last = dense_end(m, g) - 1;
-  return last < m->rigid_group_adr[g] ? 0 : m->rigid_block_off[last] + m->rigid_block_dof[last];
+  return last < m->rigid_group_adr[g] ? 0 : group_off(m, g)[last] + group_dof(m, g)[last];
+}
+
+/* The band ports of group g under a member's band path (rigid_port_moff). */
+static int member_band_ports(const swModel *m, int g) {
+  int nbp = 0;
+  if (m->rigid_group_band[g] != 2) return 0;
+  for (int k = m->rigid_group_adr[g]; k < m->rigid_group_adr[g + 1]; k++) {
+    if (m->rigid_block_rod[k] < 0) continue;
+    for (int q = m->rigid_block_port_adr[k]; q < m->rigid_block_port_adr[k + 1]; q++)
+      nbp += m->rigid_port_moff[q] < 0;
+  }
+  return nbp;
 }
 
 /* A group solved in its rod's band (m->rigid_group_band): its ports. */
 static int band_ports(const swModel *m, int g) {
   const int k = m->rigid_group_adr[g];
-  return m->rigid_group_band[g] ? m->rigid_block_port_adr[k + 1] - m->rigid_block_port_adr[k] : 0;
+  return m->rigid_group_band[g] == 1 ? m->rigid_block_port_adr[k + 1] - m->rigid_block_port_adr[k] : 0;
 }
 
 /* Doubles of group g's workspace: its matrix, right-hand side and the
  * factorisation's column (cholesky_solve), then each leaf's and each rod
  * member's (joint_ports.c); in the band path, the ports' blocks and
- * right-hand sides (sw_band_group_solve), then each leaf's. */
+ * right-hand sides (sw_band_group_solve), then each leaf's; in a member's
+ * band path, the band ports' blocks and right-hand sides come first. */
 static size_t group_scratch(const swModel *m, int g) {
-  if (m->rigid_group_band[g]) {
+  if (m->rigid_group_band[g] == 1) {
     const int first = m->rigid_group_adr[g], nleaf = m->rigid_group_adr[g + 1] - first - 1;
     return (size_t)band_ports(m, g) * (SW_BAND_PORT + 6) + (size_t)nleaf * SW_LEAF_WS;
   }
   const size_t n = (size_t)sw_rigid_group_unknowns(m, g);
-  size_t len = n * n + 2 * n;
+  const int mb = m->rigid_group_band[g] == 2;
+  size_t len = n * n + 2 * n + (size_t)member_band_ports(m, g) * (SW_BAND_PORT + 6);
   for (int k = m->rigid_group_adr[g]; k < m->rigid_group_adr[g + 1]; k++) {
     if (m->rigid_block_leaf[k] >= 0) len += SW_LEAF_WS;
-    else if (m->rigid_block_rod[k] >= 0) len += sw_port_member_scratch(m, k);
+    else if (m->rigid_block_rod[k] >= 0) len += sw_port_member_scratch(m, k, mb);
   }
   return len;
 }
@@ -317,14 +341,23 @@ static void member_inertia(const swModel *m, const swData *d, int k, const doubl
 typedef struct {
   double *ws;
   int owner, ro, co, du, dQ, np, qoff[2], qdof[2];
+  int inband; /* its port's block is a band port's (qoff 6 t among them) */
 } Unit;
 
-static Unit leaf_unit(const swModel *m, double *leaf_ws, int k, int band) {
+/* band: the group's rigid_group_band, first its first member. */
+static Unit leaf_unit(const swModel *m, double *leaf_ws, int k, int band, int first) {
   const int *w = m->rigid_leaf_unit + 10 * (size_t)k;
   Unit u = {leaf_ws + (size_t)m->rigid_block_off[w[0]] * SW_LEAF_WS,
-            w[0], w[1], w[2], w[3], w[4], w[5], {w[6], w[7]}, {w[8], w[9]}};
-  if (band >= 0) /* the band path's place of its one port: 6 t (sw_band_group_solve) */
-    u.qoff[0] = 6 * (m->rigid_block_leaf[u.owner] - m->rigid_block_port_adr[band]);
+            w[0], w[1], w[2], w[3], w[4], w[5], {w[6], w[7]}, {w[8], w[9]}, 0};
+  if (band == 1) { /* the band path's place of its one port: 6 t (sw_band_group_solve) */
+    u.qoff[0] = 6 * (m->rigid_block_leaf[u.owner] - m->rigid_block_port_adr[first]);
+    u.inband = 1;
+  } else if (band == 2) /* a member's band path: the kept port's place, or the band port's */
+    for (int i = 0; i < u.np; i++) {
+      const int mo = m->rigid_port_moff[m->rigid_block_leaf[i ? m->rigid_block_partner[u.owner] : u.owner]];
+      u.qoff[i] = mo >= 0 ? mo : 6 * (-1 - mo);
+      u.inband |= mo < 0; /* a lone leaf's (a pair's ports are kept) */
+    }
   return u;
 }
 
@@ -332,6 +365,7 @@ static Unit leaf_unit(const swModel *m, double *leaf_ws, int k, int band) {
 #define UNIT_BATCH 16
 static int same_shape(const Unit *a, const Unit *b) {
   return a->du == b->du && a->dQ == b->dQ && a->np == b->np && a->qdof[0] == b->qdof[0] &&
+         a->inband == b->inband &&
          (a->np < 2 || a->qdof[1] == b->qdof[1]);
 }
 
@@ -342,17 +376,22 @@ static int same_shape(const Unit *a, const Unit *b) {
 typedef struct {
   int block, leaf; /* the member (-1: still); leaf: its place among the group's leaves, -1 */
   int off, dof;    /* in the dense block: a member's, or a rod member's port's */
+  int inband;      /* a band port's: off is 6 t among the band ports' blocks */
 } SideSlot;
 
 static SideSlot side_slot(const swModel *m, int j, int side, int first, int band) {
-  SideSlot t = {m->joint_block[2 * j + side], -1, 0, 0};
+  SideSlot t = {m->joint_block[2 * j + side], -1, 0, 0, 0};
   if (t.block < 0) return t;
   const int k = t.block, q = m->joint_port[2 * j + side];
   t.dof = m->rigid_block_dof[k];
   if (m->rigid_block_leaf[k] >= 0) t.leaf = m->rigid_block_off[k];
-  else t.off = m->rigid_block_off[k];
-  if (q >= 0 && band) t.off = 6 * (q - m->rigid_block_port_adr[k]), t.dof = sw_port_dof(m, q);
-  else if (q >= 0) t.off += m->rigid_port_off[q], t.dof = sw_port_dof(m, q);
+  else t.off = band == 2 ? m->rigid_block_moff[k] : m->rigid_block_off[k];
+  if (q >= 0 && band == 1)
+    t.off = 6 * (q - m->rigid_block_port_adr[k]), t.dof = sw_port_dof(m, q), t.inband = 1;
+  else if (q >= 0 && band == 2) {
+    const int mo = m->rigid_port_moff[q];
+    t.off = mo >= 0 ? mo : 6 * (-1 - mo), t.dof = sw_port_dof(m, q), t.inband = mo < 0;
+  } else if (q >= 0) t.off += m->rigid_port_off[q], t.dof = sw_port_dof(m, q);
   t.block -= first;
   return t;
 }
@@ -362,7 +401,7 @@ static SideSlot side_slot(const swModel *m, int j, int side, int first, int band
 static void unit_dashpot(const swModel *m, const swData *d, double h, double *leaf_ws, int k) {
   const int f = m->rigid_block_fil[k];
   if (f < 0) return;
-  const Unit u = leaf_unit(m, leaf_ws, k, -1);
+  const Unit u = leaf_unit(m, leaf_ws, k, 0, 0);
   const double *sys = d->fil_sys + 8 * (size_t)f, w = h * sys[1];
   double b[12] = {0};
   const int ends[2] = {u.owner, m->rigid_block_partner[u.owner]};
@@ -421,40 +460,64 @@ static void dense_filaments(const swModel *m, swData *d, double h, int g, double
  * their right-hand sides, the rod is not condensed, and the solve
  * (sw_band_group_solve) sets the rod's loads and leaves the ports' lab
  * velocity changes in rhs, from which group_finish recovers the leaves.
+ * In a member's band path (rigid_group_band 2) the band ports' blocks P
+ * and right-hand sides R lead ws (group_ports); the rods are condensed to
+ * their kept ports after the joints and leaves are in (their bands take
+ * P and R), and their finish leaves the band ports' velocity changes in R.
  * Returns 0 if the block (or a rod's system) could not be factored. */
+typedef struct {
+  double *P, *R, *leaf_ws, *rod_ws; /* P, R: the band ports' (NULL: none) */
+} GroupWs;
+
+static GroupWs group_ports(const swModel *m, int g, double *A, double *rhs, double *ws) {
+  const int first = m->rigid_group_adr[g], nb = m->rigid_group_adr[g + 1] - first;
+  const int nd = dense_end(m, g) - first, band = m->rigid_group_band[g];
+  const size_t nbp = (size_t)member_band_ports(m, g);
+  GroupWs w = {band == 1 ? A : NULL, band == 1 ? rhs : NULL, ws, NULL};
+  if (band == 2) w.P = ws, w.R = ws + nbp * SW_BAND_PORT, w.leaf_ws = w.R + 6 * nbp;
+  w.rod_ws = w.leaf_ws + (size_t)(nb - nd) * SW_LEAF_WS;
+  return w;
+}
+
 static int group_assemble(const swModel *m, swData *d, double h, int g, double *A, double *rhs,
                           double *ws, double *load) {
   const int first = m->rigid_group_adr[g], nb = m->rigid_group_adr[g + 1] - first;
-  const int band = m->rigid_group_band[g], bu = band ? first : -1; /* the band path (header) */
-  const int nd = dense_end(m, g) - first, n = band ? 6 : sw_rigid_group_unknowns(m, g);
-  const int *off = m->rigid_block_off + first, *dof = m->rigid_block_dof + first;
-  double *leaf_ws = ws, *rod_ws = ws + (size_t)(nb - nd) * SW_LEAF_WS;
-  if (band) { /* the ports' blocks (A, row length 6) and right-hand sides */
-    memset(A, 0, (size_t)band_ports(m, g) * SW_BAND_PORT * sizeof(double));
-    memset(rhs, 0, (size_t)band_ports(m, g) * 6 * sizeof(double));
+  const int band = m->rigid_group_band[g], bu = band == 1; /* the band path (header) */
+  const int nd = dense_end(m, g) - first, n = bu ? 6 : sw_rigid_group_unknowns(m, g);
+  const int *off = group_off(m, g) + first, *dof = group_dof(m, g) + first;
+  const GroupWs gw = group_ports(m, g, A, rhs, ws);
+  double *leaf_ws = gw.leaf_ws, *rod_ws = gw.rod_ws;
+  const int np = bu ? band_ports(m, g) : member_band_ports(m, g);
+  if (gw.P) { /* the ports' blocks (row length 6) and right-hand sides */
+    memset(gw.P, 0, (size_t)np * SW_BAND_PORT * sizeof(double));
+    memset(gw.R, 0, (size_t)np * 6 * sizeof(double));
   }
   /* zeros where the assembly adds: each dense member's rows over its
    * envelope up to the end of its diagonal block (A's lower triangle, the
    * only part cholesky_solve reads, and the block sw_port_member_assemble
    * solves in).  The rest of A is neither added to nor read before the
    * factorisation writes it (or keeps the zeros it has from the start). */
-  for (int s = 0; s < nd && !band; s++) {
+  for (int s = 0; s < nd && !bu; s++) {
     const int c0 = off[m->rigid_block_env[first + s] - first], c1 = off[s] + dof[s];
     for (int i = off[s]; i < c1; i++) memset(A + (size_t)i * n + c0, 0, (size_t)(c1 - c0) * sizeof(double));
   }
   for (int s = 0, wrod = 0; s < nb; s++) { /* mass, and the right-hand side h F */
     const int k = first + s;
-    if (m->rigid_block_rod[k] >= 0 && band) continue; /* its band: sw_band_group_solve */
+    if (m->rigid_block_rod[k] >= 0 && bu) continue; /* its band: sw_band_group_solve */
+    if (m->rigid_block_rod[k] >= 0 && band == 2) { /* condensed below: its rows' zeros */
+      memset(rhs + off[s], 0, (size_t)dof[s] * sizeof(double));
+      continue;
+    }
     if (m->rigid_block_rod[k] >= 0) { /* S and S p0 (joint_ports.c) */
       double *w = rod_ws + wrod;
-      wrod += (int)sw_port_member_scratch(m, k);
-      if (!sw_port_member_assemble(m, d, h, k, w, A, n, off[s], rhs)) return 0;
+      wrod += (int)sw_port_member_scratch(m, k, 0);
+      if (!sw_port_member_assemble(m, d, h, k, w, A, n, off[s], rhs, NULL, NULL)) return 0;
       continue;
     }
     double M, Il[9], F[6];
     member_inertia(m, d, k, load, &M, Il, F);
     const int leaf = m->rigid_block_leaf[k] >= 0;
-    const Unit u = leaf ? leaf_unit(m, leaf_ws, k, bu) : (Unit){0};
+    const Unit u = leaf ? leaf_unit(m, leaf_ws, k, band, first) : (Unit){0};
     double *B = leaf ? u.ws : A; /* a leaf's unit: A_uu, C, X, b */
     const size_t ld = leaf ? (size_t)u.du : (size_t)n, o = leaf ? (size_t)u.ro : (size_t)off[s];
     double *b = leaf ? B + 432 + o : rhs + o;
@@ -514,18 +577,19 @@ static int group_assemble(const swModel *m, swData *d, double h, int g, double *
         if (ss->block < 0 || st->block < 0) continue;
         const double sign = s == t ? 1.0 : -1.0; /* rates are side b minus side a */
         if (ss->leaf >= 0) { /* a leaf's own block (t = s) or its coupling to the port */
-          const Unit u = leaf_unit(m, leaf_ws, first + ss->block, bu);
+          const Unit u = leaf_unit(m, leaf_ws, first + ss->block, band, first);
           if (s == t) add_pair(u.ws, u.du, u.ro, ss->dof, u.ro, ss->dof, wpos, wrot, wlim, Jp[s], Jp[t], PtP, ggT);
           else add_pair(u.ws + 144, u.dQ, u.ro, ss->dof, u.co, st->dof, -wpos, -wrot, -wlim, Jp[s], Jp[t], PtP, ggT);
           continue;
         }
         if (st->leaf >= 0) continue; /* C_a^T: the leaf's elimination uses C_a */
+        if (ss->inband != st->inband) continue; /* not made: a band port's others are leaves */
         if (ss->off + ss->dof <= st->off) continue; /* above the diagonal: never read */
-        add_pair(A, n, ss->off, ss->dof, st->off, st->dof, sign * wpos, sign * wrot, sign * wlim,
-                 Jp[s], Jp[t], PtP, ggT);
+        add_pair(ss->inband ? gw.P : A, ss->inband ? 6 : n, ss->off, ss->dof, st->off, st->dof,
+                 sign * wpos, sign * wrot, sign * wlim, Jp[s], Jp[t], PtP, ggT);
       }
   }
-  if (m->fil_block && !band) dense_filaments(m, d, h, g, A, n, NULL);
+  if (m->fil_block && !bu) dense_filaments(m, d, h, g, A, n, NULL);
   /* the leaves' units eliminated into their ports, in their order, the
    * consecutive ones of the same shape together (sw_leaf_condense) */
   Unit batch[UNIT_BATCH];
@@ -534,47 +598,57 @@ static int group_assemble(const swModel *m, swData *d, double h, int g, double *
   for (int s = nd, nu = 0; s <= nb; s++) {
     Unit u = {0};
     if (s < nb) {
-      u = leaf_unit(m, leaf_ws, first + s, bu);
+      u = leaf_unit(m, leaf_ws, first + s, band, first);
       if (u.owner != first + s) continue;
       unit_dashpot(m, d, h, leaf_ws, first + s);
     }
     if (nu > 0 && (s == nb || nu == UNIT_BATCH || !same_shape(&u, &batch[0]))) {
+      const int ib = batch[0].inband; /* into the band ports' blocks, or the dense block */
       for (int i = 0; i < nu; i++) bws[i] = batch[i].ws, bqoff[i] = batch[i].qoff;
-      if (!sw_leaf_condense(bws, bqoff, nu, batch[0].du, batch[0].dQ, batch[0].np, batch[0].qdof, A, n, rhs))
+      if (!sw_leaf_condense(bws, bqoff, nu, batch[0].du, batch[0].dQ, batch[0].np, batch[0].qdof,
+                            ib ? gw.P : A, ib ? 6 : n, ib ? gw.R : rhs))
         return 0;
       nu = 0;
     }
     if (s < nb) batch[nu++] = u;
+  }
+  for (int s = 0, wrod = 0; s < nd && band == 2; s++) { /* the rods, their band ports in their bands */
+    const int k = first + s;
+    if (m->rigid_block_rod[k] < 0) continue;
+    double *w = rod_ws + wrod;
+    wrod += (int)sw_port_member_scratch(m, k, 1);
+    if (!sw_port_member_assemble(m, d, h, k, w, A, n, off[s], rhs, gw.P, gw.R)) return 0;
   }
   return 1;
 }
 
 static int group_solve(const swModel *m, swData *d, double h, int g, double *A, double *rhs) {
   const int first = m->rigid_group_adr[g], n = sw_rigid_group_unknowns(m, g);
-  if (m->rigid_group_band[g]) return sw_band_group_solve(m, d, h, first, A, rhs);
+  if (m->rigid_group_band[g] == 1) return sw_band_group_solve(m, d, h, first, A, rhs);
   return cholesky_solve(A, n, rhs, rhs + n, m->rigid_block_env + first, m->rigid_block_reach + first,
-                        m->rigid_block_off + first, m->rigid_block_dof + first, first);
+                        group_off(m, g) + first, group_dof(m, g) + first, first);
 }
 
 static void group_finish(const swModel *m, swData *d, double h, int g, double *A, double *rhs,
                          double *ws, double *load) {
   const int first = m->rigid_group_adr[g], nb = m->rigid_group_adr[g + 1] - first;
   const int nd = dense_end(m, g) - first, n = sw_rigid_group_unknowns(m, g);
-  const int band = m->rigid_group_band[g], bu = band ? first : -1;
-  const int *off = m->rigid_block_off + first, *dof = m->rigid_block_dof + first;
-  double *leaf_ws = ws, *rod_ws = ws + (size_t)(nb - nd) * SW_LEAF_WS;
+  const int band = m->rigid_group_band[g], bu = band == 1;
+  const int *off = group_off(m, g) + first, *dof = group_dof(m, g) + first;
+  const GroupWs gw = group_ports(m, g, A, rhs, ws);
+  double *leaf_ws = gw.leaf_ws, *rod_ws = gw.rod_ws;
   for (int s = 0, wrod = 0; s < nb; s++) { /* the loads that give du */
     const int k = first + s, b = m->rigid_block_body[k];
-    if (m->rigid_block_rod[k] >= 0 && band) continue; /* set by sw_band_group_solve */
-    if (m->rigid_block_rod[k] >= 0) {
-      sw_port_member_finish(m, d, h, k, rod_ws + wrod, rhs + off[s]);
-      wrod += (int)sw_port_member_scratch(m, k);
+    if (m->rigid_block_rod[k] >= 0 && bu) continue; /* set by sw_band_group_solve */
+    if (m->rigid_block_rod[k] >= 0) { /* (the band ports' velocity changes into R) */
+      sw_port_member_finish(m, d, h, k, rod_ws + wrod, rhs + off[s], band == 2 ? gw.R : NULL);
+      wrod += (int)sw_port_member_scratch(m, k, band == 2);
       continue;
     }
     const double *du = rhs + off[s];
     if (m->rigid_block_leaf[k] >= 0) { /* a unit's velocities, once, by its owner */
-      const Unit u = leaf_unit(m, leaf_ws, k, bu);
-      if (u.owner == k) sw_leaf_recover(u.ws, u.du, u.dQ, u.np, u.qoff, u.qdof, rhs);
+      const Unit u = leaf_unit(m, leaf_ws, k, band, first);
+      if (u.owner == k) sw_leaf_recover(u.ws, u.du, u.dQ, u.np, u.qoff, u.qdof, u.inband ? gw.R : rhs);
       du = u.ws + 432 + u.ro;
     }
     double M, Il[9], F[6], dL[3] = {0, 0, 0};
@@ -598,7 +672,7 @@ static void group_finish(const swModel *m, swData *d, double h, int g, double *A
   }
   for (int s = nd; s < nb; s++) { /* the filaments in the system: their tension */
     const int k = first + s, f = m->rigid_block_fil[k];
-    const Unit u = leaf_unit(m, leaf_ws, k, bu);
+    const Unit u = leaf_unit(m, leaf_ws, k, band, first);
     if (f < 0 || u.owner != k) continue;
     const double *dv[2] = {NULL, NULL}; /* start, end: NULL when clamped */
     const int ends[2] = {k, m->rigid_block_partner[k]};
@@ -608,7 +682,7 @@ static void group_finish(const swModel *m, swData *d, double h, int g, double *A
     }
     sw_muscle_ops(m)->system_tension(m, d, f, dv[0], dv[1]);
   }
-  if (m->fil_block && !band) dense_filaments(m, d, h, g, A, n, rhs);
+  if (m->fil_block && !bu) dense_filaments(m, d, h, g, A, n, rhs);
 }
 
 /* The via rings' force changes of group g's filaments in the system, on

@@ -589,6 +589,18 @@ int sw_implicit_band_solve(const swModel *m, swData *d, int r) {
   return 1;
 }
 
+int sw_implicit_band_solve_many(const swModel *m, swData *d, int r, double *X, int ld) {
+  const int k = implicit_of(m, r);
+  double *rhs, *inv, *A = rod_ws(m, d, k, &rhs, &inv);
+  double *kept = d->implicit_sys + m->implicit_adr[k] + system_len(m->rod_nelem[r]);
+  const size_t N = unknowns(m->rod_nelem[r]);
+  if (!band_ldlt_factor(A, N, inv)) return 0;
+  kept[KEPT_FRESH] += 1;
+  for (size_t i = 0; i < N; i++) X[i * (size_t)ld] = rhs[i];
+  band_ldlt_solve_many(A, N, X, (size_t)ld, inv);
+  return 1;
+}
+
 void sw_implicit_apply(const swModel *m, swData *d, int r, const double *du, size_t stride,
                        double h) {
   const int n = m->rod_nelem[r], na = m->node_adr[r], ea = m->elem_adr[r];

@@ -172,7 +172,20 @@ typedef struct {
                                            the leaves eliminated into it
                                            (joint_ports.c, the band path: no
                                            dense block of the ports); 0: its
-                                           dense block (joint_groups.c)       */
+                                           dense block (joint_groups.c); 2: its
+                                           rod members keep only their ports
+                                           joined to anything but lone leaves,
+                                           the others' leaves eliminated into
+                                           the rods' bands (the band path of a
+                                           member, joint_ports.c)             */
+  int *rigid_block_moff;     /* (nrigid_block) under rigid_group_band 2: its
+                                           first unknown in its group (a
+                                           leaf's: as rigid_block_off)        */
+  int *rigid_block_mdof;     /* (nrigid_block) under 2: its unknowns (a rod
+                                           member's: its kept ports')         */
+  int *rigid_port_moff;      /* (nrigid_port) under 2: a kept port's first
+                                           unknown in its group, or -1 - t for
+                                           the group's band port t            */
   /* rods whose geometry changes in time (swell.c): their radius, stiffness,
    * inertia, mass and rest curvature follow signals; what the step reads of
    * these is swData's *_now arrays, which are these model arrays themselves

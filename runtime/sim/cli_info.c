@@ -389,9 +389,12 @@ static void print_stiff_parts(const swModel *m) {
       printf("%s%d rod node%s", sep, m->nrigid_attach, m->nrigid_attach == 1 ? "" : "s");
     if (nfil) printf(", the Hill damping of %d filament%s between their ends", nfil, nfil == 1 ? "" : "s");
     int nband = 0; /* groups of one implicit rod and leaves: solved in its band (joint_ports.c) */
-    for (int g = 0; g < m->nrigid_group; g++) nband += m->rigid_group_band[g];
+    int nmember = 0; /* groups whose rod members take lone leaves into their bands */
+    for (int g = 0; g < m->nrigid_group; g++)
+      nband += m->rigid_group_band[g] == 1, nmember += m->rigid_group_band[g] == 2;
     printf(" in %d independent group%s", m->nrigid_group, m->nrigid_group == 1 ? "" : "s");
     if (nband) printf(", %d of them an implicit rod and its leaves, solved in its band", nband);
+    if (nmember) printf(", %d with leaves eliminated into their rods' bands", nmember);
     printf(")\n");
   }
   int nhill = 0;   /* filaments under the Hill law (not a prescribed force) */

@@ -1,0 +1,266 @@
+/* test_joint_member_band.c — a member's band path (joint_ports.c,
+ * rigid_group_band 2): an implicit rod that is a member of a larger group
+ * (a rachis tied to a bone) with its lone leaves (barbs) eliminated into
+ * its band and the rod condensed to its other ports alone, against the
+ * dense path of the same group (the rod condensed to all its ports, the
+ * leaves eliminated into that block), which solves the same linear system.
+ *
+ * Design.  A "feather on a bone": an implicit rachis (40 elements) whose
+ * start is tied by a fixed joint to the end of a bone, a rigid body hinged
+ * to space at its other end or an implicit rod clamped there, and short
+ * explicit barbs (4 elements) on fixed joints (one spherical) at its nodes,
+ * one of them on the rachis' root, whose port stays in the group's block
+ * with its leaf, and two on one node (and two on the implicit bone, whose
+ * band takes them too); gravity, every node and element
+ * started moving.  One model, swData for each path (m->rigid_group_band
+ * toggled around its step, as test_joint_band does; the dense path
+ * factored afresh every kick as the band is).  The two must agree to
+ * round-off over 20 steps, and over the run within what a one-ulp start
+ * makes the dense path differ from itself.  Then the cost of one kick each
+ * way for 4, 16 and 64 barbs on 128 elements, printed, with the group's
+ * dense unknowns (asserted: the bone's 6 and the rachis' root's 6). */
+#include <float.h>
+#include <time.h>
+#include "testutil.h"
+#include "internal.h"
+
+static const char *named(const char *stem) {
+  static char name[32];
+  static int count;
+  snprintf(name, sizeof name, "%s%d", stem, count++);
+  return name;
+}
+
+enum { RIGID, IMPLICIT };
+static const char *const bone_name[2] = {"rigid bone hinged to space", "implicit bone clamped"};
+
+/* The bone (0.1 m along x to the origin, r = 5 mm) as `bone` says, the
+ * rachis (0.2 m along x, r = 2 mm, E = 100 MPa, nel elements) fixed at its
+ * start to the bone's end, nleaf barbs (20 mm, r = 0.4 mm, 4 elements) at
+ * nodes at[l], barb `spherical` on a spherical joint. */
+static swModel *feather(int bone, int nel, int nleaf, const int *at, int spherical, swSpec **out) {
+  swSpec *s = sw_spec_new();
+  const double L = 0.2, x0[3] = {0, 0, 0}, b0[3] = {-0.1, 0, 0}, dx[3] = {1, 0, 0};
+  swRodDesc bd = sw_test_rod(named("bone"), 10, 0.1, 5e-3, b0, dx, NULL);
+  bd.density = 1750;
+  if (bone == RIGID) bd.youngs = 15e9, bd.rigid = 1;
+  else bd.youngs = 1e9, bd.shear_modulus = 1e9 / 3, bd.implicit = 1;
+  const int b = sw_spec_add_rod(s, &bd);
+  swJointDesc j;
+  if (bone == RIGID) {
+    sw_joint_desc_init(&j);
+    j.name = named("shoulder");
+    j.kind = SW_JOINT_HINGE;
+    j.rod_a = b, j.node_a = 0, j.rod_b = -1;
+    j.anchor[0] = b0[0];
+    j.axis[1] = 1;
+    sw_spec_add_joint(s, &j);
+  } else {
+    swBCDesc c = sw_test_clamp(b, 0);
+    sw_spec_add_bc(s, &c);
+  }
+  swRodDesc r = sw_test_rod(named("rachis"), nel, L, 2e-3, x0, dx, NULL);
+  r.youngs = 1e8, r.shear_modulus = 1e8 / 3, r.density = 1200, r.implicit = 1;
+  const int rachis = sw_spec_add_rod(s, &r);
+  sw_joint_desc_init(&j);
+  j.name = named("root");
+  j.kind = SW_JOINT_FIXED;
+  j.rod_a = b, j.node_a = -1, j.rod_b = rachis, j.node_b = 0;
+  sw_spec_add_joint(s, &j);
+  for (int l = 0; l < nleaf + (bone == IMPLICIT ? 2 : 0); l++) {
+    const int on_bone = l >= nleaf; /* the implicit bone's two barbs, at its nodes 3 and 7 */
+    const double start[3] = {on_bone ? b0[0] + 0.01 * (3 + 4 * (l - nleaf)) : L * at[l] / nel, 0, 0};
+    const double dir[3] = {0.1 * l, l % 2 ? -1 : 1, 0.3}, nrm[3] = {1, 0, 0};
+    swRodDesc bb = sw_test_rod(named("barb"), 4, 0.02, 4e-4, start, dir, nrm);
+    bb.youngs = 1e7, bb.shear_modulus = 1e7 / 3, bb.density = 1200;
+    const int barb = sw_spec_add_rod(s, &bb);
+    sw_joint_desc_init(&j);
+    j.name = named("j");
+    j.kind = l == spherical ? SW_JOINT_SPHERICAL : SW_JOINT_FIXED;
+    j.rod_a = on_bone ? b : rachis, j.node_a = on_bone ? 3 + 4 * (l - nleaf) : at[l];
+    j.rod_b = barb, j.node_b = 0;
+    sw_spec_add_joint(s, &j);
+  }
+  const double g[3] = {0, 0, -9.81};
+  sw_spec_set_gravity(s, g);
+  sw_spec_set_integrator(s, SW_IMEX);
+  *out = s;
+  return sw_test_compile_at(s, 0.5);
+}
+
+/* Every group to a member's band path (2) or the dense one (0). */
+static void set_band(swModel *m, int band) {
+  for (int g = 0; g < m->nrigid_group; g++) m->rigid_group_band[g] = band;
+}
+
+static swData *data_for(swModel *m, int band) {
+  set_band(m, band);
+  swData *d = sw_data_new(m);
+  assert_non_null(d);
+  return d;
+}
+
+static void start_moving(const swModel *m, swData *d) {
+  for (int i = 0; i < m->stride; i++) {
+    SW_AT(m, d->v, i, 0) = 0.02 * sin(1.3 * i);
+    SW_AT(m, d->v, i, 1) = 0.03 * cos(0.7 * i);
+    SW_AT(m, d->v, i, 2) = 0.05 * sin(0.4 * i + 1);
+    SW_AT(m, d->omega, i, 0) = 0.5 * cos(0.9 * i);
+    SW_AT(m, d->omega, i, 1) = 0.3 * sin(1.1 * i);
+    SW_AT(m, d->omega, i, 2) = 0.2 * cos(0.3 * i + 2);
+  }
+}
+
+static double worst(const double *a, const double *b, size_t n, double *scale) {
+  double w = 0;
+  *scale = 0;
+  for (size_t k = 0; k < n; k++) w = fmax(w, fabs(a[k] - b[k])), *scale = fmax(*scale, fabs(b[k]));
+  return w;
+}
+
+static void differences(const swModel *m, const swData *a, const swData *b, double *abs_, double *rel) {
+  const size_t n3 = 3 * (size_t)m->stride;
+  const double *pa[3] = {a->x, a->v, a->omega}, *pb[3] = {b->x, b->v, b->omega};
+  for (int q = 0; q < 3; q++) {
+    double scale;
+    abs_[q] = worst(pa[q], pb[q], n3, &scale);
+    rel[q] = abs_[q] / scale;
+  }
+}
+
+/* Unknowns of group 0's dense block on the path `band`. */
+static int unknowns(swModel *m, int band) {
+  set_band(m, band);
+  const int n = sw_rigid_group_unknowns(m, 0);
+  set_band(m, 2);
+  return n;
+}
+
+#define EARLY 20
+static void same_solution(int bone) {
+  static const int at[10] = {0, 4, 8, 12, 16, 16, 22, 28, 34, 40};
+  swSpec *s;
+  swModel *m = feather(bone, 40, 10, at, 3, &s);
+  assert_int_equal(m->nrigid_group, 1);
+  assert_int_equal(m->rigid_group_band[0], 2); /* the rachis' barbs in its band */
+  const int nb = unknowns(m, 2), nd = unknowns(m, 0);
+  swData *band = data_for(m, 2), *dense = data_for(m, 0), *ulp = data_for(m, 0);
+  start_moving(m, band);
+  start_moving(m, dense);
+  start_moving(m, ulp);
+  for (int i = 0; i < 3 * m->stride; i++) ulp->v[i] *= 1 + DBL_EPSILON;
+  const long nsteps = sw_test_sanitized() ? 150 : 300;
+  double ea[3], er[3], da[3], dr[3], ua[3], ur[3];
+  for (long k = 0; k < nsteps; k++) {
+    set_band(m, 2);
+    sw_implicit_reset(m, band); /* the bone's system factored afresh too */
+    assert_int_equal(sw_step(m, band), SW_OK);
+    set_band(m, 0);
+    sw_implicit_reset(m, dense); /* factored afresh, as the band is */
+    assert_int_equal(sw_step(m, dense), SW_OK);
+    sw_implicit_reset(m, ulp);
+    assert_int_equal(sw_step(m, ulp), SW_OK);
+    if (k == EARLY - 1) differences(m, band, dense, ea, er);
+  }
+  set_band(m, 2);
+  differences(m, band, dense, da, dr);
+  differences(m, ulp, dense, ua, ur);
+  fprintf(stderr, "# test_same_solution: %s, rachis of 40 elements, 10 barbs%s, dt %.3g s; group "
+          "block %d unknowns (dense path %d)\n", bone_name[bone],
+          bone == IMPLICIT ? " (2 more on the bone)" : "", m->dt, nb, nd);
+  fprintf(stderr, "#   after %d steps, band - dense: x %.2e m (rel. %.2e), v %.2e m/s (rel. %.2e), "
+          "omega %.2e rad/s (rel. %.2e)\n", EARLY, ea[0], er[0], ea[1], er[1], ea[2], er[2]);
+  fprintf(stderr, "#   after %ld steps, band - dense: x %.2e m (rel. %.2e), v %.2e m/s (rel. %.2e), "
+          "omega %.2e rad/s (rel. %.2e)\n", nsteps, da[0], dr[0], da[1], dr[1], da[2], dr[2]);
+  fprintf(stderr, "#   after %ld steps, dense from a one-ulp start - dense: x %.2e m (rel. %.2e), "
+          "v %.2e m/s (rel. %.2e), omega %.2e rad/s (rel. %.2e)\n",
+          nsteps, ua[0], ur[0], ua[1], ur[1], ua[2], ur[2]);
+  assert_int_equal(nb, 12); /* the bone's 6 (a body's, or its end port's) and the rachis' root's 6 */
+  for (int q = 0; q < 3; q++) assert_true(er[q] <= 1e-12);
+  assert_true(dr[0] <= fmax(1e-12, 10 * ur[0]));
+  for (int q = 1; q < 3; q++) assert_true(dr[q] <= fmax(1e-12, 10 * ur[q]));
+  double vmax;
+  (void)worst(dense->v, dense->v, 3 * (size_t)m->stride, &vmax);
+  assert_true(vmax > 0.01); /* it moved */
+  sw_data_free(band);
+  sw_data_free(dense);
+  sw_data_free(ulp);
+  sw_model_free(m);
+  sw_spec_free(s);
+}
+
+static void test_same_solution(void **state) {
+  (void)state;
+  same_solution(RIGID);
+  same_solution(IMPLICIT);
+}
+
+static double now(void) {
+  struct timespec t;
+  clock_gettime(CLOCK_MONOTONIC, &t);
+  return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
+}
+
+/* Seconds per kick of the joints' system, each factored afresh: the least
+ * mean over batches of at least 3 kicks and 10 ms (one batch of 2 under
+ * the sanitizers). */
+static double kick_time(const swModel *m, swData *d) {
+  const int batches = sw_test_sanitized() ? 1 : 5, least = sw_test_sanitized() ? 2 : 3;
+  double best = INFINITY;
+  for (int batch = 0; batch < batches; batch++) {
+    long k = 0;
+    const double t0 = now();
+    double t = t0;
+    while (k < least || t - t0 < 0.01) {
+      sw_implicit_reset(m, d);
+      assert_int_equal(sw_rigid_joints_kick(m, d, m->dt, d->rigid_load), 1);
+      k++;
+      t = now();
+    }
+    best = fmin(best, (t - t0) / (double)k);
+  }
+  return best;
+}
+
+static void test_cost(void **state) {
+  (void)state;
+  static const int leaves[3] = {4, 16, 64};
+  for (int c = 0; c < 3; c++) {
+    int at[64];
+    for (int l = 0; l < leaves[c]; l++) at[l] = 2 + l * 126 / leaves[c];
+    swSpec *s;
+    swModel *m = feather(RIGID, 128, leaves[c], at, -1, &s);
+    assert_int_equal(m->rigid_group_band[0], 2);
+    const int nb = unknowns(m, 2), nd = unknowns(m, 0);
+    swData *band = data_for(m, 2), *dense = data_for(m, 0);
+    start_moving(m, band);
+    start_moving(m, dense);
+    for (int k = 0; k < 3; k++) {
+      set_band(m, 2);
+      assert_int_equal(sw_step(m, band), SW_OK);
+      set_band(m, 0);
+      assert_int_equal(sw_step(m, dense), SW_OK);
+    }
+    set_band(m, 2);
+    const double tb = kick_time(m, band);
+    set_band(m, 0);
+    const double td = kick_time(m, dense);
+    set_band(m, 2);
+    fprintf(stderr, "# test_cost: %2d barbs on 128 elements, rigid bone: member's band path %8.1f us "
+            "per kick (block of %d unknowns), dense path %8.1f us (%d), dense / band %.1f\n",
+            leaves[c], 1e6 * tb, nb, 1e6 * td, nd, td / tb);
+    assert_int_equal(nb, 12);
+    sw_data_free(band);
+    sw_data_free(dense);
+    sw_model_free(m);
+    sw_spec_free(s);
+  }
+}
+
+int main(void) {
+  const struct CMUnitTest tests[] = {
+      cmocka_unit_test(test_same_solution),
+      cmocka_unit_test(test_cost),
+  };
+  return cmocka_run_group_tests_name("joint_member_band", tests, NULL, NULL);
+}
