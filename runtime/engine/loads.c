@@ -197,15 +197,31 @@ void sw_signal_range(const swSignal *s, double *lo, double *hi) {
  * planes (padding included, where both stay zero); the loads are scratch, at
  * i - so (internal.h, "Scratch windows").  Gravity acts on m->weight, the
  * mass but on weightless rods, when some rod is weightless. */
+/* What gravity acts with over slots [lo, hi): the masses it weighs, the
+ * slots under it, [lo, top) ([top, hi) not: the padding, or no gravity; two
+ * loops rather than a condition per slot, vec.h, sw_select), and its
+ * signal's factor now. */
+typedef struct {
+  const double *mass;
+  int top;
+  double scale;
+} GravitySpan;
+
+static GravitySpan gravity_span(const swModel *m, const swData *d, int lo, int hi) {
+  GravitySpan g = {m->weight ? d->weight_now : d->mass_now,
+                   m->has_gravity ? (hi < m->nslot ? hi : m->nslot) : lo,
+                   m->gravity_signal.kind == SW_SIG_CONST ? m->gravity_signal.a
+                                                          : sw_signal_eval(&m->gravity_signal, d->time)};
+  if (g.top < lo) g.top = lo;
+  return g;
+}
+
 static void base_loads(const swModel *m, swData *d, int lo, int hi, int so) {
   const size_t S = (size_t)m->stride;
-  const double *restrict mass = m->weight ? d->weight_now : d->mass_now;
-  /* [lo, top) under gravity, [top, hi) not (the padding, or no gravity): two
-   * loops rather than a condition per slot (vec.h, sw_select) */
-  int top = m->has_gravity ? (hi < m->nslot ? hi : m->nslot) : lo;
-  if (top < lo) top = lo;
-  const double scale = m->gravity_signal.kind == SW_SIG_CONST ? m->gravity_signal.a
-                                                              : sw_signal_eval(&m->gravity_signal, d->time);
+  const GravitySpan gs = gravity_span(m, d, lo, hi);
+  const double *restrict mass = gs.mass;
+  const int top = gs.top;
+  const double scale = gs.scale;
   for (int k = 0; k < 3; k++) {
     double *restrict ef = d->ext_force + k * S, *restrict et = d->ext_torque + k * S;
     const double g = m->gravity[k] * scale;
@@ -285,11 +301,10 @@ void sw_external_loads(const swModel *m, swData *d) {
  * one loop instead of three for each component. */
 static void gravity_loads(const swModel *m, swData *d, int lo, int hi, int so) {
   const size_t S = (size_t)m->stride;
-  const double *restrict mass = m->weight ? d->weight_now : d->mass_now;
-  int top = m->has_gravity ? (hi < m->nslot ? hi : m->nslot) : lo;
-  if (top < lo) top = lo;
-  const double scale = m->gravity_signal.kind == SW_SIG_CONST ? m->gravity_signal.a
-                                                              : sw_signal_eval(&m->gravity_signal, d->time);
+  const GravitySpan gs = gravity_span(m, d, lo, hi);
+  const double *restrict mass = gs.mass;
+  const int top = gs.top;
+  const double scale = gs.scale;
   for (int k = 0; k < 3; k++) {
     double *restrict ef = d->ext_force + k * S, *restrict et = d->ext_torque + k * S;
     double *restrict F = d->force + k * S, *restrict T = d->torque + k * S;

@@ -578,24 +578,33 @@ double *sw_implicit_band_begin(const swModel *m, swData *d, int r, double h, dou
   return A;
 }
 
-int sw_implicit_band_solve(const swModel *m, swData *d, int r) {
+/* Rod r's band as sw_implicit_band_begin and its callers left it, factored
+ * afresh (and counted so): the matrix, with its right-hand side, inverse
+ * pivots and size; NULL when it is not positive definite. */
+static double *band_factor(const swModel *m, swData *d, int r, double **rhs, double **inv, size_t *N) {
   const int k = implicit_of(m, r);
-  double *rhs, *inv, *A = rod_ws(m, d, k, &rhs, &inv);
+  double *A = rod_ws(m, d, k, rhs, inv);
   double *kept = d->implicit_sys + m->implicit_adr[k] + system_len(m->rod_nelem[r]);
-  const size_t N = unknowns(m->rod_nelem[r]);
-  if (!band_ldlt_factor(A, N, inv)) return 0;
+  *N = unknowns(m->rod_nelem[r]);
+  if (!band_ldlt_factor(A, *N, *inv)) return NULL;
   kept[KEPT_FRESH] += 1;
+  return A;
+}
+
+int sw_implicit_band_solve(const swModel *m, swData *d, int r) {
+  double *rhs, *inv;
+  size_t N;
+  const double *A = band_factor(m, d, r, &rhs, &inv, &N);
+  if (!A) return 0;
   band_ldlt_solve(A, N, rhs, inv);
   return 1;
 }
 
 int sw_implicit_band_solve_many(const swModel *m, swData *d, int r, double *X, int ld) {
-  const int k = implicit_of(m, r);
-  double *rhs, *inv, *A = rod_ws(m, d, k, &rhs, &inv);
-  double *kept = d->implicit_sys + m->implicit_adr[k] + system_len(m->rod_nelem[r]);
-  const size_t N = unknowns(m->rod_nelem[r]);
-  if (!band_ldlt_factor(A, N, inv)) return 0;
-  kept[KEPT_FRESH] += 1;
+  double *rhs, *inv;
+  size_t N;
+  const double *A = band_factor(m, d, r, &rhs, &inv, &N);
+  if (!A) return 0;
   for (size_t i = 0; i < N; i++) X[i * (size_t)ld] = rhs[i];
   band_ldlt_solve_many(A, N, X, (size_t)ld, inv);
   return 1;
