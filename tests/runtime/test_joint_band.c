@@ -23,6 +23,7 @@
 #include <time.h>
 #include "testutil.h"
 #include "internal.h"
+#include "band_compare.h"
 
 static const char *named(const char *stem) {
   static char name[32];
@@ -80,50 +81,6 @@ static swModel *feather(int nel, int nleaf, const int *at, int spherical, int he
   return sw_test_compile_at(s, 0.5);
 }
 
-/* Every group to the band path (band 1) or the dense one (0). */
-static void set_band(swModel *m, int band) {
-  for (int g = 0; g < m->nrigid_group; g++) m->rigid_group_band[g] = band;
-}
-
-/* A swData made for that path (its workspace is the path's). */
-static swData *data_for(swModel *m, int band) {
-  set_band(m, band);
-  swData *d = sw_data_new(m);
-  assert_non_null(d);
-  return d;
-}
-
-/* Every node and element of d started moving, the same in every swData. */
-static void start_moving(const swModel *m, swData *d) {
-  for (int i = 0; i < m->stride; i++) {
-    SW_AT(m, d->v, i, 0) = 0.02 * sin(1.3 * i);
-    SW_AT(m, d->v, i, 1) = 0.03 * cos(0.7 * i);
-    SW_AT(m, d->v, i, 2) = 0.05 * sin(0.4 * i + 1);
-    SW_AT(m, d->omega, i, 0) = 0.5 * cos(0.9 * i);
-    SW_AT(m, d->omega, i, 1) = 0.3 * sin(1.1 * i);
-    SW_AT(m, d->omega, i, 2) = 0.2 * cos(0.3 * i + 2);
-  }
-}
-
-/* The largest |a - b| over n numbers, and the largest |b|. */
-static double worst(const double *a, const double *b, size_t n, double *scale) {
-  double w = 0;
-  *scale = 0;
-  for (size_t k = 0; k < n; k++) w = fmax(w, fabs(a[k] - b[k])), *scale = fmax(*scale, fabs(b[k]));
-  return w;
-}
-
-/* The largest differences of x, v and omega between a and b, each over the
- * largest |.| of b: rel[0 .. 2]. */
-static void differences(const swModel *m, const swData *a, const swData *b, double *abs_, double *rel) {
-  const size_t n3 = 3 * (size_t)m->stride;
-  const double *pa[3] = {a->x, a->v, a->omega}, *pb[3] = {b->x, b->v, b->omega};
-  for (int q = 0; q < 3; q++) {
-    double scale;
-    abs_[q] = worst(pa[q], pb[q], n3, &scale);
-    rel[q] = abs_[q] / scale;
-  }
-}
 
 /* The feather stepped by both paths, and by the dense path from a start one
  * unit in the last place away (every velocity times 1 + 2^-52): how far
