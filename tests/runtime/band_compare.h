@@ -4,7 +4,9 @@
  * swData, and the largest differences of two runs' x, v and omega. */
 #ifndef SW_BAND_COMPARE_H
 #define SW_BAND_COMPARE_H
+#include <time.h>
 #include "testutil.h"
+#include "internal.h"
 
 /* Every group to the path `band` (0: dense; 1, 2: joint_groups.c). */
 static inline void set_band(swModel *m, int band) {
@@ -50,5 +52,34 @@ static inline void differences(const swModel *m, const swData *a, const swData *
     abs_[q] = worst(pa[q], pb[q], n3, &scale);
     rel[q] = abs_[q] / scale;
   }
+}
+
+static inline double band_now(void) {
+  struct timespec t;
+  clock_gettime(CLOCK_MONOTONIC, &t);
+  return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
+}
+
+/* Seconds per kick of the joints' system on d's state, each factored
+ * afresh (sw_implicit_reset, as a moving rod mostly is): the least mean
+ * over five batches of at least 3 kicks and 10 ms (the machine is shared;
+ * one batch of 2 under the sanitizers, where a dense path of 64 barbs takes
+ * a quarter of a second a kick).  Printed by the tests, never asserted. */
+static inline double kick_time(const swModel *m, swData *d) {
+  const int batches = sw_test_sanitized() ? 1 : 5, least = sw_test_sanitized() ? 2 : 3;
+  double best = INFINITY;
+  for (int batch = 0; batch < batches; batch++) {
+    long k = 0;
+    const double t0 = band_now();
+    double t = t0;
+    while (k < least || t - t0 < 0.01) {
+      sw_implicit_reset(m, d);
+      assert_int_equal(sw_rigid_joints_kick(m, d, m->dt, d->rigid_load), 1);
+      k++;
+      t = band_now();
+    }
+    best = fmin(best, (t - t0) / (double)k);
+  }
+  return best;
 }
 #endif

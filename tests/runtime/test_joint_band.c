@@ -148,34 +148,7 @@ static void test_same_solution(void **state) {
   same_solution(HINGED);
 }
 
-static double now(void) {
-  struct timespec t;
-  clock_gettime(CLOCK_MONOTONIC, &t);
-  return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
-}
 
-/* Seconds per kick of the joints' system on d's state, each factored
- * afresh (sw_implicit_reset, as a moving rod mostly is): the least mean
- * over five batches of at least 3 kicks and 10 ms (the machine is shared;
- * one batch of 2 under the sanitizers, where the dense path's 64 barbs take
- * a quarter of a second a kick). */
-static double kick_time(const swModel *m, swData *d) {
-  const int batches = sw_test_sanitized() ? 1 : 5, least = sw_test_sanitized() ? 2 : 3;
-  double best = INFINITY;
-  for (int batch = 0; batch < batches; batch++) {
-    long k = 0;
-    const double t0 = now();
-    double t = t0;
-    while (k < least || t - t0 < 0.01) {
-      sw_implicit_reset(m, d);
-      assert_int_equal(sw_rigid_joints_kick(m, d, m->dt, d->rigid_load), 1);
-      k++;
-      t = now();
-    }
-    best = fmin(best, (t - t0) / (double)k);
-  }
-  return best;
-}
 
 static void test_cost(void **state) {
   (void)state;
