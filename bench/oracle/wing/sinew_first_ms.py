@@ -55,7 +55,6 @@ def main(path):
         for name, grp, ke, wn in rods:
             by[grp] = by.get(grp, 0.0) + ke[fr]
             tot += ke[fr]
-            j = int(np.argmax(wn[fr]))
             cand.extend((wn[fr][k], name, k, ke[fr], wn.shape[1])
                         for k in np.argsort(wn[fr])[-5:])
         cand.sort(reverse=True)
