@@ -208,7 +208,8 @@ static double quantity(const swModel *m, swData *d, const swExpectDesc *e) {
  * step"): probes of positions and velocities of elastic rods only. */
 int sw_expect_held_ok(const swModel *m) {
   for (int k = 0; k < m->nexpect; k++)
-    if (m->expect[k].quantity != SW_EXPECT_PROBE || !sw_probe_held_ok(m, m->expect[k].index)) return 0;
+    if (m->expect[k].quantity != SW_EXPECT_PROBE || !sw_probe_held_ok(m, m->expect[k].index))
+      return 0;
   return m->nexpect > 0;
 }
 

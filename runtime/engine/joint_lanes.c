@@ -139,7 +139,8 @@ int sw_cholesky_lanes(double *const *A, double *const *rhs, int nl, int n, const
         continue;
       }
       for (int k = j + 1; k <= i; k++) /* a lane whose factor entry is 0 keeps its row */
-        for (int u = 0; u < LANES; u++) Wi[k][u] = li[u] != 0.0 ? Wi[k][u] - li[u] * col[k][u] : Wi[k][u];
+        for (int u = 0; u < LANES; u++)
+          Wi[k][u] = li[u] != 0.0 ? Wi[k][u] - li[u] * col[k][u] : Wi[k][u];
     }
   }
   for (int sj = 0, j = 0; j < n; j++) { /* L y = rhs, column by column */

@@ -48,7 +48,10 @@ static double envelope_work(int cnt, const int *mem, const int *dof, const int *
     for (int i = offs[t]; i < offs[t + 1]; i++) first[i] = offs[e];
   }
   double w = 0;
-  for (int i = 0; i < offs[cnt]; i++) w += 0.5 * (double)(i - first[i]) * (double)(i - first[i] + 1);
+  for (int i = 0; i < offs[cnt]; i++) {
+    const double reach = (double)(i - first[i]);
+    w += 0.5 * reach * (reach + 1);
+  }
   for (int t = 0; t < cnt; t++) pos[mem[t]] = -1;
   return w;
 }
@@ -96,7 +99,8 @@ int sw_order_members(int nb, const int *group, int ngroup, const int *dof, int n
   int *adr = calloc(N + 1, sizeof(int)), *adj = malloc(2 * E * sizeof(int));
   int *pos = malloc(N * sizeof(int)), *seen = malloc(N * sizeof(int));
   int *in_group = calloc(N, sizeof(int)), *cand = malloc(N * sizeof(int));
-  int *mem = malloc(N * sizeof(int)), *offs = malloc((N + 1) * sizeof(int)), *gadr = calloc((size_t)ngroup + 2, sizeof(int));
+  int *mem = malloc(N * sizeof(int)), *offs = malloc((N + 1) * sizeof(int));
+  int *gadr = calloc((size_t)ngroup + 2, sizeof(int));
   int n_unknowns = 0;
   for (int s = 0; s < nb; s++)
     if (group[s] >= 0) n_unknowns += dof[s];
@@ -147,7 +151,8 @@ int sw_order_members(int nb, const int *group, int ngroup, const int *dof, int n
     }
     for (int t = 0; t < cnt; t++) in_group[gm[t]] = 0;
   }
-  free(adr), free(adj), free(pos), free(seen), free(in_group), free(cand), free(mem), free(offs), free(gadr);
+  free(adr), free(adj), free(pos), free(seen), free(in_group), free(cand);
+  free(mem), free(offs), free(gadr);
   free(first);
   return ok;
 }
