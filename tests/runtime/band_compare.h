@@ -4,6 +4,7 @@
  * swData, and the largest differences of two runs' x, v and omega. */
 #ifndef SW_BAND_COMPARE_H
 #define SW_BAND_COMPARE_H
+#include <float.h>
 #include <time.h>
 #include "testutil.h"
 #include "internal.h"
@@ -52,6 +53,55 @@ static inline void differences(const swModel *m, const swData *a, const swData *
     abs_[q] = worst(pa[q], pb[q], n3, &scale);
     rel[q] = abs_[q] / scale;
   }
+}
+
+/* x, v and omega of band - dense after `early` steps (e) and after
+ * nsteps (d), and of ulp - dense after nsteps (u): each as the largest
+ * difference (a) and relative to dense's largest (r). */
+typedef struct {
+  double ea[3], er[3], da[3], dr[3], ua[3], ur[3];
+} BandRun;
+
+/* The three runs of a band path's comparison: `band` on the path `path`,
+ * `dense` and `ulp` on the dense one, each dense kick factored afresh (and
+ * the band's too with reset_band), all started moving alike but ulp, whose
+ * every velocity is one unit in the last place off (times 1 + 2^-52): how
+ * far the scene itself carries a round-off.  The model is left on `path`. */
+static inline BandRun band_against_dense(swModel *m, int path, int reset_band, long nsteps,
+                                         long early, swData *band, swData *dense, swData *ulp) {
+  BandRun r;
+  start_moving(m, band);
+  start_moving(m, dense);
+  start_moving(m, ulp);
+  for (int i = 0; i < 3 * m->stride; i++) ulp->v[i] *= 1 + DBL_EPSILON;
+  for (long k = 0; k < nsteps; k++) {
+    set_band(m, path);
+    if (reset_band) sw_implicit_reset(m, band);
+    assert_int_equal(sw_step(m, band), SW_OK);
+    set_band(m, 0);
+    sw_implicit_reset(m, dense); /* factored afresh, as the band path is */
+    assert_int_equal(sw_step(m, dense), SW_OK);
+    sw_implicit_reset(m, ulp);
+    assert_int_equal(sw_step(m, ulp), SW_OK);
+    if (k == early - 1) differences(m, band, dense, r.ea, r.er);
+  }
+  set_band(m, path);
+  differences(m, band, dense, r.da, r.dr);
+  differences(m, ulp, dense, r.ua, r.ur);
+  return r;
+}
+
+/* Its figures, as the tests print them. */
+static inline void print_band_run(const BandRun *r, long early, long nsteps) {
+  fprintf(stderr, "#   after %ld steps, band - dense: x %.2e m (rel. %.2e), v %.2e m/s (rel. %.2e), "
+          "omega %.2e rad/s (rel. %.2e)\n", early, r->ea[0], r->er[0], r->ea[1], r->er[1], r->ea[2],
+          r->er[2]);
+  fprintf(stderr, "#   after %ld steps, band - dense: x %.2e m (rel. %.2e), v %.2e m/s (rel. %.2e), "
+          "omega %.2e rad/s (rel. %.2e)\n", nsteps, r->da[0], r->dr[0], r->da[1], r->dr[1], r->da[2],
+          r->dr[2]);
+  fprintf(stderr, "#   after %ld steps, dense from a one-ulp start - dense: x %.2e m (rel. %.2e), "
+          "v %.2e m/s (rel. %.2e), omega %.2e rad/s (rel. %.2e)\n",
+          nsteps, r->ua[0], r->ur[0], r->ua[1], r->ur[1], r->ua[2], r->ur[2]);
 }
 
 static inline double band_now(void) {

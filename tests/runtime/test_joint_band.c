@@ -98,36 +98,14 @@ static void same_solution(int held) {
   assert_int_equal(m->rigid_group_band[0], 1); /* one rod and its leaves */
   assert_int_equal(m->nrigid_block, 8);
   swData *band = data_for(m, 1), *dense = data_for(m, 0), *ulp = data_for(m, 0);
-  start_moving(m, band);
-  start_moving(m, dense);
-  start_moving(m, ulp);
-  for (int i = 0; i < 3 * m->stride; i++) ulp->v[i] *= 1 + DBL_EPSILON;
   const long nsteps = sw_test_sanitized() ? 200 : 400;
-  double ea[3], er[3], da[3], dr[3], ua[3], ur[3];
-  for (long k = 0; k < nsteps; k++) {
-    set_band(m, 1);
-    assert_int_equal(sw_step(m, band), SW_OK);
-    set_band(m, 0);
-    sw_implicit_reset(m, dense); /* factored afresh, as the band path is */
-    assert_int_equal(sw_step(m, dense), SW_OK);
-    sw_implicit_reset(m, ulp);
-    assert_int_equal(sw_step(m, ulp), SW_OK);
-    if (k == EARLY - 1) differences(m, band, dense, ea, er);
-  }
-  set_band(m, 1);
-  differences(m, band, dense, da, dr);
-  differences(m, ulp, dense, ua, ur);
+  const BandRun r = band_against_dense(m, 1, 0, nsteps, EARLY, band, dense, ulp);
+  const double *er = r.er, *dr = r.dr, *ur = r.ur;
   double fresh, kept;
   sw_implicit_counts(m, band, &fresh, &kept);
   fprintf(stderr, "# test_same_solution: %s rachis, 7 barbs, dt %.3g s, band kicks %g fresh, %g kept\n",
           held_name[held], m->dt, fresh, kept);
-  fprintf(stderr, "#   after %d steps, band - dense: x %.2e m (rel. %.2e), v %.2e m/s (rel. %.2e), "
-          "omega %.2e rad/s (rel. %.2e)\n", EARLY, ea[0], er[0], ea[1], er[1], ea[2], er[2]);
-  fprintf(stderr, "#   after %ld steps, band - dense: x %.2e m (rel. %.2e), v %.2e m/s (rel. %.2e), "
-          "omega %.2e rad/s (rel. %.2e)\n", nsteps, da[0], dr[0], da[1], dr[1], da[2], dr[2]);
-  fprintf(stderr, "#   after %ld steps, dense from a one-ulp start - dense: x %.2e m (rel. %.2e), "
-          "v %.2e m/s (rel. %.2e), omega %.2e rad/s (rel. %.2e)\n",
-          nsteps, ua[0], ur[0], ua[1], ur[1], ua[2], ur[2]);
+  print_band_run(&r, EARLY, nsteps);
   for (int q = 0; q < 3; q++) assert_true(er[q] <= 1e-12);
   assert_true(dr[0] <= 1e-12);
   for (int q = 1; q < 3; q++) assert_true(dr[q] <= fmax(1e-12, 10 * ur[q]));
@@ -147,8 +125,6 @@ static void test_same_solution(void **state) {
   same_solution(FREE);
   same_solution(HINGED);
 }
-
-
 
 static void test_cost(void **state) {
   (void)state;

@@ -107,36 +107,14 @@ static void same_solution(int bone) {
   assert_int_equal(m->rigid_group_band[0], 2); /* the rachis' barbs in its band */
   const int nb = unknowns(m, 2), nd = unknowns(m, 0);
   swData *band = data_for(m, 2), *dense = data_for(m, 0), *ulp = data_for(m, 0);
-  start_moving(m, band);
-  start_moving(m, dense);
-  start_moving(m, ulp);
-  for (int i = 0; i < 3 * m->stride; i++) ulp->v[i] *= 1 + DBL_EPSILON;
   const long nsteps = sw_test_sanitized() ? 150 : 300;
-  double ea[3], er[3], da[3], dr[3], ua[3], ur[3];
-  for (long k = 0; k < nsteps; k++) {
-    set_band(m, 2);
-    sw_implicit_reset(m, band); /* the bone's system factored afresh too */
-    assert_int_equal(sw_step(m, band), SW_OK);
-    set_band(m, 0);
-    sw_implicit_reset(m, dense); /* factored afresh, as the band is */
-    assert_int_equal(sw_step(m, dense), SW_OK);
-    sw_implicit_reset(m, ulp);
-    assert_int_equal(sw_step(m, ulp), SW_OK);
-    if (k == EARLY - 1) differences(m, band, dense, ea, er);
-  }
-  set_band(m, 2);
-  differences(m, band, dense, da, dr);
-  differences(m, ulp, dense, ua, ur);
+  /* the bone's system factored afresh too */
+  const BandRun r = band_against_dense(m, 2, 1, nsteps, EARLY, band, dense, ulp);
+  const double *er = r.er, *dr = r.dr, *ur = r.ur;
   fprintf(stderr, "# test_same_solution: %s, rachis of 40 elements, 10 barbs%s, dt %.3g s; group "
           "block %d unknowns (dense path %d)\n", bone_name[bone],
           bone == IMPLICIT ? " (2 more on the bone)" : "", m->dt, nb, nd);
-  fprintf(stderr, "#   after %d steps, band - dense: x %.2e m (rel. %.2e), v %.2e m/s (rel. %.2e), "
-          "omega %.2e rad/s (rel. %.2e)\n", EARLY, ea[0], er[0], ea[1], er[1], ea[2], er[2]);
-  fprintf(stderr, "#   after %ld steps, band - dense: x %.2e m (rel. %.2e), v %.2e m/s (rel. %.2e), "
-          "omega %.2e rad/s (rel. %.2e)\n", nsteps, da[0], dr[0], da[1], dr[1], da[2], dr[2]);
-  fprintf(stderr, "#   after %ld steps, dense from a one-ulp start - dense: x %.2e m (rel. %.2e), "
-          "v %.2e m/s (rel. %.2e), omega %.2e rad/s (rel. %.2e)\n",
-          nsteps, ua[0], ur[0], ua[1], ur[1], ua[2], ur[2]);
+  print_band_run(&r, EARLY, nsteps);
   assert_int_equal(nb, 12); /* the bone's 6 (a body's, or its end port's) and the rachis' root's 6 */
   for (int q = 0; q < 3; q++) assert_true(er[q] <= 1e-12);
   assert_true(dr[0] <= fmax(1e-12, 10 * ur[0]));
@@ -156,8 +134,6 @@ static void test_same_solution(void **state) {
   same_solution(RIGID);
   same_solution(IMPLICIT);
 }
-
-
 
 static void test_cost(void **state) {
   (void)state;
