@@ -428,6 +428,15 @@ int sw_port_member_assemble(const swModel *m, swData *d, double h, int k, double
                             int n, int off, double *rhs, const double *P, const double *R);
 void sw_port_member_finish(const swModel *m, swData *d, double h, int k, double *ws,
                            const double *pu, double *R);
+/* Ports of one rod member that turn one element (joint_alias.c): the
+ * later one's rotation is the earlier's (m->rigid_port_alias, set up after
+ * the groups' paths); its rows of group g's block A (n x n, the members'
+ * unknowns at off[k], dof[k], k numbered as the model's) and rhs folded
+ * into its target's, and after the solve du's copied from them. */
+int sw_port_alias_setup(swModel *m);
+void sw_port_alias_fold(const swModel *m, int g, const int *off, const int *dof, double *A,
+                        int n, double *rhs);
+void sw_port_alias_copy(const swModel *m, int g, const int *off, double *du);
 #define SW_LEAF_WS 444 /* a unit of leaves: up to 12 unknowns joined to up to 12 of ports */
 int sw_leaf_condense(double *const *ws, const int *const *qoff, int nu, int du, int dQ, int np,
                      const int *qdof, double *A, int n, double *rhs); /* nu units of one shape */

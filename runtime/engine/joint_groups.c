@@ -575,7 +575,7 @@ static int finish_groups(swModel *m) {
   m->rigid_group_band = calloc((size_t)(m->nrigid_group > 0 ? m->nrigid_group : 1), sizeof(int));
   if (!m->rigid_group_band) return 0;
   for (int g = 0; g < m->nrigid_group; g++) m->rigid_group_band[g] = band_group(m, g);
-  return member_bands(m) && sw_group_lanes_setup(m);
+  return member_bands(m) && sw_port_alias_setup(m) && sw_group_lanes_setup(m);
 }
 
 int sw_rigid_joints_setup(swModel *m) {
@@ -583,7 +583,7 @@ int sw_rigid_joints_setup(swModel *m) {
   const size_t R = (size_t)(m->nrod ? m->nrod : 1);
   const size_t NB = B + 2 * J; /* members: at most every body and every joint's two sides */
   m->rigid_group_lanes = m->rigid_group_band = NULL;
-  m->rigid_block_moff = m->rigid_block_mdof = m->rigid_port_moff = NULL;
+  m->rigid_block_moff = m->rigid_block_mdof = m->rigid_port_moff = m->rigid_port_alias = NULL;
   m->joint_implicit = calloc(J, sizeof(int));
   m->joint_block = malloc(2 * J * sizeof(int));
   m->joint_port = malloc(2 * J * sizeof(int));
@@ -749,4 +749,5 @@ void sw_rigid_joints_free(swModel *m) {
   free(m->rigid_block_moff);
   free(m->rigid_block_mdof);
   free(m->rigid_port_moff);
+  free(m->rigid_port_alias);
 }

@@ -216,6 +216,13 @@ static void ports_of(const swModel *m, const swData *d, int k, const double *X, 
       for (int c = 0; c < p; c++) C[(o + a) * p + c] = Xa[1 + c];
     }
     if (!m->rigid_port_rot[q]) continue;
+    if (m->rigid_port_alias[q] >= 0) { /* another port's rotation (joint_alias.c): C's identity */
+      for (int b = 0; b < 3; b++) {
+        p0[o + 3 + b] = 0;
+        for (int c = 0; c < p; c++) C[(o + 3 + b) * p + c] = c == o + 3 + b;
+      }
+      continue;
+    }
     const size_t e = (size_t)(m->rigid_port_elem[q] - ea);
     const double *Xw = X + (6 * e + 3) * (size_t)nc; /* the element's three rows */
     double Q[9];
@@ -249,7 +256,7 @@ int sw_port_member_assemble(const swModel *m, swData *d, double h, int k, double
     const int o = 1 + port_col(m, k, q, band);
     if (o < 1) continue; /* a band port: its block goes into the band below */
     for (int a = 0; a < 3; a++) X[(6 * i + (size_t)a) * (size_t)nc + (size_t)(o + a)] = 1;
-    if (!m->rigid_port_rot[q]) continue;
+    if (!m->rigid_port_rot[q] || m->rigid_port_alias[q] >= 0) continue; /* (joint_alias.c) */
     const size_t e = (size_t)(m->rigid_port_elem[q] - ea);
     double Q[9];
     sw_getQ(m, d->Q, m->rigid_port_elem[q], Q);
@@ -281,6 +288,11 @@ int sw_port_member_assemble(const swModel *m, swData *d, double h, int k, double
   double *Ainv = band ? T : A + (size_t)off * (size_t)n + off;
   const size_t ld = band ? (size_t)p : (size_t)n;
   small_inverse_ld(S, p, inv, Ainv, (int)ld);
+  for (int q = m->rigid_block_port_adr[k]; q < m->rigid_block_port_adr[k + 1]; q++) {
+    const int o = port_col(m, k, q, band) + 3; /* an alias' rows of S: C's identity's, taken off */
+    if (m->rigid_port_alias[q] >= 0 && o >= 3)
+      for (int b = 0; b < 3; b++) Ainv[(size_t)(o + b) * ld + (size_t)(o + b)] = 0;
+  }
   for (int a = 0; a < p; a++) { /* S kept for the finish; rhs = S p0 */
     double s = 0;
     for (int c = 0; c < p; c++) {

@@ -619,6 +619,7 @@ static int group_assemble(const swModel *m, swData *d, double h, int g, double *
     wrod += (int)sw_port_member_scratch(m, k, 1);
     if (!sw_port_member_assemble(m, d, h, k, w, A, n, off[s], rhs, gw.P, gw.R)) return 0;
   }
+  if (!bu) sw_port_alias_fold(m, g, off - first, dof - first, A, n, rhs); /* (joint_alias.c) */
   return 1;
 }
 
@@ -637,6 +638,7 @@ static void group_finish(const swModel *m, swData *d, double h, int g, double *A
   const int *off = group_off(m, g) + first, *dof = group_dof(m, g) + first;
   const GroupWs gw = group_ports(m, g, A, rhs, ws);
   double *leaf_ws = gw.leaf_ws, *rod_ws = gw.rod_ws;
+  if (!bu) sw_port_alias_copy(m, g, off - first, rhs); /* an alias' rotation: its target's */
   for (int s = 0, wrod = 0; s < nb; s++) { /* the loads that give du */
     const int k = first + s, b = m->rigid_block_body[k];
     if (m->rigid_block_rod[k] >= 0 && bu) continue; /* set by sw_band_group_solve */

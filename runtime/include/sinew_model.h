@@ -186,6 +186,10 @@ typedef struct {
   int *rigid_port_moff;      /* (nrigid_port) under 2: a kept port's first
                                            unknown in its group, or -1 - t for
                                            the group's band port t            */
+  int *rigid_port_alias;     /* (nrigid_port) -1, or the earlier kept port
+                                           of the same rod member whose
+                                           element this port's rotation is
+                                           too (joint_alias.c)                */
   /* rods whose geometry changes in time (swell.c): their radius, stiffness,
    * inertia, mass and rest curvature follow signals; what the step reads of
    * these is swData's *_now arrays, which are these model arrays themselves
