@@ -437,11 +437,30 @@ int sw_port_alias_setup(swModel *m);
 void sw_port_alias_fold(const swModel *m, int g, const int *off, const int *dof, double *A,
                         int n, double *rhs);
 void sw_port_alias_copy(const swModel *m, int g, const int *off, double *du);
-#define SW_LEAF_WS 444 /* a unit of leaves: up to 12 unknowns joined to up to 12 of ports */
+/* A unit of leaves (up to 12 unknowns joined to up to 12 of ports): its
+ * workspace A_uu (du x du), C (du x dQ), X (du x dQ), b (du) and, for a
+ * lone leaf's closed form (leaf_plain.c), its mass and lab inertia (1 + 9),
+ * one after another, rounded up to whole cache lines; rigid_leaf_unit holds each
+ * unit's place (SW_LEAF_UNIT ints a leaf, the last its workspace's first
+ * double among its group's units'). */
+#define SW_LEAF_UNIT 11
+static inline size_t sw_unit_size(int du, int dQ) {
+  return ((size_t)(du * du + 2 * du * dQ + du + 10) + 7) / 8 * 8;
+}
+static inline double *sw_unit_C(double *ws, int du) { return ws + du * du; }
+static inline double *sw_unit_X(double *ws, int du, int dQ) { return ws + du * du + du * dQ; }
+static inline double *sw_unit_b(double *ws, int du, int dQ) { return ws + du * du + 2 * du * dQ; }
+static inline double *sw_unit_M(double *ws, int du, int dQ) { return ws + du * du + 2 * du * dQ + du; }
 int sw_leaf_condense(double *const *ws, const int *const *qoff, int nu, int du, int dQ, int np,
                      const int *qdof, double *A, int n, double *rhs); /* nu units of one shape */
 void sw_leaf_recover(double *ws, int du, int dQ, int np, const int *qoff, const int *qdof,
                      const double *u);
+/* The same for a lone leaf without a dashpot (one port at qoff), in closed
+ * form (leaf_plain.c), which adds its joints' block on the port as well
+ * (W A_uu^-1 M, their series with the leaf's inertia M; the assembly leaves
+ * it out). */
+int sw_leaf_condense_plain(double *ws, int du, int dQ, int qoff, double *A, int n, double *rhs);
+void sw_leaf_recover_plain(double *ws, int du, int dQ, int qoff, const double *u);
 /* The band path (joint_ports.c) of a group that is one implicit rod member
  * k and leaves on its ports (m->rigid_group_band): each port's block of
  * joints and eliminated leaves (lower triangle, port t's at P + 42 t, rows

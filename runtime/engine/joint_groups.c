@@ -420,7 +420,7 @@ static void store_units(swModel *m) {
     if (m->rigid_block_leaf[k] < 0) continue;
     const int p = m->rigid_block_partner[k], owner = p >= 0 && p < k ? p : k;
     const int mate = owner == k ? p : k; /* the owner's partner, or -1 */
-    int *w = m->rigid_leaf_unit + 10 * (size_t)k;
+    int *w = m->rigid_leaf_unit + SW_LEAF_UNIT * (size_t)k;
     w[0] = owner;
     w[1] = owner == k ? 0 : dof[owner];
     w[2] = owner == k ? 0 : sw_port_dof(m, m->rigid_block_leaf[owner]);
@@ -434,6 +434,17 @@ static void store_units(swModel *m) {
       w[3] += dof[leaf];
       w[4] += w[8 + i];
     }
+  }
+  for (int g = 0; g < m->nrigid_group; g++) /* the workspaces, owner after owner */
+    for (int k = m->rigid_group_adr[g], at = 0; k < m->rigid_group_adr[g + 1]; k++) {
+      int *w = m->rigid_leaf_unit + SW_LEAF_UNIT * (size_t)k;
+      if (m->rigid_block_leaf[k] < 0 || w[0] != k) continue;
+      w[10] = at;
+      at += (int)sw_unit_size(w[3], w[4]);
+    }
+  for (int k = 0; k < m->nrigid_block; k++) { /* a partner's: its owner's */
+    int *w = m->rigid_leaf_unit + SW_LEAF_UNIT * (size_t)k;
+    if (m->rigid_block_leaf[k] >= 0 && w[0] != k) w[10] = m->rigid_leaf_unit[SW_LEAF_UNIT * (size_t)w[0] + 10];
   }
 }
 
@@ -599,7 +610,7 @@ int sw_rigid_joints_setup(swModel *m) {
   m->rigid_block_leaf = malloc(NB * sizeof(int));
   m->rigid_block_partner = malloc(NB * sizeof(int));
   m->rigid_block_fil = malloc(NB * sizeof(int));
-  m->rigid_leaf_unit = malloc(10 * NB * sizeof(int));
+  m->rigid_leaf_unit = malloc(SW_LEAF_UNIT * NB * sizeof(int));
   m->fil_system = calloc((size_t)(m->nfil ? m->nfil : 1), sizeof(int));
   m->fil_block = malloc(2 * (size_t)(m->nfil ? m->nfil : 1) * sizeof(int));
   m->rigid_block_port_adr = malloc((NB + 1) * sizeof(int));

@@ -333,14 +333,15 @@ void sw_port_member_finish(const swModel *m, swData *d, double h, int k, double 
   sw_implicit_apply(m, d, r, X, (size_t)nc, h);
 }
 
-/* A unit's workspace (SW_LEAF_WS doubles): A_uu (du x du) at 0, its
- * coupling C (du x dQ) to its np ports at 144 (the ports' columns one after
- * another, qdof[p] each), X = A_uu^-1 C at 288, b at 432; qoff[p] is port
+/* A unit's workspace (sw_unit_size doubles): A_uu (du x du), its coupling
+ * C (du x dQ) to its np ports (the ports' columns one after another,
+ * qdof[p] each), X = A_uu^-1 C and b, one after another; qoff[p] is port
  * p's first unknown in the group's dense block A (n x n). */
 static inline __attribute__((always_inline)) int
 condense(double *ws, int du, int dQ, int np, const int *qoff, const int *qdof, double *A, int n,
          double *rhs) {
-  double *Auu = ws, *C = ws + 144, *X = ws + 288, *b = ws + 432, inv[12];
+  double *Auu = ws, *C = sw_unit_C(ws, du), *X = sw_unit_X(ws, du, dQ), *b = sw_unit_b(ws, du, dQ);
+  double inv[12];
   if (!small_cholesky(Auu, du, inv)) return 0;
   memcpy(X, C, (size_t)(du * dQ) * sizeof(double));
   small_solve(Auu, du, inv, X, dQ);
@@ -399,8 +400,8 @@ condense_lanes(double *const *ws, const int *const *qoff, int nu, int du, int dQ
   for (int u = 0; u < LANES; u++) { /* the units' A_uu, C and b, lane by lane */
     const double *w = ws[u < nu ? u : nu - 1];
     for (int e = 0; e < du * du; e++) L[e][u] = w[e];
-    for (int e = 0; e < du * dQ; e++) C[e][u] = X[e][u] = w[144 + e];
-    for (int e = 0; e < du; e++) b[e][u] = w[432 + e];
+    for (int e = 0; e < du * dQ; e++) C[e][u] = X[e][u] = w[du * du + e];
+    for (int e = 0; e < du; e++) b[e][u] = w[du * du + 2 * du * dQ + e];
   }
   int ok = 1;
   for (int j = 0; j < du; j++) { /* small_cholesky */
@@ -446,8 +447,8 @@ condense_lanes(double *const *ws, const int *const *qoff, int nu, int du, int dQ
     double *w = ws[u];
     for (int i = 0; i < du; i++)
       for (int j = 0; j <= i; j++) w[i * du + j] = L[i * du + j][u];
-    for (int e = 0; e < du * dQ; e++) w[288 + e] = X[e][u];
-    for (int e = 0; e < du; e++) w[432 + e] = b[e][u];
+    for (int e = 0; e < du * dQ; e++) w[du * du + du * dQ + e] = X[e][u];
+    for (int e = 0; e < du; e++) w[du * du + 2 * du * dQ + e] = b[e][u];
     for (int p1 = 0, c1 = 0; p1 < np; c1 += qdof[p1++])
       for (int i = 0; i < qdof[p1]; i++) {
         const int row = qoff[u][p1] + i;
@@ -483,7 +484,8 @@ int sw_leaf_condense(double *const *ws, const int *const *qoff, int nu, int du, 
 
 void sw_leaf_recover(double *ws, int du, int dQ, int np, const int *qoff, const int *qdof,
                      const double *u) {
-  double *X = ws + 288, *b = ws + 432; /* u_a = A_uu^-1 b_a - X u_Q, into b */
+  const double *X = sw_unit_X(ws, du, dQ); /* u_a = A_uu^-1 b_a - X u_Q, into b */
+  double *b = sw_unit_b(ws, du, dQ);
   for (int a = 0; a < du; a++) {
     double s = b[a];
     for (int p = 0, c0 = 0; p < np; c0 += qdof[p++])

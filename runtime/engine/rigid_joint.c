@@ -136,23 +136,28 @@ static int band_ports(const swModel *m, int g) {
   return m->rigid_group_band[g] == 1 ? m->rigid_block_port_adr[k + 1] - m->rigid_block_port_adr[k] : 0;
 }
 
+/* Doubles of group g's leaves' workspaces (joint_groups.c, store_units). */
+static size_t leaf_doubles(const swModel *m, int g) {
+  size_t len = 0;
+  for (int k = m->rigid_group_adr[g]; k < m->rigid_group_adr[g + 1]; k++) {
+    const int *w = m->rigid_leaf_unit + SW_LEAF_UNIT * (size_t)k;
+    if (m->rigid_block_leaf[k] >= 0 && w[0] == k) len += sw_unit_size(w[3], w[4]);
+  }
+  return len;
+}
+
 /* Doubles of group g's workspace: its matrix, right-hand side and the
  * factorisation's column (cholesky_solve), then each leaf's and each rod
  * member's (joint_ports.c); in the band path, the ports' blocks and
  * right-hand sides (sw_band_group_solve), then each leaf's; in a member's
  * band path, the band ports' blocks and right-hand sides come first. */
 static size_t group_scratch(const swModel *m, int g) {
-  if (m->rigid_group_band[g] == 1) {
-    const int first = m->rigid_group_adr[g], nleaf = m->rigid_group_adr[g + 1] - first - 1;
-    return (size_t)band_ports(m, g) * (SW_BAND_PORT + 6) + (size_t)nleaf * SW_LEAF_WS;
-  }
+  if (m->rigid_group_band[g] == 1) return (size_t)band_ports(m, g) * (SW_BAND_PORT + 6) + leaf_doubles(m, g);
   const size_t n = (size_t)sw_rigid_group_unknowns(m, g);
   const int mb = m->rigid_group_band[g] == 2;
-  size_t len = n * n + 2 * n + (size_t)member_band_ports(m, g) * (SW_BAND_PORT + 6);
-  for (int k = m->rigid_group_adr[g]; k < m->rigid_group_adr[g + 1]; k++) {
-    if (m->rigid_block_leaf[k] >= 0) len += SW_LEAF_WS;
-    else if (m->rigid_block_rod[k] >= 0) len += sw_port_member_scratch(m, k, mb);
-  }
+  size_t len = n * n + 2 * n + (size_t)member_band_ports(m, g) * (SW_BAND_PORT + 6) + leaf_doubles(m, g);
+  for (int k = m->rigid_group_adr[g]; k < m->rigid_group_adr[g + 1]; k++)
+    if (m->rigid_block_leaf[k] < 0 && m->rigid_block_rod[k] >= 0) len += sw_port_member_scratch(m, k, mb);
   return len;
 }
 
@@ -342,13 +347,22 @@ typedef struct {
   double *ws;
   int owner, ro, co, du, dQ, np, qoff[2], qdof[2];
   int inband; /* its port's block is a band port's (qoff 6 t among them) */
+  int plain;  /* a lone leaf without a dashpot: eliminated in closed form (leaf_plain.c) */
 } Unit;
+
+/* Whether leaf k is a lone leaf without a dashpot, eliminated with its
+ * port's own block of its joints in closed form (leaf_plain.c). */
+static int plain_leaf(const swModel *m, int k) {
+  const int *w = m->rigid_leaf_unit + SW_LEAF_UNIT * (size_t)k;
+  return w[5] == 1 && m->rigid_block_fil[w[0]] < 0;
+}
 
 /* band: the group's rigid_group_band, first its first member. */
 static Unit leaf_unit(const swModel *m, double *leaf_ws, int k, int band, int first) {
-  const int *w = m->rigid_leaf_unit + 10 * (size_t)k;
-  Unit u = {leaf_ws + (size_t)m->rigid_block_off[w[0]] * SW_LEAF_WS,
-            w[0], w[1], w[2], w[3], w[4], w[5], {w[6], w[7]}, {w[8], w[9]}, 0};
+  const int *w = m->rigid_leaf_unit + SW_LEAF_UNIT * (size_t)k;
+  Unit u = {leaf_ws + w[10],
+            w[0], w[1], w[2], w[3], w[4], w[5], {w[6], w[7]}, {w[8], w[9]}, 0,
+            plain_leaf(m, k)};
   if (band == 1) { /* the band path's place of its one port: 6 t (sw_band_group_solve) */
     u.qoff[0] = 6 * (m->rigid_block_leaf[u.owner] - m->rigid_block_port_adr[first]);
     u.inband = 1;
@@ -365,7 +379,7 @@ static Unit leaf_unit(const swModel *m, double *leaf_ws, int k, int band, int fi
 #define UNIT_BATCH 16
 static int same_shape(const Unit *a, const Unit *b) {
   return a->du == b->du && a->dQ == b->dQ && a->np == b->np && a->qdof[0] == b->qdof[0] &&
-         a->inband == b->inband &&
+         a->inband == b->inband && a->plain == b->plain &&
          (a->np < 2 || a->qdof[1] == b->qdof[1]);
 }
 
@@ -470,12 +484,11 @@ typedef struct {
 } GroupWs;
 
 static GroupWs group_ports(const swModel *m, int g, double *A, double *rhs, double *ws) {
-  const int first = m->rigid_group_adr[g], nb = m->rigid_group_adr[g + 1] - first;
-  const int nd = dense_end(m, g) - first, band = m->rigid_group_band[g];
+  const int band = m->rigid_group_band[g];
   const size_t nbp = (size_t)member_band_ports(m, g);
   GroupWs w = {band == 1 ? A : NULL, band == 1 ? rhs : NULL, ws, NULL};
   if (band == 2) w.P = ws, w.R = ws + nbp * SW_BAND_PORT, w.leaf_ws = w.R + 6 * nbp;
-  w.rod_ws = w.leaf_ws + (size_t)(nb - nd) * SW_LEAF_WS;
+  w.rod_ws = w.leaf_ws + leaf_doubles(m, g);
   return w;
 }
 
@@ -520,11 +533,11 @@ static int group_assemble(const swModel *m, swData *d, double h, int g, double *
     const Unit u = leaf ? leaf_unit(m, leaf_ws, k, band, first) : (Unit){0};
     double *B = leaf ? u.ws : A; /* a leaf's unit: A_uu, C, X, b */
     const size_t ld = leaf ? (size_t)u.du : (size_t)n, o = leaf ? (size_t)u.ro : (size_t)off[s];
-    double *b = leaf ? B + 432 + o : rhs + o;
+    double *b = leaf ? sw_unit_b(B, u.du, u.dQ) + o : rhs + o;
     if (leaf && u.owner == k) { /* the unit's A_uu, C and b (X is copied from C) */
       memset(B, 0, (size_t)(u.du * u.du) * sizeof(double));
-      memset(B + 144, 0, (size_t)(u.du * u.dQ) * sizeof(double));
-      memset(B + 432, 0, (size_t)u.du * sizeof(double));
+      memset(sw_unit_C(B, u.du), 0, (size_t)(u.du * u.dQ) * sizeof(double));
+      memset(sw_unit_b(B, u.du, u.dQ), 0, (size_t)u.du * sizeof(double));
     }
     for (int i = 0; i < 3; i++) {
       B[(o + i) * ld + o + i] = M;
@@ -532,6 +545,11 @@ static int group_assemble(const swModel *m, swData *d, double h, int g, double *
         for (int k3 = 0; k3 < 3; k3++) B[(o + 3 + i) * ld + o + 3 + k3] = Il[3 * i + k3];
     }
     for (int i = 0; i < dof[s]; i++) b[i] = h * F[i];
+    if (leaf && u.plain) { /* its inertia, for its closed form and its finish */
+      double *Mu = sw_unit_M(B, u.du, u.dQ);
+      Mu[0] = M;
+      if (dof[s] == 6) memcpy(Mu + 1, Il, sizeof Il);
+    }
   }
   static const double I3[9] = {1, 0, 0, 0, 1, 0, 0, 0, 1};
   for (int q = m->rigid_group_joint_adr[g]; q < m->rigid_group_joint_adr[g + 1]; q++) {
@@ -579,10 +597,12 @@ static int group_assemble(const swModel *m, swData *d, double h, int g, double *
         if (ss->leaf >= 0) { /* a leaf's own block (t = s) or its coupling to the port */
           const Unit u = leaf_unit(m, leaf_ws, first + ss->block, band, first);
           if (s == t) add_pair(u.ws, u.du, u.ro, ss->dof, u.ro, ss->dof, wpos, wrot, wlim, Jp[s], Jp[t], PtP, ggT);
-          else add_pair(u.ws + 144, u.dQ, u.ro, ss->dof, u.co, st->dof, -wpos, -wrot, -wlim, Jp[s], Jp[t], PtP, ggT);
+          else add_pair(sw_unit_C(u.ws, u.du), u.dQ, u.ro, ss->dof, u.co, st->dof, -wpos, -wrot, -wlim, Jp[s], Jp[t], PtP, ggT);
           continue;
         }
         if (st->leaf >= 0) continue; /* C_a^T: the leaf's elimination uses C_a */
+        if (s == t && side[1 - s].leaf >= 0 && plain_leaf(m, first + side[1 - s].block))
+          continue; /* the port's own block: with the leaf, in closed form (leaf_plain.c) */
         if (ss->inband != st->inband) continue; /* not made: a band port's others are leaves */
         if (ss->off + ss->dof <= st->off) continue; /* above the diagonal: never read */
         add_pair(ss->inband ? gw.P : A, ss->inband ? 6 : n, ss->off, ss->dof, st->off, st->dof,
@@ -605,7 +625,12 @@ static int group_assemble(const swModel *m, swData *d, double h, int g, double *
     if (nu > 0 && (s == nb || nu == UNIT_BATCH || !same_shape(&u, &batch[0]))) {
       const int ib = batch[0].inband; /* into the band ports' blocks, or the dense block */
       for (int i = 0; i < nu; i++) bws[i] = batch[i].ws, bqoff[i] = batch[i].qoff;
-      if (!sw_leaf_condense(bws, bqoff, nu, batch[0].du, batch[0].dQ, batch[0].np, batch[0].qdof,
+      for (int i = 0; i < nu && batch[0].plain; i++)
+        if (!sw_leaf_condense_plain(bws[i], batch[0].du, batch[0].dQ, bqoff[i][0], ib ? gw.P : A,
+                                    ib ? 6 : n, ib ? gw.R : rhs))
+          return 0;
+      if (!batch[0].plain &&
+          !sw_leaf_condense(bws, bqoff, nu, batch[0].du, batch[0].dQ, batch[0].np, batch[0].qdof,
                             ib ? gw.P : A, ib ? 6 : n, ib ? gw.R : rhs))
         return 0;
       nu = 0;
@@ -650,11 +675,18 @@ static void group_finish(const swModel *m, swData *d, double h, int g, double *A
     const double *du = rhs + off[s];
     if (m->rigid_block_leaf[k] >= 0) { /* a unit's velocities, once, by its owner */
       const Unit u = leaf_unit(m, leaf_ws, k, band, first);
-      if (u.owner == k) sw_leaf_recover(u.ws, u.du, u.dQ, u.np, u.qoff, u.qdof, u.inband ? gw.R : rhs);
-      du = u.ws + 432 + u.ro;
+      if (u.owner == k && u.plain) sw_leaf_recover_plain(u.ws, u.du, u.dQ, u.qoff[0], u.inband ? gw.R : rhs);
+      else if (u.owner == k) sw_leaf_recover(u.ws, u.du, u.dQ, u.np, u.qoff, u.qdof, u.inband ? gw.R : rhs);
+      du = sw_unit_b(u.ws, u.du, u.dQ) + u.ro;
     }
     double M, Il[9], F[6], dL[3] = {0, 0, 0};
-    member_inertia(m, d, k, load, &M, Il, F);
+    if (m->rigid_block_leaf[k] >= 0 && plain_leaf(m, k)) { /* as the assembly found it */
+      const Unit u = leaf_unit(m, leaf_ws, k, band, first);
+      const double *Mu = sw_unit_M(u.ws, u.du, u.dQ);
+      M = Mu[0];
+      if (dof[s] == 6) memcpy(Il, Mu + 1, sizeof Il);
+    } else
+      member_inertia(m, d, k, load, &M, Il, F);
     if (dof[s] == 6) sw_mat_vec(dL, Il, du + 3);
     if (b >= 0) {
       for (int i = 0; i < 3; i++) {
@@ -680,7 +712,7 @@ static void group_finish(const swModel *m, swData *d, double h, int g, double *A
     const int ends[2] = {k, m->rigid_block_partner[k]};
     for (int i = 0; i < u.np; i++) {
       const int start = m->rigid_block_node[ends[i]] == m->node_adr[m->fil_rod[f]];
-      dv[start ? 0 : 1] = u.ws + 432 + (i ? m->rigid_block_dof[k] : 0);
+      dv[start ? 0 : 1] = sw_unit_b(u.ws, u.du, u.dQ) + (i ? m->rigid_block_dof[k] : 0);
     }
     sw_muscle_ops(m)->system_tension(m, d, f, dv[0], dv[1]);
   }
@@ -701,7 +733,7 @@ static void group_rings(const swModel *m, swData *d, int g) {
   const int first = m->rigid_group_adr[g], last = m->rigid_group_adr[g + 1];
   for (int k = first; k < last; k++) {
     const int f = m->rigid_block_fil[k];
-    if (f >= 0 && m->rigid_block_leaf[k] >= 0 && m->rigid_leaf_unit[10 * (size_t)k] == k)
+    if (f >= 0 && m->rigid_block_leaf[k] >= 0 && m->rigid_leaf_unit[SW_LEAF_UNIT * (size_t)k] == k)
       sw_via_implicit_add(m, d, f, 0, m->nslot);
   }
   for (int f = 0; m->fil_block && f < m->nfil; f++) {

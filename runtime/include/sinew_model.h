@@ -139,9 +139,11 @@ typedef struct {
                                            one (a filament's other end), -1   */
   int *rigid_block_fil;      /* (nrigid_block) a leaf's filament when that
                                            filament is in the system, -1      */
-  int *rigid_leaf_unit;      /* (nrigid_block*10) a leaf's unit, as
+  int *rigid_leaf_unit;      /* (nrigid_block*11) a leaf's unit, as
                                            rigid_joint.c's Unit: owner, ro, co,
-                                           du, dQ, np, qoff[2], qdof[2]       */
+                                           du, dQ, np, qoff[2], qdof[2], and
+                                           its workspace's first double among
+                                           its group's leaves' (internal.h)   */
   int nrigid_port;           /* ports: nodes of implicit rods in the system  */
   int *rigid_port_node;      /* (nrigid_port) the node                       */
   int *rigid_port_elem;      /* (nrigid_port) its element                    */

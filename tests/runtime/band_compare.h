@@ -56,10 +56,11 @@ static inline void differences(const swModel *m, const swData *a, const swData *
 }
 
 /* x, v and omega of band - dense after `early` steps (e) and after
- * nsteps (d), and of ulp - dense after nsteps (u): each as the largest
- * difference (a) and relative to dense's largest (r). */
+ * nsteps (d), and of ulp - dense after early steps (eu) and after nsteps
+ * (u): each as the largest difference (a) and relative to dense's largest
+ * (r). */
 typedef struct {
-  double ea[3], er[3], da[3], dr[3], ua[3], ur[3];
+  double ea[3], er[3], da[3], dr[3], ua[3], ur[3], eua[3], eur[3];
 } BandRun;
 
 /* The three runs of a band path's comparison: `band` on the path `path`,
@@ -84,6 +85,7 @@ static inline BandRun band_against_dense(swModel *m, int path, int reset_band, l
     sw_implicit_reset(m, ulp);
     assert_int_equal(sw_step(m, ulp), SW_OK);
     if (k == early - 1) differences(m, band, dense, r.ea, r.er);
+    if (k == early - 1) differences(m, ulp, dense, r.eua, r.eur);
   }
   set_band(m, path);
   differences(m, band, dense, r.da, r.dr);
@@ -96,6 +98,9 @@ static inline void print_band_run(const BandRun *r, long early, long nsteps) {
   fprintf(stderr, "#   after %ld steps, band - dense: x %.2e m (rel. %.2e), v %.2e m/s (rel. %.2e), "
           "omega %.2e rad/s (rel. %.2e)\n", early, r->ea[0], r->er[0], r->ea[1], r->er[1], r->ea[2],
           r->er[2]);
+  fprintf(stderr, "#   after %ld steps, dense from a one-ulp start - dense: x %.2e m (rel. %.2e), "
+          "v %.2e m/s (rel. %.2e), omega %.2e rad/s (rel. %.2e)\n",
+          early, r->eua[0], r->eur[0], r->eua[1], r->eur[1], r->eua[2], r->eur[2]);
   fprintf(stderr, "#   after %ld steps, band - dense: x %.2e m (rel. %.2e), v %.2e m/s (rel. %.2e), "
           "omega %.2e rad/s (rel. %.2e)\n", nsteps, r->da[0], r->dr[0], r->da[1], r->dr[1], r->da[2],
           r->dr[2]);

@@ -85,10 +85,11 @@ static swModel *feather(int nel, int nleaf, const int *at, int spherical, int he
 /* The feather stepped by both paths, and by the dense path from a start one
  * unit in the last place away (every velocity times 1 + 2^-52): how far
  * the scene itself carries a round-off.  After EARLY steps, before the
- * barbs' fast rotations have amplified it, x, v and omega agree within
- * 1e-12 of their largest; after the run, x still does, and v and omega
- * differ by no more than the one-ulp start makes them differ (within a
- * factor 10, the spread of such amplified round-off). */
+ * barbs' fast rotations have amplified it much, x, v and omega agree within
+ * 1e-12 of their largest or within what the one-ulp start makes them
+ * differ by then (a factor 10 above it, the spread of such amplified
+ * round-off); after the run, x within 1e-12, and v and omega as the one-ulp
+ * start makes them differ. */
 #define EARLY 20
 static void same_solution_at(int held, int nleaf, const int *at, int spherical) {
   swSpec *s;
@@ -105,7 +106,7 @@ static void same_solution_at(int held, int nleaf, const int *at, int spherical) 
   fprintf(stderr, "# same_solution: %s rachis, %d barbs, dt %.3g s, band kicks %g fresh, %g kept\n",
           held_name[held], nleaf, m->dt, fresh, kept);
   print_band_run(&r, EARLY, nsteps);
-  for (int q = 0; q < 3; q++) assert_true(er[q] <= 1e-12);
+  for (int q = 0; q < 3; q++) assert_true(er[q] <= fmax(1e-12, 10 * r.eur[q]));
   assert_true(dr[0] <= 1e-12);
   for (int q = 1; q < 3; q++) assert_true(dr[q] <= fmax(1e-12, 10 * ur[q]));
   double vmax;
