@@ -43,27 +43,34 @@
 #include "sinew.h"
 #include "internal.h"
 
-/* B = L L^T (3x3, its lower triangle from rows 3 apart, ld the stride of
- * its rows), then B^-1 of the ncol columns of Y (rows 3 apart, stride ys)
- * in place.  Returns 0 if B is not positive definite. */
-static int chol3_solve(const double *B, int ld, double *Y, int ncol, int ys) {
+/* B = L L^T (3x3, its lower triangle from rows ld apart) into L (its
+ * lower triangle, row-major 3x3).  Returns 0 if B is not positive
+ * definite. */
+static int chol3(const double *B, int ld, double *L) {
   const double l00s = B[0];
   if (!(l00s > 0)) return 0;
-  const double l00 = sqrt(l00s), l10 = B[ld] / l00, l20 = B[2 * ld] / l00;
-  const double l11s = B[ld + 1] - l10 * l10;
+  L[0] = sqrt(l00s);
+  L[3] = B[ld] / L[0], L[6] = B[2 * ld] / L[0];
+  const double l11s = B[ld + 1] - L[3] * L[3];
   if (!(l11s > 0)) return 0;
-  const double l11 = sqrt(l11s), l21 = (B[2 * ld + 1] - l20 * l10) / l11;
-  const double l22s = B[2 * ld + 2] - l20 * l20 - l21 * l21;
+  L[4] = sqrt(l11s);
+  L[7] = (B[2 * ld + 1] - L[6] * L[3]) / L[4];
+  const double l22s = B[2 * ld + 2] - L[6] * L[6] - L[7] * L[7];
   if (!(l22s > 0)) return 0;
-  const double l22 = sqrt(l22s);
+  L[8] = sqrt(l22s);
+  return 1;
+}
+
+/* L L^T y = y for the ncol columns of Y (rows ys apart) in place. */
+static void chol3_solve(const double *L, double *Y, int ncol, int ys) {
   for (int c = 0; c < ncol; c++) {
     double *y0 = Y + c, *y1 = y0 + ys, *y2 = y1 + ys;
-    const double z0 = *y0 / l00, z1 = (*y1 - l10 * z0) / l11, z2 = (*y2 - l20 * z0 - l21 * z1) / l22;
-    *y2 = z2 / l22;
-    *y1 = (z1 - l21 * *y2) / l11;
-    *y0 = (z0 - l10 * *y1 - l20 * *y2) / l00;
+    const double z0 = *y0 / L[0], z1 = (*y1 - L[3] * z0) / L[4];
+    const double z2 = (*y2 - L[6] * z0 - L[7] * z1) / L[8];
+    *y2 = z2 / L[8];
+    *y1 = (z1 - L[7] * *y2) / L[4];
+    *y0 = (z0 - L[3] * *y1 - L[6] * *y2) / L[0];
   }
-  return 1;
 }
 
 int sw_leaf_condense_plain(double *ws, int du, int dQ, int qoff, double *A, int n, double *rhs) {
@@ -89,10 +96,11 @@ int sw_leaf_condense_plain(double *ws, int du, int dQ, int qoff, double *A, int 
       X[(3 + i) * dQ + 3 + k3] = C[(3 + i) * dQ + 3 + k3];
       Z[3 * i + k3] = Mu[1 + 3 * i + k3];
     }
-  const double *B = Auu + 3 * du + 3;
-  if (!chol3_solve(B, du, X + 3 * dQ + 3, 3, dQ) || !chol3_solve(B, du, b + 3, 1, 1) ||
-      !chol3_solve(B, du, Z, 3, 3))
-    return 0;
+  double L[9];
+  if (!chol3(Auu + 3 * du + 3, du, L)) return 0;
+  chol3_solve(L, X + 3 * dQ + 3, 3, dQ);
+  chol3_solve(L, b + 3, 1, 1);
+  chol3_solve(L, Z, 3, 3);
   for (int i = 0; i < 3; i++) { /* A_QQ += W B^-1 I_lab (lower triangle), rhs -= C^T y */
     double *Ai = A + (size_t)(qoff + 3 + i) * (size_t)n + qoff + 3;
     for (int k3 = 0; k3 <= i; k3++) {

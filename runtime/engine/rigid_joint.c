@@ -673,15 +673,14 @@ static void group_finish(const swModel *m, swData *d, double h, int g, double *A
       continue;
     }
     const double *du = rhs + off[s];
-    if (m->rigid_block_leaf[k] >= 0) { /* a unit's velocities, once, by its owner */
-      const Unit u = leaf_unit(m, leaf_ws, k, band, first);
+    double M, Il[9], F[6], dL[3] = {0, 0, 0};
+    const Unit u = m->rigid_block_leaf[k] >= 0 ? leaf_unit(m, leaf_ws, k, band, first) : (Unit){0};
+    if (u.ws) { /* a unit's velocities, once, by its owner */
       if (u.owner == k && u.plain) sw_leaf_recover_plain(u.ws, u.du, u.dQ, u.qoff[0], u.inband ? gw.R : rhs);
       else if (u.owner == k) sw_leaf_recover(u.ws, u.du, u.dQ, u.np, u.qoff, u.qdof, u.inband ? gw.R : rhs);
       du = sw_unit_b(u.ws, u.du, u.dQ) + u.ro;
     }
-    double M, Il[9], F[6], dL[3] = {0, 0, 0};
-    if (m->rigid_block_leaf[k] >= 0 && plain_leaf(m, k)) { /* as the assembly found it */
-      const Unit u = leaf_unit(m, leaf_ws, k, band, first);
+    if (u.plain) { /* its inertia as the assembly found it */
       const double *Mu = sw_unit_M(u.ws, u.du, u.dQ);
       M = Mu[0];
       if (dof[s] == 6) memcpy(Il, Mu + 1, sizeof Il);
@@ -706,8 +705,9 @@ static void group_finish(const swModel *m, swData *d, double h, int g, double *A
   }
   for (int s = nd; s < nb; s++) { /* the filaments in the system: their tension */
     const int k = first + s, f = m->rigid_block_fil[k];
+    if (f < 0) continue;
     const Unit u = leaf_unit(m, leaf_ws, k, band, first);
-    if (f < 0 || u.owner != k) continue;
+    if (u.owner != k) continue;
     const double *dv[2] = {NULL, NULL}; /* start, end: NULL when clamped */
     const int ends[2] = {k, m->rigid_block_partner[k]};
     for (int i = 0; i < u.np; i++) {
