@@ -129,17 +129,17 @@ build/asan/rt/%.o: runtime/%.c $(RT_HDR)
 	@mkdir -p $(@D)
 	$(CC) $(SAN_CFLAGS) -c $< -o $@
 build/libsinewrt.a: $(RT_OBJ)
-	ar rcs $@ $^
+	rm -f $@ && ar rcs $@ $^
 # for any x86-64 (like the portable library): it only passes messages
 build/sinewrt_mpi.o: runtime/study/study_mpi.c $(RT_HDR) | build/rt
 	$(CC) $(STD) $(WARN) $(PORTABLE) $(RT_INC) $(MPI_CFLAGS) -c $< -o $@
 build/asan/libsinewrt.a: $(RT_SOBJ)
-	ar rcs $@ $^
+	rm -f $@ && ar rcs $@ $^
 build/portable/rt/%.o: runtime/%.c $(RT_HDR)
 	@mkdir -p $(@D)
 	$(CC) $(STD) $(WARN) $(PORTABLE) $(RT_INC) $(PKG_CFLAGS) -c $< -o $@
 build/libsinewrt-portable.a: $(RT_POBJ)
-	ar rcs $@ $^
+	rm -f $@ && ar rcs $@ $^
 
 build/tests/%: tests/runtime/%.c tests/runtime/testutil.h tests/runtime/h5read.h tests/runtime/twist_rod.h build/libsinewrt.a | build/tests
 	$(CC) $(ALL_CFLAGS) $(TEST_INC) -Itests/runtime $< -o $@ build/libsinewrt.a $(LIBS) -lcmocka
@@ -217,9 +217,9 @@ build/v4/rt/%.o: runtime/%.c $(RT_HDR)
 	@mkdir -p $(@D)
 	$(CC) $(STD) $(WARN) -march=x86-64-v4 $(ISA_OPT) $(RT_INC) $(PKG_CFLAGS) -c $< -o $@
 build/libsinewrt-v3.a: $(RT_V3OBJ)
-	ar rcs $@ $^
+	rm -f $@ && ar rcs $@ $^
 build/libsinewrt-v4.a: $(RT_V4OBJ)
-	ar rcs $@ $^
+	rm -f $@ && ar rcs $@ $^
 build/bench/bench_rod_v3 build/bench/bench_rod_v4: build/bench/bench_rod_%: bench/bench_rod.c build/libsinewrt-%.a | build/bench
 	$(CC) $(STD) $(WARN) -march=x86-64-$* $(ISA_OPT) $(RT_INC) $(PKG_CFLAGS) \
 	  -DSW_BENCH_CFLAGS='"$(CC) $(STD) -march=x86-64-$* $(ISA_OPT)"' $< -o $@ build/libsinewrt-$*.a $(LIBS)

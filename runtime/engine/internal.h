@@ -404,6 +404,13 @@ int sw_rigid_joints_kick(const swModel *m, swData *d, double h, double *load);
  * was too) when a block is not positive definite.  ws: the doubles
  * sw_rigid_lanes_scratch gives (swData.rigid_lanes). */
 #define SW_GROUP_LANES 4
+/* One group's block A (n x n) factored in place and A x = rhs solved into
+ * rhs (joint_envelope.c): its members' unknowns at off, dof, envelopes env
+ * and reach numbered from base; col: n doubles of scratch.  0 if A is not
+ * positive definite. */
+int sw_envelope_cholesky_solve(double *restrict A, int n, double *restrict rhs,
+                               double *restrict col, const int *env, const int *reach,
+                               const int *off, const int *dof, int base);
 int sw_group_lanes_setup(swModel *m);
 size_t sw_rigid_lanes_scratch(const swModel *m);
 int sw_cholesky_lanes(double *const *A, double *const *rhs, int nl, int n, const int *env,
@@ -450,7 +457,9 @@ static inline size_t sw_unit_size(int du, int dQ) {
 static inline double *sw_unit_C(double *ws, int du) { return ws + du * du; }
 static inline double *sw_unit_X(double *ws, int du, int dQ) { return ws + du * du + du * dQ; }
 static inline double *sw_unit_b(double *ws, int du, int dQ) { return ws + du * du + 2 * du * dQ; }
-static inline double *sw_unit_M(double *ws, int du, int dQ) { return ws + du * du + 2 * du * dQ + du; }
+static inline double *sw_unit_M(double *ws, int du, int dQ) {
+  return ws + du * du + 2 * du * dQ + du;
+}
 int sw_leaf_condense(double *const *ws, const int *const *qoff, int nu, int du, int dQ, int np,
                      const int *qdof, double *A, int n, double *rhs); /* nu units of one shape */
 void sw_leaf_recover(double *ws, int du, int dQ, int np, const int *qoff, const int *qdof,

@@ -112,7 +112,8 @@ void sw_port_alias_fold(const swModel *m, int g, const int *off, const int *dof,
     if (m->rigid_block_rod[k] < 0) continue;
     for (int q = m->rigid_block_port_adr[k]; q < m->rigid_block_port_adr[k + 1]; q++) {
       const int t = m->rigid_port_alias[q];
-      if (t >= 0) fold(m, g, k, rot_row(m, g, k, t, off), rot_row(m, g, k, q, off), off, dof, A, n, rhs);
+      if (t >= 0)
+        fold(m, g, k, rot_row(m, g, k, t, off), rot_row(m, g, k, q, off), off, dof, A, n, rhs);
     }
   }
 }

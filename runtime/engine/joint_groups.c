@@ -444,7 +444,8 @@ static void store_units(swModel *m) {
     }
   for (int k = 0; k < m->nrigid_block; k++) { /* a partner's: its owner's */
     int *w = m->rigid_leaf_unit + SW_LEAF_UNIT * (size_t)k;
-    if (m->rigid_block_leaf[k] >= 0 && w[0] != k) w[10] = m->rigid_leaf_unit[SW_LEAF_UNIT * (size_t)w[0] + 10];
+    if (m->rigid_block_leaf[k] >= 0 && w[0] != k)
+      w[10] = m->rigid_leaf_unit[SW_LEAF_UNIT * (size_t)w[0] + 10];
   }
 }
 

@@ -3,7 +3,7 @@
  *
  * Design.  A group's block is small (the muscular snake's pair group: 60
  * unknowns, 573 entries below the diagonal within its envelope) and its
- * envelope Cholesky (rigid_joint.c, cholesky_solve) is mostly short rows:
+ * envelope Cholesky (joint_envelope.c, sw_envelope_cholesky_solve) is mostly short rows:
  * a row's update from one column is a vector loop of a few entries, whose
  * set-up, remainder and the column's copy cost more than its multiply-adds
  * (on the four-pair snake, after the members' order of joint_order.c, the
@@ -107,7 +107,7 @@ int sw_cholesky_lanes(double *const *A, double *const *rhs, int nl, int n, const
       Wi[k][0] = a0[k], Wi[k][1] = a1[k], Wi[k][2] = a2[k], Wi[k][3] = a3[k];
     for (int u = 0; u < LANES; u++) b[i][u] = r[u][i];
   }
-  for (int sj = 0, j = 0; j < n; j++) { /* cholesky_solve's factorisation, lane by lane */
+  for (int sj = 0, j = 0; j < n; j++) { /* joint_envelope.c's factorisation, lane by lane */
     if (j == off[sj] + dof[sj]) sj++;
     const int rl = reach[sj] - base, last = off[rl] + dof[rl] - 1;
     double (*restrict Wj)[LANES] = W + (size_t)j * n;

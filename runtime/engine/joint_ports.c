@@ -346,7 +346,7 @@ condense(double *ws, int du, int dQ, int np, const int *qoff, const int *qdof, d
   memcpy(X, C, (size_t)(du * dQ) * sizeof(double));
   small_solve(Auu, du, inv, X, dQ);
   small_solve(Auu, du, inv, b, 1);
-  /* A_QQ -= C^T X on A's lower triangle, the only part cholesky_solve
+  /* A_QQ -= C^T X on A's lower triangle, the only part the envelope Cholesky
    * reads (rigid_joint.c): row qoff[p1] + i, the columns up to it */
   for (int p1 = 0, c1 = 0; p1 < np; c1 += qdof[p1++])
     for (int i = 0; i < qdof[p1]; i++) {

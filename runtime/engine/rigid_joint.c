@@ -46,7 +46,7 @@
  * instead of (6 sum n_g)^3 / 3 for the whole (the 4-pair snake's 8 groups
  * of 18 unknowns, before the attachments, cost 64 times less than its 144
  * as one), and less within
- * the group's envelope (cholesky_solve): a chain of n bones, whose rows
+ * the group's envelope (joint_envelope.c): a chain of n bones, whose rows
  * reach back one body, costs about 6 n x 12^2 / 2 flops instead of
  * (6 n)^3 / 3 (8 bones: 48 unknowns, 3.5e3 flops against 3.7e4).  The
  * groups are found once, at setup, by union-find and numbered in the order
@@ -147,17 +147,19 @@ static size_t leaf_doubles(const swModel *m, int g) {
 }
 
 /* Doubles of group g's workspace: its matrix, right-hand side and the
- * factorisation's column (cholesky_solve), then each leaf's and each rod
+ * factorisation's column (joint_envelope.c), then each leaf's and each rod
  * member's (joint_ports.c); in the band path, the ports' blocks and
  * right-hand sides (sw_band_group_solve), then each leaf's; in a member's
  * band path, the band ports' blocks and right-hand sides come first. */
 static size_t group_scratch(const swModel *m, int g) {
-  if (m->rigid_group_band[g] == 1) return (size_t)band_ports(m, g) * (SW_BAND_PORT + 6) + leaf_doubles(m, g);
+  const size_t leaves = leaf_doubles(m, g), ports = (size_t)(SW_BAND_PORT + 6);
+  if (m->rigid_group_band[g] == 1) return (size_t)band_ports(m, g) * ports + leaves;
   const size_t n = (size_t)sw_rigid_group_unknowns(m, g);
   const int mb = m->rigid_group_band[g] == 2;
-  size_t len = n * n + 2 * n + (size_t)member_band_ports(m, g) * (SW_BAND_PORT + 6) + leaf_doubles(m, g);
+  size_t len = n * n + 2 * n + (size_t)member_band_ports(m, g) * ports + leaves;
   for (int k = m->rigid_group_adr[g]; k < m->rigid_group_adr[g + 1]; k++)
-    if (m->rigid_block_leaf[k] < 0 && m->rigid_block_rod[k] >= 0) len += sw_port_member_scratch(m, k, mb);
+    if (m->rigid_block_leaf[k] < 0 && m->rigid_block_rod[k] >= 0)
+      len += sw_port_member_scratch(m, k, mb);
   return len;
 }
 
@@ -215,81 +217,6 @@ static void lever(const swModel *m, const swData *d, int b, int node, double *r)
   double x[3];
   sw_get3(m, d->x, node, x);
   sw_v3_sub(r, x, d->rigid_X + 3 * b);
-}
-
-/* In place: A = L L^T (lower triangle), then A x = rhs solved into rhs.
- * A is n x n, member s's unknowns at rows off[s] .. off[s] + dof[s] - 1,
- * and by the joints the rows of member s are zero left of the rows of
- * member env[s] (the earliest member joined to s, or s), so the rows of the
- * members up to reach[s] (the last whose env is s or before) are the only
- * ones with entries below the diagonal in the columns of s; env and reach
- * number the members from base.  L has the same envelope (no fill-in
- * outside it: George and Liu, Computer Solution of Large Sparse Positive
- * Definite Systems, 1981, ch. 4).
- *
- * The factorisation is right-looking (Golub and Van Loan, sec. 4.2.8, the
- * outer-product form): once column j of L is known, L(i, j) L(k, j) is
- * taken off every A(i, k), j < k <= i, of the rows that reach column j.
- * The updates of one column are independent of one another and run as
- * vector operations, where the left-looking form's dot products were
- * chains of dependent multiply-adds (the muscular snake's groups of 36
- * unknowns spent most of their kick there).  Column j is copied out (col,
- * n doubles of scratch) so that the update of a row reads it contiguously,
- * and kept in row j of A's upper triangle (L^T) as well as in the lower,
- * so that both solves are vector updates along rows: L y = b column by
- * column (b(i) -= L(i, j) y(j), L's column j being L^T's row j), and
- * L^T x = y likewise (b(k) -= L(i, k) x(i), along L's row i).  Every
- * number is taken off in an order set by the rows and columns alone, so a
- * group's solve gives the bits of the same rows within one system over all
- * the groups (whose extra entries are zeros).  The diagonal keeps
- * 1 / L(j, j), the solves' only use of it.
- * Returns 0 if A is not positive definite. */
-static int cholesky_solve(double *restrict A, int n, double *restrict rhs, double *restrict col,
-                          const int *env, const int *reach, const int *off, const int *dof,
-                          int base) {
-  for (int sj = 0, j = 0; j < n; j++) {
-    if (j == off[sj] + dof[sj]) sj++; /* the member of column j */
-    const int rl = reach[sj] - base, last = off[rl] + dof[rl] - 1; /* the last row reaching j */
-    double *restrict Aj = A + (size_t)j * n;
-    const double djj = Aj[j];
-    if (!(djj > 0)) return 0;
-    const double inv = 1.0 / sqrt(djj);
-    Aj[j] = inv;
-    for (int t = sj; t <= rl; t++) { /* L(i, j) of member t's rows, 0 outside the envelope */
-      const int inside = off[env[t] - base] <= j;
-      for (int i = t == sj ? j + 1 : off[t]; i < off[t] + dof[t]; i++) {
-        col[i] = inside ? A[(size_t)i * n + j] * inv : 0.0;
-        A[(size_t)i * n + j] = Aj[i] = col[i];
-      }
-    }
-    for (int i = j + 1; i <= last; i++) {
-      if (col[i] == 0.0) continue; /* nothing to take off row i */
-      const double lij = col[i];
-      double *restrict Ai = A + (size_t)i * n;
-#pragma omp simd
-      for (int k = j + 1; k <= i; k++) Ai[k] -= lij * col[k];
-    }
-  }
-  for (int sj = 0, j = 0; j < n; j++) { /* L y = rhs, column by column */
-    if (j == off[sj] + dof[sj]) sj++;
-    const double *restrict Lj = A + (size_t)j * n; /* row j of L^T: column j of L */
-    const int rl = reach[sj] - base, last = off[rl] + dof[rl] - 1;
-    const double y = rhs[j] * Lj[j];
-    rhs[j] = y;
-#pragma omp simd
-    for (int i = j + 1; i <= last; i++) rhs[i] -= Lj[i] * y;
-  }
-  int si = 0; /* L^T x = y, column by column of L^T, from the last member */
-  while (off[si] + dof[si] < n) si++;
-  for (int i = n - 1; i >= 0; i--) {
-    if (i < off[si]) si--;
-    const double *restrict Li = A + (size_t)i * n; /* row i of L */
-    const double x = rhs[i] * Li[i];
-    rhs[i] = x;
-#pragma omp simd
-    for (int k = off[env[si] - base]; k < i; k++) rhs[k] -= Li[k] * x;
-  }
-  return 1;
 }
 
 /* The lab inertia R diag(I) R^T of body b. */
@@ -383,6 +310,26 @@ static int same_shape(const Unit *a, const Unit *b) {
          (a->np < 2 || a->qdof[1] == b->qdof[1]);
 }
 
+/* A joint of a plain leaf on its port (leaf_plain.c), the leaf's dof
+ * unknowns: its own block and its coupling to the port, as add_pair makes
+ * them when both levers are 0 (J = [I, 0]: the sums add its zero products
+ * of the lever, which change nothing), w_p I on the position and w_r P^T P
+ * + w_l g g^T on the rotation, signed; the port's own block is the leaf's
+ * closed form's. */
+static void plain_joint(const Unit *u, int dof, double wp, double wr, double wl, const double *PtP,
+                        const double *ggT) {
+  double *A = u->ws + (size_t)u->ro * (size_t)u->du + u->ro;
+  double *C = sw_unit_C(u->ws, u->du) + (size_t)u->ro * (size_t)u->dQ + u->co;
+  for (int i = 0; i < 3; i++) A[i * u->du + i] += wp, C[i * u->dQ + i] += -wp;
+  if (dof < 6) return;
+  for (int i = 0; i < 3; i++)
+    for (int k = 0; k < 3; k++) {
+      double *a = A + (3 + i) * u->du + 3 + k, *c = C + (3 + i) * u->dQ + 3 + k;
+      if (wr != 0) *a += wr * PtP[3 * i + k], *c += -wr * PtP[3 * i + k];
+      if (wl != 0) *a += wl * ggT[3 * i + k], *c += -wl * ggT[3 * i + k];
+    }
+}
+
 /* Where a joint's side writes in group g's system: its member (numbered
  * from the group's first), whether that is a leaf (whose unit holds its
  * rows, joint_ports.c), and otherwise the side's first unknown and count
@@ -464,7 +411,7 @@ static void dense_filaments(const swModel *m, swData *d, double h, int g, double
 /* The trapezoidal loads of group g (the header), in three parts: its
  * system assembled into A (n x n, n its dense members' unknowns) and rhs,
  * its leaves eliminated and its implicit rods condensed to their ports
- * (joint_ports.c) (group_assemble); factored and solved (cholesky_solve,
+ * (joint_ports.c) (group_assemble); factored and solved (joint_envelope.c,
  * or with groups of its shape, sw_cholesky_lanes); and the loads of its
  * members replaced (group_finish): a body's in load[], an attachment's node
  * force and, when a joint couples its element's rotation, element torque,
@@ -507,7 +454,7 @@ static int group_assemble(const swModel *m, swData *d, double h, int g, double *
   }
   /* zeros where the assembly adds: each dense member's rows over its
    * envelope up to the end of its diagonal block (A's lower triangle, the
-   * only part cholesky_solve reads, and the block sw_port_member_assemble
+   * only part the envelope Cholesky reads, and the block sw_port_member_assemble
    * solves in).  The rest of A is neither added to nor read before the
    * factorisation writes it (or keeps the zeros it has from the start). */
   for (int s = 0; s < nd && !bu; s++) {
@@ -570,14 +517,7 @@ static int group_assemble(const swModel *m, swData *d, double h, int g, double *
     const double wpos = 0.25 * h * h * jd->stiffness + 0.5 * h * jd->damping;
     const double wrot = jd->kind == SW_JOINT_SPHERICAL
                             ? 0.0 : 0.25 * h * h * jd->rot_stiffness + 0.5 * h * jd->rot_damping;
-    double Jp[2][18], gl[3] = {0, 0, 0};
-    for (int sd = 0; sd < 2; sd++) {
-      if (side[sd].block < 0) continue;
-      const int b = m->rigid_block_body[first + side[sd].block];
-      double r[3] = {0, 0, 0}; /* an attachment's or a port's joint sits on its node */
-      if (b >= 0) lever(m, d, b, node[sd], r);
-      side_map(r, Jp[sd]);
-    }
+    double gl[3] = {0, 0, 0};
     /* the limit's rate map, one row [0, g^T], the same on both sides */
     const double wlim = sw_joint_limit_tangent(m, d, j, gl)
                             ? 0.25 * h * h * jd->limit_stiffness + 0.5 * h * jd->limit_damping : 0.0;
@@ -589,6 +529,20 @@ static int group_assemble(const swModel *m, swData *d, double h, int g, double *
         gg += gl[i] * gl[k];
         PtP[3 * i + k] = pp, ggT[3 * i + k] = gg;
       }
+    const int pl = side[0].leaf >= 0 ? 0 : side[1].leaf >= 0 ? 1 : -1;
+    if (pl >= 0 && plain_leaf(m, first + side[pl].block)) { /* no levers: its blocks directly */
+      const Unit u = leaf_unit(m, leaf_ws, first + side[pl].block, band, first);
+      plain_joint(&u, side[pl].dof, wpos, wrot, wlim, PtP, ggT);
+      continue;
+    }
+    double Jp[2][18];
+    for (int sd = 0; sd < 2; sd++) {
+      if (side[sd].block < 0) continue;
+      const int b = m->rigid_block_body[first + side[sd].block];
+      double r[3] = {0, 0, 0}; /* an attachment's or a port's joint sits on its node */
+      if (b >= 0) lever(m, d, b, node[sd], r);
+      side_map(r, Jp[sd]);
+    }
     for (int s = 0; s < 2; s++)
       for (int t = 0; t < 2; t++) {
         const SideSlot *ss = &side[s], *st = &side[t];
@@ -597,7 +551,9 @@ static int group_assemble(const swModel *m, swData *d, double h, int g, double *
         if (ss->leaf >= 0) { /* a leaf's own block (t = s) or its coupling to the port */
           const Unit u = leaf_unit(m, leaf_ws, first + ss->block, band, first);
           if (s == t) add_pair(u.ws, u.du, u.ro, ss->dof, u.ro, ss->dof, wpos, wrot, wlim, Jp[s], Jp[t], PtP, ggT);
-          else add_pair(sw_unit_C(u.ws, u.du), u.dQ, u.ro, ss->dof, u.co, st->dof, -wpos, -wrot, -wlim, Jp[s], Jp[t], PtP, ggT);
+          else
+            add_pair(sw_unit_C(u.ws, u.du), u.dQ, u.ro, ss->dof, u.co, st->dof, -wpos, -wrot,
+                     -wlim, Jp[s], Jp[t], PtP, ggT);
           continue;
         }
         if (st->leaf >= 0) continue; /* C_a^T: the leaf's elimination uses C_a */
@@ -651,8 +607,9 @@ static int group_assemble(const swModel *m, swData *d, double h, int g, double *
 static int group_solve(const swModel *m, swData *d, double h, int g, double *A, double *rhs) {
   const int first = m->rigid_group_adr[g], n = sw_rigid_group_unknowns(m, g);
   if (m->rigid_group_band[g] == 1) return sw_band_group_solve(m, d, h, first, A, rhs);
-  return cholesky_solve(A, n, rhs, rhs + n, m->rigid_block_env + first, m->rigid_block_reach + first,
-                        group_off(m, g) + first, group_dof(m, g) + first, first);
+  return sw_envelope_cholesky_solve(A, n, rhs, rhs + n, m->rigid_block_env + first,
+                                    m->rigid_block_reach + first, group_off(m, g) + first,
+                                    group_dof(m, g) + first, first);
 }
 
 static void group_finish(const swModel *m, swData *d, double h, int g, double *A, double *rhs,
@@ -676,8 +633,9 @@ static void group_finish(const swModel *m, swData *d, double h, int g, double *A
     double M, Il[9], F[6], dL[3] = {0, 0, 0};
     const Unit u = m->rigid_block_leaf[k] >= 0 ? leaf_unit(m, leaf_ws, k, band, first) : (Unit){0};
     if (u.ws) { /* a unit's velocities, once, by its owner */
-      if (u.owner == k && u.plain) sw_leaf_recover_plain(u.ws, u.du, u.dQ, u.qoff[0], u.inband ? gw.R : rhs);
-      else if (u.owner == k) sw_leaf_recover(u.ws, u.du, u.dQ, u.np, u.qoff, u.qdof, u.inband ? gw.R : rhs);
+      const double *pu = u.inband ? gw.R : rhs; /* its ports' solved velocity changes */
+      if (u.owner == k && u.plain) sw_leaf_recover_plain(u.ws, u.du, u.dQ, u.qoff[0], pu);
+      else if (u.owner == k) sw_leaf_recover(u.ws, u.du, u.dQ, u.np, u.qoff, u.qdof, pu);
       du = sw_unit_b(u.ws, u.du, u.dQ) + u.ro;
     }
     if (u.plain) { /* its inertia as the assembly found it */
