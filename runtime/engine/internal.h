@@ -348,6 +348,13 @@ int sw_implicit_band_solve(const swModel *m, swData *d, int r);
 /* The same band factored, and solved for rhs (into column 0 of X) and
  * X's other columns at once (X as sw_implicit_solve_many's). */
 int sw_implicit_band_solve_many(const swModel *m, swData *d, int r, double *X, int ld);
+/* A member's band path keeping its band (rod_implicit.c): this kick's
+ * right-hand side h F assembled alone, when the rod's kept factorisation
+ * holds (else NULL); the band just factored kept; and X solved (as
+ * sw_implicit_band_solve_many) with the kept band. */
+double *sw_implicit_band_kept(const swModel *m, swData *d, int r, double h, double *theta);
+void sw_implicit_band_keep(const swModel *m, swData *d, int r, double h);
+void sw_implicit_band_solve_kept(const swModel *m, swData *d, int r, double *X, int ld);
 static inline double *sw_band_at(double *A, size_t i, size_t j) {
   return A + i * (SW_IMPLICIT_BAND + 1) + SW_IMPLICIT_BAND - (i - j);
 }

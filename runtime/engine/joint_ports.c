@@ -117,12 +117,22 @@ static int rhs_row(const swModel *m, int k, int band) {
   return (member_ports(m, k, band) + 1 + B - 1) / B * B;
 }
 
+/* Member k's band ports under a member's band path. */
+static int band_ports_of(const swModel *m, int k) {
+  int nbp = 0;
+  for (int q = m->rigid_block_port_adr[k]; q < m->rigid_block_port_adr[k + 1]; q++)
+    nbp += m->rigid_port_moff[q] < 0;
+  return nbp;
+}
+
 /* The workspace: X (N rows of rhs_row with SW_IMPLICIT_BAND rows of zeros
  * before and after), S (p x p), p0 and g (p each), and under a member's
- * band path C^-1 (p x p) before it is added to the group's block. */
+ * band path C^-1 (p x p) before it is added to the group's block, then the
+ * band ports' blocks its kept band was factored with. */
 size_t sw_port_member_scratch(const swModel *m, int k, int band) {
   const size_t N = sw_implicit_unknowns(m, m->rigid_block_rod[k]), p = (size_t)member_ports(m, k, band);
-  return (N + 2 * SW_IMPLICIT_BAND) * (size_t)rhs_row(m, k, band) + p * p * (band ? 2 : 1) + 2 * p;
+  const size_t kept = band ? (size_t)band_ports_of(m, k) * SW_BAND_PORT : 0;
+  return (N + 2 * SW_IMPLICIT_BAND) * (size_t)rhs_row(m, k, band) + p * p * (band ? 2 : 1) + 2 * p + kept;
 }
 
 /* In place: the lower triangle of the n x n SPD matrix C (row-major) turns
@@ -240,6 +250,27 @@ static void ports_of(const swModel *m, const swData *d, int k, const double *X, 
 static void port_rows(const swModel *m, int r, int q, size_t *pos);
 static void add_port_block(const swModel *m, const swData *d, int r, int q, const double *Pq,
                            const double *Rq, double *A, double *b);
+static void add_port_rhs(const swModel *m, const swData *d, int r, int q, const double *Rq,
+                         double *b);
+
+/* Whether member k's band ports' blocks P (this kick's, its band ports'
+ * in their order t) are near those its kept band was factored with (Pk,
+ * in the same order): every block's entries within theta (the rod's,
+ * sw_implicit_band_kept) of its largest kept entry.  A block is its barbs'
+ * joints in series with their inertia (leaf_plain.c), which turns with
+ * the barbs' frames; a kept block off by delta of itself is a W-method's
+ * matrix off by as much (rod_implicit.c, "keeping a factorisation"). */
+static int ports_hold(const swModel *m, int k, const double *P, const double *Pk, double theta) {
+  for (int q = m->rigid_block_port_adr[k], c = 0; q < m->rigid_block_port_adr[k + 1]; q++) {
+    const int t = -1 - m->rigid_port_moff[q];
+    if (t < 0) continue;
+    const double *Pt = P + (size_t)SW_BAND_PORT * (size_t)t, *Pc = Pk + (size_t)SW_BAND_PORT * (size_t)c++;
+    double big = 0, moved = 0;
+    for (int e = 0; e < SW_BAND_PORT; e++) big = fmax(big, fabs(Pc[e])), moved = fmax(moved, fabs(Pt[e] - Pc[e]));
+    if (!(moved <= theta * big)) return 0;
+  }
+  return 1;
+}
 static void port_velocity(const swModel *m, const swData *d, int r, int q, const double *du,
                           size_t stride, double *Rq);
 
@@ -263,17 +294,31 @@ int sw_port_member_assemble(const swModel *m, swData *d, double h, int k, double
     for (int a = 0; a < 3; a++)
       for (int b = 0; b < 3; b++) X[(6 * e + 3 + (size_t)a) * (size_t)nc + (size_t)(o + 3 + b)] = Q[3 * a + b];
   }
-  int nbp = 0; /* band ports: without them the rod's own system, kept when it holds */
-  for (int q = m->rigid_block_port_adr[k]; band && q < m->rigid_block_port_adr[k + 1]; q++)
-    nbp += m->rigid_port_moff[q] < 0;
+  /* band ports: without them the rod's own system, kept when it holds */
+  const int nbp = band ? band_ports_of(m, k) : 0;
   if (nbp) { /* the band ports' blocks in the band (sw_band_group_solve), then du0 and Z */
-    double *b, *Ab = sw_implicit_band_begin(m, d, r, h, &b);
-    if (!Ab) return 0;
-    for (int q = m->rigid_block_port_adr[k]; q < m->rigid_block_port_adr[k + 1]; q++) {
-      const int t = -1 - m->rigid_port_moff[q];
-      if (t >= 0) add_port_block(m, d, r, q, P + (size_t)SW_BAND_PORT * (size_t)t, R + 6 * (size_t)t, Ab, b);
+    const int q0 = m->rigid_block_port_adr[k], q1 = m->rigid_block_port_adr[k + 1];
+    double *Pk = ws + NX + 2 * (size_t)p * (size_t)p + 2 * (size_t)p; /* the kept band's */
+    double theta = 0, *b = sw_implicit_band_kept(m, d, r, h, &theta);
+    if (b && ports_hold(m, k, P, Pk, theta)) { /* the kept band; this kick's right-hand side */
+      for (int q = q0; q < q1; q++) {
+        const int t = -1 - m->rigid_port_moff[q];
+        if (t >= 0) add_port_rhs(m, d, r, q, R + 6 * (size_t)t, b);
+      }
+      sw_implicit_band_solve_kept(m, d, r, X, nc);
+    } else {
+      double *Ab = sw_implicit_band_begin(m, d, r, h, &b);
+      if (!Ab) return 0;
+      for (int q = q0, c = 0; q < q1; q++) {
+        const int t = -1 - m->rigid_port_moff[q];
+        if (t < 0) continue;
+        const double *Pt = P + (size_t)SW_BAND_PORT * (size_t)t;
+        add_port_block(m, d, r, q, Pt, R + 6 * (size_t)t, Ab, b);
+        memcpy(Pk + (size_t)SW_BAND_PORT * (size_t)c++, Pt, SW_BAND_PORT * sizeof(double));
+      }
+      if (!sw_implicit_band_solve_many(m, d, r, X, nc)) return 0;
+      sw_implicit_band_keep(m, d, r, h);
     }
-    if (!sw_implicit_band_solve_many(m, d, r, X, nc)) return 0;
   } else if (!sw_implicit_solve_many(m, d, r, h, X, nc)) return 0; /* du0, Z */
   ports_of(m, d, k, X, nc, p, p0, S, band); /* p0, and C = E^T Z into S */
   for (int a = 0; a < p; a++) /* symmetric up to round-off */
@@ -546,6 +591,22 @@ static void add_port_block(const swModel *m, const swData *d, int r, int q, cons
     for (int c = 0; c < dof; c++)
       if (pos[c] <= pos[a]) *sw_band_at(A, pos[a], pos[c]) += G[6 * a + c];
   }
+}
+
+/* Port q's right-hand side Rq (lab frame) added to rod r's b through E,
+ * as add_port_block adds it. */
+static void add_port_rhs(const swModel *m, const swData *d, int r, int q, const double *Rq,
+                         double *b) {
+  double g[6];
+  memcpy(g, Rq, 6 * sizeof(double));
+  if (sw_port_dof(m, q) == 6) {
+    double Q[9];
+    sw_getQ(m, d->Q, m->rigid_port_elem[q], Q);
+    sw_mat_vec(g + 3, Q, Rq + 3);
+  }
+  size_t pos[6];
+  port_rows(m, r, q, pos);
+  for (int a = 0; a < sw_port_dof(m, q); a++) b[pos[a]] += g[a];
 }
 
 /* Port q's lab velocity change E^T du into Rq (du's rows stride apart). */
