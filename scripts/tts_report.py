@@ -179,7 +179,8 @@ STUDIES = [
 # studies this table does not run: not modelled, or measured in a section of
 # their own (the wing: 10 min a run)
 OPEN = [("feathered wing", (50e-9, "Table 10"), (0.51, "Table 10"),
-         "`pigeon_wing`: measured in \"The kinematic wing\" below"),
+         "`pigeon_wing` and `pigeon_wing_resolved`: measured in \"The kinematic wing\" and "
+         "\"The fully resolved wing\" below"),
         ("artificial muscle on the arm", (50e-9, "Table 6"), (0.7, "Table 6"),
          "`elbow_assisted`: measured in \"The elbow assisted by an artificial muscle\" below")]
 

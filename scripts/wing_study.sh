@@ -9,7 +9,10 @@
 # VARIANT: original, hard (twist and shear x10 on every rod: Fig. 13 (b)),
 # hard_but_barbs (x10 on bones, rachises and muscles), soft (shear and twist
 # /5 on the muscles: (c)), soft_twist (twist /5 on the muscles: (d));
-# default all.  DIR (default build/wing) gets VARIANT.h5, VARIANT.log (the
+# default all of these; and resolved (models/pigeon_wing_resolved.sinew:
+# every barb and rachis on an ordinary joint, about 33 min of an idle
+# core), which only runs when named, and with the original gives
+# resolved.png and resolved.txt (scripts/wing_resolved_compare.py).  DIR (default build/wing) gets VARIANT.h5, VARIANT.log (the
 # simulator's summary, its wall time), angles.png, frames.png, fig13.png and
 # fig13.md.  A run whose file is complete is not made again.  The model's
 # step, 1 us, is above the hardened variants' stable estimates (375 ns for
@@ -35,6 +38,9 @@ VARIANTS=${*:-original soft soft_twist hard_but_barbs hard}
 mkdir -p "$OUT"
 export SINEW_PATH="$ROOT/models"
 "$ROOT/bin/sinewc" "$ROOT/models/pigeon_wing.sinew" -o "$OUT/wing"
+case " $VARIANTS " in
+  *" resolved "*) "$ROOT/bin/sinewc" "$ROOT/models/pigeon_wing_resolved.sinew" -o "$OUT/resolved" ;;
+esac
 
 settings() {
   case $1 in
@@ -43,6 +49,7 @@ settings() {
     hard_but_barbs) echo "--set wing_shear=10 --set wing_twist=10 --set muscle_shear=10 --set muscle_twist=10" ;;
     soft) echo "--set muscle_shear=0.2 --set muscle_twist=0.2" ;;
     soft_twist) echo "--set muscle_twist=0.2" ;;
+    resolved) echo "" ;; # its own model, at its own step (1 us)
     *) echo "wing_study.sh: unknown variant $1" >&2; exit 2 ;;
   esac
 }
@@ -65,8 +72,10 @@ run() { # run VARIANT
   v=$1; shift
   set -- "$@" $(step "$@")
   [ -n "$DURATION" ] && set -- "$@" --duration "$DURATION" --every 0.5ms
+  sim=$OUT/wing
+  [ "$v" = resolved ] && sim=$OUT/resolved
   echo "wing_study.sh: $v: $*"
-  "$OUT/wing" --quiet "$@" --out "$OUT/$v.h5" > "$OUT/$v.log" 2>&1 || echo "wing_study.sh: $v stopped (see $OUT/$v.log)"
+  "$sim" --quiet "$@" --out "$OUT/$v.h5" > "$OUT/$v.log" 2>&1 || echo "wing_study.sh: $v stopped (see $OUT/$v.log)"
 }
 
 set -- $VARIANTS
@@ -85,4 +94,8 @@ if [ -f "$OUT/original.h5" ]; then
     [ -f "$OUT/$v.h5" ] && set -- "$@" "$v=$OUT/$v.h5"
   done
   /usr/bin/python3 "$ROOT/scripts/wing_fig13.py" "$OUT/original.h5" "$@" --plot "$OUT/fig13.png" --table "$OUT/fig13.md"
+  if [ -f "$OUT/resolved.h5" ]; then
+    /usr/bin/python3 "$ROOT/scripts/wing_resolved_compare.py" "$OUT/original.h5" "$OUT/resolved.h5" \
+      --plot "$OUT/resolved.png" > "$OUT/resolved.txt"
+  fi
 fi

@@ -132,7 +132,8 @@ static int band_ports_of(const swModel *m, int k) {
 size_t sw_port_member_scratch(const swModel *m, int k, int band) {
   const size_t N = sw_implicit_unknowns(m, m->rigid_block_rod[k]), p = (size_t)member_ports(m, k, band);
   const size_t kept = band ? (size_t)band_ports_of(m, k) * SW_BAND_PORT : 0;
-  return (N + 2 * SW_IMPLICIT_BAND) * (size_t)rhs_row(m, k, band) + p * p * (band ? 2 : 1) + 2 * p + kept;
+  const size_t X = (N + 2 * SW_IMPLICIT_BAND) * (size_t)rhs_row(m, k, band);
+  return X + p * p * (band ? 2 : 1) + 2 * p + kept;
 }
 
 /* In place: the lower triangle of the n x n SPD matrix C (row-major) turns
@@ -264,9 +265,11 @@ static int ports_hold(const swModel *m, int k, const double *P, const double *Pk
   for (int q = m->rigid_block_port_adr[k], c = 0; q < m->rigid_block_port_adr[k + 1]; q++) {
     const int t = -1 - m->rigid_port_moff[q];
     if (t < 0) continue;
-    const double *Pt = P + (size_t)SW_BAND_PORT * (size_t)t, *Pc = Pk + (size_t)SW_BAND_PORT * (size_t)c++;
+    const double *Pt = P + (size_t)SW_BAND_PORT * (size_t)t;
+    const double *Pc = Pk + (size_t)SW_BAND_PORT * (size_t)c++;
     double big = 0, moved = 0;
-    for (int e = 0; e < SW_BAND_PORT; e++) big = fmax(big, fabs(Pc[e])), moved = fmax(moved, fabs(Pt[e] - Pc[e]));
+    for (int e = 0; e < SW_BAND_PORT; e++)
+      big = fmax(big, fabs(Pc[e])), moved = fmax(moved, fabs(Pt[e] - Pc[e]));
     if (!(moved <= theta * big)) return 0;
   }
   return 1;

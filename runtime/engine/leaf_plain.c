@@ -8,12 +8,13 @@
  * dashpot) has, whatever its joints' kinds,
  *
  *   A_uu = [ a I   0 ]     C = [ c I   0 ]     (c I alone when du = 3;
- *          [  0    B ],        [  0    D ]      dQ = 6: C's last three
+ *          [  0    B ],        [  0   -D ]      dQ = 6: C's last three
  *                                               columns zero then)
  *
- * with a = m + sum w_p, c = -sum w_p, B = I_lab + sum (w_r P^T P + w_l g g^T)
- * and D = -(B - I_lab) (rigid_joint.c's assembly, add_pair): C = -W with W
- * the joints' weights, which the port's own block takes as well.  The
+ * with a = m + sum w_p, c = -sum w_p, D = sum (w_r P^T P + w_l g g^T) and
+ * B = I_lab + D (rigid_joint.c's assembly, add_pair): C = -W with W =
+ * [w_p I, 0; 0, D] the joints' weights, which the port's own block takes
+ * as well.  The
  * general elimination (joint_ports.c, condense: a 6x6 Cholesky, X =
  * A_uu^-1 C with six right-hand sides, C^T X) spends its flops on those
  * zero blocks, and what the port is left with, W - W A_uu^-1 W, is a
@@ -29,7 +30,7 @@
  * (W^-1 + M^-1)^-1 where both are invertible, whose lower triangle is
  * used), and
  *
- *   X = [ (c / a) I   0 ; 0  B^-1 D ],   b_Q -= C^T A_uu^-1 b_u,
+ *   X = [ (c / a) I   0 ; 0  -B^-1 D ],   b_Q -= C^T A_uu^-1 b_u,
  *   u = A_uu^-1 b_u - X u_Q,
  *
  * a 3x3 Cholesky and about 200 flops in all (the resolved wing eliminates
@@ -88,8 +89,8 @@ int sw_leaf_condense_plain(double *ws, int du, int dQ, int qoff, double *A, int 
     rhs[qoff + i] -= c * b[i];
   }
   if (du < 6) return 1;
-  /* the rotation: Y = B^-1 D into X's block, y = B^-1 b_r into b, and
-   * B^-1 I_lab, whose product with W = -D is the port's block */
+  /* the rotation: X's block B^-1 C_r (= -B^-1 D), y = B^-1 b_r into b,
+   * and Z = B^-1 I_lab, whose product with W's D = -C_r is the port's */
   double Z[9];
   for (int i = 0; i < 3; i++)
     for (int k3 = 0; k3 < 3; k3++) {

@@ -206,7 +206,8 @@ static double kept_against_fresh(double frac, double T, double *share) {
   double moved = 0; /* how far any node went */
   for (int i = 0; i < 3 * m->stride; i++) moved = fmax(moved, fabs(fresh->x[i] - x0[i]));
   fprintf(stderr, "# kept_against_fresh: dt %.3g s, %.1f%% of the implicit kicks kept, positions "
-          "apart by %.3e m after %g s (nodes moved up to %.3e m)\n", m->dt, 100 * *share, D, T, moved);
+          "apart by %.3e m after %g s (nodes moved up to %.3e m)\n",
+          m->dt, 100 * *share, D, T, moved);
   free(x0);
   sw_data_free(kept);
   sw_data_free(fresh);
@@ -221,8 +222,8 @@ static void test_kept_band(void **state) {
   double share[2];
   const double D[2] = {kept_against_fresh(1.0, T, share), kept_against_fresh(0.5, T, share + 1)};
   const double order = log(D[0] / D[1]) / log(2.0);
-  fprintf(stderr, "# test_kept_band: kept - fresh, of the largest displacement: %.3e at h, %.3e at h / 2: order %.2f\n",
-          D[0], D[1], order);
+  fprintf(stderr, "# test_kept_band: kept - fresh, of the largest displacement: %.3e at h, "
+          "%.3e at h / 2: order %.2f\n", D[0], D[1], order);
   assert_true(share[0] > 0.5 && share[1] > 0.5); /* it keeps */
   assert_true(D[0] <= 1e-6);
   assert_true(order >= 1.5);
