@@ -266,9 +266,9 @@ minutes the figure is the window run's per-step cost times the steps of the
 whole time ("est.").
 
 - CPU: {cpu_name}, 2 logical CPUs; GCC, `-O3 -march=native` (`make`'s build).
-- The machine was shared: a fuzzing campaign on one core and other engineers'
-  builds and runs; load average {load[0]} {load[1]} {load[2]} (1, 5, 15 min) when
-  this section was written, after the runs. Wall times count waits for a
+- Load average {load[0]} {load[1]} {load[2]} (1, 5, 15 min) when this section
+  was written, after the runs (a machine of 2 logical CPUs, shared at times
+  with other tenants' and engineers' work). Wall times count waits for a
   core; the CPU time is the steadier figure. One run each, no repeats.
 - Date this section was written: {date}; code: git {rev}{' (runtime/ or compiler/ modified)' if dirty else ''}.
 - The commands and their times: build/bench/tts/commands.txt.
