@@ -136,14 +136,16 @@ static int band_ports(const swModel *m, int g) {
   return m->rigid_group_band[g] == 1 ? m->rigid_block_port_adr[k + 1] - m->rigid_block_port_adr[k] : 0;
 }
 
-/* Doubles of group g's leaves' workspaces (joint_groups.c, store_units). */
+/* Doubles of group g's leaves' workspaces: the last unit's place and size
+ * (joint_groups.c, store_units, lays them out owner after owner; the
+ * leaves are the group's last members, a partner after its owner). */
 static size_t leaf_doubles(const swModel *m, int g) {
-  size_t len = 0;
-  for (int k = m->rigid_group_adr[g]; k < m->rigid_group_adr[g + 1]; k++) {
+  for (int k = m->rigid_group_adr[g + 1] - 1; k >= m->rigid_group_adr[g]; k--) {
+    if (m->rigid_block_leaf[k] < 0) return 0; /* no leaf after the dense members */
     const int *w = m->rigid_leaf_unit + SW_LEAF_UNIT * (size_t)k;
-    if (m->rigid_block_leaf[k] >= 0 && w[0] == k) len += sw_unit_size(w[3], w[4]);
+    if (w[0] == k) return (size_t)w[10] + sw_unit_size(w[3], w[4]);
   }
-  return len;
+  return 0;
 }
 
 /* Doubles of group g's workspace: its matrix, right-hand side and the

@@ -115,6 +115,27 @@ static inline double band_now(void) {
   return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
 }
 
+/* kick_time of one kick on the path `path` (band's) and on the dense one
+ * (dense's), after three steps of each from the same moving start; the
+ * model is left on `path`. */
+static inline double kick_time(const swModel *m, swData *d);
+static inline void kick_times(swModel *m, int path, swData *band, swData *dense, double *tb,
+                              double *td) {
+  start_moving(m, band);
+  start_moving(m, dense);
+  for (int k = 0; k < 3; k++) { /* a state of the run */
+    set_band(m, path);
+    assert_int_equal(sw_step(m, band), SW_OK);
+    set_band(m, 0);
+    assert_int_equal(sw_step(m, dense), SW_OK);
+  }
+  set_band(m, path);
+  *tb = kick_time(m, band);
+  set_band(m, 0);
+  *td = kick_time(m, dense);
+  set_band(m, path);
+}
+
 /* Seconds per kick of the joints' system on d's state, each factored
  * afresh (sw_implicit_reset, as a moving rod mostly is): the least mean
  * over five batches of at least 3 kicks and 10 ms (the machine is shared;

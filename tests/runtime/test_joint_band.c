@@ -166,19 +166,8 @@ static void test_cost(void **state) {
     ws[c] = sw_rigid_joints_scratch(m);
     swData *dense = data_for(m, 0);
     const size_t ws_dense = sw_rigid_joints_scratch(m);
-    start_moving(m, band);
-    start_moving(m, dense);
-    for (int k = 0; k < 3; k++) { /* a state of the run */
-      set_band(m, 1);
-      assert_int_equal(sw_step(m, band), SW_OK);
-      set_band(m, 0);
-      assert_int_equal(sw_step(m, dense), SW_OK);
-    }
-    set_band(m, 1);
-    const double tb = kick_time(m, band);
-    set_band(m, 0);
-    const double td = kick_time(m, dense);
-    set_band(m, 1);
+    double tb, td;
+    kick_times(m, 1, band, dense, &tb, &td);
     fprintf(stderr, "# test_cost: %2d barbs (fixed joints, %3d port unknowns) on 128 elements: "
             "band path %8.1f us per kick (%zu doubles of workspace), dense path %8.1f us "
             "(%zu doubles), dense / band %.1f\n",

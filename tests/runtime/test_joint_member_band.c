@@ -148,19 +148,8 @@ static void test_cost(void **state) {
     assert_int_equal(m->rigid_group_band[0], 2);
     const int nb = unknowns(m, 2), nd = unknowns(m, 0);
     swData *band = data_for(m, 2), *dense = data_for(m, 0);
-    start_moving(m, band);
-    start_moving(m, dense);
-    for (int k = 0; k < 3; k++) {
-      set_band(m, 2);
-      assert_int_equal(sw_step(m, band), SW_OK);
-      set_band(m, 0);
-      assert_int_equal(sw_step(m, dense), SW_OK);
-    }
-    set_band(m, 2);
-    const double tb = kick_time(m, band);
-    set_band(m, 0);
-    const double td = kick_time(m, dense);
-    set_band(m, 2);
+    double tb, td;
+    kick_times(m, 2, band, dense, &tb, &td);
     fprintf(stderr, "# test_cost: %2d barbs on 128 elements, rigid bone: member's band path %8.1f us "
             "per kick (block of %d unknowns), dense path %8.1f us (%d), dense / band %.1f\n",
             leaves[c], 1e6 * tb, nb, 1e6 * td, nd, td / tb);
