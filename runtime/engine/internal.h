@@ -350,11 +350,14 @@ int sw_implicit_band_solve(const swModel *m, swData *d, int r);
 int sw_implicit_band_solve_many(const swModel *m, swData *d, int r, double *X, int ld);
 /* A member's band path keeping its band (rod_implicit.c): this kick's
  * right-hand side h F assembled alone, when the rod's kept factorisation
- * holds (else NULL); the band just factored kept; and X solved (as
- * sw_implicit_band_solve_many) with the kept band. */
+ * holds (else NULL); the band just factored kept; the right-hand side
+ * (with what the caller added) solved with the kept band into column 0 of
+ * X, and X's other columns too if all (else left as they are); and element
+ * e's frame (slot e) when the band was kept. */
 double *sw_implicit_band_kept(const swModel *m, swData *d, int r, double h, double *theta);
 void sw_implicit_band_keep(const swModel *m, swData *d, int r, double h);
-void sw_implicit_band_solve_kept(const swModel *m, swData *d, int r, double *X, int ld);
+void sw_implicit_band_solve_kept(const swModel *m, swData *d, int r, double *X, int ld, int all);
+void sw_implicit_kept_frame(const swModel *m, const swData *d, int r, int e, double *Q);
 static inline double *sw_band_at(double *A, size_t i, size_t j) {
   return A + i * (SW_IMPLICIT_BAND + 1) + SW_IMPLICIT_BAND - (i - j);
 }
@@ -442,6 +445,13 @@ int sw_port_member_assemble(const swModel *m, swData *d, double h, int k, double
                             int n, int off, double *rhs, const double *P, const double *R);
 void sw_port_member_finish(const swModel *m, swData *d, double h, int k, double *ws,
                            const double *pu, double *R);
+/* For the tests: a member's band path keeps Z = A^-1 E with its band and
+ * turns it by the ports' frames (joint_ports.c, kept_turns); forgotten
+ * (member k's workspace ws; every member's, sw_rigid_forget_kept_maps),
+ * its next kicks on the kept band solve for Z as they did before Z was
+ * kept, until the band is factored afresh. */
+void sw_port_member_forget(const swModel *m, int k, double *ws);
+void sw_rigid_forget_kept_maps(const swModel *m, swData *d);
 /* Ports of one rod member that turn one element (joint_alias.c): the
  * later one's rotation is the earlier's (m->rigid_port_alias, set up after
  * the groups' paths); its rows of group g's block A (n x n, the members'

@@ -128,12 +128,75 @@ static int band_ports_of(const swModel *m, int k) {
 /* The workspace: X (N rows of rhs_row with SW_IMPLICIT_BAND rows of zeros
  * before and after), S (p x p), p0 and g (p each), and under a member's
  * band path C^-1 (p x p) before it is added to the group's block, then the
- * band ports' blocks its kept band was factored with. */
+ * band ports' blocks its kept band was factored with, then the kept Z's
+ * turns (kept_turns). */
 size_t sw_port_member_scratch(const swModel *m, int k, int band) {
   const size_t N = sw_implicit_unknowns(m, m->rigid_block_rod[k]), p = (size_t)member_ports(m, k, band);
   const size_t kept = band ? (size_t)band_ports_of(m, k) * SW_BAND_PORT : 0;
   const size_t X = (N + 2 * SW_IMPLICIT_BAND) * (size_t)rhs_row(m, k, band);
-  return X + p * p * (band ? 2 : 1) + 2 * p + kept;
+  const size_t nq = (size_t)(m->rigid_block_port_adr[k + 1] - m->rigid_block_port_adr[k]);
+  const size_t turns = band ? 1 + 9 * nq : 0;
+  return X + p * p * (band ? 2 : 1) + 2 * p + kept + turns;
+}
+
+/* Under a member's band path, Z = A^-1 E is kept with the band.  E holds
+ * the turned ports' frames Q (w = Q w_lab), so with the frame Q_k of the
+ * kick that made Z, E's block is Q = Q_k T, T = Q_k^T Q, and Z's columns of
+ * that port are Z_k T: exact for the kept band, and no solve for them.
+ * The workspace's last part says whether Z is the kept band's (its first
+ * double, 1 once the band path has made it) and holds each port's T (9
+ * doubles from port q's place, q from the member's first): what the finish
+ * turns g by (du = du0 - Z_k (T g)). */
+static double *kept_turns(const swModel *m, int k, double *ws) {
+  return ws + sw_port_member_scratch(m, k, 1) -
+         9 * (size_t)(m->rigid_block_port_adr[k + 1] - m->rigid_block_port_adr[k]);
+}
+
+/* X's columns 1 .. p, E (zeros but for the kept ports' rows), and its
+ * column 0 and band rows of zeros before and after. */
+static void load_ports_map(const swModel *m, const swData *d, int k, int band, double *ws,
+                           size_t NX, int nc) {
+  const int na = m->node_adr[m->rigid_block_rod[k]], ea = m->elem_adr[m->rigid_block_rod[k]];
+  double *X = ws + SW_IMPLICIT_BAND * (size_t)nc;
+  memset(ws, 0, NX * sizeof(double));
+  for (int q = m->rigid_block_port_adr[k]; q < m->rigid_block_port_adr[k + 1]; q++) {
+    const size_t i = (size_t)(m->rigid_port_node[q] - na);
+    const int o = 1 + port_col(m, k, q, band);
+    if (o < 1) continue; /* a band port: its block goes into the band */
+    for (int a = 0; a < 3; a++) X[(6 * i + (size_t)a) * (size_t)nc + (size_t)(o + a)] = 1;
+    if (!m->rigid_port_rot[q] || m->rigid_port_alias[q] >= 0) continue; /* (joint_alias.c) */
+    const size_t e = (size_t)(m->rigid_port_elem[q] - ea);
+    double Q[9];
+    sw_getQ(m, d->Q, m->rigid_port_elem[q], Q);
+    for (int a = 0; a < 3; a++)
+      for (int b = 0; b < 3; b++)
+        X[(6 * e + 3 + (size_t)a) * (size_t)nc + (size_t)(o + 3 + b)] = Q[3 * a + b];
+  }
+}
+
+/* C's columns of the turned ports times T (C = E^T Z_k T), and each T into
+ * the turns (identity when Z is this kick's: kept 0). */
+void sw_port_member_forget(const swModel *m, int k, double *ws) { kept_turns(m, k, ws)[-1] = 0; }
+
+static void turn_ports(const swModel *m, const swData *d, int k, double *C, int p, double *turns,
+                       int kept) {
+  const int r = m->rigid_block_rod[k], q0 = m->rigid_block_port_adr[k];
+  for (int q = q0; q < m->rigid_block_port_adr[k + 1]; q++) {
+    double *T = turns + 9 * (size_t)(q - q0), Qk[9], Q[9];
+    const int o = port_col(m, k, q, 1);
+    for (int c = 0; c < 9; c++) T[c] = c % 4 == 0;
+    if (!kept || o < 0 || !m->rigid_port_rot[q] || m->rigid_port_alias[q] >= 0) continue;
+    sw_implicit_kept_frame(m, d, r, m->rigid_port_elem[q], Qk);
+    sw_getQ(m, d->Q, m->rigid_port_elem[q], Q);
+    for (int a = 0; a < 3; a++) /* T = Q_k^T Q */
+      for (int b = 0; b < 3; b++)
+        T[3 * a + b] = Qk[a] * Q[b] + Qk[3 + a] * Q[3 + b] + Qk[6 + a] * Q[6 + b];
+    for (int a = 0; a < p; a++) {
+      double *Ca = C + (size_t)a * (size_t)p + o + 3, row[3];
+      for (int b = 0; b < 3; b++) row[b] = Ca[0] * T[b] + Ca[1] * T[3 + b] + Ca[2] * T[6 + b];
+      memcpy(Ca, row, sizeof row);
+    }
+  }
 }
 
 /* In place: the lower triangle of the n x n SPD matrix C (row-major) turns
@@ -269,7 +332,7 @@ static int ports_hold(const swModel *m, int k, const double *P, const double *Pk
     const double *Pc = Pk + (size_t)SW_BAND_PORT * (size_t)c++;
     double big = 0, moved = 0;
     for (int e = 0; e < SW_BAND_PORT; e++)
-      big = fmax(big, fabs(Pc[e])), moved = fmax(moved, fabs(Pt[e] - Pc[e]));
+      big = sw_max(big, fabs(Pc[e])), moved = sw_max(moved, fabs(Pt[e] - Pc[e])); /* NaN: not */
     if (!(moved <= theta * big)) return 0;
   }
   return 1;
@@ -280,25 +343,14 @@ static void port_velocity(const swModel *m, const swData *d, int r, int q, const
 int sw_port_member_assemble(const swModel *m, swData *d, double h, int k, double *ws, double *A,
                             int n, int off, double *rhs, const double *P, const double *R) {
   const int band = P != NULL, r = m->rigid_block_rod[k], p = member_ports(m, k, band);
-  const int nc = rhs_row(m, k, band), na = m->node_adr[r], ea = m->elem_adr[r];
+  const int nc = rhs_row(m, k, band);
   const size_t N = sw_implicit_unknowns(m, r), NX = (N + 2 * SW_IMPLICIT_BAND) * (size_t)nc;
   double *X = ws + SW_IMPLICIT_BAND * (size_t)nc, *S = ws + NX, *p0 = S + (size_t)p * (size_t)p;
   double *inv = p0 + p; /* 1 / L(a, a) of C's factor, in g's place (the finish's) */
-  memset(ws, 0, NX * sizeof(double));
-  for (int q = m->rigid_block_port_adr[k]; q < m->rigid_block_port_adr[k + 1]; q++) { /* E */
-    const size_t i = (size_t)(m->rigid_port_node[q] - na);
-    const int o = 1 + port_col(m, k, q, band);
-    if (o < 1) continue; /* a band port: its block goes into the band below */
-    for (int a = 0; a < 3; a++) X[(6 * i + (size_t)a) * (size_t)nc + (size_t)(o + a)] = 1;
-    if (!m->rigid_port_rot[q] || m->rigid_port_alias[q] >= 0) continue; /* (joint_alias.c) */
-    const size_t e = (size_t)(m->rigid_port_elem[q] - ea);
-    double Q[9];
-    sw_getQ(m, d->Q, m->rigid_port_elem[q], Q);
-    for (int a = 0; a < 3; a++)
-      for (int b = 0; b < 3; b++) X[(6 * e + 3 + (size_t)a) * (size_t)nc + (size_t)(o + 3 + b)] = Q[3 * a + b];
-  }
   /* band ports: without them the rod's own system, kept when it holds */
   const int nbp = band ? band_ports_of(m, k) : 0;
+  double *turns = band ? kept_turns(m, k, ws) : NULL;
+  int kept = 0;
   if (nbp) { /* the band ports' blocks in the band (sw_band_group_solve), then du0 and Z */
     const int q0 = m->rigid_block_port_adr[k], q1 = m->rigid_block_port_adr[k + 1];
     double *Pk = ws + NX + 2 * (size_t)p * (size_t)p + 2 * (size_t)p; /* the kept band's */
@@ -308,8 +360,11 @@ int sw_port_member_assemble(const swModel *m, swData *d, double h, int k, double
         const int t = -1 - m->rigid_port_moff[q];
         if (t >= 0) add_port_rhs(m, d, r, q, R + 6 * (size_t)t, b);
       }
-      sw_implicit_band_solve_kept(m, d, r, X, nc);
+      kept = turns[-1] == 1; /* and its Z: du0 alone; else Z solved for with this E */
+      if (!kept) load_ports_map(m, d, k, band, ws, NX, nc);
+      sw_implicit_band_solve_kept(m, d, r, X, nc, !kept);
     } else {
+      load_ports_map(m, d, k, band, ws, NX, nc);
       double *Ab = sw_implicit_band_begin(m, d, r, h, &b);
       if (!Ab) return 0;
       for (int q = q0, c = 0; q < q1; q++) {
@@ -319,11 +374,17 @@ int sw_port_member_assemble(const swModel *m, swData *d, double h, int k, double
         add_port_block(m, d, r, q, Pt, R + 6 * (size_t)t, Ab, b);
         memcpy(Pk + (size_t)SW_BAND_PORT * (size_t)c++, Pt, SW_BAND_PORT * sizeof(double));
       }
+      turns[-1] = 0; /* Z is this kick's until the band is kept */
       if (!sw_implicit_band_solve_many(m, d, r, X, nc)) return 0;
       sw_implicit_band_keep(m, d, r, h);
+      turns[-1] = 1;
     }
-  } else if (!sw_implicit_solve_many(m, d, r, h, X, nc)) return 0; /* du0, Z */
+  } else {
+    load_ports_map(m, d, k, band, ws, NX, nc);
+    if (!sw_implicit_solve_many(m, d, r, h, X, nc)) return 0; /* du0, Z */
+  }
   ports_of(m, d, k, X, nc, p, p0, S, band); /* p0, and C = E^T Z into S */
+  if (band) turn_ports(m, d, k, S, p, turns, kept); /* C = E^T Z_k T */
   for (int a = 0; a < p; a++) /* symmetric up to round-off */
     for (int c = 0; c < a; c++) S[a * p + c] = S[c * p + a] = 0.5 * (S[a * p + c] + S[c * p + a]);
   if (!small_cholesky(S, p, inv)) return 0;
@@ -368,6 +429,18 @@ void sw_port_member_finish(const swModel *m, swData *d, double h, int k, double 
     double s = 0;
     for (int c = 0; c < p; c++) s += S[a * p + c] * (p0[c] - pu[c]);
     g[a] = s;
+  }
+  if (band) { /* Z_k's columns: g turned by each port's T (kept_turns) */
+    const double *turns = kept_turns(m, k, ws);
+    for (int q = m->rigid_block_port_adr[k]; q < m->rigid_block_port_adr[k + 1]; q++) {
+      const double *T = turns + 9 * (size_t)(q - m->rigid_block_port_adr[k]);
+      const int o = port_col(m, k, q, 1) + 3;
+      if (o < 3 || !m->rigid_port_rot[q] || m->rigid_port_alias[q] >= 0) continue;
+      double t[3];
+      for (int a = 0; a < 3; a++)
+        t[a] = T[3 * a] * g[o] + T[3 * a + 1] * g[o + 1] + T[3 * a + 2] * g[o + 2];
+      memcpy(g + o, t, sizeof t);
+    }
   }
   for (size_t i = 0; i < N; i++) { /* du = du0 - Z g, into column 0 */
     double *Xi = X + i * (size_t)nc, s = Xi[0];

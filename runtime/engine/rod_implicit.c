@@ -648,15 +648,26 @@ void sw_implicit_band_keep(const swModel *m, swData *d, int r, double h) {
   kept[KEPT_BAND] = 1;
 }
 
-void sw_implicit_band_solve_kept(const swModel *m, swData *d, int r, double *X, int ld) {
+void sw_implicit_band_solve_kept(const swModel *m, swData *d, int r, double *X, int ld, int all) {
   const int k = implicit_of(m, r);
   double *rhs, *inv;
   const double *A = rod_ws(m, d, k, &rhs, &inv);
   double *kept = d->implicit_sys + m->implicit_adr[k] + system_len(m->rod_nelem[r]);
   const size_t N = unknowns(m->rod_nelem[r]);
-  for (size_t i = 0; i < N; i++) X[i * (size_t)ld] = rhs[i];
-  band_ldlt_solve_many(A, N, X, (size_t)ld, inv);
+  if (all) { /* every column */
+    for (size_t i = 0; i < N; i++) X[i * (size_t)ld] = rhs[i];
+    band_ldlt_solve_many(A, N, X, (size_t)ld, inv);
+  } else { /* one right-hand side: a chain of one multiply-add a row */
+    band_ldlt_solve(A, N, rhs, inv);
+    for (size_t i = 0; i < N; i++) X[i * (size_t)ld] = rhs[i];
+  }
   kept[KEPT_REUSED] += 1;
+}
+
+void sw_implicit_kept_frame(const swModel *m, const swData *d, int r, int e, double *Q) {
+  const int k = implicit_of(m, r), n = m->rod_nelem[r];
+  const double *Qk = d->implicit_sys + m->implicit_adr[k] + system_len(n) + KEPT_HEAD;
+  for (int c = 0; c < 9; c++) Q[c] = Qk[(size_t)c * (size_t)n + (size_t)(e - m->elem_adr[r])];
 }
 
 void sw_implicit_apply(const swModel *m, swData *d, int r, const double *du, size_t stride,
