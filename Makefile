@@ -366,7 +366,7 @@ study-snake: deps
 # this machine's 2 cores; never part of `make test`, whose test_wing runs
 # 20 us).  WING_ARGS="original" for the original alone (~10 min on an idle
 # machine, more when the other core is busy: docs/benchmarks.md);
-# WING_ARGS="original resolved" adds the fully resolved wing (about 33 min)
+# WING_ARGS="original resolved" adds the fully resolved wing (about 26 min)
 # and its angles against the original's (build/wing/resolved.png).
 .PHONY: wing
 wing: deps

@@ -10,7 +10,7 @@
 # hard_but_barbs (x10 on bones, rachises and muscles), soft (shear and twist
 # /5 on the muscles: (c)), soft_twist (twist /5 on the muscles: (d));
 # default all of these; and resolved (models/pigeon_wing_resolved.sinew:
-# every barb and rachis on an ordinary joint, about 33 min of an idle
+# every barb and rachis on an ordinary joint, about 26 min of an idle
 # core), which only runs when named, and with the original gives
 # resolved.png and resolved.txt (scripts/wing_resolved_compare.py).  DIR (default build/wing) gets VARIANT.h5, VARIANT.log (the
 # simulator's summary, its wall time), angles.png, frames.png, fig13.png and

@@ -89,7 +89,10 @@
  * du = du0 - Z g, each band port's E^T du goes to R, and each leaf is
  * recovered from it (test_joint_member_band: 64 barbs on 128 elements and
  * a rigid bone, 91 us a kick against 12.8 ms; a block of 12 unknowns
- * against 396).
+ * against 396).  The band is kept across kicks while it holds
+ * (rod_implicit.c, sw_implicit_band_kept; ports_hold below), and Z with it,
+ * turned by the ports' frames (kept_turns): such a kick solves for du0
+ * alone.
  */
 #include <math.h>
 #include <string.h>
