@@ -288,19 +288,34 @@ double sw_stable_dt_rod_at(const swModel *m, int r, double e, double eps) {
  * s = 2 when the other end is a node that can move against it and s = 1
  * for an anchor (EA is replaced by the shear stiffness where larger, the
  * transverse row).  The joint damper adds c = s nu / m_i to the node's
- * damping rate. */
+ * damping rate.
+ *
+ * On an implicit rod under imex (rod_kept_implicitly) the rod's own terms
+ * drop out and the joint's alone are left: its kick is (M + h^2/4 K) du =
+ * h (F_rod + F_joint), and for K the rod's stiffness and k the explicit
+ * joint's the step is stable while h^2 (K + k) <= 4 (M + h^2 K / 4) in
+ * every mode, that is h^2 k <= 4 M: K cancels (one node: w^2 = s k / m_i).
+ * Counted, the rod's stiffness made a joint with an arm on a thin bone the
+ * scene's bound (the wing with the reference code's hand: 545 ns, where it
+ * runs at 1 us, docs/validation.md). */
+static int rod_kept_implicitly(const swModel *m, int r) {
+  return m->nimplicit && m->rod_implicit[r];
+}
+
 static double joint_node_dt(const swModel *m, const swJointDesc *jd, int i, int e, int s) {
   int r = sw_rod_of_elem(m, e);
   int first = m->node_adr[r], last = first + m->rod_nelem[r];
   double ksum = 0;
-  for (int q = i - 1; q <= i; q++) { /* elements q = i-1 and i of node i */
+  for (int q = i - 1; q <= i && !rod_kept_implicitly(m, r); q++) { /* elements i-1, i of node i */
     if (q < first || q >= last) continue;
     int el = m->elem_adr[r] + (q - first);
     ksum += fmax(SW_AT(m, m->shear_stiff, el, 2), SW_AT(m, m->shear_stiff, el, 0)) * m->inv_rest_len[el];
   }
   double w = sqrt((2 * ksum + s * jd->stiffness) * m->inv_mass[i]);
+  if (!(w > 0)) return INFINITY; /* nothing stiff on the node */
   double c = s * jd->damping * m->inv_mass[i];
-  if (m->rod_damping[r] == SW_DAMP_LINEAR) c += m->node_gamma[i] * m->inv_mass[i];
+  if (m->rod_damping[r] == SW_DAMP_LINEAR && !rod_kept_implicitly(m, r))
+    c += m->node_gamma[i] * m->inv_mass[i];
   return 0.95 * sw_integrator_stability_limit(m->integrator, c / (2 * w)) / w;
 }
 
@@ -310,7 +325,8 @@ static double joint_node_dt(const swModel *m, const swJointDesc *jd, int i, int 
  * inertia rho l I).  For an end element the rod bound counts two domains where
  * the rod has one, so the default k_t = B/D costs nothing there.  A limit's
  * penalty k_l acts about the hinge axis (or the cone's swing), k_t across
- * it, so the row takes the larger of the two (joint.c, "Limits"). */
+ * it, so the row takes the larger of the two (joint.c, "Limits").  On an
+ * implicit rod the joint's terms alone (joint_node_dt). */
 static double joint_elem_dt(const swModel *m, const swJointDesc *jd, int e, int s) {
   int r = sw_rod_of_elem(m, e), i = e - m->elem_adr[r], n = m->rod_nelem[r], va = m->vor_adr[r];
   double l = m->rest_len[e], rad = m->radius[e], A = SW_PI * rad * rad;
@@ -319,11 +335,13 @@ static double joint_elem_dt(const swModel *m, const swJointDesc *jd, int e, int 
   double J = SW_AT(m, m->inertia, e, 0), bend = 0;
   if (i > 0) bend += SW_AT(m, m->bend_stiff, va + i - 1, 0) / m->rest_vor_len[va + i - 1];
   if (i < n - 1) bend += SW_AT(m, m->bend_stiff, va + i, 0) / m->rest_vor_len[va + i];
-  double w2 = 16.0 / 3.0 * Gs / rho * (1 / (l * l) + 1 / (rad * rad)) +
-              (2 * bend + s * sw_joint_rot_bound_stiffness(jd)) / J;
+  const double own = rod_kept_implicitly(m, r) ? 0.0 : 1.0;
+  double w2 = own * (16.0 / 3.0 * Gs / rho * (1 / (l * l) + 1 / (rad * rad)) + 2 * bend / J) +
+              s * sw_joint_rot_bound_stiffness(jd) / J;
   double w = sqrt(w2);
+  if (!(w > 0)) return INFINITY;
   double c = s * sw_joint_rot_bound_damping(jd) / J;
-  if (m->rod_damping[r] == SW_DAMP_LINEAR) c += SW_AT(m, m->elem_gamma, e, 0) / J;
+  if (m->rod_damping[r] == SW_DAMP_LINEAR) c += own * SW_AT(m, m->elem_gamma, e, 0) / J;
   return 0.95 * sw_integrator_stability_limit(m->integrator, c / (2 * w)) / w;
 }
 

@@ -438,6 +438,112 @@ static void test_threads_same_bits(void **state) {
   sw_spec_free(s);
 }
 
+/* Two implicit bones (E = 15 GPa, r = 2.5 mm, 10 elements of 1 cm, the
+ * first clamped) tied end to start by an explicit joint of k = 8e4 N/m
+ * with an arm of 0.1 mm (an arm keeps it out of the joints' system), undamped,
+ * under imex at the step dt: the largest |E / E0 - 1| (E the bones' energy
+ * and the tie's) over `steps` steps from small random velocities on the
+ * second bone, and over the last tenth of them (late), or 1e30 when the
+ * step fails. */
+static swSpec *tied_bones(void) {
+  swSpec *s = sw_spec_new();
+  const double x0[3] = {0, 0, 0}, x1[3] = {0.1, 1e-4, 0}, dx[3] = {1, 0, 0};
+  swRodDesc a = sw_test_rod("bone_a", 10, 0.1, 2.5e-3, x0, dx, NULL);
+  swRodDesc b = sw_test_rod("bone_b", 10, 0.1, 2.5e-3, x1, dx, NULL);
+  a.youngs = b.youngs = 15e9, a.shear_modulus = b.shear_modulus = 1e10;
+  a.density = b.density = 875, a.implicit = b.implicit = 1;
+  const int ia = sw_spec_add_rod(s, &a), ib = sw_spec_add_rod(s, &b);
+  swBCDesc c = sw_test_clamp(ia, 0);
+  sw_spec_add_bc(s, &c);
+  swJointDesc j;
+  sw_joint_desc_init(&j);
+  j.name = "tie";
+  j.kind = SW_JOINT_SPHERICAL;
+  j.rod_a = ia, j.node_a = 10, j.rod_b = ib, j.node_b = 0;
+  j.arm_a[1] = 1e-4;
+  j.stiffness = 8e4;
+  j.undamped = 1; /* the bound of the undamped tie: the energy is the check */
+  sw_spec_add_joint(s, &j);
+  sw_spec_set_integrator(s, SW_IMEX);
+  return s;
+}
+
+/* The bones' kinetic and elastic energy and the tie's, 0.5 k |gap|^2 with
+ * side a's point at node a plus its arm turned with element a. */
+static double tied_energy(const swModel *m, swData *d) {
+  double e[3], Q[9], arm[3], xa[3], xb[3];
+  sw_energy(m, d, e);
+  sw_getQ(m, d->Q, m->joint_elem_a[0], Q);
+  sw_matT_vec(arm, Q, m->joint_arm_a);
+  sw_get3(m, d->x, m->joint_node_a[0], xa);
+  sw_get3(m, d->x, m->joint_node_b[0], xb);
+  double g2 = 0;
+  for (int k = 0; k < 3; k++) g2 += (xb[k] - xa[k] - arm[k]) * (xb[k] - xa[k] - arm[k]);
+  return e[0] + e[1] + 0.5 * m->joint[0].stiffness * g2;
+}
+
+static double tied_bones_energy(double dt, int steps, double *early, double *late) {
+  swSpec *s = tied_bones();
+  sw_spec_set_dt(s, dt);
+  swModel *m = sw_test_compile(s);
+  swData *d = sw_data_new(m);
+  assert_non_null(d);
+  unsigned seed = 7;
+  for (int i = m->node_adr[1]; i <= m->node_adr[1] + 10; i++)
+    for (int k = 0; k < 3; k++) {
+      seed = seed * 1103515245u + 12345u;
+      SW_AT(m, d->v, i, k) = 1e-2 * ((seed >> 8) / 16777216.0 - 0.5);
+    }
+  double worst = 0;
+  const double e0 = tied_energy(m, d);
+  const int tenth = steps / 10;
+  *early = *late = 0; /* the mean |E / E0 - 1| over the first and the last tenth */
+  for (int k = 0; k < steps && worst < 1e30; k++) {
+    if (sw_step(m, d) != SW_OK) worst = 1e30;
+    const double change = worst < 1e30 ? fabs(tied_energy(m, d) / e0 - 1) : 1e30;
+    worst = fmax(worst, change);
+    if (k < tenth) *early += change / tenth;
+    if (k >= steps - tenth) *late += change / tenth;
+  }
+  sw_data_free(d);
+  sw_model_free(m);
+  sw_spec_free(s);
+  return worst;
+}
+
+/* An explicit joint's bound on implicit rods (stability.c, joint_node_dt):
+ * the rods' own stiffness cancels from the imex kick's stability, so the
+ * joint's node row alone, w^2 = 2 k / m_i, bounds the step, 77 times the
+ * bones' own explicit bound here (which the estimate used to count).  At
+ * 0.9 of it (h w = 1.7 in the tie's mode) the energy swings, as position
+ * Verlet's near its bound does (measured at whole steps, a mode's energy
+ * moves by up to (h w / 2)^2 / (1 - (h w / 2)^2) of itself), but does not
+ * grow: its mean swing over the last 2000 of 20000 steps is about that
+ * over the first 2000; at 1.3 of it (h w = 2.5, |lambda| = 3.8 a step)
+ * the run fails within 2000 steps. */
+static void test_joint_on_implicit_bound(void **state) {
+  (void)state;
+  swSpec *s = tied_bones();
+  swModel *m = sw_test_compile(s);
+  const double est = sw_stable_dt(m), own = sw_stable_dt_elastic(m, 0);
+  const int node = m->node_adr[0] + 10;
+  const double lim = sw_integrator_stability_limit(m->integrator, 0.0); /* h w at the bound */
+  const double tie = 0.95 * lim / sqrt(2 * 8e4 * m->inv_mass[node]);
+  sw_model_free(m);
+  sw_spec_free(s);
+  double early, late, early_above, late_above;
+  const double below = tied_bones_energy(0.9 * est, 20000, &early, &late);
+  const double above = tied_bones_energy(1.3 * est, 2000, &early_above, &late_above);
+  fprintf(stderr, "# %s: estimate %.4g s (the tie's node row %.4g s; the bones' own explicit "
+          "bound %.4g s, %.0f times less); at 0.9 of it, 20000 steps: largest energy swing "
+          "%.3f, mean swing over the first 2000 steps %.3f and the last 2000 %.3f; at 1.3 of it, "
+          "2000 steps: %.2e\n", __func__, est, tie, own, est / own, below, early, late, above);
+  assert_true(fabs(est / tie - 1) < 1e-12); /* the joint's row, not the bones' */
+  assert_true(est > 10 * own);
+  assert_true(below < 0.5 && late < 1.5 * early); /* bounded: it swings, it does not grow */
+  assert_true(above > 1e3);
+}
+
 int main(void) {
   const struct CMUnitTest tests[] = {
     cmocka_unit_test(test_tangent_helix),
@@ -446,6 +552,7 @@ int main(void) {
     cmocka_unit_test(test_timoshenko_implicit),
     cmocka_unit_test(test_second_order),
     cmocka_unit_test(test_kept_second_order),
+    cmocka_unit_test(test_joint_on_implicit_bound),
     cmocka_unit_test(test_kept_energy),
     cmocka_unit_test(test_threads_same_bits),
   };
