@@ -177,10 +177,10 @@ static void load_ports_map(const swModel *m, const swData *d, int k, int band, d
   }
 }
 
-/* C's columns of the turned ports times T (C = E^T Z_k T), and each T into
- * the turns (identity when Z is this kick's: kept 0). */
 void sw_port_member_forget(const swModel *m, int k, double *ws) { kept_turns(m, k, ws)[-1] = 0; }
 
+/* C's columns of the turned ports times T (C = E^T Z_k T), and each T into
+ * the turns (identity when Z is this kick's: kept 0). */
 static void turn_ports(const swModel *m, const swData *d, int k, double *C, int p, double *turns,
                        int kept) {
   const int r = m->rigid_block_rod[k], q0 = m->rigid_block_port_adr[k];
