@@ -367,7 +367,9 @@ study-snake: deps
 # 20 us).  WING_ARGS="original" for the original alone (~10 min on an idle
 # machine, more when the other core is busy: docs/benchmarks.md);
 # WING_ARGS="original resolved" adds the fully resolved wing (about 26 min)
-# and its angles against the original's (build/wing/resolved.png).
+# and its angles against the original's (build/wing/resolved.png);
+# "resolved resolved_soft resolved_soft_twist" Fig. 13 (c) and (d) on the
+# resolved wing (build/wing/resolved_fig13.md; about 45 min, two at a time).
 .PHONY: wing
 wing: deps
 	@$(MAKE) --no-print-directory all

@@ -12,7 +12,10 @@
 # default all of these; and resolved (models/pigeon_wing_resolved.sinew:
 # every barb and rachis on an ordinary joint, about 26 min of an idle
 # core), which only runs when named, and with the original gives
-# resolved.png and resolved.txt (scripts/wing_resolved_compare.py).  DIR (default build/wing) gets VARIANT.h5, VARIANT.log (the
+# resolved.png and resolved.txt (scripts/wing_resolved_compare.py);
+# resolved_soft and resolved_soft_twist, (c) and (d) on the resolved wing,
+# compared with resolved in resolved_fig13.md and resolved_fig13.png.
+# DIR (default build/wing) gets VARIANT.h5, VARIANT.log (the
 # simulator's summary, its wall time), angles.png, frames.png, fig13.png and
 # fig13.md.  A run whose file is complete is not made again.  The model's
 # step, 1 us, is above the hardened variants' stable estimates (375 ns for
@@ -39,7 +42,7 @@ mkdir -p "$OUT"
 export SINEW_PATH="$ROOT/models"
 "$ROOT/bin/sinewc" "$ROOT/models/pigeon_wing.sinew" -o "$OUT/wing"
 case " $VARIANTS " in
-  *" resolved "*) "$ROOT/bin/sinewc" "$ROOT/models/pigeon_wing_resolved.sinew" -o "$OUT/resolved" ;;
+  *" resolved"*) "$ROOT/bin/sinewc" "$ROOT/models/pigeon_wing_resolved.sinew" -o "$OUT/resolved" ;;
 esac
 
 settings() {
@@ -47,8 +50,8 @@ settings() {
     original) echo "" ;;
     hard) echo "--set wing_shear=10 --set wing_twist=10 --set barb_shear=10 --set barb_twist=10 --set muscle_shear=10 --set muscle_twist=10" ;;
     hard_but_barbs) echo "--set wing_shear=10 --set wing_twist=10 --set muscle_shear=10 --set muscle_twist=10" ;;
-    soft) echo "--set muscle_shear=0.2 --set muscle_twist=0.2" ;;
-    soft_twist) echo "--set muscle_twist=0.2" ;;
+    soft | resolved_soft) echo "--set muscle_shear=0.2 --set muscle_twist=0.2" ;;
+    soft_twist | resolved_soft_twist) echo "--set muscle_twist=0.2" ;;
     resolved) echo "" ;; # its own model, at its own step (1 us)
     *) echo "wing_study.sh: unknown variant $1" >&2; exit 2 ;;
   esac
@@ -73,7 +76,7 @@ run() { # run VARIANT
   set -- "$@" $(step "$@")
   [ -n "$DURATION" ] && set -- "$@" --duration "$DURATION" --every 0.5ms
   sim=$OUT/wing
-  [ "$v" = resolved ] && sim=$OUT/resolved
+  case $v in resolved*) sim=$OUT/resolved ;; esac
   echo "wing_study.sh: $v: $*"
   "$sim" --quiet "$@" --out "$OUT/$v.h5" > "$OUT/$v.log" 2>&1 || echo "wing_study.sh: $v stopped (see $OUT/$v.log)"
 }
@@ -98,4 +101,12 @@ if [ -f "$OUT/original.h5" ]; then
     /usr/bin/python3 "$ROOT/scripts/wing_resolved_compare.py" "$OUT/original.h5" "$OUT/resolved.h5" \
       --plot "$OUT/resolved.png" > "$OUT/resolved.txt"
   fi
+fi
+if [ -f "$OUT/resolved.h5" ]; then
+  set --
+  for v in soft soft_twist; do
+    [ -f "$OUT/resolved_$v.h5" ] && set -- "$@" "$v=$OUT/resolved_$v.h5"
+  done
+  [ $# -gt 0 ] && /usr/bin/python3 "$ROOT/scripts/wing_fig13.py" "$OUT/resolved.h5" "$@" \
+    --plot "$OUT/resolved_fig13.png" --table "$OUT/resolved_fig13.md"
 fi
