@@ -6,7 +6,7 @@ softened variants, each variant's largest difference from the original as a
 percentage of the original angle's range over the run, and a plot.
 
   scripts/wing_fig13.py ORIGINAL.h5 LABEL=VARIANT.h5 ... [--plot FILE]
-                        [--table FILE] [--until T]
+                        [--table FILE] [--until T] [--title TEXT]
 
 The reference states (Suppl. Note 6.7): twist and shear x10 on muscles,
 tendons, bones and feathers changes the angles by up to ~3% (x25, x50, x100
@@ -33,6 +33,8 @@ def main():
     ap.add_argument("variants", nargs="*", help="LABEL=FILE.h5")
     ap.add_argument("--plot")
     ap.add_argument("--table")
+    ap.add_argument("--title", default="The kinematic wing hardened and softened "
+                    "(Suppl. Fig. 13; models/pigeon_wing.sinew)")
     ap.add_argument("--until", type=float, default=0.42,
                     help="also compare up to this time (s): the antero-posterior angle, "
                          "atan(-x / |y|), is ill-conditioned where the humerus' end crosses y = 0")
@@ -84,7 +86,7 @@ def main():
             ax.axvline(0.125, color="0.7", lw=0.8)
         axs[0].legend(fontsize=7, loc="best")
         axs[-1].set_xlabel("t (s); the initiation phase ends at 0.125 s")
-        fig.suptitle("The kinematic wing hardened and softened (Suppl. Fig. 13; models/pigeon_wing.sinew)",
+        fig.suptitle(o.title,
                      fontsize=9)
         fig.tight_layout()
         fig.savefig(o.plot, dpi=120)

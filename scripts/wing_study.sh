@@ -108,5 +108,6 @@ if [ -f "$OUT/resolved.h5" ]; then
     [ -f "$OUT/resolved_$v.h5" ] && set -- "$@" "$v=$OUT/resolved_$v.h5"
   done
   [ $# -gt 0 ] && /usr/bin/python3 "$ROOT/scripts/wing_fig13.py" "$OUT/resolved.h5" "$@" \
-    --plot "$OUT/resolved_fig13.png" --table "$OUT/resolved_fig13.md"
+    --plot "$OUT/resolved_fig13.png" --table "$OUT/resolved_fig13.md" \
+    --title "The fully resolved wing softened (Suppl. Fig. 13; models/pigeon_wing_resolved.sinew)"
 fi
