@@ -705,12 +705,22 @@ static void group_rings(const swModel *m, swData *d, int g) {
   }
 }
 
+/* Group g's right-hand side and workspace in its part A of d->rigid_sys
+ * (group_scratch): after its n x n block, or on the band path after its
+ * ports' blocks. */
+static double *group_rhs(const swModel *m, int g, double *A, double **ws) {
+  const size_t n = (size_t)sw_rigid_group_unknowns(m, g), np = (size_t)band_ports(m, g);
+  double *rhs = np ? A + np * SW_BAND_PORT : A + n * n;
+  *ws = rhs + (np ? 6 * np : 2 * n);
+  return rhs;
+}
+
 void sw_rigid_forget_kept_maps(const swModel *m, swData *d) {
   double *A = d->rigid_sys;
   for (int g = 0; g < m->nrigid_group; A += group_scratch(m, g), g++) {
-    if (m->rigid_group_band[g] != 2) continue; /* its workspace as sw_rigid_joints_kick's */
-    const size_t n = (size_t)sw_rigid_group_unknowns(m, g);
-    const GroupWs gw = group_ports(m, g, A, A + n * n, A + n * n + 2 * n);
+    if (m->rigid_group_band[g] != 2) continue;
+    double *ws, *rhs = group_rhs(m, g, A, &ws);
+    const GroupWs gw = group_ports(m, g, A, rhs, ws);
     const int first = m->rigid_group_adr[g], nd = dense_end(m, g) - first;
     for (int s = 0, wrod = 0; s < nd; s++) /* group_assemble's rods */
       if (m->rigid_block_rod[first + s] >= 0) {
@@ -736,9 +746,7 @@ int sw_rigid_joints_kick(const swModel *m, swData *d, double h, double *load) {
     double *Ab[SW_GROUP_LANES], *rhs[SW_GROUP_LANES], *ws[SW_GROUP_LANES];
     int okb[SW_GROUP_LANES], all = 1;
     for (int u = 0; u < nl; u++) {
-      const size_t n = (size_t)sw_rigid_group_unknowns(m, g + u), np = (size_t)band_ports(m, g + u);
-      Ab[u] = A, rhs[u] = A + n * n, ws[u] = rhs[u] + 2 * n;
-      if (np) rhs[u] = A + np * SW_BAND_PORT, ws[u] = rhs[u] + 6 * np; /* the band path */
+      Ab[u] = A, rhs[u] = group_rhs(m, g + u, A, &ws[u]);
       okb[u] = group_assemble(m, d, h, g + u, Ab[u], rhs[u], ws[u], load);
       all &= okb[u];
       A += group_scratch(m, g + u);

@@ -335,14 +335,14 @@ static double joint_elem_dt(const swModel *m, const swJointDesc *jd, int e, int 
   double J = SW_AT(m, m->inertia, e, 0), bend = 0;
   if (i > 0) bend += SW_AT(m, m->bend_stiff, va + i - 1, 0) / m->rest_vor_len[va + i - 1];
   if (i < n - 1) bend += SW_AT(m, m->bend_stiff, va + i, 0) / m->rest_vor_len[va + i];
-  const double own = rod_kept_implicitly(m, r) ? 0.0 : 1.0;
+  const int own = !rod_kept_implicitly(m, r); /* the rod's own terms */
   double w2 = own ? 16.0 / 3.0 * Gs / rho * (1 / (l * l) + 1 / (rad * rad)) +
                         (2 * bend + s * sw_joint_rot_bound_stiffness(jd)) / J
                   : s * sw_joint_rot_bound_stiffness(jd) / J;
   double w = sqrt(w2);
   if (!(w > 0)) return INFINITY;
   double c = s * sw_joint_rot_bound_damping(jd) / J;
-  if (m->rod_damping[r] == SW_DAMP_LINEAR) c += own * SW_AT(m, m->elem_gamma, e, 0) / J;
+  if (m->rod_damping[r] == SW_DAMP_LINEAR && own) c += SW_AT(m, m->elem_gamma, e, 0) / J;
   return 0.95 * sw_integrator_stability_limit(m->integrator, c / (2 * w)) / w;
 }
 
