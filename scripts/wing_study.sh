@@ -8,21 +8,26 @@
 #
 # VARIANT: original, hard (twist and shear x10 on every rod: Fig. 13 (b)),
 # hard_but_barbs (x10 on bones, rachises and muscles), soft (shear and twist
-# /5 on the muscles: (c)), soft_twist (twist /5 on the muscles: (d));
-# default all of these; and resolved (models/pigeon_wing_resolved.sinew:
+# /5 on the muscles: (c)), soft_twist (twist /5 on the muscles: (d)),
+# control (muscle twist x0.99: what a change of 1% moves);
+# default all of these but control; and resolved (models/pigeon_wing_resolved.sinew:
 # every barb and rachis on an ordinary joint, about 26 min of an idle
 # core), which only runs when named, and with the original gives
 # resolved.png and resolved.txt (scripts/wing_resolved_compare.py);
-# resolved_soft and resolved_soft_twist, (c) and (d) on the resolved wing,
-# compared with resolved in resolved_fig13.md and resolved_fig13.png.
+# resolved_hard, resolved_soft and resolved_soft_twist, (b), (c) and (d)
+# on the resolved wing, compared with resolved in resolved_fig13.md and
+# resolved_fig13.png.
 # DIR (default build/wing) gets VARIANT.h5, VARIANT.log (the
 # simulator's summary, its wall time), angles.png, frames.png, fig13.png and
 # fig13.md.  A run whose file is complete is not made again.  The model's
-# step, 1 us, is above the hardened variants' stable estimates (375 ns for
-# (b)): those run at half of theirs, as the simulator chooses when a model
-# sets no step.  About 6.5 min of an idle core per run at 1 us (10-12 with
-# both cores busy, as two runs at a time keep them), 45 min for the
-# hardened ones at 0.19 us (which stop early: docs/validation.md).
+# step, 1 us, is above the hardened variants' stable estimates (418 ns for
+# (b)): the kinematic ones run at half of theirs, as the simulator chooses
+# when a model sets no step, and stop early (docs/validation.md); the
+# resolved one at 0.9 of its own (about 80 min).  About 6 min of an idle
+# core per kinematic run at 1 us (7 with the other logical CPU busy), 26
+# for a resolved one (30).  --serial runs the variants one after another;
+# two such studies started side by side (distinct variants, one DIR) keep
+# both logical CPUs busy with no run waiting on its pair.
 # --duration T (e.g. 2ms) runs each variant for T only, to try the script;
 # such runs are never taken for complete.
 set -eu
