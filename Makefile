@@ -369,7 +369,8 @@ study-snake: deps
 # WING_ARGS="original resolved" adds the fully resolved wing (about 26 min)
 # and its angles against the original's (build/wing/resolved.png);
 # "resolved resolved_soft resolved_soft_twist" Fig. 13 (c) and (d) on the
-# resolved wing (build/wing/resolved_fig13.md; about 45 min, two at a time).
+# resolved wing (build/wing/resolved_fig13.md; about 45 min, two at a time),
+# resolved_hard its (b) (about 80 min); control, muscle twist x0.99.
 .PHONY: wing
 wing: deps
 	@$(MAKE) --no-print-directory all
