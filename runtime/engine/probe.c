@@ -119,7 +119,7 @@ void sw_probe_measure(const swModel *m, swData *d, int p, double out[3]) {
  * x_{n+1/2}, with the step's new velocities v_{n+1}; what the whole step
  * would show for a node of an elastic rod is the half drift's
  *   x_{n+1} = x_{n+1/2} + (h/2) v_{n+1}
- * (drift_nodes, integrate.c: the same operation, rounded as it rounds;
+ * (drift_nodes, drift.h: the same operation, rounded as it rounds;
  * nothing else of the half drift or of the step's end moves an elastic
  * node or its velocity).  So the centre of mass, its velocity and a node
  * of elastic rods are read there without making the whole step: the run

@@ -411,7 +411,7 @@ typedef struct {
    * scratch_phi (8 planes) the drift's rotation vectors (the first 3, which
    * muscle.c borrows while the loads are evaluated and the one-thread sweep
    * uses for its bent-domain flags) and, in the other 5, the values its
-   * loops pass on within a block (integrate.c, drift_frames_block) */
+   * loops pass on within a block (engine/drift.h, drift_frames_block) */
   double *scratch_flag, *scratch_phi;
   /* one partial sum per chunk (the kick's work), added in chunk order, and
    * the work of each boundary condition in a kick (nbc) */
