@@ -86,8 +86,7 @@ def main():
             ax.axvline(0.125, color="0.7", lw=0.8)
         axs[0].legend(fontsize=7, loc="best")
         axs[-1].set_xlabel("t (s); the initiation phase ends at 0.125 s")
-        fig.suptitle(o.title,
-                     fontsize=9)
+        fig.suptitle(o.title, fontsize=9)
         fig.tight_layout()
         fig.savefig(o.plot, dpi=120)
     return 0
