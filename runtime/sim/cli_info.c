@@ -433,8 +433,8 @@ static void print_law(const swModel *m) {
          m->nvariational < nelastic ? "; Gazzola et al. 2018 on the others" : "");
 }
 
-/* The part whose bound is the stable estimate: a rod, a joint, or the
- * environments. */
+/* The part whose bound is the stable estimate: a rod, a joint, a kinematic
+ * joint's tie, or the environments. */
 static void print_step_limit(const swModel *m, double stable) {
   char a[64];
   if (!isfinite(stable)) return;
@@ -446,6 +446,12 @@ static void print_step_limit(const swModel *m, double stable) {
   for (int j = 0; j < m->njoint; j++)
     if (m->joint_wave_dt[j] == stable) {
       printf("  set by joint %s (%s)\n", m->joint_name[j], sw_cli_format_time(a, sizeof a, stable));
+      return;
+    }
+  for (int j = 0; j < m->nkinematic; j++)
+    if (m->kinematic_dt[j] == stable) {
+      printf("  set by kinematic joint %s, its tie's spring on the follower's first node (%s)\n",
+             m->kinematic_name[j], sw_cli_format_time(a, sizeof a, stable));
       return;
     }
   printf("  set by the environments (%s)\n", sw_cli_format_time(a, sizeof a, stable));

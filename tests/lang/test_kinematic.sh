@@ -37,6 +37,11 @@ grep -q 'kin.reaction_rod = 0; kin.reaction_node = 4;' "$tmp/wing.c" && grep -q 
 ok $? "the barb's reaction goes to the ulna's node 4, weighted 0.7"
 "$SINEWC" "$tmp/wing.sinew" -o "$tmp/wing" >/dev/null 2>&1; ok $? "it builds"
 (cd "$tmp" && ./wing --quiet) >/dev/null 2>&1; ok $? "it runs"
+# a tie stiff enough to bound the step: --info names its kinematic joint
+sed 's|stiffness = 1e3 N/m;|stiffness = 1e8 N/m;|' "$tmp/wing.sinew" > "$tmp/stiff.sinew"
+"$SINEWC" "$tmp/stiff.sinew" -o "$tmp/stiff" >/dev/null 2>&1 && "$tmp/stiff" --info > "$tmp/info" 2>&1
+grep -A1 '^dt:' "$tmp/info" | grep -q "  set by kinematic joint barb_root, its tie's spring"
+ok $? "--info: the step's estimate is set by the stiff tie of kinematic joint barb_root"
 /usr/bin/python3 - "$tmp/wing.h5" <<'PY'
 import sys, h5py, numpy as np
 f = h5py.File(sys.argv[1], "r")
