@@ -394,6 +394,9 @@ double sw_rigid_joint_dt(const swModel *m, int b);
  * whose members keep their loads); scratch is the doubles of its
  * workspace, swData.rigid_sys. */
 int sw_rigid_joints_setup(swModel *m);
+/* The same with rod leaves (joint_groups.c, find_leaves) or, rod_leaves 0,
+ * every implicit rod a dense member: what the tests compare them with. */
+int sw_rigid_joints_setup_leaves(swModel *m, int rod_leaves);
 void sw_rigid_joints_free(swModel *m);
 size_t sw_rigid_joints_scratch(const swModel *m);
 int sw_rigid_group_unknowns(const swModel *m, int g); /* group g's unknowns */

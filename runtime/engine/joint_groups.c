@@ -12,7 +12,8 @@
  * over the implicit joints (and over each filament's two ends, which its
  * Hill damping couples) gives the groups, the connected components, each
  * one dense block of the system with its envelope (rigid_joint.c).  Leaves,
- * attachments whose joints all reach one port, go last in their group and
+ * attachments (or implicit rods on one port of their own) whose joints all
+ * reach one port, go last in their group and
  * are eliminated before it is factored; a filament whose ends are both
  * such leaves (or clamped) has its damping solved in the system, its ends
  * eliminated as one unit, and so does one whose ends are attachments that
@@ -379,11 +380,21 @@ static void number_ports(swModel *m, int np, const int *pmember, const int *pnod
     if (m->rigid_block_rod[k] >= 0) m->rod_block[m->rigid_block_rod[k]] = k;
 }
 
-/* Each attachment member's leaf port (joint_ports.c): the one port all its
- * implicit joints reach, or -1 (a joint to anything else, or to two ports). */
+/* Each member's leaf port (joint_ports.c): the one port all its implicit
+ * joints reach, or -1 (a joint to anything else, or to two ports).  An
+ * attachment can be a leaf, and so can an implicit rod whose joints all
+ * sit on one port of its own (an implicit barb on its rachis: rod leaves),
+ * its leaf port a dense member's: of two rods that are each other's only
+ * neighbour, the one met first stays dense.  pmember: each port's member
+ * as setup met them; rod_leaves 0 keeps every rod dense (the tests' other
+ * path, sw_rigid_joints_setup_leaves). */
 static void find_leaves(const swModel *m, int nb, const int *member, const int *node, const int *rod,
-                        int *leaf) {
-  for (int k = 0; k < nb; k++) leaf[k] = node[k] >= 0 && rod[k] < 0 ? -2 : -1; /* -2: none yet */
+                        const int *pmember, int rod_leaves, int *leaf) {
+  int *own = rod_leaves ? malloc((size_t)(nb > 0 ? nb : 1) * sizeof(int)) : NULL; /* a rod's one port */
+  for (int k = 0; k < nb; k++) {
+    leaf[k] = (node[k] >= 0 && rod[k] < 0) || (rod[k] >= 0 && own) ? -2 : -1; /* -2: none yet */
+    if (own) own[k] = -2;
+  }
   for (int j = 0; j < m->njoint; j++) {
     if (!m->joint_implicit[j]) continue;
     for (int side = 0; side < 2; side++) {
@@ -392,10 +403,20 @@ static void find_leaves(const swModel *m, int nb, const int *member, const int *
       const int q = m->joint_port[other];
       if (q < 0 || (leaf[k] != -2 && leaf[k] != q)) leaf[k] = -1;
       else leaf[k] = q;
+      if (rod[k] < 0 || leaf[k] < 0) continue;
+      const int mine = m->joint_port[2 * j + side]; /* a rod leaf: one port of its own */
+      if (own[k] != -2 && own[k] != mine) leaf[k] = -1;
+      else own[k] = mine;
     }
   }
   for (int k = 0; k < nb; k++)
     if (leaf[k] == -2) leaf[k] = -1;
+  for (int k = 0; k < nb; k++) /* a rod leaf hangs on a dense member's port, and is no filament */
+    for (int f = 0; rod[k] >= 0 && leaf[k] >= 0 && f < m->nfil; f++)
+      if (m->fil_rod[f] == rod[k]) leaf[k] = -1;
+  for (int k = 0; k < nb; k++)
+    if (rod[k] >= 0 && leaf[k] >= 0 && leaf[pmember[leaf[k]]] >= 0) leaf[k] = -1;
+  free(own);
 }
 
 /* The rod member that port q belongs to: the last block whose first port
@@ -554,7 +575,7 @@ static int member_bands(swModel *m) {
     if (m->rigid_group_band[g] || dense_fil) continue;
     for (int k = first; k < last; k++) {
       const int r = m->rigid_block_rod[k];
-      if (r < 0) continue;
+      if (r < 0 || m->rigid_block_leaf[k] >= 0) continue; /* a rod leaf keeps its one port */
       int kept = 0, o = 0;
       for (int q = m->rigid_block_port_adr[k]; q < m->rigid_block_port_adr[k + 1]; q++) {
         const int i = m->rigid_port_node[q] - m->node_adr[r], e = m->rigid_port_elem[q] - m->elem_adr[r];
@@ -572,7 +593,7 @@ static int member_bands(swModel *m) {
     for (int k = first, o = 0; k < last; k++)
       if (m->rigid_block_leaf[k] < 0) m->rigid_block_moff[k] = o, o += m->rigid_block_mdof[k];
     for (int k = first; k < last; k++) { /* a kept port's place in the group's block */
-      if (m->rigid_block_rod[k] < 0) continue;
+      if (m->rigid_block_rod[k] < 0 || m->rigid_block_leaf[k] >= 0) continue;
       for (int q = m->rigid_block_port_adr[k]; q < m->rigid_block_port_adr[k + 1]; q++)
         if (m->rigid_port_moff[q] >= 0) m->rigid_port_moff[q] += m->rigid_block_moff[k];
     }
@@ -590,7 +611,9 @@ static int finish_groups(swModel *m) {
   return member_bands(m) && sw_port_alias_setup(m) && sw_group_lanes_setup(m);
 }
 
-int sw_rigid_joints_setup(swModel *m) {
+int sw_rigid_joints_setup(swModel *m) { return sw_rigid_joints_setup_leaves(m, 1); }
+
+int sw_rigid_joints_setup_leaves(swModel *m, int rod_leaves) {
   const size_t J = (size_t)(m->njoint ? m->njoint : 1), B = (size_t)(m->nrigid ? m->nrigid : 1);
   const size_t R = (size_t)(m->nrod ? m->nrod : 1);
   const size_t NB = B + 2 * J; /* members: at most every body and every joint's two sides */
@@ -703,7 +726,7 @@ int sw_rigid_joints_setup(swModel *m) {
   for (int q = 0; q < np; q++) rdof[pmember[q]] += prot[q] ? 6 : 3;
   m->nrigid_block = nb;
   m->nrigid_port = np;
-  find_leaves(m, nb, member, node, rod, leaf);
+  find_leaves(m, nb, member, node, rod, pmember, rod_leaves, leaf);
   dense_ends(m, at_node, leaf, ready, fend);
   int *partner = at_node, *lfil = port_at; /* the node maps are read no more (S >= nb) */
   pair_leaves(m, nb, member, leaf, fil_of_rod, ready, partner, lfil);

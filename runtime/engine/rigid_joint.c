@@ -148,6 +148,17 @@ static size_t leaf_doubles(const swModel *m, int g) {
   return 0;
 }
 
+/* Doubles of group g's dense rod members' workspaces (joint_ports.c),
+ * which come first in its rods' part; its rod leaves' follow. */
+static size_t dense_rods_scratch(const swModel *m, int g) {
+  const int mb = m->rigid_group_band[g] == 2;
+  size_t len = 0;
+  if (m->rigid_group_band[g] == 1) return 0; /* its rod is not condensed */
+  for (int k = m->rigid_group_adr[g]; k < m->rigid_group_adr[g + 1]; k++)
+    if (m->rigid_block_leaf[k] < 0 && m->rigid_block_rod[k] >= 0) len += sw_port_member_scratch(m, k, mb);
+  return len;
+}
+
 /* Doubles of group g's workspace: its matrix, right-hand side and the
  * factorisation's column (joint_envelope.c), then each leaf's and each rod
  * member's (joint_ports.c); in the band path, the ports' blocks and
@@ -155,14 +166,13 @@ static size_t leaf_doubles(const swModel *m, int g) {
  * band path, the band ports' blocks and right-hand sides come first. */
 static size_t group_scratch(const swModel *m, int g) {
   const size_t leaves = leaf_doubles(m, g), ports = (size_t)(SW_BAND_PORT + 6);
-  if (m->rigid_group_band[g] == 1) return (size_t)band_ports(m, g) * ports + leaves;
-  const size_t n = (size_t)sw_rigid_group_unknowns(m, g);
-  const int mb = m->rigid_group_band[g] == 2;
-  size_t len = n * n + 2 * n + (size_t)member_band_ports(m, g) * ports + leaves;
+  size_t rod_leaves = 0; /* each rod leaf's, after the dense rods' */
   for (int k = m->rigid_group_adr[g]; k < m->rigid_group_adr[g + 1]; k++)
-    if (m->rigid_block_leaf[k] < 0 && m->rigid_block_rod[k] >= 0)
-      len += sw_port_member_scratch(m, k, mb);
-  return len;
+    if (m->rigid_block_leaf[k] >= 0 && m->rigid_block_rod[k] >= 0) rod_leaves += sw_port_member_scratch(m, k, 0);
+  if (m->rigid_group_band[g] == 1) return (size_t)band_ports(m, g) * ports + leaves + rod_leaves;
+  const size_t n = (size_t)sw_rigid_group_unknowns(m, g);
+  size_t len = n * n + 2 * n + (size_t)member_band_ports(m, g) * ports + leaves + rod_leaves;
+  return len + dense_rods_scratch(m, g);
 }
 
 /* Doubles of swData's workspace: each group's, one after another. */
@@ -280,10 +290,11 @@ typedef struct {
 } Unit;
 
 /* Whether leaf k is a lone leaf without a dashpot, eliminated with its
- * port's own block of its joints in closed form (leaf_plain.c). */
+ * port's own block of its joints in closed form (leaf_plain.c); a rod
+ * leaf's block is its rod's condensed stiffness, not a mass. */
 static int plain_leaf(const swModel *m, int k) {
   const int *w = m->rigid_leaf_unit + SW_LEAF_UNIT * (size_t)k;
-  return w[5] == 1 && m->rigid_block_fil[w[0]] < 0;
+  return w[5] == 1 && m->rigid_block_fil[w[0]] < 0 && m->rigid_block_rod[w[0]] < 0;
 }
 
 /* band: the group's rigid_group_band, first its first member.  Inlined: a
@@ -466,23 +477,31 @@ static int group_assemble(const swModel *m, swData *d, double h, int g, double *
     const int c0 = off[m->rigid_block_env[first + s] - first], c1 = off[s] + dof[s];
     for (int i = off[s]; i < c1; i++) memset(A + (size_t)i * n + c0, 0, (size_t)(c1 - c0) * sizeof(double));
   }
+  size_t wleaf = dense_rods_scratch(m, g); /* the rod leaves' workspaces follow the dense rods' */
   for (int s = 0, wrod = 0; s < nb; s++) { /* mass, and the right-hand side h F */
-    const int k = first + s;
-    if (m->rigid_block_rod[k] >= 0 && bu) continue; /* its band: sw_band_group_solve */
-    if (m->rigid_block_rod[k] >= 0 && band == 2) { /* condensed below: its rows' zeros */
+    const int k = first + s, leaf = m->rigid_block_leaf[k] >= 0, rod = m->rigid_block_rod[k] >= 0;
+    if (rod && !leaf && bu) continue; /* its band: sw_band_group_solve */
+    if (rod && !leaf && band == 2) { /* condensed below: its rows' zeros */
       memset(rhs + off[s], 0, (size_t)dof[s] * sizeof(double));
       continue;
     }
-    if (m->rigid_block_rod[k] >= 0) { /* S and S p0 (joint_ports.c) */
+    if (rod && !leaf) { /* S and S p0 (joint_ports.c) */
       double *w = rod_ws + wrod;
       wrod += (int)sw_port_member_scratch(m, k, 0);
       if (!sw_port_member_assemble(m, d, h, k, w, A, n, off[s], rhs, NULL, NULL)) return 0;
       continue;
     }
+    const Unit u = leaf ? leaf_unit(m, leaf_ws, k, band, first) : (Unit){0};
+    if (rod) { /* a rod leaf: S and S p0 its block and right-hand side in its unit */
+      memset(u.ws, 0, sw_unit_size(u.du, u.dQ) * sizeof(double));
+      double *w = rod_ws + wleaf;
+      wleaf += sw_port_member_scratch(m, k, 0);
+      if (!sw_port_member_assemble(m, d, h, k, w, u.ws, u.du, u.ro, sw_unit_b(u.ws, u.du, u.dQ), NULL, NULL))
+        return 0;
+      continue;
+    }
     double M, Il[9], F[6];
     member_inertia(m, d, k, load, &M, Il, F);
-    const int leaf = m->rigid_block_leaf[k] >= 0;
-    const Unit u = leaf ? leaf_unit(m, leaf_ws, k, band, first) : (Unit){0};
     double *B = leaf ? u.ws : A; /* a leaf's unit: A_uu, C, X, b */
     const size_t ld = leaf ? (size_t)u.du : (size_t)n, o = leaf ? (size_t)u.ro : (size_t)off[s];
     double *b = leaf ? sw_unit_b(B, u.du, u.dQ) + o : rhs + o;
@@ -626,10 +645,12 @@ static void group_finish(const swModel *m, swData *d, double h, int g, double *A
   const GroupWs gw = group_ports(m, g, A, rhs, ws);
   double *leaf_ws = gw.leaf_ws, *rod_ws = gw.rod_ws;
   if (!bu) sw_port_alias_copy(m, g, off - first, rhs); /* an alias' rotation: its target's */
+  size_t wleaf = dense_rods_scratch(m, g);
   for (int s = 0, wrod = 0; s < nb; s++) { /* the loads that give du */
     const int k = first + s, b = m->rigid_block_body[k];
-    if (m->rigid_block_rod[k] >= 0 && bu) continue; /* set by sw_band_group_solve */
-    if (m->rigid_block_rod[k] >= 0) { /* (the band ports' velocity changes into R) */
+    const int rod_leaf = m->rigid_block_rod[k] >= 0 && m->rigid_block_leaf[k] >= 0;
+    if (m->rigid_block_rod[k] >= 0 && !rod_leaf && bu) continue; /* set by sw_band_group_solve */
+    if (m->rigid_block_rod[k] >= 0 && !rod_leaf) { /* (the band ports' velocity changes into R) */
       sw_port_member_finish(m, d, h, k, rod_ws + wrod, rhs + off[s], band == 2 ? gw.R : NULL);
       wrod += (int)sw_port_member_scratch(m, k, band == 2);
       continue;
@@ -642,6 +663,11 @@ static void group_finish(const swModel *m, swData *d, double h, int g, double *A
       if (u.owner == k && u.plain) sw_leaf_recover_plain(u.ws, u.du, u.dQ, u.qoff[0], pu);
       else if (u.owner == k) sw_leaf_recover(u.ws, u.du, u.dQ, u.np, u.qoff, u.qdof, pu);
       du = sw_unit_b(u.ws, u.du, u.dQ) + u.ro;
+    }
+    if (rod_leaf) { /* its port's velocity change gives its every unknown's (joint_ports.c) */
+      sw_port_member_finish(m, d, h, k, rod_ws + wleaf, du, NULL);
+      wleaf += sw_port_member_scratch(m, k, 0);
+      continue;
     }
     if (u.plain) { /* its inertia as the assembly found it */
       const double *Mu = sw_unit_M(u.ws, u.du, u.dQ);

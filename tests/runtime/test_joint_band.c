@@ -41,8 +41,11 @@ static const char *const held_name[3] = {"free", "clamped", "hinged to space"};
  * implicit, held at its start as `held` says; nleaf barbs (20 mm, r =
  * 0.4 mm, E = 10 MPa, 4 elements), barb l at node at[l] of the rachis,
  * pointing alternately +y and -y and tilted up, joined base to that node by
- * a fixed joint, or spherical for barb `spherical`. */
-static swModel *feather(int nel, int nleaf, const int *at, int spherical, int held, swSpec **out) {
+ * a fixed joint, or spherical for barb `spherical`.  With dt = 0 the step
+ * is half the stable estimate and the barbs are explicit; with dt > 0 the
+ * barbs are implicit too (rod leaves: joint_groups.c) and the step dt. */
+static swModel *feather_at(int nel, int nleaf, const int *at, int spherical, int held, double dt,
+                           swSpec **out) {
   swSpec *s = sw_spec_new();
   const double L = 0.2, x0[3] = {0, 0, 0}, dx[3] = {1, 0, 0};
   swRodDesc r = sw_test_rod(named("rachis"), nel, L, 2e-3, x0, dx, NULL);
@@ -64,7 +67,7 @@ static swModel *feather(int nel, int nleaf, const int *at, int spherical, int he
     const double start[3] = {L * at[l] / nel, 0, 0};
     const double dir[3] = {0.1 * l, l % 2 ? -1 : 1, 0.3}, nrm[3] = {1, 0, 0};
     swRodDesc b = sw_test_rod(named("barb"), 4, 0.02, 4e-4, start, dir, nrm);
-    b.youngs = 1e7, b.shear_modulus = 1e7 / 3, b.density = 1200;
+    b.youngs = 1e7, b.shear_modulus = 1e7 / 3, b.density = 1200, b.implicit = dt > 0;
     const int barb = sw_spec_add_rod(s, &b);
     swJointDesc j;
     sw_joint_desc_init(&j);
@@ -78,7 +81,13 @@ static swModel *feather(int nel, int nleaf, const int *at, int spherical, int he
   sw_spec_set_gravity(s, g);
   sw_spec_set_integrator(s, SW_IMEX);
   *out = s;
-  return sw_test_compile_at(s, 0.5);
+  if (!(dt > 0)) return sw_test_compile_at(s, 0.5);
+  sw_spec_set_dt(s, dt);
+  return sw_test_compile(s);
+}
+
+static swModel *feather(int nel, int nleaf, const int *at, int spherical, int held, swSpec **out) {
+  return feather_at(nel, nleaf, at, spherical, held, 0, out);
 }
 
 
@@ -181,11 +190,78 @@ static void test_cost(void **state) {
   for (int c = 1; c < 3; c++) assert_int_equal(ws[c] * (size_t)leaves[0], ws[0] * (size_t)leaves[c]);
 }
 
+/* Implicit barbs (rod leaves, joint_groups.c): each barb, an implicit rod
+ * whose one joint sits on one port of its own, is eliminated into its
+ * rachis' port through its condensed stiffness (rigid_joint.c), where it
+ * had been a dense member whose ports made the group's block.  The same
+ * feather at 4 times the explicit barbs' stable estimate, stepped three
+ * ways from the same moving start: rod leaves on the band path, rod
+ * leaves eliminated into the dense block, and every rod a dense member
+ * (sw_rigid_joints_setup_leaves(m, 0), the path before rod leaves), each
+ * kick factored afresh.  They solve one linear system three ways and
+ * agree as test_same_solution's do; and the kick's cost is printed. */
+static void test_rod_leaves(void **state) {
+  (void)state;
+  static const int at[7] = {2, 5, 8, 8, 11, 14, 20};
+  swSpec *s;
+  swModel *e = feather(20, 7, at, 3, CLAMPED, &s);
+  const double dt = 8 * e->dt; /* 4 times the explicit estimate */
+  sw_model_free(e);
+  sw_spec_free(s);
+  swModel *m = feather_at(20, 7, at, 3, CLAMPED, dt, &s);
+  assert_int_equal(m->nrigid_group, 1);
+  assert_int_equal(m->nrigid_block, 8);
+  assert_int_equal(m->rigid_group_band[0], 1); /* one rod and its leaves */
+  for (int k = 1; k < 8; k++) assert_true(m->rigid_block_rod[k] >= 0 && m->rigid_block_leaf[k] >= 0);
+  swModel *ref = sw_test_compile(s); /* the same scene, every rod a dense member */
+  sw_rigid_joints_free(ref);
+  assert_true(sw_rigid_joints_setup_leaves(ref, 0));
+  assert_int_equal(ref->rigid_group_band[0], 0);
+  for (int k = 0; k < 8; k++) assert_true(ref->rigid_block_leaf[k] < 0);
+  swData *band = data_for(m, 1), *dense = data_for(m, 0), *ulp = data_for(m, 0);
+  swData *members = sw_data_new(ref);
+  assert_non_null(members);
+  start_moving(ref, members);
+  const long nsteps = sw_test_sanitized() ? 200 : 400;
+  for (long k = 0; k < nsteps; k++) {
+    sw_implicit_reset(ref, members);
+    assert_int_equal(sw_step(ref, members), SW_OK);
+  }
+  const BandRun r = band_against_dense(m, 1, 1, nsteps, EARLY, band, dense, ulp);
+  double ma[3], mr[3];
+  differences(m, dense, members, ma, mr);
+  fprintf(stderr, "# rod leaves: clamped rachis, 7 implicit barbs, dt %.3g s (the explicit barbs' "
+          "estimate %.3g s)\n", m->dt, 2 * dt / 8);
+  print_band_run(&r, EARLY, nsteps);
+  fprintf(stderr, "#   after %ld steps, rod leaves (dense) - every rod a member: x %.2e m (rel. %.2e), "
+          "v %.2e m/s (rel. %.2e), omega %.2e rad/s (rel. %.2e)\n",
+          nsteps, ma[0], mr[0], ma[1], mr[1], ma[2], mr[2]);
+  for (int q = 0; q < 3; q++) assert_true(r.er[q] <= fmax(1e-12, 10 * r.eur[q]));
+  assert_true(r.dr[0] <= 1e-12 && mr[0] <= 1e-12);
+  for (int q = 1; q < 3; q++) assert_true(r.dr[q] <= fmax(1e-12, 10 * r.ur[q]));
+  for (int q = 1; q < 3; q++) assert_true(mr[q] <= fmax(1e-12, 10 * r.ur[q]));
+  double vmax;
+  (void)worst(dense->v, dense->v, 3 * (size_t)m->stride, &vmax);
+  assert_true(vmax > 0.01); /* it moved */
+  double tb, td;
+  kick_times(m, 1, band, dense, &tb, &td);
+  fprintf(stderr, "#   one kick: band path %.1f us, rod leaves in the dense block %.1f us\n", 1e6 * tb,
+          1e6 * td);
+  sw_data_free(band);
+  sw_data_free(dense);
+  sw_data_free(ulp);
+  sw_data_free(members);
+  sw_model_free(ref);
+  sw_model_free(m);
+  sw_spec_free(s);
+}
+
 int main(void) {
   const struct CMUnitTest tests[] = {
       cmocka_unit_test(test_same_solution),
       cmocka_unit_test(test_shared_element),
       cmocka_unit_test(test_cost),
+      cmocka_unit_test(test_rod_leaves),
   };
   return cmocka_run_group_tests_name("joint_band", tests, NULL, NULL);
 }
