@@ -80,7 +80,7 @@ def main():
         fig, axs = plt.subplots(3, 1, figsize=(7, 7), sharex=True)
         for k, (ax, name) in enumerate(zip(axs, NAMES)):
             ax.plot(t0, base[k], "k-", lw=1.5, label="original")
-            for (label, t, ang), style in zip(curves, ("C0--", "C3-", "C2:", "C1-.", "C7:")):
+            for (label, t, ang), style in zip(curves, ("C0--", "C3-", "C2:", "C1-.", "C7:", "C4--", "C5-.")):
                 ax.plot(t, ang[k], style, lw=1, label=label)
             ax.set_ylabel(name + " (deg)", fontsize=8)
             ax.axvline(0.125, color="0.7", lw=0.8)

@@ -18,7 +18,11 @@
 # on the resolved wing, and resolved_hard25, _hard50 and _hard100 (Note
 # 6.7's further factors, at 0.9 of their estimates: about 240, 170 and
 # 120 ns, 1.5 to 4 h each), compared with resolved in resolved_fig13.md and
-# resolved_fig13.png.
+# resolved_fig13.png; resolved_ib, resolved_ib_hard, _hard25, _hard50 and
+# _hard100: the same with implicit barbs (sinewc --let implicit_barbs=true,
+# docs/physics.md "Rod leaves"), every one at 0.9 of the estimate the
+# hand's joints set, 3.38 us (about 33 min each, with the other logical CPU
+# busy), in resolved_ib_fig13.md and resolved_ib_fig13.png.
 # DIR (default build/wing) gets VARIANT.h5, VARIANT.log (the
 # simulator's summary, its wall time), angles.png, frames.png, fig13.png and
 # fig13.md.  A run whose file is complete, or that stopped unstable, is not
@@ -50,16 +54,20 @@ done
 VARIANTS=${*:-original soft soft_twist hard_but_barbs hard}
 mkdir -p "$OUT"
 export SINEW_PATH="$ROOT/models"
-compile() { # compile MODEL SIM: unless SIM is newer than the models and the compiler
+compile() { # compile MODEL SIM [SINEWC ARGS]: unless SIM is newer than the models and the compiler
   if [ -n "$(find "$ROOT/models" "$ROOT/bin/sinewc" -newer "$2" 2>/dev/null | head -1)" ] \
      || [ ! -f "$2" ]; then
-    "$ROOT/bin/sinewc" "$ROOT/models/$1" -o "$2"
+    m=$1 sim=$2; shift 2
+    "$ROOT/bin/sinewc" "$ROOT/models/$m" -o "$sim" "$@"
   fi
 }
 ( flock 9   # two studies started side by side compile once
   compile pigeon_wing.sinew "$OUT/wing"
   case " $VARIANTS " in
-    *" resolved"*) compile pigeon_wing_resolved.sinew "$OUT/resolved" ;;
+    *" resolved_ib"*) compile pigeon_wing_resolved.sinew "$OUT/resolved_ib" --let implicit_barbs=true ;;
+  esac
+  case " $VARIANTS " in
+    *" resolved "* | *" resolved_hard"* | *" resolved_soft"*) compile pigeon_wing_resolved.sinew "$OUT/resolved" ;;
   esac ) 9> "$OUT/.compiling"
 
 hardened() { # hardened K: shear and twist xK on every rod (Fig. 13 (b) is K = 10)
@@ -78,6 +86,11 @@ settings() {
     resolved_hard25) hardened 25 ;;   # the reference's further factors:
     resolved_hard50) hardened 50 ;;   # "change nothing further" (Suppl.
     resolved_hard100) hardened 100 ;; # Note 6.7)
+    resolved_ib) echo "" ;;          # implicit barbs (rod leaves), at 0.9 of its estimate
+    resolved_ib_hard) hardened 10 ;;
+    resolved_ib_hard25) hardened 25 ;;
+    resolved_ib_hard50) hardened 50 ;;
+    resolved_ib_hard100) hardened 100 ;;
     resolved) echo "" ;; # its own model, at its own step (1 us)
     *) echo "wing_study.sh: unknown variant $1" >&2; exit 2 ;;
   esac
@@ -87,14 +100,16 @@ complete() { # complete FILE: the run wrote its last frame (t = 0.51 s)
   [ -f "$1" ] && /usr/bin/python3 -c "import h5py,sys; t=h5py.File(sys.argv[1])['/time'][:]; sys.exit(0 if t[-1] > 0.5099 else 1)" "$1" 2>/dev/null
 }
 
-step() { # step SIM FRACTION SETTINGS...: --dt at FRACTION of the variant's stable estimate
-         # when the model's step is above it
-  sim=$1 fraction=$2; shift 2
-  "$sim" --info "$@" 2>/dev/null | awk -v q="$fraction" '/^dt: / && /stable estimate/ {
+step() { # step SIM FRACTION ALWAYS SETTINGS...: --dt at FRACTION of the variant's stable
+         # estimate when the model's step is above it, or ALWAYS (1), shortened so that
+         # whole steps span the frames' 5 ms
+  sim=$1 fraction=$2 always=$3; shift 3
+  "$sim" --info "$@" 2>/dev/null | awk -v q="$fraction" -v always="$always" '/^dt: / && /stable estimate/ {
     s = $0; sub(/.*stable estimate /, "", s); sub(/\).*/, "", s); split(s, e, " ")
     f = e[2] == "ns" ? 1e-9 : e[2] == "us" ? 1e-6 : e[2] == "ms" ? 1e-3 : 1
     split($0, d, " "); g = d[3] == "ns" ? 1e-9 : d[3] == "us" ? 1e-6 : d[3] == "ms" ? 1e-3 : 1
-    if (d[2] * g > e[1] * f) printf "--dt %.6gns\n", e[1] * f * q * 1e9 }'
+    if (always == 1) { n = int(5e-3 / (e[1] * f * q)) + 1; printf "--dt %.10gns\n", 5e6 / n }
+    else if (d[2] * g > e[1] * f) printf "--dt %.6gns\n", e[1] * f * q * 1e9 }'
 }
 
 stopped() { # stopped VARIANT: its run went unstable and stopped (the hardened kinematic wings
@@ -107,11 +122,15 @@ run() { # run VARIANT
   if [ -z "$DURATION" ] && stopped "$1"; then echo "wing_study.sh: $1 stopped before (see $OUT/$1.log)"; return 0; fi
   set -- "$1" $(settings "$1")
   v=$1; shift
-  sim=$OUT/wing fraction=0.5
+  sim=$OUT/wing fraction=0.5 always=0
   # the resolved wing's hardened step: 0.9 of its estimate, which its barbs'
-  # explicit bound sets (stable there over the whole stroke: validation.md)
-  case $v in resolved*) sim=$OUT/resolved fraction=0.9 ;; esac
-  set -- "$@" $(step "$sim" "$fraction" "$@")
+  # explicit bound sets (stable there over the whole stroke: validation.md);
+  # with implicit barbs 0.9 of its own (the hand's joints'), above the model's 1 us
+  case $v in
+    resolved_ib*) sim=$OUT/resolved_ib fraction=0.9 always=1 ;;
+    resolved*) sim=$OUT/resolved fraction=0.9 ;;
+  esac
+  set -- "$@" $(step "$sim" "$fraction" "$always" "$@")
   [ -n "$DURATION" ] && set -- "$@" --duration "$DURATION" --every 0.5ms
   echo "wing_study.sh: $v: $*"
   "$sim" --quiet "$@" --out "$OUT/$v.h5" > "$OUT/$v.log" 2>&1 || echo "wing_study.sh: $v stopped (see $OUT/$v.log)"
@@ -150,4 +169,11 @@ if [ -f "$OUT/resolved.h5" ]; then
   [ $# -gt 0 ] && /usr/bin/python3 "$ROOT/scripts/wing_fig13.py" "$OUT/resolved.h5" "$@" \
     --plot "$OUT/resolved_fig13.png" --table "$OUT/resolved_fig13.md" \
     --title "The fully resolved wing hardened and softened (Suppl. Fig. 13; models/pigeon_wing_resolved.sinew)"
+  set --
+  for v in ib ib_hard ib_hard25 ib_hard50 ib_hard100; do
+    [ -f "$OUT/resolved_$v.h5" ] && set -- "$@" "$v=$OUT/resolved_$v.h5"
+  done
+  [ $# -gt 0 ] && /usr/bin/python3 "$ROOT/scripts/wing_fig13.py" "$OUT/resolved.h5" "$@" \
+    --plot "$OUT/resolved_ib_fig13.png" --table "$OUT/resolved_ib_fig13.md" \
+    --title "Suppl. Fig. 13 (b) x10 to x100 on the resolved wing, implicit barbs (--let implicit_barbs=true)"
 fi
