@@ -168,7 +168,8 @@ static size_t group_scratch(const swModel *m, int g) {
   const size_t leaves = leaf_doubles(m, g), ports = (size_t)(SW_BAND_PORT + 6);
   size_t rod_leaves = 0; /* each rod leaf's, after the dense rods' */
   for (int k = m->rigid_group_adr[g]; k < m->rigid_group_adr[g + 1]; k++)
-    if (m->rigid_block_leaf[k] >= 0 && m->rigid_block_rod[k] >= 0) rod_leaves += sw_port_member_scratch(m, k, 0);
+    if (m->rigid_block_leaf[k] >= 0 && m->rigid_block_rod[k] >= 0)
+      rod_leaves += sw_port_member_scratch(m, k, 0);
   if (m->rigid_group_band[g] == 1) return (size_t)band_ports(m, g) * ports + leaves + rod_leaves;
   const size_t n = (size_t)sw_rigid_group_unknowns(m, g);
   size_t len = n * n + 2 * n + (size_t)member_band_ports(m, g) * ports + leaves + rod_leaves;
@@ -496,8 +497,8 @@ static int group_assemble(const swModel *m, swData *d, double h, int g, double *
       memset(u.ws, 0, sw_unit_size(u.du, u.dQ) * sizeof(double));
       double *w = rod_ws + wleaf;
       wleaf += sw_port_member_scratch(m, k, 0);
-      if (!sw_port_member_assemble(m, d, h, k, w, u.ws, u.du, u.ro, sw_unit_b(u.ws, u.du, u.dQ), NULL, NULL))
-        return 0;
+      double *ub = sw_unit_b(u.ws, u.du, u.dQ); /* its right-hand side */
+      if (!sw_port_member_assemble(m, d, h, k, w, u.ws, u.du, u.ro, ub, NULL, NULL)) return 0;
       continue;
     }
     double M, Il[9], F[6];
