@@ -21,8 +21,8 @@
 # resolved_fig13.png; resolved_ib, resolved_ib_hard, _hard25, _hard50 and
 # _hard100: the same with implicit barbs (sinewc --let implicit_barbs=true,
 # docs/physics.md "Rod leaves"), every one at 0.9 of the estimate the
-# hand's joints set, 3.38 us (about 33 min each, with the other logical CPU
-# busy), in resolved_ib_fig13.md and resolved_ib_fig13.png.
+# hand's joints set, 3.38 us (about 33 min each on a quiet core, 42-48 beside
+# another run), in resolved_ib_fig13.md and resolved_ib_fig13.png.
 # DIR (default build/wing) gets VARIANT.h5, VARIANT.log (the
 # simulator's summary, its wall time), angles.png, frames.png, fig13.png and
 # fig13.md.  A run whose file is complete, or that stopped unstable, is not
