@@ -148,14 +148,18 @@ static size_t leaf_doubles(const swModel *m, int g) {
   return 0;
 }
 
-/* Doubles of group g's dense rod members' workspaces (joint_ports.c),
- * which come first in its rods' part; its rod leaves' follow. */
-static size_t dense_rods_scratch(const swModel *m, int g) {
-  const int mb = m->rigid_group_band[g] == 2;
+/* Doubles of group g's rod members' workspaces (joint_ports.c): its dense
+ * rods' (leaves 0), which come first in its rods' part, or its rod
+ * leaves' (leaves 1), which follow them.  On the band path its one rod is
+ * not condensed and has none. */
+static size_t rods_scratch(const swModel *m, int g, int leaves) {
+  const int band = m->rigid_group_band[g];
   size_t len = 0;
-  if (m->rigid_group_band[g] == 1) return 0; /* its rod is not condensed */
-  for (int k = m->rigid_group_adr[g]; k < m->rigid_group_adr[g + 1]; k++)
-    if (m->rigid_block_leaf[k] < 0 && m->rigid_block_rod[k] >= 0) len += sw_port_member_scratch(m, k, mb);
+  for (int k = m->rigid_group_adr[g]; k < m->rigid_group_adr[g + 1]; k++) {
+    if (m->rigid_block_rod[k] < 0 || (m->rigid_block_leaf[k] >= 0) != leaves) continue;
+    if (!leaves && band == 1) continue;
+    len += sw_port_member_scratch(m, k, !leaves && band == 2);
+  }
   return len;
 }
 
@@ -165,15 +169,11 @@ static size_t dense_rods_scratch(const swModel *m, int g) {
  * right-hand sides (sw_band_group_solve), then each leaf's; in a member's
  * band path, the band ports' blocks and right-hand sides come first. */
 static size_t group_scratch(const swModel *m, int g) {
-  const size_t leaves = leaf_doubles(m, g), ports = (size_t)(SW_BAND_PORT + 6);
-  size_t rod_leaves = 0; /* each rod leaf's, after the dense rods' */
-  for (int k = m->rigid_group_adr[g]; k < m->rigid_group_adr[g + 1]; k++)
-    if (m->rigid_block_leaf[k] >= 0 && m->rigid_block_rod[k] >= 0)
-      rod_leaves += sw_port_member_scratch(m, k, 0);
-  if (m->rigid_group_band[g] == 1) return (size_t)band_ports(m, g) * ports + leaves + rod_leaves;
+  const size_t units = leaf_doubles(m, g) + rods_scratch(m, g, 0) + rods_scratch(m, g, 1);
+  const size_t ports = (size_t)(SW_BAND_PORT + 6);
+  if (m->rigid_group_band[g] == 1) return (size_t)band_ports(m, g) * ports + units;
   const size_t n = (size_t)sw_rigid_group_unknowns(m, g);
-  size_t len = n * n + 2 * n + (size_t)member_band_ports(m, g) * ports + leaves + rod_leaves;
-  return len + dense_rods_scratch(m, g);
+  return n * n + 2 * n + (size_t)member_band_ports(m, g) * ports + units;
 }
 
 /* Doubles of swData's workspace: each group's, one after another. */
@@ -478,7 +478,7 @@ static int group_assemble(const swModel *m, swData *d, double h, int g, double *
     const int c0 = off[m->rigid_block_env[first + s] - first], c1 = off[s] + dof[s];
     for (int i = off[s]; i < c1; i++) memset(A + (size_t)i * n + c0, 0, (size_t)(c1 - c0) * sizeof(double));
   }
-  size_t wleaf = dense_rods_scratch(m, g); /* the rod leaves' workspaces follow the dense rods' */
+  size_t wleaf = rods_scratch(m, g, 0); /* the rod leaves' workspaces follow the dense rods' */
   for (int s = 0, wrod = 0; s < nb; s++) { /* mass, and the right-hand side h F */
     const int k = first + s, leaf = m->rigid_block_leaf[k] >= 0, rod = m->rigid_block_rod[k] >= 0;
     if (rod && !leaf && bu) continue; /* its band: sw_band_group_solve */
@@ -646,7 +646,7 @@ static void group_finish(const swModel *m, swData *d, double h, int g, double *A
   const GroupWs gw = group_ports(m, g, A, rhs, ws);
   double *leaf_ws = gw.leaf_ws, *rod_ws = gw.rod_ws;
   if (!bu) sw_port_alias_copy(m, g, off - first, rhs); /* an alias' rotation: its target's */
-  size_t wleaf = dense_rods_scratch(m, g);
+  size_t wleaf = rods_scratch(m, g, 0);
   for (int s = 0, wrod = 0; s < nb; s++) { /* the loads that give du */
     const int k = first + s, b = m->rigid_block_body[k];
     const int rod_leaf = m->rigid_block_rod[k] >= 0 && m->rigid_block_leaf[k] >= 0;
