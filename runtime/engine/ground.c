@@ -67,14 +67,14 @@
  * by the same slip function of the contact-point speed r |w_a|, kinetic and
  * static alike.
  *
- * The elements of a rod are visited in order and each sees its nodes' loads
- * as they were before this ground acted: what the previous element has just
- * put on the shared node is subtracted (`carry`).  What does not depend on
- * the loads (contact, surface, directions, slip) is computed first for a
- * block of elements, as a vector loop into arrays on the stack, so that the
- * chain from one element's loads to the next holds only the loads'
- * arithmetic (see "a rod on a ground" below); nothing is allocated in the
- * step.
+ * Each element sees its nodes' loads as they were before this ground acted
+ * on the rod, read before any element's response is added, so that the
+ * response does not depend on the order the elements are visited in.  A
+ * block of elements is taken in three passes (see "a rod on a ground"
+ * below): what depends on the state alone (contact, surface, directions,
+ * slip), then the response to the loads, each a vector loop into arrays on
+ * the stack, then the responses added to the nodes; nothing is allocated in
+ * the step.
  */
 #include <math.h>
 
@@ -159,16 +159,20 @@ static double coulomb(double u, double speed, double T, double N, double v_eps, 
 /* ---- a rod on a ground, a block of elements at a time ----
  *
  * Element i of a rod (nodes i, i+1) takes the share wa of node i's loads
- * and wb of node i+1's (1/2, or 1 at a rod end) and sees them as they were
- * before this ground acted, so its loads wait for the previous element's
- * (`carry`, design note): a chain through the rod that no reordering of the
- * loop removes and keeps the bits.  Everything else an element needs, its
- * contact, the surface, the directions a and b, the slip and what the slip
- * decides of the friction (coulomb_slip), depends on the state alone: the
- * first pass computes it for a block of elements as one vector loop into
- * the arrays below (on the stack: nothing is allocated in the step), and
- * the second walks the chain with only the loads' arithmetic left in it.
- * The operations and their order are those of one element at a time. */
+ * and wb of node i+1's (1/2, or 1 at a rod end) as they were before this
+ * ground acted.  A block of elements is done in three passes: the first
+ * (ground_geometry) computes what depends on the state alone, its contact,
+ * the surface, the directions a and b, the slip and what the slip decides
+ * of the friction (coulomb_slip); the second (ground_response) reads the
+ * nodes' loads, none of them yet changed by this ground (the block's first
+ * node as it was before the previous block's last element added to it),
+ * and computes each element's normal response and friction; the third
+ * (ground_apply) adds them to the nodes, with the couples and the rare
+ * element standing on end.  The first two are vector loops into the arrays
+ * below (on the stack: nothing is allocated in the step).  Until git
+ * 53f0982 the elements were a chain, each subtracting what the previous one
+ * had put on their shared node, (f + h) - h, which is f only to round-off:
+ * a scalar loop, 13% of the muscular snake's step. */
 #define GROUND_BLOCK 64
 
 typedef struct {
@@ -190,6 +194,11 @@ typedef struct {
   double tq[GROUND_BLOCK];       /* contact point: r tau_a / J_a            */
   double ta[GROUND_BLOCK];       /* rolling: tau_a, the couple about a      */
   swSlipBlock sa, sb, sr;        /* forward, sideways, rolling              */
+  /* the response (ground_response) */
+  double N[GROUND_BLOCK];        /* the normal force, spring + normal_ext   */
+  double ext[3][GROUND_BLOCK];   /* normal_ext n + friction: ext_force's share */
+  double T[3][GROUND_BLOCK];     /* the tangential load, in the surface     */
+  double fb[GROUND_BLOCK];       /* the sideways friction (contact point's couple) */
 } swGroundBlock;
 
 static inline void slip_store(swSlipBlock *b, int j, swSlip s) {
@@ -279,91 +288,116 @@ static inline __attribute__((always_inline)) void ground_geometry(const swModel 
   }
 }
 
-/* The second pass: element i (entry j of blk) under its nodes' loads, the
- * chain through the rod (carry: the force this ground has put on node i,
- * replaced by the one it puts on node i+1).  Normal response: Gazzola 2018
- * eq. 4.8; friction: design note. */
-static void ground_loads_element(const swModel *m, swData *d, const swGroundDesc *g, const swGroundBlock *blk,
-                                 int j, int e, int ia, double wa, double wb, double carry[3]) {
-  const int ib = ia + 1;
-  const double n[3] = {blk->n[0][j], blk->n[1][j], blk->n[2][j]};
-  const double spring = blk->spring[j];
-  /* the element's share of its other loads (Gazzola 2018, eq. 4.8: F_perp) */
-  double F[3];
-  for (int k = 0; k < 3; k++)
-    F[k] = wa * (SW_AT(m, d->force, ia, k) - carry[k]) + wb * SW_AT(m, d->force, ib, k);
-  const double Fn = sw_v3_dot(F, n);
-  const double balance = sw_max(0.0, -Fn);
-  const double normal_ext = sw_max(balance - blk->damper[j], -spring); /* never pulls */
-  const double N = spring + normal_ext;
-  double friction[3] = {0, 0, 0}, couple[3] = {0, 0, 0};
-  double T[3]; /* tangential load, in the surface */
-  for (int k = 0; k < 3; k++) T[k] = F[k] - Fn * n[k];
+/* The second pass: elements [i0, i1) of the rod (entry j = i - i0 of blk)
+ * under their nodes' loads as they were before this ground acted (node i0's
+ * in f0: its entry of d->force may already hold the previous block's last
+ * response).  Normal response: Gazzola 2018 eq. 4.8; friction: design note.
+ * Standing on end (no axis in the surface) leaves friction to ground_apply. */
+static inline __attribute__((always_inline)) void ground_response(const swModel *m, const swData *d,
+                                                                const swGroundDesc *g, int n, int na,
+                                                                int i0, int i1, const double f0[3],
+                                                                swGroundBlock *restrict blk, const int cp) {
+  const size_t S = (size_t)m->stride;
+  const double *restrict force = d->force;
   const double *ms = g->mu_static;
-  if (N > 0 && blk->axis[j] != 0.0) {
-    const double a[3] = {blk->a[0][j], blk->a[1][j], blk->a[2][j]};
-    const double b[3] = {blk->b[0][j], blk->b[1][j], blk->b[2][j]};
-    double Tb = sw_v3_dot(T, b);
+  const sw3 first = {f0[0], f0[1], f0[2]};
+#pragma omp simd
+  for (int i = i0; i < i1; i++) {
+    const int j = i - i0, ia = na + i;
+    const double wa = sw_select(i == 0, 1.0, 0.5), wb = sw_select(i == n - 1, 1.0, 0.5);
+    const sw3 fa_ = i == i0 ? first : sw3_load(force, S, ia), fb_ = sw3_load(force, S, ia + 1);
+    const sw3 nrm = {blk->n[0][j], blk->n[1][j], blk->n[2][j]};
+    const double spring = blk->spring[j], touch = blk->contact[j];
+    /* the element's share of its other loads (Gazzola 2018, eq. 4.8: F_perp) */
+    const sw3 F = {wa * fa_.x + wb * fb_.x, wa * fa_.y + wb * fb_.y, wa * fa_.z + wb * fb_.z};
+    const double Fn = sw3_dot(F, nrm);
+    const double balance = sw_max(0.0, -Fn);
+    const double normal_ext = sw_max(balance - blk->damper[j], -spring); /* never pulls */
+    const double N = spring + normal_ext;
+    const sw3 T = {F.x - Fn * nrm.x, F.y - Fn * nrm.y, F.z - Fn * nrm.z}; /* in the surface */
+    const sw3 a = {blk->a[0][j], blk->a[1][j], blk->a[2][j]};
+    const sw3 b = {blk->b[0][j], blk->b[1][j], blk->b[2][j]};
+    const double Tb0 = sw3_dot(T, b);
     /* contact point: the load that accelerates the point, as a force there,
      * (T_b / m_e - r tau_a / J_a) / (1 / m_e + r^2 / J_a) (design note) */
-    if (g->contact_point) Tb = (Tb / blk->me[j] - blk->tq[j]) * blk->mb[j];
-    const double fa = coulomb_load(slip_load(&blk->sa, j), sw_v3_dot(T, a), N, ms[0], ms[1]);
+    const double Tb = cp ? (Tb0 / blk->me[j] - blk->tq[j]) * blk->mb[j] : Tb0;
+    const double fa = coulomb_load(slip_load(&blk->sa, j), sw3_dot(T, a), N, ms[0], ms[1]);
     const double fb = coulomb_load(slip_load(&blk->sb, j), Tb, N, ms[2], ms[2]);
-    for (int k = 0; k < 3; k++) friction[k] = fa * a[k] + fb * b[k];
-    if (g->contact_point || g->mu_rolling > 0) {
+    const double on = sw_select(touch != 0.0 && N > 0 && blk->axis[j] != 0.0, 1.0, 0.0);
+    const double ne = sw_select(touch != 0.0, normal_ext, 0.0);
+    blk->N[j] = sw_select(touch != 0.0, N, 0.0);
+    blk->fb[j] = on * fb;
+    blk->ext[0][j] = ne * nrm.x + on * (fa * a.x + fb * b.x);
+    blk->ext[1][j] = ne * nrm.y + on * (fa * a.y + fb * b.y);
+    blk->ext[2][j] = ne * nrm.z + on * (fa * a.z + fb * b.z);
+    sw3_store(&blk->T[0][0], GROUND_BLOCK, j, T);
+  }
+}
+
+/* The third pass: each touching element's response (ground_response) half
+ * to each of its nodes, the penalty only into d->force; the couples of
+ * contact_point and rolling friction; and an element standing on end (no
+ * axis in the surface), given isotropic friction with the sideways
+ * coefficients along its slip (or, at rest, along its tangential load). */
+static void ground_apply(const swModel *m, swData *d, const swGroundDesc *g, int nel, int na, int ea,
+                         int i0, int i1, swGroundBlock *blk) {
+  const double *ms = g->mu_static, *mk = g->mu_kinetic;
+  for (int i = i0; i < i1; i++) {
+    const int j = i - i0, ia = na + i, ib = ia + 1, e = ea + i;
+    if (blk->contact[j] == 0.0) continue;
+    const double N = blk->N[j];
+    const double n[3] = {blk->n[0][j], blk->n[1][j], blk->n[2][j]};
+    double couple[3] = {0, 0, 0};
+    if (N > 0 && blk->axis[j] != 0.0 && (g->contact_point || g->mu_rolling > 0)) {
+      const double a[3] = {blk->a[0][j], blk->a[1][j], blk->a[2][j]};
       const double r = d->radius_now[e];
       double cl[3] = {0, 0, 0}, Q[9]; /* the couple in the lab frame */
       if (g->contact_point)
-        for (int k = 0; k < 3; k++) cl[k] = -r * fb * a[k];
+        for (int k = 0; k < 3; k++) cl[k] = -r * blk->fb[j] * a[k];
       if (g->mu_rolling > 0) {
         /* rolling resistance about a (design note) */
-        double mr = g->mu_rolling * r;
-        double ca = coulomb_load(slip_load(&blk->sr, j), blk->ta[j], N, mr, mr);
+        const double mr = g->mu_rolling * r;
+        const double ca = coulomb_load(slip_load(&blk->sr, j), blk->ta[j], N, mr, mr);
         for (int k = 0; k < 3; k++) cl[k] += ca * a[k];
       }
       sw_getQ(m, d->Q, e, Q);
       sw_mat_vec(couple, Q, cl);
+    } else if (N > 0 && blk->axis[j] == 0.0) {
+      const double u[3] = {blk->u[0][j], blk->u[1][j], blk->u[2][j]};
+      const double T[3] = {blk->T[0][j], blk->T[1][j], blk->T[2][j]};
+      const double us = sw_v3_norm(u), Ts = sw_v3_norm(T), len = us > 0 ? us : Ts;
+      if (len > 0) {
+        const double wa = i == 0 ? 1.0 : 0.5, wb = i == nel - 1 ? 1.0 : 0.5;
+        double dir[3];
+        sw_v3_scale(dir, us > 0 ? u : T, 1.0 / len);
+        const double ud = sw_v3_dot(u, dir);
+        const double mh = (wa * d->mass_now[ia] + wb * d->mass_now[ib]) / m->dt;
+        const double f = coulomb(ud, fabs(ud), sw_v3_dot(T, dir), N, g->slip_velocity, mh, mk[2], mk[2],
+                                 ms[2], ms[2]);
+        for (int k = 0; k < 3; k++) blk->ext[k][j] += f * dir[k];
+      }
     }
-  } else if (N > 0) {
-    /* element standing on end: no axis in the surface, isotropic friction
-     * with the sideways coefficients, along the slip (or, at rest, along the
-     * tangential load) */
-    const double u[3] = {blk->u[0][j], blk->u[1][j], blk->u[2][j]};
-    const double *mk = g->mu_kinetic;
-    double us = sw_v3_norm(u), Ts = sw_v3_norm(T), dir[3];
-    const double *src = us > 0 ? u : T;
-    double len = us > 0 ? us : Ts;
-    if (len > 0) {
-      sw_v3_scale(dir, src, 1.0 / len);
-      double ud = sw_v3_dot(u, dir);
-      double mh = (wa * d->mass_now[ia] + wb * d->mass_now[ib]) / m->dt;
-      double f = coulomb(ud, fabs(ud), sw_v3_dot(T, dir), N, g->slip_velocity, mh, mk[2], mk[2], ms[2],
-                         ms[2]);
-      sw_v3_scale(friction, dir, f);
+    for (int k = 0; k < 3; k++) {
+      const double ext = blk->ext[k][j];
+      const double half = 0.5 * (ext + blk->spring[j] * n[k]);
+      SW_AT(m, d->ext_force, ia, k) += 0.5 * ext;
+      SW_AT(m, d->ext_force, ib, k) += 0.5 * ext;
+      SW_AT(m, d->force, ia, k) += half;
+      SW_AT(m, d->force, ib, k) += half;
+      SW_AT(m, d->ext_torque, e, k) += couple[k];
+      SW_AT(m, d->torque, e, k) += couple[k];
     }
-  }
-
-  /* half of the element's force to each node; the penalty only into force */
-  for (int k = 0; k < 3; k++) {
-    double ext = normal_ext * n[k] + friction[k];
-    double half = 0.5 * (ext + spring * n[k]);
-    SW_AT(m, d->ext_force, ia, k) += 0.5 * ext;
-    SW_AT(m, d->ext_force, ib, k) += 0.5 * ext;
-    SW_AT(m, d->force, ia, k) += half;
-    SW_AT(m, d->force, ib, k) += half;
-    carry[k] = half;
-    SW_AT(m, d->ext_torque, e, k) += couple[k];
-    SW_AT(m, d->torque, e, k) += couple[k];
   }
 }
 
-/* Rod r on ground g, block by block: the two passes above. */
+/* Rod r on ground g, block by block: the three passes above. */
 static void ground_rod(const swModel *m, swData *d, const swGroundDesc *g, int r) {
   const int n = m->rod_nelem[r], na = m->node_adr[r], ea = m->elem_adr[r];
-  const int spin = g->contact_point || g->mu_rolling > 0;
+  const int spin = g->contact_point || g->mu_rolling > 0, cp = g->contact_point;
   swGroundBlock blk;
   double gap[GROUND_BLOCK];
-  double carry[3] = {0, 0, 0};
+  double f0[3]; /* the block's first node's loads before this ground acted */
+  for (int k = 0; k < 3; k++) f0[k] = SW_AT(m, d->force, na, k);
   for (int i0 = 0; i0 < n; i0 += GROUND_BLOCK) {
     const int i1 = i0 + GROUND_BLOCK < n ? i0 + GROUND_BLOCK : n;
     if (g->height) {
@@ -381,15 +415,10 @@ static void ground_rod(const swModel *m, swData *d, const swGroundDesc *g, int r
       if (spin) ground_geometry(m, d, g, n, na, ea, i0, i1, gap, &blk, 0, 1);
       else ground_geometry(m, d, g, n, na, ea, i0, i1, gap, &blk, 0, 0);
     }
-    for (int i = i0; i < i1; i++) {
-      const int j = i - i0;
-      if (blk.contact[j] == 0.0) {
-        carry[0] = carry[1] = carry[2] = 0;
-        continue;
-      }
-      double wa = i == 0 ? 1.0 : 0.5, wb = i == n - 1 ? 1.0 : 0.5;
-      ground_loads_element(m, d, g, &blk, j, ea + i, na + i, wa, wb, carry);
-    }
+    if (cp) ground_response(m, d, g, n, na, i0, i1, f0, &blk, 1);
+    else ground_response(m, d, g, n, na, i0, i1, f0, &blk, 0);
+    for (int k = 0; k < 3; k++) f0[k] = SW_AT(m, d->force, na + i1, k); /* before the block's last adds */
+    ground_apply(m, d, g, n, na, ea, i0, i1, &blk);
   }
 }
 

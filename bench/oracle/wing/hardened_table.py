@@ -1,17 +1,18 @@
 #!/usr/bin/python3
 """Suppl. Fig. 13 (b) in the reference's code beside sinew's kinematic wing.
 
-usage: hardened_table.py CODE_OUT.txt [CODE_OUT.txt ...] --sinew ORIG.h5 HARD.h5 [--every MS]
+usage: hardened_table.py CODE_OUT.txt [CODE_OUT.txt ...] --sinew LABEL=RUN.h5 [LABEL=RUN.h5 ...] [--every MS]
 
 CODE_OUT.txt: the standard output of the patched code (PATCHES.md) run with
 WING_SHEAR_X=10, in the order of its restarts (a resumed run's file after
-the one it resumed); its "diag" lines come every 0.1 ms.  ORIG.h5 and
-HARD.h5: sinew's kinematic wing, original and hardened alike, written with
-the energy diagnostic (bench/oracle/wing/README.md, "sinew's side").
-Prints a markdown table every MS milliseconds (default 1): the code's
-kinetic energy, its translational part (sum m v^2 / 2, which its imposed
-elements' integrated spin does not reach), its largest |w| and the element
-that has it, and sinew's kinetic energy, original and hardened.
+the one it resumed); its "diag" lines come every 0.1 ms.  RUN.h5: runs of
+sinew's kinematic wing (original, hardened, at other steps) written with
+the energy diagnostic (bench/oracle/wing/README.md, "sinew's side"), each
+headed LABEL in the table.  Prints a markdown table every MS milliseconds
+(default 1): the code's kinetic energy, its translational part (sum m v^2 /
+2, which its imposed elements' integrated spin does not reach), its largest
+|w| and the element that has it, and each sinew run's kinetic energy ("-"
+where a run has no frame: it had stopped).
 """
 import re
 import sys
@@ -49,19 +50,23 @@ def at(series, t_ms):
 def main(argv):
     if '--sinew' not in argv:
         sys.exit(__doc__)
+    every = 1.0
+    if '--every' in argv:
+        i = argv.index('--every')
+        every = float(argv[i + 1])
+        del argv[i:i + 2]
     k = argv.index('--sinew')
-    paths, (orig, hard) = argv[:k], argv[k + 1:k + 3]
-    every = float(argv[argv.index('--every') + 1]) if '--every' in argv else 1.0
-    rows, so, sh = code_rows(paths), sinew_ke(orig), sinew_ke(hard)
+    paths, runs = argv[:k], [a.split('=', 1) for a in argv[k + 1:]]
+    rows, series = code_rows(paths), [sinew_ke(f) for _, f in runs]
     print('| t (ms) | the code x10: kinetic energy (J) | its translational part (J) '
-          '| its largest \\|w\\| (rad/s), element | sinew original (J) | sinew x10 (J) |')
-    print('|---|---|---|---|---|---|')
+          '| its largest \\|w\\| (rad/s), element |' + ''.join(' sinew %s (J) |' % l for l, _ in runs))
+    print('|---|---|---|---|' + '---|' * len(runs))
     for t in sorted(rows):
         if abs(t / every - round(t / every)) > 1e-6:
             continue
         r = rows[t]
         top = '%.3g, %s elem %d' % (r['top'][2], r['top'][0], r['top'][1]) if r['top'] else '-'
-        print('| %g | %.3g | %.3g | %s | %s | %s |' % (t, r['ke'], r['trans'], top, at(so, t), at(sh, t)))
+        print('| %g | %.3g | %.3g | %s |' % (t, r['ke'], r['trans'], top) + ''.join(' %s |' % at(x, t) for x in series))
 
 
 if __name__ == '__main__':
