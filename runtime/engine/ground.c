@@ -323,13 +323,15 @@ static inline __attribute__((always_inline)) void ground_response(const swModel 
     const double Tb = cp ? (Tb0 / blk->me[j] - blk->tq[j]) * blk->mb[j] : Tb0;
     const double fa = coulomb_load(slip_load(&blk->sa, j), sw3_dot(T, a), N, ms[0], ms[1]);
     const double fb = coulomb_load(slip_load(&blk->sb, j), Tb, N, ms[2], ms[2]);
-    const double on = sw_select(touch != 0.0 && N > 0 && blk->axis[j] != 0.0, 1.0, 0.0);
+    /* selected, not multiplied by 0 or 1: without an axis in the surface
+     * a and b are not finite (ground_geometry divides by its length) */
+    const int on = touch != 0.0 && N > 0 && blk->axis[j] != 0.0;
     const double ne = sw_select(touch != 0.0, normal_ext, 0.0);
     blk->N[j] = sw_select(touch != 0.0, N, 0.0);
-    blk->fb[j] = on * fb;
-    blk->ext[0][j] = ne * nrm.x + on * (fa * a.x + fb * b.x);
-    blk->ext[1][j] = ne * nrm.y + on * (fa * a.y + fb * b.y);
-    blk->ext[2][j] = ne * nrm.z + on * (fa * a.z + fb * b.z);
+    blk->fb[j] = sw_select(on, fb, 0.0);
+    blk->ext[0][j] = ne * nrm.x + sw_select(on, fa * a.x + fb * b.x, 0.0);
+    blk->ext[1][j] = ne * nrm.y + sw_select(on, fa * a.y + fb * b.y, 0.0);
+    blk->ext[2][j] = ne * nrm.z + sw_select(on, fa * a.z + fb * b.z, 0.0);
     sw3_store(&blk->T[0][0], GROUND_BLOCK, j, T);
   }
 }

@@ -516,6 +516,47 @@ static void test_kinetic_on_element_velocity(void **state) {
   sw_spec_free(s);
 }
 
+/* Claim: an element standing on its end (its tangent along the normal: no
+ * direction in the surface) takes isotropic friction along its slip, and
+ * its loads stay finite (its directions a and b, which divide by the
+ * tangent's part in the surface, are not used; ground.c selects rather than
+ * multiplies by 0).  A stubby upright rod (2 elements of 2 cm, r = 3 cm:
+ * only the bottom element touches) slides sideways at 0.5 m/s under
+ * gravity on a ground of isotropic kinetic friction mu_k = 0.3; after its
+ * first step it tilts and the ordinary path takes over.  Over 20 ms its
+ * centre of mass slows at mu_k g within 1% (N is the weight once the
+ * penalty has settled, to the rod's tilt and the contact's transient). */
+static void test_standing_on_end(void **state) {
+  (void)state;
+  const double zero[3] = {0, 0, 0}, mu_k[3] = {0.3, 0.3, 0.3}, v0 = 0.5, rr = 0.03, len = 0.04;
+  const double start[3] = {0, 0, rr - PEN0 - 0.25 * len}, dir[3] = {0, 0, 1}, nrm[3] = {1, 0, 0};
+  swSpec *s = sw_spec_new();
+  swRodDesc r = rod_at(start, dir, nrm, rr);
+  r.nelem = 2;
+  r.length = len;
+  sw_spec_add_rod(s, &r);
+  swGroundDesc g = ground_of(1e4, 150, mu_k, zero);
+  assert_int_equal(sw_spec_add_ground(s, &g), 0);
+  const double grav[3] = {0, 0, -GRAV};
+  sw_spec_set_gravity(s, grav);
+  swModel *m = sw_test_compile_at(s, 0.5);
+  swData *d = sw_data_new(m);
+  for (int i = 0; i <= m->rod_nelem[0]; i++) SW_AT(m, d->v, m->node_adr[0] + i, 0) = v0;
+  assert_int_equal(sw_step(m, d), SW_OK);
+  for (int i = 0; i <= m->rod_nelem[0]; i++)
+    for (int k = 0; k < 3; k++) assert_true(isfinite(SW_AT(m, d->v, m->node_adr[0] + i, k)));
+  double v[3];
+  sw_test_run_to(m, d, 0.01);
+  com(m, d->v, v);
+  const double va = v[0], ta = d->time;
+  sw_test_run_to(m, d, 0.03);
+  com(m, d->v, v);
+  SW_EXPECT_REL("deceleration on its end (m/s^2)", (va - v[0]) / (d->time - ta), mu_k[0] * GRAV, 1e-2);
+  sw_data_free(d);
+  sw_model_free(m);
+  sw_spec_free(s);
+}
+
 /* Claim: kinetic friction follows the direction of the slip (Hu et al.,
  * PNAS 2009; Gazzola 2018; PyElastica's snake friction): a rod sliding at
  * an angle theta to its tangent is decelerated by
@@ -929,6 +970,7 @@ int main(void) {
       cmocka_unit_test(test_kinetic_on_element_velocity),
       cmocka_unit_test(test_roll_on_curved_terrain),
       cmocka_unit_test(test_kinetic_follows_slip_direction),
+      cmocka_unit_test(test_standing_on_end),
       cmocka_unit_test(test_contact_point_incline),
       cmocka_unit_test(test_contact_point_bowling),
       cmocka_unit_test(test_friction_never_reverses),
