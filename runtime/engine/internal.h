@@ -182,6 +182,9 @@ void sw_kinematic_impose(const swModel *m, swData *d);
 void sw_kinematic_book(const swModel *m, swData *d); /* after the rod pass: the corrections' energy */
 void sw_kinematic_follow(const swModel *m, swData *d);
 void sw_kinematic_loads(const swModel *m, swData *d);
+/* rigidity.c: each elastic rod's largest strain and bend over the frames */
+void sw_rigidity_reset(const swModel *m, swData *d);
+void sw_rigidity_sample(const swModel *m, swData *d);
 double sw_stable_dt_kinematic(const swModel *m, int j);              /* stability.c */
 void sw_joint_setup(swModel *m);
 void sw_joint_rows(const swModel *m, swData *d);  /* each joint's loads, from the state */

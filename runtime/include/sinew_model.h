@@ -481,6 +481,12 @@ typedef struct {
   double *contact_anchor_old;
   int contact_stuck;         /* pairs of the last evaluation held still      */
   int contact_slipping;      /* and those slipping                           */
+  /* rigidity.c: per rod, its largest stretch or shear strain |sigma -
+   * sigma0| and its largest bend beyond rest summed along it (rad) over the
+   * frames written (NaN: a rod that cannot be held rigid, not sampled) */
+  double *rod_strain_peak;   /* (nrod)                                       */
+  double *rod_bend_peak;     /* (nrod)                                       */
+  long rigidity_frames;      /* frames sampled                               */
   long friction_full;        /* touching pairs, over the run's evaluations,
                                 left frictionless because the anchor table
                                 (contact.c's or obstacle.c's) was full;

@@ -107,6 +107,7 @@ static void progress_end(swProgress *p) {
 }
 
 static int write_frame(const swModel *m, swData *d, swOutput *out, swProgress *p) {
+  sw_rigidity_sample(m, d); /* the rods' strain peaks, for the run's summary (rigidity.c) */
   if (!out || sw_output_frame(out, m, d) == SW_OK) return SW_OK;
   progress_end(p);
   say(p->log, "sinew: %s\n", sw_output_error());

@@ -415,6 +415,7 @@ int sw_cli_run(const swCli *c, const swModel *m, const char *out) {
     if (rc != SW_OK && rc != SW_EEXPECT)
       fprintf(stderr, " of %s", sw_cli_format_time(total, sizeof total, c->duration));
     fprintf(stderr, " in %s wall time (%ld steps)\n", format_wall(w, sizeof w, wall), d->step);
+    if (rc == SW_OK || rc == SW_EEXPECT) sw_cli_rigidity_note(c, m, d);
     double fresh, kept;
     sw_implicit_counts(m, d, &fresh, &kept);
     if (fresh + kept > 0)

@@ -7,7 +7,8 @@
  * sw_main (building the model, a run, the study entry) and cli_study.c
  * turns a study's options into swStudyOptions and a study's design into a
  * run's params (it sees swStudyCall, from study/study.h, not swCli), and
- * cli_accuracy.c runs a model again at smaller steps for --accuracy.  A function called from another of these files
+ * cli_accuracy.c runs a model again at smaller steps for --accuracy, and
+ * cli_rigidity.c names the rods a run found nearly rigid.  A function called from another of these files
  * is declared here and named sw_cli_*; everything else stays static in its
  * file. */
 #ifndef SINEW_CLI_H
@@ -105,5 +106,12 @@ void sw_cli_print_help(const swCli *c, const char *default_out);
 /* --info: the compiled scene m at its step, and what a run would write to out. */
 void sw_cli_print_info(const swCli *c, const swModel *m, double stable, const char *dt_source,
                        const char *out);
+
+/* ---- cli_rigidity.c ---- */
+
+/* After a run's summary: the elastic rods that kept their rest shape
+ * within SW_CLI_RIGID_LIKE over the frames (engine/rigidity.c), named as
+ * rods the scene could hold rigid. */
+void sw_cli_rigidity_note(const swCli *c, const swModel *m, const swData *d);
 
 #endif
