@@ -27,7 +27,7 @@ void sw_data_free(swData *d) {
   free(d->kinematic_force); free(d->kinematic_turn); free(d->kinematic_delta);
   free(d->fil_activation); free(d->fil_stretch); free(d->fil_rate); free(d->fil_tension); free(d->fil_sys);
   free(d->ring_row); free(d->ring_imp); free(d->hold);
-  free(d->rod_strain_peak); free(d->rod_bend_peak);
+  free(d->rod_strain_peak); free(d->rod_bend_peak); free(d->muscle_spread_peak);
   free(d->rigid_X); free(d->rigid_V); free(d->rigid_R); free(d->rigid_L); free(d->rigid_omega);
   free(d->rigid_load); free(d->rigid_sys); free(d->rigid_lanes); free(d->implicit_sys);
   sw_probe_data_free(d);
@@ -76,6 +76,7 @@ swData *sw_data_new(const swModel *m) {
   d->hold = sw_dalloc(sw_hold_size(m));
   d->rod_strain_peak = sw_dalloc((size_t)m->nrod);
   d->rod_bend_peak = sw_dalloc((size_t)m->nrod);
+  d->muscle_spread_peak = sw_dalloc((size_t)m->nmuscle);
   if (!d->x || !d->v || !d->Q || !d->omega || !d->length || !d->dilatation ||
       !d->shortest || !d->shortest_time ||
       !d->sigma || !d->stress || !d->vor_dilatation || !d->kappa ||
@@ -84,7 +85,7 @@ swData *sw_data_new(const swModel *m) {
       !d->chunk_sum || !d->bc_work || !d->bc_free || !d->joint_scratch || !d->team || !d->joint_force ||
       !d->joint_angle || !d->joint_limit_torque || !d->kinematic_force || !d->kinematic_turn || !d->kinematic_delta || !d->fil_activation || !d->fil_stretch ||
       !d->fil_rate || !d->fil_tension || !d->fil_sys || !d->ring_row || !d->ring_imp || !d->hold ||
-      !d->rod_strain_peak || !d->rod_bend_peak) {
+      !d->rod_strain_peak || !d->rod_bend_peak || !d->muscle_spread_peak) {
     sw_data_free(d);
     return NULL;
   }

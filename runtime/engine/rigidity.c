@@ -16,7 +16,13 @@
  *                      their rest turns, summed along the rod: a bound on
  *                      how far its last element's frame has turned from
  *                      where a rigid rod would carry it (rad),
- * and their largest values over the frames are kept.  After the run's
+ * and their largest values over the frames are kept.  For a muscle of
+ * several filaments, likewise the largest spread of their motion,
+ *   p = max_i max_f |u_f,i - mean_g u_g,i| / L,   u_f,i = x_f,i - x_f,i(t = 0),
+ * node i of every filament f (all of one element count) moved from where
+ * it started, against the filaments' mean, over the muscle's rest length L
+ * (its first filament's): filaments that move alike within a small p could
+ * be one filament carrying their force.  After the run's
  * summary, sim/cli_rigidity.c names the rods whose largest s and b stayed
  * within SW_CLI_RIGID_LIKE (0.01); the tradeoff tool then measures what
  * holding them rigid costs on the scene's observables (docs/tradeoff.md).  Rods that cannot
@@ -29,6 +35,15 @@
 #include "vec.h"
 #include "internal.h"
 #include "model.h"
+
+/* Whether muscle k has several filaments, all of one element count. */
+static int muscle_alike_candidate(const swModel *m, int k) {
+  const int f0 = m->muscle_fil_adr[k], f1 = m->muscle_fil_adr[k + 1];
+  if (f1 - f0 < 2) return 0;
+  for (int f = f0 + 1; f < f1; f++)
+    if (m->rod_nelem[m->fil_rod[f]] != m->rod_nelem[m->fil_rod[f0]]) return 0;
+  return 1;
+}
 
 /* The peaks start at 0 on the rods that could be held rigid and at NaN
  * (not sampled) on the others: rigid rods, muscle filaments, kinematic
@@ -50,6 +65,7 @@ void sw_rigidity_reset(const swModel *m, swData *d) {
     const int r = m->swell_rod[k];
     d->rod_strain_peak[r] = d->rod_bend_peak[r] = NAN;
   }
+  for (int k = 0; k < m->nmuscle; k++) d->muscle_spread_peak[k] = muscle_alike_candidate(m, k) ? 0.0 : NAN;
   d->rigidity_frames = 0;
 }
 
@@ -88,7 +104,33 @@ static double bend_of(const swModel *m, const swData *d, int r) {
   return sum;
 }
 
+/* The spread p of muscle k's filaments' motion now (header). */
+static double spread_of(const swModel *m, const swData *d, int k) {
+  const int f0 = m->muscle_fil_adr[k], f1 = m->muscle_fil_adr[k + 1], nf = f1 - f0;
+  const int r0 = m->fil_rod[f0], nn = m->rod_nelem[r0] + 1;
+  double L = 0;
+  for (int e = m->elem_adr[r0]; e < m->elem_adr[r0] + nn - 1; e++) L += m->rest_len[e];
+  double peak = 0;
+  for (int i = 0; i < nn; i++) {
+    double mean[3] = {0, 0, 0};
+    for (int f = f0; f < f1; f++) {
+      const int a = m->node_adr[m->fil_rod[f]] + i;
+      for (int c = 0; c < 3; c++) mean[c] += (SW_AT(m, d->x, a, c) - SW_AT(m, m->x0, a, c)) / nf;
+    }
+    for (int f = f0; f < f1; f++) {
+      const int a = m->node_adr[m->fil_rod[f]] + i;
+      double dev[3];
+      for (int c = 0; c < 3; c++) dev[c] = SW_AT(m, d->x, a, c) - SW_AT(m, m->x0, a, c) - mean[c];
+      peak = fmax(peak, sw_v3_norm(dev));
+    }
+  }
+  return peak / L;
+}
+
 void sw_rigidity_sample(const swModel *m, swData *d) {
+  for (int k = 0; k < m->nmuscle; k++)
+    if (!isnan(d->muscle_spread_peak[k]))
+      d->muscle_spread_peak[k] = fmax(d->muscle_spread_peak[k], spread_of(m, d, k));
   for (int r = 0; r < m->nrod; r++) {
     if (isnan(d->rod_strain_peak[r])) continue; /* not a candidate (sw_rigidity_reset) */
     d->rod_strain_peak[r] = fmax(d->rod_strain_peak[r], strain_of(m, d, r));

@@ -486,6 +486,9 @@ typedef struct {
    * frames written (NaN: a rod that cannot be held rigid, not sampled) */
   double *rod_strain_peak;   /* (nrod)                                       */
   double *rod_bend_peak;     /* (nrod)                                       */
+  double *muscle_spread_peak; /* (nmuscle) largest spread of its filaments'
+                                motion over its length (NaN: one filament,
+                                or filaments of unequal element counts)     */
   long rigidity_frames;      /* frames sampled                               */
   long friction_full;        /* touching pairs, over the run's evaluations,
                                 left frictionless because the anchor table

@@ -1,5 +1,6 @@
 /* cli_rigidity.c — after a run, the elastic rods that hardly deformed,
- * named as rods the scene could hold rigid.
+ * named as rods the scene could hold rigid, and the muscles whose
+ * filaments moved alike, which fewer filaments could stand for.
  *
  * Design.  engine/rigidity.c keeps, per rod, its largest stretch or shear
  * strain and its largest bend along it over the frames written.  A rod
@@ -8,7 +9,9 @@
  * rigid (`rigid = true`) it would have no elastic waves and no elastic
  * step, which matters most when its own bound is the scene's explicit
  * step, so those rods come first, then by their bound, shortest first.
- * One note after the run's summary, at most SW_CLI_RIGID_SHOWN rods named;
+ * Likewise a muscle whose filaments' motion spread by at most
+ * SW_CLI_RIGID_LIKE of its length.  A note each after the run's summary,
+ * at most SW_CLI_RIGID_SHOWN rods or muscles named;
  * nothing with --quiet or when no rod qualifies.  Whether holding them
  * rigid changes the scene's observables more than the user accepts is the
  * tradeoff tool's measurement (scripts/sinew-study, docs/tradeoff.md),
@@ -43,8 +46,29 @@ static void order_by_bound(const swModel *m, int *rods, int n) {
   }
 }
 
+/* The muscles whose filaments moved alike within SW_CLI_RIGID_LIKE of
+ * the muscle's length (engine/rigidity.c's spread). */
+static void muscles_alike(const swCli *c, const swModel *m, const swData *d) {
+  int n = 0;
+  for (int k = 0; k < m->nmuscle; k++) n += d->muscle_spread_peak[k] <= SW_CLI_RIGID_LIKE;
+  if (n == 0) return;
+  fprintf(stderr, "%s: note: the filaments of %d muscle%s moved alike within %g of %s length over the "
+          "%ld frames (largest spread of their motion over the length):", c->prog, n, n == 1 ? "" : "s",
+          SW_CLI_RIGID_LIKE, n == 1 ? "its" : "each one's", d->rigidity_frames);
+  for (int k = 0, shown = 0; k < m->nmuscle && shown < SW_CLI_RIGID_SHOWN; k++) {
+    if (!(d->muscle_spread_peak[k] <= SW_CLI_RIGID_LIKE)) continue;
+    fprintf(stderr, "%s %s (%d filaments, %.3g)", shown++ ? ";" : "", m->muscle_name[k],
+            m->muscle_fil_adr[k + 1] - m->muscle_fil_adr[k], d->muscle_spread_peak[k]);
+  }
+  if (n > SW_CLI_RIGID_SHOWN) fprintf(stderr, "; and %d more", n - SW_CLI_RIGID_SHOWN);
+  fprintf(stderr, ". Fewer filaments (`filaments = 1`) would carry the muscle's force with fewer "
+          "elements; scripts/sinew-study measures what that costs on the scene's observables.\n");
+}
+
 void sw_cli_rigidity_note(const swCli *c, const swModel *m, const swData *d) {
-  if (c->quiet || d->rigidity_frames < 2 || m->nrod == 0) return;
+  if (c->quiet || d->rigidity_frames < 2) return;
+  muscles_alike(c, m, d);
+  if (m->nrod == 0) return;
   int *rods = malloc(sizeof *rods * (size_t)m->nrod);
   if (!rods) return;
   int n = 0;

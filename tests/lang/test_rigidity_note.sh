@@ -11,7 +11,9 @@
 # applied at once swings a linear beam to twice its static deflection, so
 # the largest bend over the frames (every 1 ms, the first mode's period
 # about 4.9 ms) lies between 1.5 and 2.05 times theta, at the default
-# step and at 0.5 us.
+# step and at 0.5 us.  A passive muscle of three filaments with free ends
+# falls beside them: under uniform gravity its filaments move alike, and a
+# second note names it.
 . "$(dirname "$0")/tap.sh"
 cd "$ROOT" || exit 1
 scratch rigidity
@@ -23,6 +25,8 @@ bone femur { material = stiff; start = (0, 0, 0) m; direction = (1, 0, 0); norma
              length = 0.2 m; radius = 10 mm; elements = 10; }
 rod strand { material = soft; start = (0, 0.1, 0) m; direction = (1, 0, 0); normal = (0, 0, 1);
              length = 0.2 m; radius = 2 mm; elements = 10; }
+muscle band { material = soft; from = (0, 0.3, 0) m; to = (0.2, 0.3, 0) m; radius = 5 mm;
+               filaments = 3; sigma_max = 100 kPa; elements = 6; }
 clamp femur.start;
 clamp strand.start;
 gravity (0, 0, -9.81) m/s^2;
@@ -52,6 +56,10 @@ awk -v b="$hbend" -v b1="$bend" 'BEGIN { t = 2.0 / 3.0 * 1750 * 9.81 * 0.2^3 / (
   printf "# femur at 0.5 us: largest bend %s rad (%s at dt), %.3f x the static tip slope\n", b, b1, b / t;
   exit !(b >= 1.5 * t && b <= 2.05 * t) }'
 ok $? "at 0.5 us too"
+mnote=$(grep ': note: the filaments of .* moved alike' log)
+echo "$mnote" | diag
+echo "$mnote" | grep -q "the filaments of 1 muscle moved alike within 0.01 .* band (3 filaments, "
+ok $? "the falling muscle's filaments are named as moving alike"
 ./r --quiet 2>qlog; ok $? "a quiet run"
 ! grep -q "note:" qlog
 ok $? "--quiet prints no note"

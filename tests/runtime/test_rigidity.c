@@ -9,7 +9,11 @@
  *     frame, has the shear strain sin((n - 1) alpha);
  *   - the peaks are the largest over the samples (a stretched frame, then
  *     the rest state, keeps the stretch's);
- *   - a rigid rod is not sampled (NaN), and a reset clears the peaks. */
+ *   - a rigid rod is not sampled (NaN), and a reset clears the peaks;
+ *   - a muscle of three filaments whose first filament's nodes are all
+ *     moved by delta, the others not: the mean motion is delta / 3, the
+ *     first filament strays from it by 2 delta / 3, so the spread is
+ *     2 delta / (3 L); its filaments are not sampled as rods (NaN). */
 #include "testutil.h"
 #include "internal.h"
 #include "vec.h"
@@ -77,10 +81,40 @@ static void test_bend_peak(void **state) {
   sw_spec_free(s);
 }
 
+static void test_muscle_spread(void **state) {
+  (void)state;
+  swSpec *s = sw_spec_new();
+  swMuscleDesc md;
+  sw_muscle_desc_init(&md);
+  md.name = "biceps";
+  md.filaments = 3;
+  md.nelem = 8;
+  md.end[2] = 0.2;
+  md.normal[0] = 1;
+  md.radius = 0.016;
+  md.sigma_max = 1e6;
+  md.activation = sw_signal_const(0.0);
+  assert_int_equal(sw_spec_add_muscle(s, &md), 0);
+  swModel *m = sw_test_compile(s);
+  swData *d = sw_data_new(m);
+  const double delta = 4e-4, L = 0.2;
+  const int r0 = m->fil_rod[m->muscle_fil_adr[0]];
+  for (int i = 0; i <= m->rod_nelem[r0]; i++) SW_AT(m, d->x, m->node_adr[r0] + i, 2) += delta;
+  sw_rigidity_sample(m, d);
+  fprintf(stderr, "# %s: spread %.9e (expected 2 delta / (3 L) = %.9e)\n", __func__, d->muscle_spread_peak[0],
+          2 * delta / (3 * L));
+  SW_EXPECT_REL("spread of the filaments' motion over L", d->muscle_spread_peak[0], 2 * delta / (3 * L), 1e-9);
+  assert_true(isnan(d->rod_strain_peak[r0])); /* a filament is not a rod that could be rigid */
+  sw_data_free(d);
+  sw_model_free(m);
+  sw_spec_free(s);
+}
+
 int main(void) {
   const struct CMUnitTest tests[] = {
       cmocka_unit_test(test_stretch_peak),
       cmocka_unit_test(test_bend_peak),
+      cmocka_unit_test(test_muscle_spread),
   };
   return cmocka_run_group_tests_name("rigidity", tests, NULL, NULL);
 }
