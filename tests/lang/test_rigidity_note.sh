@@ -16,6 +16,7 @@
 # second note names it.
 . "$(dirname "$0")/tap.sh"
 cd "$ROOT" || exit 1
+case $SINEWC in /*) ;; *) SINEWC=$ROOT/$SINEWC ;; esac   # the scene is compiled in $TMP
 scratch rigidity
 cd "$TMP" || exit 1
 cat >r.sinew <<'SCENE'
