@@ -184,21 +184,13 @@ build/tests/mpi_study: tests/mpi/mpi_study.c $(MPI_OBJ) build/libsinewrt.a | bui
 # runtime runs in every scene of E2E_BIN and tests/lang.  `make check-opt`
 # runs the unit tests optimised too (once part of `make test`: 46 s of CPU
 # for nothing the sanitizer run did not already check).
-# The longest test files start first (their CPU seconds in one run on a
-# 2-CPU machine, 2026-12-01: 175, 164, 128, 95, 90, 88, 83, 82, 81, 71 s),
-# so that the short ones fill the cores at the end instead of one long
-# file running alone.
-SLOW_TESTS = tests/lang/test_optimize.sh tests/lang/test_examples.sh tests/lang/test_golden.sh \
-             tests/lang/test_invariance.sh build/tests/test_snake tests/lang/test_am_free.sh \
-             tests/lang/test_movie.sh tests/lang/test_restart.sh build/asan/tests/test_threads \
-             tests/lang/test_threads.sh
 CHECK_BUILD = $(TEST_SBIN) $(E2E_BIN) build/libsinewrt.a build/libsinewrt-portable.a \
               $(MPI_OBJ) $(MPI_TEST) bin/sinewc build/asan/sinewc build/asan/fuzz_sinewc
 check-build: $(CHECK_BUILD)
 check: $(CHECK_BUILD)
 	@mkdir -p build/validation   # measured tables the validation tests leave for `make plots`
 	@SINEWC=build/asan/sinewc CMOCKA_MESSAGE_OUTPUT=TAP prove -j3 --timer --exec '' \
-	  $(SLOW_TESTS) $(filter-out $(SLOW_TESTS),$(E2E_BIN) $(TEST_SBIN) $(LANG_TESTS))
+	  $(E2E_BIN) $(TEST_SBIN) $(LANG_TESTS)
 .PHONY: check-opt
 check-opt: $(TEST_BIN)
 	@CMOCKA_MESSAGE_OUTPUT=TAP prove -j2 --exec '' $(TEST_BIN)
