@@ -193,10 +193,11 @@ fails_start "does not vary it" "--start and --set of one param" --set x0=7cm --s
 fails_start "starts from one file" "two --start files" --start opt.h5 --start grid.h5
 
 # ---- interrupted and resumed ----
-# at dt = 2 us an evaluation takes milliseconds: Ctrl-C comes mid-study
-./drop --optimize --budget 300 --seed 5 --dt 2us --study whole.h5 --quiet 2>/dev/null
-ok $? "an optimisation at dt = 2 us runs"
-./drop --optimize --budget 300 --seed 5 --dt 2us --study cut.h5 --quiet 2>cut.log &
+# at dt = 5 us an evaluation takes milliseconds (20,000 steps): Ctrl-C comes
+# mid-study
+./drop --optimize --budget 300 --seed 5 --dt 5us --study whole.h5 --quiet 2>/dev/null
+ok $? "an optimisation at dt = 5 us runs"
+./drop --optimize --budget 300 --seed 5 --dt 5us --study cut.h5 --quiet 2>cut.log &
 pid=$!
 i=0
 while [ $i -lt 400 ]; do
@@ -212,7 +213,7 @@ ok $? "Ctrl-C stops the study after $done_before of 300 evaluations (exit $rc)"
 ok $? "--resume continues it"
 same whole.h5 cut.h5
 ok $? "the resumed study's file equals the uninterrupted one's"
-./drop --optimize --budget 150 --seed 5 --dt 2us --study part.h5 --quiet 2>/dev/null
+./drop --optimize --budget 150 --seed 5 --dt 5us --study part.h5 --quiet 2>/dev/null
 ./drop --resume part.h5 --budget 300 --quiet 2>>cut.log
 ok $? "a study that spent its budget of 150 runs on with --resume --budget 300"
 same whole.h5 part.h5
