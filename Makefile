@@ -180,8 +180,8 @@ build/tests/mpi_study: tests/mpi/mpi_study.c $(MPI_OBJ) build/libsinewrt.a | bui
 # machine idle), which kept `.ci/run` inside its 10 minutes there.  On a
 # later machine (AMD EPYC, cpu family 26, two logical CPUs, 2026-12-01) the
 # same suite is CPU-bound and its time follows the machine's load: the
-# whole `.ci/run` took 606, 650 and 698 s in three clean-clone runs of one
-# afternoon (the tests' CPU 915, 982 and 1059 s), against 562-579 s the
+# whole `.ci/run` took 606, 650 and 698 s in three clean-clone runs within
+# an hour (the tests' CPU 915, 982 and 1059 s), against 562-579 s the
 # day before.
 # The runtime's unit tests run under the sanitizers (TEST_SBIN), the
 # stricter build of the same code (there are no paths of its own in the
