@@ -107,8 +107,9 @@ static void progress_end(swProgress *p) {
 }
 
 static int write_frame(const swModel *m, swData *d, swOutput *out, swProgress *p) {
+  if (!out) return SW_OK; /* a study's evaluation: no file, no summary to sample for */
   sw_rigidity_sample(m, d); /* the rods' strain peaks, for the run's summary (rigidity.c) */
-  if (!out || sw_output_frame(out, m, d) == SW_OK) return SW_OK;
+  if (sw_output_frame(out, m, d) == SW_OK) return SW_OK;
   progress_end(p);
   say(p->log, "sinew: %s\n", sw_output_error());
   return SW_EIO;
