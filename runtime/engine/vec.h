@@ -208,6 +208,18 @@ static inline double sw_select(int c, double a, double b) {
   memcpy(&x, &r, sizeof x);
   return x;
 }
+
+/* A running maximum or minimum m (never NaN) taking in x: x if it is
+ * larger (smaller), else m; a NaN x is passed over, as fmax and fmin pass
+ * it over.  For loops that keep such a bound beside another reduction,
+ * instead of fmax and fmin: GCC 12.2 for 64-bit Arm (Debian 12's, at -O3,
+ * -march=armv8-a and armv8.2-a+sve) stops with an internal compiler error
+ * (in vect_transform_reduction) vectorizing such loops with fmax or fmin
+ * (planform.c's bounding box, contact.c's grid size, io/accuracy.c's
+ * ranges), and written as a comparison the loop compiles
+ * (scripts/vec_report.sh --aarch64 compiles every runtime file for both). */
+static inline double sw_run_max(double m, double x) { return x > m ? x : m; }
+static inline double sw_run_min(double m, double x) { return x < m ? x : m; }
 static inline sw3 sw3_select(int c, sw3 a, sw3 b) {
   return (sw3){sw_select(c, a.x, b.x), sw_select(c, a.y, b.y), sw_select(c, a.z, b.z)};
 }

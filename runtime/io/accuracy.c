@@ -24,6 +24,7 @@
 
 #include "sinew.h"
 #include "h5get.h"
+#include "engine/vec.h"
 
 typedef struct {
   hid_t coarse, fine;
@@ -79,8 +80,8 @@ static void observe(swAcc *c, const char *path, const char *label, int skip_zero
   for (size_t f = 0; f < n; f++)
     for (size_t k = 0; k < w; k++) {
       const double v = y[f * w + k];
-      if (k < wk) lo[k] = fmin(lo[k], v), hi[k] = fmax(hi[k], v);
-      mag = fmax(mag, fabs(v));
+      if (k < wk) lo[k] = sw_run_min(lo[k], v), hi[k] = sw_run_max(hi[k], v); /* vec.h: not fmin */
+      mag = sw_run_max(mag, fabs(v));
       nonzero |= v != 0 || x[f * w + k] != 0;
     }
   if (skip_zero && !nonzero) {
