@@ -258,6 +258,7 @@ bench: deps
 	@$(MAKE) --no-print-directory $(BENCH_BIN) $(BENCH_RIGID) $(BENCH_CONTACT) $(BENCH_OBSTACLE) $(BENCH_PILE) $(BENCH_SCALING) bin/sinewc
 	@./$(BENCH_BIN) docs/benchmarks.md
 	@sh bench/bench_isa.sh docs/benchmarks.md   # bench_rod at x86-64-v3 and -v4, before issue 31 and now, side by side, and the vectorizer on aarch64 (~6 min, ~3 more the first time)
+	@sh bench/bench_aarch64.sh docs/benchmarks.md   # the whole runtime and compiler built for 64-bit Arm (NEON, SVE), the rod step's bits and the fast runtime tests under qemu-aarch64 (~5 min; ~2 more the first time, for the packages)
 	@sh bench/bench_pyelastica.sh docs/benchmarks.md   # PyElastica's Verlet against bench_rod's, n = 50, 100, 200, interleaved (~6 min; only with PyElastica's source in SW_PYELASTICA or build/pyelastica)
 	@sh bench/bench_assisted.sh docs/benchmarks.md   # the assisted elbow against the reference's Elbow.cpp, 2 ms at 50 ns, interleaved (~4 min; only with its binary in SW_ELASTICA_ELBOW)
 	@./$(BENCH_RIGID) docs/benchmarks.md

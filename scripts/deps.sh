@@ -2,7 +2,7 @@
 # deps.sh — install the Debian packages sinew needs, only those that are missing.
 # Called by `make test`, `make demo`, `make bench` and `make plots` so that each works on a
 # fresh Debian machine.  docs/dependencies.md says why each package is here.
-# With arguments (PKG:PROBE ...), installs those instead: the heavy packages that only one
+# With arguments (PKG:PROBE ..., PKG may be PKG:ARCH), installs those instead: the heavy packages that only one
 # test or tool needs (ParaView, ffmpeg) are pulled in by that test or tool (test_paraview.sh,
 # test_movie.sh, `sinew-plot movie`), not by every build.
 set -e
@@ -24,7 +24,7 @@ libopenmpi-dev:/usr/lib/x86_64-linux-gnu/openmpi/include/mpi.h
 [ $# -gt 0 ] && PKGS="$*"
 missing=""
 for pair in $PKGS; do
-  pkg=${pair%%:*}; probe=${pair#*:}
+  pkg=${pair%:*}; probe=${pair##*:} # at the last colon: a package may be PKG:ARCH
   [ -e "$probe" ] || missing="$missing $pkg"
 done
 [ -z "$missing" ] && exit 0
