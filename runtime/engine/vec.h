@@ -217,9 +217,10 @@ static inline double sw_select(int c, double a, double b) {
  * (in vect_transform_reduction) vectorizing such loops with fmax or fmin
  * (planform.c's bounding box, contact.c's grid size, io/accuracy.c's
  * ranges), and written as a comparison the loop compiles
- * (scripts/vec_report.sh --aarch64 compiles every runtime file for both). */
+ * (bench/bench_aarch64.sh compiles every runtime file for both). */
 static inline double sw_run_max(double m, double x) { return x > m ? x : m; }
 static inline double sw_run_min(double m, double x) { return x < m ? x : m; }
+
 static inline sw3 sw3_select(int c, sw3 a, sw3 b) {
   return (sw3){sw_select(c, a.x, b.x), sw_select(c, a.y, b.y), sw_select(c, a.z, b.z)};
 }
