@@ -9,7 +9,8 @@
 # once stopped with an internal compiler error on three of them: vec.h,
 # sw_run_max), do the vector loops compute there what they compute on x86
 # (bench_rod --tip: the cantilever's tip after N steps, printed to 17
-# digits, against the x86-64 build of `make` and its v3 and v4 builds), and
+# digits, against the x86-64 build of `make`, its v3 and v4 builds and the
+# portable library), and
 # do the tests' closed-form checks hold there.  Emulation says nothing of
 # speed, and none is given.  Written as the section "64-bit Arm: built and
 # run under emulation" of REPORT.md (docs/benchmarks.md), which `make bench`
@@ -49,9 +50,13 @@ sh scripts/deps.sh gcc-aarch64-linux-gnu:/usr/bin/$cross libc6-dev-arm64-cross:/
   qemu-user:/usr/bin/qemu-aarch64 libgsl27:arm64:$lib/libgsl.so.27 libgslcblas0:arm64:$lib/libgslcblas.so.0 \
   libhdf5-103-1:arm64:$lib/libhdf5_serial.so.103 libcmocka0:arm64:$lib/libcmocka.so.0 ||
   not_run "the cross compiler, qemu-user or the Arm libraries could not be installed"
-make --no-print-directory bin/sinewc build/bench/bench_rod build/bench/bench_rod_v3 build/bench/bench_rod_v4 >/dev/null
+make --no-print-directory bin/sinewc build/bench/bench_rod build/bench/bench_rod_v3 build/bench/bench_rod_v4 \
+  build/libsinewrt-portable.a >/dev/null
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
+# bench_rod on the portable library (sinewc --portable: any x86-64)
+${CC:-cc} -std=c11 -D_DEFAULT_SOURCE -O3 -march=x86-64 -fno-math-errno -fopenmp -Iruntime/include bench/bench_rod.c \
+  -o "$tmp/bench_rod_portable" build/libsinewrt-portable.a $(pkg-config --libs hdf5 gsl) -lm
 warn="-Wall -Wextra -Wshadow -Wstrict-prototypes -Wmissing-prototypes"
 opts="-std=c11 -D_DEFAULT_SOURCE -O3 -fno-math-errno -fopenmp -g0"
 inc="-Iruntime/include -Iruntime -Iruntime/engine -Iruntime/io -Iruntime/study -Itests/runtime $(pkg-config --cflags hdf5 gsl)"
@@ -92,6 +97,7 @@ tips() { # tips LABEL CMD...: "LABEL n clamp-tip held-tip" a size
   tips "x86-64 (make: -march=native)" build/bench/bench_rod
   tips "x86-64-v3" build/bench/bench_rod_v3
   tips "x86-64-v4" build/bench/bench_rod_v4
+  tips "x86-64 (portable: sinewc --portable)" "$tmp/bench_rod_portable"
   tips "armv8-a (NEON)" qemu-aarch64 -cpu max -E LD_LIBRARY_PATH=/usr/aarch64-linux-gnu/lib "$tmp/armv8-a/bench_rod"
   for vl in 16:128 64:512 256:2048; do
     tips "armv8.2-a+sve, ${vl#*:}-bit vectors" qemu-aarch64 -cpu "max,sve-default-vector-length=${vl%:*}" \
