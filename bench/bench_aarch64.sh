@@ -23,7 +23,9 @@
 # Arm -dev packages would replace the x86-64 ones).  That needs dpkg to
 # know the arm64 architecture, which this script adds when it is missing.
 # SW_BENCH_ARM_TESTS: the runtime tests run (default: those of a quarter of
-# a second or less natively; emulation is about 100 times slower).
+# a second or less natively, emulation being about 100 times slower, and
+# none with threads: under qemu-aarch64 7.2 here a program that starts a
+# pthread and joins it never returns, so test_cli's 2-thread run spins).
 set -eu
 out=${1:-docs/benchmarks.md}
 root=$(cd "$(dirname "$0")/.." && pwd)
