@@ -97,8 +97,9 @@ tips() { # tips LABEL CMD...: "LABEL n clamp-tip held-tip" a size
 }
 {
   tips "x86-64 (make: -march=native)" build/bench/bench_rod
-  tips "x86-64-v3" build/bench/bench_rod_v3
-  tips "x86-64-v4" build/bench/bench_rod_v4
+  level() { build/bench/bench_rod --cpu | awk -v k="$1" '$1 == k { print $2 }'; }
+  [ "$(level x86-64-v3)" = yes ] && tips "x86-64-v3" build/bench/bench_rod_v3
+  [ "$(level x86-64-v4)" = yes ] && tips "x86-64-v4" build/bench/bench_rod_v4 # a CPU without AVX-512: no row
   tips "x86-64 (portable: sinewc --portable)" "$tmp/bench_rod_portable"
   tips "armv8-a (NEON)" qemu-aarch64 -cpu max -E LD_LIBRARY_PATH=/usr/aarch64-linux-gnu/lib "$tmp/armv8-a/bench_rod"
   for vl in 16:128 64:512 256:2048; do
