@@ -7,7 +7,7 @@
 #
 # What it answers: does every file compile for Arm (GCC 12.2 for aarch64
 # once stopped with an internal compiler error on three of them: vec.h,
-# sw_run_max), do the vector loops compute there what they compute on x86
+# sw_max), do the vector loops compute there what they compute on x86
 # (bench_rod --tip: the cantilever's tip after N steps, printed to 17
 # digits, against the x86-64 build of `make`, its v3 and v4 builds and the
 # portable library), and

@@ -426,8 +426,8 @@ static void grid_pairs(const swModel *m, const swData *d, int c, Sums *sum) {
     sw_get3(m, d->x, a, xa);
     sw_get3(m, d->x, a + 1, xb);
     sw_v3_sub(dx, xb, xa);
-    longest2 = sw_run_max(longest2, sw_v3_dot(dx, dx)); /* vec.h: not fmax */
-    widest = sw_run_max(widest, d->radius_now[e]);
+    longest2 = sw_max(sw_v3_dot(dx, dx), longest2); /* vec.h: not fmax */
+    widest = sw_max(d->radius_now[e], widest);
   }
   const double longest = sqrt(longest2);
   const double h = longest + 2 * widest;

@@ -143,7 +143,7 @@ int sw_rods_area(const swModel *m, int nrods, const int *rods, swArea *out) {
     for (int i = 0; i < m->rod_nelem[rods[q]]; i++) {
       double mid[3];
       out->silhouette += element_midpoint(m, rods[q], i, mid);
-      thinnest = sw_run_min(thinnest, m->radius[m->elem_adr[rods[q]] + i]);
+      thinnest = sw_min(m->radius[m->elem_adr[rods[q]] + i], thinnest); /* vec.h: not fmin */
     }
   if (!(out->silhouette > 0) || !mean_plane(m, nrods, rods, c, n)) return 0;
   /* in-plane axes u, v: u from the coordinate axis least along n */
@@ -165,8 +165,8 @@ int sw_rods_area(const swModel *m, int nrods, const int *rods, swArea *out) {
       const double p[2] = {sw_v3_dot(d, u), sw_v3_dot(d, v)};
       const double rad = m->radius[m->elem_adr[rods[q]] + (i < m->rod_nelem[rods[q]] ? i : i - 1)];
       for (int k = 0; k < 2; k++) {
-        lo[k] = sw_run_min(lo[k], p[k] - rad); /* vec.h: not fmin */
-        hi[k] = sw_run_max(hi[k], p[k] + rad);
+        lo[k] = sw_min(p[k] - rad, lo[k]);
+        hi[k] = sw_max(p[k] + rad, hi[k]);
       }
     }
   /* the grid: a quarter of the thinnest radius, coarser if too many cells */

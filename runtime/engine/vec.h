@@ -209,18 +209,6 @@ static inline double sw_select(int c, double a, double b) {
   return x;
 }
 
-/* A running maximum or minimum m (never NaN) taking in x: x if it is
- * larger (smaller), else m; a NaN x is passed over, as fmax and fmin pass
- * it over.  For loops that keep such a bound beside another reduction,
- * instead of fmax and fmin: GCC 12.2 for 64-bit Arm (Debian 12's, at -O3,
- * -march=armv8-a and armv8.2-a+sve) stops with an internal compiler error
- * (in vect_transform_reduction) vectorizing such loops with fmax or fmin
- * (planform.c's bounding box, contact.c's grid size, io/accuracy.c's
- * ranges), and written as a comparison the loop compiles
- * (bench/bench_aarch64.sh compiles every runtime file for both). */
-static inline double sw_run_max(double m, double x) { return x > m ? x : m; }
-static inline double sw_run_min(double m, double x) { return x < m ? x : m; }
-
 static inline sw3 sw3_select(int c, sw3 a, sw3 b) {
   return (sw3){sw_select(c, a.x, b.x), sw_select(c, a.y, b.y), sw_select(c, a.z, b.z)};
 }
@@ -237,7 +225,14 @@ static inline sw3 sw3_select(int c, sw3 a, sw3 b) {
  * fmax(0.0, -0.0) is -0.0 in both) and when x is a NaN; when y is a NaN
  * they return it, where fmax and fmin return x.  Use them where a NaN
  * argument means that the state is lost anyway (a NaN load makes its node's
- * velocity NaN, which the step's check reports). */
+ * velocity NaN, which the step's check reports), or as sw_max(x, bound)
+ * for a running bound that is never NaN, which passes a NaN x over as fmax
+ * does.  Loops that keep such a bound beside another reduction must use
+ * these, not fmax and fmin: GCC 12.2 for 64-bit Arm (Debian 12's, -O3,
+ * armv8-a and armv8.2-a+sve) stops with an internal compiler error
+ * (vect_transform_reduction) vectorizing them with fmax or fmin
+ * (planform.c's bounding box, contact.c's grid size, io/accuracy.c's
+ * ranges; bench/bench_aarch64.sh compiles every runtime file for Arm). */
 static inline double sw_max(double x, double y) { return x > y ? x : y; }
 static inline double sw_min(double x, double y) { return x < y ? x : y; }
 

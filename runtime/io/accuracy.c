@@ -80,8 +80,8 @@ static void observe(swAcc *c, const char *path, const char *label, int skip_zero
   for (size_t f = 0; f < n; f++)
     for (size_t k = 0; k < w; k++) {
       const double v = y[f * w + k];
-      if (k < wk) lo[k] = sw_run_min(lo[k], v), hi[k] = sw_run_max(hi[k], v); /* vec.h: not fmin */
-      mag = sw_run_max(mag, fabs(v));
+      if (k < wk) lo[k] = sw_min(v, lo[k]), hi[k] = sw_max(v, hi[k]); /* vec.h: not fmin */
+      mag = sw_max(fabs(v), mag);
       nonzero |= v != 0 || x[f * w + k] != 0;
     }
   if (skip_zero && !nonzero) {

@@ -12,8 +12,8 @@
  * Qb = exp(-[phi]x) Qa, continuously across the branch thresholds; and that
  * sw_frame_from builds a right-handed orthonormal frame with d3 along the
  * direction, also when the normal is nearly parallel to it, and rejects
- * degenerate input; and that sw_run_max and sw_run_min keep the bounds fmax
- * and fmin keep.  Worst errors are printed as "# ..." lines. */
+ * degenerate input; and that sw_max and sw_min as running bounds keep the
+ * bounds fmax and fmin keep.  Worst errors are printed as "# ..." lines. */
 #include "testutil.h"
 #include "vec.h"
 
@@ -650,7 +650,7 @@ static void test_frame_from_nearly_parallel(void **state) {
   assert_true(worst < 2e-15);
 }
 
-/* sw_run_max and sw_run_min, which stand for fmax and fmin in the loops
+/* sw_max(x, bound) and sw_min(x, bound), which stand for fmax and fmin in the loops
  * GCC 12.2 for Arm cannot vectorize with them (vec.h): the same bound as
  * fmax and fmin over runs of values with NaNs and infinities among them
  * (a NaN passed over), in a loop of two reductions as in contact.c. */
@@ -662,17 +662,17 @@ static void test_run_bounds(void **state) {
   for (int start = 0; start < 64; start += 7) {
     double a = 0, b = 0, c = INFINITY, e = INFINITY, widest = 0, w2 = 0, ref_w = 0, ref_w2 = 0;
     for (int k = start; k < 64; k++) {
-      a = fmax(a, x[k]), b = sw_run_max(b, x[k]);
-      c = fmin(c, x[k]), e = sw_run_min(e, x[k]);
-      widest = sw_run_max(widest, fabs(x[k])), w2 = sw_run_max(w2, x[k] * x[k]);
+      a = fmax(a, x[k]), b = sw_max(x[k], b);
+      c = fmin(c, x[k]), e = sw_min(x[k], e);
+      widest = sw_max(fabs(x[k]), widest), w2 = sw_max(x[k] * x[k], w2);
       ref_w = fmax(ref_w, fabs(x[k])), ref_w2 = fmax(ref_w2, x[k] * x[k]);
     }
     assert_true(a == b && c == e);
     assert_true(widest == ref_w && w2 == ref_w2);
     assert_false(isnan(b) || isnan(e) || isnan(widest) || isnan(w2));
   }
-  assert_true(sw_run_max(1.0, NAN) == 1.0 && sw_run_min(1.0, NAN) == 1.0);
-  assert_true(sw_run_max(-INFINITY, -5.0) == -5.0 && sw_run_min(INFINITY, 5.0) == 5.0);
+  assert_true(sw_max(NAN, 1.0) == 1.0 && sw_min(NAN, 1.0) == 1.0);
+  assert_true(sw_max(-5.0, -INFINITY) == -5.0 && sw_min(5.0, INFINITY) == 5.0);
 }
 
 int main(void) {
