@@ -22,15 +22,33 @@ openmpi-bin:/usr/bin/mpirun
 libopenmpi-dev:/usr/lib/x86_64-linux-gnu/openmpi/include/mpi.h
 "
 [ $# -gt 0 ] && PKGS="$*"
-missing=""
-for pair in $PKGS; do
-  pkg=${pair%:*}; probe=${pair##*:} # at the last colon: a package may be PKG:ARCH
-  [ -e "$probe" ] || missing="$missing $pkg"
-done
+missing_now() {
+  missing=""
+  for pair in $PKGS; do
+    pkg=${pair%:*}; probe=${pair##*:} # at the last colon: a package may be PKG:ARCH
+    [ -e "$probe" ] || missing="$missing $pkg"
+  done
+}
+missing_now
+[ -z "$missing" ] && exit 0
+# One install at a time from this script (make test runs three test files
+# at once); what another call installed meanwhile is not installed again.
+exec 9>"${TMPDIR:-/tmp}/sinew-deps.lock"
+flock 9
+missing_now
 [ -z "$missing" ] && exit 0
 echo "deps: installing$missing" >&2
 SUDO=""
 [ "$(id -u)" = 0 ] || SUDO=sudo
 export DEBIAN_FRONTEND=noninteractive
-$SUDO apt-get update -qq >/dev/null
-$SUDO apt-get install -y -qq --no-install-recommends $missing >/dev/null
+# Another apt-get on the machine (not this script's) may hold dpkg's lock:
+# each apt-get waits up to ten minutes for it (DPkg::Lock::Timeout).  A
+# failed update or download is tried once more, after a fresh index.  apt's
+# own messages stay on stderr, for the caller's log.  (CI, 2026-11-30:
+# test_paraview.sh could not install python3-paraview while test_movie.sh,
+# run beside it, may have been installing ffmpeg; apt's reason was not kept.)
+APT="$SUDO apt-get -qq -o DPkg::Lock::Timeout=600"
+apt_install() {
+  $APT update >/dev/null && $APT install -y --no-install-recommends $missing >/dev/null
+}
+apt_install || { echo "deps: apt-get failed; trying once more" >&2; sleep 5; apt_install; }

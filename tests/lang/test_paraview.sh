@@ -30,6 +30,7 @@ rc=$?
 ok $rc "python3-paraview and xvfb are installed (scripts/deps.sh)"
 diag <"$TMP/deps"
 if [ $rc -ne 0 ]; then
+  sed 's/^/# deps: /' "$TMP/deps" >&2   # apt's reason, shown by prove
   echo "Bail out! cannot install python3-paraview and xvfb with apt-get"
   exit 1
 fi
