@@ -33,7 +33,8 @@ missing_now
 [ -z "$missing" ] && exit 0
 # One install at a time from this script (make test runs three test files
 # at once); what another call installed meanwhile is not installed again.
-exec 9>"${TMPDIR:-/tmp}/sinew-deps.lock"
+# The lock is at a fixed path, the same whatever TMPDIR a caller sets.
+exec 9>/tmp/sinew-deps.lock
 flock 9
 missing_now
 [ -z "$missing" ] && exit 0
@@ -44,7 +45,7 @@ export DEBIAN_FRONTEND=noninteractive
 # Another apt-get on the machine (not this script's) may hold dpkg's lock:
 # each apt-get waits up to ten minutes for it (DPkg::Lock::Timeout).  A
 # failed update or download is tried once more, after a fresh index.  apt's
-# own messages stay on stderr, for the caller's log.  (CI, 2026-11-30:
+# own messages stay on stderr, for the caller's log.  (A CI run:
 # test_paraview.sh could not install python3-paraview while test_movie.sh,
 # run beside it, may have been installing ffmpeg; apt's reason was not kept.)
 APT="$SUDO apt-get -qq -o DPkg::Lock::Timeout=600"

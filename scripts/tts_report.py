@@ -254,7 +254,8 @@ step "Implicit rods" above measured; the elbow with implicit bones and
 tendons, whose estimate of 1.59 ms does not hold (docs/physics.md, "Joints
 on implicit rods"): 125 us, `make demo`'s step; the CMA-ES evaluation: its
 scene's 69.44 us, 0.9 of its estimate, checked against 10 us over its
-designs in "The four-pair evaluation at 0.9 of its estimate"). "Check": the same scene run at
+designs in "The four-pair evaluation at 0.9 of its estimate"). "Check": the
+same scene run at
 that step and at a quarter of it over a window of the simulated time, the
 study's observable compared (elbow: the largest difference of the elbow angle
 and of the long head's force over the window, relative to the fine run's range
