@@ -82,11 +82,13 @@ endif
 all: $(MPI_OBJ)
 # the flags sinewc passes to the C compiler when it builds a simulator:
 # HDF5 from its static archive where one links (scripts/hdf5_link.sh says
-# why), run only when sinewc.c is compiled (the variable is expanded there)
+# why), and gold as the linker where the compiler has it (scripts/sim_linker.sh
+# says why), run only when sinewc.c is compiled (the variable is expanded there)
 HDF5_LINK = $(shell sh scripts/hdf5_link.sh $(CC))
 RT_LINK  = -DSW_RT_CFLAGS='"$(PKG_CFLAGS)"' \
            -DSW_RT_LIBS='"$(HDF5_LINK) $(shell pkg-config --libs gsl 2>/dev/null) -lm"' \
-           -DSW_RT_MPI_LIBS='"$(MPI_LIBS)"'
+           -DSW_RT_MPI_LIBS='"$(MPI_LIBS)"' \
+           -DSW_RT_LDFLAGS='"$(shell sh scripts/sim_linker.sh $(CC))"'
 
 build/lang/sinew.tab.c build/lang/sinew.tab.h: lang/sinew.y | build/lang
 	bison -Wall -Werror -d -o build/lang/sinew.tab.c lang/sinew.y

@@ -51,6 +51,12 @@
 #define SW_RT_MPI_LIBS ""
 #endif
 
+/* the linker flag, "-fuse-ld=gold" where the compiler had it when sinew
+ * was built (scripts/sim_linker.sh: twice as fast as GNU ld here) */
+#ifndef SW_RT_LDFLAGS
+#define SW_RT_LDFLAGS ""
+#endif
+
 extern char **environ;
 
 static const char *progname = "sinewc";
@@ -195,6 +201,7 @@ static int run_cc(const char *csrc, const char *out, int portable, int no_mpi) {
   if (!portable) argv[n++] = "-march=native";
   argv[n++] = "-fno-math-errno";
   argv[n++] = "-fopenmp"; /* the runtime's threads (libgomp) */
+  if (SW_RT_LDFLAGS[0]) argv[n++] = SW_RT_LDFLAGS;
   argv[n++] = incflag;
   n += split_flags(cflags, argv + n, 32);
   argv[n++] = "-x";
