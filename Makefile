@@ -184,7 +184,9 @@ build/tests/mpi_study: tests/mpi/mpi_study.c $(MPI_OBJ) build/libsinewrt.a | bui
 # same suite is CPU-bound and its time follows the machine's load: the
 # whole `.ci/run` took 606, 650 and 698 s in three clean-clone runs within
 # an hour (the tests' CPU 915, 982 and 1059 s), against 562-579 s the
-# day before.
+# day before; 634 s on 2026-12-02 (tests 500 s), then 582 s (tests 444 s)
+# with the simulators linked by gold (scripts/sim_linker.sh: the suite
+# builds 441 of them, 0.69 s each under its load with GNU ld).
 # The runtime's unit tests run under the sanitizers (TEST_SBIN), the
 # stricter build of the same code (there are no paths of its own in the
 # optimised one: no intrinsics, no -march-specific source); the optimised
