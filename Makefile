@@ -88,7 +88,7 @@ HDF5_LINK = $(shell sh scripts/hdf5_link.sh $(CC))
 RT_LINK  = -DSW_RT_CFLAGS='"$(PKG_CFLAGS)"' \
            -DSW_RT_LIBS='"$(HDF5_LINK) $(shell pkg-config --libs gsl 2>/dev/null) -lm"' \
            -DSW_RT_MPI_LIBS='"$(MPI_LIBS)"' \
-           -DSW_RT_LDFLAGS='"$(shell sh scripts/sim_linker.sh $(CC))"'
+           -DSW_RT_LDFLAGS='"$(shell sh scripts/sim_linker.sh $(CC))"' -DSW_RT_CC='"$(CC)"'
 
 build/lang/sinew.tab.c build/lang/sinew.tab.h: lang/sinew.y | build/lang
 	bison -Wall -Werror -d -o build/lang/sinew.tab.c lang/sinew.y

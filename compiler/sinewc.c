@@ -52,9 +52,13 @@
 #endif
 
 /* the linker flag, "-fuse-ld=gold" where the compiler had it when sinew
- * was built (scripts/sim_linker.sh: twice as fast as GNU ld here) */
+ * was built (scripts/sim_linker.sh: twice as fast as GNU ld here), and
+ * that compiler: another $CC gets no flag it may not take */
 #ifndef SW_RT_LDFLAGS
 #define SW_RT_LDFLAGS ""
+#endif
+#ifndef SW_RT_CC
+#define SW_RT_CC "cc"
 #endif
 
 extern char **environ;
@@ -201,7 +205,7 @@ static int run_cc(const char *csrc, const char *out, int portable, int no_mpi) {
   if (!portable) argv[n++] = "-march=native";
   argv[n++] = "-fno-math-errno";
   argv[n++] = "-fopenmp"; /* the runtime's threads (libgomp) */
-  if (SW_RT_LDFLAGS[0]) argv[n++] = SW_RT_LDFLAGS;
+  if (SW_RT_LDFLAGS[0] && !strcmp(cc, SW_RT_CC)) argv[n++] = SW_RT_LDFLAGS;
   argv[n++] = incflag;
   n += split_flags(cflags, argv + n, 32);
   argv[n++] = "-x";
