@@ -191,7 +191,8 @@ build/tests/mpi_study: tests/mpi/mpi_study.c $(MPI_OBJ) build/libsinewrt.a | bui
 # an hour (the tests' CPU 915, 982 and 1059 s), against 562-579 s the
 # day before; 634 s on 2026-12-02 (tests 500 s), then 582 s (tests 444 s)
 # with the simulators linked by gold (scripts/sim_linker.sh: the suite
-# builds 441 of them, 0.69 s each under its load with GNU ld).
+# builds 441 of them, 0.69 s each under its load with GNU ld), 604 s in
+# another run, and 599 s (tests 484 s) with our own links by gold too.
 # The runtime's unit tests run under the sanitizers (TEST_SBIN), the
 # stricter build of the same code (there are no paths of its own in the
 # optimised one: no intrinsics, no -march-specific source); the optimised
