@@ -87,8 +87,8 @@ endif
 all: $(MPI_OBJ)
 # the flags sinewc passes to the C compiler when it builds a simulator:
 # HDF5 from its static archive where one links (scripts/hdf5_link.sh says
-# why), and gold as the linker where the compiler has it (scripts/sim_linker.sh
-# says why), run only when sinewc.c is compiled (the variable is expanded there)
+# why), run only when sinewc.c is compiled (the variable is expanded there),
+# and LD_FAST above, gold where the compiler has it
 HDF5_LINK = $(shell sh scripts/hdf5_link.sh $(CC))
 RT_LINK  = -DSW_RT_CFLAGS='"$(PKG_CFLAGS)"' \
            -DSW_RT_LIBS='"$(HDF5_LINK) $(shell pkg-config --libs gsl 2>/dev/null) -lm"' \
