@@ -302,7 +302,7 @@ static int rod_kept_implicitly(const swModel *m, int r) {
   return m->nimplicit && m->rod_implicit[r];
 }
 
-static double joint_node_dt(const swModel *m, const swJointDesc *jd, int i, int e, int s) {
+static double joint_node_dt(const swModel *m, const swJointDesc *jd, int i, int e, double s) {
   int r = sw_rod_of_elem(m, e);
   int first = m->node_adr[r], last = first + m->rod_nelem[r];
   double ksum = 0;
@@ -401,14 +401,30 @@ double sw_stable_dt_joint(const swModel *m, int j) {
 }
 
 /* A kinematic joint's spring on its follower node (kinematic.c), bounded as
- * a joint's node row with both ends moving (s = 2). */
+ * a joint's node row whose spring pulls, at its other end, the point p the
+ * reaction goes to: the leader's element at xi, shared (1 - xi), xi by its
+ * two nodes, or a reaction node with weight w.  Two masses on a spring have
+ * w^2 = k (1 / m_f + 1 / m_p), so the row's s = 1 + m_f / m_p with p's
+ * inverse mass 1 / m_p = (1 - xi)^2 / m_a + xi^2 / m_b (w^2 / m_r): 2 for
+ * equal masses, as a joint between two free nodes, and about 1 against a
+ * heavy leader (a rachis on a bone).  A node's lumped mass is the least its
+ * body offers: a rigid or implicit leader moves less under the same force,
+ * so the bound stays safe. */
 double sw_stable_dt_kinematic(const swModel *m, int j) {
   const swKinematicDesc *k = &m->kinematic[j];
   swJointDesc jd;
   memset(&jd, 0, sizeof jd);
   jd.stiffness = k->stiffness;
   jd.damping = k->damping;
-  return joint_node_dt(m, &jd, k->follower_node, k->follower_elem, 2);
+  double inv_mp;
+  if (k->reaction_rod >= 0) {
+    inv_mp = k->reaction_weight * k->reaction_weight * m->inv_mass[k->reaction_node];
+  } else {
+    const double xi = k->leader_xi;
+    const int a = k->leader_elem; /* its first node's slot; the second is a + 1 */
+    inv_mp = (1 - xi) * (1 - xi) * m->inv_mass[a] + xi * xi * m->inv_mass[a + 1];
+  }
+  return joint_node_dt(m, &jd, k->follower_node, k->follower_elem, 1 + inv_mp / m->inv_mass[k->follower_node]);
 }
 
 double sw_stable_dt(const swModel *m) {

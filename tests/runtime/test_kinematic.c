@@ -23,7 +23,9 @@
  *      variational law, whose couple is the energy's gradient, the
  *      difference from the exact change is the dropped second-order term
  *      (it doubles with the turn); Gazzola's law printed beside it; a large
- *      one is booked exactly.
+ *      one is booked exactly;
+ *   7. the tie's stable step against the measured one, the leader's point
+ *      counted as a mass of its own.
  */
 #include "testutil.h"
 #include "vec.h"
@@ -325,6 +327,58 @@ static void test_correction_booked(void **state) {
   assert_true(fabs(bl - xl) < 1e-9 * fabs(xl));
 }
 
+/* 7. the tie's stable step: the scene with a tie so stiff (k = 1e7 N/m)
+ * that it bounds the step, the bone 250 times heavier than the rachis'
+ * first node.  Every node and element set moving at random; stable when the
+ * energy stays within 1e3 of its start over 3000 steps.  The estimate counts
+ * the leader's point as a mass of its own (s = 1 + m_f / m_p, kinematic.c's
+ * bound, about 1 here: stability.c); the true limit, found by bisection,
+ * is above it (safe) and within 1.5 of it (tight); the bound of two equal
+ * masses (s = 2) is 0.71 of it. */
+static int tie_stable(double frac) {
+  swSpec *s = scene(1e7, 0);
+  swModel *m = sw_test_compile_at(s, frac);
+  sw_spec_free(s);
+  swData *d = sw_data_new(m);
+  unsigned seed = 777;
+  for (int i = 0; i < m->nslot_elastic; i++)
+    for (int c = 0; c < 3; c++) {
+      seed = seed * 1103515245u + 12345u;
+      SW_AT(m, d->v, i, c) = 1e-6 * ((double)(seed >> 8) / (1u << 24) - 0.5);
+      seed = seed * 1103515245u + 12345u;
+      SW_AT(m, d->omega, i, c) = 1e-4 * ((double)(seed >> 8) / (1u << 24) - 0.5);
+    }
+  return sw_test_stays_bounded(m, d, sw_test_sanitized() ? 1000 : 3000); /* frees d and m */
+}
+
+static void test_tie_stable_dt(void **state) {
+  (void)state;
+  swSpec *s = scene(1e7, 0);
+  swModel *m = sw_test_compile(s);
+  sw_spec_free(s);
+  const double est = sw_stable_dt(m), tie = m->kinematic_dt[0];
+  const int f = m->kinematic[0].follower_node, a = m->kinematic[0].leader_elem;
+  const double m_f = m->mass[f], m_p = m->mass[a + 1]; /* xi = 1: the leader's second node */
+  const double w_pair = sqrt(1e7 * (1 / m_f + 1 / m_p));
+  fprintf(stderr, "# %s: tie's estimate %.4g s (the scene's %.4g s); follower node %.3g kg, leader's point "
+          "%.3g kg; 0.95 x 2 / w of the pair %.4g s\n", __func__, tie, est, m_f, m_p, 0.95 * 2 / w_pair);
+  assert_true(tie == est); /* the tie bounds the scene */
+  /* the node's row: the pair's spring plus its rod's elements, so at most the pair's bound */
+  assert_true(tie <= 0.95 * 2 / w_pair * (1 + 1e-12));
+  assert_true(tie >= 0.9 * 0.95 * 2 / w_pair);
+  sw_model_free(m);
+  double lo = 1.0, hi = 3.0;
+  assert_true(tie_stable(lo));
+  assert_false(tie_stable(hi));
+  for (int it = 0; it < 10; it++) {
+    const double mid = 0.5 * (lo + hi);
+    if (tie_stable(mid)) lo = mid; else hi = mid;
+  }
+  fprintf(stderr, "# %s: measured limit %.4f x the estimate (%.4f x the bound of two equal masses, s = 2)\n", __func__,
+          lo, lo * sqrt(2.0 / (1 + m_f / m_p)));
+  assert_true(lo >= 1.0 && lo <= 1.5);
+}
+
 int main(void) {
   const struct CMUnitTest tests[] = {
     cmocka_unit_test(test_follows_turning_bone),
@@ -333,6 +387,7 @@ int main(void) {
     cmocka_unit_test(test_reaction_moved),
     cmocka_unit_test(test_validation),
     cmocka_unit_test(test_correction_booked),
+    cmocka_unit_test(test_tie_stable_dt),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);
 }
