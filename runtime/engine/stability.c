@@ -407,15 +407,19 @@ double sw_stable_dt_joint(const swModel *m, int j) {
  * w^2 = k (1 / m_f + 1 / m_p), so the row's s = 1 + m_f / m_p with p's
  * inverse mass 1 / m_p = (1 - xi)^2 / m_a + xi^2 / m_b (w^2 / m_r): 2 for
  * equal masses, as a joint between two free nodes, and about 1 against a
- * heavy leader (a rachis on a bone).  A node's lumped mass is the least its
- * body offers: a rigid or implicit leader moves less under the same force,
- * so the bound stays safe. */
+ * heavy leader (a rachis on a bone).  On an explicit rod the kick moves
+ * the node by its lumped mass; on an implicit one (M + h^2 K / 4)^-1 moves
+ * it less.  A rigid body's point may move more than its node's lumped mass
+ * says (its turn adds r^2 / I), so against a rigid body the row keeps
+ * s = 2, as a joint's. */
 double sw_stable_dt_kinematic(const swModel *m, int j) {
   const swKinematicDesc *k = &m->kinematic[j];
   swJointDesc jd;
   memset(&jd, 0, sizeof jd);
   jd.stiffness = k->stiffness;
   jd.damping = k->damping;
+  const int pr = k->reaction_rod >= 0 ? k->reaction_rod : k->leader_rod; /* the rod p is on */
+  if (sw_rod_is_rigid(m, pr)) return joint_node_dt(m, &jd, k->follower_node, k->follower_elem, 2);
   double inv_mp;
   if (k->reaction_rod >= 0) {
     inv_mp = k->reaction_weight * k->reaction_weight * m->inv_mass[k->reaction_node];

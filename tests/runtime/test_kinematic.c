@@ -37,6 +37,7 @@ static const double X[3] = {1, 0, 0}, Y[3] = {0, 1, 0}, Z[3] = {0, 0, 1};
  * node 4, 6 elements, light and soft; the joint ties rachis node 0 to the
  * end of bone element 3 (node 4) and turns rachis element 0 with it */
 static swLaw scene_law = SW_LAW_VARIATIONAL; /* the energy of the balance is its forces' potential */
+static int scene_rigid_bone = 0; /* test 7: the leader a rigid body */
 static swSpec *scene(double k, int reaction) {
   swSpec *s = sw_spec_new();
   const double o[3] = {0, 0, 0}, mid[3] = {0.1, 0, 0};
@@ -44,6 +45,7 @@ static swSpec *scene(double k, int reaction) {
   bone.youngs = 1e8;
   bone.density = 1000;
   bone.law = scene_law;
+  bone.rigid = scene_rigid_bone;
   swRodDesc rachis = sw_test_rod("rachis", 6, 0.1, 1e-3, mid, Y, Z);
   rachis.youngs = 1e6;
   rachis.density = 300;
@@ -377,6 +379,17 @@ static void test_tie_stable_dt(void **state) {
   fprintf(stderr, "# %s: measured limit %.4f x the estimate (%.4f x the bound of two equal masses, s = 2)\n", __func__,
           lo, lo * sqrt(2.0 / (1 + m_f / m_p)));
   assert_true(lo >= 1.0 && lo <= 1.5);
+  /* a rigid bone: its point can move more than its node's mass says, and
+   * the row keeps s = 2 (the rachis' own k l / EA is 2e-5 of the tie's) */
+  scene_rigid_bone = 1;
+  s = scene(1e7, 0);
+  m = sw_test_compile(s);
+  sw_spec_free(s);
+  const double rigid = m->kinematic_dt[0], ratio = rigid / (tie * sqrt((1 + m_f / m_p) / 2));
+  fprintf(stderr, "# %s: on a rigid bone %.4g s, %.6f of the bound with s = 2\n", __func__, rigid, ratio);
+  assert_true(fabs(ratio - 1) < 1e-3);
+  sw_model_free(m);
+  scene_rigid_bone = 0;
 }
 
 int main(void) {
