@@ -333,8 +333,8 @@ static void test_correction_booked(void **state) {
  * that it bounds the step, the bone 250 times heavier than the rachis'
  * first node.  Every node and element set moving at random; stable when the
  * energy stays within 1e3 of its start over 3000 steps.  The estimate counts
- * the leader's point as a mass of its own (s = 1 + m_f / m_p, kinematic.c's
- * bound, about 1 here: stability.c); the true limit, found by bisection,
+ * the leader's point as a mass of its own (s = 1 + m_f / m_p, about 1
+ * here: stability.c, sw_stable_dt_kinematic); the true limit, found by bisection,
  * is above it (safe) and within 1.5 of it (tight); the bound of two equal
  * masses (s = 2) is 0.71 of it. */
 static int tie_stable(double frac) {
@@ -380,7 +380,7 @@ static void test_tie_stable_dt(void **state) {
           lo, lo * sqrt(2.0 / (1 + m_f / m_p)));
   assert_true(lo >= 1.0 && lo <= 1.5);
   /* a rigid bone: its point can move more than its node's mass says, and
-   * the row keeps s = 2 (the rachis' own k l / EA is 2e-5 of the tie's) */
+   * the row keeps s = 2 (the rachis' own EA / l is 2e-5 of the tie's k) */
   scene_rigid_bone = 1;
   s = scene(1e7, 0);
   m = sw_test_compile(s);
