@@ -418,17 +418,13 @@ double sw_stable_dt_kinematic(const swModel *m, int j) {
   memset(&jd, 0, sizeof jd);
   jd.stiffness = k->stiffness;
   jd.damping = k->damping;
-  const int pr = k->reaction_rod >= 0 ? k->reaction_rod : k->leader_rod; /* the rod p is on */
-  if (sw_rod_is_rigid(m, pr)) return joint_node_dt(m, &jd, k->follower_node, k->follower_elem, 2);
-  double inv_mp;
-  if (k->reaction_rod >= 0) {
-    inv_mp = k->reaction_weight * k->reaction_weight * m->inv_mass[k->reaction_node];
-  } else {
-    const double xi = k->leader_xi;
-    const int a = k->leader_elem; /* its first node's slot; the second is a + 1 */
-    inv_mp = (1 - xi) * (1 - xi) * m->inv_mass[a] + xi * xi * m->inv_mass[a + 1];
-  }
-  return joint_node_dt(m, &jd, k->follower_node, k->follower_elem, 1 + inv_mp / m->inv_mass[k->follower_node]);
+  const double xi = k->leader_xi, w = k->reaction_weight;
+  const int a = k->leader_elem; /* its first node's slot; the second is a + 1 */
+  const double inv_mp = k->reaction_rod >= 0 ? w * w * m->inv_mass[k->reaction_node]
+                                             : (1 - xi) * (1 - xi) * m->inv_mass[a] + xi * xi * m->inv_mass[a + 1];
+  const int rigid = sw_rod_is_rigid(m, k->reaction_rod >= 0 ? k->reaction_rod : k->leader_rod);
+  const double s = rigid ? 2 : 1 + inv_mp / m->inv_mass[k->follower_node];
+  return joint_node_dt(m, &jd, k->follower_node, k->follower_elem, s);
 }
 
 double sw_stable_dt(const swModel *m) {

@@ -334,9 +334,9 @@ static void test_correction_booked(void **state) {
  * first node.  Every node and element set moving at random; stable when the
  * energy stays within 1e3 of its start over 3000 steps.  The estimate counts
  * the leader's point as a mass of its own (s = 1 + m_f / m_p, about 1
- * here: stability.c, sw_stable_dt_kinematic); the true limit, found by bisection,
- * is above it (safe) and within 1.5 of it (tight); the bound of two equal
- * masses (s = 2) is 0.71 of it. */
+ * here: stability.c, sw_stable_dt_kinematic); the true limit, found by
+ * bisection, is above it (safe) and within 1.5 of it (tight); the bound of
+ * two equal masses (s = 2) is 0.71 of it. */
 static int tie_stable(double frac) {
   swSpec *s = scene(1e7, 0);
   swModel *m = sw_test_compile_at(s, frac);
