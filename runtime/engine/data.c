@@ -25,6 +25,7 @@ void sw_data_free(swData *d) {
   free(d->chunk_sum); free(d->bc_work); free(d->bc_free); free(d->joint_scratch); free(d->team);
   free(d->joint_force); free(d->joint_angle); free(d->joint_limit_torque);
   free(d->kinematic_force); free(d->kinematic_turn); free(d->kinematic_delta);
+  free(d->kinematic_work);
   free(d->fil_activation); free(d->fil_stretch); free(d->fil_rate); free(d->fil_tension); free(d->fil_sys);
   free(d->ring_row); free(d->ring_imp); free(d->hold);
   free(d->rod_strain_peak); free(d->rod_bend_peak); free(d->muscle_spread_peak);
@@ -67,6 +68,7 @@ swData *sw_data_new(const swModel *m) {
   d->kinematic_force = sw_dalloc(3 * (size_t)m->nkinematic);
   d->kinematic_turn = sw_dalloc(3 * (size_t)m->nkinematic);
   d->kinematic_delta = sw_dalloc(3 * (size_t)m->nkinematic);
+  d->kinematic_work = sw_dalloc((size_t)m->nkinematic);
   size_t F = (size_t)m->nfil;
   d->fil_activation = sw_dalloc(F); d->fil_stretch = sw_dalloc(F); d->fil_rate = sw_dalloc(F);
   d->fil_tension = sw_dalloc(F);
@@ -83,7 +85,7 @@ swData *sw_data_new(const swModel *m) {
       !d->couple || !d->force || !d->torque || !d->ext_force || !d->ext_torque ||
       !d->scratch_f || !d->scratch_h || !d->scratch_flag || !d->scratch_phi ||
       !d->chunk_sum || !d->bc_work || !d->bc_free || !d->joint_scratch || !d->team || !d->joint_force ||
-      !d->joint_angle || !d->joint_limit_torque || !d->kinematic_force || !d->kinematic_turn || !d->kinematic_delta || !d->fil_activation || !d->fil_stretch ||
+      !d->joint_angle || !d->joint_limit_torque || !d->kinematic_force || !d->kinematic_turn || !d->kinematic_delta || !d->kinematic_work || !d->fil_activation || !d->fil_stretch ||
       !d->fil_rate || !d->fil_tension || !d->fil_sys || !d->ring_row || !d->ring_imp || !d->hold ||
       !d->rod_strain_peak || !d->rod_bend_peak || !d->muscle_spread_peak) {
     sw_data_free(d);

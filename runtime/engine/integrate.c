@@ -61,8 +61,7 @@ static void compute_loads(const swModel *m, swData *d, double h) {
   int lo, hi;
   if (m->nkinematic) { /* the imposed frames first: every load sees them (kinematic.c) */
     sw_team_barrier(d);
-    if (sw_team_leader(d)) sw_kinematic_impose(m, d);
-    sw_team_barrier(d);
+    sw_kinematic_impose(m, d); /* level by level, a barrier after each */
   }
   if (m->nswell) { /* the swelling rods' geometry at the kick's time (swell.c) */
     sw_team_barrier(d);
@@ -77,8 +76,7 @@ static void compute_loads(const swModel *m, swData *d, double h) {
   sw_rod_gather(m, d, lo, hi, 0); /* (B) */
   if (m->nkinematic) { /* the imposed frames' energy, from the internal couples alone */
     sw_team_barrier(d);
-    if (sw_team_leader(d)) sw_kinematic_book(m, d);
-    sw_team_barrier(d);
+    sw_kinematic_book(m, d); /* ends in a barrier */
   }
   if (m->nrigid) { /* no deformation, no internal loads (rigid.c) */
     if (sw_team_leader(d)) sw_rigid_clear_loads(m, d);
@@ -99,9 +97,9 @@ static void compute_loads(const swModel *m, swData *d, double h) {
   }
   sw_team_barrier(d);
   if (m->nmuscle) mu->pull(m, d); /* (C) */
-  if (m->nkinematic) { /* their scatter reaches any thread's nodes */
+  if (m->nkinematic) { /* the ties read nodes of any thread's */
     sw_team_barrier(d);
-    if (sw_team_leader(d)) sw_kinematic_loads(m, d);
+    sw_kinematic_loads(m, d);
     sw_team_barrier(d);
   }
   if (sw_has_env(m)) { /* last: the ground balances the rest */
@@ -259,7 +257,7 @@ static void kick(const swModel *m, swData *d, double h, double span) {
   }
   if (m->nkinematic) { /* followers turn at their leaders' new rates (kinematic.c) */
     sw_team_barrier(d);
-    if (sw_team_leader(d)) sw_kinematic_follow(m, d);
+    sw_kinematic_follow(m, d); /* level by level, a barrier after each */
   }
   /* the work and the rigid bodies' kick are the next drift's leader's; the
    * nodes of the drift are this thread's own, so no barrier here */

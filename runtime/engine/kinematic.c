@@ -35,8 +35,12 @@
  * (tests/runtime/test_kinematic.c).  The joint's spring has no energy of
  * its own for the same reason: its work is booked.
  *
- * Threads: both parts run on the team's leader (the scatter reaches nodes
- * of any thread), between barriers (integrate.c).  No allocation.
+ * Threads: every thread of the team enters each pass.  The impositions
+ * and the follows run level by level (order_levels), each level's joints
+ * split between the threads, a barrier after each; the ties' forces are
+ * split likewise, and each thread adds them to the nodes it owns.  Each
+ * joint's work goes to d->kinematic_work and the leader books the sum in
+ * level order, so the bits do not depend on the team.  No allocation.
  */
 #include <math.h>
 #include <stdlib.h>
@@ -144,6 +148,74 @@ int sw_kinematic_check(const swSpec *s, char *err, size_t errlen) {
   return 1;
 }
 
+/* The joints level by level (m->kinematic_order).  Imposing joint j's frame
+ * reads its leader's frame and turn, which a joint of a lower level may
+ * impose, and a correction booked whole (frame_energy) reads the frames of
+ * the follower's neighbours in its rod, which a joint earlier in the spec
+ * may impose (followers side by side).  So j's level is one more than that
+ * of the joint imposing its leader and of an earlier joint imposing a
+ * neighbour: every joint sees what it saw in spec order, and within a level
+ * none reads what another writes, so a level's joints may be split between
+ * threads.  The levels are found by relaxation; the chains are acyclic
+ * (sw_kinematic_check), so it ends within nkinematic + 1 passes.  0: out of
+ * memory. */
+static int order_levels(swModel *m) {
+  const int n = m->nkinematic, S = m->stride;
+  int *by_elem = malloc((size_t)S * sizeof *by_elem), *level = calloc((size_t)(n ? n : 1), sizeof *level);
+  m->kinematic_order = malloc((size_t)(n ? n : 1) * sizeof *m->kinematic_order);
+  if (!by_elem || !level || !m->kinematic_order) {
+    free(by_elem), free(level);
+    return 0;
+  }
+  for (int i = 0; i < S; i++) by_elem[i] = -1;
+  for (int j = 0; j < n; j++) by_elem[m->kinematic[j].follower_elem] = j;
+  int top = 0, changed = 1;
+  for (int pass = 0; changed && pass <= n; pass++) {
+    changed = 0;
+    for (int j = 0; j < n; j++) {
+      const int fe = m->kinematic[j].follower_elem, lead = by_elem[m->kinematic[j].leader_elem];
+      int L = lead >= 0 ? level[lead] + 1 : 0;
+      for (int e = fe - 1; e <= fe + 1; e += 2) { /* a ghost or another rod's slot is no follower here */
+        const int i = e >= 0 && e < S ? by_elem[e] : -1;
+        if (i >= 0 && i < j && m->kinematic[i].follower_rod == m->kinematic[j].follower_rod && level[i] + 1 > L)
+          L = level[i] + 1;
+      }
+      if (L != level[j]) level[j] = L, changed = 1;
+      if (L > top) top = L;
+    }
+  }
+  m->nkinematic_level = n ? top + 1 : 0;
+  m->kinematic_level = calloc((size_t)m->nkinematic_level + 1, sizeof *m->kinematic_level);
+  if (!m->kinematic_level) {
+    free(by_elem), free(level);
+    return 0;
+  }
+  for (int j = 0; j < n; j++) m->kinematic_level[level[j] + 1]++; /* counting sort, stable */
+  for (int L = 0; L < m->nkinematic_level; L++) m->kinematic_level[L + 1] += m->kinematic_level[L];
+  int *at = by_elem; /* reused: each level's next entry */
+  for (int L = 0; L < m->nkinematic_level; L++) at[L] = m->kinematic_level[L];
+  int identity = 1;
+  for (int j = 0; j < n; j++) {
+    const int t = at[level[j]]++;
+    m->kinematic_order[t] = j;
+    identity &= t == j;
+  }
+  if (identity) { /* spec order (every level after the one before: the wing's one level) */
+    free(m->kinematic_order);
+    m->kinematic_order = NULL;
+  }
+  free(by_elem), free(level);
+  return 1;
+}
+
+/* The sum of the joints' parts of a pass's work (d->kinematic_work), in
+ * level order: the same bits for any team. */
+static double work_sum(const swModel *m, const swData *d) {
+  double sum = 0;
+  for (int t = 0; t < m->nkinematic; t++) sum += d->kinematic_work[m->kinematic_order ? m->kinematic_order[t] : t];
+  return sum;
+}
+
 int sw_kinematic_setup(swModel *m, const swSpec *s) {
   const size_t K = (size_t)(s->nkin ? s->nkin : 1);
   m->kinematic = calloc(K, sizeof *m->kinematic);
@@ -173,13 +245,14 @@ int sw_kinematic_setup(swModel *m, const swSpec *s) {
     memcpy(m->kinematic_rot + 9 * j, R, sizeof R);
   }
   for (int j = 0; j < m->nkinematic; j++) m->kinematic_dt[j] = sw_stable_dt_kinematic(m, j);
-  return 1;
+  return order_levels(m);
 }
 
 void sw_kinematic_free(swModel *m) {
   if (m->kinematic_name)
     for (int j = 0; j < m->nkinematic; j++) free(m->kinematic_name[j]);
   free(m->kinematic); free(m->kinematic_name); free(m->kinematic_rot); free(m->kinematic_dt);
+  free(m->kinematic_order); free(m->kinematic_level);
 }
 
 /* The energy that depends on element e's frame (e of rod r): its turning
@@ -216,7 +289,7 @@ static double frame_energy(const swModel *m, const swData *d, int r, int e) {
 }
 
 /* w_f = R w_l: in material frames, w_f = Q_f w = R Q_l w = R w_l */
-static void follow_turn(const swModel *m, swData *d, int j) {
+static inline __attribute__((always_inline)) void follow_turn(const swModel *m, swData *d, int j) {
   const swKinematicDesc *k = &m->kinematic[j];
   double wl[3], wf[3];
   for (int c = 0; c < 3; c++) wl[c] = SW_AT(m, d->omega, k->leader_elem, c);
@@ -227,11 +300,13 @@ static void follow_turn(const swModel *m, swData *d, int j) {
 /* The rotation that takes frame Qb to Qa, Qa = exp(-[delta]x) Qb, to first
  * order: [delta]x = (Qb Qa^T - Qa Qb^T) / 2 (material components, the
  * drift's convention: integrate.c). */
-static void small_turn(const double Qa[9], const double Qb[9], double delta[3]) {
-  double M[9]; /* Qb Qa^T - Qa Qb^T, antisymmetric: M_ij = d^b_i . d^a_j - d^a_i . d^b_j */
-  for (int i = 0; i < 3; i++)
-    for (int j = 0; j < 3; j++) M[3 * i + j] = sw_v3_dot(Qb + 3 * i, Qa + 3 * j) - sw_v3_dot(Qa + 3 * i, Qb + 3 * j);
-  delta[0] = 0.5 * M[7], delta[1] = 0.5 * M[2], delta[2] = 0.5 * M[3];
+static inline __attribute__((always_inline)) void small_turn(const double Qa[9], const double Qb[9],
+                                                            double delta[3]) {
+  /* entries (2,1), (0,2), (1,0) of Qb Qa^T - Qa Qb^T, an antisymmetric matrix
+   * whose (i,j) entry is d^b_i . d^a_j - d^a_i . d^b_j */
+  delta[0] = 0.5 * (sw_v3_dot(Qb + 6, Qa + 3) - sw_v3_dot(Qa + 6, Qb + 3));
+  delta[1] = 0.5 * (sw_v3_dot(Qb + 0, Qa + 6) - sw_v3_dot(Qa + 0, Qb + 6));
+  delta[2] = 0.5 * (sw_v3_dot(Qb + 3, Qa + 0) - sw_v3_dot(Qa + 3, Qb + 0));
 }
 
 /* Below this turn (rad) a correction's change of the elastic energy is
@@ -247,36 +322,64 @@ static void small_turn(const double Qa[9], const double Qb[9], double delta[3]) 
  * are booked exactly. */
 #define SW_KIN_FIRST_ORDER 1e-6
 
-void sw_kinematic_impose(const swModel *m, swData *d) {
-  for (int j = 0; j < m->nkinematic; j++) {
-    const swKinematicDesc *k = &m->kinematic[j];
-    const int fe = k->follower_elem;
-    double Ql[9], Qf[9], Qnow[9], *delta = d->kinematic_delta + 3 * j;
-    sw_getQ(m, d->Q, k->leader_elem, Ql);
-    sw_mat_mul(Qf, m->kinematic_rot + 9 * j, Ql);
-    sw_getQ(m, d->Q, fe, Qnow);
-    small_turn(Qf, Qnow, delta);
-    /* a small correction changes the turning kinetic energy here and the
-     * elastic energy in sw_kinematic_book; a large one is booked whole */
-    const int small = sw_v3_norm(delta) < SW_KIN_FIRST_ORDER;
-    double w0[3], before = 0;
-    for (int c = 0; c < 3; c++) w0[c] = SW_AT(m, d->omega, fe, c);
-    if (!small) before = frame_energy(m, d, k->follower_rod, fe);
-    sw_setQ(m, d->Q, fe, Qf);
-    follow_turn(m, d, j);
-    if (!small) {
-      d->work += frame_energy(m, d, k->follower_rod, fe) - before;
-      delta[0] = delta[1] = delta[2] = 0;
-    } else {
-      const double dil = sw_inertia_dilatation(m, d, fe);
-      for (int c = 0; c < 3; c++) {
-        const double w = SW_AT(m, d->omega, fe, c);
-        d->work += 0.5 * SW_AT(m, m->inertia, fe, c) / dil * (w * w - w0[c] * w0[c]);
-      }
+/* Joint j's imposition (sw_kinematic_impose); returns the work it books. */
+static inline __attribute__((always_inline)) double impose(const swModel *m, swData *d, int j) {
+  const swKinematicDesc *k = &m->kinematic[j];
+  const int fe = k->follower_elem;
+  double Ql[9], Qf[9], Qnow[9], *delta = d->kinematic_delta + 3 * j, work = 0;
+  sw_getQ(m, d->Q, k->leader_elem, Ql);
+  sw_mat_mul(Qf, m->kinematic_rot + 9 * j, Ql);
+  sw_getQ(m, d->Q, fe, Qnow);
+  small_turn(Qf, Qnow, delta);
+  /* a small correction changes the turning kinetic energy here and the
+   * elastic energy in sw_kinematic_book; a large one is booked whole */
+  const int small = sw_v3_dot(delta, delta) < SW_KIN_FIRST_ORDER * SW_KIN_FIRST_ORDER;
+  double w0[3], before = 0;
+  for (int c = 0; c < 3; c++) w0[c] = SW_AT(m, d->omega, fe, c);
+  if (!small) before = frame_energy(m, d, k->follower_rod, fe);
+  sw_setQ(m, d->Q, fe, Qf);
+  follow_turn(m, d, j);
+  if (!small) {
+    work = frame_energy(m, d, k->follower_rod, fe) - before;
+    delta[0] = delta[1] = delta[2] = 0;
+  } else {
+    const double dil = sw_inertia_dilatation(m, d, fe);
+    for (int c = 0; c < 3; c++) {
+      const double w = SW_AT(m, d->omega, fe, c);
+      work += 0.5 * SW_AT(m, m->inertia, fe, c) / dil * (w * w - w0[c] * w0[c]);
     }
-    for (int c = 0; c < 3; c++) d->kinematic_turn[3 * j + c] = SW_AT(m, d->omega, fe, c);
   }
+  for (int c = 0; c < 3; c++) d->kinematic_turn[3 * j + c] = SW_AT(m, d->omega, fe, c);
+  return work;
 }
+
+/* Runs pass(m, d, j) for every joint, level by level, each level's joints
+ * split between the team's threads (a barrier after each), and books the
+ * work the passes return on the leader, summed in level order. */
+static inline __attribute__((always_inline)) void by_levels(const swModel *m, swData *d,
+                                                           double (*pass)(const swModel *, swData *, int)) {
+  const int *restrict order = m->kinematic_order; /* NULL: spec order */
+  if (d->team_size <= 1) { /* a running sum, in the order work_sum adds: the same bits */
+    double work = 0;
+    if (order)
+      for (int t = 0; t < m->nkinematic; t++) work += pass(m, d, order[t]);
+    else
+      for (int j = 0; j < m->nkinematic; j++) work += pass(m, d, j);
+    d->work += work;
+    return;
+  }
+  for (int L = 0; L < m->nkinematic_level; L++) {
+    const int first = m->kinematic_level[L], n = m->kinematic_level[L + 1] - first;
+    for (int t = first + sw_share_lo(d, n); t < first + sw_share_hi(d, n); t++) {
+      const int j = order ? order[t] : t;
+      d->kinematic_work[j] = pass(m, d, j);
+    }
+    sw_team_barrier(d);
+  }
+  if (sw_team_leader(d)) d->work += work_sum(m, d);
+}
+
+void sw_kinematic_impose(const swModel *m, swData *d) { by_levels(m, d, impose); }
 
 /* After the rod pass that follows sw_kinematic_impose, while d->torque
  * holds the internal couples only: the elastic energy the small
@@ -286,71 +389,102 @@ void sw_kinematic_impose(const swModel *m, swData *d) {
  * gradient; on Gazzola's it is the couple the scheme integrates, which
  * differs from the gradient of energy.c's energy as that law's own balance
  * does (docs/physics.md). */
-void sw_kinematic_book(const swModel *m, swData *d) {
+static inline __attribute__((always_inline)) double book(const swModel *m, swData *d, int j) {
+  const int fe = m->kinematic[j].follower_elem;
+  const double *delta = d->kinematic_delta + 3 * j;
   double dE = 0;
-  for (int j = 0; j < m->nkinematic; j++) {
-    const int fe = m->kinematic[j].follower_elem;
-    const double *delta = d->kinematic_delta + 3 * j;
-    for (int c = 0; c < 3; c++) dE -= SW_AT(m, d->torque, fe, c) * delta[c];
-  }
-  d->work += dE;
+  for (int c = 0; c < 3; c++) dE -= SW_AT(m, d->torque, fe, c) * delta[c];
+  return dE;
 }
+
+/* (by_levels' barriers: the couples are read before any thread adds loads
+ * to them) */
+void sw_kinematic_book(const swModel *m, swData *d) { by_levels(m, d, book); }
 
 /* After a kick: the follower turns at its leader's rate, so that the drift
  * nearly keeps Q_f = R Q_l (exp(-h [R w_l]x) R Q_l = R exp(-h [w_l]x) Q_l,
  * to the drift's own stretch and split turn: the header); the change of
  * its turning kinetic energy is booked. */
-void sw_kinematic_follow(const swModel *m, swData *d) {
-  for (int j = 0; j < m->nkinematic; j++) {
-    const int fe = m->kinematic[j].follower_elem;
-    double kicked[3];
-    for (int c = 0; c < 3; c++) kicked[c] = SW_AT(m, d->omega, fe, c);
-    follow_turn(m, d, j);
-    const double dil = sw_inertia_dilatation(m, d, fe);
-    /* the couple that turned w from `kicked` to w_f over the kick,
-     * C = (J / e)(w_f - kicked) / h, times the kick's mean rate
-     * (w_before + w_f) / 2: the midpoint rule the kick books every external
-     * load's work by (integrate.c) */
-    double *before = d->kinematic_turn + 3 * j;
-    for (int c = 0; c < 3; c++) {
-      const double w = SW_AT(m, d->omega, fe, c);
-      d->work += SW_AT(m, m->inertia, fe, c) / dil * (w - kicked[c]) * 0.5 * (before[c] + w);
-      before[c] = w;
-    }
+static inline __attribute__((always_inline)) double follow(const swModel *m, swData *d, int j) {
+  const int fe = m->kinematic[j].follower_elem;
+  double kicked[3], work = 0;
+  for (int c = 0; c < 3; c++) kicked[c] = SW_AT(m, d->omega, fe, c);
+  follow_turn(m, d, j);
+  const double dil = sw_inertia_dilatation(m, d, fe);
+  /* the couple that turned w from `kicked` to w_f over the kick,
+   * C = (J / e)(w_f - kicked) / h, times the kick's mean rate
+   * (w_before + w_f) / 2: the midpoint rule the kick books every external
+   * load's work by (integrate.c) */
+  double *before = d->kinematic_turn + 3 * j;
+  for (int c = 0; c < 3; c++) {
+    const double w = SW_AT(m, d->omega, fe, c);
+    work += SW_AT(m, m->inertia, fe, c) / dil * (w - kicked[c]) * 0.5 * (before[c] + w);
+    before[c] = w;
   }
+  return work;
 }
 
-/* f on node i, into the total and the external loads */
-static void push(const swModel *m, swData *d, int i, const double f[3], double w) {
+void sw_kinematic_follow(const swModel *m, swData *d) { by_levels(m, d, follow); }
+
+/* w f on node i, into the total and the external loads: with `all`, any
+ * node (one thread), else only a node in [lo, hi), this thread's */
+static inline __attribute__((always_inline)) void push(const swModel *m, swData *d, int i, const double f[3],
+                                                      double w, int lo, int hi, const int all) {
+  if (!all && (i < lo || i >= hi)) return;
   for (int c = 0; c < 3; c++) {
     SW_AT(m, d->force, i, c) += w * f[c];
     SW_AT(m, d->ext_force, i, c) += w * f[c];
   }
 }
 
-void sw_kinematic_loads(const swModel *m, swData *d) {
-  for (int j = 0; j < m->nkinematic; j++) {
-    const swKinematicDesc *k = &m->kinematic[j];
-    const int a = k->leader_elem, b = a + 1, f = k->follower_node;
-    const double xi = k->leader_xi;
-    double xa[3], xb[3], va[3], vb[3], xf[3], vf[3], F[3];
-    sw_get3(m, d->x, a, xa);
-    sw_get3(m, d->x, b, xb);
-    sw_get3(m, d->v, a, va);
-    sw_get3(m, d->v, b, vb);
-    sw_get3(m, d->x, f, xf);
-    sw_get3(m, d->v, f, vf);
-    for (int c = 0; c < 3; c++) {
-      const double p = (1 - xi) * xa[c] + xi * xb[c], vp = (1 - xi) * va[c] + xi * vb[c];
-      F[c] = k->stiffness * (p - xf[c]) + k->damping * (vp - vf[c]);
-      d->kinematic_force[3 * j + c] = F[c];
-    }
-    push(m, d, f, F, 1.0);
-    if (k->reaction_rod >= 0) {
-      push(m, d, k->reaction_node, F, -k->reaction_weight);
-    } else {
-      push(m, d, a, F, -(1 - xi));
-      push(m, d, b, F, -xi);
-    }
+/* Joint j's tie force F = k (p - x_f) + c (v_p - v_f), into F and
+ * d->kinematic_force. */
+static inline __attribute__((always_inline)) void tie_force(const swModel *m, swData *d, int j, double F[3]) {
+  const swKinematicDesc *k = &m->kinematic[j];
+  const int a = k->leader_elem, b = a + 1, f = k->follower_node;
+  const double xi = k->leader_xi;
+  double xa[3], xb[3], va[3], vb[3], xf[3], vf[3];
+  sw_get3(m, d->x, a, xa);
+  sw_get3(m, d->x, b, xb);
+  sw_get3(m, d->v, a, va);
+  sw_get3(m, d->v, b, vb);
+  sw_get3(m, d->x, f, xf);
+  sw_get3(m, d->v, f, vf);
+  for (int c = 0; c < 3; c++) {
+    const double p = (1 - xi) * xa[c] + xi * xb[c], vp = (1 - xi) * va[c] + xi * vb[c];
+    F[c] = k->stiffness * (p - xf[c]) + k->damping * (vp - vf[c]);
+    d->kinematic_force[3 * j + c] = F[c];
   }
+}
+
+/* Joint j's tie force F onto its nodes (push): F on the follower node, -F
+ * on the leader's two nodes ((1 - xi) and xi) or -w F on the reaction node. */
+static inline __attribute__((always_inline)) void tie_push(const swModel *m, swData *d, int j, const double F[3],
+                                                          int lo, int hi, const int all) {
+  const swKinematicDesc *k = &m->kinematic[j];
+  const double xi = k->leader_xi;
+  push(m, d, k->follower_node, F, 1.0, lo, hi, all);
+  if (k->reaction_rod >= 0) {
+    push(m, d, k->reaction_node, F, -k->reaction_weight, lo, hi, all);
+  } else {
+    push(m, d, k->leader_elem, F, -(1 - xi), lo, hi, all);
+    push(m, d, k->leader_elem + 1, F, -xi, lo, hi, all);
+  }
+}
+
+/* The ties' forces, each thread a share of the joints; then each thread
+ * adds them to the nodes it owns (internal.h, sw_owned_slots), in joint
+ * order, so every node gets its loads in the order of one thread. */
+void sw_kinematic_loads(const swModel *m, swData *d) {
+  const int n = m->nkinematic;
+  double F[3];
+  if (d->team_size <= 1) { /* one pass: each tie's loads while its force is at hand */
+    for (int j = 0; j < n; j++) tie_force(m, d, j, F), tie_push(m, d, j, F, 0, 0, 1);
+    return;
+  }
+  for (int j = sw_share_lo(d, n); j < sw_share_hi(d, n); j++) tie_force(m, d, j, F);
+  sw_team_barrier(d);
+  int lo, hi;
+  sw_owned_slots(m, d, &lo, &hi);
+  for (int j = 0; j < n; j++) tie_push(m, d, j, d->kinematic_force + 3 * j, lo, hi, 0);
 }

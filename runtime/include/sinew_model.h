@@ -100,6 +100,13 @@ typedef struct {
   char **kinematic_name;
   double *kinematic_rot;     /* (nkinematic*9) Q_f Q_l^T at t = 0            */
   double *kinematic_dt;      /* (nkinematic) stable dt of each tie (stability.c) */
+  int *kinematic_order;      /* (nkinematic) the joints level by level: a
+                                joint after those whose followers it reads
+                                (its leader, or a neighbouring follower of
+                                its rod); in spec order within a level     */
+  int *kinematic_level;      /* (nkinematic_level+1) each level's first entry
+                                of kinematic_order, and the end            */
+  int nkinematic_level;
   int *joint_implicit;       /* (njoint)   1: linearly implicit (SW_IMEX,
                                            rigid_joint.c): a rigid body on one
                                            side, a body, space or a free
@@ -434,6 +441,8 @@ typedef struct {
   double *kinematic_force;   /* (nkinematic*3) force on the follower node, lab, N */
   double *kinematic_turn;    /* (nkinematic*3) the follower's w as last set (kinematic.c) */
   double *kinematic_delta;   /* (nkinematic*3) the last imposition's small turn, rad (kinematic.c) */
+  double *kinematic_work;    /* (nkinematic) each joint's part of a pass's work,
+                                summed in kinematic_order (kinematic.c; scratch) */
   double *joint_angle;       /* (njoint)  hinge angle, rad (0 for others)     */
   double *joint_limit_torque; /* (njoint*3) the limit's couple on rod a's
                                  element, lab, N m (0 inside the limits)     */
