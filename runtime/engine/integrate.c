@@ -407,8 +407,9 @@ static void pefrl_step(const swModel *m, swData *d) {
  * fused Verlet steps, half a step on; recomputed from the count, so no
  * round-off accumulates in t), on the leader; and when the check is `due`
  * (every 8 steps), the stability check: each thread counts the suspect slots
- * of its chunks, and the full check, which names the rod, runs only when one
- * is found (or for rigid bodies, which it alone covers).  SW_EUNSTABLE goes
+ * of its chunks, and the full check, which names the rod, runs on every rod
+ * only when one is found, else on the rigid bodies alone, which it alone
+ * covers (sw_check_rods).  SW_EUNSTABLE goes
  * into *rc, which every thread reads after the barrier, so the whole team
  * leaves the loop together.  Then, if `more` steps follow, the muscles'
  * activations for the next one. */
@@ -424,10 +425,10 @@ static void end_step(const swModel *m, swData *d, int count, int whole, int due,
   if (sw_team_leader(d)) {
     d->step += count;
     d->time = ((double)d->step + (whole ? 0.0 : 0.5)) * m->dt;
-    double suspect = m->nrigid;
+    double suspect = 0; /* elastic slots the vector check flagged */
     if (due)
       for (int c = 0; c < sw_nchunk(m, n); c++) suspect += d->chunk_sum[c];
-    if (due && suspect > 0 && sw_check_finite(m, d) != SW_OK) *rc = SW_EUNSTABLE;
+    if (due && (suspect > 0 || m->nrigid) && sw_check_rods(m, d, suspect == 0) != SW_OK) *rc = SW_EUNSTABLE;
     if (more && *rc == SW_OK && m->nmuscle)
       sw_muscle_ops(m)->advance(m, d, (double)d->step * m->dt, m->dt);
   }

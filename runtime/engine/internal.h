@@ -158,6 +158,8 @@ double sw_bc_energy(const swModel *m, const swData *d);               /* boundar
 /* Largest h * omega for which the integrator is stable on the damped
  * oscillator x'' = -omega^2 x - c x', as a function of zeta = c / (2 omega). */
 double sw_integrator_stability_limit(swIntegrator integ, double zeta); /* stability.c */
+/* sw_check_finite on the rigid rods alone (rigid_only) or on all (stability.c). */
+int sw_check_rods(const swModel *m, swData *d, int rigid_only);
 /* How many elastic slots of [lo, hi) sw_check_finite would flag; records
  * each element's shortest (d->shortest) on the way. */
 int sw_check_slots(const swModel *m, swData *d, int lo, int hi);  /* stability.c */

@@ -903,6 +903,30 @@ static void test_implicit_joint(void **state) {
   }
 }
 
+/* A rigid body turning a radian a step beside a quiet elastic rod: the
+ * step's vector check flags no elastic slot, and the check of the rigid
+ * bodies alone (integrate.c, sw_check_rods) stops the run naming the body. */
+static void test_spin_caught(void **state) {
+  (void)state;
+  swSpec *s = sw_spec_new();
+  const double o[3] = {0, 0, 0}, far[3] = {1, 0, 0}, dir[3] = {0, 0, 1};
+  swRodDesc quiet = bone("quiet", BN, o, dir, 0), spinner = bone("spinner", 4, far, dir, 1);
+  sw_spec_add_rod(s, &quiet);
+  sw_spec_add_rod(s, &spinner);
+  swModel *m = sw_test_compile_at(s, 0.5);
+  swData *d = sw_data_new(m);
+  const double V0[3] = {0, 0, 0}, w0[3] = {1.0 / m->dt, 0, 0}; /* a radian a step about x */
+  assert_int_equal(sw_rigid_set_motion(m, d, 1, V0, w0), SW_OK);
+  const int rc = sw_steps(m, d, 16);
+  fprintf(stderr, "# %s: rc %d after %ld steps: %s\n", __func__, rc, d->step, d->error);
+  assert_int_equal(rc, SW_EUNSTABLE);
+  assert_non_null(strstr(d->error, "rod 'spinner'"));
+  assert_non_null(strstr(d->error, "turns more than half a radian per step"));
+  sw_data_free(d);
+  sw_model_free(m);
+  sw_spec_free(s);
+}
+
 int main(void) {
   const struct CMUnitTest tests[] = {
       cmocka_unit_test(test_validation),
@@ -917,6 +941,7 @@ int main(void) {
       cmocka_unit_test(test_stable_dt_bone),
       cmocka_unit_test(test_rigid_joint_dt),
       cmocka_unit_test(test_implicit_joint),
+      cmocka_unit_test(test_spin_caught),
       cmocka_unit_test(test_output),
   };
   return cmocka_run_group_tests_name("rigid", tests, NULL, NULL);
