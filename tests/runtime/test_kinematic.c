@@ -92,10 +92,8 @@ static double frame_gap(const swModel *m, const swData *d) {
   return worst;
 }
 
-/* 1. the bone's start clamped in place but turned about z at 20 rad/s */
-static void test_follows_turning_bone(void **state) {
-  (void)state;
-  swSpec *s = scene(1e4, 0);
+/* The bone's (rod 0's) start held in place but turned about z at 20 rad/s. */
+static void turn_bone(swSpec *s) {
   swBCDesc turn;
   memset(&turn, 0, sizeof turn);
   turn.kind = SW_BC_OMEGA;
@@ -104,6 +102,13 @@ static void test_follows_turning_bone(void **state) {
   turn.vec[2] = 20.0;
   turn.signal = sw_signal_const(1.0);
   assert_true(sw_spec_add_bc(s, &turn) >= 0);
+}
+
+/* 1. the bone's start clamped in place but turned about z at 20 rad/s */
+static void test_follows_turning_bone(void **state) {
+  (void)state;
+  swSpec *s = scene(1e4, 0);
+  turn_bone(s);
   swModel *m = sw_test_compile_at(s, 0.5);
   swData *d = sw_data_new(m);
   double worst = 0;
@@ -467,14 +472,7 @@ static swSpec *chain_scene(void) {
     if (i % 2) kj.reaction_rod = 0, kj.reaction_node = 2, kj.reaction_weight = 0.5;
     assert_int_equal(sw_spec_add_kinematic(s, &kj), 3 + i);
   }
-  swBCDesc turn;
-  memset(&turn, 0, sizeof turn);
-  turn.kind = SW_BC_OMEGA;
-  turn.rod = 0;
-  turn.end = 0;
-  turn.vec[2] = 20.0;
-  turn.signal = sw_signal_const(1.0);
-  assert_true(sw_spec_add_bc(s, &turn) >= 0);
+  turn_bone(s);
   return s;
 }
 
