@@ -154,9 +154,10 @@ int sw_kinematic_check(const swSpec *s, char *err, size_t errlen) {
  * the follower's neighbours in its rod, which a joint earlier in the spec
  * may impose (followers side by side).  So j's level is one more than that
  * of the joint imposing its leader and of an earlier joint imposing a
- * neighbour: every joint sees what it saw in spec order, and within a level
- * none reads what another writes, so a level's joints may be split between
- * threads.  The levels are found by relaxation; the chains are acyclic
+ * neighbour: every joint reads its leader as imposed in this pass, whatever
+ * the order of the declarations, and its neighbours as in spec order; and
+ * within a level none reads what another writes, so a level's joints may be
+ * split between threads.  The levels are found by relaxation; the chains are acyclic
  * (sw_kinematic_check), so it ends within nkinematic + 1 passes.  0: out of
  * memory. */
 static int order_levels(swModel *m) {
