@@ -472,8 +472,9 @@ void sw_env_free(swModel *m) {
 
 /* Loads of the environments, after every other load of this evaluation. */
 void sw_env_loads(const swModel *m, swData *d) {
-  /* each rod's waves, drag and ground by the thread that owns the rod (its
-   * first slot; internal.h), contact, which couples rods, on the leader */
+  /* each rod's waves and ground by the thread that owns the rod (its first
+   * slot; internal.h), drag by the thread that owns each node (fluid.c),
+   * contact, which couples rods, on the leader */
   int lo, hi;
   sw_owned_slots(m, d, &lo, &hi);
   if (m->nwave) sw_wave_loads(m, d, lo, hi);

@@ -260,23 +260,31 @@ static inline sw3 element_load(const swModel *m, const swData *d, const swFluidD
   return sw3_select(on != 0.0, sw3_scale(load, on), (sw3){0, 0, 0});
 }
 
-/* Fluid k on slots [lo, hi) (whole rods: internal.h, sw_owned_slots): every
- * element's load into d->scratch_f (free after the rod's gather), one vector
- * loop; then half of it to each of the element's nodes, node i taking the
- * halves of elements i - 1 and i (a rod's first node has none before it in
- * its rod, and slot i - 1 is then the last node of another rod, off the
- * fluid), another. */
+/* Fluid k on slots [lo, hi) (this thread's, internal.h, sw_owned_slots):
+ * every element's load into d->scratch_f (free after the rod's gather), one
+ * vector loop; then half of it to each of the element's nodes, node i taking
+ * the halves of elements i - 1 and i (a rod's first node has none before it
+ * in its rod, and slot i - 1 is then the last node of another rod, off the
+ * fluid), another.  A thread's slots start where its chunks do, often in the
+ * middle of a rod: with `before` (lo inside the fluid's span) node lo also
+ * takes element lo - 1's half, which the thread before computes for its own
+ * node lo - 1 and this one computes again, to the same bits (the same
+ * operations on the same state), so that the node gets the one-thread sum
+ * 0.5 (L[lo - 1] + L[lo]).  Without it the node lost that half on 2 or more
+ * threads (the wing's --threads 2 parted from 1 thread). */
 static inline void fluid_slots(const swModel *m, swData *d, int k, int stokes, int area,
-                               double g_scale, int lo, int hi) {
+                               double g_scale, int lo, int hi, int before) {
   const size_t S = (size_t)m->stride;
   const swFluidDesc *fl = &m->fluid[k];
   double *restrict L = d->scratch_f;
 #pragma omp simd
   for (int e = lo; e < hi; e++) sw3_store(L, S, e, element_load(m, d, fl, k, stokes, area, g_scale, e));
+  const sw3 b = before ? element_load(m, d, fl, k, stokes, area, g_scale, lo - 1) : (sw3){0, 0, 0};
+  const double prev[3] = {b.x, b.y, b.z};
   for (int q = 0; q < 3; q++) {
     const double *restrict Lq = L + q * S;
     double *restrict ef = d->ext_force + q * S, *restrict F = d->force + q * S;
-    const double first = 0.5 * Lq[lo]; /* node lo: its element only */
+    const double first = before ? 0.5 * (prev[q] + Lq[lo]) : 0.5 * Lq[lo]; /* node lo */
     ef[lo] += first;
     F[lo] += first;
 #pragma omp simd
@@ -294,11 +302,13 @@ void sw_fluid_loads(const swModel *m, swData *d, int lo, int hi) {
     const int a = lo > m->fluid_span[2 * k] ? lo : m->fluid_span[2 * k];
     const int b = hi < m->fluid_span[2 * k + 1] ? hi : m->fluid_span[2 * k + 1];
     if (a >= b) continue;
+    const int before = a > m->fluid_span[2 * k]; /* a thread's first slot, inside the span */
     /* one kernel per law */
-    if (m->fluid[k].model == SW_FLUID_STOKES) fluid_slots(m, d, k, 1, SW_FLUID_SILHOUETTE, gs, a, b);
+    if (m->fluid[k].model == SW_FLUID_STOKES) fluid_slots(m, d, k, 1, SW_FLUID_SILHOUETTE, gs, a, b, before);
     else if (m->fluid[k].area == SW_FLUID_CROSS_SECTION)
-      fluid_slots(m, d, k, 0, SW_FLUID_CROSS_SECTION, gs, a, b);
-    else if (m->fluid[k].area == SW_FLUID_BROADSIDE) fluid_slots(m, d, k, 0, SW_FLUID_BROADSIDE, gs, a, b);
-    else fluid_slots(m, d, k, 0, SW_FLUID_SILHOUETTE, gs, a, b);
+      fluid_slots(m, d, k, 0, SW_FLUID_CROSS_SECTION, gs, a, b, before);
+    else if (m->fluid[k].area == SW_FLUID_BROADSIDE)
+      fluid_slots(m, d, k, 0, SW_FLUID_BROADSIDE, gs, a, b, before);
+    else fluid_slots(m, d, k, 0, SW_FLUID_SILHOUETTE, gs, a, b, before);
   }
 }
