@@ -344,10 +344,10 @@ static inline __attribute__((always_inline)) double impose(const swModel *m, swD
     work = frame_energy(m, d, k->follower_rod, fe) - before;
     delta[0] = delta[1] = delta[2] = 0;
   } else {
-    const double dil = sw_inertia_dilatation(m, d, fe);
+    const double half_inv_dil = 0.5 / sw_inertia_dilatation(m, d, fe); /* one division, not three */
     for (int c = 0; c < 3; c++) {
       const double w = SW_AT(m, d->omega, fe, c);
-      work += 0.5 * SW_AT(m, m->inertia, fe, c) / dil * (w * w - w0[c] * w0[c]);
+      work += SW_AT(m, m->inertia, fe, c) * half_inv_dil * (w * w - w0[c] * w0[c]);
     }
   }
   for (int c = 0; c < 3; c++) d->kinematic_turn[3 * j + c] = SW_AT(m, d->omega, fe, c);
@@ -411,7 +411,7 @@ static inline __attribute__((always_inline)) double follow(const swModel *m, swD
   double kicked[3], work = 0;
   for (int c = 0; c < 3; c++) kicked[c] = SW_AT(m, d->omega, fe, c);
   follow_turn(m, d, j);
-  const double dil = sw_inertia_dilatation(m, d, fe);
+  const double half_inv_dil = 0.5 / sw_inertia_dilatation(m, d, fe); /* one division, not three */
   /* the couple that turned w from `kicked` to w_f over the kick,
    * C = (J / e)(w_f - kicked) / h, times the kick's mean rate
    * (w_before + w_f) / 2: the midpoint rule the kick books every external
@@ -419,7 +419,7 @@ static inline __attribute__((always_inline)) double follow(const swModel *m, swD
   double *before = d->kinematic_turn + 3 * j;
   for (int c = 0; c < 3; c++) {
     const double w = SW_AT(m, d->omega, fe, c);
-    work += SW_AT(m, m->inertia, fe, c) / dil * (w - kicked[c]) * 0.5 * (before[c] + w);
+    work += SW_AT(m, m->inertia, fe, c) * half_inv_dil * (w - kicked[c]) * (before[c] + w);
     before[c] = w;
   }
   return work;

@@ -762,7 +762,7 @@ void sw_cli_print_info(const swCli *c, const swModel *m, double stable, const ch
   printf("memory: about %s (model %s, state %s)\n", format_bytes(a, sizeof a, mb + db),
          format_bytes(b, sizeof b, mb), format_bytes(e, sizeof e, db));
   printf("threads: %ld (%s; %d processor%s available; results do not depend on it)\n",
-         sw_cli_threads_for(c, m), c->threads_auto ? "--threads auto: one per 8192 slots, up to the processors"
+         sw_cli_threads_for(c, m), c->threads_auto ? "--threads auto: one per 8192 slots, rounded, up to the processors"
                             : c->threads_set ? "--threads" : "default",
          omp_get_num_procs(), omp_get_num_procs() == 1 ? "" : "s");
   if (p->nparam) {

@@ -45,6 +45,13 @@ grep -q "^threads: 2 (--threads" "$TMP/info"; ok $? "--info shows the thread cou
 grep -q "^threads: 1 (default" "$TMP/info"; ok $? "--info: one thread by default"
 "$TMP/elbow" --info --threads auto >"$TMP/info" 2>&1
 grep -q "^threads: 1 (--threads auto" "$TMP/info"; ok $? "--threads auto: one thread for the elbow's 635 slots (one per 8192)"
+# one rod of 13000 elements: 13001 slots, a second thread (one per 8192, rounded)
+printf 'material soft { E = 1 MPa; density = 1000 kg/m^3; }\nrod r { material = soft; start = (0, 0, 0) m; direction = (1, 0, 0); normal = (0, 0, 1);\n        length = 1 m; radius = 1 mm; elements = 13000; }\nsimulate { duration = 1 ms; }\n' >"$TMP/long.sinew"
+"$SC" "$TMP/long.sinew" -o "$TMP/long" 2>"$TMP/err"; ok $? "sinewc builds a rod of 13000 elements"
+diag <"$TMP/err"
+want=2; [ "$(nproc)" -lt 2 ] && want=1
+"$TMP/long" --info --threads auto >"$TMP/info" 2>&1
+grep -q "^threads: $want (--threads auto" "$TMP/info"; ok $? "--threads auto: $want threads for 13001 slots on $(nproc) processors"
 for bad in 0 -1 two 1.5 1000; do
   "$TMP/elbow" --quiet --threads "$bad" --duration 1us --out "$TMP/x.h5" >/dev/null 2>"$TMP/err"
   rc=$?
