@@ -266,6 +266,11 @@ static void bad_xi(swSpec *s, swKinematicDesc *k) { (void)s; k->leader_xi = 1.5;
 static void no_stiffness(swSpec *s, swKinematicDesc *k) { (void)s; k->stiffness = 0; }
 static void twice(swSpec *s, swKinematicDesc *k) { (void)s; k->follower_elem = 0; }
 static void off_rod(swSpec *s, swKinematicDesc *k) { (void)s; k->leader_elem = 8; }
+/* the bone's element 3 turned by the rachis' element 0, which the root joint turns by it */
+static void cycle(swSpec *s, swKinematicDesc *k) {
+  (void)s;
+  k->leader_rod = 1, k->leader_elem = 0, k->follower_rod = 0, k->follower_elem = 3, k->follower_node = 4;
+}
 
 /* 5. */
 static void test_validation(void **state) {
@@ -276,6 +281,8 @@ static void test_validation(void **state) {
   expect_error(no_stiffness, "kinematic joint 'bad': stiffness must be > 0 and damping >= 0");
   expect_error(twice, "kinematic joints 'root' and 'bad' both turn element 0 of 'rachis'");
   expect_error(off_rod, "kinematic joint 'bad': an element or node is off its rod");
+  expect_error(cycle, "kinematic joint 'root' leads itself through a chain of kinematic joints (a "
+               "follower's frame must come from outside the chain)");
 }
 
 /* The work booked by one imposition that undoes a turn `delta` of the
