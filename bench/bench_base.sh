@@ -1,6 +1,6 @@
 # bench_base.sh — sourced by the benchmarks that run a tree of an earlier
 # commit beside this one (bench_speedup.sh, bench_rigid_groups.sh,
-# bench_snake_eval.sh).
+# bench_snake_eval.sh, bench_wing_resolved.sh, bench_wing_threads.sh).
 # bench_base DIR REV: DIR holds a git worktree of REV with its bin/sinewc and
 # runtime built by its own Makefile (once: kept while DIR/bin/sinewc exists).
 bench_base() {
@@ -10,4 +10,14 @@ bench_base() {
     git worktree add --detach "$1" "$2" >/dev/null 2>&1
     make -C "$1" --no-print-directory bin/sinewc build/libsinewrt.a >/dev/null
   fi
+}
+
+# bench_old_tree REV (after cd to $root, the repository's root): $tree, a
+# worktree of REV built as bench_base builds it, and $tmp, a scratch
+# directory removed when the script exits.
+bench_old_tree() {
+  tmp=$(mktemp -d)
+  trap 'rm -rf "$tmp"' EXIT
+  tree=$root/build/bench/base-$1
+  bench_base "$tree" "$1"
 }

@@ -13,11 +13,8 @@ set -eu
 old=$1 rounds=${2:-3}
 root=$(cd "$(dirname "$0")/.." && pwd)
 cd "$root"
-tmp=$(mktemp -d)
-trap 'rm -rf "$tmp"' EXIT
 . bench/bench_base.sh
-tree=$root/build/bench/base-$old
-bench_base "$tree" "$old"
+bench_old_tree "$old"
 (cd "$tree" && SINEW_PATH="$tree/models" bin/sinewc models/pigeon_wing_resolved.sinew -o "$tmp/old")
 SINEW_PATH="$root/models" "$root/bin/sinewc" "$root/models/pigeon_wing_resolved.sinew" -o "$tmp/new"
 cpu() { # cpu BIN ARGS: the run's user + system seconds

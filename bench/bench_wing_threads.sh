@@ -14,11 +14,8 @@ set -eu
 old=$1 rounds=${2:-5} dur=${3:-5ms}
 root=$(cd "$(dirname "$0")/.." && pwd)
 cd "$root"
-tmp=$(mktemp -d)
-trap 'rm -rf "$tmp"' EXIT
 . bench/bench_base.sh
-tree=$root/build/bench/base-$old
-bench_base "$tree" "$old"
+bench_old_tree "$old"
 (cd "$tree" && SINEW_PATH="$tree/models" bin/sinewc models/pigeon_wing.sinew -o "$tmp/old") > /dev/null
 SINEW_PATH="$root/models" "$root/bin/sinewc" "$root/models/pigeon_wing.sinew" -o "$tmp/new" > /dev/null
 wall() { # wall BIN THREADS DURATION: the run's wall seconds
