@@ -30,7 +30,8 @@
  *      frame is imposed after its leader's, so every follower holds
  *      Q_f = R Q_l exactly at every load evaluation (in the order of the
  *      declarations the barbs took their leaders' frames before these were
- *      imposed), and 1, 2 and 3 threads give the same bits.
+ *      imposed, and the scene went unstable), and 1, 2 and 3 threads give
+ *      the same bits.
  */
 #include "testutil.h"
 #include "vec.h"
