@@ -474,7 +474,8 @@ void sw_env_free(swModel *m) {
 void sw_env_loads(const swModel *m, swData *d) {
   /* each rod's waves and ground by the thread that owns the rod (its first
    * slot; internal.h), drag by the thread that owns each node (fluid.c),
-   * contact, which couples rods, on the leader */
+   * contact, which couples rods, on the leader; waves load elements and the
+   * drag nodes, so they need no barrier between them */
   int lo, hi;
   sw_owned_slots(m, d, &lo, &hi);
   if (m->nwave) sw_wave_loads(m, d, lo, hi);
@@ -485,7 +486,13 @@ void sw_env_loads(const swModel *m, swData *d) {
     if (sw_team_leader(d) && m->nobstacle) sw_obstacle_loads(m, d); /* a carrier may be any rod */
     sw_team_barrier(d);
   }
-  if (m->nground) sw_ground_loads(m, d, lo, hi); /* last: the ground balances the rest */
+  if (m->nground) { /* last: the ground balances the rest */
+    /* a rod's ground loads go onto all its nodes, some another thread's,
+     * whose drag must be in first: the one-thread order, and the total the
+     * ground reads (without this barrier they raced) */
+    if (m->nfluid) sw_team_barrier(d);
+    sw_ground_loads(m, d, lo, hi);
+  }
 }
 
 /* Energy stored in environment springs (contact and ground penalties), J. */
