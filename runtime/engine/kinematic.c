@@ -190,9 +190,9 @@ int sw_kinematic_check(const swSpec *s, char *err, size_t errlen) {
  * neighbour: every joint reads its leader as imposed in this pass, whatever
  * the order of the declarations, and its neighbours as in spec order; and
  * within a level none reads what another writes, so a level's joints may be
- * split between threads.  The levels are found by relaxation; the chains are acyclic
- * (sw_kinematic_check), so it ends within nkinematic + 1 passes.  0: out of
- * memory. */
+ * split between threads.  The levels are found by relaxation; the chains
+ * are acyclic (sw_kinematic_check), so it ends within nkinematic + 1
+ * passes.  0: out of memory. */
 static int order_levels(swModel *m) {
   const int n = m->nkinematic, S = m->stride;
   int *by_elem = malloc((size_t)S * sizeof *by_elem), *level = calloc((size_t)(n ? n : 1), sizeof *level);
@@ -209,10 +209,9 @@ static int order_levels(swModel *m) {
     for (int j = 0; j < n; j++) {
       const int fe = m->kinematic[j].follower_elem, lead = by_elem[m->kinematic[j].leader_elem];
       int L = lead >= 0 ? level[lead] + 1 : 0;
-      for (int e = fe - 1; e <= fe + 1; e += 2) { /* a ghost or another rod's slot is no follower here */
+      for (int e = fe - 1; e <= fe + 1; e += 2) { /* past a rod's end lies a ghost, no follower */
         const int i = e >= 0 && e < S ? by_elem[e] : -1;
-        if (i >= 0 && i < j && m->kinematic[i].follower_rod == m->kinematic[j].follower_rod && level[i] + 1 > L)
-          L = level[i] + 1;
+        if (i >= 0 && i < j && level[i] + 1 > L) L = level[i] + 1;
       }
       if (L != level[j]) level[j] = L, changed = 1;
       if (L > top) top = L;

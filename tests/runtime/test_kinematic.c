@@ -42,6 +42,23 @@ static const double X[3] = {1, 0, 0}, Y[3] = {0, 1, 0}, Z[3] = {0, 0, 1};
 /* bone: 0.2 m along x, 8 elements; rachis: 0.1 m along y from the bone's
  * node 4, 6 elements, light and soft; the joint ties rachis node 0 to the
  * end of bone element 3 (node 4) and turns rachis element 0 with it */
+/* A kinematic joint tying node 0 of rod `follower` to the point xi along
+ * element `elem` of rod `leader` and turning the follower's element 0 with
+ * that element. */
+static swKinematicDesc tie(const char *name, int leader, int elem, double xi, int follower, double k) {
+  swKinematicDesc kj;
+  sw_kinematic_desc_init(&kj);
+  kj.name = name;
+  kj.leader_rod = leader;
+  kj.leader_elem = elem;
+  kj.leader_xi = xi;
+  kj.follower_rod = follower;
+  kj.follower_node = 0;
+  kj.follower_elem = 0;
+  kj.stiffness = k;
+  return kj;
+}
+
 static swLaw scene_law = SW_LAW_VARIATIONAL; /* the energy of the balance is its forces' potential */
 static int scene_rigid_bone = 0; /* test 7: the leader a rigid body */
 static swSpec *scene(double k, int reaction) {
@@ -62,17 +79,7 @@ static swSpec *scene(double k, int reaction) {
     swRodDesc base = sw_test_rod("base", 2, 0.02, 2e-3, (const double[3]){0, 0.05, 0}, X, Z);
     assert_int_equal(sw_spec_add_rod(s, &base), 2);
   }
-  swKinematicDesc kj;
-  sw_kinematic_desc_init(&kj);
-  kj.name = "root";
-  kj.leader_rod = 0;
-  kj.leader_elem = 3;
-  kj.leader_xi = 1.0;
-  kj.follower_rod = 1;
-  kj.follower_node = 0;
-  kj.follower_elem = 0;
-  kj.stiffness = k;
-  kj.damping = 0;
+  swKinematicDesc kj = tie("root", 0, 3, 1.0, 1, k);
   if (reaction) {
     kj.reaction_rod = 2;
     kj.reaction_node = 1;
@@ -448,16 +455,7 @@ static swSpec *chain_scene(void) {
   const struct { const char *name; int leader, elem, follower; double xi, k; } ties[] = {
       {"barb2", 2, 0, 3, 0.8, 1e3}, {"barb1", 1, 0, 2, 0.5, 1e3}, {"root", 0, 3, 1, 1.0, 1e4}};
   for (int t = 0; t < 3; t++) {
-    swKinematicDesc kj;
-    sw_kinematic_desc_init(&kj);
-    kj.name = ties[t].name;
-    kj.leader_rod = ties[t].leader;
-    kj.leader_elem = ties[t].elem;
-    kj.leader_xi = ties[t].xi;
-    kj.follower_rod = ties[t].follower;
-    kj.follower_node = 0;
-    kj.follower_elem = 0;
-    kj.stiffness = ties[t].k;
+    const swKinematicDesc kj = tie(ties[t].name, ties[t].leader, ties[t].elem, ties[t].xi, ties[t].follower, ties[t].k);
     assert_int_equal(sw_spec_add_kinematic(s, &kj), t);
   }
   for (int i = 0; i < CHAIN_FAN; i++) {
@@ -469,14 +467,7 @@ static swSpec *chain_scene(void) {
     fan.density = 300;
     const int rod = sw_spec_add_rod(s, &fan);
     assert_int_equal(rod, 4 + i);
-    swKinematicDesc kj;
-    sw_kinematic_desc_init(&kj);
-    kj.name = name;
-    kj.leader_rod = 1;
-    kj.leader_elem = 0;
-    kj.leader_xi = at;
-    kj.follower_rod = rod;
-    kj.stiffness = 1e3;
+    swKinematicDesc kj = tie(name, 1, 0, at, rod, 1e3);
     if (i % 2) kj.reaction_rod = 0, kj.reaction_node = 2, kj.reaction_weight = 0.5;
     assert_int_equal(sw_spec_add_kinematic(s, &kj), 3 + i);
   }
