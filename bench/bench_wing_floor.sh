@@ -19,6 +19,7 @@ set -eu
 rounds=${1:-5} dur=${2:-5ms}
 root=$(cd "$(dirname "$0")/.." && pwd)
 cd "$root"
+. bench/bench_base.sh
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 cat > "$tmp/barbs.sinew" <<'EOF'
@@ -41,10 +42,7 @@ wall() { # wall BIN DURATION: the run's wall seconds, one thread
     --out "$tmp/$1.h5" > /dev/null 2>&1 || echo "# $1 failed" >&2
   awk '$1 == "wall" { print $2 }' "$tmp/time"
 }
-steps=$("$tmp/wing" --info 2>/dev/null | awk -v d="$dur" '
-  function sec(v, u) { return v * (u == "ns" ? 1e-9 : u == "us" ? 1e-6 : u == "ms" ? 1e-3 : 1) }
-  /^dt:/ { dt = sec($2, $3) }
-  END { u = d; sub(/^[0-9.]+/, "", u); printf "%d", sec(d + 0, u) / dt + 0.5 }')
+steps=$(bench_steps "$tmp/wing" "$dur")
 r=0
 while [ $r -lt "$rounds" ]; do
   for w in $([ $((r % 2)) -eq 0 ] && echo wing barbs || echo barbs wing); do

@@ -23,10 +23,7 @@ wall() { # wall BIN THREADS DURATION: the run's wall seconds
     --out "$tmp/$1-$2.h5" > /dev/null 2>&1 || echo "# $1 on $2 threads failed" >&2
   awk '$1 == "wall" { print $2 }' "$tmp/time"
 }
-steps=$("$tmp/new" --info 2>/dev/null | awk -v d="$dur" '
-  function sec(v, u) { return v * (u == "ns" ? 1e-9 : u == "us" ? 1e-6 : u == "ms" ? 1e-3 : 1) }
-  /^dt:/ { dt = sec($2, $3) }
-  END { u = d; sub(/^[0-9.]+/, "", u); printf "%d", sec(d + 0, u) / dt + 0.5 }')
+steps=$(bench_steps "$tmp/new" "$dur")
 r=0
 while [ $r -lt "$rounds" ]; do
   for w in $([ $((r % 2)) -eq 0 ] && echo old new || echo new old); do
