@@ -43,8 +43,12 @@ section=$tmp/section
   echo "\"Position Verlet\" above, from the runtime and bench_rod built at"
   echo "\`-O3 -march=x86-64-v3\` (AVX2, FMA: most laptops, AMD Zen 2 and 3) and at"
   echo "\`-O3 -march=x86-64-v4\` (AVX-512), both with GCC's generic tuning, run on the"
-  echo "same CPU; \"before\" is the same two builds of the code at git $BASE$before_what"
-  echo "(measured with this tree's bench_rod.c). Each of $ROUNDS rounds runs every"
+  if [ -n "$BASE" ]; then
+    echo "same CPU; \"before\" is the same two builds of the code at git $BASE$before_what"
+    echo "(measured with this tree's bench_rod.c). Each of $ROUNDS rounds runs every"
+  else
+    echo "same CPU (no earlier code was built: the \"before\" columns are empty). Each of $ROUNDS rounds runs every"
+  fi
   echo "size once in each build (\`bench_rod_v3 --verlet N\`, ...), the order alternating"
   echo "from round to round; a run's figure is the median of its 9 batches, and the"
   echo "table gives the median of the $ROUNDS runs, ns and cycles per element-step."
