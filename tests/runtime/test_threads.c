@@ -306,6 +306,81 @@ static void test_fluid_split(void **state) {
   sw_spec_free(s);
 }
 
+/* ---- torque waves and a ground on rods cut by the threads ----
+ * A rod's torque waves and its ground are loaded whole by the thread that
+ * owns the rod's first slot (environment.c), onto elements and nodes that
+ * lie in other threads' slots when the rod is cut; without a fluid no
+ * barrier stands between the two, as both run on that one thread, after
+ * the internal loads of every thread are in.  Two rods of 150 elements, one
+ * wave measured from each end, lie on a ground with static, kinetic and
+ * rolling friction at the contact point (so the ground reads the elements'
+ * spin and the waves' couples): 302 slots in chunks of 64, every team of 2
+ * to 4 threads cutting a rod.  The rods must crawl (their centres move) and
+ * give the bits of one thread on 2, 3 and 4. */
+static swSpec *wave_scene(void) {
+  swSpec *s = sw_spec_new();
+  static const char *names[] = {"forward", "reversed"};
+  for (int r = 0; r < 2; r++) {
+    swRodDesc d = rod(names[r], 150, 0, 0.1 * r, ALONG);
+    d.start[2] = 0.01; /* resting on the ground (radius 1 cm at its start) */
+    sw_spec_add_rod(s, &d);
+    swWaveDesc w;
+    sw_wave_desc_init(&w);
+    w.name = names[r];
+    w.rod = r;
+    w.ncoef = 6;
+    for (int k = 0; k < w.ncoef; k++) w.coef[k] = 2e-3 * (1 + k % 3);
+    w.wavelength = 0.25;
+    w.period = 0.02;
+    w.reverse = r;
+    sw_spec_add_wave(s, &w);
+  }
+  const double g[3] = {0, 0, -9.81};
+  sw_spec_set_gravity(s, g);
+  swGroundDesc gr;
+  sw_ground_desc_init(&gr);
+  gr.stiffness = 2e3;
+  gr.damping = 1.0;
+  for (int k = 0; k < 3; k++) gr.mu_kinetic[k] = k == 2 ? 0.6 : 0.3, gr.mu_static[k] = 0.5;
+  gr.mu_rolling = 0.01;
+  gr.contact_point = 1;
+  sw_spec_add_ground(s, &gr);
+  return s;
+}
+
+static void test_wave_ground_split(void **state) {
+  (void)state;
+  swSpec *s = wave_scene();
+  swModel *m = sw_test_compile_at(s, 0.5);
+  assert_int_equal(m->chunk, 64);
+  assert_int_equal(m->nslot_elastic, 302);
+  const long steps = sw_test_sanitized() ? 300 : 600;
+  snapshot one = run(m, 1, steps);
+  assert_int_equal(one.rc, SW_OK);
+  /* the waves did move the rods: the first rod's nodes, from rest */
+  swData *d0 = sw_data_new(m);
+  double moved = 0;
+  for (int i = 0; i <= 150; i++)
+    for (int k = 0; k < 3; k++) {
+      const size_t at = (size_t)k * m->stride + (size_t)i;
+      moved = fmax(moved, fabs(one.planes[at] - d0->x[at]));
+    }
+  sw_data_free(d0);
+  fprintf(stderr, "# waves on a ground: %d slots in chunks of %d, %ld steps, largest move %.3e m, "
+          "work %.6g J\n", m->nslot_elastic, m->chunk, one.step, moved, one.work);
+  assert_true(moved > 1e-7);
+  for (int t = 2; t <= 4; t++) {
+    snapshot more = run(m, t, steps);
+    same_bits(m, &one, &more, t);
+    free(more.planes);
+    free(more.joints);
+  }
+  free(one.planes);
+  free(one.joints);
+  sw_model_free(m);
+  sw_spec_free(s);
+}
+
 /* ---- the fused sweep ----
  * A one-thread Verlet step of rods under gravity, clamps, prescribed ends,
  * point loads and damping runs its kick and drift as one sweep over the
@@ -522,6 +597,7 @@ int main(void) {
       cmocka_unit_test(test_pefrl),
       cmocka_unit_test(test_unstable),
       cmocka_unit_test(test_fluid_split),
+      cmocka_unit_test(test_wave_ground_split),
       cmocka_unit_test(test_sweep),
       cmocka_unit_test(test_held),
   };
