@@ -196,6 +196,16 @@ static void same_bits(const swModel *m, const snapshot *a, const snapshot *b, in
   assert_string_equal(a->error, b->error);
 }
 
+/* The run of `one` (1 thread) again on 2, 3 and 4 threads: the same bits. */
+static void same_on_teams(const swModel *m, const snapshot *one, long steps) {
+  for (int t = 2; t <= 4; t++) {
+    snapshot more = run(m, t, steps);
+    same_bits(m, one, &more, t);
+    free(more.planes);
+    free(more.joints);
+  }
+}
+
 static void compare(swIntegrator integ, double dt_frac, long steps, int want_rc) {
   swSpec *s = scene(integ);
   swModel *m = sw_test_compile_at(s, dt_frac);
@@ -204,12 +214,7 @@ static void compare(swIntegrator integ, double dt_frac, long steps, int want_rc)
   assert_int_equal(one.rc, want_rc);
   fprintf(stderr, "# %s: %ld steps, %d element pairs in contact at the end\n",
           integ == SW_PEFRL ? "PEFRL" : "Verlet", one.step, one.pairs);
-  for (int t = 2; t <= 4; t++) {
-    snapshot more = run(m, t, steps);
-    same_bits(m, &one, &more, t);
-    free(more.planes);
-    free(more.joints);
-  }
+  same_on_teams(m, &one, steps);
   if (want_rc != SW_OK) fprintf(stderr, "# unstable on every team: %s\n", one.error);
   free(one.planes);
   free(one.joints);
@@ -247,6 +252,20 @@ static void test_unstable(void **state) {
  * added its loads to nodes of another thread while that one added their
  * drag (9767 of 13680 doubles differed, the work changing from run to run)
  * until a barrier went between the two (environment.c). */
+/* A ground at height z under the split scenes, with kinetic and static
+ * friction, and with `rolling`, rolling friction at the contact point too
+ * (the ground then reads the elements' spin and couples). */
+static void add_ground(swSpec *s, double z, int rolling) {
+  swGroundDesc gr;
+  sw_ground_desc_init(&gr);
+  gr.origin[2] = z;
+  gr.stiffness = 2e3;
+  gr.damping = 1.0;
+  for (int k = 0; k < 3; k++) gr.mu_kinetic[k] = k == 2 ? 0.6 : 0.3, gr.mu_static[k] = 0.5;
+  if (rolling) gr.mu_rolling = 0.01, gr.contact_point = 1;
+  sw_spec_add_ground(s, &gr);
+}
+
 static swSpec *wet_scene(void) {
   swSpec *s = sw_spec_new();
   static const char *names[] = {"quadratic", "stokes"};
@@ -272,13 +291,7 @@ static swSpec *wet_scene(void) {
   /* and a ground just below them, which the rods' owners load whole
    * (environment.c): the drag of their nodes on other threads must be in
    * before the ground adds its loads and reads them (it raced there) */
-  swGroundDesc gr;
-  sw_ground_desc_init(&gr);
-  gr.origin[2] = -0.005;
-  gr.stiffness = 2e3;
-  gr.damping = 1.0;
-  for (int k = 0; k < 3; k++) gr.mu_kinetic[k] = k == 2 ? 0.6 : 0.3, gr.mu_static[k] = 0.5;
-  sw_spec_add_ground(s, &gr);
+  add_ground(s, -0.005, 0);
   return s;
 }
 
@@ -294,12 +307,7 @@ static void test_fluid_split(void **state) {
   assert_int_equal(one.rc, SW_OK);
   fprintf(stderr, "# fluids: %d slots in chunks of %d, %ld steps, work %.6g J\n", m->nslot_elastic,
           m->chunk, one.step, one.work);
-  for (int t = 2; t <= 4; t++) {
-    snapshot more = run(m, t, steps);
-    same_bits(m, &one, &more, t);
-    free(more.planes);
-    free(more.joints);
-  }
+  same_on_teams(m, &one, steps);
   free(one.planes);
   free(one.joints);
   sw_model_free(m);
@@ -337,14 +345,7 @@ static swSpec *wave_scene(void) {
   }
   const double g[3] = {0, 0, -9.81};
   sw_spec_set_gravity(s, g);
-  swGroundDesc gr;
-  sw_ground_desc_init(&gr);
-  gr.stiffness = 2e3;
-  gr.damping = 1.0;
-  for (int k = 0; k < 3; k++) gr.mu_kinetic[k] = k == 2 ? 0.6 : 0.3, gr.mu_static[k] = 0.5;
-  gr.mu_rolling = 0.01;
-  gr.contact_point = 1;
-  sw_spec_add_ground(s, &gr);
+  add_ground(s, 0.0, 1);
   return s;
 }
 
@@ -369,12 +370,7 @@ static void test_wave_ground_split(void **state) {
   fprintf(stderr, "# waves on a ground: %d slots in chunks of %d, %ld steps, largest move %.3e m, "
           "work %.6g J\n", m->nslot_elastic, m->chunk, one.step, moved, one.work);
   assert_true(moved > 1e-7);
-  for (int t = 2; t <= 4; t++) {
-    snapshot more = run(m, t, steps);
-    same_bits(m, &one, &more, t);
-    free(more.planes);
-    free(more.joints);
-  }
+  same_on_teams(m, &one, steps);
   free(one.planes);
   free(one.joints);
   sw_model_free(m);
