@@ -237,6 +237,20 @@ static void test_unstable(void **state) {
   compare(SW_VERLET, 3.0, 600, SW_EUNSTABLE);
 }
 
+/* A ground at height z under the split scenes, with kinetic and static
+ * friction, and with `rolling`, rolling friction at the contact point too
+ * (the ground then reads the elements' spin and couples). */
+static void add_ground(swSpec *s, double z, int rolling) {
+  swGroundDesc gr;
+  sw_ground_desc_init(&gr);
+  gr.origin[2] = z;
+  gr.stiffness = 2e3;
+  gr.damping = 1.0;
+  for (int k = 0; k < 3; k++) gr.mu_kinetic[k] = k == 2 ? 0.6 : 0.3, gr.mu_static[k] = 0.5;
+  if (rolling) gr.mu_rolling = 0.01, gr.contact_point = 1;
+  sw_spec_add_ground(s, &gr);
+}
+
 /* ---- fluids across a thread's first slot ----
  * A fluid's loads go element by element to both nodes of each element, and
  * each thread adds them to its own slots (environment.c), which start where
@@ -252,20 +266,6 @@ static void test_unstable(void **state) {
  * added its loads to nodes of another thread while that one added their
  * drag (9767 of 13680 doubles differed, the work changing from run to run)
  * until a barrier went between the two (environment.c). */
-/* A ground at height z under the split scenes, with kinetic and static
- * friction, and with `rolling`, rolling friction at the contact point too
- * (the ground then reads the elements' spin and couples). */
-static void add_ground(swSpec *s, double z, int rolling) {
-  swGroundDesc gr;
-  sw_ground_desc_init(&gr);
-  gr.origin[2] = z;
-  gr.stiffness = 2e3;
-  gr.damping = 1.0;
-  for (int k = 0; k < 3; k++) gr.mu_kinetic[k] = k == 2 ? 0.6 : 0.3, gr.mu_static[k] = 0.5;
-  if (rolling) gr.mu_rolling = 0.01, gr.contact_point = 1;
-  sw_spec_add_ground(s, &gr);
-}
-
 static swSpec *wet_scene(void) {
   swSpec *s = sw_spec_new();
   static const char *names[] = {"quadratic", "stokes"};
@@ -323,8 +323,8 @@ static void test_fluid_split(void **state) {
  * wave measured from each end, lie on a ground with static, kinetic and
  * rolling friction at the contact point (so the ground reads the elements'
  * spin and the waves' couples): 302 slots in chunks of 64, every team of 2
- * to 4 threads cutting a rod.  The rods must crawl (their centres move) and
- * give the bits of one thread on 2, 3 and 4. */
+ * to 4 threads cutting a rod.  The waves must bend the rods sideways, and
+ * 2, 3 and 4 threads give the bits of one. */
 static swSpec *wave_scene(void) {
   swSpec *s = sw_spec_new();
   static const char *names[] = {"forward", "reversed"};
@@ -358,18 +358,18 @@ static void test_wave_ground_split(void **state) {
   const long steps = sw_test_sanitized() ? 300 : 600;
   snapshot one = run(m, 1, steps);
   assert_int_equal(one.rc, SW_OK);
-  /* the waves did move the rods: the first rod's nodes, from rest */
+  /* the waves did bend the rods sideways (y), which gravity and the
+   * ground alone would not: the largest sideways move of a node */
   swData *d0 = sw_data_new(m);
-  double moved = 0;
-  for (int i = 0; i <= 150; i++)
-    for (int k = 0; k < 3; k++) {
-      const size_t at = (size_t)k * m->stride + (size_t)i;
-      moved = fmax(moved, fabs(one.planes[at] - d0->x[at]));
-    }
+  double sideways = 0;
+  for (int i = 0; i < m->nslot_elastic; i++) {
+    const size_t at = (size_t)m->stride + (size_t)i; /* plane y of x */
+    sideways = fmax(sideways, fabs(one.planes[at] - d0->x[at]));
+  }
   sw_data_free(d0);
-  fprintf(stderr, "# waves on a ground: %d slots in chunks of %d, %ld steps, largest move %.3e m, "
-          "work %.6g J\n", m->nslot_elastic, m->chunk, one.step, moved, one.work);
-  assert_true(moved > 1e-7);
+  fprintf(stderr, "# waves on a ground: %d slots in chunks of %d, %ld steps, largest sideways "
+          "move %.3e m, work %.6g J\n", m->nslot_elastic, m->chunk, one.step, sideways, one.work);
+  assert_true(sideways > 1e-5);
   same_on_teams(m, &one, steps);
   free(one.planes);
   free(one.joints);
